@@ -1,0 +1,28 @@
+"""chaingraph: planar kinematic chains as link-joint graphs.
+
+Load a chain file, classify it, and (in later modules) enumerate its inversions,
+solve its motion and draw it.
+
+>>> import chaingraph
+>>> from chaingraph.catalog import catalog_path
+>>> chain = chaingraph.load(catalog_path("four-bar-chain"))
+>>> chaingraph.classify(chain).verdict
+'kinematic chain'
+"""
+
+from .chain import Chain, Joint, Mechanism, Point
+from .chainfile import dumps, from_document, load, loads, save
+from .classify import Check, Classification, classify
+from .errors import (AssemblyError, AtlasSizeError, ChainFileError, ChainGraphError,
+                     ChainStructureError, DesignError, MechanismError)
+from .rigidity import rigid_subchains
+
+__version__ = "0.1.0"
+
+__all__ = [
+    "Chain", "Joint", "Mechanism", "Point",
+    "load", "loads", "from_document", "dumps", "save",
+    "classify", "Classification", "Check", "rigid_subchains",
+    "ChainGraphError", "ChainFileError", "ChainStructureError", "MechanismError",
+    "AssemblyError", "AtlasSizeError", "DesignError",
+]

@@ -1,0 +1,7 @@
+"""``python -m chaingraph`` is the ``chaingraph`` command."""
+
+import sys
+
+from .cli import main
+
+sys.exit(main())

@@ -1,0 +1,293 @@
+"""Reading and writing chain files (TOML, the public format).
+
+:func:`load` reads a file, :func:`loads` a string, :func:`from_document` an already
+parsed document (a dict). All three check the document's keys and types here and the
+chain's meaning in :class:`~chaingraph.chain.Chain` itself, so the catalog, a user's
+file and a chain built in Python are validated by the same code. Every problem raises
+:class:`~chaingraph.errors.ChainFileError` naming the file, the joint or key, and what
+is wrong. :func:`dumps` writes a chain back in the same format.
+"""
+
+from __future__ import annotations
+
+import json
+import math
+import os
+import re
+import tomllib
+
+from .chain import Chain, Joint, Mechanism, Point
+from .errors import ChainFileError
+
+__all__ = ["load", "loads", "from_document", "dumps", "save"]
+
+TOP_KEYS = ("name", "family", "units", "space", "notes", "joints", "points", "mechanism")
+JOINT_KEYS = ("id", "kind", "links", "at", "axis", "closure")
+POINT_KEYS = ("id", "link", "at")
+MECHANISM_KEYS = ("fixed", "driver", "omega", "output")
+
+
+def load(path) -> Chain:
+    """Read a chain file.
+
+    Parameters
+    ----------
+    path : str or os.PathLike
+        A TOML chain file in the public format.
+
+    Returns
+    -------
+    Chain
+        The chain, with its pose, points and mechanism when the file has them.
+
+    Raises
+    ------
+    ChainFileError
+        When the file cannot be read or is not a valid chain; the message names the
+        file, the joint or key, and what is wrong.
+
+    Examples
+    --------
+    >>> import chaingraph
+    >>> from chaingraph.catalog import catalog_path
+    >>> chain = chaingraph.load(catalog_path("four-bar-chain"))
+    >>> chain.name, len(chain.links), len(chain.joints)
+    ('Four-bar chain', 4, 4)
+    """
+    source = os.fspath(path)
+    try:
+        with open(source, "rb") as f:
+            raw = f.read()
+    except FileNotFoundError:
+        raise ChainFileError("no such file", source=source) from None
+    except IsADirectoryError:
+        raise ChainFileError("is a folder, not a chain file", source=source) from None
+    except OSError as e:
+        raise ChainFileError(f"cannot be read ({e.strerror})", source=source) from None
+    try:
+        text = raw.decode("utf-8")
+    except UnicodeDecodeError as e:
+        raise ChainFileError(f"is not UTF-8 text (byte {e.start})", source=source) from None
+    return loads(text, source=source)
+
+
+def loads(text: str, *, source: str = "<string>") -> Chain:
+    """Read a chain from TOML text; see :func:`load`.
+
+    Examples
+    --------
+    >>> from chaingraph.chainfile import loads
+    >>> loads('name = "x"\\n[[joints]]\\nid = "A"\\nkind = "Q"\\nlinks = ["a", "b"]')
+    Traceback (most recent call last):
+    ...
+    chaingraph.errors.ChainFileError: <string>: joint 'A': unknown kind 'Q' (expected one of R, P, screw, cylindrical, spherical, planar, rolling, cam, gear)
+    """
+    try:
+        doc = tomllib.loads(text)
+    except tomllib.TOMLDecodeError as e:
+        msg = str(e)
+        m = re.search(r"\(at line (\d+), column (\d+)\)", msg)
+        line = int(m.group(1)) if m else None
+        raise ChainFileError(f"TOML syntax error: {msg}", source=source, line=line) from None
+    return from_document(doc, source=source)
+
+
+def from_document(doc, *, source: str = "<document>") -> Chain:
+    """Build a chain from a parsed document (the dict a TOML file gives)."""
+    def fail(problem, where=None):
+        raise ChainFileError(problem, source=source, where=where)
+
+    if not isinstance(doc, dict):
+        fail(f"a chain document is a table of keys, not {_type_name(doc)}")
+    _no_unknown_keys(doc, TOP_KEYS, None, fail)
+    if "name" not in doc:
+        fail("missing required key 'name'", "key 'name'")
+    name = _string(doc["name"], "key 'name'", fail)
+    family = _optional_string(doc, "family", "key 'family'", fail)
+    units = _optional_string(doc, "units", "key 'units'", fail)
+    notes = _optional_string(doc, "notes", "key 'notes'", fail)
+    space = _optional_string(doc, "space", "key 'space'", fail) or "planar"
+    if "joints" not in doc:
+        fail("missing [[joints]]: a chain needs at least one joint", "key 'joints'")
+    joints = tuple(_joint(t, i, fail) for i, t in
+                   enumerate(_tables(doc["joints"], "joints", fail)))
+    points = tuple(_point(t, i, fail) for i, t in
+                   enumerate(_tables(doc.get("points", []), "points", fail)))
+    mechanism = None
+    if "mechanism" in doc:
+        mechanism = _mechanism(doc["mechanism"], fail)
+    return Chain(name=name, joints=joints, family=family, units=units, space=space,
+                 notes=notes, points=points, mechanism=mechanism, source=source)
+
+
+def _type_name(value) -> str:
+    return {bool: "a boolean", int: "an integer", float: "a number", str: "a string",
+            list: "an array", dict: "a table"}.get(type(value), f"a {type(value).__name__}")
+
+
+def _no_unknown_keys(table, allowed, where, fail):
+    for key in table:
+        if key not in allowed:
+            fail(f"unknown key {key!r} (allowed: {', '.join(allowed)})",
+                 where or f"key {key!r}")
+
+
+def _string(value, where, fail):
+    if not isinstance(value, str):
+        fail(f"must be a string, got {_type_name(value)}", where)
+    return value
+
+
+def _optional_string(table, key, where, fail):
+    return _string(table[key], where, fail) if key in table else None
+
+
+def _number(value, where, fail):
+    if isinstance(value, bool) or not isinstance(value, (int, float)):
+        fail(f"must be a number, got {_type_name(value)}", where)
+    if not math.isfinite(value):
+        fail(f"must be a finite number, got {value}", where)
+    return float(value)
+
+
+def _coordinates(value, where, fail):
+    if (not isinstance(value, list) or len(value) != 2
+            or any(isinstance(v, bool) or not isinstance(v, (int, float)) for v in value)):
+        fail(f"'at' must be two finite numbers [x, y], got {_show(value)}", where)
+    if not all(math.isfinite(v) for v in value):
+        fail(f"'at' must be two finite numbers [x, y], got {_show(value)}", where)
+    return (float(value[0]), float(value[1]))
+
+
+def _show(value) -> str:
+    text = repr(value)
+    return text if len(text) <= 60 else text[:57] + "..."
+
+
+def _tables(value, key, fail):
+    if isinstance(value, dict):
+        fail(f"'{key}' must be an array of tables: write [[{key}]] for each entry",
+             f"key '{key}'")
+    if not isinstance(value, list) or not all(isinstance(t, dict) for t in value):
+        fail(f"'{key}' must be an array of tables ([[{key}]]), got {_type_name(value)}",
+             f"key '{key}'")
+    return value
+
+
+def _joint(table, index, fail):
+    label = f"joint #{index + 1}"
+    if "id" in table and isinstance(table["id"], str) and table["id"]:
+        label = f"joint {table['id']!r}"
+    _no_unknown_keys(table, JOINT_KEYS, None,
+                     lambda problem, where: fail(problem, label))
+    for key in ("id", "kind", "links"):
+        if key not in table:
+            fail(f"missing required key '{key}'", label)
+    joint_id = _string(table["id"], label + " key 'id'", fail)
+    if not joint_id:
+        fail("'id' must not be empty", label)
+    kind = _string(table["kind"], label + " key 'kind'", fail)
+    links = table["links"]
+    if not isinstance(links, list) or not all(isinstance(x, str) for x in links):
+        fail(f"'links' must be an array of link names, got {_show(links)}", label)
+    at = _coordinates(table["at"], label, fail) if "at" in table else None
+    axis = _number(table["axis"], label + " key 'axis'", fail) if "axis" in table else None
+    closure = _optional_string(table, "closure", label + " key 'closure'", fail)
+    return Joint(id=joint_id, kind=kind, links=tuple(links), at=at, axis=axis,
+                 closure=closure)
+
+
+def _point(table, index, fail):
+    label = f"point #{index + 1}"
+    if "id" in table and isinstance(table["id"], str) and table["id"]:
+        label = f"point {table['id']!r}"
+    _no_unknown_keys(table, POINT_KEYS, None, lambda problem, where: fail(problem, label))
+    for key in POINT_KEYS:
+        if key not in table:
+            fail(f"missing required key '{key}'", label)
+    point_id = _string(table["id"], label + " key 'id'", fail)
+    link = _string(table["link"], label + " key 'link'", fail)
+    return Point(id=point_id, link=link, at=_coordinates(table["at"], label, fail))
+
+
+def _mechanism(table, fail):
+    where = "[mechanism]"
+    if not isinstance(table, dict):
+        fail(f"'mechanism' must be a table ([mechanism]), got {_type_name(table)}", where)
+    _no_unknown_keys(table, MECHANISM_KEYS, None, lambda problem, w: fail(problem, where))
+    if "fixed" not in table:
+        fail("missing required key 'fixed' (the fixed link)", where)
+    fixed = _string(table["fixed"], where + " key 'fixed'", fail)
+    driver = _optional_string(table, "driver", where + " key 'driver'", fail)
+    output = _optional_string(table, "output", where + " key 'output'", fail)
+    omega = _number(table["omega"], where + " key 'omega'", fail) if "omega" in table else 1.0
+    return Mechanism(fixed=fixed, driver=driver, omega=omega, output=output)
+
+
+# -- writing ------------------------------------------------------------------------
+def _toml_string(s: str) -> str:
+    return json.dumps(s, ensure_ascii=False).replace("\x7f", "\\u007F")
+
+
+def _toml_number(x: float) -> str:
+    x = float(x)
+    if x == int(x) and abs(x) < 1e15:
+        return f"{x:.1f}"
+    return repr(x)
+
+
+def dumps(chain: Chain) -> str:
+    """The chain as TOML text in the public format; :func:`loads` reads it back.
+
+    Examples
+    --------
+    >>> from chaingraph.chain import Chain, Joint
+    >>> from chaingraph.chainfile import dumps, loads
+    >>> c = Chain("pair", (Joint("A", "R", ("a", "b"), at=(0.0, 1.5)),))
+    >>> print(dumps(c))
+    name = "pair"
+    <BLANKLINE>
+    [[joints]]
+    id = "A"
+    kind = "R"
+    links = ["a", "b"]
+    at = [0.0, 1.5]
+    <BLANKLINE>
+    >>> loads(dumps(c)) == c
+    True
+    """
+    lines = [f"name = {_toml_string(chain.name)}"]
+    for key in ("family", "units", "notes"):
+        value = getattr(chain, key)
+        if value is not None:
+            lines.append(f"{key} = {_toml_string(value)}")
+    if chain.space != "planar":
+        lines.append(f"space = {_toml_string(chain.space)}")
+    for j in chain.joints:
+        lines += ["", "[[joints]]", f"id = {_toml_string(j.id)}", f"kind = {_toml_string(j.kind)}",
+                  "links = [" + ", ".join(_toml_string(x) for x in j.links) + "]"]
+        if j.at is not None:
+            lines.append(f"at = [{_toml_number(j.at[0])}, {_toml_number(j.at[1])}]")
+        if j.axis is not None:
+            lines.append(f"axis = {_toml_number(j.axis)}")
+        if j.closure is not None:
+            lines.append(f"closure = {_toml_string(j.closure)}")
+    for p in chain.points:
+        lines += ["", "[[points]]", f"id = {_toml_string(p.id)}", f"link = {_toml_string(p.link)}",
+                  f"at = [{_toml_number(p.at[0])}, {_toml_number(p.at[1])}]"]
+    m = chain.mechanism
+    if m is not None:
+        lines += ["", "[mechanism]", f"fixed = {_toml_string(m.fixed)}"]
+        if m.driver is not None:
+            lines.append(f"driver = {_toml_string(m.driver)}")
+        if m.omega != 1.0:
+            lines.append(f"omega = {_toml_number(m.omega)}")
+        if m.output is not None:
+            lines.append(f"output = {_toml_string(m.output)}")
+    return "\n".join(lines) + "\n"
+
+
+def save(chain: Chain, path) -> None:
+    """Write the chain to a TOML file (see :func:`dumps`)."""
+    with open(path, "w", encoding="utf-8") as f:
+        f.write(dumps(chain))

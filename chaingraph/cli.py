@@ -1,0 +1,122 @@
+"""The ``chaingraph`` command line.
+
+Exit status: 0 on success, 2 on bad input (the message names the file, joint or key),
+1 when the analysis fails (for example a mechanism that cannot be assembled). Errors
+are printed as one line on stderr, without a traceback.
+"""
+
+from __future__ import annotations
+
+import argparse
+import json
+import sys
+
+from .chainfile import load
+from .classify import classify
+from .errors import ChainGraphError
+
+__all__ = ["main"]
+
+
+def _print_json(obj) -> None:
+    print(json.dumps(obj, indent=2, ensure_ascii=False))
+
+
+def _table(rows, header) -> str:
+    widths = [max(len(str(r[i])) for r in [header, *rows]) for i in range(len(header))]
+    fmt = lambda r: "  ".join(str(c).ljust(w) for c, w in zip(r, widths)).rstrip()  # noqa: E731
+    return "\n".join([fmt(header), fmt(["-" * w for w in widths]), *map(fmt, rows)])
+
+
+def _counts(d: dict) -> str:
+    return ", ".join(f"{k} {v}" for k, v in d.items() if v) or "none"
+
+
+def _check_sides(check) -> str:
+    if not check.applicable:
+        return "n/a"
+    sign = "=" if check.lhs == check.rhs else (">" if check.lhs > check.rhs else "<")
+    return f"{check.lhs} {sign} {check.rhs}"
+
+
+def _check_text(check) -> str:
+    return check.verdict if check.applicable else f"not applicable: {check.note}"
+
+
+def _classification_text(result, source) -> str:
+    rows = [
+        ["links L", result.links, _counts(result.link_orders)],
+        ["pairs P", result.pairs, _counts(result.pair_kinds)],
+        ["joint equivalents J", result.joint_equivalents,
+         "joints: " + _counts(result.joint_orders)],
+        ["higher pairs H", result.higher_pairs, ""],
+        ["loops", result.loops, "independent closed loops"],
+        ["mobility F", result.mobility,
+         "Kutzbach, " + ("3(L - 1) - 2J - H" if result.space == "planar"
+                         else "6(L - 1) - sum(6 - f)")],
+    ]
+    rows += [[c.rule, _check_sides(c), _check_text(c)] for c in result.checks]
+    rows.append(["verdict", result.verdict, ""])
+    rows.append(["degenerate", "yes" if result.degenerate else "no",
+                 "; ".join("{" + ", ".join(s) + "}" for s in result.rigid_subchains)])
+    head = f"{result.name}  ({source})"
+    body = _table(rows, ["", "", ""]).split("\n", 2)[2]
+    lines = [head, body]
+    lines += [f"note: {o}" for o in result.oddities if not o.startswith("degenerate")]
+    return "\n".join(lines)
+
+
+def _cmd_classify(args) -> int:
+    results, failed = [], 0
+    for path in args.files:
+        try:
+            results.append((path, classify(load(path))))
+        except ChainGraphError as e:
+            print(f"chaingraph: error: {e}", file=sys.stderr)
+            failed = e.exit_status if not failed else failed
+    if args.json and results:
+        objs = [r.to_dict() for _, r in results]
+        _print_json(objs[0] if len(args.files) == 1 else objs)
+    elif len(results) == 1 and len(args.files) == 1:
+        print(_classification_text(results[0][1], results[0][0]))
+    elif results:
+        rows = [[r.name, r.links, r.pairs, r.joint_equivalents, r.higher_pairs, r.loops,
+                 r.mobility, c2.verdict or "n/a", r.check("J + H/2 = 3L/2 - 2").verdict,
+                 r.verdict, "yes" if r.degenerate else "no"]
+                for _, r in results for c2 in [r.check("L = 2P - 4")]]
+        print(_table(rows, ["chain", "L", "P", "J", "H", "loops", "F", "L = 2P - 4",
+                            "J + H/2 = 3L/2 - 2", "verdict", "degenerate"]))
+    return failed
+
+
+def build_parser() -> argparse.ArgumentParser:
+    parser = argparse.ArgumentParser(
+        prog="chaingraph",
+        description="Analyse planar kinematic chains as link-joint graphs.")
+    parser.add_argument("--version", action="version", version=f"%(prog)s {_version()}")
+    sub = parser.add_subparsers(dest="command", required=True, metavar="COMMAND")
+    p = sub.add_parser("classify", help="structural classification of chain files",
+                       description="Counts, orders, loops, Kutzbach mobility, the textbook "
+                                   "checks and degeneracy of each chain file.")
+    p.add_argument("files", nargs="+", metavar="FILE", help="chain files (TOML)")
+    p.add_argument("--json", action="store_true", help="print JSON (a list for several files)")
+    p.set_defaults(run=_cmd_classify)
+    return parser
+
+
+def _version() -> str:
+    from . import __version__
+    return __version__
+
+
+def main(argv=None) -> int:
+    """Run the command line; returns the exit status."""
+    parser = build_parser()
+    args = parser.parse_args(argv)
+    try:
+        return args.run(args)
+    except ChainGraphError as e:
+        print(f"chaingraph: error: {e}", file=sys.stderr)
+        return e.exit_status
+    except BrokenPipeError:
+        return 0

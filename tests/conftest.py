@@ -1,0 +1,26 @@
+import subprocess
+import sys
+
+import pytest
+
+from chaingraph.catalog import catalog_files, catalog_path
+
+
+@pytest.fixture
+def write(tmp_path):
+    """Write TOML text to a file in tmp_path and return its path."""
+    def _write(text, name="chain.toml"):
+        path = tmp_path / name
+        path.write_text(text, encoding="utf-8")
+        return path
+    return _write
+
+
+def run_cli(*args, cwd=None):
+    """Run `python -m chaingraph ARGS` in a fresh process; return (code, stdout, stderr)."""
+    proc = subprocess.run([sys.executable, "-m", "chaingraph", *map(str, args)],
+                          capture_output=True, text=True, cwd=cwd)
+    return proc.returncode, proc.stdout, proc.stderr
+
+
+CATALOG = catalog_files()
