@@ -15,6 +15,9 @@ from .chainfile import dumps, from_document, load, loads, save
 from .classify import Check, Classification, classify
 from .errors import (AssemblyError, AtlasSizeError, ChainFileError, ChainGraphError,
                      ChainStructureError, DesignError, MechanismError)
+from .identify import Identification, identify
+from .inversions import Inversion, Inversions, inversions
+from .isomorphism import automorphism_orbits, canonical_form, is_isomorphic, isomorphism
 from .rigidity import rigid_subchains
 
 __version__ = "0.1.0"
@@ -23,6 +26,8 @@ __all__ = [
     "Chain", "Joint", "Mechanism", "Point",
     "load", "loads", "from_document", "dumps", "save",
     "classify", "Classification", "Check", "rigid_subchains",
+    "inversions", "Inversions", "Inversion", "identify", "Identification",
+    "canonical_form", "is_isomorphic", "isomorphism", "automorphism_orbits",
     "ChainGraphError", "ChainFileError", "ChainStructureError", "MechanismError",
     "AssemblyError", "AtlasSizeError", "DesignError",
 ]

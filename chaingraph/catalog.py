@@ -45,3 +45,14 @@ def catalog_path(stem: str) -> Path:
 def load_catalog() -> list:
     """Every catalog entry as a :class:`~chaingraph.chain.Chain`, in file name order."""
     return [load(path) for path in catalog_files()]
+
+
+_BUNDLED = None
+
+
+def bundled_catalog() -> tuple:
+    """The bundled catalog, loaded once per process (chains are immutable)."""
+    global _BUNDLED
+    if _BUNDLED is None:
+        _BUNDLED = tuple(load_catalog())
+    return _BUNDLED

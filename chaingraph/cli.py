@@ -89,6 +89,47 @@ def _cmd_classify(args) -> int:
     return failed
 
 
+def _cmd_inversions(args) -> int:
+    from .inversions import inversions
+    result = inversions(load(args.file), with_input=args.with_input)
+    if args.json:
+        _print_json(result.to_dict())
+        return 0
+    plural = "class" if result.classes == 1 else "classes"
+    print(f"{result.name}: {result.links} links, {len(result.inversions)} inversions "
+          f"in {result.classes} {plural} by structure")
+    header = ["fixed", "class", "behaviour", "names"]
+    rows = []
+    for inv in result.inversions:
+        row = [inv.fixed, inv.class_, inv.behaviour or "-", "; ".join(inv.names) or "-"]
+        if args.with_input:
+            row.insert(2, ", ".join(f"{i.driver} ({i.class_})" for i in inv.inputs) or "-")
+        rows.append(row)
+    if args.with_input:
+        header.insert(2, "inputs (class)")
+    print(_table(rows, header))
+    if args.with_input:
+        print(f"classes with a designated input: {result.classes_with_input}")
+    return 0
+
+
+def _cmd_identify(args) -> int:
+    from .identify import identify
+    chain = load(args.file)
+    found = identify(chain)
+    if args.json:
+        _print_json(found.to_dict())
+        return 0
+    where = lambda path: f"  ({path})" if path else ""  # noqa: E731
+    print(f"chain:     {found.chain or 'not in the catalog'}{where(found.chain_file)}")
+    if chain.mechanism is not None:
+        print(f"inversion: {found.inversion or 'not in the catalog'}"
+              f"{where(found.inversion_file)}")
+    if found.mapping:
+        print("mapping:   " + ", ".join(f"{a} -> {b}" for a, b in found.mapping.items()))
+    return 0
+
+
 def build_parser() -> argparse.ArgumentParser:
     parser = argparse.ArgumentParser(
         prog="chaingraph",
@@ -101,6 +142,23 @@ def build_parser() -> argparse.ArgumentParser:
     p.add_argument("files", nargs="+", metavar="FILE", help="chain files (TOML)")
     p.add_argument("--json", action="store_true", help="print JSON (a list for several files)")
     p.set_defaults(run=_cmd_classify)
+
+    p = sub.add_parser("inversions", help="inversions: fix each link in turn",
+                       description="One inversion per link, grouped into classes by the "
+                                   "chain's automorphisms, named from the catalog, with "
+                                   "their behaviour where the file has dimensions.")
+    p.add_argument("file", metavar="FILE", help="a chain file (TOML)")
+    p.add_argument("--json", action="store_true", help="print JSON")
+    p.add_argument("--with-input", action="store_true",
+                   help="also designate the input link (joined to the fixed link by an R joint)")
+    p.set_defaults(run=_cmd_inversions)
+
+    p = sub.add_parser("identify", help="which catalog chain (and inversion) a file is",
+                       description="Find the file's chain in the catalog by structure and, "
+                                   "for a mechanism, which catalog inversion it is.")
+    p.add_argument("file", metavar="FILE", help="a chain file (TOML)")
+    p.add_argument("--json", action="store_true", help="print JSON")
+    p.set_defaults(run=_cmd_identify)
     return parser
 
 

@@ -1,0 +1,294 @@
+"""Exact isomorphism of chains: canonical forms, automorphisms and orbits.
+
+Two chains are the same by structure when a bijection of their link-joint graphs maps
+links to links, joints to joints of the same kind, and keeps which link of each P joint
+carries the guide. (``oriented=False`` forgets that last part: a sliding pair's relative
+motion is the same whichever link carries the guide.)
+
+Method: individualization and refinement, as nauty does. Colour refinement splits the
+nodes by kind and then by the colours of their neighbours until nothing changes; when
+cells of equal colour remain, one node of a cell is individualized and the search
+branches over the cell's nodes. Each leaf (every node alone in its cell) is an ordering
+of the nodes; its certificate is the sorted edge list in that ordering, and the least
+certificate is the canonical form. Two leaves with equal certificates give an
+automorphism; automorphisms found so far prune branches that are images of ones
+already searched (orbit pruning at every node, and a jump back when a leaf repeats the
+first one). The automorphisms found generate the whole group, so link orbits, and
+orbits of (fixed, input) pairs, come from them by union-find. Invariants alone never
+decide: the canonical form is a complete invariant.
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass
+from functools import lru_cache
+
+__all__ = ["Canon", "canonical", "canonical_form", "is_isomorphic", "isomorphism",
+           "automorphism_orbits", "automorphism_generators", "pair_orbits"]
+
+_EDGE = {"pin": 0, "guide": 1, "block": 2}
+
+
+@dataclass(frozen=True)
+class Canon:
+    """The result of canonical labelling.
+
+    Attributes
+    ----------
+    form : tuple
+        Hashable; equal for two chains exactly when they are isomorphic.
+    order : tuple
+        The link-joint graph's nodes in canonical order (position i of one chain
+        corresponds to position i of any isomorphic chain).
+    generators : tuple of dict
+        Automorphisms (node to node) that generate the automorphism group.
+    group_size : int
+        Order of the automorphism group.
+    """
+
+    form: tuple
+    order: tuple
+    generators: tuple
+    group_size: int
+
+
+def _structure(chain, oriented):
+    nodes = list(chain.graph.nodes)
+    index = {n: i for i, n in enumerate(nodes)}
+    labels = []
+    for n in nodes:
+        data = chain.graph.nodes[n]
+        labels.append(("link",) if n[0] == "link" else ("joint", data["kind"]))
+    adj = [[] for _ in nodes]
+    for u, v, data in chain.graph.edges(data=True):
+        e = _EDGE[data["role"]] if oriented else min(_EDGE[data["role"]], 1)
+        adj[index[u]].append((index[v], e))
+        adj[index[v]].append((index[u], e))
+    return nodes, labels, adj
+
+
+def _refine(colors, adj):
+    """Colour refinement to the coarsest equitable partition finer than ``colors``."""
+    n_colors = len(set(colors))
+    while True:
+        sig = [(colors[v], tuple(sorted((e, colors[u]) for u, e in adj[v])))
+               for v in range(len(colors))]
+        ranks = {s: i for i, s in enumerate(sorted(set(sig)))}
+        new = [ranks[s] for s in sig]
+        if len(ranks) == n_colors:
+            return new
+        colors, n_colors = new, len(ranks)
+
+
+def _individualize(colors, v):
+    keyed = [(c, 0 if u == v else 1) for u, c in enumerate(colors)]
+    ranks = {k: i for i, k in enumerate(sorted(set(keyed)))}
+    return [ranks[k] for k in keyed]
+
+
+def _orbits_of(generators, n, fixing=()):
+    parent = list(range(n))
+
+    def find(x):
+        while parent[x] != x:
+            parent[x] = parent[parent[x]]
+            x = parent[x]
+        return x
+    for g in generators:
+        if all(g[p] == p for p in fixing):
+            for x in range(n):
+                a, b = find(x), find(g[x])
+                if a != b:
+                    parent[max(a, b)] = min(a, b)
+    return [find(x) for x in range(n)]
+
+
+def _search(labels, adj):
+    n = len(labels)
+    label_rank = {lab: i for i, lab in enumerate(sorted(set(labels)))}
+    root = _refine([label_rank[lab] for lab in labels], adj)
+    state = {"first": None, "best": None}
+    generators = []
+    first_path = []
+
+    def certificate(colors):
+        edges = sorted((min(colors[v], colors[u]), max(colors[v], colors[u]), e)
+                       for v in range(n) for u, e in adj[v] if v < u)
+        return tuple(edges)
+
+    def leaf(colors, path):
+        cert = certificate(colors)
+        perm = colors  # node -> position
+        if state["first"] is None:
+            state["first"] = (cert, perm)
+            state["best"] = (cert, perm)
+            first_path.extend(path)
+            return None
+        for key in ("first", "best"):
+            ref_cert, ref_perm = state[key]
+            if cert == ref_cert:
+                inverse = [0] * n
+                for node, pos in enumerate(ref_perm):
+                    inverse[pos] = node
+                generators.append([inverse[perm[x]] for x in range(n)])
+                if key == "first":
+                    k = 0
+                    while k < len(path) and k < len(first_path) and path[k] == first_path[k]:
+                        k += 1
+                    return k
+                return None
+        if cert < state["best"][0]:
+            state["best"] = (cert, perm)
+        return None
+
+    def dfs(colors, path):
+        cells = {}
+        for v, c in enumerate(colors):
+            cells.setdefault(c, []).append(v)
+        if len(cells) == n:
+            return leaf(colors, path)
+        target = min((len(vs), c) for c, vs in cells.items() if len(vs) > 1)[1]
+        explored = []
+        for v in cells[target]:
+            if explored:
+                orbit = _orbits_of(generators, n, fixing=path)
+                if any(orbit[v] == orbit[w] for w in explored):
+                    continue
+            explored.append(v)
+            jump = dfs(_refine(_individualize(colors, v), adj), path + [v])
+            if jump is not None and jump < len(path):
+                return jump
+        return None
+
+    dfs(root, [])
+    # group order from the stabilizer chain along the first path
+    size = 1
+    for depth in range(len(first_path)):
+        orbit = _orbits_of(generators, n, fixing=first_path[:depth])
+        size *= sum(1 for x in range(n) if orbit[x] == orbit[first_path[depth]])
+    best_cert, best_perm = state["best"]
+    order = [0] * n
+    for node, pos in enumerate(best_perm):
+        order[pos] = node
+    return best_cert, order, generators, size
+
+
+def canonical(chain, *, oriented: bool = True) -> Canon:
+    """Canonical labelling of a chain's link-joint graph; see :class:`Canon`.
+
+    Examples
+    --------
+    >>> import chaingraph
+    >>> from chaingraph.catalog import catalog_path
+    >>> canonical(chaingraph.load(catalog_path("four-bar-chain"))).group_size
+    8
+    """
+    return _canonical_cached(chain, oriented)
+
+
+@lru_cache(maxsize=4096)
+def _canonical_cached(chain, oriented):
+    nodes, labels, adj = _structure(chain, oriented)
+    cert, order, gens, size = _search(labels, adj)
+    form = (tuple(labels[v] for v in order), cert)
+    generators = tuple({nodes[x]: nodes[g[x]] for x in range(len(nodes))} for g in gens)
+    return Canon(form=form, order=tuple(nodes[v] for v in order), generators=generators,
+                 group_size=size)
+
+
+def canonical_form(chain, *, oriented: bool = True) -> tuple:
+    """A hashable form, equal for two chains exactly when they are isomorphic.
+
+    Link and joint names, the order of the joints and the drawn pose play no part;
+    joint kinds, and (with ``oriented``) which link carries each P joint's guide, do.
+
+    Examples
+    --------
+    >>> import chaingraph
+    >>> from chaingraph.catalog import catalog_path
+    >>> watt = chaingraph.load(catalog_path("watt-six-bar-chain"))
+    >>> steph = chaingraph.load(catalog_path("stephenson-six-bar-chain"))
+    >>> canonical_form(watt) == canonical_form(steph)
+    False
+    >>> renamed = watt.relabelled(links={"t1": "ternary link", "b1": "binary link"})
+    >>> canonical_form(watt) == canonical_form(renamed)
+    True
+    """
+    return canonical(chain, oriented=oriented).form
+
+
+def is_isomorphic(a, b, *, oriented: bool = True) -> bool:
+    """True when chains ``a`` and ``b`` are the same by structure.
+
+    Examples
+    --------
+    >>> import chaingraph
+    >>> from chaingraph.catalog import catalog_path
+    >>> four = chaingraph.load(catalog_path("four-bar-chain"))
+    >>> slider = chaingraph.load(catalog_path("single-slider-crank-chain"))
+    >>> is_isomorphic(four, slider), is_isomorphic(four, four.relabelled(links={"crank": "x"}))
+    (False, True)
+    """
+    return canonical_form(a, oriented=oriented) == canonical_form(b, oriented=oriented)
+
+
+def isomorphism(a, b, *, oriented: bool = True) -> dict | None:
+    """A mapping of ``a``'s links to ``b``'s links that is an isomorphism, or None."""
+    ca, cb = canonical(a, oriented=oriented), canonical(b, oriented=oriented)
+    if ca.form != cb.form:
+        return None
+    return {x[1]: y[1] for x, y in zip(ca.order, cb.order) if x[0] == "link"}
+
+
+def automorphism_generators(chain, *, oriented: bool = True) -> tuple:
+    """Generators of the automorphism group, each a dict of link-joint graph nodes."""
+    return canonical(chain, oriented=oriented).generators
+
+
+def automorphism_orbits(chain, *, oriented: bool = True) -> list[tuple[str, ...]]:
+    """The orbits of links under the chain's automorphisms.
+
+    Links in one orbit give the same inversion by structure. Orbits are listed in the
+    order of their first link in ``chain.links``, links within in chain order.
+
+    Examples
+    --------
+    >>> import chaingraph
+    >>> from chaingraph.catalog import catalog_path
+    >>> automorphism_orbits(chaingraph.load(catalog_path("watt-six-bar-chain")))
+    [('t1', 't2'), ('b1', 'b2', 'b3', 'b4')]
+    """
+    gens = automorphism_generators(chain, oriented=oriented)
+    links = chain.links
+    return _group([("link", x) for x in links], gens, key=lambda n: n[1])
+
+
+def pair_orbits(chain, pairs, *, oriented: bool = True) -> list[tuple[tuple[str, str], ...]]:
+    """Orbits of ordered link pairs (for example (fixed, input)) under the automorphisms."""
+    gens = automorphism_generators(chain, oriented=oriented)
+    items = [(("link", a), ("link", b)) for a, b in pairs]
+    return _group(items, gens, key=lambda p: (p[0][1], p[1][1]),
+                  act=lambda g, p: (g[p[0]], g[p[1]]))
+
+
+def _group(items, generators, *, key, act=None):
+    act = act or (lambda g, x: g[x])
+    index = {x: i for i, x in enumerate(items)}
+    parent = list(range(len(items)))
+
+    def find(i):
+        while parent[i] != i:
+            parent[i] = parent[parent[i]]
+            i = parent[i]
+        return i
+    for g in generators:
+        for x, i in index.items():
+            j = index.get(act(g, x))
+            if j is not None:
+                a, b = find(i), find(j)
+                if a != b:
+                    parent[max(a, b)] = min(a, b)
+    groups = {}
+    for x, i in index.items():
+        groups.setdefault(find(i), []).append(key(x))
+    return [tuple(g) for _, g in sorted(groups.items())]
