@@ -18,6 +18,8 @@ from .errors import (AssemblyError, AtlasSizeError, ChainFileError, ChainGraphEr
 from .identify import Identification, identify
 from .inversions import Inversion, Inversions, inversions
 from .isomorphism import automorphism_orbits, canonical_form, is_isomorphic, isomorphism
+from .motion import Motion, feasible_range, solve
+from .plan import Plan, build_plan
 from .rigidity import rigid_subchains
 
 __version__ = "0.1.0"
@@ -28,6 +30,7 @@ __all__ = [
     "classify", "Classification", "Check", "rigid_subchains",
     "inversions", "Inversions", "Inversion", "identify", "Identification",
     "canonical_form", "is_isomorphic", "isomorphism", "automorphism_orbits",
+    "solve", "Motion", "feasible_range", "build_plan", "Plan",
     "ChainGraphError", "ChainFileError", "ChainStructureError", "MechanismError",
     "AssemblyError", "AtlasSizeError", "DesignError",
 ]

@@ -17,8 +17,10 @@ Closed forms for the four-link loops of turning and sliding pairs:
   between the two sliders turns fully relative to the others; the sliders and the
   guides' link keep their directions.
 
-Lengths come from the drawn pose (distances between a link's joints). Other chains get
-None here.
+Lengths come from the drawn pose (distances between a link's joints). Other chains
+of R and P joints with a drawn pose and mobility 1 (six- and eight-bars...) are solved
+over a cycle (:func:`chaingraph.motion.full_turns`) and the links that make a net turn
+relative to the fixed link are reported. Otherwise None.
 """
 
 from __future__ import annotations
@@ -185,12 +187,25 @@ def behaviour_key(chain, fixed):
     return ("full turns", turning)
 
 
+def _numeric(chain, fixed):
+    if any(j.kind not in ("R", "P") for j in chain.joints) or len(chain.pieces) > 1:
+        return None
+    from .motion import full_turns
+    found = full_turns(chain, fixed)
+    if found is None:
+        return None
+    turning = found[0]
+    order = {x: i for i, x in enumerate(chain.links)}
+    words = ", ".join(sorted(turning, key=order.get))
+    return ("full turns: " + words if turning else "no link turns fully"), turning
+
+
 def _analyse(chain, fixed):
     if not chain.has_pose or chain.space != "planar":
         return None
     loop = four_link_loop(chain)
     if loop is None:
-        return None
+        return _numeric(chain, fixed)
     links, joints = loop
     kinds = "".join(j.kind for j in joints)
     n_p = kinds.count("P")

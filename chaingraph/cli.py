@@ -130,6 +130,60 @@ def _cmd_identify(args) -> int:
     return 0
 
 
+def _fmt(value, unit=""):
+    if value is None:
+        return "-"
+    if isinstance(value, float):
+        return f"{value:.6g}{unit}"
+    return f"{value}{unit}"
+
+
+def _cmd_solve(args) -> int:
+    from .motion import solve
+    chain = load(args.file)
+    if args.steps < 1:
+        raise _usage_error(f"--steps must be at least 1, got {args.steps}")
+    motion = solve(chain, fixed=args.fixed, driver=args.driver, start=args.start,
+                   stop=args.stop, steps=args.steps)
+    if args.csv:
+        motion.to_csv(args.csv)
+    if args.plot:
+        from .plots import plot_motion
+        plot_motion(motion, args.plot)
+    if args.draw:
+        from .plots import draw_mechanism
+        draw_mechanism(motion, args.draw)
+    if args.json:
+        _print_json(motion.to_dict())
+        return 0
+    s = motion.summary
+    unit = f" {s['stroke_unit']}" if s["stroke_unit"] else ""
+    rows = [
+        ["mechanism", motion.name],
+        ["fixed link", motion.fixed],
+        ["driver", motion.driver + ("  (turns fully)" if s["full_turn"] else "  (rocks)")],
+        ["sweep", f"{motion.theta[0]:.6g} to {motion.theta[-1]:.6g} degrees, "
+                  f"{motion.steps} steps"],
+        ["input range", " to ".join(f"{t:.6g}" for t in s["input_range"]) + " degrees"],
+        ["output", s["output"] or "-"],
+        ["stroke", _fmt(s["stroke"], unit)],
+        ["time ratio", _fmt(s["time_ratio"])],
+        ["forward / return", f"{_fmt(s['forward_deg'])} / {_fmt(s['return_deg'])} degrees"],
+        ["extremes at", ", ".join(f"{t:.6g}" for t in s["extremes"] or []) or "-"],
+        ["transmission angle", "-" if s["transmission_angle"] is None else
+         f"{s['transmission_angle']['min']:.6g} to {s['transmission_angle']['max']:.6g} deg"],
+        ["dead centres", ", ".join(f"{t:.6g}" for t in s["dead_centres"]) or "none"],
+        ["mobility", f"{s['numeric_mobility']} at the drawn pose (Kutzbach: {s['mobility']})"],
+    ]
+    print(_table(rows, ["", ""]).split("\n", 2)[2])
+    return 0
+
+
+def _usage_error(message):
+    from .errors import MechanismError
+    return MechanismError(message)
+
+
 def build_parser() -> argparse.ArgumentParser:
     parser = argparse.ArgumentParser(
         prog="chaingraph",
@@ -159,6 +213,26 @@ def build_parser() -> argparse.ArgumentParser:
     p.add_argument("file", metavar="FILE", help="a chain file (TOML)")
     p.add_argument("--json", action="store_true", help="print JSON")
     p.set_defaults(run=_cmd_identify)
+
+    p = sub.add_parser("solve", help="position, velocity and acceleration over an input sweep",
+                       description="Solve the mechanism (the file's [mechanism], or the "
+                                   "inversion --fixed and --driver choose) over the input "
+                                   "sweep, in the assembly mode of the drawn pose.")
+    p.add_argument("file", metavar="FILE", help="a mechanism file (TOML) with a drawn pose")
+    p.add_argument("--fixed", metavar="LINK", help="the fixed link")
+    p.add_argument("--driver", metavar="LINK",
+                   help="the input link, pinned to the fixed link by an R joint")
+    p.add_argument("--from", dest="start", type=float, metavar="DEG", help="first input angle")
+    p.add_argument("--to", dest="stop", type=float, metavar="DEG", help="last input angle")
+    p.add_argument("--steps", type=int, default=360, metavar="N",
+                   help="equal intervals of the sweep (N + 1 rows; default 360)")
+    p.add_argument("--json", action="store_true", help="print the JSON summary")
+    p.add_argument("--csv", metavar="PATH", help="write every column of every step")
+    p.add_argument("--plot", metavar="PATH.svg",
+                   help="plot the output's displacement, velocity and acceleration")
+    p.add_argument("--draw", metavar="PATH.svg",
+                   help="draw the mechanism in its drawn pose with the paths of its points")
+    p.set_defaults(run=_cmd_solve)
     return parser
 
 

@@ -1,0 +1,913 @@
+"""Position, velocity and acceleration of a planned inversion over an input sweep.
+
+Every link carries a rigid motion from its drawn pose (see :mod:`chaingraph.plan`):
+position ``(x, y)`` and rotation ``phi``, so a drawn point p is at ``R(phi) p + (x, y)``.
+All arrays run over the sweep at once (numpy), one step of the plan after another.
+
+Positions: closed form for single links and dyads (intersections of circles and lines,
+or a rotation angle from a cosine); each dyad's assembly mode is taken from the drawn
+pose and kept, and where the two modes meet (a tangency, such as a parallelogram's change
+point) the smoother continuation is chosen, so there are no flips. A group of higher
+class is solved by Newton's method, continued from step to step along a coarse sweep with
+a tangent predictor, then on the whole sweep at once from Hermite-interpolated guesses.
+
+Velocities and accelerations: the constraint Jacobian times the rates equals the known
+links' terms (and, for accelerations, the quadratic velocity terms). Per step this is an
+exact linear solve: each link's constraint to a known link leaves it one free rate (a
+null-space direction), and the dyad's own joint gives a 2 x 2 system in those two rates;
+a group is solved whole. Where that system is singular (a dead centre) the rates are NaN,
+never a finite wrong number.
+"""
+
+from __future__ import annotations
+
+import math
+
+import numpy as np
+
+from .errors import AssemblyError
+
+__all__ = ["Evaluation", "evaluate", "rates", "residuals", "make_pose", "rotate"]
+
+_DISC_TOL = 1e-10
+
+
+class Evaluation:
+    """Poses of every link along a path of input angles, with what the next needs."""
+
+    def __init__(self, theta, pose, feasible, signs, group_q):
+        self.theta = theta            # degrees, (N,)
+        self.pose = pose              # link -> (x, y, phi) arrays
+        self.feasible = feasible      # (N,) bool
+        self.signs = signs            # step index -> (N,) branch signs
+        self.group_q = group_q        # step index -> (N, 3k) group coordinates
+
+    def at(self, k):
+        """The state at point k, to continue a new path from (its first angle)."""
+        return _Start({i: float(v[k]) for i, v in self.signs.items()},
+                      {i: q[k] for i, q in self.group_q.items()})
+
+
+class _Start:
+    def __init__(self, signs, group_q):
+        self.signs = signs
+        self.group_q = group_q
+
+
+# -- small geometry on arrays --------------------------------------------------------
+# A pose is (x, y, phi, cos phi, sin phi): the trigonometry is done once per link.
+# The fixed link's is constants, which numpy broadcasts.
+_FIXED = (0.0, 0.0, 0.0, 1.0, 0.0)
+def make_pose(x, y, phi, c=None, s=None):
+    """A link's pose entry from its motion (x, y, phi)."""
+    if c is None:
+        c, s = np.cos(phi), np.sin(phi)
+    return (x, y, phi, c, s)
+
+
+def rotate(entry, p):
+    """Rotate the drawn vector p by the pose entry's rotation."""
+    c, s = entry[3], entry[4]
+    return c * p[0] - s * p[1], s * p[0] + c * p[1]
+
+
+def _world(pose, link, p):
+    e = pose[link]
+    rx, ry = rotate(e, p)
+    return rx + e[0], ry + e[1]
+
+
+def _fit_two_points(p1, w1, p2, w2):
+    """The rigid motion taking drawn points p1, p2 to w1, w2 (rotation from the chord)."""
+    dpx, dpy = p2[0] - p1[0], p2[1] - p1[1]
+    dwx, dwy = w2[0] - w1[0], w2[1] - w1[1]
+    c = dpx * dwx + dpy * dwy
+    s = dpx * dwy - dpy * dwx
+    norm = np.hypot(c, s)
+    c, s = c / norm, s / norm
+    e = (0.0, 0.0, None, c, s)
+    rx, ry = rotate(e, p1)
+    return make_pose(w1[0] - rx, w1[1] - ry, np.arctan2(s, c), c, s)
+
+
+def _from_point(entry, p, w):
+    """The pose with the rotation of ``entry`` that puts drawn point p at w."""
+    rx, ry = rotate(entry, p)
+    return make_pose(w[0] - rx, w[1] - ry, entry[2], entry[3], entry[4])
+
+
+def _unit(deg):
+    return math.cos(math.radians(deg)), math.sin(math.radians(deg))
+
+
+def _line_of(pose, attach, unknown, through):
+    """The line on which the unknown link's drawn point ``through`` must stay, for a P
+    attachment to a known link: (base point, direction, the unknown link's rotation)."""
+    known = pose[attach.other(unknown)]
+    base = _world(pose, attach.other(unknown), attach.point)
+    dx, dy = through[0] - attach.point[0], through[1] - attach.point[1]
+    ox, oy = rotate(known, (dx, dy))
+    u = rotate(known, _unit(attach.axis))
+    return (base[0] + ox, base[1] + oy), u, known
+
+
+def _clamp_disc(disc, scale):
+    tol = _DISC_TOL * scale
+    ok = disc >= -tol
+    return np.where(ok, np.maximum(disc, 0.0), np.nan), ok
+
+
+# -- closed-form steps ---------------------------------------------------------------
+def _single(step, pose):
+    u = step.links[0]
+    c1, c2 = step.constraints[:2]
+    if c1.kind == "R" and c2.kind == "R":
+        w1 = _world(pose, c1.other(u), c1.point)
+        w2 = _world(pose, c2.other(u), c2.point)
+        return {u: _fit_two_points(c1.point, w1, c2.point, w2)}
+    if c1.kind == "R":
+        return {u: _from_point(pose[c2.other(u)], c1.point,
+                               _world(pose, c1.other(u), c1.point))}
+    return {u: _two_lines(pose, u, c1, c2)}
+
+
+def _two_lines(pose, u, c1, c2):
+    """Pose of link u with two P attachments to known links (its rotation from c1)."""
+    turn = pose[c1.other(u)]
+    rows, rhs = [], []
+    for c in (c1, c2):
+        base, dirn, _ = _line_of(pose, c, u, c.point)
+        nx_, ny_ = -dirn[1], dirn[0]
+        rx, ry = rotate(turn, c.point)
+        rows.append((nx_, ny_))
+        rhs.append(nx_ * (base[0] - rx) + ny_ * (base[1] - ry))
+    (a, b), (c, d) = rows
+    det = a * d - b * c
+    x = (rhs[0] * d - b * rhs[1]) / det
+    y = (a * rhs[1] - c * rhs[0]) / det
+    return make_pose(x, y, turn[2], turn[3], turn[4])
+
+
+def _dyad_roots(step, pose, scale):
+    """A dyad's assembly modes.
+
+    Returns (keys, build, ok): ``keys`` the two modes' joint point (or rotation as a
+    unit vector), arrays of shape (N, 2) or None for a dyad with one mode; ``build(sign)``
+    the poses of the dyad's links for an array of mode signs (+1 or -1); ``ok`` where the
+    dyad can be assembled.
+    """
+    a, b = step.links
+    ca, cb, cj = step.constraints
+    pattern = step.pattern
+    if pattern in ("PRR", "PPR"):  # mirror to the R-first form
+        a, b, ca, cb = b, a, cb, ca
+        pattern = pattern[::-1]
+    q = cj.point
+    if pattern in ("RRR", "RRP"):
+        wa = _world(pose, ca.other(a), ca.point)
+        ra = math.dist(q, ca.point)
+        if pattern == "RRR":
+            wb = _world(pose, cb.other(b), cb.point)
+            rb = math.dist(q, cb.point)
+            dx, dy = wb[0] - wa[0], wb[1] - wa[1]
+            d2 = dx * dx + dy * dy
+            d = np.sqrt(d2)
+            along = (ra * ra - rb * rb + d2) / (2 * d)
+            h2, ok = _clamp_disc(ra * ra - along * along, scale * scale)
+            h = np.sqrt(h2)
+            ux, uy = dx / d, dy / d
+            mid = (wa[0] + along * ux, wa[1] + along * uy)
+            off = (-h * uy, h * ux)
+        else:
+            base, dirn, turn_b = _line_of(pose, cb, b, q)
+            ex, ey = base[0] - wa[0], base[1] - wa[1]
+            beta = dirn[0] * ex + dirn[1] * ey
+            disc, ok = _clamp_disc(beta * beta - (ex * ex + ey * ey - ra * ra), scale * scale)
+            root_disc = np.sqrt(disc)
+            mid = (base[0] - beta * dirn[0], base[1] - beta * dirn[1])
+            off = (root_disc * dirn[0], root_disc * dirn[1])
+        keys = (np.stack((mid[0] + off[0], mid[1] + off[1]), axis=-1),
+                np.stack((mid[0] - off[0], mid[1] - off[1]), axis=-1))
+
+        def build(sign):
+            x, y = mid[0] + sign * off[0], mid[1] + sign * off[1]
+            pa = _fit_two_points(ca.point, wa, q, (x, y))
+            if pattern == "RRR":
+                return {a: pa, b: _fit_two_points(cb.point, wb, q, (x, y))}
+            return {a: pa, b: _from_point(turn_b, q, (x, y))}
+        return keys, build, ok
+    if pattern == "RPR":
+        wa = _world(pose, ca.other(a), ca.point)
+        wb = _world(pose, cb.other(b), cb.point)
+        nx_, ny_ = -_unit(cj.axis)[1], _unit(cj.axis)[0]
+        dx, dy = wb[0] - wa[0], wb[1] - wa[1]
+        dist = np.hypot(dx, dy)
+        c = nx_ * (cb.point[0] - ca.point[0]) + ny_ * (cb.point[1] - ca.point[1])
+        ratio = c / dist
+        disc, ok = _clamp_disc(1.0 - ratio * ratio, 1.0)
+        # rotation phi = start +- spread, with cos(spread) = ratio
+        cs0, sn0 = dx / dist, dy / dist            # direction of the centre line
+        cn, sn = nx_, ny_                           # drawn normal: rotate back by it
+        cst, snt = cs0 * cn + sn0 * sn, sn0 * cn - cs0 * sn   # start = delta - nu
+        root = np.sqrt(disc)
+
+        def turn(sign):
+            c1, s1 = cst * ratio - snt * sign * root, snt * ratio + cst * sign * root
+            return c1, s1
+        keys = tuple(np.stack(turn(sg), axis=-1) for sg in (1.0, -1.0))
+
+        def build(sign):
+            c1, s1 = turn(sign)
+            e = make_pose(0.0, 0.0, np.arctan2(s1, c1), c1, s1)
+            return {a: _from_point(e, ca.point, wa), b: _from_point(e, cb.point, wb)}
+        return keys, build, ok
+    if pattern == "PRP":
+        base_a, dir_a, turn_a = _line_of(pose, ca, a, q)
+        base_b, dir_b, turn_b = _line_of(pose, cb, b, q)
+        det = dir_a[0] * -dir_b[1] + dir_b[0] * dir_a[1]
+        rx, ry = base_b[0] - base_a[0], base_b[1] - base_a[1]
+        s_ = (rx * -dir_b[1] + dir_b[0] * ry) / det
+        x, y = base_a[0] + s_ * dir_a[0], base_a[1] + s_ * dir_a[1]
+
+        def build(sign):
+            return {a: _from_point(turn_a, q, (x, y)), b: _from_point(turn_b, q, (x, y))}
+        return None, build, np.isfinite(x)
+    if pattern == "RPP":
+        wa = _world(pose, ca.other(a), ca.point)
+        pa = _from_point(pose[cb.other(b)], ca.point, wa)
+
+        def build(sign):
+            known = dict(pose)
+            known[a] = pa
+            return {a: pa, b: _two_lines(known, b, cb, cj)}
+        return None, build, np.isfinite(wa[0])
+    raise ValueError(f"no closed form for a {pattern} dyad")
+
+
+def _choose_modes(keys, sign0, n):
+    """Mode signs along the path: sign0 at the start, switched where the other mode
+    continues more smoothly (the two modes meet at a tangency)."""
+    signs = np.full(n, sign0)
+    if n < 3:
+        return signs
+    kp, km = keys
+    cur = (kp if sign0 > 0 else km)[:n].copy()
+    alt = (km if sign0 > 0 else kp)[:n].copy()
+    k = _next_candidate(cur, alt, 1)
+    while k < n - 1:
+        pred = 2 * cur[k] - cur[k - 1]
+        same = np.linalg.norm(cur[k + 1] - pred)
+        other = np.linalg.norm(alt[k + 1] - pred)
+        gap = np.linalg.norm(cur[k + 1] - alt[k + 1])
+        if np.isfinite(same) and np.isfinite(other) and other < 0.25 * same and gap > 1e-12:
+            cur[k + 1:], alt[k + 1:] = alt[k + 1:].copy(), cur[k + 1:].copy()
+            signs[k + 1:] *= -1
+        k = _next_candidate(cur, alt, k + 1)
+    return signs
+
+
+def _next_candidate(cur, alt, k):
+    """The next point from k on where the two modes come close (where a switch can help)."""
+    if k >= cur.shape[0] - 1:
+        return cur.shape[0]
+    diff, move = cur[k:] - alt[k:], cur[k:] - cur[k - 1:-1]
+    gap2 = diff[:, 0] ** 2 + diff[:, 1] ** 2
+    step2 = move[:, 0] ** 2 + move[:, 1] ** 2
+    near = np.nonzero(gap2 <= 16 * step2 + 1e-300)[0]
+    if near.size == 0:
+        return cur.shape[0]
+    return max(k, k + int(near[0]) - 1)
+
+
+def _initial_sign(keys, drawn):
+    """The mode of the drawn pose: the one whose first point is nearest the drawing."""
+    kp, km = keys
+    dp = np.hypot(kp[0, 0] - drawn[0], kp[0, 1] - drawn[1])
+    dm = np.hypot(km[0, 0] - drawn[0], km[0, 1] - drawn[1])
+    return 1.0 if dp <= dm else -1.0
+
+
+# -- the sweep -----------------------------------------------------------------------
+def _known_poses(plan, theta):
+    n = theta.size
+    zero = np.zeros(n)
+    alpha = np.radians(theta - plan.theta0)
+    turn = make_pose(zero, zero, alpha)
+    ox, oy = plan.pivot_point
+    rx, ry = rotate(turn, (ox, oy))
+    return {plan.fixed: _FIXED,
+            plan.driver: make_pose(ox - rx, oy - ry, alpha, turn[3], turn[4])}
+
+
+def evaluate(plan, theta, *, start=None) -> Evaluation:
+    """Poses along a path of input angles (degrees), continued from ``start`` (an
+    Evaluation whose last point is the path's first), else from the drawn pose, which
+    must then be the path's first point."""
+    theta = np.asarray(theta, dtype=float)
+    pose = _known_poses(plan, theta)
+    feasible = np.ones(theta.size, dtype=bool)
+    signs, group_q = {}, {}
+    for i, step in enumerate(plan.steps):
+        if step.kind == "single":
+            pose.update(_single(step, pose))
+            continue
+        if step.kind == "dyad":
+            keys, build, ok = _dyad_roots(step, pose, plan.size)
+            feasible &= ok
+            if keys is not None:
+                drawn = (1.0, 0.0) if step.pattern == "RPR" else step.constraints[2].point
+                sign0 = start.signs[i] if start is not None else _initial_sign(keys, drawn)
+                last = int(np.argmin(feasible)) if not feasible.all() else theta.size
+                chosen = np.full(theta.size, sign0)
+                chosen[:last] = _choose_modes(keys, sign0, last)
+                signs[i] = chosen
+                pose.update(build(chosen))
+            else:
+                pose.update(build(1.0))
+            continue
+        q0 = start.group_q[i] if start is not None else np.zeros(3 * len(step.links))
+        q, ok = _newton_path(plan, step, pose, theta, q0)
+        feasible &= ok
+        group_q[i] = q
+        for k, link in enumerate(step.links):
+            pose[link] = make_pose(q[:, 3 * k], q[:, 3 * k + 1], q[:, 3 * k + 2])
+    if not feasible.all():
+        first_bad = int(np.argmin(feasible))
+        feasible[first_bad:] = False
+    return Evaluation(theta, pose, feasible, signs, group_q)
+
+
+# -- constraint rows (Jacobian and quadratic velocity terms) ------------------------
+def _perp(v):
+    return -v[1], v[0]
+
+
+def _rows(c, pose):
+    """Rows of the constraint Jacobian, each {link: (cx, cy, cphi)} (constant entries as
+    Python floats)."""
+    if c.kind == "R":
+        ra = rotate(pose[c.a], c.point)
+        rb = rotate(pose[c.b], c.point)
+        return [{c.a: (1.0, 0.0, -ra[1]), c.b: (-1.0, 0.0, rb[1])},
+                {c.a: (0.0, 1.0, ra[0]), c.b: (0.0, -1.0, -rb[0])}]
+    g, b = c.a, c.b
+    n = rotate(pose[g], _perp(_unit(c.axis)))
+    pn = _perp(n)
+    prb, prg = _perp(rotate(pose[b], c.point)), _perp(rotate(pose[g], c.point))
+    wg, wb = _world(pose, g, c.point), _world(pose, b, c.point)
+    d = (wb[0] - wg[0], wb[1] - wg[1])
+    return [{b: (0.0, 0.0, 1.0), g: (0.0, 0.0, -1.0)},
+            {b: (n[0], n[1], n[0] * prb[0] + n[1] * prb[1]),
+             g: (-n[0], -n[1], pn[0] * d[0] + pn[1] * d[1] - (n[0] * prg[0] + n[1] * prg[1]))}]
+
+
+def _gammas(c, pose, vel):
+    """Right-hand sides of the acceleration equations from the velocities alone."""
+    if c.kind == "R":
+        ra = rotate(pose[c.a], c.point)
+        rb = rotate(pose[c.b], c.point)
+        wa2, wb2 = vel[c.a][2] ** 2, vel[c.b][2] ** 2
+        return [wa2 * ra[0] - wb2 * rb[0], wa2 * ra[1] - wb2 * rb[1]]
+    g, b = c.a, c.b
+    n = rotate(pose[g], _perp(_unit(c.axis)))
+    pn = _perp(n)
+    rg, rb = rotate(pose[g], c.point), rotate(pose[b], c.point)
+    prb, prg = _perp(rb), _perp(rg)
+    wg, wb = _world(pose, g, c.point), _world(pose, b, c.point)
+    d = (wb[0] - wg[0], wb[1] - wg[1])
+    (vbx, vby, wb_), (vgx, vgy, wg_) = vel[b], vel[g]
+    dd = (vbx + wb_ * prb[0] - vgx - wg_ * prg[0], vby + wb_ * prb[1] - vgy - wg_ * prg[1])
+    return [0.0, (-2 * wg_ * (pn[0] * dd[0] + pn[1] * dd[1])
+                  + wg_ ** 2 * (n[0] * d[0] + n[1] * d[1])
+                  + n[0] * (wb_ ** 2 * rb[0] - wg_ ** 2 * rg[0])
+                  + n[1] * (wb_ ** 2 * rb[1] - wg_ ** 2 * rg[1]))]
+
+
+def residuals(plan, pose):
+    """Largest constraint residual at every point (lengths; rotations times the size)."""
+    worst = None
+    for c in plan.constraints:
+        if c.kind == "R":
+            wa, wb = _world(pose, c.a, c.point), _world(pose, c.b, c.point)
+            r = np.hypot(wa[0] - wb[0], wa[1] - wb[1])
+        else:
+            dphi = np.abs(np.remainder(pose[c.b][2] - pose[c.a][2] + np.pi, 2 * np.pi) - np.pi)
+            n = rotate(pose[c.a], _perp(_unit(c.axis)))
+            wg, wb = _world(pose, c.a, c.point), _world(pose, c.b, c.point)
+            r = np.maximum(np.abs(n[0] * (wb[0] - wg[0]) + n[1] * (wb[1] - wg[1])),
+                           dphi * plan.size)
+        worst = r if worst is None else np.maximum(worst, r)
+    return worst
+
+
+def _dot3(c, v):
+    """c . v for three-vectors whose entries may be constant Python floats."""
+    total = 0.0
+    for ci, vi in zip(c, v):
+        if isinstance(vi, float) and vi == 0.0:
+            continue
+        if isinstance(ci, float):
+            if ci == 0.0:
+                continue
+            total = total + (vi if ci == 1.0 else -vi if ci == -1.0 else ci * vi)
+        else:
+            total = total + ci * vi
+    return total
+
+
+_SINGULAR = 1e-6
+_POINT_DYADS = True      # RRR dyads in point coordinates (tests compare both ways)
+
+
+def _column_free_det(p11, p12, p21, p22):
+    """The 2 x 2 determinant over the product of its column lengths: the signed sine of
+    the angle between the columns, 0 when singular whatever the units of the rates.
+    (A tangency leaves positions accurate to about the square root of the rounding
+    error, so rates are refused (NaN) below ``_SINGULAR``, not at zero only.)"""
+    return (p11 * p22 - p12 * p21) / ((np.hypot(p11, p21) + 1e-300) *
+                                       (np.hypot(p12, p22) + 1e-300))
+
+
+class _PointDyad:
+    """An RRR dyad in the coordinates of its middle joint X: the constraints
+    (X - W_a) . (dX - dW_a) = 0 and (X - W_b) . (dX - dW_b) = 0 make a 2 x 2 Jacobian
+    [u_a; u_b], solved by Cramer's rule for velocities and again for accelerations; the
+    links' rates follow from X's. The same answers as the general reduction in far fewer
+    array operations, for the commonest dyad."""
+
+    def __init__(self, step, pose, n, size):
+        self.step = step
+        a, b = step.links
+        ca, cb, cj = step.constraints
+        self.ka, self.kb = ca.other(a), cb.other(b)
+        self.pa, self.pb, self.q = ca.point, cb.point, cj.point
+        self.ra_k = rotate(pose[self.ka], self.pa)
+        self.rb_k = rotate(pose[self.kb], self.pb)
+        wa = (self.ra_k[0] + pose[self.ka][0], self.ra_k[1] + pose[self.ka][1])
+        wb = (self.rb_k[0] + pose[self.kb][0], self.rb_k[1] + pose[self.kb][1])
+        self.rq = {a: rotate(pose[a], self.q), b: rotate(pose[b], self.q)}
+        x = (self.rq[a][0] + pose[a][0], self.rq[a][1] + pose[a][1])
+        self.ua = (x[0] - wa[0], x[1] - wa[1])
+        self.ub = (x[0] - wb[0], x[1] - wb[1])
+        det = self.ua[0] * self.ub[1] - self.ua[1] * self.ub[0]
+        self.ra2 = self.ua[0] ** 2 + self.ua[1] ** 2
+        self.rb2 = self.ub[0] ** 2 + self.ub[1] ** 2
+        self.singular = det * det <= _SINGULAR ** 2 * self.ra2 * self.rb2
+        self.det = np.where(self.singular, 1.0, det)
+        self._det = det
+
+    @property
+    def measure(self):
+        return self._det / np.sqrt(self.ra2 * self.rb2)
+
+    def _known_point(self, table, link, r, second=None):
+        v = table[link]
+        if second is None:      # velocity of the point: v + w perp(R p)
+            return _add(v[0], _mul(-1.0, _mul(v[2], r[1]))), _add(v[1], _mul(v[2], r[0]))
+        w = second[link][2]     # acceleration: a + alpha perp(R p) - w^2 R p
+        w2 = _mul(w, w)
+        return (_add(_add(v[0], _mul(-1.0, _mul(v[2], r[1]))), _mul(-1.0, _mul(w2, r[0]))),
+                _add(_add(v[1], _mul(v[2], r[0])), _mul(-1.0, _mul(w2, r[1]))))
+
+    def solve_velocity(self, vel):
+        dwa = self._known_point(vel, self.ka, self.ra_k)
+        dwb = self._known_point(vel, self.kb, self.rb_k)
+        return self._solve(dwa, dwb, 0.0, 0.0, second=False)
+
+    def solve_acceleration(self, acc, vel):
+        dwa = self._known_point(acc, self.ka, self.ra_k, vel)
+        dwb = self._known_point(acc, self.kb, self.rb_k, vel)
+        ga, gb = _sq(self._rel_a), _sq(self._rel_b)
+        return self._solve(dwa, dwb, ga, gb, second=True, vel=vel)
+
+    def _solve(self, dwa, dwb, ga, gb, *, second, vel=None):
+        ua, ub = self.ua, self.ub
+        ca = ua[0] * dwa[0] + ua[1] * dwa[1] - ga
+        cb = ub[0] * dwb[0] + ub[1] * dwb[1] - gb
+        dx = (ca * ub[1] - ua[1] * cb) / self.det
+        dy = (ua[0] * cb - ca * ub[0]) / self.det
+        dx = np.where(self.singular, np.nan, dx)
+        a, b = self.step.links
+        out = {}
+        for link, u, dw, r2 in ((a, ua, dwa, self.ra2), (b, ub, dwb, self.rb2)):
+            rel = (dx - dw[0], dy - dw[1])
+            w = (u[0] * rel[1] - u[1] * rel[0]) / r2
+            rq = self.rq[link]
+            if not second:
+                setattr(self, "_rel_a" if link == a else "_rel_b", rel)
+                out[link] = (dx + w * rq[1], dy - w * rq[0], w)
+            else:
+                w0 = vel[link][2]
+                out[link] = (dx + w * rq[1] + w0 * w0 * rq[0],
+                             dy - w * rq[0] + w0 * w0 * rq[1], w)
+        return out
+
+
+def _sq(v):
+    return v[0] * v[0] + v[1] * v[1]
+
+
+class _Factor:
+    """One step's constraint Jacobian, factored once for the velocity and acceleration
+    solves (which differ only in their right-hand sides)."""
+
+    def __init__(self, step, pose, n, size):
+        self.step = step
+        self.n = n
+        self.rows = []                       # (unknown coefficients, known coefficients)
+        for c in step.constraints:
+            for coef in _rows(c, pose):
+                unknown = {k: v for k, v in coef.items() if k in step.links}
+                known = {k: v for k, v in coef.items() if k not in step.links}
+                self.rows.append((unknown, known))
+        if step.kind == "single":
+            u = step.links[0]
+            self.null = _NullSpace(self.rows[0][0][u], self.rows[1][0][u])
+            self.extra = [_dot3(r[0][u], self.null.e) for r in self.rows[2:]]
+            den = sum(m * m for m in self.extra)
+            self.singular = np.abs(den) <= _SINGULAR ** 2 * (_dot3(self.null.e, self.null.e))
+            self.den = np.where(self.singular, 1.0, den)
+        elif step.kind == "dyad":
+            a, b = step.links
+            self.null_a = _NullSpace(self.rows[0][0][a], self.rows[1][0][a])
+            self.null_b = _NullSpace(self.rows[2][0][b], self.rows[3][0][b])
+            p = []
+            for unknown, _ in self.rows[4:6]:
+                pa = _dot3(unknown[a], self.null_a.e) if a in unknown else 0.0 * n
+                pb = _dot3(unknown[b], self.null_b.e) if b in unknown else 0.0 * n
+                p.append((pa, pb))
+            (p11, p12), (p21, p22) = p
+            w = size if step.constraints[2].kind == "P" else 1.0  # angle row in lengths
+            self._weighted = (w * p11, w * p12, p21, p22)
+            det = p11 * p22 - p12 * p21
+            wdet = w * det
+            self.singular = wdet * wdet <= _SINGULAR ** 2 * (
+                (w * w * p11 * p11 + p21 * p21) * (w * w * p12 * p12 + p22 * p22))
+            self.p = (p11, p12, p21, p22, np.where(self.singular, 1.0, det))
+        else:
+            self.mat, _ = _group_matrix(step, [(u, 0.0) for u, _ in self.rows], n)
+            if self.mat.shape[1] != self.mat.shape[2]:
+                self.normal = np.einsum("nij,nik->njk", self.mat, self.mat)
+            else:
+                self.normal = None
+            m = self.mat if self.normal is None else self.normal
+            # Hadamard's ratio |det| / product of column lengths: 1 for orthogonal
+            # columns, 0 when singular, whatever the units
+            cols = np.sqrt((m * m).sum(axis=1))
+            self._measure = np.linalg.det(m) / np.prod(cols + 1e-300, axis=1)
+            self.singular = np.abs(self._measure) <= _SINGULAR ** 2
+            self.safe = np.where(self.singular[:, None, None], np.eye(m.shape[1]), m)
+
+    @property
+    def measure(self):
+        """The step's normalized determinant along the sweep (0 at a dead centre)."""
+        if self.step.kind == "single":
+            return np.where(self.singular, 0.0, 1.0)
+        if self.step.kind == "dyad":
+            return _column_free_det(*self._weighted)
+        return self._measure
+
+    def solve(self, rhs):
+        """Rates of the step's links for right-hand sides ``rhs`` (one per row)."""
+        step = self.step
+        if step.kind == "single":
+            u = step.links[0]
+            q0 = self.null.particular(rhs[0], rhs[1])
+            num = 0.0
+            for m, (unknown, _), r in zip(self.extra, self.rows[2:], rhs[2:]):
+                num = num + m * (r - _dot3(unknown[u], q0))
+            z = np.where(self.singular, np.nan, num / self.den)
+            e = self.null.e
+            return {u: tuple(q0[i] + z * e[i] for i in range(3))}
+        if step.kind == "dyad":
+            a, b = step.links
+            qa = self.null_a.particular(rhs[0], rhs[1])
+            qb = self.null_b.particular(rhs[2], rhs[3])
+            r = []
+            for (unknown, _), value in zip(self.rows[4:6], rhs[4:6]):
+                if a in unknown:
+                    value = value - _dot3(unknown[a], qa)
+                if b in unknown:
+                    value = value - _dot3(unknown[b], qb)
+                r.append(value)
+            p11, p12, p21, p22, det = self.p
+            za = np.where(self.singular, np.nan, (r[0] * p22 - p12 * r[1]) / det)
+            zb = np.where(self.singular, np.nan, (p11 * r[1] - p21 * r[0]) / det)
+            ea, eb = self.null_a.e, self.null_b.e
+            return {a: tuple(qa[i] + za * ea[i] for i in range(3)),
+                    b: tuple(qb[i] + zb * eb[i] for i in range(3))}
+        vec = np.stack([np.broadcast_to(v, (self.n,)) for v in rhs], axis=-1)
+        if self.normal is not None:
+            vec = np.einsum("nij,ni->nj", self.mat, vec)
+        x = np.linalg.solve(self.safe, vec[..., None])[..., 0]
+        x[self.singular] = np.nan
+        return {link: (x[:, 3 * k], x[:, 3 * k + 1], x[:, 3 * k + 2])
+                for k, link in enumerate(step.links)}
+
+    def right_hand_sides(self, rates_known, gammas=None):
+        out = []
+        for i, (_, known) in enumerate(self.rows):
+            value = gammas[i] if gammas is not None else 0.0
+            for link, cf in known.items():
+                value = value - _dot3(cf, rates_known[link])
+            out.append(value)
+        return out
+
+
+class _NullSpace:
+    """Two rows on one link's three rates: their null direction and a particular solution."""
+
+    def __init__(self, m1, m2):
+        self.m1, self.m2 = m1, m2
+        self.e = (_sub(_mul(m1[1], m2[2]), _mul(m1[2], m2[1])),
+                  _sub(_mul(m1[2], m2[0]), _mul(m1[0], m2[2])),
+                  _sub(_mul(m1[0], m2[1]), _mul(m1[1], m2[0])))
+        self.g11, self.g12, self.g22 = _dot3(m1, m1), _dot3(m1, m2), _dot3(m2, m2)
+        self.det = self.g11 * self.g22 - self.g12 * self.g12
+
+    def particular(self, c1, c2):
+        y1 = (c1 * self.g22 - c2 * self.g12) / self.det
+        y2 = (self.g11 * c2 - self.g12 * c1) / self.det
+        return tuple(_add(_mul(y1, self.m1[i]), _mul(y2, self.m2[i])) for i in range(3))
+
+
+def _mul(a, b):
+    if isinstance(a, float) and a == 0.0 or isinstance(b, float) and b == 0.0:
+        return 0.0
+    if isinstance(a, float) and a == 1.0:
+        return b
+    if isinstance(b, float) and b == 1.0:
+        return a
+    return a * b
+
+
+def _add(a, b):
+    if isinstance(a, float) and a == 0.0:
+        return b
+    if isinstance(b, float) and b == 0.0:
+        return a
+    return a + b
+
+
+def _sub(a, b):
+    if isinstance(b, float) and b == 0.0:
+        return a
+    return a - b
+
+
+def _group_matrix(step, rows, n):
+    col = {link: 3 * k for k, link in enumerate(step.links)}
+    size = 3 * len(step.links)
+    entries = [[0.0] * size for _ in rows]
+    for i, (coef, _) in enumerate(rows):
+        for link, cf in coef.items():
+            for k in range(3):
+                entries[i][col[link] + k] = cf[k]
+    mat = np.empty((n, len(rows), size))
+    for i, row in enumerate(entries):
+        for j, v in enumerate(row):
+            mat[:, i, j] = v
+    rhs = np.empty((n, len(rows)))
+    for i, (_, r) in enumerate(rows):
+        rhs[:, i] = r
+    return mat, rhs
+
+
+def rates(plan, pose, omega, n, *, steps=None, measure=True):
+    """Velocities and accelerations of every link at constant input speed ``omega``.
+
+    Returns
+    -------
+    vel, acc : dict link -> (vx, vy, omega) and (ax, ay, alpha) arrays (the fixed
+        link's as zeros)
+    singularity : (S, N) array, each step's normalized determinant (0 at a dead
+        centre); None unless ``measure``
+    """
+    zero = np.zeros(n)
+    ox, oy = plan.pivot_point
+    rx, ry = rotate(pose[plan.driver], (ox, oy))
+    vel = {plan.fixed: (0.0, 0.0, 0.0),
+           plan.driver: (omega * ry, -omega * rx, omega + zero)}
+    acc = {plan.fixed: (0.0, 0.0, 0.0),
+           plan.driver: (omega ** 2 * rx, omega ** 2 * ry, 0.0)}
+    measures = [] if measure else None
+    factors = []
+    for step in (plan.steps if steps is None else steps):
+        if step.kind == "dyad" and step.pattern == "RRR" and _POINT_DYADS:
+            f = _PointDyad(step, pose, n, plan.size)
+            vel.update(f.solve_velocity(vel))
+        else:
+            f = _Factor(step, pose, n, plan.size)
+            vel.update(f.solve(f.right_hand_sides(vel)))
+        factors.append(f)
+        if measure:
+            measures.append(np.broadcast_to(f.measure, (n,)))
+    for f in factors:
+        if isinstance(f, _PointDyad):
+            acc.update(f.solve_acceleration(acc, vel))
+            continue
+        gammas = [g for c in f.step.constraints for g in _gammas(c, pose, vel)]
+        acc.update(f.solve(f.right_hand_sides(acc, gammas)))
+    for table in (vel, acc):
+        table[plan.fixed] = (zero, zero, zero)
+        table[plan.driver] = tuple(v + zero for v in table[plan.driver])
+    return vel, acc, (np.array(measures) if measure else None)
+
+
+# -- Newton's method for groups ------------------------------------------------------
+def _group_residual(step, pose):
+    out = []
+    for c in step.constraints:
+        if c.kind == "R":
+            wa, wb = _world(pose, c.a, c.point), _world(pose, c.b, c.point)
+            out += [wa[0] - wb[0], wa[1] - wb[1]]
+        else:
+            dphi = np.remainder(pose[c.b][2] - pose[c.a][2] + np.pi, 2 * np.pi) - np.pi
+            n = rotate(pose[c.a], _perp(_unit(c.axis)))
+            wg, wb = _world(pose, c.a, c.point), _world(pose, c.b, c.point)
+            out += [dphi, n[0] * (wb[0] - wg[0]) + n[1] * (wb[1] - wg[1])]
+    return np.stack(out, axis=-1)
+
+
+def _with_group(pose, step, q):
+    full = dict(pose)
+    for k, link in enumerate(step.links):
+        full[link] = make_pose(q[:, 3 * k], q[:, 3 * k + 1], q[:, 3 * k + 2])
+    return full
+
+
+def _newton(plan, step, known, q, iterations=40):
+    """Batched Newton's method on the group's loop-closure equations; each point
+    iterates until its residual is below 1e-12 of the size (linear convergence at a
+    fold needs more iterations than elsewhere, so only unconverged points go on).
+    Returns (q, converged: residual <= 1e-9 of the size)."""
+    n = q.shape[0]
+    q = q.copy()
+    tol = 1e-12 * plan.size
+    active = np.arange(n)
+    last = np.full(n, np.inf)
+    for it in range(iterations):
+        sub = _slice(known, active) if active.size < n else known
+        full = _with_group(sub, step, q[active])
+        r = _group_residual(step, full)
+        err = np.abs(r).max(axis=1)
+        # go on where not converged and still improving (a fold converges linearly)
+        todo = (err > tol) & np.isfinite(err) & ((it < 4) | (err < 0.9 * last[active]))
+        last[active] = err
+        if not todo.any():
+            break
+        active, r = active[todo], r[todo]
+        full = _slice(full, np.nonzero(todo)[0])
+        coefs = [coef for c in step.constraints for coef in _rows(c, full)]
+        mat, _ = _group_matrix(step, [({k: v for k, v in coef.items() if k in step.links}, 0.0)
+                                      for coef in coefs], active.size)
+        if mat.shape[1] != mat.shape[2]:
+            rhs = np.einsum("nij,ni->nj", mat, -r)
+            mat = np.einsum("nij,nik->njk", mat, mat)
+        else:
+            rhs = -r
+        q[active] += _batched_solve(mat, rhs)
+    full = _with_group(known, step, q)
+    err = np.abs(_group_residual(step, full)).max(axis=1)
+    return q, err <= 1e-9 * plan.size
+
+
+def _batched_solve(mat, rhs):
+    """Solve stacked systems; a singular one (at a fold) gets its least-squares step."""
+    try:
+        return np.linalg.solve(mat, rhs[..., None])[..., 0]
+    except np.linalg.LinAlgError:
+        return np.einsum("nij,nj->ni", np.linalg.pinv(mat), rhs)
+
+
+def _slice(pose, idx):
+    return {k: tuple(v if isinstance(v, float) else np.asarray(v)[idx] for v in p)
+            for k, p in pose.items()}
+
+
+def _newton_path(plan, step, pose, theta, q0, coarse_deg=10.0):
+    """Group coordinates along the path, from q0 at its first point.
+
+    A coarse continuation (steps of at most ``coarse_deg``, an eighth of the path at
+    most, halved where Newton's method fails, with the tangent as predictor) follows
+    the assembly mode; every point is then corrected at once by batched Newton from
+    Hermite-interpolated guesses. Points past where the continuation fails are
+    infeasible.
+    """
+    n = theta.size
+    q0 = np.asarray(q0, dtype=float)
+    if n == 1:
+        q, ok = _newton(plan, step, pose, q0[None])
+        return q, ok
+    span = theta[-1] - theta[0]
+    direction = 1.0 if span >= 0 else -1.0
+    h = abs(span) if n <= 2 else min(coarse_deg, max(abs(span) / 8.0, 1e-9))
+    ts, qs, dqs = [], [], []
+    t, q = float(theta[0]), q0
+    known = _known_along(plan, step, pose, theta, np.array([t]))
+    qi, ok = _newton(plan, step, known, q[None])
+    if not ok[0]:
+        return np.zeros((n, q0.size)), np.zeros(n, dtype=bool)
+    q = qi[0]
+    dq = _group_tangent(plan, step, known, qi, np.array([t]))[0]
+    ts.append(t), qs.append(q), dqs.append(dq)
+    end = float(theta[-1])
+    step_deg = h
+    while direction * (end - t) > 1e-12 and step_deg > 1e-6:
+        for _ in range(10):
+            step_deg = min(step_deg, abs(end - t))
+            t_new = t + direction * step_deg
+            known = _known_along(plan, step, pose, theta, np.array([t_new]))
+            move = (dq if np.all(np.isfinite(dq)) else 0.0) * math.radians(t_new - t)
+            guess = q + move
+            qi, ok = _newton(plan, step, known, guess[None])
+            # the same assembly mode: Newton's correction small beside the predicted move
+            if ok[0] and np.linalg.norm(qi[0] - guess) <= \
+                    0.3 * np.linalg.norm(move) + 1e-6 * plan.size:
+                break
+            step_deg /= 2
+        else:
+            break
+        t, q = t_new, qi[0]
+        step_deg = min(h, 1.5 * step_deg)
+        dq = _group_tangent(plan, step, known, qi, np.array([t]))[0]
+        ts.append(t), qs.append(q), dqs.append(dq)
+    tc, qc, dqc = np.array(ts), np.array(qs), np.array(dqs)
+    reached = direction * (theta - tc[-1]) <= 1e-9
+    guess = _hermite(tc, qc, dqc, theta)
+    guess = np.where(np.isfinite(guess), guess, 0.0)
+    q, ok = _newton(plan, step, pose, guess)
+    ok &= np.linalg.norm(q - guess, axis=1) <= 0.05 * plan.size
+    # near a fold the tangent blows up and guesses are poor: continue point by point
+    for i in np.nonzero(reached & ~ok)[0]:
+        if i == 0 or not ok[i - 1]:
+            continue
+        qi, good = _newton(plan, step, _slice(pose, slice(i, i + 1)), q[i - 1:i])
+        if good[0] and np.linalg.norm(qi[0] - q[i - 1]) <= 0.05 * plan.size:
+            q[i], ok[i] = qi[0], True
+    return q, ok & reached
+
+
+def _known_along(plan, step, pose, theta, at):
+    """Known links' poses at the angles ``at`` (interpolated exactly by re-solving)."""
+    known = {}
+    sub = _known_poses(plan, at)
+    # the links solved before this group: evaluate the earlier steps at ``at``
+    partial = evaluate_prefix(plan, step, at, pose, theta)
+    known.update(sub)
+    known.update(partial)
+    return known
+
+
+def evaluate_prefix(plan, step, at, pose, theta):
+    """Poses of the links solved before ``step`` at the angles ``at``."""
+    if np.array_equal(at, theta):
+        return {k: v for k, v in pose.items()}
+    index = plan.steps.index(step)
+    if index == 0:
+        return {}
+    from dataclasses import replace
+    head = replace(plan, steps=plan.steps[:index])
+    return evaluate(head, at).pose
+
+
+def _group_tangent(plan, step, known, q, theta):
+    """d q / d theta (per radian) of the group at converged points."""
+    n = q.shape[0]
+    full = _with_group(known, step, q)
+    head = plan.steps[:plan.steps.index(step)]
+    vel, _, _ = rates(plan, full, 1.0, n, steps=head)
+    f = _Factor(step, full, n, plan.size)
+    found = f.solve(f.right_hand_sides(vel))
+    return np.stack([v for link in step.links for v in found[link]], axis=-1)
+
+
+def _hermite(tc, qc, dqc, t):
+    """Cubic Hermite interpolation of q(theta) (degrees) with dq/dtheta per radian."""
+    if tc.size == 0:
+        return np.full((t.size, qc.shape[1]), np.nan)
+    if tc.size == 1:
+        return np.repeat(qc[:1], t.size, axis=0)
+    order = np.argsort(tc)
+    tc, qc, dqc = tc[order], qc[order], dqc[order]
+    dqc = np.where(np.isfinite(dqc), dqc, 0.0)
+    idx = np.clip(np.searchsorted(tc, t) - 1, 0, tc.size - 2)
+    t0, t1 = tc[idx], tc[idx + 1]
+    h = t1 - t0
+    s = ((t - t0) / h)[:, None]
+    hr = np.radians(h)[:, None]
+    h00, h10 = 2 * s ** 3 - 3 * s ** 2 + 1, s ** 3 - 2 * s ** 2 + s
+    h01, h11 = -2 * s ** 3 + 3 * s ** 2, s ** 3 - s ** 2
+    return h00 * qc[idx] + h10 * hr * dqc[idx] + h01 * qc[idx + 1] + h11 * hr * dqc[idx + 1]
+
+
+def check_poses(plan, pose, feasible):
+    """Raise AssemblyError where a returned pose does not close its loops."""
+    res = residuals(plan, pose)
+    bad = feasible & ~(res <= 1e-9 * plan.size)
+    if bad.any():
+        i = int(np.argmax(bad))
+        raise AssemblyError(f"loop closure fails at step {i} (residual {res[i]:.3g}, "
+                            f"more than 1e-9 of the mechanism's size {plan.size:g})",
+                            mechanism=plan.chain.name)
+    return res
