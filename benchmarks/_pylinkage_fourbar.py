@@ -39,4 +39,7 @@ linkage, crank = build()
 linkage.step_fast_with_kinematics(iterations=STEPS)   # compile (numba)
 fast = best_of(lambda: linkage.step_fast_with_kinematics(iterations=STEPS), 30)
 slow = best_of(lambda: list(linkage.step_with_derivatives(iterations=STEPS)), 3)
-print(json.dumps({"numba_ms": fast, "python_ms": slow, "steps": STEPS}))
+positions, _, _ = linkage.step_fast_with_kinematics(iterations=STEPS)
+xs = [row[-1][0] for row in positions]
+print(json.dumps({"numba_ms": fast, "python_ms": slow, "steps": STEPS,
+                  "c_x_min": min(xs), "c_x_max": max(xs)}))

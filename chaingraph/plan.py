@@ -93,7 +93,7 @@ def _parallel(c1, c2):
     return abs(math.sin(math.radians(c1.axis - c2.axis))) < 1e-9
 
 
-def _steps(chain, fixed, driver, constraints):
+def _steps(chain, fixed, driver, constraints, closed_form=True):
     known = {fixed, driver}
     remaining = list(constraints)
     steps = []
@@ -104,7 +104,7 @@ def _steps(chain, fixed, driver, constraints):
         def attachments(u):
             return [c for c in remaining if u in (c.a, c.b) and c.other(u) in known]
         step = None
-        for u in unknown:
+        for u in (unknown if closed_form else []):
             att = attachments(u)
             if len(att) >= 2 and not (att[0].kind == att[1].kind == "P"
                                       and _parallel(att[0], att[1])):
@@ -113,7 +113,7 @@ def _steps(chain, fixed, driver, constraints):
                 step = Step("single", (u,), tuple(att), att[0].kind + att[1].kind)
                 break
         if step is None:
-            for a in unknown:
+            for a in (unknown if closed_form else []):
                 att_a = attachments(a)
                 if not att_a:
                     continue
@@ -139,8 +139,11 @@ def _steps(chain, fixed, driver, constraints):
     return tuple(steps)
 
 
-def build_plan(chain, fixed=None, driver=None) -> Plan:
+def build_plan(chain, fixed=None, driver=None, *, closed_form=True) -> Plan:
     """Check that an inversion can be solved and plan how.
+
+    ``closed_form=False`` solves every link by Newton's method in one group (slower;
+    the tests use it to check the closed forms and Newton against each other).
 
     Raises
     ------
@@ -206,7 +209,7 @@ def build_plan(chain, fixed=None, driver=None) -> Plan:
             f"the mobility with driver {driver!r} and {fixed!r} fixed is {numeric} at the "
             f"drawn pose (Kutzbach: {mobility}); the driver must determine the motion "
             "(mobility 1)", mechanism=name, mobility=numeric)
-    steps = _steps(chain, fixed, driver, constraints)
+    steps = _steps(chain, fixed, driver, constraints, closed_form)
     return Plan(chain=chain, fixed=fixed, driver=driver, pivot=pivot.id,
                 pivot_point=pivot.at, theta0=theta0, steps=steps, constraints=constraints,
                 size=size, mobility=mobility, numeric_mobility=numeric)

@@ -342,39 +342,42 @@ def _perp(v):
     return -v[1], v[0]
 
 
-def _rows(c, pose):
+def _geometry(c, pose):
+    """What a constraint's rows and acceleration terms share, computed once."""
+    ra = rotate(pose[c.a], c.point)
+    rb = rotate(pose[c.b], c.point)
+    if c.kind == "R":
+        return ra, rb, None, None
+    n = rotate(pose[c.a], _perp(_unit(c.axis)))
+    d = (rb[0] + pose[c.b][0] - ra[0] - pose[c.a][0], rb[1] + pose[c.b][1] - ra[1] - pose[c.a][1])
+    return ra, rb, n, d
+
+
+def _rows(c, pose, geom=None):
     """Rows of the constraint Jacobian, each {link: (cx, cy, cphi)} (constant entries as
     Python floats)."""
+    ra, rb, n, d = geom or _geometry(c, pose)
     if c.kind == "R":
-        ra = rotate(pose[c.a], c.point)
-        rb = rotate(pose[c.b], c.point)
         return [{c.a: (1.0, 0.0, -ra[1]), c.b: (-1.0, 0.0, rb[1])},
                 {c.a: (0.0, 1.0, ra[0]), c.b: (0.0, -1.0, -rb[0])}]
     g, b = c.a, c.b
-    n = rotate(pose[g], _perp(_unit(c.axis)))
     pn = _perp(n)
-    prb, prg = _perp(rotate(pose[b], c.point)), _perp(rotate(pose[g], c.point))
-    wg, wb = _world(pose, g, c.point), _world(pose, b, c.point)
-    d = (wb[0] - wg[0], wb[1] - wg[1])
+    prb, prg = _perp(rb), _perp(ra)
     return [{b: (0.0, 0.0, 1.0), g: (0.0, 0.0, -1.0)},
             {b: (n[0], n[1], n[0] * prb[0] + n[1] * prb[1]),
              g: (-n[0], -n[1], pn[0] * d[0] + pn[1] * d[1] - (n[0] * prg[0] + n[1] * prg[1]))}]
 
 
-def _gammas(c, pose, vel):
+def _gammas(c, pose, vel, geom=None):
     """Right-hand sides of the acceleration equations from the velocities alone."""
+    ra, rb, n, d = geom or _geometry(c, pose)
     if c.kind == "R":
-        ra = rotate(pose[c.a], c.point)
-        rb = rotate(pose[c.b], c.point)
         wa2, wb2 = vel[c.a][2] ** 2, vel[c.b][2] ** 2
         return [wa2 * ra[0] - wb2 * rb[0], wa2 * ra[1] - wb2 * rb[1]]
     g, b = c.a, c.b
-    n = rotate(pose[g], _perp(_unit(c.axis)))
+    rg = ra
     pn = _perp(n)
-    rg, rb = rotate(pose[g], c.point), rotate(pose[b], c.point)
     prb, prg = _perp(rb), _perp(rg)
-    wg, wb = _world(pose, g, c.point), _world(pose, b, c.point)
-    d = (wb[0] - wg[0], wb[1] - wg[1])
     (vbx, vby, wb_), (vgx, vgy, wg_) = vel[b], vel[g]
     dd = (vbx + wb_ * prb[0] - vgx - wg_ * prg[0], vby + wb_ * prb[1] - vgy - wg_ * prg[1])
     return [0.0, (-2 * wg_ * (pn[0] * dd[0] + pn[1] * dd[1])
@@ -515,8 +518,9 @@ class _Factor:
         self.step = step
         self.n = n
         self.rows = []                       # (unknown coefficients, known coefficients)
-        for c in step.constraints:
-            for coef in _rows(c, pose):
+        self.geometry = [_geometry(c, pose) for c in step.constraints]
+        for c, geom in zip(step.constraints, self.geometry):
+            for coef in _rows(c, pose, geom):
                 unknown = {k: v for k, v in coef.items() if k in step.links}
                 known = {k: v for k, v in coef.items() if k not in step.links}
                 self.rows.append((unknown, known))
@@ -546,17 +550,17 @@ class _Factor:
             self.p = (p11, p12, p21, p22, np.where(self.singular, 1.0, det))
         else:
             self.mat, _ = _group_matrix(step, [(u, 0.0) for u, _ in self.rows], n)
-            if self.mat.shape[1] != self.mat.shape[2]:
-                self.normal = np.einsum("nij,nik->njk", self.mat, self.mat)
-            else:
-                self.normal = None
-            m = self.mat if self.normal is None else self.normal
-            # Hadamard's ratio |det| / product of column lengths: 1 for orthogonal
-            # columns, 0 when singular, whatever the units
-            cols = np.sqrt((m * m).sum(axis=1))
-            self._measure = np.linalg.det(m) / np.prod(cols + 1e-300, axis=1)
-            self.singular = np.abs(self._measure) <= _SINGULAR ** 2
-            self.safe = np.where(self.singular[:, None, None], np.eye(m.shape[1]), m)
+            m = self.mat
+            self.normal = m.shape[1] != m.shape[2]
+            if self.normal:
+                m = np.einsum("nij,nik->njk", self.mat, self.mat)
+            inv = _batched_inverse(m)
+            # 1 / (Frobenius condition number): 0 when singular, whatever the scale
+            measure = 1.0 / (np.sqrt((m * m).sum(axis=(1, 2)) *
+                                     (inv * inv).sum(axis=(1, 2))) + 1e-300)
+            self._measure = np.where(np.isfinite(measure), measure, 0.0)
+            self.singular = self._measure <= _SINGULAR ** 2
+            self.inverse = inv
 
     @property
     def measure(self):
@@ -597,9 +601,9 @@ class _Factor:
             return {a: tuple(qa[i] + za * ea[i] for i in range(3)),
                     b: tuple(qb[i] + zb * eb[i] for i in range(3))}
         vec = np.stack([np.broadcast_to(v, (self.n,)) for v in rhs], axis=-1)
-        if self.normal is not None:
+        if self.normal:
             vec = np.einsum("nij,ni->nj", self.mat, vec)
-        x = np.linalg.solve(self.safe, vec[..., None])[..., 0]
+        x = np.einsum("nij,nj->ni", self.inverse, vec)
         x[self.singular] = np.nan
         return {link: (x[:, 3 * k], x[:, 3 * k + 1], x[:, 3 * k + 2])
                 for k, link in enumerate(step.links)}
@@ -706,7 +710,8 @@ def rates(plan, pose, omega, n, *, steps=None, measure=True):
         if isinstance(f, _PointDyad):
             acc.update(f.solve_acceleration(acc, vel))
             continue
-        gammas = [g for c in f.step.constraints for g in _gammas(c, pose, vel)]
+        gammas = [g for c, geom in zip(f.step.constraints, f.geometry)
+                  for g in _gammas(c, pose, vel, geom)]
         acc.update(f.solve(f.right_hand_sides(acc, gammas)))
     for table in (vel, acc):
         table[plan.fixed] = (zero, zero, zero)
@@ -734,6 +739,27 @@ def _with_group(pose, step, q):
     for k, link in enumerate(step.links):
         full[link] = make_pose(q[:, 3 * k], q[:, 3 * k + 1], q[:, 3 * k + 2])
     return full
+
+
+def _chord(plan, step, known, q, iterations=8):
+    """Newton's method with the Jacobian inverted once at the guesses (the chord
+    method): cheap for many points near their solutions. Returns (q, converged)."""
+    tol = 1e-12 * plan.size
+    full = _with_group(known, step, q)
+    coefs = [coef for c in step.constraints for coef in _rows(c, full)]
+    mat, _ = _group_matrix(step, [({k: v for k, v in coef.items() if k in step.links}, 0.0)
+                                  for coef in coefs], q.shape[0])
+    if mat.shape[1] != mat.shape[2]:
+        return q, np.zeros(q.shape[0], dtype=bool)
+    inv = _batched_inverse(mat)
+    q = q.copy()
+    for _ in range(iterations):
+        r = _group_residual(step, _with_group(known, step, q))
+        if np.all(np.abs(r).max(axis=1) <= tol):
+            break
+        q -= np.einsum("nij,nj->ni", inv, r)
+    err = np.abs(_group_residual(step, _with_group(known, step, q))).max(axis=1)
+    return q, err <= 1e-9 * plan.size
 
 
 def _newton(plan, step, known, q, iterations=40):
@@ -770,6 +796,14 @@ def _newton(plan, step, known, q, iterations=40):
     full = _with_group(known, step, q)
     err = np.abs(_group_residual(step, full)).max(axis=1)
     return q, err <= 1e-9 * plan.size
+
+
+def _batched_inverse(mat):
+    """Stacked inverses; a singular matrix gets its pseudo-inverse."""
+    try:
+        return np.linalg.inv(mat)
+    except np.linalg.LinAlgError:
+        return np.linalg.pinv(mat)
 
 
 def _batched_solve(mat, rhs):
@@ -836,7 +870,11 @@ def _newton_path(plan, step, pose, theta, q0, coarse_deg=10.0):
     reached = direction * (theta - tc[-1]) <= 1e-9
     guess = _hermite(tc, qc, dqc, theta)
     guess = np.where(np.isfinite(guess), guess, 0.0)
-    q, ok = _newton(plan, step, pose, guess)
+    q, ok = _chord(plan, step, pose, guess)
+    if not ok.all():
+        redo = np.nonzero(~ok)[0]
+        q2, ok2 = _newton(plan, step, _slice(pose, redo), guess[redo])
+        q[redo], ok[redo] = q2, ok2
     ok &= np.linalg.norm(q - guess, axis=1) <= 0.05 * plan.size
     # near a fold the tangent blows up and guesses are poor: continue point by point
     for i in np.nonzero(reached & ~ok)[0]:

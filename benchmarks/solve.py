@@ -1,0 +1,123 @@
+"""Solver speed: microseconds per step for every catalog mechanism, and pylinkage side by side.
+
+Usage:
+    python benchmarks/solve.py            # chaingraph only
+    python benchmarks/solve.py --compare  # also pylinkage 1.3.0 (installed on first use
+                                          # into benchmarks/.venv-pylinkage, with numba)
+
+Each figure is the best of several runs of a 3,600-step sweep with velocities and
+accelerations of every link, joint and point (``solve(..., summary=False)``), after a
+warm-up (the plan and the feasible range are built once per inversion and cached).
+Targets (issue 4): the crank-rocker four-bar at least as fast as pylinkage's numba path
+and 20 times faster than its pure-Python path; the six-link shaper at most three times
+the four-bar; Stephenson's third inversion (Newton's method) under 100 ms.
+"""
+
+import argparse
+import json
+import math
+import subprocess
+import sys
+import time
+from pathlib import Path
+
+import numpy as np
+
+import chaingraph
+from chaingraph import Chain, Joint, Mechanism
+from chaingraph.catalog import catalog_files, catalog_path
+
+HERE = Path(__file__).resolve().parent
+STEPS = 3600
+
+
+def best_ms(fn, repeats):
+    fn()
+    best = math.inf
+    for _ in range(repeats):
+        start = time.perf_counter()
+        fn()
+        best = min(best, time.perf_counter() - start)
+    return 1000.0 * best
+
+
+def crank_rocker():
+    """Ground 100, crank 40, coupler 120, rocker 80; crank at 60 degrees (as pylinkage's)."""
+    a = (0.0, 0.0)
+    d = (100.0, 0.0)
+    b = (40 * math.cos(math.radians(60)), 40 * math.sin(math.radians(60)))
+    dx, dy = d[0] - b[0], d[1] - b[1]
+    dist = math.hypot(dx, dy)
+    along = (120 ** 2 - 80 ** 2 + dist ** 2) / (2 * dist)
+    h = math.sqrt(120 ** 2 - along ** 2)
+    c = (b[0] + along * dx / dist - h * dy / dist, b[1] + along * dy / dist + h * dx / dist)
+    return Chain("crank-rocker four-bar", (
+        Joint("A", "R", ("frame", "crank"), at=a), Joint("B", "R", ("crank", "coupler"), at=b),
+        Joint("C", "R", ("coupler", "rocker"), at=c), Joint("D", "R", ("rocker", "frame"), at=d)),
+        mechanism=Mechanism("frame", "crank", 1.0, "rocker"))
+
+
+def stephenson_three():
+    chain = chaingraph.load(catalog_path("stephenson-six-bar-chain"))
+    return chain.with_mechanism("b4", "t2")
+
+
+def sweep_ms(chain, start=None, stop=None, repeats=20):
+    return best_ms(lambda: chaingraph.solve(chain, start=start, stop=stop, steps=STEPS,
+                                            summary=False), repeats)
+
+
+def pylinkage(python):
+    venv = HERE / ".venv-pylinkage"
+    exe = venv / "bin" / "python"
+    if not exe.exists():
+        print(f"installing pylinkage 1.3.0 and numba into {venv} ...", file=sys.stderr)
+        subprocess.run([python, "-m", "venv", str(venv)], check=True)
+        subprocess.run([str(exe), "-m", "pip", "install", "--quiet", "pylinkage==1.3.0", "numba"],
+                       check=True)
+    out = subprocess.run([str(exe), str(HERE / "_pylinkage_fourbar.py"), str(STEPS)],
+                         check=True, capture_output=True, text=True).stdout
+    return json.loads(out.strip().splitlines()[-1])
+
+
+def main():
+    parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
+    parser.add_argument("--compare", action="store_true", help="time pylinkage 1.3.0 too")
+    parser.add_argument("--python", default=sys.executable,
+                        help="the Python that makes pylinkage's venv")
+    args = parser.parse_args()
+
+    print(f"{STEPS}-step sweeps with velocity and acceleration (best of 20):")
+    print(f"{'mechanism':48s} {'ms':>8s} {'us/step':>8s}")
+    for path in catalog_files():
+        chain = chaingraph.load(path)
+        if chain.mechanism is None or chain.mechanism.driver is None:
+            continue
+        ms = sweep_ms(chain)
+        print(f"{chain.name[:48]:48s} {ms:8.2f} {1000 * ms / STEPS:8.3f}")
+    four = sweep_ms(crank_rocker(), repeats=50)
+    shaper = sweep_ms(chaingraph.load(catalog_path("shaper-crank-and-slotted-lever")), repeats=50)
+    s3 = stephenson_three()
+    t0 = chaingraph.build_plan(s3).theta0
+    newton = sweep_ms(s3, start=t0, stop=t0 + 150.0, repeats=5)
+    print()
+    print(f"crank-rocker four-bar:            {four:7.2f} ms")
+    print(f"six-link shaper:                  {shaper:7.2f} ms  ({shaper / four:.2f} x the four-bar)")
+    print(f"Stephenson III (Newton, 150 deg): {newton:7.2f} ms")
+    if args.compare:
+        result = pylinkage(args.python)
+        fast, slow = result["numba_ms"], result["python_ms"]
+        print()
+        print("pylinkage 1.3.0, the same four-bar, 3,600 steps with velocity and acceleration:")
+        print(f"  step_fast_with_kinematics (numba): {fast:7.2f} ms")
+        print(f"  step_with_derivatives (Python):    {slow:7.2f} ms")
+        print(f"chaingraph / pylinkage numba:  {four / fast:.2f}  (target <= 1)")
+        print(f"pylinkage Python / chaingraph: {slow / four:.1f}  (target >= 20)")
+        m = chaingraph.solve(crank_rocker(), steps=STEPS, summary=False)
+        lo, hi = float(np.nanmin(m["x:C"])), float(np.nanmax(m["x:C"]))
+        print(f"check: C's x range chaingraph {lo:.6f}..{hi:.6f}, "
+              f"pylinkage {result['c_x_min']:.6f}..{result['c_x_max']:.6f}")
+
+
+if __name__ == "__main__":
+    main()

@@ -1,0 +1,161 @@
+"""Drawings of a solved motion (matplotlib, imported only here, with the Agg backend).
+
+:func:`plot_motion` plots the output's displacement, velocity and acceleration against
+the input angle with its extremes and the dead centres marked; :func:`draw_mechanism`
+draws the mechanism in its drawn pose with the paths of its joints and points.
+"""
+
+from __future__ import annotations
+
+import math
+
+import numpy as np
+
+__all__ = ["plot_motion", "draw_mechanism", "output_series"]
+
+
+def _pyplot():
+    import matplotlib
+    matplotlib.use("Agg")
+    import matplotlib.pyplot as plt
+    return plt
+
+
+def output_series(motion):
+    """The output's (label, displacement, velocity, acceleration, unit) along the sweep."""
+    from .motion import _output_signal, _signal_values
+    output = motion.summary.get("output") if motion.summary else None
+    if output is None and motion.plan.chain.mechanism is not None:
+        output = motion.plan.chain.mechanism.output
+    if output is None:
+        output = motion.driver
+    signal = _output_signal(motion.plan, output, motion.columns)
+    kind, name = signal
+    units = motion.units or "length"
+    if kind == "point":
+        xy = np.column_stack([motion[f"x:{name}"], motion[f"y:{name}"]])
+        _, _, vt = np.linalg.svd(xy - xy.mean(axis=0), full_matrices=False)
+        u, v, a = _signal_values(kind, name, motion.columns, tuple(vt[0]))
+        return f"point {name} (along its path's main direction)", u, v, a, units
+    u, v, a = _signal_values(kind, name, motion.columns)
+    if kind == "angle":
+        return f"link {output} (angle)", u, v, a, "deg"
+    return f"{output} (slide of joint {name})", u, v, a, units
+
+
+def plot_motion(motion, path):
+    """Write an SVG (or PNG, by the file's ending) of the output against input angle."""
+    plt = _pyplot()
+    label, u, v, a, unit = output_series(motion)
+    theta = motion.theta
+    fig, axes = plt.subplots(3, 1, sharex=True, figsize=(7.5, 7.5))
+    rate = f"{unit}/s"
+    for ax, y, name in zip(axes, (u, v, a), (f"displacement ({unit})", f"velocity ({rate})",
+                                              f"acceleration ({unit}/s²)")):
+        ax.plot(theta, y, color="#1f4e79", lw=1.6)
+        ax.set_ylabel(name)
+        ax.grid(True, color="#dddddd", lw=0.6)
+    s = motion.summary or {}
+    for t in s.get("dead_centres") or []:
+        for ax in axes:
+            for tt in _in_sweep(t, theta):
+                ax.axvline(tt, color="#c00000", lw=1.0, ls="--")
+    for t in s.get("extremes") or []:
+        for tt in _in_sweep(t, theta):
+            k = int(np.argmin(np.abs(theta - tt)))
+            axes[0].plot([theta[k]], [u[k]], "o", color="#e07b00", ms=6)
+    axes[-1].set_xlabel("input angle θ (degrees)")
+    title = f"{motion.name}: {label}"
+    if s.get("time_ratio"):
+        title += f"\nstroke {s['stroke']:.4g} {s.get('stroke_unit') or ''}, " \
+                 f"time ratio {s['time_ratio']:.4f}"
+    axes[0].set_title(title, fontsize=10)
+    handles = [plt.Line2D([], [], color="#e07b00", marker="o", ls="", label="extreme"),
+               plt.Line2D([], [], color="#c00000", ls="--", label="dead centre")]
+    axes[0].legend(handles=handles, fontsize=8, loc="best")
+    fig.tight_layout()
+    fig.savefig(path)
+    plt.close(fig)
+
+
+def _in_sweep(t, theta):
+    lo, hi = min(theta[0], theta[-1]), max(theta[0], theta[-1])
+    return [t + 360 * k for k in range(-3, 4) if lo - 1e-9 <= t + 360 * k <= hi + 1e-9]
+
+
+def draw_mechanism(motion, path, *, pose_index=0):
+    """Write an SVG (or PNG) of the mechanism in a pose with every joint's and point's path."""
+    plt = _pyplot()
+    chain = motion.plan.chain
+    fig, ax = plt.subplots(figsize=(7, 6))
+    _draw_pose(ax, motion, pose_index)
+    names = [j.id for j in chain.joints] + [p.id for p in chain.points]
+    for name in names:
+        x, y = motion[f"x:{name}"], motion[f"y:{name}"]
+        if np.ptp(x) + np.ptp(y) > 1e-9:
+            ax.plot(x, y, lw=0.8, color="#7f7f7f", alpha=0.8)
+    ax.set_aspect("equal")
+    ax.set_title(f"{motion.name}\n({motion.fixed} fixed, {motion.driver} driving; "
+                 f"paths over θ = {motion.theta[0]:.4g}..{motion.theta[-1]:.4g}°)", fontsize=10)
+    ax.grid(True, color="#eeeeee", lw=0.5)
+    fig.tight_layout()
+    fig.savefig(path)
+    plt.close(fig)
+
+
+_COLOURS = ["#1f77b4", "#2ca02c", "#d62728", "#9467bd", "#8c564b", "#e377c2", "#17becf",
+            "#bcbd22", "#ff7f0e"]
+
+
+def _draw_pose(ax, motion, k):
+    """Links as bars or polygons through their joints, R joints as circles, P joints as
+    squares on their sliding line, the fixed link as hatched ground marks."""
+    chain = motion.plan.chain
+    pos = {}
+    for j in chain.joints:
+        pos[j.id] = (motion[f"x:{j.id}"][k], motion[f"y:{j.id}"][k])
+    for p in chain.points:
+        pos[p.id] = (motion[f"x:{p.id}"][k], motion[f"y:{p.id}"][k])
+    size = motion.plan.size
+    for j in chain.joints_of(motion.fixed):   # ground marks at the fixed link's joints
+        x, y = pos[j.id]
+        w = 0.035 * size
+        ax.fill([x, x - w, x + w], [y, y - 1.6 * w, y - 1.6 * w], facecolor="#dddddd",
+                edgecolor="#555555", hatch="///", lw=0.8, zorder=1)
+    for i, link in enumerate(chain.links):
+        if link == motion.fixed:
+            continue
+        pts = [pos[j.id] for j in chain.joints_of(link)]
+        pts += [pos[p.id] for p in chain.points if p.link == link]
+        if len(pts) < 2:
+            continue
+        colour = _COLOURS[i % len(_COLOURS)]
+        xs, ys = zip(*pts)
+        if len(pts) >= 3:
+            cx, cy = np.mean(xs), np.mean(ys)
+            order = np.argsort([math.atan2(y - cy, x - cx) for x, y in pts])
+            poly = [pts[o] for o in order]
+            ax.fill(*zip(*poly), color=colour, alpha=0.18)
+            ax.plot(*zip(*(poly + poly[:1])), color=colour, lw=2.2)
+        else:
+            ax.plot(xs, ys, color=colour, lw=3)
+        ax.annotate(link, (np.mean(xs), np.mean(ys)), fontsize=8, color=colour,
+                    xytext=(4, 4), textcoords="offset points")
+    for j in chain.joints:
+        x, y = pos[j.id]
+        if j.kind == "P":
+            g = j.links[0]
+            angle = math.radians(j.axis) + math.radians(
+                motion[f"angle:{g}"][k] - motion[f"angle:{g}"][0])
+            span = 0.15 * motion.plan.size
+            ax.plot([x - span * math.cos(angle), x + span * math.cos(angle)],
+                    [y - span * math.sin(angle), y + span * math.sin(angle)],
+                    color="#333333", lw=1.0, ls=":")
+            ax.plot([x], [y], "s", ms=9, mfc="white", mec="#333333")
+        else:
+            ax.plot([x], [y], "o", ms=7, mfc="white", mec="#000000", mew=1.5)
+        ax.annotate(j.id, (x, y), fontsize=8, xytext=(-10, -12), textcoords="offset points")
+    for p in chain.points:
+        x, y = pos[p.id]
+        ax.plot([x], [y], "*", ms=9, color="#e07b00")
+        ax.annotate(p.id, (x, y), fontsize=8, xytext=(4, -10), textcoords="offset points")

@@ -1,0 +1,520 @@
+"""The numeric solver: closed-form geometry, finite differences, the textbook's figures,
+assembly modes, feasible ranges, dead centres and every bad input."""
+
+import csv
+import io
+import json
+import math
+
+import numpy as np
+import pytest
+
+import chaingraph
+from chaingraph import AssemblyError, Chain, Joint, Mechanism, MechanismError, Point
+from chaingraph.catalog import catalog_files, catalog_path
+from chaingraph.motion import solve
+from chaingraph.plan import build_plan
+from chaingraph.solver import evaluate, rates, residuals
+
+from .conftest import run_cli
+
+SOLVABLE = [p for p in catalog_files()
+            if (c := chaingraph.load(p)).mechanism is not None and c.mechanism.driver]
+
+
+def R(joint_id, links, at):
+    return Joint(joint_id, "R", tuple(links), at=(float(at[0]), float(at[1])))
+
+
+def P(joint_id, links, at, axis):
+    return Joint(joint_id, "P", tuple(links), at=(float(at[0]), float(at[1])), axis=float(axis))
+
+
+def circle_circle(p, r1, q, r2, sign=1):
+    dx, dy = q[0] - p[0], q[1] - p[1]
+    d = math.hypot(dx, dy)
+    a = (r1 * r1 - r2 * r2 + d * d) / (2 * d)
+    h = math.sqrt(r1 * r1 - a * a)
+    return (p[0] + a * dx / d - sign * h * dy / d, p[1] + a * dy / d + sign * h * dx / d)
+
+
+# -- the crank-rocker four-bar against closed form -----------------------------------
+GROUND, CRANK, COUPLER, ROCKER = 100.0, 40.0, 120.0, 80.0
+
+
+def four_bar(angle=30.0, sign=1):
+    A, D = (0.0, 0.0), (GROUND, 0.0)
+    B = (CRANK * math.cos(math.radians(angle)), CRANK * math.sin(math.radians(angle)))
+    C = circle_circle(B, COUPLER, D, ROCKER, sign)
+    return Chain("crank-rocker", (R("A", ["frame", "crank"], A), R("B", ["crank", "coupler"], B),
+                                  R("C", ["coupler", "rocker"], C), R("D", ["rocker", "frame"], D)),
+                 mechanism=Mechanism("frame", "crank", 2.5, "rocker"))
+
+
+def four_bar_by_hand(theta, omega, sign):
+    """Loop closure a e^{i th} + b e^{i beta} = d + c e^{i gamma}, solved and
+    differentiated by hand (complex numbers), independent of the solver."""
+    a, b, c, d = CRANK, COUPLER, ROCKER, GROUND
+    th = np.radians(theta)
+    B = a * np.exp(1j * th)
+    BD = d - B
+    L = np.abs(BD)
+    # C = B + b e^{i beta}, |C - D| = c: the angle at B between BD and BC
+    cos_phi = (b * b + L * L - c * c) / (2 * b * L)
+    beta = np.angle(BD) + sign * np.arccos(cos_phi)
+    C = B + b * np.exp(1j * beta)
+    gamma = np.angle(C - d)
+    # velocities: i a w e^{i th} + i b w3 e^{i beta} = i c w4 e^{i gamma}
+    M = np.array([[-b * np.sin(beta), c * np.sin(gamma)], [b * np.cos(beta), -c * np.cos(gamma)]])
+    rhs = np.array([a * omega * np.sin(th), -a * omega * np.cos(th)])
+    w3, w4 = np.einsum("ijn->nij", M).__array__(), None
+    sol = np.linalg.solve(np.moveaxis(M, -1, 0), np.moveaxis(rhs, -1, 0)[..., None])[..., 0]
+    w3, w4 = sol[:, 0], sol[:, 1]
+    # accelerations: -a w^2 e^{i th} + (i al3 - w3^2) b e^{i beta} = (i al4 - w4^2) c e^{i gamma}
+    accel = (a * omega ** 2 * np.exp(1j * th) + b * w3 ** 2 * np.exp(1j * beta)
+             - c * w4 ** 2 * np.exp(1j * gamma))
+    rhs2 = np.array([accel.real, accel.imag])
+    sol2 = np.linalg.solve(np.moveaxis(M, -1, 0), np.moveaxis(rhs2, -1, 0)[..., None])[..., 0]
+    return C, np.degrees(beta), np.degrees(gamma), w3, w4, sol2[:, 0], sol2[:, 1]
+
+
+def _close_angles(a, b, tol):
+    return np.allclose(np.remainder(a - b + 180.0, 360.0) - 180.0, 0.0, atol=tol)
+
+
+@pytest.mark.parametrize("sign", [1, -1])
+def test_crank_rocker_every_step_against_closed_form(sign):
+    chain = four_bar(30.0, sign)
+    motion = solve(chain, steps=720)
+    theta = motion["theta"]
+    C, beta, gamma, w3, w4, al3, al4 = four_bar_by_hand(theta, 2.5, sign)
+    assert np.allclose(motion["x:C"], C.real, atol=1e-9) and np.allclose(motion["y:C"], C.imag, atol=1e-9)
+    assert _close_angles(motion["angle:coupler"], beta, 1e-9)
+    assert _close_angles(motion["angle:rocker"], gamma + 180.0, 1e-9)  # line C -> D
+    assert np.allclose(motion["omega:coupler"], w3, atol=1e-10)
+    assert np.allclose(motion["omega:rocker"], w4, atol=1e-10)
+    assert np.allclose(motion["alpha:coupler"], al3, atol=1e-9)
+    assert np.allclose(motion["alpha:rocker"], al4, atol=1e-9)
+    assert np.allclose(motion["omega:crank"], 2.5) and np.allclose(motion["alpha:crank"], 0.0)
+    # velocity of C is the rocker's rotation about D
+    vc = 1j * np.radians(0) + (motion["vx:C"] + 1j * motion["vy:C"])
+    assert np.allclose(vc, 1j * w4 * (C - GROUND), atol=1e-9)
+
+
+def test_crank_rocker_transmission_angle_range():
+    s = solve(four_bar()).summary
+    b, c = COUPLER, ROCKER
+    mu_min = math.degrees(math.acos((b * b + c * c - (GROUND - CRANK) ** 2) / (2 * b * c)))
+    mu_max = math.degrees(math.acos((b * b + c * c - (GROUND + CRANK) ** 2) / (2 * b * c)))
+    assert s["transmission_angle"]["min"] == pytest.approx(mu_min, abs=1e-7)
+    assert s["transmission_angle"]["max"] == pytest.approx(mu_max, abs=1e-7)
+    assert s["full_turn"] is True and s["dead_centres"] == []
+
+
+def test_crank_rocker_limit_positions_and_time_ratio():
+    s = solve(four_bar()).summary
+    # the rocker's extremes: crank and coupler in line, |AC| = coupler -+ crank
+    ext = []
+    for r, add in ((COUPLER + CRANK, 0.0), (COUPLER - CRANK, 180.0)):
+        C = circle_circle((0.0, 0.0), r, (GROUND, 0.0), ROCKER, 1)
+        ext.append((math.degrees(math.atan2(C[1], C[0])) + add) % 360.0)
+    assert sorted(s["extremes"]) == pytest.approx(sorted(ext), abs=1e-7)
+    a = (ext[1] - ext[0]) % 360.0
+    assert s["time_ratio"] == pytest.approx(max(a, 360 - a) / min(a, 360 - a), rel=1e-9)
+
+
+# -- the offset slider crank against closed form ------------------------------------
+def slider_crank(a=40.0, rod=120.0, e=10.0, angle=45.0):
+    A = (a * math.cos(math.radians(angle)), a * math.sin(math.radians(angle)))
+    B = (A[0] + math.sqrt(rod ** 2 - (e - A[1]) ** 2), e)
+    return Chain("offset slider crank", (
+        R("O", ["frame", "crank"], (0, 0)), R("A", ["crank", "rod"], A),
+        R("B", ["rod", "slider"], B), P("S", ["frame", "slider"], B, 0.0)),
+        mechanism=Mechanism("frame", "crank", 3.0, "slider"), units="mm")
+
+
+def test_offset_slider_crank_every_step_against_closed_form():
+    a, l, e, w = 40.0, 120.0, 10.0, 3.0
+    motion = solve(slider_crank(a, l, e), steps=720)
+    th = np.radians(motion["theta"])
+    s, c = np.sin(th), np.cos(th)
+    u, du, ddu = e - a * s, -a * c, a * s
+    S = np.sqrt(l * l - u * u)
+    dS = u * a * c / S
+    ddS = a * (du * c - u * s) / S - a * c * u * dS / S ** 2
+    x = a * c + S
+    dx = -a * s + dS
+    ddx = -a * c + ddS
+    phi = np.degrees(np.arctan2(u, S))
+    dphi = (du * S - u * dS) / (l * l)
+    ddphi = (ddu * S - u * ddS) / (l * l)
+    assert np.allclose(motion["x:B"], x, atol=1e-9) and np.allclose(motion["y:B"], e, atol=1e-9)
+    assert np.allclose(motion["vx:B"], w * dx, atol=1e-9)
+    assert np.allclose(motion["ax:B"], w * w * ddx, atol=1e-8)
+    assert np.allclose(motion["vy:B"], 0.0, atol=1e-9) and np.allclose(motion["ay:B"], 0.0, atol=1e-8)
+    assert _close_angles(motion["angle:rod"], phi, 1e-9)
+    assert np.allclose(motion["omega:rod"], w * dphi, atol=1e-10)
+    assert np.allclose(motion["alpha:rod"], w * w * ddphi, atol=1e-9)
+    # slide displacement from the drawn pose, its rate and acceleration
+    assert np.allclose(motion["s:S"], x - x[0], atol=1e-9)
+    assert np.allclose(motion["v:S"], w * dx, atol=1e-9)
+    assert np.allclose(motion["a:S"], w * w * ddx, atol=1e-8)
+    summary = motion.summary
+    xs = [a + l, -a + l]  # not exact with an offset: check the stroke directly
+    stroke = math.sqrt((l + a) ** 2 - e ** 2) - math.sqrt((l - a) ** 2 - e ** 2)
+    assert summary["stroke"] == pytest.approx(stroke, abs=1e-9)
+    assert summary["stroke_unit"] == "mm" and xs
+
+
+# -- the textbook's quick return figures ------------------------------------------------
+def test_crank_and_slotted_lever_time_ratio_is_1_710():
+    s = solve(chaingraph.load(catalog_path("crank-and-slotted-lever-mechanism"))).summary
+    alpha = 2 * math.degrees(math.acos(120 / 300))  # return angle: lever tangent to the circle
+    exact = (360 - alpha) / alpha
+    assert s["time_ratio"] == pytest.approx(exact, abs=1e-9)
+    assert round(s["time_ratio"], 3) == 1.710 and round(s["time_ratio"], 2) != 1.72
+    assert s["forward_deg"] == pytest.approx(360 - alpha, abs=1e-7)
+    assert s["return_deg"] == pytest.approx(alpha, abs=1e-7)
+
+
+def test_shaper_with_ram_time_ratio_2_stroke_450():
+    s = solve(chaingraph.load(catalog_path("shaper-crank-and-slotted-lever"))).summary
+    assert s["time_ratio"] == pytest.approx(2.0, abs=1e-9)
+    assert s["stroke"] == pytest.approx(2 * 450 * 120 / 240, abs=1e-8)
+
+
+def whitworth(arm, rod, crank=75.0, centres=50.0, angle=90.0):
+    D, C = (0.0, 0.0), (0.0, -centres)
+    A = (C[0] + crank * math.cos(math.radians(angle)), C[1] + crank * math.sin(math.radians(angle)))
+    u = (A[0] - D[0], A[1] - D[1])
+    n = math.hypot(*u)
+    Pp = (-arm * u[0] / n, -arm * u[1] / n)
+    Rr = (Pp[0] + math.sqrt(rod ** 2 - Pp[1] ** 2), 0.0)
+    return Chain("Whitworth", (
+        R("C", ["frame", "crank"], C), R("A", ["crank", "block"], A),
+        P("S", ["lever", "block"], A, math.degrees(math.atan2(u[1], u[0]))),
+        R("D", ["lever", "frame"], D), R("P", ["lever", "rod"], Pp),
+        R("R", ["rod", "ram"], Rr), P("G", ["frame", "ram"], Rr, 0.0)),
+        mechanism=Mechanism("frame", "crank", 1.0, "ram"))
+
+
+@pytest.mark.parametrize("arm, rod", [(50.0, 135.0), (30.0, 100.0), (70.0, 200.0)])
+def test_whitworth_time_ratio_2_735_whatever_the_arm_and_rod(arm, rod):
+    s = solve(whitworth(arm, rod)).summary
+    beta = 2 * math.degrees(math.acos(50 / 75))  # the crank's return angle
+    assert s["time_ratio"] == pytest.approx((360 - beta) / beta, abs=1e-9)
+    assert round(s["time_ratio"], 3) == 2.735
+    assert s["stroke"] == pytest.approx(2 * arm, abs=1e-8)
+
+
+def test_lecture_crank_rocker_with_slider_against_a_construction():
+    chain = chaingraph.load(catalog_path("crank-rocker-with-slider"))
+    s = solve(chain).summary
+    O2, O4 = (0.0, 0.0), (100.0, 0.0)
+    crank, coupler, rocker, link, y_d = 30.0, 100.0, 70.0, 120.0, 20.0
+    # the rocker's extremes: crank and coupler in line (the lecture's construction)
+    b_out = circle_circle(O2, coupler + crank, O4, rocker, 1)
+    b_in = circle_circle(O2, coupler - crank, O4, rocker, 1)
+    t_out = math.degrees(math.atan2(b_out[1], b_out[0])) % 360
+    t_in = (math.degrees(math.atan2(b_in[1], b_in[0])) + 180) % 360
+
+    def slider_x(b):
+        return b[0] + math.sqrt(link ** 2 - (y_d - b[1]) ** 2)
+    # the slider follows the rocker monotonically over its range, so its extremes are
+    # the rocker's
+    psi = np.linspace(math.atan2(b_in[1] - O4[1], b_in[0] - O4[0]),
+                      math.atan2(b_out[1] - O4[1], b_out[0] - O4[0]), 2001)
+    xs = [slider_x((O4[0] + rocker * math.cos(p), rocker * math.sin(p))) for p in psi]
+    assert np.all(np.diff(xs) > 0) or np.all(np.diff(xs) < 0)
+    assert s["stroke"] == pytest.approx(abs(slider_x(b_out) - slider_x(b_in)), abs=1e-8)
+    a = (t_out - t_in) % 360
+    assert s["time_ratio"] == pytest.approx(max(a, 360 - a) / min(a, 360 - a), rel=1e-9)
+    assert sorted(s["extremes"]) == pytest.approx(sorted([t_in, t_out]), abs=1e-7)
+
+
+# -- every catalog mechanism: residuals and finite differences ----------------------
+@pytest.mark.parametrize("path", SOLVABLE, ids=[p.stem for p in SOLVABLE])
+def test_every_catalog_mechanism_solves_and_differentiates(path):
+    chain = chaingraph.load(path)
+    motion = solve(chain, steps=180)
+    plan = motion.plan
+    theta = motion["theta"]
+    assert theta.size == 181
+    inner = theta[1:-1]
+    # loop closure at every returned pose
+    ev = evaluate(plan, theta) if theta[0] == plan.theta0 else None
+    if ev is not None:
+        assert residuals(plan, ev.pose).max() <= 1e-9 * plan.size
+    # velocities against central differences of positions, accelerations against
+    # central differences of the exact velocities (at interior points of the sweep;
+    # steps small enough for the truncation, large enough for the rounding)
+    w = chain.mechanism.omega
+    for k in range(20, theta.size - 20, 23):  # away from a rocking driver's limits
+        t = float(theta[k])
+        for h, check in ((1e-4, "v"), (1e-3, "a")):
+            near = solve(chain, start=t - h, stop=t + h, steps=2, summary=False)
+            dt = math.radians(h) / w
+            for name in near.columns:
+                if not name.startswith(("x:", "y:", "angle:", "s:")):
+                    continue
+                kind, item = name.split(":", 1)
+                if kind == "angle":
+                    pos, vel, acc = (np.radians(near[name]), near[f"omega:{item}"],
+                                     near[f"alpha:{item}"])
+                elif kind == "s":
+                    pos, vel, acc = near[name], near[f"v:{item}"], near[f"a:{item}"]
+                else:
+                    pos, vel, acc = near[name], near[f"v{kind}:{item}"], near[f"a{kind}:{item}"]
+                if check == "v":
+                    fd, exact = (pos[2] - pos[0]) / (2 * dt), vel[1]
+                else:
+                    fd, exact = (vel[2] - vel[0]) / (2 * dt), acc[1]
+                assert abs(fd - exact) <= 1e-5 * (1.0 + abs(exact)), (name, check, fd, exact)
+    assert inner.size > 0
+
+
+def test_sweep_rows_and_csv_columns(tmp_path):
+    chain = chaingraph.load(catalog_path("reciprocating-engine"))
+    motion = solve(chain, start=0, stop=90, steps=3)
+    assert list(motion["theta"]) == [0.0, 30.0, 60.0, 90.0]
+    path = tmp_path / "out.csv"
+    motion.to_csv(path)
+    rows = list(csv.reader(path.open()))
+    header = rows[0]
+    assert header[0] == "theta" and len(rows) == 5
+    for link in chain.links:
+        assert {f"angle:{link}", f"omega:{link}", f"alpha:{link}"} <= set(header)
+    for name in [j.id for j in chain.joints]:
+        assert {f"x:{name}", f"y:{name}", f"vx:{name}", f"vy:{name}", f"ax:{name}",
+                f"ay:{name}"} <= set(header)
+    assert {"s:S", "v:S", "a:S"} <= set(header)
+    # the crank's line runs through its joints A then O (id order): theta - 180
+    assert float(rows[2][header.index("angle:crank")]) == pytest.approx(30.0 - 180.0)
+
+
+def test_points_are_tracked():
+    chain = chaingraph.load(catalog_path("beam-engine"))
+    m = solve(chain, steps=36)
+    lever_turn = np.radians(m["angle:lever"] - m["angle:lever"][0])
+    E0 = np.array(chain.point("E").at) - np.array(chain.joint("D").at)
+    c, s = np.cos(lever_turn), np.sin(lever_turn)
+    ex = chain.joint("D").at[0] + c * E0[0] - s * E0[1]
+    assert np.allclose(m["x:E"], ex, atol=1e-9)
+
+
+# -- assembly mode, feasible range, dead centres ------------------------------------
+def test_assembly_mode_is_kept_over_many_turns():
+    for sign in (1, -1):
+        m = solve(four_bar(30.0, sign), start=30, stop=30 + 720, steps=720)
+        assert np.allclose(m["x:C"][:361], m["x:C"][360:], atol=1e-9)
+        C, *_ = four_bar_by_hand(m["theta"], 1.0, sign)
+        assert np.allclose(m["y:C"], C.imag, atol=1e-9)
+
+
+def test_parallelogram_passes_its_change_points_without_flipping():
+    chain = chaingraph.load(catalog_path("coupling-rod-of-a-locomotive"))
+    m = solve(chain, start=0, stop=360, steps=360)
+    assert _close_angles(m["angle:wheel 2"], m["angle:wheel 1"], 1e-6)
+    s = m.summary
+    assert s["dead_centres"] == pytest.approx([0.0, 180.0], abs=1e-5)
+    # at the change points the rates are NaN, never a finite wrong number
+    k0, k180 = 0, 180
+    assert math.isnan(m["omega:wheel 2"][k0]) and math.isnan(m["omega:wheel 2"][k180])
+    finite = np.isfinite(m["omega:wheel 2"])
+    assert np.allclose(m["omega:wheel 2"][finite], 1.0, atol=1e-6)
+
+
+def test_redundant_parallelogram_moves_though_kutzbach_says_locked():
+    chain = chaingraph.load(catalog_path("locomotive-coupling-three-wheels"))
+    assert chaingraph.classify(chain).mobility == 0
+    m = solve(chain, start=10, stop=350, steps=34)
+    s = m.summary
+    assert s["mobility"] == 0 and s["numeric_mobility"] == 1
+    assert _close_angles(m["angle:wheel 3"], m["angle:wheel 1"], 1e-6)
+    # solved step by step, the dyad (rod, wheel 2) is singular at the change point
+    # (180 degrees) before wheel 3 is reached: NaN there, never a wrong number
+    finite = np.isfinite(m["omega:wheel 3"])
+    assert list(m["theta"][~finite]) == [180.0]
+    assert np.allclose(m["omega:wheel 3"][finite], 1.0, atol=1e-6)
+
+
+def test_rocker_driver_default_sweep_is_its_feasible_range():
+    chain = chaingraph.load(catalog_path("watts-indicator-mechanism"))
+    m = solve(chain, steps=100)
+    lo, hi = m.summary["input_range"]
+    assert m["theta"][0] == lo and m["theta"][-1] == hi
+    assert m.summary["full_turn"] is False
+    assert m.summary["dead_centres"] == pytest.approx([lo, hi])
+    # just inside the range assembles, just outside does not
+    solve(chain, start=lo + 1e-6, stop=hi - 1e-6, steps=4)
+    with pytest.raises(AssemblyError) as info:
+        solve(chain, start=lo, stop=hi + 1.0, steps=4)
+    assert info.value.feasible_range == pytest.approx((lo, hi))
+    assert f"{lo:.6f}" in str(info.value) and f"{hi:.6f}" in str(info.value)
+
+
+def test_rocker_range_by_hand():
+    # four-bar driven by its rocker (80): its range ends where crank and coupler are in line
+    chain = four_bar().with_mechanism("frame", "rocker")
+    lo, hi = chaingraph.feasible_range(build_plan(chain))
+    ends = []
+    for r in (COUPLER + CRANK, COUPLER - CRANK):
+        C = circle_circle((0.0, 0.0), r, (GROUND, 0.0), ROCKER, 1)
+        ends.append(math.degrees(math.atan2(C[1] - 0.0, C[0] - GROUND)))
+    # theta is measured from D (the pivot) to C, the rocker's other joint
+    assert sorted([lo % 360, hi % 360]) == pytest.approx(sorted(e % 360 for e in ends), abs=1e-7)
+
+
+def test_cli_sweep_past_range_exits_1():
+    code, out, err = run_cli("solve", catalog_path("watts-indicator-mechanism"), "--from", "0",
+                             "--to", "180")
+    assert code == 1 and "can turn only from" in err and "Traceback" not in err
+
+
+# -- higher-class groups (Newton) ------------------------------------------------------
+@pytest.mark.parametrize("stem", ["beam-engine", "shaper-crank-and-slotted-lever",
+                                  "oldhams-coupling", "crank-rocker-with-slider"])
+def test_newton_agrees_with_closed_form(stem):
+    chain = chaingraph.load(catalog_path(stem))
+    closed, newton = build_plan(chain), build_plan(chain, closed_form=False)
+    assert [s.kind for s in newton.steps] == ["group"]
+    theta = closed.theta0 + np.linspace(0.0, 360.0, 181)
+    e1, e2 = evaluate(closed, theta), evaluate(newton, theta)
+    assert e2.feasible.all()
+    v1, a1, _ = rates(closed, e1.pose, 1.5, theta.size)
+    v2, a2, _ = rates(newton, e2.pose, 1.5, theta.size)
+    for link in chain.links:
+        for j in (0, 1):
+            assert np.allclose(np.broadcast_to(e1.pose[link][j], theta.shape),
+                               np.broadcast_to(e2.pose[link][j], theta.shape), atol=1e-7)
+        for j in range(3):
+            assert np.allclose(v1[link][j], v2[link][j], atol=1e-6, rtol=1e-6)
+            assert np.allclose(a1[link][j], a2[link][j], atol=1e-5, rtol=1e-6)
+
+
+def stephenson_three():
+    """A Stephenson chain with its binary link b3 fixed and ternary link t1 driven: the
+    remaining four links form a triad, solved by Newton's method."""
+    return chaingraph.load(catalog_path("stephenson-six-bar-chain")).with_mechanism("b4", "t2")
+
+
+def test_stephenson_third_inversion_needs_newton_and_closes():
+    chain = stephenson_three()
+    plan = build_plan(chain)
+    assert [s.kind for s in plan.steps] == ["group"]
+    m = solve(chain, start=plan.theta0, stop=plan.theta0 + 60, steps=600, summary=False)
+    ev = evaluate(plan, m["theta"])
+    assert ev.feasible.all() and residuals(plan, ev.pose).max() <= 1e-9 * plan.size
+    # rates against central differences
+    k = 300
+    t = float(m["theta"][k])
+    near = solve(chain, start=t - 1e-5, stop=t + 1e-5, steps=2, summary=False)
+    dt = math.radians(1e-5)
+    for name in ("x:B", "y:D", "x:A"):
+        key = name[0]
+        v = near[f"v{key}:{name[2:]}"]
+        assert (near[name][2] - near[name][0]) / (2 * dt) == pytest.approx(v[1], rel=1e-5, abs=1e-6)
+        a = near[f"a{key}:{name[2:]}"]
+        assert (v[2] - v[0]) / (2 * dt) == pytest.approx(a[1], rel=1e-5, abs=1e-5)
+
+
+def test_eight_bar_of_dyads():
+    # a crank-rocker with two more dyads hung on it: eight links, three RRR dyads
+    A, D = (0.0, 0.0), (100.0, 0.0)
+    B = (40 * math.cos(math.radians(40)), 40 * math.sin(math.radians(40)))
+    C = circle_circle(B, 120, D, 80)
+    E = (60.0, 150.0)
+    F = circle_circle(C, 90, E, 70)
+    G = (F[0] + 150.0, F[1] - 40.0)
+    H = circle_circle(F, 150, G, 100, -1)
+    chain = Chain("eight-bar", (
+        R("A", ["frame", "crank"], A), R("B", ["crank", "coupler"], B),
+        R("C", ["coupler", "rocker", "link 5"], C), R("D", ["rocker", "frame"], D),
+        R("F", ["link 5", "link 6", "link 7"], F), R("E", ["link 6", "frame"], E),
+        R("H", ["link 7", "link 8"], H), R("G", ["link 8", "frame"], G)),
+        mechanism=Mechanism("frame", "crank"))
+    assert len(chain.links) == 8 and chaingraph.classify(chain).mobility == 1
+    plan = build_plan(chain)
+    assert [s.pattern for s in plan.steps] == ["RRR", "RRR", "RRR"]
+    m = solve(chain, start=plan.theta0 - 5, stop=plan.theta0 + 5, steps=20)
+    ev = evaluate(plan, np.array([plan.theta0]))
+    assert residuals(plan, ev.pose).max() < 1e-12
+    assert np.all(np.isfinite(m["omega:link 8"]))
+
+
+# -- bad input ---------------------------------------------------------------------------
+def test_bad_mechanisms_are_refused_with_a_reason():
+    four = four_bar()
+    with pytest.raises(MechanismError, match="not pinned to the fixed link"):
+        build_plan(four, "frame", "coupler")
+    five = chaingraph.load(catalog_path("five-link-chain"))
+    with pytest.raises(MechanismError, match="mobility with driver '2' and '1' fixed is 2"):
+        build_plan(five, "1", "2")
+    cam = chaingraph.load(catalog_path("cam-and-follower"))
+    with pytest.raises(MechanismError, match="cam pair .* cannot be solved"):
+        build_plan(cam, "frame", "cam")
+    spatial = Chain("RSSR", (Joint("A", "R", ("frame", "crank"), at=(0.0, 0.0)),
+                             Joint("B", "spherical", ("crank", "rod"), at=(1.0, 0.0)),
+                             Joint("C", "spherical", ("rod", "rocker"), at=(2.0, 1.0)),
+                             Joint("D", "R", ("rocker", "frame"), at=(3.0, 0.0))),
+                    space="spatial")
+    with pytest.raises(MechanismError, match="spatial"):
+        build_plan(spatial, "frame", "crank")
+    bare = Chain("no pose", tuple(Joint(j.id, j.kind, j.links) for j in four.joints))
+    with pytest.raises(MechanismError, match="joint 'A': no position"):
+        build_plan(bare, "frame", "crank")
+    with pytest.raises(MechanismError, match="'ground' is not a link"):
+        build_plan(four, "ground", "crank")
+    with pytest.raises(MechanismError, match="no driver"):
+        build_plan(four.with_mechanism("frame"))
+
+
+def test_block_pin_off_its_line_is_reported_with_the_distance():
+    chain = slider_crank()
+    joints = [j if j.id != "S" else P("S", ["frame", "slider"], (j.at[0], j.at[1] + 3.0), 0.0)
+              for j in chain.joints]
+    bad = Chain(chain.name, tuple(joints), mechanism=chain.mechanism, units="mm")
+    with pytest.raises(MechanismError, match=r"joint 'S'.*pin 'B' is 3 mm off the sliding line"):
+        build_plan(bad)
+
+
+@pytest.mark.parametrize("args, words", [
+    (["--driver", "connecting rod"], "not pinned to the fixed link"),
+    (["--fixed", "ground"], "'ground' is not a link"),
+    (["--steps", "0"], "steps must be"),
+])
+def test_cli_bad_solve_arguments_exit_2(args, words):
+    code, out, err = run_cli("solve", catalog_path("beam-engine"), *args)
+    assert code == 2 and words in err and "Traceback" not in err
+
+
+def test_cli_cam_cannot_be_solved():
+    code, out, err = run_cli("solve", catalog_path("cam-and-follower"), "--fixed", "frame",
+                             "--driver", "cam")
+    assert code == 2 and "cannot be solved" in err
+
+
+def test_cli_solve_json_summary_keys(tmp_path):
+    code, out, err = run_cli("solve", catalog_path("crank-and-slotted-lever-mechanism"),
+                             "--json", "--csv", tmp_path / "m.csv", "--steps", "72")
+    assert code == 0, err
+    d = json.loads(out)
+    assert set(d) == {"name", "fixed", "driver", "steps", "summary"} and d["steps"] == 72
+    for key in ("stroke", "time_ratio", "forward_deg", "return_deg", "extremes",
+                "transmission_angle", "dead_centres", "input_range"):
+        assert key in d["summary"]
+    assert round(d["summary"]["time_ratio"], 3) == 1.710
+    assert len((tmp_path / "m.csv").read_text().splitlines()) == 74
+    text = run_cli("solve", catalog_path("crank-and-slotted-lever-mechanism"))[1]
+    assert "time ratio" in text and "1.70995" in text
+
+
+def test_cli_plot_and_draw_write_svg(tmp_path):
+    plot, draw = tmp_path / "motion.svg", tmp_path / "pose.svg"
+    code, out, err = run_cli("solve", catalog_path("shaper-crank-and-slotted-lever"),
+                             "--plot", plot, "--draw", draw, "--steps", "90")
+    assert code == 0, err
+    for path in (plot, draw):
+        text = path.read_text()
+        assert text.lstrip().startswith("<?xml") and "<svg" in text and len(text) > 5000
+    assert "time ratio 2.0000" in plot.read_text() or "2.0000" in plot.read_text()
