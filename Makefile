@@ -18,7 +18,7 @@ $(VENV)/.installed-test: pyproject.toml $(VENV)/.installed
 	touch $@
 
 report: $(VENV)/.installed
-	$(BIN)/chaingraph classify catalog/*.toml
+	$(BIN)/chaingraph report catalog -o report
 
 test: $(VENV)/.installed-test
 	$(BIN)/python -m pytest

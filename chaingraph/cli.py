@@ -184,6 +184,20 @@ def _usage_error(message):
     return MechanismError(message)
 
 
+def _cmd_report(args) -> int:
+    from .catalog import catalog_dir
+    from .report import build_report
+    paths = args.paths or [catalog_dir()]
+    report = build_report(paths, args.output, progress=None if args.quiet else sys.stderr)
+    for path, problem in report.failures:
+        print(f"chaingraph: error: {path}: {problem}", file=sys.stderr)
+    done = sum(1 for e in report.entries if not e.error)
+    print(f"report of {done} entries written to {report.index}"
+          + (f"; {len(report.failures)} could not be included (listed on the index)"
+             if report.failures else ""))
+    return report.exit_status
+
+
 def build_parser() -> argparse.ArgumentParser:
     parser = argparse.ArgumentParser(
         prog="chaingraph",
@@ -233,6 +247,16 @@ def build_parser() -> argparse.ArgumentParser:
     p.add_argument("--draw", metavar="PATH.svg",
                    help="draw the mechanism in its drawn pose with the paths of its points")
     p.set_defaults(run=_cmd_solve)
+
+    p = sub.add_parser("report", help="the browsable HTML catalog",
+                       description="Write DIR/index.html and a page per entry for the given "
+                                   "chain files or folders (by default the bundled catalog). "
+                                   "Files that fail are listed and the rest go on (exit 1).")
+    p.add_argument("paths", nargs="*", metavar="PATH", help="chain files or folders")
+    p.add_argument("-o", "--output", default="report", metavar="DIR",
+                   help="output folder (default: report)")
+    p.add_argument("-q", "--quiet", action="store_true", help="no progress bar")
+    p.set_defaults(run=_cmd_report)
     return parser
 
 

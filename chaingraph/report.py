@@ -1,0 +1,457 @@
+"""The catalog report: a browsable HTML catalog with drawings, tables and motion.
+
+:func:`build_report` writes ``index.html`` (a table of every entry) and one page per
+entry: its link-joint graph, classification with both textbook checks, inversions, and
+for a mechanism its drawn pose with the paths of its points, the output's motion, the
+summary and an animation of one cycle (an animated SVG). Pages and images are plain
+files that open from disk with no network. A file that cannot be read or analysed is
+listed on the index as a failure and the rest go on.
+"""
+
+from __future__ import annotations
+
+import html
+import math
+import re
+import sys
+import time
+from dataclasses import dataclass, field
+from pathlib import Path
+
+import numpy as np
+
+from .chainfile import load
+from .classify import classify
+from .errors import ChainGraphError
+
+__all__ = ["Report", "build_report", "chain_paths"]
+
+_STYLE = """
+body { font-family: Georgia, 'Times New Roman', serif; margin: 2em auto; max-width: 70em;
+       color: #1b1b1b; line-height: 1.45; padding: 0 1em; }
+h1, h2, h3 { font-family: 'Helvetica Neue', Arial, sans-serif; color: #1f4e79; }
+table { border-collapse: collapse; margin: 0.8em 0 1.4em; font-size: 0.95em; }
+th, td { border: 1px solid #c8d3de; padding: 0.3em 0.6em; text-align: left; vertical-align: top; }
+th { background: #eaf0f6; }
+td.num { text-align: right; font-variant-numeric: tabular-nums; }
+.notes { background: #f7f7f2; border-left: 4px solid #1f4e79; padding: 0.6em 1em; }
+.figures { display: flex; flex-wrap: wrap; gap: 1.2em; }
+.figures figure { margin: 0; }
+figcaption { font-size: 0.85em; color: #555; }
+img { max-width: 100%; border: 1px solid #e3e3e3; background: white; }
+.fail { color: #a00000; }
+nav a { margin-right: 1em; }
+"""
+
+_SCRIPT = """
+<script>
+window.addEventListener('load', function () {
+  var images = Array.prototype.slice.call(document.images);
+  var loaded = images.filter(function (i) { return i.complete && i.naturalWidth > 0; });
+  document.body.setAttribute('data-images', images.length);
+  document.body.setAttribute('data-images-loaded', loaded.length);
+});
+</script>
+"""
+
+
+@dataclass
+class Entry:
+    """One page of the report."""
+
+    source: str
+    slug: str
+    chain: object = None
+    classification: object = None
+    inversions: object = None
+    motion: object = None
+    error: str | None = None
+    warnings: list = field(default_factory=list)
+
+
+@dataclass
+class Report:
+    """What :func:`build_report` wrote."""
+
+    index: Path
+    entries: list        # one Row per chain file, in file order
+    failures: list       # (path, problem)
+
+    @property
+    def exit_status(self) -> int:
+        return 1 if self.failures else 0
+
+
+def chain_paths(paths):
+    """The chain files named by ``paths`` (files, or folders of ``*.toml``), and the
+    paths that are neither, as (files, problems)."""
+    files, problems = [], []
+    for p in paths:
+        p = Path(p)
+        if p.is_dir():
+            found = sorted(p.glob("*.toml"))
+            if not found:
+                problems.append((str(p), "is a folder with no chain files (*.toml)"))
+            files += found
+        elif p.is_file():
+            files.append(p)
+        else:
+            problems.append((str(p), "no such file or folder"))
+    return files, problems
+
+
+def _slug(text, taken):
+    base = re.sub(r"[^a-z0-9]+", "-", text.lower()).strip("-") or "entry"
+    slug, k = base, 2
+    while slug in taken:
+        slug, k = f"{base}-{k}", k + 1
+    taken.add(slug)
+    return slug
+
+
+class _Progress:
+    def __init__(self, total, stream):
+        self.total, self.stream, self.start = total, stream, time.perf_counter()
+        self.enabled = stream is not None
+
+    def show(self, done, label):
+        if not self.enabled:
+            return
+        width = 30
+        filled = int(width * done / max(self.total, 1))
+        elapsed = time.perf_counter() - self.start
+        self.stream.write(f"\r[{'#' * filled}{'.' * (width - filled)}] {done}/{self.total} "
+                          f"{elapsed:5.1f} s  {label[:40]:40s}")
+        self.stream.flush()
+
+    def close(self):
+        if self.enabled:
+            self.stream.write("\n")
+            self.stream.flush()
+
+
+def build_report(paths, out_dir, *, progress=sys.stderr, steps=180, frames=48,
+                 workers=None) -> Report:
+    """Write the HTML catalog of the chain files ``paths`` into ``out_dir``.
+
+    Parameters
+    ----------
+    paths : sequence of path
+        Chain files or folders of them.
+    out_dir : path
+        Where ``index.html`` and the entry pages and images go (made if missing).
+    progress : file, optional
+        Where a progress bar goes (stderr by default; None for none).
+    steps, frames : int
+        Sweep steps of the motion plots, and frames of the animation.
+    workers : int, optional
+        Processes that analyse and draw entries side by side (default: one per CPU;
+        1 works in this process).
+
+    Returns
+    -------
+    Report
+        ``failures`` lists (path, message) of what could not be done; ``exit_status`` is 1
+        when there are any.
+    """
+    import os
+    out = Path(out_dir)
+    (out / "img").mkdir(parents=True, exist_ok=True)
+    files, problems = chain_paths(paths)
+    failures = list(problems)
+    taken = set()
+    jobs = [(str(path), _slug(path.stem, taken), str(out), steps, frames) for path in files]
+    workers = workers or min(os.cpu_count() or 1, max(len(jobs), 1))
+    bar = _Progress(len(jobs), progress)
+    bar.show(0, "")
+    results = {}
+    if workers <= 1:
+        for k, job in enumerate(jobs):
+            results[job[1]] = _entry_job(job)
+            bar.show(k + 1, Path(job[0]).name)
+    else:
+        from concurrent.futures import ProcessPoolExecutor, as_completed
+        with ProcessPoolExecutor(max_workers=workers) as pool:
+            futures = {pool.submit(_entry_job, job): job for job in jobs}
+            for k, future in enumerate(as_completed(futures)):
+                job = futures[future]
+                results[job[1]] = future.result()
+                bar.show(k + 1, Path(job[0]).name)
+    bar.close()
+    entries = [results[job[1]] for job in jobs]
+    failures += [(e.source, e.error) for e in entries if e.error]
+    index = out / "index.html"
+    index.write_text(_index_page(entries, failures), encoding="utf-8")
+    return Report(index=index, entries=entries, failures=failures)
+
+
+@dataclass
+class Row:
+    """What the index needs of an entry (small, so that processes can send it back)."""
+
+    source: str
+    slug: str
+    name: str = ""
+    family: str = ""
+    links: int = 0
+    joint_equivalents: int = 0
+    mobility: int = 0
+    verdict: str = ""
+    classes: int | None = None
+    time_ratio: float | None = None
+    error: str | None = None
+
+
+def _entry_job(job):
+    """Analyse one chain file and write its page and images; returns its index row."""
+    import warnings
+    source, slug, out, steps, frames = job
+    entry = Entry(source=source, slug=slug)
+    row = Row(source=source, slug=slug)
+    try:
+        with warnings.catch_warnings():
+            warnings.simplefilter("ignore", RuntimeWarning)
+            _analyse(entry, steps)
+            _write_images(entry, Path(out), frames)
+        (Path(out) / f"{slug}.html").write_text(_entry_page(entry), encoding="utf-8")
+    except ChainGraphError as e:
+        row.error = str(e)
+        return row
+    c = entry.classification
+    row.name, row.family = entry.chain.name, entry.chain.family or ""
+    row.links, row.joint_equivalents = c.links, c.joint_equivalents
+    row.mobility, row.verdict = c.mobility, c.verdict
+    row.classes = entry.inversions.classes if entry.inversions is not None else None
+    if entry.motion is not None:
+        row.time_ratio = entry.motion.summary.get("time_ratio")
+    return row
+
+
+def _analyse(entry, steps):
+    from .inversions import inversions
+    from .motion import solve
+    chain = load(entry.source)
+    entry.chain = chain
+    entry.classification = classify(chain)
+    if len(chain.pieces) == 1:
+        entry.inversions = inversions(chain)
+    m = chain.mechanism
+    if m is not None and m.driver is not None and chain.has_pose:
+        try:
+            entry.motion = solve(chain, steps=steps)
+        except ChainGraphError as e:
+            entry.warnings.append(f"motion not solved: {e}")
+
+
+# -- images ----------------------------------------------------------------------------
+def _write_images(entry, out, frames):
+    from .graphdraw import draw_link_joint_graph
+    from .plots import draw_mechanism, plot_motion
+    img = out / "img"
+    draw_link_joint_graph(entry.chain, img / f"{entry.slug}-graph.svg")
+    if entry.motion is not None:
+        draw_mechanism(entry.motion, img / f"{entry.slug}-pose.svg")
+        plot_motion(entry.motion, img / f"{entry.slug}-motion.svg")
+        (img / f"{entry.slug}-cycle.svg").write_text(animated_svg(entry.motion, frames),
+                                                      encoding="utf-8")
+
+
+def animated_svg(motion, frames=48, seconds=4.0, width=640, height=480):
+    """One cycle of the mechanism as an SVG animated with SMIL (no script, no network)."""
+    chain = motion.plan.chain
+    theta = motion.theta
+    picks = np.linspace(0, theta.size - 1, min(frames, theta.size)).round().astype(int)
+    if motion.summary and not motion.summary.get("full_turn", True):
+        picks = np.concatenate([picks, picks[::-1][1:]])  # a rocker goes there and back
+    names = [j.id for j in chain.joints] + [p.id for p in chain.points]
+    xs = np.array([motion[f"x:{n}"] for n in names])
+    ys = np.array([motion[f"y:{n}"] for n in names])
+    ok = np.isfinite(xs).all(axis=0) & np.isfinite(ys).all(axis=0)
+    lo_x, hi_x = np.nanmin(xs[:, ok]), np.nanmax(xs[:, ok])
+    lo_y, hi_y = np.nanmin(ys[:, ok]), np.nanmax(ys[:, ok])
+    span = max(hi_x - lo_x, hi_y - lo_y, 1e-9)
+    pad = 0.08 * span
+    scale = min((width - 2 * pad * 0) / (hi_x - lo_x + 2 * pad), (height) / (hi_y - lo_y + 2 * pad))
+
+    def sx(x):
+        return (x - lo_x + pad) * scale
+
+    def sy(y):
+        return height - (y - lo_y + pad) * scale
+    index = {n: i for i, n in enumerate(names)}
+    dur = f"{seconds:g}s"
+    parts = [f'<svg xmlns="http://www.w3.org/2000/svg" width="{width}" height="{height}" '
+             f'viewBox="0 0 {width} {height}">',
+             '<rect width="100%" height="100%" fill="white"/>',
+             f'<title>{html.escape(motion.name)}: one cycle</title>']
+    for n in names:   # paths, faint
+        i = index[n]
+        pts = " ".join(f"{sx(x):.2f},{sy(y):.2f}" for x, y in zip(xs[i], ys[i])
+                       if math.isfinite(x) and math.isfinite(y))
+        parts.append(f'<polyline points="{pts}" fill="none" stroke="#bbbbbb" stroke-width="1"/>')
+    colours = ["#1f77b4", "#2ca02c", "#d62728", "#9467bd", "#8c564b", "#e377c2", "#17becf",
+               "#bcbd22", "#ff7f0e"]
+    for c, link in enumerate(chain.links):
+        members = [j.id for j in chain.joints_of(link)] + [p.id for p in chain.points
+                                                           if p.link == link]
+        if len(members) < 2 or link == motion.fixed:
+            continue
+        frames_pts = []
+        for k in picks:
+            pts = [(sx(xs[index[n], k]), sy(ys[index[n], k])) for n in members]
+            if not all(math.isfinite(v) for p in pts for v in p):
+                continue
+            frames_pts.append(" ".join(f"{x:.2f},{y:.2f}" for x, y in pts + pts[:1]))
+        if not frames_pts:
+            continue
+        colour = colours[c % len(colours)]
+        parts.append(f'<polyline points="{frames_pts[0]}" fill="{colour}" fill-opacity="0.15" '
+                     f'stroke="{colour}" stroke-width="4" stroke-linejoin="round">'
+                     f'<animate attributeName="points" dur="{dur}" repeatCount="indefinite" '
+                     f'values="{";".join(frames_pts)}"/></polyline>')
+    for n in names:
+        i = index[n]
+        cx = [f"{sx(xs[i, k]):.2f}" for k in picks if math.isfinite(xs[i, k])]
+        cy = [f"{sy(ys[i, k]):.2f}" for k in picks if math.isfinite(ys[i, k])]
+        if not cx:
+            continue
+        on_fixed = any(n == j.id for j in chain.joints_of(motion.fixed))
+        fill = "#555555" if on_fixed else "white"
+        parts.append(f'<circle cx="{cx[0]}" cy="{cy[0]}" r="5" fill="{fill}" stroke="black" '
+                     f'stroke-width="1.5"><animate attributeName="cx" dur="{dur}" '
+                     f'repeatCount="indefinite" values="{";".join(cx)}"/>'
+                     f'<animate attributeName="cy" dur="{dur}" repeatCount="indefinite" '
+                     f'values="{";".join(cy)}"/></circle>')
+    parts.append("</svg>")
+    return "\n".join(parts)
+
+
+# -- pages ------------------------------------------------------------------------------
+def _esc(x):
+    return html.escape(str(x))
+
+
+def _page(title, body):
+    return (f"<!DOCTYPE html>\n<html lang=\"en\"><head><meta charset=\"utf-8\">"
+            f"<title>{_esc(title)}</title><style>{_STYLE}</style></head>\n<body>\n{body}\n"
+            f"{_SCRIPT}</body></html>\n")
+
+
+def _fmt(value, digits=6):
+    if value is None or (isinstance(value, float) and not math.isfinite(value)):
+        return "–"
+    if isinstance(value, float):
+        return f"{value:.{digits}g}"
+    return _esc(value)
+
+
+def _index_page(rows, failures):
+    lines = []
+    for r in rows:
+        if r.error:
+            continue
+        lines.append(
+            f"<tr><td><a href=\"{r.slug}.html\">{_esc(r.name)}</a></td>"
+            f"<td>{_esc(r.family)}</td><td class=\"num\">{r.links}</td>"
+            f"<td class=\"num\">{r.joint_equivalents}</td><td class=\"num\">{r.mobility}</td>"
+            f"<td>{_esc(r.verdict)}</td><td class=\"num\">{_fmt(r.classes)}</td>"
+            f"<td class=\"num\">{_fmt(r.time_ratio, 5)}</td></tr>")
+    body = ["<h1>Catalog of kinematic chains and mechanisms</h1>",
+            f"<p>{len(lines)} entries. Each entry's page has its link-joint graph, its "
+            "classification with the textbook's checks, its inversions and, for a "
+            "mechanism, its motion.</p>",
+            "<table id=\"entries\"><thead><tr><th>name</th><th>family</th><th>L</th>"
+            "<th>J</th><th>mobility</th><th>verdict</th><th>inversion classes</th>"
+            "<th>time ratio</th></tr></thead><tbody>", *lines, "</tbody></table>"]
+    if failures:
+        body.append("<h2 class=\"fail\">Not included</h2><table id=\"failures\"><tr><th>file"
+                    "</th><th>problem</th></tr>")
+        body += [f"<tr><td>{_esc(p)}</td><td class=\"fail\">{_esc(m)}</td></tr>"
+                 for p, m in failures]
+        body.append("</table>")
+    body.append("<p><small>Made by chaingraph.</small></p>")
+    return _page("Catalog of kinematic chains and mechanisms", "\n".join(body))
+
+
+def _entry_page(e):
+    chain, c = e.chain, e.classification
+    body = ["<nav><a href=\"index.html\">&larr; index</a></nav>",
+            f"<h1>{_esc(chain.name)}</h1>",
+            f"<p><b>Family:</b> {_esc(chain.family or '–')} &nbsp; <b>File:</b> "
+            f"<code>{_esc(Path(e.source).name)}</code></p>"]
+    if chain.notes:
+        body.append(f"<p class=\"notes\">{_esc(chain.notes)}</p>")
+    body.append("<h2>Link-joint graph</h2>")
+    body.append(f"<figure><img src=\"img/{e.slug}-graph.svg\" alt=\"link-joint graph of "
+                f"{_esc(chain.name)}\" width=\"560\"><figcaption>Links as circles, joints as "
+                "squares labelled with their kind (R turning, P sliding: the arrow points to "
+                "the link carrying the guide; higher pairs dashed); the fixed link is drawn "
+                "dark.</figcaption></figure>")
+    body.append("<h2>Classification</h2><table id=\"classification\">")
+    facts = [("links L", c.links, ", ".join(f"{k} {v}" for k, v in c.link_orders.items() if v)),
+             ("pairs P", c.pairs, ", ".join(f"{k} {v}" for k, v in c.pair_kinds.items())),
+             ("joint equivalents J", c.joint_equivalents,
+              ", ".join(f"{k} {v}" for k, v in c.joint_orders.items() if v) + " joints"),
+             ("higher pairs H", c.higher_pairs, ""), ("independent loops", c.loops, ""),
+             ("mobility (Kutzbach)", c.mobility, c.verdict),
+             ("degenerate", "yes" if c.degenerate else "no",
+              "; ".join("{" + ", ".join(s) + "}" for s in c.rigid_subchains))]
+    body += [f"<tr><th>{_esc(a)}</th><td class=\"num\">{_esc(b)}</td><td>{_esc(d)}</td></tr>"
+             for a, b, d in facts]
+    body.append("</table><table id=\"checks\"><tr><th>check</th><th>LHS</th><th>RHS</th>"
+                "<th>verdict</th><th>note</th></tr>")
+    for ch in c.checks:
+        body.append(f"<tr><td>{_esc(ch.rule)}</td><td class=\"num\">{_fmt(ch.lhs)}</td>"
+                    f"<td class=\"num\">{_fmt(ch.rhs)}</td>"
+                    f"<td>{_esc(ch.verdict) if ch.applicable else 'not applicable'}</td>"
+                    f"<td>{_esc(ch.note)}</td></tr>")
+    body.append("</table>")
+    for o in c.oddities:
+        body.append(f"<p>{_esc(o)}</p>")
+    if e.inversions is not None:
+        inv = e.inversions
+        body.append(f"<h2>Inversions</h2><p>{len(inv.inversions)} inversions in "
+                    f"{inv.classes} {'class' if inv.classes == 1 else 'classes'} by "
+                    "structure.</p><table id=\"inversions\"><tr><th>fixed link</th>"
+                    "<th>class</th><th>behaviour</th><th>names</th></tr>")
+        for i in inv.inversions:
+            body.append(f"<tr><td>{_esc(i.fixed)}</td><td class=\"num\">{i.class_}</td>"
+                        f"<td>{_esc(i.behaviour or '–')}</td>"
+                        f"<td>{_esc('; '.join(i.names) or '–')}</td></tr>")
+        body.append("</table>")
+    if e.motion is not None:
+        body += _motion_section(e)
+    for w in e.warnings:
+        body.append(f"<p class=\"fail\">{_esc(w)}</p>")
+    body.append("<p><a href=\"index.html\">&larr; back to the index</a></p>")
+    return _page(chain.name, "\n".join(body))
+
+
+def _motion_section(e):
+    m, s = e.motion, e.motion.summary
+    unit = s.get("stroke_unit") or ""
+    ta = s.get("transmission_angle")
+    rows = [("fixed link", m.fixed), ("driver", m.driver + (" (turns fully)" if s["full_turn"]
+                                                            else " (rocks)")),
+            ("output", s.get("output") or "–"),
+            ("input range", " to ".join(f"{t:.6g}" for t in s["input_range"]) + " degrees"),
+            ("stroke", f"{_fmt(s['stroke'])} {unit}" if s["stroke"] is not None else "–"),
+            ("time ratio", _fmt(s["time_ratio"])),
+            ("forward / return", f"{_fmt(s['forward_deg'])} / {_fmt(s['return_deg'])} degrees"),
+            ("extremes at", ", ".join(f"{t:.6g}" for t in s["extremes"] or []) or "–"),
+            ("transmission angle", "–" if ta is None else
+             f"{ta['min']:.6g} to {ta['max']:.6g} degrees"),
+            ("dead centres", ", ".join(f"{t:.6g}" for t in s["dead_centres"]) or "none"),
+            ("mobility", f"{s['numeric_mobility']} at the drawn pose (Kutzbach {s['mobility']})")]
+    out = ["<h2>Motion</h2><table id=\"summary\">"]
+    out += [f"<tr><th>{_esc(a)}</th><td>{_esc(b)}</td></tr>" for a, b in rows]
+    out.append("</table><div class=\"figures\">")
+    out.append(f"<figure><img src=\"img/{e.slug}-pose.svg\" alt=\"drawn pose\" width=\"480\">"
+               "<figcaption>The drawn pose with the paths of its joints and points."
+               "</figcaption></figure>")
+    out.append(f"<figure><img src=\"img/{e.slug}-cycle.svg\" alt=\"one cycle, animated\" "
+               "width=\"480\"><figcaption>One cycle of the input.</figcaption></figure>")
+    out.append(f"<figure><img src=\"img/{e.slug}-motion.svg\" alt=\"output motion\" "
+               "width=\"560\"><figcaption>The output's displacement, velocity and "
+               "acceleration against the input angle.</figcaption></figure></div>")
+    return out
