@@ -3,11 +3,13 @@
 The chain is found by its canonical form (P orientation respected, then forgotten);
 the inversion, for a mechanism file, through :func:`chaingraph.inversions.catalog_matches`:
 its fixed link, its behaviour where both have dimensions, and its driver and output
-where both name them.
+where both name them; among catalog inversions equal in all of that, the one of the
+nearest proportions (link lengths over the largest) is taken.
 """
 
 from __future__ import annotations
 
+import math
 from dataclasses import dataclass, field
 
 from .inversions import catalog_matches, require_connected
@@ -28,6 +30,30 @@ class Identification:
 
     def to_dict(self):
         return {"chain": self.chain, "inversion": self.inversion, "mapping": dict(self.mapping)}
+
+
+def _lengths(chain):
+    """Each link's sorted joint-to-joint distances, over the chain's largest one."""
+    out = {}
+    for link in chain.links:
+        pts = [j.at for j in chain.joints_of(link) if j.at is not None]
+        out[link] = sorted(math.dist(a, b) for i, a in enumerate(pts) for b in pts[i + 1:])
+    top = max((v for d in out.values() for v in d), default=0.0) or 1.0
+    return {k: [v / top for v in d] for k, d in out.items()}
+
+
+def _proportion_distance(chain, entry, mapping):
+    """How far the chain's proportions are from the entry's, links matched by mapping."""
+    if not (chain.has_pose and entry.has_pose):
+        return math.inf
+    mine, theirs = _lengths(chain), _lengths(entry)
+    total = 0.0
+    for link, other in mapping.items():
+        a, b = mine[link], theirs[other]
+        if len(a) != len(b):
+            return math.inf
+        total += sum(abs(x - y) for x, y in zip(a, b))
+    return total
 
 
 def identify(chain, *, catalog=None) -> Identification:
@@ -73,8 +99,12 @@ def identify(chain, *, catalog=None) -> Identification:
     if m is not None:
         matches = catalog_matches(chain, m.fixed, catalog, driver=m.driver, output=m.output)
         if matches:
-            best = max(range(len(matches)), key=lambda i: (matches[i][0], -i))
-            _, entry, entry_mapping = matches[best]
+            top = max(score for score, _, _ in matches)
+            tied = [(s_, e, mp) for s_, e, mp in matches if s_ == top]
+            # among equals, the entry of the nearest proportions (the file itself, when
+            # the file is a catalog entry)
+            _, entry, entry_mapping = min(
+                tied, key=lambda t: _proportion_distance(chain, t[1], t[2]))
             inversion, inversion_file = entry.name, entry.source
             if chain_name is None:
                 chain_name, mapping = entry.family, entry_mapping
