@@ -86,21 +86,32 @@ def _individualize(colors, v):
     return [ranks[k] for k in keyed]
 
 
-def _orbits_of(generators, n, fixing=()):
-    parent = list(range(n))
+class _Partition:
+    """Union-find over 0..n-1: blocks merged by ``join``, named by their smallest member."""
 
-    def find(x):
+    def __init__(self, n):
+        self.parent = list(range(n))
+
+    def find(self, x):
+        parent = self.parent
         while parent[x] != x:
             parent[x] = parent[parent[x]]
             x = parent[x]
         return x
+
+    def join(self, x, y):
+        a, b = self.find(x), self.find(y)
+        if a != b:
+            self.parent[max(a, b)] = min(a, b)
+
+
+def _orbits_of(generators, n, fixing=()):
+    blocks = _Partition(n)
     for g in generators:
         if all(g[p] == p for p in fixing):
             for x in range(n):
-                a, b = find(x), find(g[x])
-                if a != b:
-                    parent[max(a, b)] = min(a, b)
-    return [find(x) for x in range(n)]
+                blocks.join(x, g[x])
+    return [blocks.find(x) for x in range(n)]
 
 
 def _search(labels, adj):
@@ -274,21 +285,13 @@ def pair_orbits(chain, pairs, *, oriented: bool = True) -> list[tuple[tuple[str,
 def _group(items, generators, *, key, act=None):
     act = act or (lambda g, x: g[x])
     index = {x: i for i, x in enumerate(items)}
-    parent = list(range(len(items)))
-
-    def find(i):
-        while parent[i] != i:
-            parent[i] = parent[parent[i]]
-            i = parent[i]
-        return i
+    blocks = _Partition(len(items))
     for g in generators:
         for x, i in index.items():
             j = index.get(act(g, x))
             if j is not None:
-                a, b = find(i), find(j)
-                if a != b:
-                    parent[max(a, b)] = min(a, b)
+                blocks.join(i, j)
     groups = {}
     for x, i in index.items():
-        groups.setdefault(find(i), []).append(key(x))
+        groups.setdefault(blocks.find(i), []).append(key(x))
     return [tuple(g) for _, g in sorted(groups.items())]

@@ -303,7 +303,13 @@ def evaluate(plan, theta, *, start=None) -> Evaluation:
     """Poses along a path of input angles (degrees), continued from ``start`` (an
     Evaluation whose last point is the path's first), else from the drawn pose, which
     must then be the path's first point."""
-    theta = np.asarray(theta, dtype=float)
+    # a degenerate step (two attachment points at one place) gives NaN, which counts as
+    # "cannot be assembled", not as a warning
+    with np.errstate(divide="ignore", invalid="ignore"):
+        return _evaluate(plan, np.asarray(theta, dtype=float), start)
+
+
+def _evaluate(plan, theta, start):
     pose = _known_poses(plan, theta)
     feasible = np.ones(theta.size, dtype=bool)
     signs, group_q = {}, {}
