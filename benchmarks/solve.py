@@ -99,11 +99,13 @@ def main():
     shaper = sweep_ms(chaingraph.load(catalog_path("shaper-crank-and-slotted-lever")), repeats=50)
     s3 = stephenson_three()
     t0 = chaingraph.build_plan(s3).theta0
-    newton = sweep_ms(s3, start=t0, stop=t0 + 150.0, repeats=5)
+    newton_chain = sweep_ms(s3, start=t0, stop=t0 + 150.0, repeats=10)
+    newton = sweep_ms(chaingraph.load(catalog_path("stephenson-iii-mechanism")), repeats=10)
     print()
     print(f"crank-rocker four-bar:            {four:7.2f} ms")
     print(f"six-link shaper:                  {shaper:7.2f} ms  ({shaper / four:.2f} x the four-bar)")
-    print(f"Stephenson III (Newton, 150 deg): {newton:7.2f} ms")
+    print(f"Stephenson III mechanism (Newton, full turn): {newton:7.2f} ms")
+    print(f"Stephenson chain, b4 fixed, t2 driving (Newton, 150 deg): {newton_chain:7.2f} ms")
     if args.compare:
         result = pylinkage(args.python)
         fast, slow = result["numba_ms"], result["python_ms"]

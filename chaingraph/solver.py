@@ -305,7 +305,7 @@ def evaluate(plan, theta, *, start=None) -> Evaluation:
     must then be the path's first point."""
     # a degenerate step (two attachment points at one place) gives NaN, which counts as
     # "cannot be assembled", not as a warning
-    with np.errstate(divide="ignore", invalid="ignore"):
+    with np.errstate(divide="ignore", invalid="ignore", over="ignore"):
         return _evaluate(plan, np.asarray(theta, dtype=float), start)
 
 
@@ -331,12 +331,11 @@ def _evaluate(plan, theta, start):
             else:
                 pose.update(build(1.0))
             continue
-        q0 = start.group_q[i] if start is not None else np.zeros(3 * len(step.links))
+        q0 = start.group_q[i] if start is not None else np.zeros(_form(step).size)
         q, ok = _newton_path(plan, step, pose, theta, q0)
         feasible &= ok
         group_q[i] = q
-        for k, link in enumerate(step.links):
-            pose[link] = make_pose(q[:, 3 * k], q[:, 3 * k + 1], q[:, 3 * k + 2])
+        pose.update(_form(step).complete(_form(step).set_bodies(pose, q)))
     if not feasible.all():
         first_bad = int(np.argmin(feasible))
         feasible[first_bad:] = False
@@ -524,12 +523,19 @@ class _Factor:
         self.step = step
         self.n = n
         self.rows = []                       # (unknown coefficients, known coefficients)
-        self.geometry = [_geometry(c, pose) for c in step.constraints]
-        for c, geom in zip(step.constraints, self.geometry):
-            for coef in _rows(c, pose, geom):
-                unknown = {k: v for k, v in coef.items() if k in step.links}
-                known = {k: v for k, v in coef.items() if k not in step.links}
-                self.rows.append((unknown, known))
+        if step.kind == "group":
+            self.form = _form(step)
+            unknowns = self.form.bodies
+            coefs = self.form.rows(pose)
+        else:
+            self.geometry = [_geometry(c, pose) for c in step.constraints]
+            unknowns = step.links
+            coefs = [coef for c, geom in zip(step.constraints, self.geometry)
+                     for coef in _rows(c, pose, geom)]
+        for coef in coefs:
+            unknown = {k: v for k, v in coef.items() if k in unknowns}
+            known = {k: v for k, v in coef.items() if k not in unknowns}
+            self.rows.append((unknown, known))
         if step.kind == "single":
             u = step.links[0]
             self.null = _NullSpace(self.rows[0][0][u], self.rows[1][0][u])
@@ -555,7 +561,7 @@ class _Factor:
                 (w * w * p11 * p11 + p21 * p21) * (w * w * p12 * p12 + p22 * p22))
             self.p = (p11, p12, p21, p22, np.where(self.singular, 1.0, det))
         else:
-            self.mat, _ = _group_matrix(step, [(u, 0.0) for u, _ in self.rows], n)
+            self.mat, _ = _group_matrix(self.form.bodies, [(u, 0.0) for u, _ in self.rows], n)
             m = self.mat
             self.normal = m.shape[1] != m.shape[2]
             if self.normal:
@@ -612,7 +618,7 @@ class _Factor:
         x = np.einsum("nij,nj->ni", self.inverse, vec)
         x[self.singular] = np.nan
         return {link: (x[:, 3 * k], x[:, 3 * k + 1], x[:, 3 * k + 2])
-                for k, link in enumerate(step.links)}
+                for k, link in enumerate(self.form.bodies)}
 
     def right_hand_sides(self, rates_known, gammas=None):
         out = []
@@ -665,9 +671,9 @@ def _sub(a, b):
     return a - b
 
 
-def _group_matrix(step, rows, n):
-    col = {link: 3 * k for k, link in enumerate(step.links)}
-    size = 3 * len(step.links)
+def _group_matrix(links, rows, n):
+    col = {link: 3 * k for k, link in enumerate(links)}
+    size = 3 * len(links)
     entries = [[0.0] * size for _ in rows]
     for i, (coef, _) in enumerate(rows):
         for link, cf in coef.items():
@@ -709,12 +715,18 @@ def rates(plan, pose, omega, n, *, steps=None, measure=True):
         else:
             f = _Factor(step, pose, n, plan.size)
             vel.update(f.solve(f.right_hand_sides(vel)))
+            if step.kind == "group":
+                vel.update(f.form.bar_rates(pose, vel))
         factors.append(f)
         if measure:
             measures.append(np.broadcast_to(f.measure, (n,)))
     for f in factors:
         if isinstance(f, _PointDyad):
             acc.update(f.solve_acceleration(acc, vel))
+            continue
+        if f.step.kind == "group":
+            acc.update(f.solve(f.right_hand_sides(acc, f.form.gammas(pose, vel))))
+            acc.update(f.form.bar_rates(pose, vel, acc))
             continue
         gammas = [g for c, geom in zip(f.step.constraints, f.geometry)
                   for g in _gammas(c, pose, vel, geom)]
@@ -725,10 +737,129 @@ def rates(plan, pose, omega, n, *, steps=None, measure=True):
     return vel, acc, (np.array(measures) if measure else None)
 
 
+# -- groups: reduced coordinates ------------------------------------------------------
+class _GroupForm:
+    """A group's equations in reduced coordinates.
+
+    A binary link of the group pinned by R joints to two links that are not such bars
+    says only that its two pins keep their distance: its three coordinates and four
+    equations become one distance equation between the links it joins. The unknowns are
+    the other links (``bodies``); the bars' poses and rates follow from their pins. (In
+    Stephenson's third inversion this turns 12 unknowns into 3.)
+    """
+
+    def __init__(self, step):
+        links = set(step.links)
+        touching = {x: [c for c in step.constraints if x in (c.a, c.b)] for x in links}
+        candidates = {x for x, cs in touching.items()
+                      if len(cs) == 2 and all(c.kind == "R" for c in cs)
+                      and cs[0].other(x) != cs[1].other(x)}
+        bars = {x for x in candidates
+                if not any(c.other(x) in candidates for c in touching[x])}
+        self.bodies = tuple(x for x in step.links if x not in bars)
+        if not self.bodies:                        # nothing to reduce onto
+            bars, self.bodies = set(), tuple(step.links)
+        self.bars = []
+        for x in step.links:
+            if x in bars:
+                c1, c2 = touching[x]
+                self.bars.append((x, c1.other(x), c1.point, c2.other(x), c2.point,
+                                  math.dist(c1.point, c2.point)))
+        self.others = tuple(c for c in step.constraints if c.a not in bars and c.b not in bars)
+        self.size = 3 * len(self.bodies)
+
+    def residual(self, pose):
+        out = list(_group_residual_of(self.others, pose).T) if self.others else []
+        for _, x, px, y, py, length in self.bars:
+            wx, wy = _world(pose, x, px), _world(pose, y, py)
+            d2 = (wx[0] - wy[0]) ** 2 + (wx[1] - wy[1]) ** 2
+            out.append((d2 - length * length) / (2 * length))
+        return np.stack(np.broadcast_arrays(*out), axis=-1)
+
+    def rows(self, pose):
+        rows = [coef for c in self.others for coef in _rows(c, pose)]
+        for _, x, px, y, py, length in self.bars:
+            rx, ry_ = rotate(pose[x], px), rotate(pose[y], py)
+            d = (rx[0] + pose[x][0] - ry_[0] - pose[y][0], rx[1] + pose[x][1] - ry_[1] - pose[y][1])
+            px_, py_ = _perp(rx), _perp(ry_)
+            row = {x: (d[0] / length, d[1] / length, (d[0] * px_[0] + d[1] * px_[1]) / length)}
+            other = (-d[0] / length, -d[1] / length, -(d[0] * py_[0] + d[1] * py_[1]) / length)
+            if y in row:
+                row[y] = tuple(a + b for a, b in zip(row[y], other))
+            else:
+                row[y] = other
+            rows.append(row)
+        return rows
+
+    def gammas(self, pose, vel):
+        out = [g for c in self.others for g in _gammas(c, pose, vel)]
+        for _, x, px, y, py, length in self.bars:
+            rx, ry_ = rotate(pose[x], px), rotate(pose[y], py)
+            d = (rx[0] + pose[x][0] - ry_[0] - pose[y][0], rx[1] + pose[x][1] - ry_[1] - pose[y][1])
+            vx_, vy_ = _point_rate(vel[x], rx), _point_rate(vel[y], ry_)
+            dd = (vx_[0] - vy_[0], vx_[1] - vy_[1])
+            wx2, wy2 = vel[x][2] ** 2, vel[y][2] ** 2
+            acc_terms = (wx2 * rx[0] - wy2 * ry_[0], wx2 * rx[1] - wy2 * ry_[1])
+            out.append((d[0] * acc_terms[0] + d[1] * acc_terms[1]
+                        - dd[0] * dd[0] - dd[1] * dd[1]) / length)
+        return out
+
+    def set_bodies(self, pose, q):
+        full = dict(pose)
+        for k, link in enumerate(self.bodies):
+            full[link] = make_pose(q[:, 3 * k], q[:, 3 * k + 1], q[:, 3 * k + 2])
+        return full
+
+    def complete(self, pose):
+        """Add the bars' poses (each fitted to its two pins)."""
+        for bar, x, px, y, py, _ in self.bars:
+            pose[bar] = _fit_two_points(px, _world(pose, x, px), py, _world(pose, y, py))
+        return pose
+
+    def bar_rates(self, pose, vel, acc=None):
+        """The bars' velocities (or, with ``acc``, accelerations) from their pins'."""
+        out = {}
+        for bar, x, px, y, py, _ in self.bars:
+            r1, r2 = rotate(pose[bar], px), rotate(pose[bar], py)
+            d = (r2[0] - r1[0], r2[1] - r1[1])
+            d2 = d[0] * d[0] + d[1] * d[1]
+            if acc is None:
+                v1 = _point_rate(vel[x], rotate(pose[x], px))
+                v2 = _point_rate(vel[y], rotate(pose[y], py))
+                w = (d[0] * (v2[1] - v1[1]) - d[1] * (v2[0] - v1[0])) / d2
+                out[bar] = (v1[0] + w * r1[1], v1[1] - w * r1[0], w)
+            else:
+                a1 = _point_accel(acc[x], vel[x], rotate(pose[x], px))
+                a2 = _point_accel(acc[y], vel[y], rotate(pose[y], py))
+                al = (d[0] * (a2[1] - a1[1]) - d[1] * (a2[0] - a1[0])) / d2
+                w = vel[bar][2]
+                out[bar] = (a1[0] + al * r1[1] + w * w * r1[0], a1[1] - al * r1[0] + w * w * r1[1], al)
+        return out
+
+
+def _point_rate(rate, r):
+    return rate[0] - rate[2] * r[1], rate[1] + rate[2] * r[0]
+
+
+def _point_accel(acc, vel, r):
+    w2 = vel[2] * vel[2]
+    return acc[0] - acc[2] * r[1] - w2 * r[0], acc[1] + acc[2] * r[0] - w2 * r[1]
+
+
+_FORMS = {}
+
+
+def _form(step):
+    form = _FORMS.get(step)
+    if form is None:
+        form = _FORMS[step] = _GroupForm(step)
+    return form
+
+
 # -- Newton's method for groups ------------------------------------------------------
-def _group_residual(step, pose):
+def _group_residual_of(constraints, pose):
     out = []
-    for c in step.constraints:
+    for c in constraints:
         if c.kind == "R":
             wa, wb = _world(pose, c.a, c.point), _world(pose, c.b, c.point)
             out += [wa[0] - wb[0], wa[1] - wb[1]]
@@ -741,10 +872,18 @@ def _group_residual(step, pose):
 
 
 def _with_group(pose, step, q):
-    full = dict(pose)
-    for k, link in enumerate(step.links):
-        full[link] = make_pose(q[:, 3 * k], q[:, 3 * k + 1], q[:, 3 * k + 2])
-    return full
+    return _form(step).set_bodies(pose, q)
+
+
+def _group_residual(step, pose):
+    return _form(step).residual(pose)
+
+
+def _group_jacobian(step, pose, n):
+    form = _form(step)
+    rows = [({k: v for k, v in coef.items() if k in form.bodies}, 0.0)
+            for coef in form.rows(pose)]
+    return _group_matrix(form.bodies, rows, n)[0]
 
 
 def _chord(plan, step, known, q, iterations=8):
@@ -752,30 +891,28 @@ def _chord(plan, step, known, q, iterations=8):
     method): cheap for many points near their solutions. Returns (q, converged)."""
     tol = 1e-12 * plan.size
     full = _with_group(known, step, q)
-    coefs = [coef for c in step.constraints for coef in _rows(c, full)]
-    mat, _ = _group_matrix(step, [({k: v for k, v in coef.items() if k in step.links}, 0.0)
-                                  for coef in coefs], q.shape[0])
+    mat = _group_jacobian(step, full, q.shape[0])
     if mat.shape[1] != mat.shape[2]:
         return q, np.zeros(q.shape[0], dtype=bool)
     inv = _batched_inverse(mat)
     q = q.copy()
     for _ in range(iterations):
         r = _group_residual(step, _with_group(known, step, q))
+        q -= np.einsum("nij,nj->ni", inv, r)   # one more step after tol: to the rounding
         if np.all(np.abs(r).max(axis=1) <= tol):
             break
-        q -= np.einsum("nij,nj->ni", inv, r)
     err = np.abs(_group_residual(step, _with_group(known, step, q))).max(axis=1)
     return q, err <= 1e-9 * plan.size
 
 
-def _newton(plan, step, known, q, iterations=40):
+def _newton(plan, step, known, q, iterations=40, tol_rel=1e-12):
     """Batched Newton's method on the group's loop-closure equations; each point
     iterates until its residual is below 1e-12 of the size (linear convergence at a
     fold needs more iterations than elsewhere, so only unconverged points go on).
     Returns (q, converged: residual <= 1e-9 of the size)."""
     n = q.shape[0]
     q = q.copy()
-    tol = 1e-12 * plan.size
+    tol = tol_rel * plan.size
     active = np.arange(n)
     last = np.full(n, np.inf)
     for it in range(iterations):
@@ -790,9 +927,7 @@ def _newton(plan, step, known, q, iterations=40):
             break
         active, r = active[todo], r[todo]
         full = _slice(full, np.nonzero(todo)[0])
-        coefs = [coef for c in step.constraints for coef in _rows(c, full)]
-        mat, _ = _group_matrix(step, [({k: v for k, v in coef.items() if k in step.links}, 0.0)
-                                      for coef in coefs], active.size)
+        mat = _group_jacobian(step, full, active.size)
         if mat.shape[1] != mat.shape[2]:
             rhs = np.einsum("nij,ni->nj", mat, -r)
             mat = np.einsum("nij,nik->njk", mat, mat)
@@ -860,7 +995,9 @@ def _newton_path(plan, step, pose, theta, q0, coarse_deg=10.0):
             known = _known_along(plan, step, pose, theta, np.array([t_new]))
             move = (dq if np.all(np.isfinite(dq)) else 0.0) * math.radians(t_new - t)
             guess = q + move
-            qi, ok = _newton(plan, step, known, guess[None])
+            # coarse points only anchor the interpolation: the chord method below takes
+            # every point to the rounding, so 1e-9 of the size is enough here
+            qi, ok = _newton(plan, step, known, guess[None], tol_rel=1e-9)
             # the same assembly mode: Newton's correction small beside the predicted move
             if ok[0] and np.linalg.norm(qi[0] - guess) <= \
                     0.3 * np.linalg.norm(move) + 1e-6 * plan.size:
@@ -923,7 +1060,7 @@ def _group_tangent(plan, step, known, q, theta):
     vel, _, _ = rates(plan, full, 1.0, n, steps=head)
     f = _Factor(step, full, n, plan.size)
     found = f.solve(f.right_hand_sides(vel))
-    return np.stack([v for link in step.links for v in found[link]], axis=-1)
+    return np.stack([v for link in f.form.bodies for v in found[link]], axis=-1)
 
 
 def _hermite(tc, qc, dqc, t):
