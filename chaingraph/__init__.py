@@ -10,6 +10,7 @@ solve its motion and draw it.
 'kinematic chain'
 """
 
+from .atlas import atlas
 from .chain import Chain, Joint, Mechanism, Point
 from .chainfile import dumps, from_document, load, loads, save
 from .classify import Check, Classification, classify
@@ -30,7 +31,7 @@ __all__ = [
     "classify", "Classification", "Check", "rigid_subchains",
     "inversions", "Inversions", "Inversion", "identify", "Identification",
     "canonical_form", "is_isomorphic", "isomorphism", "automorphism_orbits",
-    "solve", "Motion", "feasible_range", "build_plan", "Plan",
+    "atlas", "solve", "Motion", "feasible_range", "build_plan", "Plan",
     "ChainGraphError", "ChainFileError", "ChainStructureError", "MechanismError",
     "AssemblyError", "AtlasSizeError", "DesignError",
 ]

@@ -198,6 +198,42 @@ def _cmd_report(args) -> int:
     return report.exit_status
 
 
+def _cmd_atlas(args) -> int:
+    import time
+    from .atlas import atlas_dict, atlas_graphs, joints_for, write_atlas
+    joints_for(args.links, args.dof)   # a size with no chain: exit 2 with the reason
+    start = time.perf_counter()
+
+    def progress(done, total):
+        if not args.quiet:
+            width = 30
+            filled = int(width * done / max(total, 1))
+            sys.stderr.write(f"\r[{'#' * filled}{'.' * (width - filled)}] {done}/{total} pieces "
+                             f"{time.perf_counter() - start:6.1f} s")
+            sys.stderr.flush()
+    entries = atlas_graphs(args.links, args.dof, workers=args.workers, progress=progress)
+    if not args.quiet:
+        sys.stderr.write("\n")
+    elapsed = time.perf_counter() - start
+    if args.out:
+        paths = write_atlas(entries, args.links, args.dof, args.out)
+    if args.json:
+        _print_json(atlas_dict(entries, args.links, args.dof))
+        return 0
+    total = sum(e.inversion_classes for e in entries)
+    print(f"{len(entries)} chains of {args.links} links and {args.dof} degree(s) of freedom, "
+          f"{total} distinct inversions ({elapsed:.2f} s)")
+    if len(entries) <= 60:
+        rows = [[e.id, ", ".join(f"{v} {k}" for k, v in e.link_orders.items()),
+                 e.inversion_classes, " ".join(f"{a}-{b}" for a, b in e.edges)]
+                for e in entries]
+        print(_table(rows, ["id", "link assortment", "inversions", "joints (link pairs)"]))
+    if args.out:
+        print(f"written: {paths['json']}, {paths['graph6']}, {len(paths['chains'])} chain "
+              f"files in {paths['json'].parent / 'chains'}, {paths['html']}")
+    return 0
+
+
 def build_parser() -> argparse.ArgumentParser:
     parser = argparse.ArgumentParser(
         prog="chaingraph",
@@ -257,6 +293,20 @@ def build_parser() -> argparse.ArgumentParser:
                    help="output folder (default: report)")
     p.add_argument("-q", "--quiet", action="store_true", help="no progress bar")
     p.set_defaults(run=_cmd_report)
+
+    p = sub.add_parser("atlas", help="every chain of N links and F degrees of freedom",
+                       description="Every non-isomorphic, non-degenerate planar chain with "
+                                   "simple revolute joints (non-planar link graphs and "
+                                   "fractionated chains included).")
+    p.add_argument("--links", type=int, required=True, metavar="N")
+    p.add_argument("--dof", type=int, default=1, metavar="F")
+    p.add_argument("--json", action="store_true", help="print JSON")
+    p.add_argument("--out", metavar="DIR",
+                   help="write atlas.json, a graph6 file, chain files and index.html")
+    p.add_argument("--workers", type=int, default=1, metavar="K",
+                   help="processes that run the pieces side by side")
+    p.add_argument("-q", "--quiet", action="store_true", help="no progress bar")
+    p.set_defaults(run=_cmd_atlas)
     return parser
 
 
