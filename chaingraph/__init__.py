@@ -10,6 +10,7 @@ solve its motion and draw it.
 'kinematic chain'
 """
 
+from . import design
 from .atlas import atlas
 from .chain import Chain, Joint, Mechanism, Point
 from .chainfile import dumps, from_document, load, loads, save
@@ -31,7 +32,7 @@ __all__ = [
     "classify", "Classification", "Check", "rigid_subchains",
     "inversions", "Inversions", "Inversion", "identify", "Identification",
     "canonical_form", "is_isomorphic", "isomorphism", "automorphism_orbits",
-    "atlas", "solve", "Motion", "feasible_range", "build_plan", "Plan",
+    "atlas", "design", "solve", "Motion", "feasible_range", "build_plan", "Plan",
     "ChainGraphError", "ChainFileError", "ChainStructureError", "MechanismError",
     "AssemblyError", "AtlasSizeError", "DesignError",
 ]

@@ -234,6 +234,23 @@ def _cmd_atlas(args) -> int:
     return 0
 
 
+def _cmd_design(args) -> int:
+    from .chainfile import save
+    from .design import KINDS
+    design = KINDS[args.kind](time_ratio=args.time_ratio, crank=args.crank, stroke=args.stroke)
+    if args.out:
+        save(design.mechanism, args.out)
+    if args.json:
+        _print_json(design.to_dict())
+        return 0
+    rows = [[k.replace("_", " "), _fmt(v)] for k, v in design.to_dict().items() if k != "kind"]
+    print(f"{args.kind} quick return drive")
+    print(_table(rows, ["", ""]).split("\n", 2)[2])
+    if args.out:
+        print(f"mechanism written to {args.out} (chaingraph solve {args.out} reproduces it)")
+    return 0
+
+
 def build_parser() -> argparse.ArgumentParser:
     parser = argparse.ArgumentParser(
         prog="chaingraph",
@@ -307,6 +324,19 @@ def build_parser() -> argparse.ArgumentParser:
                    help="processes that run the pieces side by side")
     p.add_argument("-q", "--quiet", action="store_true", help="no progress bar")
     p.set_defaults(run=_cmd_atlas)
+
+    p = sub.add_parser("design", help="dimensional synthesis of quick return drives",
+                       description="From a time ratio, crank and stroke to the centre "
+                                   "distance and lever (slotted-lever: the ram's line through "
+                                   "the lever end's extremes; whitworth: through the lever's "
+                                   "pivot).")
+    p.add_argument("kind", choices=["slotted-lever", "whitworth"])
+    p.add_argument("--time-ratio", type=float, required=True, metavar="R")
+    p.add_argument("--crank", type=float, required=True, metavar="C")
+    p.add_argument("--stroke", type=float, required=True, metavar="S")
+    p.add_argument("--json", action="store_true", help="print JSON")
+    p.add_argument("--out", metavar="FILE", help="write the designed mechanism (TOML)")
+    p.set_defaults(run=_cmd_design)
     return parser
 
 

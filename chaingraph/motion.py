@@ -493,6 +493,9 @@ def _summary(plan, output, omega, rng):
         summary["output_turns_fully"] = True
         return summary
     candidates = [(float(theta[0]), float(u[0])), (float(theta[-1]), float(u[-1]))]
+    # the sweep's own extremes, and where the rate is exactly zero on the grid
+    for k in (int(np.nanargmax(u)), int(np.nanargmin(u)), *np.nonzero(du == 0)[0]):
+        candidates.append((float(theta[k]), float(u[k])))
     flips = np.nonzero(np.sign(du[:-1]) * np.sign(du[1:]) < 0)[0]
     for k in flips:
         found = _refine_stationary(plan, ev, int(k), kind, name, direction)
