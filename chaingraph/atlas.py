@@ -31,7 +31,7 @@ from dataclasses import dataclass
 import numpy as np
 
 from .errors import AtlasSizeError
-from .isomorphism import _refine, _search
+from .isomorphism import _orbits_of, _Partition, _search
 
 __all__ = ["atlas", "atlas_graphs", "AtlasEntry", "joints_for", "assortments"]
 
@@ -126,16 +126,10 @@ def _contracted_graphs(degrees):
 
 
 def _connected(k, edges):
-    parent = list(range(k))
-
-    def find(x):
-        while parent[x] != x:
-            parent[x] = parent[parent[x]]
-            x = parent[x]
-        return x
+    blocks = _Partition(k)
     for a, b in edges:
-        parent[find(a)] = find(b)
-    return len({find(x) for x in range(k)}) == 1
+        blocks.join(a, b)
+    return len({blocks.find(x) for x in range(k)}) == 1
 
 
 def _weighted(degrees, edges):
@@ -268,19 +262,7 @@ def _graph_form(n, edges):
 
 
 def _orbit_count(n, gens):
-    parent = list(range(n))
-
-    def find(x):
-        while parent[x] != x:
-            parent[x] = parent[parent[x]]
-            x = parent[x]
-        return x
-    for g in gens:
-        for x in range(n):
-            a, b = find(x), find(g[x])
-            if a != b:
-                parent[max(a, b)] = min(a, b)
-    return len({find(x) for x in range(n)})
+    return len(set(_orbits_of(gens, n)))
 
 
 def _piece(job):
