@@ -128,7 +128,6 @@ def _single_slider(links, joints, fixed):
 
 def _double_slider(links, joints, fixed):
     k = next(i for i in range(4) if joints[i].kind == "P" and joints[i - 1].kind == "P")
-    guides = links[k]  # the link between the two P joints
     axes = [joints[k - 1].axis, joints[k].axis]
     if abs(math.sin(math.radians(axes[0] - axes[1]))) < 1e-9:
         return None  # parallel guides: the bar cannot turn, the chain is not this one

@@ -133,11 +133,10 @@ def _feasible(plan):
 
 def _outside(plan, lo, hi):
     rng = feasible_range(plan)
-    units = ""
     return AssemblyError(
         f"the sweep {lo:g} to {hi:g} degrees leaves the range that can be assembled: "
         f"the driver {plan.driver!r} can turn only from {rng[0]:.6f} to {rng[1]:.6f} "
-        f"degrees{units}", mechanism=plan.chain.source or plan.chain.name,
+        f"degrees", mechanism=plan.chain.source or plan.chain.name,
         feasible_range=rng)
 
 

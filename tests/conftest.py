@@ -3,7 +3,7 @@ import sys
 
 import pytest
 
-from chaingraph.catalog import catalog_files, catalog_path
+from chaingraph.catalog import catalog_files, catalog_path  # noqa: F401  (used by the tests)
 
 
 @pytest.fixture

@@ -12,7 +12,7 @@ from hypothesis import strategies as st
 from networkx.algorithms.isomorphism import GraphMatcher
 
 import chaingraph
-from chaingraph import Chain, ChainStructureError, Joint, Mechanism, Point
+from chaingraph import Chain, ChainStructureError, Joint, Mechanism
 from chaingraph.behaviour import behaviour, turning_links
 from chaingraph.catalog import catalog_files, catalog_path
 from chaingraph.generators import random_chain
