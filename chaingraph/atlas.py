@@ -282,7 +282,7 @@ def _piece(job):
         if any(tuple(counts[p[e]] for e in range(len(counts))) > counts for p in group):
             continue
         n, expanded = _expand(k, edges, counts)
-        if n != links or not _rigid_free(n, expanded):
+        if not _rigid_free(n, expanded):
             continue
         canon, orbits = _graph_form(n, expanded)
         found[canon] = orbits
@@ -328,9 +328,7 @@ def _jobs(links, dof):
                    for _ in range(count)]
         degrees.sort(reverse=True)
         if not degrees:
-            if binaries == links and joints == links:
-                jobs.append((0, (), 0, links, ()))     # the single loop
-            continue
+            continue                                   # the single loop: atlas_graphs
         for edges in _contracted_graphs(degrees):
             jobs.append((len(degrees), edges, binaries, links, tuple(degrees)))
     return jobs
@@ -360,9 +358,6 @@ def atlas_graphs(links: int, dof: int = 1, *, workers: int = 1, progress=None):
         ring = tuple((i, (i + 1) % links) for i in range(links))
         canon, orbits = _graph_form(links, ring)
         found[canon] = orbits
-        jobs = [j for j in jobs if j[0] != 0]
-    else:
-        jobs = [j for j in jobs if j[0] != 0]
     total = len(jobs)
     if workers > 1 and total > 1:
         from concurrent.futures import ProcessPoolExecutor

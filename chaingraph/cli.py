@@ -141,8 +141,6 @@ def _fmt(value, unit=""):
 def _cmd_solve(args) -> int:
     from .motion import solve
     chain = load(args.file)
-    if args.steps < 1:
-        raise _usage_error(f"--steps must be at least 1, got {args.steps}")
     motion = solve(chain, fixed=args.fixed, driver=args.driver, start=args.start,
                    stop=args.stop, steps=args.steps)
     if args.csv:
@@ -177,11 +175,6 @@ def _cmd_solve(args) -> int:
     ]
     print(_table(rows, ["", ""]).split("\n", 2)[2])
     return 0
-
-
-def _usage_error(message):
-    from .errors import MechanismError
-    return MechanismError(message)
 
 
 def _cmd_report(args) -> int:

@@ -239,7 +239,7 @@ def solve(mechanism, *, fixed=None, driver=None, start=None, stop=None, steps=36
     plan = _plan(chain, fixed or (m.fixed if m else None), driver or (m.driver if m else None))
     if omega is None:
         omega = m.omega if m else 1.0
-    output = m.output if m is not None and plan.fixed == m.fixed else (m.output if m else None)
+    output = m.output if m else None
     rng = feasible_range(plan)
     for value, flag in ((start, "--from"), (stop, "--to")):
         if value is not None and not math.isfinite(value):

@@ -244,7 +244,7 @@ def _numeric_mobility(chain, fixed, driver, pivot):
     moving = [x for x in chain.links if x != fixed]
     col = {x: 3 * i for i, x in enumerate(moving)}
     rows = []
-    for c in _constraints(chain, fixed, driver, pivot="")[:]:
+    for c in _constraints(chain, fixed, driver, pivot=""):
         for coeffs in _rows_at_drawn_pose(c):
             row = np.zeros(3 * len(moving))
             for link, vec in coeffs.items():

@@ -689,7 +689,7 @@ def _group_matrix(links, rows, n):
     return mat, rhs
 
 
-def rates(plan, pose, omega, n, *, steps=None, measure=True):
+def rates(plan, pose, omega, n, *, steps=None, measure=True, accelerations=True):
     """Velocities and accelerations of every link at constant input speed ``omega``.
 
     Returns
@@ -698,6 +698,9 @@ def rates(plan, pose, omega, n, *, steps=None, measure=True):
         link's as zeros)
     singularity : (S, N) array, each step's normalized determinant (0 at a dead
         centre); None unless ``measure``
+
+    With ``accelerations=False`` the accelerations are left out (zeros for the fixed
+    link and the driver only).
     """
     zero = np.zeros(n)
     ox, oy = plan.pivot_point
@@ -720,7 +723,7 @@ def rates(plan, pose, omega, n, *, steps=None, measure=True):
         factors.append(f)
         if measure:
             measures.append(np.broadcast_to(f.measure, (n,)))
-    for f in factors:
+    for f in (factors if accelerations else []):
         if isinstance(f, _PointDyad):
             acc.update(f.solve_acceleration(acc, vel))
             continue
@@ -1030,25 +1033,12 @@ def _newton_path(plan, step, pose, theta, q0, coarse_deg=10.0):
 
 
 def _known_along(plan, step, pose, theta, at):
-    """Known links' poses at the angles ``at`` (interpolated exactly by re-solving)."""
-    known = {}
-    sub = _known_poses(plan, at)
-    # the links solved before this group: evaluate the earlier steps at ``at``
-    partial = evaluate_prefix(plan, step, at, pose, theta)
-    known.update(sub)
-    known.update(partial)
-    return known
-
-
-def evaluate_prefix(plan, step, at, pose, theta):
-    """Poses of the links solved before ``step`` at the angles ``at``."""
+    """Poses of the fixed link, the driver and the links solved before ``step`` at the
+    angles ``at`` (the path's own poses when ``at`` is the path)."""
     if np.array_equal(at, theta):
-        return {k: v for k, v in pose.items()}
-    index = plan.steps.index(step)
-    if index == 0:
-        return {}
+        return pose
     from dataclasses import replace
-    head = replace(plan, steps=plan.steps[:index])
+    head = replace(plan, steps=plan.steps[:plan.steps.index(step)])
     return evaluate(head, at).pose
 
 
@@ -1057,7 +1047,7 @@ def _group_tangent(plan, step, known, q, theta):
     n = q.shape[0]
     full = _with_group(known, step, q)
     head = plan.steps[:plan.steps.index(step)]
-    vel, _, _ = rates(plan, full, 1.0, n, steps=head)
+    vel, _, _ = rates(plan, full, 1.0, n, steps=head, measure=False, accelerations=False)
     f = _Factor(step, full, n, plan.size)
     found = f.solve(f.right_hand_sides(vel))
     return np.stack([v for link in f.form.bodies for v in found[link]], axis=-1)
