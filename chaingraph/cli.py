@@ -194,19 +194,18 @@ def _cmd_report(args) -> int:
 def _cmd_atlas(args) -> int:
     import time
     from .atlas import atlas_dict, atlas_graphs, joints_for, write_atlas
+    from .progress import ProgressBar
     joints_for(args.links, args.dof)   # a size with no chain: exit 2 with the reason
     start = time.perf_counter()
+    bar = None
 
     def progress(done, total):
-        if not args.quiet:
-            width = 30
-            filled = int(width * done / max(total, 1))
-            sys.stderr.write(f"\r[{'#' * filled}{'.' * (width - filled)}] {done}/{total} pieces "
-                             f"{time.perf_counter() - start:6.1f} s")
-            sys.stderr.flush()
+        nonlocal bar
+        bar = bar or ProgressBar(total, None if args.quiet else sys.stderr)
+        bar.show(done, "pieces")
     entries = atlas_graphs(args.links, args.dof, workers=args.workers, progress=progress)
-    if not args.quiet:
-        sys.stderr.write("\n")
+    if bar is not None:
+        bar.close()
     elapsed = time.perf_counter() - start
     if args.out:
         paths = write_atlas(entries, args.links, args.dof, args.out)

@@ -76,6 +76,23 @@ def _joint(joint_id, kind, links, at, axis=None):
                  axis=None if axis is None else float(axis))
 
 
+def _drive(name, centre, pin, slot_axis, pivot, lever_end, link, ram, units, notes):
+    """The six-link quick return drive: crank about ``centre``; a block on the crank pin
+    ``pin`` (id, position) slides in the slotted lever (slot along ``slot_axis``), which
+    turns about ``pivot`` (id, position); the lever's end drives the ram along x through
+    ``link``."""
+    (pin_id, pin_at), (pivot_id, pivot_at) = pin, pivot
+    return Chain(name, (
+        _joint("C", "R", ["frame", "crank"], centre),
+        _joint(pin_id, "R", ["crank", "block"], pin_at),
+        _joint("S", "P", ["slotted lever", "block"], pin_at, slot_axis),
+        _joint(pivot_id, "R", ["slotted lever", "frame"], pivot_at),
+        _joint("P", "R", ["slotted lever", link], lever_end),
+        _joint("R", "R", [link, "ram"], ram), _joint("G", "P", ["frame", "ram"], ram, 0.0)),
+        family="six-link quick return mechanism", units=units, notes=notes,
+        mechanism=Mechanism("frame", "crank", 1.0, "ram"))
+
+
 def slotted_lever(*, time_ratio: float, crank: float, stroke: float, units="mm") -> Design:
     """Design a crank and slotted lever quick return drive.
 
@@ -132,18 +149,13 @@ def slotted_lever(*, time_ratio: float, crank: float, stroke: float, units="mm")
     link = max(0.25 * lever, 1.5 * (lever - y_ram))
     R = (P[0] + math.sqrt(link ** 2 - (y_ram - P[1]) ** 2), y_ram)
     axis = math.degrees(math.atan2(unit[1], unit[0]))
-    mech = Chain(f"Crank and slotted lever: time ratio {time_ratio:g}, stroke {stroke:g}", (
-        _joint("C", "R", ["frame", "crank"], C), _joint("B", "R", ["crank", "block"], B),
-        _joint("S", "P", ["slotted lever", "block"], B, axis),
-        _joint("A", "R", ["slotted lever", "frame"], A),
-        _joint("P", "R", ["slotted lever", "link"], P), _joint("R", "R", ["link", "ram"], R),
-        _joint("G", "P", ["frame", "ram"], R, 0.0)),
-        family="six-link quick return mechanism", units=units,
+    mech = _drive(
+        f"Crank and slotted lever: time ratio {time_ratio:g}, stroke {stroke:g}",
+        C, ("B", B), axis, ("A", A), P, "link", R, units,
         notes=f"Designed by chaingraph: crank {crank:g}, centre distance {centres:.6g}, slotted "
               f"lever {lever:.6g}, link {link:.6g}; the ram's line passes through the extreme "
               f"positions of the lever's end, so the stroke is {stroke:g} and the time ratio "
-              f"{time_ratio:g} (crank turns {forward:.6g} forward, {back:.6g} back).",
-        mechanism=Mechanism("frame", "crank", 1.0, "ram"))
+              f"{time_ratio:g} (crank turns {forward:.6g} forward, {back:.6g} back).")
     return Design(kind=kind, time_ratio=time_ratio, crank=crank, stroke=stroke,
                   centre_distance=centres, forward_deg=forward, return_deg=back, lever=lever,
                   link=link, mechanism=mech)
@@ -177,18 +189,13 @@ def whitworth(*, time_ratio: float, crank: float, stroke: float, units="mm") -> 
     A = (0.0, crank - centres)
     P = (0.0, -arm)
     R = (math.sqrt(rod ** 2 - arm ** 2), 0.0)
-    mech = Chain(f"Whitworth drive: time ratio {time_ratio:g}, stroke {stroke:g}", (
-        _joint("C", "R", ["frame", "crank"], C), _joint("A", "R", ["crank", "block"], A),
-        _joint("S", "P", ["slotted lever", "block"], A, 90.0),
-        _joint("D", "R", ["slotted lever", "frame"], D),
-        _joint("P", "R", ["slotted lever", "connecting rod"], P),
-        _joint("R", "R", ["connecting rod", "ram"], R), _joint("G", "P", ["frame", "ram"], R, 0.0)),
-        family="six-link quick return mechanism", units=units,
+    mech = _drive(
+        f"Whitworth drive: time ratio {time_ratio:g}, stroke {stroke:g}",
+        C, ("A", A), 90.0, ("D", D), P, "connecting rod", R, units,
         notes=f"Designed by chaingraph: crank {crank:g}, centre distance {centres:.6g}, lever "
               f"arm {arm:.6g}, connecting rod {rod:.6g}; the ram's line passes through the "
               f"lever's pivot, so the stroke is twice the arm, {stroke:g}, and the time ratio "
-              f"{time_ratio:g} (crank turns {forward:.6g} forward, {back:.6g} back).",
-        mechanism=Mechanism("frame", "crank", 1.0, "ram"))
+              f"{time_ratio:g} (crank turns {forward:.6g} forward, {back:.6g} back).")
     return Design(kind=kind, time_ratio=time_ratio, crank=crank, stroke=stroke,
                   centre_distance=centres, forward_deg=forward, return_deg=back,
                   lever_arm=arm, link=rod, mechanism=mech)

@@ -493,9 +493,9 @@ def _summary(plan, output, omega, rng):
         return summary
     candidates = [(float(theta[0]), float(u[0])), (float(theta[-1]), float(u[-1]))]
     # the sweep's own extremes, and where the rate is exactly zero on the grid
-    for k in (int(np.nanargmax(u)), int(np.nanargmin(u)), *np.nonzero(du == 0)[0]):
+    flips, zeros = _crossings(du)
+    for k in (int(np.nanargmax(u)), int(np.nanargmin(u)), *zeros):
         candidates.append((float(theta[k]), float(u[k])))
-    flips = np.nonzero(np.sign(du[:-1]) * np.sign(du[1:]) < 0)[0]
     for k in flips:
         found = _refine_stationary(plan, ev, int(k), kind, name, direction)
         if found is not None:
@@ -549,6 +549,14 @@ def _refined_extreme(y, k):
     return float(y[k])
 
 
+def _crossings(values):
+    """Where sampled values meet zero: the points k with a sign change between k and
+    k + 1 (to be refined), and the points that are zero exactly (a grid point can fall
+    on the root itself, and then neither neighbour pair changes sign)."""
+    sign = np.sign(values)
+    return np.nonzero(sign[:-1] * sign[1:] < 0)[0], np.nonzero(sign == 0)[0]
+
+
 def _dead_centres(plan, ev, measure, rng):
     """Input angles where the driven mechanism is singular: where a step's normalized
     determinant changes sign (bisection), or touches zero without changing sign, as at a
@@ -556,7 +564,8 @@ def _dead_centres(plan, ev, measure, rng):
     found = []
     for i, m in enumerate(measure):
         sign = np.sign(m)
-        for k in np.nonzero(sign[:-1] * sign[1:] < 0)[0]:
+        changes, zeros = _crossings(m)
+        for k in changes:
             start, t_ref = ev.at(int(k)), float(ev.theta[k])
             good, bad = t_ref, float(ev.theta[k + 1])
             for _ in range(60):
@@ -569,7 +578,7 @@ def _dead_centres(plan, ev, measure, rng):
                 if abs(bad - good) < 1e-11:
                     break
             found.append(0.5 * (good + bad))
-        found += [float(ev.theta[k]) for k in np.nonzero(sign == 0)[0]]
+        found += [float(ev.theta[k]) for k in zeros]
         size = np.abs(m)
         for k in range(1, size.size - 1):
             if size[k] <= size[k - 1] and size[k] <= size[k + 1] and size[k] < 0.05 \

@@ -14,7 +14,6 @@ import html
 import math
 import re
 import sys
-import time
 from dataclasses import dataclass, field
 from pathlib import Path
 
@@ -23,6 +22,7 @@ import numpy as np
 from .chainfile import load
 from .classify import classify
 from .errors import ChainGraphError
+from .progress import ProgressBar
 
 __all__ = ["Report", "build_report", "chain_paths"]
 
@@ -109,27 +109,6 @@ def _slug(text, taken):
     return slug
 
 
-class _Progress:
-    def __init__(self, total, stream):
-        self.total, self.stream, self.start = total, stream, time.perf_counter()
-        self.enabled = stream is not None
-
-    def show(self, done, label):
-        if not self.enabled:
-            return
-        width = 30
-        filled = int(width * done / max(self.total, 1))
-        elapsed = time.perf_counter() - self.start
-        self.stream.write(f"\r[{'#' * filled}{'.' * (width - filled)}] {done}/{self.total} "
-                          f"{elapsed:5.1f} s  {label[:40]:40s}")
-        self.stream.flush()
-
-    def close(self):
-        if self.enabled:
-            self.stream.write("\n")
-            self.stream.flush()
-
-
 def build_report(paths, out_dir, *, progress=sys.stderr, steps=180, frames=48,
                  workers=None) -> Report:
     """Write the HTML catalog of the chain files ``paths`` into ``out_dir``.
@@ -162,7 +141,7 @@ def build_report(paths, out_dir, *, progress=sys.stderr, steps=180, frames=48,
     taken = set()
     jobs = [(str(path), _slug(path.stem, taken), str(out), steps, frames) for path in files]
     workers = workers or min(os.cpu_count() or 1, max(len(jobs), 1))
-    bar = _Progress(len(jobs), progress)
+    bar = ProgressBar(len(jobs), progress)
     bar.show(0, "")
     results = {}
     if workers <= 1:
