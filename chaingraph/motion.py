@@ -18,11 +18,10 @@ import numpy as np
 
 from .errors import AssemblyError, MechanismError
 from .plan import build_plan
-from .solver import Evaluation, check_poses, evaluate, rates, rotate
+from .solver import Evaluation, check_poses, evaluate, evaluate_at, rates, rotate
 
-__all__ = ["Motion", "solve", "feasible_range", "full_turns"]
+__all__ = ["Motion", "Cycle", "solve", "cycle", "feasible_range", "full_turns"]
 
-_FULL_TURN_STEPS = 720
 
 
 @lru_cache(maxsize=256)
@@ -83,27 +82,103 @@ class Motion:
                 "steps": self.steps, "summary": self.summary}
 
 
-# -- the sweep -----------------------------------------------------------------------
-def _path(a, b, max_step=1.0):
-    n = max(1, int(math.ceil(abs(b - a) / max_step)))
-    return np.linspace(a, b, n + 1)
+# -- the cycle and the sweep -----------------------------------------------------------
+_GRID_DEG = 1.0         # the internal grid on which the assembly modes are tracked
+_MAX_TURNS = 4          # how far a driver is followed each way before giving up
 
 
-def _bisect(plan, ev, k_good, t_bad, iterations=45):
-    """The last feasible angle between ev.theta[k_good] and t_bad."""
-    good = float(ev.theta[k_good])
-    start = ev.at(k_good)
-    bad = float(t_bad)
-    for _ in range(iterations):
-        mid = 0.5 * (good + bad)
-        trial = evaluate(plan, np.array([good, mid]), start=start)
+@dataclass(frozen=True)
+class Cycle:
+    """What the driver can do from the drawn pose: turn fully, returning to the drawn
+    pose after ``period`` degrees (360 for an ordinary crank), or rock between the
+    limits ``low`` and ``high`` (degrees, dead centres where the motion folds back)."""
+
+    period: float | None
+    low: float
+    high: float
+    limit_poses: tuple = field(default=(), compare=False, repr=False)
+
+    @property
+    def full_turn(self) -> bool:
+        return self.period is not None
+
+
+def _returns(plan, pose, k):
+    """Whether every link is back in its drawn pose at point k (up to whole turns)."""
+    for link in plan.moving:
+        x, y, phi = (float(np.broadcast_to(v, (k + 1,))[k]) for v in pose[link][:3])
+        if max(abs(x), abs(y)) > 1e-7 * plan.size or \
+                abs(math.remainder(phi, 2 * math.pi)) > 1e-7:
+            return False
+    return True
+
+
+def _walk(plan, direction):
+    """Follow the driver from the drawn pose one way: (limit, None) where the motion
+    stops, (None, period) where it returns to the drawn pose, (None, None) if neither
+    within ``_MAX_TURNS`` turns."""
+    t, start = plan.theta0, None
+    steps = int(round(360.0 / _GRID_DEG))
+    for m in range(1, _MAX_TURNS + 1):
+        path = t + direction * np.linspace(0.0, 360.0, steps + 1)
+        ev = evaluate(plan, path, start=start)
+        if not ev.feasible.all():
+            k = int(np.argmin(ev.feasible))
+            if k == 0:
+                return (float(path[0]), ev.take(np.array([0]))), None
+            return _limit(plan, ev, k - 1, float(path[k])), None
+        if _returns(plan, ev.pose, steps):
+            return None, 360.0 * m
+        t, start = float(path[-1]), ev.at(steps)
+    return None, None
+
+
+def _limit(plan, ev, k, bad):
+    """The last angle that can be assembled past ev's point k, towards ``bad``,
+    continued on ever finer paths from the last point that assembles: (angle, the
+    evaluation at that angle)."""
+    good, state, at = float(ev.theta[k]), ev.at(k), ev.take(np.array([k]))
+    for _ in range(16):
+        ts = np.linspace(good, bad, 17)
+        trial = evaluate(plan, ts, start=state)
         if trial.feasible.all():
-            good, start = mid, trial.at(1)
-        else:
-            bad = mid
+            return float(bad), trial.take(np.array([16]))
+        j = int(np.argmin(trial.feasible)) - 1
+        if j < 0:
+            break
+        good, state, bad = float(ts[j]), trial.at(j), float(ts[j + 1])
+        at = trial.take(np.array([j]))
         if abs(bad - good) < 1e-10:
             break
-    return good
+    return good, at
+
+
+def cycle(plan) -> Cycle:
+    """The driver's :class:`Cycle` (cached per plan).
+
+    Raises
+    ------
+    AssemblyError
+        When the driver neither returns to the drawn pose nor reaches a limit within
+        four turns either way.
+    """
+    return _cycle(plan)
+
+
+@lru_cache(maxsize=256)
+def _cycle(plan):
+    t0 = plan.theta0
+    high, period = _walk(plan, 1.0)
+    if period is not None:
+        return Cycle(period, t0, t0 + period)
+    low, _ = _walk(plan, -1.0) if high is not None else (None, None)
+    if high is None or low is None:
+        raise AssemblyError(
+            f"the driver {plan.driver!r} turns {_MAX_TURNS} times without returning to "
+            "the drawn pose or reaching a limit", mechanism=plan.chain.source or plan.chain.name)
+    # the poses at the limits as found there (at a fold the last digits depend on the
+    # path, so the sweep takes them from here)
+    return Cycle(None, low[0], high[0], (low[1], high[1]))
 
 
 def feasible_range(plan):
@@ -112,23 +187,10 @@ def feasible_range(plan):
     Returns
     -------
     (low, high) in degrees around the drawn pose's angle, or None when the driver makes
-    full turns.
+    full turns. A range may be wider than a turn.
     """
-    return _feasible(plan)
-
-
-@lru_cache(maxsize=256)
-def _feasible(plan):
-    t0 = plan.theta0
-    ends = []
-    for direction in (1.0, -1.0):
-        path = t0 + direction * np.linspace(0.0, 360.0, _FULL_TURN_STEPS + 1)
-        ev = evaluate(plan, path)
-        if ev.feasible.all():
-            return None
-        k = int(np.argmin(ev.feasible))
-        ends.append(_bisect(plan, ev, k - 1, path[k]))
-    return (ends[1], ends[0])
+    c = cycle(plan)
+    return None if c.full_turn else (c.low, c.high)
 
 
 def _outside(plan, lo, hi):
@@ -140,51 +202,80 @@ def _outside(plan, lo, hi):
         feasible_range=rng)
 
 
-def _evaluate_sweep(plan, theta):
-    """Poses along ``theta`` (degrees), reached by continuation from the drawn pose."""
+def _along(plan, end, targets):
+    """Poses at ``targets`` (all between the drawn pose's angle and ``end``), reached by
+    continuation from the drawn pose on the internal grid to ``end`` with the targets
+    inserted, so that they do not depend on which other targets were asked for."""
     t0 = plan.theta0
-    rng = feasible_range(plan)
+    span = end - t0
+    n = max(1, int(math.ceil(abs(span) / _GRID_DEG)))
+    grid = np.concatenate([t0 + span * np.arange(n + 1) / n, targets])
+    sign = 1.0 if span >= 0 else -1.0
+    grid = sign * np.unique(sign * grid)      # in path order
+    ev = evaluate(plan, grid)
+    idx = np.searchsorted(sign * grid, sign * targets)
+    return ev.take(idx)
+
+
+def _evaluate_sweep(plan, theta):
+    """Poses at the angles ``theta`` (degrees): a crank's from its angle within one
+    period of the drawn pose, a rocker's from the drawn pose outward, both continued on
+    the same internal grid whatever the sweep."""
+    theta = np.asarray(theta, dtype=float)
+    c = cycle(plan)
+    t0 = plan.theta0
+    if c.full_turn:
+        phase = t0 + np.mod(theta - t0, c.period)
+        ev = _along(plan, t0 + c.period, phase)
+        ev.theta = theta
+        return ev
     lo, hi = float(theta.min()), float(theta.max())
-    if rng is not None and (lo < rng[0] - 1e-9 or hi > rng[1] + 1e-9):
+    if lo < c.low - 1e-9 or hi > c.high + 1e-9:
         raise _outside(plan, lo, hi)
-    if theta[0] == t0:
-        ev = evaluate(plan, theta)
-    elif min(theta[0], theta[-1]) < t0 < max(theta[0], theta[-1]):
-        # continue outward from the drawn pose both ways (never from a limit, where
-        # the two assembly modes meet), then join the halves
-        k = int(np.searchsorted(theta, t0)) if theta[-1] > theta[0] else \
-            int(np.searchsorted(-theta, -t0))
-        ahead = evaluate(plan, np.concatenate([[t0], theta[k:]]))
-        behind = evaluate(plan, np.concatenate([[t0], theta[:k][::-1]]))
-        ev = _join(behind, ahead, theta)
-    else:
-        walk = _path(t0, float(theta[0]))
-        lead = evaluate(plan, walk)
-        if not lead.feasible.all():
-            raise _outside(plan, lo, hi)
-        ev = evaluate(plan, theta, start=lead.at(walk.size - 1))
+    clipped = np.clip(theta, c.low, c.high)
+    # each side on its own path from the drawn pose; a limit itself (a fold, where
+    # the last digits depend on the path) as the cycle found it
+    parts = []
+    for side, end in ((clipped > t0, c.high), (clipped <= t0, c.low)):
+        inner = side & (clipped != end)
+        if inner.any():
+            parts.append((np.nonzero(inner)[0], _along(plan, end, clipped[inner])))
+        limit = side & (clipped == end)
+        if limit.any():
+            found = c.limit_poses[0 if end == c.low else 1]
+            parts.append((np.nonzero(limit)[0], found.take(np.zeros(limit.sum(), dtype=int))))
+    ev = parts[0][1] if len(parts) == 1 else _merge(parts, theta.size)
     if not ev.feasible.all():
         raise _outside(plan, lo, hi)
+    ev.theta = theta
     return ev
 
 
-def _join(behind, ahead, theta):
-    """One evaluation from two that start at the drawn pose: ``behind`` reversed, then
-    ``ahead`` (each without its first point, the drawn pose itself)."""
-    def cat(a, b):
-        a = np.broadcast_to(a, behind.theta.shape)
-        b = np.broadcast_to(b, ahead.theta.shape)
-        return np.concatenate([a[1:][::-1], b[1:]])
-    pose = {link: tuple(cat(a, b) for a, b in zip(behind.pose[link], ahead.pose[link]))
-            for link in ahead.pose}
-    pose = {link: tuple(v if np.ptp(v) > 0 or not isinstance(ahead.pose[link][i], float)
-                        else ahead.pose[link][i] for i, v in enumerate(p))
-            for link, p in pose.items()}
-    signs = {i: cat(behind.signs[i], ahead.signs[i]) for i in ahead.signs}
-    group_q = {i: np.concatenate([behind.group_q[i][1:][::-1], ahead.group_q[i][1:]])
-               for i in ahead.group_q}
-    feasible = cat(behind.feasible, ahead.feasible)
-    return Evaluation(theta, pose, feasible, signs, group_q)
+def _merge(parts, n):
+    """One evaluation from parts, each (indices into the result, evaluation)."""
+    first = parts[0][1]
+
+    def put(values):
+        out = None
+        for (idx, _), v in zip(parts, values):
+            v = np.asarray(v)
+            if out is None:
+                out = np.empty((n,) + v.shape[1:], dtype=v.dtype)
+            out[idx] = np.broadcast_to(v, (idx.size,) + v.shape[1:])
+        return out
+    pose = {}
+    for link, entry in first.pose.items():
+        pose[link] = tuple(
+            v if all(np.ndim(e.pose[link][i]) == 0 and e.pose[link][i] == v
+                     for _, e in parts) else put([e.pose[link][i] for _, e in parts])
+            for i, v in enumerate(entry))
+    switches = {i: sorted(set().union(*(e.switches.get(i, ()) for _, e in parts)))
+                for i in first.switches}
+    return Evaluation(put([e.theta for _, e in parts]), pose,
+                      put([e.feasible for _, e in parts]),
+                      {i: put([e.signs[i] for _, e in parts]) for i in first.signs},
+                      {i: put([e.group_q[i] for _, e in parts]) for i in first.group_q},
+                      switches)
 
 
 def solve(mechanism, *, fixed=None, driver=None, start=None, stop=None, steps=360,
@@ -240,24 +331,23 @@ def solve(mechanism, *, fixed=None, driver=None, start=None, stop=None, steps=36
     if omega is None:
         omega = m.omega if m else 1.0
     output = m.output if m else None
-    rng = feasible_range(plan)
     for value, flag in ((start, "--from"), (stop, "--to")):
         if value is not None and not math.isfinite(value):
             raise MechanismError(f"{flag} must be a finite angle", mechanism=chain.name)
-    if rng is None:
+    c = cycle(plan)
+    if c.full_turn:
         lo = plan.theta0 if start is None else float(start)
         hi = lo + 360.0 if stop is None else float(stop)
     else:
-        lo = rng[0] if start is None else float(start)
-        hi = rng[1] if stop is None else float(stop)
+        lo = c.low if start is None else float(start)
+        hi = c.high if stop is None else float(stop)
     theta = np.linspace(lo, hi, steps + 1)
-    if start is None and stop is None and rng is not None:
-        theta[0], theta[-1] = rng  # exactly the limits
+    theta[0], theta[-1] = lo, hi       # exactly the ends (a rocker's limits)
     ev = _evaluate_sweep(plan, theta)
     check_poses(plan, ev.pose, ev.feasible)
     vel, acc, _ = rates(plan, ev.pose, omega, theta.size, measure=False)
     columns = _columns(plan, theta, ev.pose, vel, acc)
-    summary = _summary(plan, output, omega, rng) if summary else {}
+    summary = _summary(plan, output, omega, c) if summary else {}
     return Motion(name=chain.name, fixed=plan.fixed, driver=plan.driver, omega=omega,
                   columns=columns, summary=summary, units=chain.units, plan=plan)
 
@@ -282,26 +372,19 @@ def full_turns(chain, fixed):
             plan = _plan(chain, fixed, driver)
         except MechanismError:
             continue
-        # one turn each way from the drawn pose, a degree a step, as far as it assembles
-        ahead = evaluate(plan, plan.theta0 + np.linspace(0.0, 360.0, 361))
-        if ahead.feasible.all():
-            parts = [ahead]
-        else:
-            parts = [ahead, evaluate(plan, plan.theta0 - np.linspace(0.0, 360.0, 361))]
+        try:
+            c = cycle(plan)
+            ev = _evaluate_sweep(plan, _cycle_theta(plan, c, 720))
+        except AssemblyError:
+            continue
         turning = set()
         for link in chain.links:
             if link == fixed:
                 continue
-            ranges = []
-            for ev in parts:
-                ok = ev.feasible
-                phi = np.unwrap(np.broadcast_to(ev.pose[link][2], ev.theta.shape)[ok])
-                ranges.append((phi.min(), phi.max()) if phi.size else (0.0, 0.0))
-            lo = min(r[0] for r in ranges)
-            hi = max(r[1] for r in ranges)
-            if hi - lo >= 2 * math.pi - 1e-9:
+            phi = np.unwrap(np.broadcast_to(ev.pose[link][2], ev.theta.shape))
+            if np.ptp(phi) >= 2 * math.pi - 1e-9:
                 turning.add(link)
-        if len(parts) == 1:
+        if c.full_turn:
             return frozenset(turning), driver
         fallback = fallback or (frozenset(turning), driver)
     return fallback
@@ -425,60 +508,66 @@ def _signal_values(kind, name, cols, direction=None):
             cols[f"ax:{name}"] * ux + cols[f"ay:{name}"] * uy)
 
 
-def _cycle(plan, rng, steps=3600):
-    if rng is None:
-        return np.linspace(plan.theta0, plan.theta0 + 360.0, steps + 1)
-    theta = np.linspace(rng[0], rng[1], steps + 1)
-    theta[0], theta[-1] = rng
+def _cycle_theta(plan, c, steps_per_turn=3600):
+    """The summary's grid: one period of a crank from the drawn pose, or a rocker's
+    whole range, limits included exactly."""
+    if c.full_turn:
+        n = int(round(steps_per_turn * c.period / 360.0))
+        return plan.theta0 + c.period * np.arange(n + 1) / n
+    theta = np.linspace(c.low, c.high, steps_per_turn + 1)
+    theta[0], theta[-1] = c.low, c.high
     return theta
 
 
-def _at(plan, theta_from, start, theta, output_cols=True):
-    """Columns at a single angle, continued from a known state at ``theta_from``."""
-    ev = evaluate(plan, np.array([theta_from, theta]), start=start)
-    if not ev.feasible.all():
-        return None, None
-    vel, acc, measure = rates(plan, ev.pose, 1.0, 2)
-    cols = _columns(plan, ev.theta, ev.pose, vel, acc)
-    return {k: v[1:] for k, v in cols.items()}, measure[:, 1]
+def _pointwise(plan, ev, k, t):
+    """Columns and step measures at angles ``t``, each continued from ev's point k."""
+    pose, feasible, _ = evaluate_at(plan, t, ev.reference(k))
+    vel, acc, measure = rates(plan, pose, 1.0, t.size)
+    return _columns(plan, t, pose, vel, acc), measure, feasible
 
 
-def _refine_stationary(plan, ev, k, kind, name, direction):
-    """Newton's method on du/dtheta = 0 near sweep point k (with d2u/dtheta2)."""
-    start = ev.at(k)
-    t_ref = float(ev.theta[k])
-    t = t_ref
-    for _ in range(12):
-        cols, _ = _at(plan, t_ref, start, t)
-        if cols is None:
-            return None
-        u, du, ddu = (v[0] for v in _signal_values(kind, name, cols, direction))
-        if not np.isfinite(du) or not np.isfinite(ddu) or ddu == 0:
-            return None
-        step = math.degrees(du / ddu)
-        t -= step
-        if abs(step) < 1e-11:
+def _bracketed_roots(f, a, b, fa, fb, *, newton=False, tol=1e-10, iterations=60):
+    """Roots of f between a and b (arrays of brackets with fa, fb of opposite signs),
+    all at once: Newton's step (``newton``: f returns the value and its derivative
+    per degree) or the secant, kept inside the bracket, with a bisection every other
+    step so that the bracket at least halves. Returns the roots."""
+    a, b, fa, fb = (np.array(v, dtype=float) for v in (a, b, fa, fb))
+    t = 0.5 * (a + b)
+    for it in range(iterations):
+        if newton and it > 0:
+            trial = t - value / slope
+        else:
+            trial = b - fb * (b - a) / (fb - fa)
+        inside = np.isfinite(trial) & ((trial - a) * (trial - b) < 0)
+        t = np.where(inside & (it % 2 == 0 or newton), trial, 0.5 * (a + b))
+        out = f(t)
+        value, slope = out if newton else (out, None)
+        left = np.sign(value) == np.sign(fa)
+        a, fa = np.where(left, t, a), np.where(left, value, fa)
+        b, fb = np.where(left, b, t), np.where(left, fb, value)
+        done = (np.abs(b - a) < tol) | (value == 0) | ~np.isfinite(value)
+        if done.all():
             break
-    cols, _ = _at(plan, t_ref, start, t)
-    return t, float(_signal_values(kind, name, cols, direction)[0][0])
+    return np.where(np.isfinite(t), t, 0.5 * (a + b))
 
 
-def _summary(plan, output, omega, rng):
-    theta = _cycle(plan, rng)
-    ev = evaluate(plan, _path(plan.theta0, theta[0]))
-    ev = evaluate(plan, theta, start=ev.at(ev.theta.size - 1))
+def _summary(plan, output, omega, c):
+    theta = _cycle_theta(plan, c)
+    ev = _evaluate_sweep(plan, theta)
     vel, acc, measure = rates(plan, ev.pose, 1.0, theta.size)
     cols = _columns(plan, theta, ev.pose, vel, acc)
     summary = {"output": output, "stroke": None, "stroke_unit": None, "time_ratio": None,
                "forward_deg": None, "return_deg": None, "extremes": None,
+               "extreme_positions": None,
                "transmission_angle": _transmission(plan, ev, theta),
-               "dead_centres": _dead_centres(plan, ev, measure, rng),
+               "dead_centres": _dead_centres(plan, ev, measure, c),
                "input_range": [float(theta[0]), float(theta[-1])],
-               "full_turn": rng is None,
+               "full_turn": c.full_turn,
                "mobility": plan.mobility, "numeric_mobility": plan.numeric_mobility,
-               "omega": omega}
+               "omega": omega, "note": None}
     signal = _output_signal(plan, output, cols)
     if signal is None:
+        summary["note"] = "no output is named, so there is no stroke or time ratio"
         return summary
     kind, name = signal
     direction = None
@@ -488,29 +577,96 @@ def _summary(plan, output, omega, rng):
         direction = tuple(vt[0])
     u, du, _ = _signal_values(kind, name, cols, direction)
     summary["stroke_unit"] = "deg" if kind == "angle" else plan.chain.units
-    if kind == "angle" and rng is None and abs(u[-1] - u[0]) > 180.0:
+    if kind == "angle" and c.full_turn and abs(u[-1] - u[0]) > 180.0:
         summary["output_turns_fully"] = True
+        summary["note"] = "the output turns fully, so it has no stroke or time ratio"
         return summary
-    candidates = [(float(theta[0]), float(u[0])), (float(theta[-1]), float(u[-1]))]
-    # the sweep's own extremes, and where the rate is exactly zero on the grid
-    flips, zeros = _crossings(du)
-    for k in (int(np.nanargmax(u)), int(np.nanargmin(u)), *zeros):
-        candidates.append((float(theta[k]), float(u[k])))
-    for k in flips:
-        found = _refine_stationary(plan, ev, int(k), kind, name, direction)
-        if found is not None:
-            candidates.append(found)
-    t_max, u_max = max(candidates, key=lambda c: c[1])
-    t_min, u_min = min(candidates, key=lambda c: c[1])
-    summary["stroke"] = u_max - u_min
-    summary["extremes"] = [_turn(plan, t_min, rng), _turn(plan, t_max, rng)]
-    if rng is None:
-        a = (t_max - t_min) % 360.0
-        b = 360.0 - a
-        forward, back = max(a, b), min(a, b)
-        summary.update(forward_deg=forward, return_deg=back,
-                       time_ratio=forward / back if back > 0 else None)
+    scale = np.nanmax(np.abs(du))
+    if not np.isfinite(scale) or np.nanmax(u) - np.nanmin(u) <= 1e-12 * max(
+            plan.size if kind != "angle" else 360.0, 1e-300):
+        summary.update(stroke=0.0, note="the output does not move")
+        return summary
+    extremes = _output_extremes(plan, ev, kind, name, direction, u, du, scale, c)
+    values = [e["value"] for e in extremes]
+    hi_e = extremes[int(np.argmax(values))]
+    lo_e = extremes[int(np.argmin(values))]
+    summary["stroke"] = hi_e["value"] - lo_e["value"]
+    summary["extremes"] = [_turn(lo_e["input"], c), _turn(hi_e["input"], c)]
+    summary["extreme_positions"] = [dict(e, input=_turn(e["input"], c)) for e in extremes]
+    if not c.full_turn:
+        summary["note"] = "the input rocks, so there is no time ratio"
+        return summary
+    maxima = sum(e["kind"] == "max" for e in extremes)
+    if maxima != 1:
+        summary["note"] = (f"the output reaches {maxima} maxima and {len(extremes) - maxima} "
+                           "minima in a cycle, so no single forward and return stroke "
+                           "(and no time ratio) is defined")
+        return summary
+    a = (hi_e["input"] - lo_e["input"]) % c.period
+    b = c.period - a
+    forward, back = max(a, b), min(a, b)
+    summary.update(forward_deg=forward, return_deg=back,
+                   time_ratio=forward / back if back > 0 else None)
     return summary
+
+
+def _output_extremes(plan, ev, kind, name, direction, u, du, scale, c):
+    """Every extreme of the output over the cycle, in input order: stationary points
+    refined by Newton's method on its rate (safeguarded by bisection), and for a rocker
+    the values at the input's limits. Each {"input", "value", "kind"}."""
+    theta = ev.theta
+    n = theta.size
+    significant = np.abs(du) > 1e-9 * scale
+    sign = np.where(significant, np.sign(du), 0.0)
+    # the rate's sign changes between significant samples (a dwell's rounding noise and
+    # exact zeros on the grid are skipped over, not counted)
+    idx = np.nonzero(sign != 0)[0]
+    flips = idx[:-1][sign[idx[:-1]] != sign[idx[1:]]]
+    nxt = idx[1:][sign[idx[:-1]] != sign[idx[1:]]]
+    found = []
+    if flips.size:
+        a, b = theta[flips], theta[nxt]
+        t = _bracketed_roots(lambda t: _rate_and_slope(plan, ev, flips, t, kind, name,
+                                                       direction),
+                             a, b, du[flips], du[nxt], newton=True)
+        cols, _, _ = _pointwise(plan, ev, flips, t)
+        value = _signal_values(kind, name, cols, direction)[0]
+        if kind == "angle":      # the same turn as the sweep's own values
+            value = u[flips] + np.remainder(value - u[flips] + 180.0, 360.0) - 180.0
+        for ti, vi, k in zip(t, value, flips):
+            found.append({"input": float(ti), "value": float(vi),
+                          "kind": "max" if sign[k] > 0 else "min"})
+    if not c.full_turn:
+        first = sign[idx[0]] if idx.size else 0.0
+        last = sign[idx[-1]] if idx.size else 0.0
+        found.insert(0, {"input": float(theta[0]), "value": float(u[0]),
+                         "kind": "min" if first > 0 else "max"})
+        found.append({"input": float(theta[-1]), "value": float(u[-1]),
+                      "kind": "max" if last > 0 else "min"})
+    if c.full_turn and idx.size and sign[idx[-1]] != sign[idx[0]]:
+        # the cycle's end meets its start: a sign change across the seam
+        k = int(idx[-1])
+        t = _bracketed_roots(lambda t: _rate_and_slope(plan, ev, np.array([k]), t, kind,
+                                                       name, direction),
+                             theta[k:k + 1], theta[-1:] + (theta[idx[0]] - theta[0]),
+                             du[k:k + 1], du[idx[:1]], newton=True)
+        cols, _, _ = _pointwise(plan, ev, np.array([k]), t)
+        value = _signal_values(kind, name, cols, direction)[0]
+        if kind == "angle":
+            value = u[k] + np.remainder(value - u[k] + 180.0, 360.0) - 180.0
+        found.append({"input": float(t[0]), "value": float(value[0]),
+                      "kind": "max" if sign[k] > 0 else "min"})
+    return found or [{"input": float(theta[int(np.argmax(u))]), "value": float(np.max(u)),
+                      "kind": "max"},
+                     {"input": float(theta[int(np.argmin(u))]), "value": float(np.min(u)),
+                      "kind": "min"}]
+
+
+def _rate_and_slope(plan, ev, k, t, kind, name, direction):
+    """The output's rate and its derivative per degree of input at angles t."""
+    cols, _, _ = _pointwise(plan, ev, k, t)
+    _, d1, d2 = _signal_values(kind, name, cols, direction)
+    return d1, d2 * (math.pi / 180.0)      # d2 is per radian of input, t in degrees
 
 
 def _transmission(plan, ev, theta):
@@ -549,76 +705,35 @@ def _refined_extreme(y, k):
     return float(y[k])
 
 
-def _crossings(values):
-    """Where sampled values meet zero: the points k with a sign change between k and
-    k + 1 (to be refined), and the points that are zero exactly (a grid point can fall
-    on the root itself, and then neither neighbour pair changes sign)."""
-    sign = np.sign(values)
-    return np.nonzero(sign[:-1] * sign[1:] < 0)[0], np.nonzero(sign == 0)[0]
-
-
-def _dead_centres(plan, ev, measure, rng):
-    """Input angles where the driven mechanism is singular: where a step's normalized
-    determinant changes sign (bisection), or touches zero without changing sign, as at a
-    parallelogram's change point (golden-section search on its size)."""
-    found = []
+def _dead_centres(plan, ev, measure, c):
+    """Input angles where the driven mechanism is singular: where a step's signed,
+    normalized determinant changes sign (refined all at once), where a dyad's two
+    modes touch (a change point), and a rocker's limits."""
+    theta = ev.theta
+    found = [t for ts in ev.switches.values() for t in ts]
     for i, m in enumerate(measure):
-        sign = np.sign(m)
-        changes, zeros = _crossings(m)
-        for k in changes:
-            start, t_ref = ev.at(int(k)), float(ev.theta[k])
-            good, bad = t_ref, float(ev.theta[k + 1])
-            for _ in range(60):
-                mid = 0.5 * (good + bad)
-                _, mm = _at(plan, t_ref, start, mid)
-                if mm is None or np.sign(mm[i]) == sign[k]:
-                    good = mid
-                else:
-                    bad = mid
-                if abs(bad - good) < 1e-11:
-                    break
-            found.append(0.5 * (good + bad))
-        found += [float(ev.theta[k]) for k in zeros]
-        size = np.abs(m)
-        for k in range(1, size.size - 1):
-            if size[k] <= size[k - 1] and size[k] <= size[k + 1] and size[k] < 0.05 \
-                    and sign[k - 1] * sign[k + 1] > 0:
-                t = _golden_minimum(plan, ev, k, i)
-                if t is not None:
-                    found.append(t)
-    if rng is not None:
-        found += list(rng)
-    found = sorted(found)
-    merged = [t for i, t in enumerate(found) if i == 0 or t - found[i - 1] > 1e-6]
-    return sorted(_turn(plan, t, rng) for t in merged)
+        m = np.asarray(m, dtype=float)
+        finite = np.isfinite(m) & (m != 0)
+        idx = np.nonzero(finite)[0]
+        change = np.sign(m[idx[:-1]]) != np.sign(m[idx[1:]])
+        ka, kb = idx[:-1][change], idx[1:][change]
+        found += [float(theta[k]) for k in np.nonzero(m == 0)[0]]
+        if ka.size:
+            def f(t, ka=ka, i=i):
+                _, mm, _ = _pointwise(plan, ev, ka, t)
+                return mm[i]
+            found += list(_bracketed_roots(f, theta[ka], theta[kb], m[ka], m[kb]))
+    if not c.full_turn:
+        found += [c.low, c.high]
+    # (at a change point positions carry the square root of the rounding error, so
+    # the two ways of finding it agree to about 1e-5 degrees: one dead centre)
+    found = sorted(_turn(t, c) for t in found)
+    merged = [t for i, t in enumerate(found) if i == 0 or t - found[i - 1] > 1e-5]
+    if c.full_turn and len(merged) > 1 and merged[0] + 360.0 - merged[-1] <= 1e-5:
+        merged.pop()
+    return merged
 
 
-def _golden_minimum(plan, ev, k, i):
-    """Where step i's |determinant| reaches zero between sweep points k - 1 and k + 1."""
-    start, t_ref = ev.at(k - 1), float(ev.theta[k - 1])
-    lo, hi = t_ref, float(ev.theta[k + 1])
-    ratio = (math.sqrt(5) - 1) / 2
-
-    def f(t):
-        _, m = _at(plan, t_ref, start, t)
-        return math.inf if m is None else abs(float(m[i]))
-    a, b = hi - ratio * (hi - lo), lo + ratio * (hi - lo)
-    fa, fb = f(a), f(b)
-    for _ in range(80):
-        if fa < fb:
-            hi, b, fb = b, a, fa
-            a = hi - ratio * (hi - lo)
-            fa = f(a)
-        else:
-            lo, a, fa = a, b, fb
-            b = lo + ratio * (hi - lo)
-            fb = f(b)
-        if hi - lo < 1e-10:
-            break
-    t = 0.5 * (lo + hi)
-    return t if f(t) < 1e-5 else None
-
-
-def _turn(plan, t, rng):
+def _turn(t, c):
     """An angle of a full-turn cycle in [0, 360); a rocker's as it is."""
-    return float(t % 360.0) if rng is None else float(t)
+    return float(t % 360.0) if c.full_turn else float(t)

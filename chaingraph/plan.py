@@ -149,8 +149,8 @@ def build_plan(chain, fixed=None, driver=None, *, closed_form=True) -> Plan:
     ------
     MechanismError
         For a higher pair or spatial joint, a joint without a position, a driver not
-        pinned to the fixed link by an R joint, a sliding block whose pin is off its
-        line, or a mobility other than 1 with this driver (the mobility found is said).
+        pinned to the fixed link by an R joint, or a mobility other than 1 with this
+        driver (the mobility found is said).
     """
     name = chain.source or chain.name
     m = chain.mechanism
@@ -200,11 +200,12 @@ def build_plan(chain, fixed=None, driver=None, *, closed_form=True) -> Plan:
     points = [j.at for j in chain.joints] + [p.at for p in chain.points]
     xs, ys = [p[0] for p in points], [p[1] for p in points]
     size = max(max(xs) - min(xs), max(ys) - min(ys), 1e-300)
-    _check_blocks(chain, size, name)
     constraints = tuple(_constraints(chain, fixed, driver, pivot.id))
     mobility = 3 * (len(chain.links) - 1) - 2 * sum(j.order - 1 for j in chain.joints)
-    numeric = _numeric_mobility(chain, fixed, driver, pivot)
-    if numeric != 1:
+    numeric = _numeric_mobility(chain, fixed, driver, pivot, size)
+    # a drawn pose at a dead centre or change point loses rank there: that is no reason
+    # to refuse a chain whose count says it moves (its range says where it can go)
+    if numeric != 1 and not (mobility == 1 and numeric > 1):
         raise MechanismError(
             f"the mobility with driver {driver!r} and {fixed!r} fixed is {numeric} at the "
             f"drawn pose (Kutzbach: {mobility}); the driver must determine the motion "
@@ -215,37 +216,19 @@ def build_plan(chain, fixed=None, driver=None, *, closed_form=True) -> Plan:
                 size=size, mobility=mobility, numeric_mobility=numeric)
 
 
-def _check_blocks(chain, size, name):
-    """A sliding block with one pin must have the pin on its sliding line.
+def _numeric_mobility(chain, fixed, driver, pivot, size):
+    """Coordinates (3 per moving link) minus the rank of all constraints at the drawn pose.
 
-    (Within 1e-6 of the mechanism's size, so that hand-typed coordinates pass; an
-    offset pin moves along a parallel line, so nothing is lost by asking for it.)
-    """
-    for j in chain.joints:
-        if j.kind != "P":
-            continue
-        others = [k for k in chain.joints_of(j.block) if k.id != j.id]
-        if len(others) != 1 or others[0].kind != "R":
-            continue
-        pin = others[0]
-        a = math.radians(j.axis)
-        off = -math.sin(a) * (pin.at[0] - j.at[0]) + math.cos(a) * (pin.at[1] - j.at[1])
-        if abs(off) > 1e-6 * size:
-            unit = f" {chain.units}" if chain.units else ""
-            raise MechanismError(
-                f"the drawn pose does not satisfy the joint: the block {j.block!r}'s pin "
-                f"{pin.id!r} is {abs(off):.6g}{unit} off the sliding line (through "
-                f"{list(j.at)} at {j.axis:g} degrees)", mechanism=name,
-                where=f"joint {j.id!r}")
-
-
-def _numeric_mobility(chain, fixed, driver, pivot):
-    """Coordinates (3 per moving link) minus the rank of all constraints at the drawn pose."""
+    The Jacobian is taken about the drawing's centre and in units of its size, so that
+    its rank does not depend on where the mechanism is drawn or how large it is."""
     moving = [x for x in chain.links if x != fixed]
     col = {x: 3 * i for i, x in enumerate(moving)}
     rows = []
+    points = [j.at for j in chain.joints]
+    centre = (sum(p[0] for p in points) / len(points), sum(p[1] for p in points) / len(points))
     for c in _constraints(chain, fixed, driver, pivot=""):
-        for coeffs in _rows_at_drawn_pose(c):
+        local = ((c.point[0] - centre[0]) / size, (c.point[1] - centre[1]) / size)
+        for coeffs in _rows_at_drawn_pose(Constraint(c.kind, c.joint, c.a, c.b, local, c.axis)):
             row = np.zeros(3 * len(moving))
             for link, vec in coeffs.items():
                 if link != fixed:
@@ -253,9 +236,7 @@ def _numeric_mobility(chain, fixed, driver, pivot):
             rows.append(row)
     if not rows:
         return 3 * len(moving)
-    jac = np.array(rows)
-    scale = max(1.0, np.abs(jac).max())
-    rank = np.linalg.matrix_rank(jac / scale, tol=1e-9)
+    rank = np.linalg.matrix_rank(np.array(rows), tol=1e-9)
     return 3 * len(moving) - int(rank)
 
 

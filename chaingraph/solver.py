@@ -27,31 +27,10 @@ import numpy as np
 
 from .errors import AssemblyError
 
-__all__ = ["Evaluation", "evaluate", "rates", "residuals", "make_pose", "rotate"]
+__all__ = ["Evaluation", "Reference", "evaluate", "evaluate_at", "rates", "residuals",
+           "make_pose", "rotate"]
 
 _DISC_TOL = 1e-10
-
-
-class Evaluation:
-    """Poses of every link along a path of input angles, with what the next needs."""
-
-    def __init__(self, theta, pose, feasible, signs, group_q):
-        self.theta = theta            # degrees, (N,)
-        self.pose = pose              # link -> (x, y, phi) arrays
-        self.feasible = feasible      # (N,) bool
-        self.signs = signs            # step index -> (N,) branch signs
-        self.group_q = group_q        # step index -> (N, 3k) group coordinates
-
-    def at(self, k):
-        """The state at point k, to continue a new path from (its first angle)."""
-        return _Start({i: float(v[k]) for i, v in self.signs.items()},
-                      {i: q[k] for i, q in self.group_q.items()})
-
-
-class _Start:
-    def __init__(self, signs, group_q):
-        self.signs = signs
-        self.group_q = group_q
 
 
 # -- small geometry on arrays --------------------------------------------------------
@@ -151,10 +130,12 @@ def _two_lines(pose, u, c1, c2):
 def _dyad_roots(step, pose, scale):
     """A dyad's assembly modes.
 
-    Returns (keys, build, ok): ``keys`` the two modes' joint point (or rotation as a
-    unit vector), arrays of shape (N, 2) or None for a dyad with one mode; ``build(sign)``
-    the poses of the dyad's links for an array of mode signs (+1 or -1); ``ok`` where the
-    dyad can be assembled.
+    Returns (keys, build, ok, disc): ``keys`` the two modes' joint point (or rotation as
+    a unit vector), arrays of shape (N, 2) or None for a dyad with one mode;
+    ``build(sign)`` the poses of the dyad's links for an array of mode signs (+1 or -1);
+    ``ok`` where the dyad can be assembled; ``disc`` the discriminant over the size
+    squared (dimensionless: negative where the dyad cannot be assembled, zero where its
+    two modes meet), or None for a dyad with one mode.
     """
     a, b = step.links
     ca, cb, cj = step.constraints
@@ -173,7 +154,8 @@ def _dyad_roots(step, pose, scale):
             d2 = dx * dx + dy * dy
             d = np.sqrt(d2)
             along = (ra * ra - rb * rb + d2) / (2 * d)
-            h2, ok = _clamp_disc(ra * ra - along * along, scale * scale)
+            raw = ra * ra - along * along
+            h2, ok = _clamp_disc(raw, scale * scale)
             h = np.sqrt(h2)
             ux, uy = dx / d, dy / d
             mid = (wa[0] + along * ux, wa[1] + along * uy)
@@ -182,7 +164,8 @@ def _dyad_roots(step, pose, scale):
             base, dirn, turn_b = _line_of(pose, cb, b, q)
             ex, ey = base[0] - wa[0], base[1] - wa[1]
             beta = dirn[0] * ex + dirn[1] * ey
-            disc, ok = _clamp_disc(beta * beta - (ex * ex + ey * ey - ra * ra), scale * scale)
+            raw = beta * beta - (ex * ex + ey * ey - ra * ra)
+            disc, ok = _clamp_disc(raw, scale * scale)
             root_disc = np.sqrt(disc)
             mid = (base[0] - beta * dirn[0], base[1] - beta * dirn[1])
             off = (root_disc * dirn[0], root_disc * dirn[1])
@@ -195,7 +178,7 @@ def _dyad_roots(step, pose, scale):
             if pattern == "RRR":
                 return {a: pa, b: _fit_two_points(cb.point, wb, q, (x, y))}
             return {a: pa, b: _from_point(turn_b, q, (x, y))}
-        return keys, build, ok
+        return keys, build, ok, raw / (scale * scale)
     if pattern == "RPR":
         wa = _world(pose, ca.other(a), ca.point)
         wb = _world(pose, cb.other(b), cb.point)
@@ -204,7 +187,8 @@ def _dyad_roots(step, pose, scale):
         dist = np.hypot(dx, dy)
         c = nx_ * (cb.point[0] - ca.point[0]) + ny_ * (cb.point[1] - ca.point[1])
         ratio = c / dist
-        disc, ok = _clamp_disc(1.0 - ratio * ratio, 1.0)
+        raw = 1.0 - ratio * ratio
+        disc, ok = _clamp_disc(raw, 1.0)
         # rotation phi = start +- spread, with cos(spread) = ratio
         cs0, sn0 = dx / dist, dy / dist            # direction of the centre line
         cn, sn = nx_, ny_                           # drawn normal: rotate back by it
@@ -220,7 +204,7 @@ def _dyad_roots(step, pose, scale):
             c1, s1 = turn(sign)
             e = make_pose(0.0, 0.0, np.arctan2(s1, c1), c1, s1)
             return {a: _from_point(e, ca.point, wa), b: _from_point(e, cb.point, wb)}
-        return keys, build, ok
+        return keys, build, ok, raw
     if pattern == "PRP":
         base_a, dir_a, turn_a = _line_of(pose, ca, a, q)
         base_b, dir_b, turn_b = _line_of(pose, cb, b, q)
@@ -231,7 +215,7 @@ def _dyad_roots(step, pose, scale):
 
         def build(sign):
             return {a: _from_point(turn_a, q, (x, y)), b: _from_point(turn_b, q, (x, y))}
-        return None, build, np.isfinite(x)
+        return None, build, np.isfinite(x), None
     if pattern == "RPP":
         wa = _world(pose, ca.other(a), ca.point)
         pa = _from_point(pose[cb.other(b)], ca.point, wa)
@@ -240,43 +224,8 @@ def _dyad_roots(step, pose, scale):
             known = dict(pose)
             known[a] = pa
             return {a: pa, b: _two_lines(known, b, cb, cj)}
-        return None, build, np.isfinite(wa[0])
+        return None, build, np.isfinite(wa[0]), None
     raise ValueError(f"no closed form for a {pattern} dyad")
-
-
-def _choose_modes(keys, sign0, n):
-    """Mode signs along the path: sign0 at the start, switched where the other mode
-    continues more smoothly (the two modes meet at a tangency)."""
-    signs = np.full(n, sign0)
-    if n < 3:
-        return signs
-    kp, km = keys
-    cur = (kp if sign0 > 0 else km)[:n].copy()
-    alt = (km if sign0 > 0 else kp)[:n].copy()
-    k = _next_candidate(cur, alt, 1)
-    while k < n - 1:
-        pred = 2 * cur[k] - cur[k - 1]
-        same = np.linalg.norm(cur[k + 1] - pred)
-        other = np.linalg.norm(alt[k + 1] - pred)
-        gap = np.linalg.norm(cur[k + 1] - alt[k + 1])
-        if np.isfinite(same) and np.isfinite(other) and other < 0.25 * same and gap > 1e-12:
-            cur[k + 1:], alt[k + 1:] = alt[k + 1:].copy(), cur[k + 1:].copy()
-            signs[k + 1:] *= -1
-        k = _next_candidate(cur, alt, k + 1)
-    return signs
-
-
-def _next_candidate(cur, alt, k):
-    """The next point from k on where the two modes come close (where a switch can help)."""
-    if k >= cur.shape[0] - 1:
-        return cur.shape[0]
-    diff, move = cur[k:] - alt[k:], cur[k:] - cur[k - 1:-1]
-    gap2 = diff[:, 0] ** 2 + diff[:, 1] ** 2
-    step2 = move[:, 0] ** 2 + move[:, 1] ** 2
-    near = np.nonzero(gap2 <= 16 * step2 + 1e-300)[0]
-    if near.size == 0:
-        return cur.shape[0]
-    return max(k, k + int(near[0]) - 1)
 
 
 def _initial_sign(keys, drawn):
@@ -299,47 +248,232 @@ def _known_poses(plan, theta):
             plan.driver: make_pose(ox - rx, oy - ry, alpha, turn[3], turn[4])}
 
 
+class Reference:
+    """Where pointwise evaluations continue from: per point, an input angle, each
+    dyad's mode sign there, each group's coordinates there, and the angles where each
+    dyad's modes change label (``switches``: its two modes meet there and the motion
+    continues smoothly into the other label)."""
+
+    def __init__(self, theta, signs, group_q, switches):
+        self.theta = np.asarray(theta, dtype=float)
+        self.signs = signs
+        self.group_q = group_q
+        self.switches = switches
+
+    def sign(self, i, theta):
+        """Step i's mode sign at ``theta``, from the reference's across its switches."""
+        s = np.broadcast_to(self.signs[i], self.theta.shape).astype(float)
+        for t in self.switches.get(i, ()):
+            s = np.where((t - self.theta) * (t - theta) < 0, -s, s)
+        return s
+
+
+def evaluate_at(plan, theta, ref, *, upto=None):
+    """Poses at the angles ``theta`` (degrees, shape (M,)), each point continued from
+    the same point of ``ref`` (a :class:`Reference` of M points, close by) without
+    tracking: the modes are the reference's, across its switches; groups are solved by
+    Newton's method from the reference's coordinates. Only the first ``upto`` steps of
+    the plan when given.
+
+    Returns (pose, feasible, group_q).
+    """
+    theta = np.asarray(theta, dtype=float)
+    with np.errstate(divide="ignore", invalid="ignore", over="ignore"):
+        pose = _known_poses(plan, theta)
+        feasible = np.ones(theta.size, dtype=bool)
+        group_q = {}
+        for i, step in enumerate(plan.steps[:upto]):
+            if step.kind == "single":
+                pose.update(_single(step, pose))
+            elif step.kind == "dyad":
+                keys, build, ok, _ = _dyad_roots(step, pose, plan.size)
+                feasible &= ok
+                pose.update(build(1.0 if keys is None else ref.sign(i, theta)))
+            else:
+                q0 = np.broadcast_to(ref.group_q[i], (theta.size, _form(step).size))
+                q, ok = _newton(plan, step, pose, q0)
+                feasible &= ok
+                group_q[i] = q
+                pose.update(_form(step).complete(_form(step).set_bodies(pose, q)))
+    return pose, feasible, group_q
+
+
+class Evaluation:
+    """Poses of every link along a path of input angles, with what the next needs."""
+
+    def __init__(self, theta, pose, feasible, signs, group_q, switches):
+        self.theta = theta            # degrees, (N,)
+        self.pose = pose              # link -> (x, y, phi) arrays
+        self.feasible = feasible      # (N,) bool
+        self.signs = signs            # step index -> (N,) branch signs
+        self.group_q = group_q        # step index -> (N, 3k) group coordinates
+        self.switches = switches      # step index -> angles where the mode label changes
+
+    def at(self, k):
+        """The state at point k, to continue a new path from (its first angle)."""
+        return _Start({i: float(v[k]) for i, v in self.signs.items()},
+                      {i: q[k] for i, q in self.group_q.items()})
+
+    def reference(self, k):
+        """A :class:`Reference` for pointwise evaluations near the points ``k`` (array)."""
+        k = np.asarray(k)
+        return Reference(self.theta[k], {i: v[k] for i, v in self.signs.items()},
+                         {i: q[k] for i, q in self.group_q.items()}, self.switches)
+
+    def take(self, k):
+        """The evaluation at the points ``k`` only (an index array)."""
+        def pick(v):
+            return v if np.ndim(v) == 0 else v[k]
+        return Evaluation(self.theta[k], {x: tuple(pick(v) for v in p)
+                                          for x, p in self.pose.items()},
+                          self.feasible[k], {i: v[k] for i, v in self.signs.items()},
+                          {i: q[k] for i, q in self.group_q.items()}, self.switches)
+
+
+class _Start:
+    def __init__(self, signs, group_q):
+        self.signs = signs
+        self.group_q = group_q
+
+
 def evaluate(plan, theta, *, start=None) -> Evaluation:
     """Poses along a path of input angles (degrees), continued from ``start`` (an
-    Evaluation whose last point is the path's first), else from the drawn pose, which
-    must then be the path's first point."""
+    Evaluation's state at the path's first point), else from the drawn pose, which
+    must then be the path's first point.
+
+    Each dyad keeps its assembly mode along the path. Its two modes meet only where
+    its discriminant reaches zero; every sampled local minimum of the discriminant is
+    refined between the neighbouring samples, so that a narrow window where the dyad
+    cannot be assembled is found (the path stops there), and where the modes touch
+    the motion continues into whichever label continues it smoothly (as a
+    parallelogram passes its change points). The poses at an angle therefore do not
+    depend on how finely the path is sampled.
+    """
     # a degenerate step (two attachment points at one place) gives NaN, which counts as
     # "cannot be assembled", not as a warning
     with np.errstate(divide="ignore", invalid="ignore", over="ignore"):
         return _evaluate(plan, np.asarray(theta, dtype=float), start)
 
 
+_TOUCH_CANDIDATE = 0.05   # sampled discriminant minima below this are refined
+_ZOOM_POINTS = 33
+_SWITCH_STEP = 1e-4       # degrees either side of a touch, to see which label continues
+
+
 def _evaluate(plan, theta, start):
     pose = _known_poses(plan, theta)
     feasible = np.ones(theta.size, dtype=bool)
-    signs, group_q = {}, {}
+    signs, group_q, switches = {}, {}, {}
     for i, step in enumerate(plan.steps):
         if step.kind == "single":
             pose.update(_single(step, pose))
             continue
         if step.kind == "dyad":
-            keys, build, ok = _dyad_roots(step, pose, plan.size)
-            feasible &= ok
-            if keys is not None:
-                drawn = (1.0, 0.0) if step.pattern == "RPR" else step.constraints[2].point
-                sign0 = start.signs[i] if start is not None else _initial_sign(keys, drawn)
-                last = int(np.argmin(feasible)) if not feasible.all() else theta.size
-                chosen = np.full(theta.size, sign0)
-                chosen[:last] = _choose_modes(keys, sign0, last)
-                signs[i] = chosen
-                pose.update(build(chosen))
-            else:
+            keys, build, ok, disc = _dyad_roots(step, pose, plan.size)
+            if keys is None:
+                feasible &= ok
                 pose.update(build(1.0))
+                continue
+            drawn = (1.0, 0.0) if step.pattern == "RPR" else step.constraints[2].point
+            sign0 = start.signs[i] if start is not None else _initial_sign(keys, drawn)
+            ref = Evaluation(theta, pose, feasible, signs, group_q, switches)
+            chosen, ok, found = _track(plan, i, step, ref, np.where(feasible, disc, np.nan),
+                                       sign0)
+            feasible &= ok
+            signs[i] = chosen
+            switches[i] = found
+            pose.update(build(chosen))
             continue
         q0 = start.group_q[i] if start is not None else np.zeros(_form(step).size)
-        q, ok = _newton_path(plan, step, pose, theta, q0)
+        head = Evaluation(theta, pose, feasible, signs, group_q, switches)
+        q, ok = _newton_path(plan, step, pose, theta, q0, head=head)
         feasible &= ok
         group_q[i] = q
         pose.update(_form(step).complete(_form(step).set_bodies(pose, q)))
     if not feasible.all():
         first_bad = int(np.argmin(feasible))
         feasible[first_bad:] = False
-    return Evaluation(theta, pose, feasible, signs, group_q)
+    return Evaluation(theta, pose, feasible, signs, group_q, switches)
+
+
+def _track(plan, i, step, head, disc, sign0):
+    """Mode signs of dyad step i along the path, where it can be assembled, and the
+    angles where its label switches.
+
+    ``head`` is the path's evaluation so far (the steps before i); ``disc`` the dyad's
+    sampled discriminant (NaN where an earlier step failed).
+    """
+    theta = head.theta
+    n = theta.size
+    ok = disc >= -_DISC_TOL
+    last = n if ok.all() else int(np.argmin(ok))
+    direction = 1.0 if n < 2 or theta[-1] >= theta[0] else -1.0
+    found = []
+    if last >= 2:
+        d = disc[:last]
+        left = np.r_[np.inf, d[:-1]]
+        right = np.r_[d[1:], np.inf if last == n else -np.inf]
+        candidates = np.nonzero((d <= left) & (d <= right) & (d < _TOUCH_CANDIDATE))[0]
+        for k in candidates:
+            if k >= last:
+                break
+            lo, hi = theta[max(k - 1, 0)], theta[min(k + 1, last - 1)]
+            tstar, dmin = _zoom_minimum(plan, i, step, head, int(k), lo, hi)
+            if dmin < -_DISC_TOL:          # a window where it cannot be assembled
+                last = min(last, int(np.argmax(direction * (theta - tstar) >= 0)))
+                break
+            if dmin <= _DISC_TOL:
+                sign = sign0 * (-1.0) ** len(found)
+                if _switches_label(plan, i, step, head, int(k), tstar, direction, sign):
+                    if not found or abs(tstar - found[-1]) > 1e-7:
+                        found.append(float(tstar))
+    signs = np.full(n, float(sign0))
+    for t in found:
+        signs = np.where(direction * (theta - t) > 0, -signs, signs)
+    ok = np.zeros(n, dtype=bool)
+    ok[:last] = True
+    return signs, ok, found
+
+
+def _head_roots(plan, i, step, head, k, ts):
+    ref = head.reference(np.full(ts.size, k))
+    pose, feasible, _ = evaluate_at(plan, ts, ref, upto=i)
+    with np.errstate(divide="ignore", invalid="ignore", over="ignore"):
+        keys, _, _, disc = _dyad_roots(step, pose, plan.size)
+    return keys, np.where(feasible, disc, np.nan)
+
+
+def _zoom_minimum(plan, i, step, head, k, lo, hi):
+    """The least discriminant of dyad i between angles lo and hi (sampled ever more
+    finely around the least sample), stopping early once it is negative."""
+    tstar, dmin = float(head.theta[k]), math.inf
+    for _ in range(12):
+        ts = np.linspace(lo, hi, _ZOOM_POINTS)
+        _, d = _head_roots(plan, i, step, head, k, ts)
+        if np.all(np.isnan(d)):
+            break
+        j = int(np.nanargmin(d))
+        tstar, dmin = float(ts[j]), float(d[j])
+        if dmin < -_DISC_TOL:
+            break
+        lo, hi = ts[max(j - 1, 0)], ts[min(j + 1, ts.size - 1)]
+        if abs(hi - lo) < 1e-9:
+            break
+    return tstar, dmin
+
+
+def _switches_label(plan, i, step, head, k, tstar, direction, sign):
+    """At a touch of the two modes, whether the motion continues in the other label:
+    the label whose point is nearer the straight continuation of the last two."""
+    h = _SWITCH_STEP * direction
+    ts = np.array([tstar - 2 * h, tstar - h, tstar + h])
+    keys, disc = _head_roots(plan, i, step, head, k, ts)
+    if not np.all(disc[1:] >= -_DISC_TOL):
+        return False             # a fold: the path cannot pass, nothing to continue
+    cur = keys[0] if sign > 0 else keys[1]
+    alt = keys[1] if sign > 0 else keys[0]
+    pred = cur[1] + 2 * (cur[1] - cur[0])
+    return bool(np.linalg.norm(alt[2] - pred) < np.linalg.norm(cur[2] - pred))
 
 
 # -- constraint rows (Jacobian and quadratic velocity terms) ------------------------
@@ -423,7 +557,9 @@ def _dot3(c, v):
     return total
 
 
-_SINGULAR = 1e-6
+_SINGULAR = 1e-4          # velocities are NaN below this normalized determinant
+_SINGULAR_ACC = 1e-3      # accelerations below this (their error grows as its cube)
+_SINGULAR_GROUP = 1e-12   # a group's inverse Frobenius condition number
 _POINT_DYADS = True      # RRR dyads in point coordinates (tests compare both ways)
 
 
@@ -431,7 +567,9 @@ def _column_free_det(p11, p12, p21, p22):
     """The 2 x 2 determinant over the product of its column lengths: the signed sine of
     the angle between the columns, 0 when singular whatever the units of the rates.
     (A tangency leaves positions accurate to about the square root of the rounding
-    error, so rates are refused (NaN) below ``_SINGULAR``, not at zero only.)"""
+    error, so rates are refused (NaN) below ``_SINGULAR``, not at zero only: near a
+    tangency a position error e becomes about e / d in velocities and e / d**3 in
+    accelerations, for the normalized determinant d.)"""
     return (p11 * p22 - p12 * p21) / ((np.hypot(p11, p21) + 1e-300) *
                                        (np.hypot(p12, p22) + 1e-300))
 
@@ -571,7 +709,7 @@ class _Factor:
             measure = 1.0 / (np.sqrt((m * m).sum(axis=(1, 2)) *
                                      (inv * inv).sum(axis=(1, 2))) + 1e-300)
             self._measure = np.where(np.isfinite(measure), measure, 0.0)
-            self.singular = self._measure <= _SINGULAR ** 2
+            self.singular = self._measure <= _SINGULAR_GROUP
             self.inverse = inv
 
     @property
@@ -725,7 +863,7 @@ def rates(plan, pose, omega, n, *, steps=None, measure=True, accelerations=True)
             measures.append(np.broadcast_to(f.measure, (n,)))
     for f in (factors if accelerations else []):
         if isinstance(f, _PointDyad):
-            acc.update(f.solve_acceleration(acc, vel))
+            acc.update(_refuse_near_singular(f, f.solve_acceleration(acc, vel)))
             continue
         if f.step.kind == "group":
             acc.update(f.solve(f.right_hand_sides(acc, f.form.gammas(pose, vel))))
@@ -733,11 +871,22 @@ def rates(plan, pose, omega, n, *, steps=None, measure=True, accelerations=True)
             continue
         gammas = [g for c, geom in zip(f.step.constraints, f.geometry)
                   for g in _gammas(c, pose, vel, geom)]
-        acc.update(f.solve(f.right_hand_sides(acc, gammas)))
+        acc.update(_refuse_near_singular(f, f.solve(f.right_hand_sides(acc, gammas))))
     for table in (vel, acc):
         table[plan.fixed] = (zero, zero, zero)
         table[plan.driver] = tuple(v + zero for v in table[plan.driver])
     return vel, acc, (np.array(measures) if measure else None)
+
+
+def _refuse_near_singular(factor, found):
+    """NaN accelerations where a dyad is too near a singular pose for them to be exact."""
+    if factor.step.kind != "dyad":
+        return found
+    near = np.abs(factor.measure) < _SINGULAR_ACC
+    if not np.any(near):
+        return found
+    return {link: tuple(np.where(near, np.nan, v) for v in values)
+            for link, values in found.items()}
 
 
 # -- groups: reduced coordinates ------------------------------------------------------
@@ -943,19 +1092,31 @@ def _newton(plan, step, known, q, iterations=40, tol_rel=1e-12):
 
 
 def _batched_inverse(mat):
-    """Stacked inverses; a singular matrix gets its pseudo-inverse."""
-    try:
-        return np.linalg.inv(mat)
-    except np.linalg.LinAlgError:
-        return np.linalg.pinv(mat)
+    """Stacked inverses; a singular matrix gets its pseudo-inverse, a matrix with
+    non-finite entries (an earlier step that failed) NaN."""
+    out = np.full(mat.shape[:1] + mat.shape[:0:-1], np.nan)
+    good = np.isfinite(mat).all(axis=(1, 2))
+    if good.any():
+        m = mat[good]
+        try:
+            out[good] = np.linalg.inv(m)
+        except np.linalg.LinAlgError:
+            out[good] = np.linalg.pinv(m)
+    return out
 
 
 def _batched_solve(mat, rhs):
-    """Solve stacked systems; a singular one (at a fold) gets its least-squares step."""
-    try:
-        return np.linalg.solve(mat, rhs[..., None])[..., 0]
-    except np.linalg.LinAlgError:
-        return np.einsum("nij,nj->ni", np.linalg.pinv(mat), rhs)
+    """Solve stacked systems; a singular one (at a fold) gets its least-squares step,
+    one with non-finite entries NaN."""
+    out = np.full(rhs.shape, np.nan)
+    good = np.isfinite(mat).all(axis=(1, 2)) & np.isfinite(rhs).all(axis=1)
+    if good.any():
+        m, r = mat[good], rhs[good]
+        try:
+            out[good] = np.linalg.solve(m, r[..., None])[..., 0]
+        except np.linalg.LinAlgError:
+            out[good] = np.einsum("nij,nj->ni", np.linalg.pinv(m), r)
+    return out
 
 
 def _slice(pose, idx):
@@ -963,14 +1124,15 @@ def _slice(pose, idx):
             for k, p in pose.items()}
 
 
-def _newton_path(plan, step, pose, theta, q0, coarse_deg=10.0):
+def _newton_path(plan, step, pose, theta, q0, coarse_deg=10.0, *, head=None):
     """Group coordinates along the path, from q0 at its first point.
 
-    A coarse continuation (steps of at most ``coarse_deg``, an eighth of the path at
-    most, halved where Newton's method fails, with the tangent as predictor) follows
-    the assembly mode; every point is then corrected at once by batched Newton from
-    Hermite-interpolated guesses. Points past where the continuation fails are
-    infeasible.
+    A coarse trace of the group's branch by pseudo-arclength continuation (steps of
+    at most ``coarse_deg`` in scaled coordinates) follows the assembly mode through
+    places where the input angle alone would be a poor parameter, and finds a fold
+    (the input turns back: the path cannot go on); every point is then corrected at
+    once by batched Newton from Hermite-interpolated guesses. Points past where the
+    trace ends are infeasible.
     """
     n = theta.size
     q0 = np.asarray(q0, dtype=float)
@@ -979,42 +1141,26 @@ def _newton_path(plan, step, pose, theta, q0, coarse_deg=10.0):
         return q, ok
     span = theta[-1] - theta[0]
     direction = 1.0 if span >= 0 else -1.0
-    h = abs(span) if n <= 2 else min(coarse_deg, max(abs(span) / 8.0, 1e-9))
-    ts, qs, dqs = [], [], []
-    t, q = float(theta[0]), q0
-    known = _known_along(plan, step, pose, theta, np.array([t]))
-    qi, ok = _newton(plan, step, known, q[None])
+    h = min(coarse_deg, max(abs(span) / 8.0, 1e-9))
+    t = float(theta[0])
+    known = _known_along(plan, step, pose, theta, np.array([t]), head)
+    qi, ok = _newton(plan, step, known, q0[None])
     if not ok[0]:
         return np.zeros((n, q0.size)), np.zeros(n, dtype=bool)
-    q = qi[0]
-    dq = _group_tangent(plan, step, known, qi, np.array([t]))[0]
-    ts.append(t), qs.append(q), dqs.append(dq)
-    end = float(theta[-1])
-    step_deg = h
-    while direction * (end - t) > 1e-12 and step_deg > 1e-6:
-        for _ in range(10):
-            step_deg = min(step_deg, abs(end - t))
-            t_new = t + direction * step_deg
-            known = _known_along(plan, step, pose, theta, np.array([t_new]))
-            move = (dq if np.all(np.isfinite(dq)) else 0.0) * math.radians(t_new - t)
-            guess = q + move
-            # coarse points only anchor the interpolation: the chord method below takes
-            # every point to the rounding, so 1e-9 of the size is enough here
-            qi, ok = _newton(plan, step, known, guess[None], tol_rel=1e-9)
-            # the same assembly mode: Newton's correction small beside the predicted move
-            if ok[0] and np.linalg.norm(qi[0] - guess) <= \
-                    0.3 * np.linalg.norm(move) + 1e-6 * plan.size:
-                break
-            step_deg /= 2
-        else:
-            break
-        t, q = t_new, qi[0]
-        step_deg = min(h, 1.5 * step_deg)
-        dq = _group_tangent(plan, step, known, qi, np.array([t]))[0]
-        ts.append(t), qs.append(q), dqs.append(dq)
+    ts, qs, dqs, fold = _trace(plan, step, pose, theta, head, qi[0], t, float(theta[-1]),
+                               direction, h)
     tc, qc, dqc = np.array(ts), np.array(qs), np.array(dqs)
     reached = direction * (theta - tc[-1]) <= 1e-9
     guess = _hermite(tc, qc, dqc, theta)
+    if fold is not None:
+        # between the trace's last point and the fold, q moves as the square root of
+        # the input's distance from the fold: predict it so, on this side
+        t_f, q_f = fold
+        near = ~reached & (direction * (theta - t_f) <= 1e-12)
+        with np.errstate(invalid="ignore", divide="ignore"):
+            frac = np.sqrt(np.clip((t_f - theta[near]) / (t_f - tc[-1]), 0.0, 1.0))
+        guess[near] = q_f + (qc[-1] - q_f) * frac[:, None]
+        reached = reached | near
     guess = np.where(np.isfinite(guess), guess, 0.0)
     q, ok = _chord(plan, step, pose, guess)
     if not ok.all():
@@ -1022,24 +1168,172 @@ def _newton_path(plan, step, pose, theta, q0, coarse_deg=10.0):
         q2, ok2 = _newton(plan, step, _slice(pose, redo), guess[redo])
         q[redo], ok[redo] = q2, ok2
     ok &= np.linalg.norm(q - guess, axis=1) <= 0.05 * plan.size
-    # near a fold the tangent blows up and guesses are poor: continue point by point
-    for i in np.nonzero(reached & ~ok)[0]:
-        if i == 0 or not ok[i - 1]:
+    ok &= reached
+    # near a fold the tangent blows up and guesses are poor: continue point by point,
+    # approaching each point through ever finer substeps (a limit of the range is a
+    # fold, where Newton's method converges only linearly)
+    for i in range(1, n):
+        if ok[i]:
             continue
-        qi, good = _newton(plan, step, _slice(pose, slice(i, i + 1)), q[i - 1:i])
-        if good[0] and np.linalg.norm(qi[0] - q[i - 1]) <= 0.05 * plan.size:
-            q[i], ok[i] = qi[0], True
-    return q, ok & reached
+        if not ok[i - 1]:
+            break
+        qi = _approach(plan, step, pose, theta, head, float(theta[i - 1]), q[i - 1],
+                       float(theta[i]))
+        if qi is None:
+            break
+        q[i], ok[i] = qi, True
+    return q, ok
 
 
-def _known_along(plan, step, pose, theta, at):
+class _Branch:
+    """A group's equations in the scaled unknowns z = (q / scale, input in radians),
+    for continuation along its branch."""
+
+    def __init__(self, plan, step, pose, theta, head):
+        self.plan, self.step, self.pose, self.theta, self.head = plan, step, pose, theta, head
+        m = _form(step).size
+        self.scale = np.tile([plan.size, plan.size, 1.0], m // 3)
+
+    def _residual(self, zq, t_deg):
+        t_deg = np.atleast_1d(np.asarray(t_deg, dtype=float))
+        known = _known_along(self.plan, self.step, self.pose, self.theta, t_deg, self.head)
+        q = np.repeat((self.scale * zq)[None], t_deg.size, axis=0)
+        return _group_residual(self.step, _with_group(known, self.step, q)), known, q
+
+    def residual(self, z):
+        return self._residual(z[:-1], math.degrees(z[-1]))[0][0] / self.plan.size
+
+    def jacobian(self, z):
+        t = math.degrees(z[-1])
+        _, known, q = self._residual(z[:-1], t)
+        fq = _group_jacobian(self.step, _with_group(known, self.step, q), 1)[0] * self.scale
+        d = 1e-6
+        r = self._residual(z[:-1], [t - d, t + d])[0]
+        ft = (r[1] - r[0]) / (2 * math.radians(d))
+        return np.column_stack([fq, ft]) / self.plan.size
+
+    def tangent(self, z, like=None, direction=1.0):
+        jac = self.jacobian(z)
+        if not np.isfinite(jac).all():
+            return None
+        _, _, vt = np.linalg.svd(jac)
+        tau = vt[-1]
+        if like is not None:
+            return tau if tau @ like >= 0 else -tau
+        return tau if tau[-1] * direction >= 0 else -tau
+
+    def dq(self, tau):
+        """dq / d(input) per radian along the branch (infinite at a fold)."""
+        with np.errstate(divide="ignore", invalid="ignore"):
+            return self.scale * tau[:-1] / tau[-1]
+
+
+def _trace(plan, step, pose, theta, head, q, t, end, direction, h_deg):
+    """Points (input degrees, q, dq/dinput) along the group's branch from (t, q)
+    towards ``end``, by pseudo-arclength continuation; stops at ``end`` or a fold."""
+    branch = _Branch(plan, step, pose, theta, head)
+    z = np.append(q / branch.scale, math.radians(t))
+    tau = branch.tangent(z, direction=direction)
+    if tau is None:
+        return [t], [q], [np.zeros_like(q)], None
+    ts, qs, dqs = [t], [q], [branch.dq(tau)]
+    fold = None
+    h = math.radians(h_deg)
+    ds = h
+    tol = 1e-11
+    while direction * (math.degrees(z[-1]) - end) < -1e-12 and ds > 1e-6 * h:
+        # no further along the arc than reaching the end needs (far, near a fold)
+        remaining = math.radians(abs(end - math.degrees(z[-1])))
+        reach = 1.05 * remaining / max(abs(tau[-1]), 1e-300)
+        ds = min(ds, reach) if reach > 1e-6 * h else ds
+        h_here = max(h, min(reach, math.radians(10.0)))
+        zp = z + ds * tau
+        x, good = zp.copy(), False
+        for _ in range(12):
+            r = np.append(branch.residual(x), tau @ (x - zp))
+            if not np.all(np.isfinite(r)):
+                break
+            if np.abs(r).max() <= tol:
+                good = True
+                break
+            a = np.vstack([branch.jacobian(x), tau])
+            if not np.isfinite(a).all():
+                break
+            x = x + np.linalg.lstsq(a, -r, rcond=None)[0]
+        if not good or np.linalg.norm(x - zp) > 0.25 * ds:
+            ds /= 2
+            continue
+        tau_new = branch.tangent(x, like=tau)
+        if tau_new is None or tau_new @ tau < 0.9:
+            ds /= 2
+            continue
+        if tau_new[-1] * direction <= 0 and tau[-1] * direction > 0:
+            # the input turned back between z and x: a fold, where the path ends
+            fold = _fold(branch, z, tau, ds, direction)
+            break
+        z, tau = x, tau_new
+        ts.append(math.degrees(z[-1])), qs.append(branch.scale * z[:-1])
+        dqs.append(branch.dq(tau))
+        ds = min(h_here, 1.5 * ds)
+    return ts, qs, dqs, fold
+
+
+def _fold(branch, z, tau, ds, direction):
+    """The fold between z and z + ds tau along the arc (where the input turns back),
+    by bisection on the sign of the tangent's input component: (input degrees, q)."""
+    lo, hi, best = 0.0, ds, None
+    for _ in range(40):
+        mid = 0.5 * (lo + hi)
+        zp = z + mid * tau
+        x = zp.copy()
+        for _ in range(12):
+            r = np.append(branch.residual(x), tau @ (x - zp))
+            if not np.all(np.isfinite(r)):
+                return best
+            if np.abs(r).max() <= 1e-12:
+                break
+            a = np.vstack([branch.jacobian(x), tau])
+            if not np.isfinite(a).all():
+                return best
+            x = x + np.linalg.lstsq(a, -r, rcond=None)[0]
+        t_here = branch.tangent(x, like=tau)
+        if t_here is None:
+            return best
+        if t_here[-1] * direction > 0:
+            lo = mid
+            best = (math.degrees(x[-1]), branch.scale * x[:-1])
+        else:
+            hi = mid
+    return best
+
+
+def _approach(plan, step, pose, theta, head, t_from, q_from, t_to):
+    """Group coordinates at ``t_to`` continued from ``q_from`` at ``t_from`` through
+    substeps that shrink geometrically towards ``t_to``; None if it cannot be reached."""
+    ts = t_to - (t_to - t_from) * 4.0 ** -np.arange(1, 9)
+    q = q_from
+    for t in list(ts) + [t_to]:
+        known = _known_along(plan, step, pose, theta, np.array([t]), head)
+        qi, good = _newton(plan, step, known, q[None], iterations=100)
+        if good[0] and np.linalg.norm(qi[0] - q) <= 0.1 * plan.size:
+            q = qi[0]
+        elif t == t_to:
+            return None
+    return q
+
+
+def _known_along(plan, step, pose, theta, at, head=None):
     """Poses of the fixed link, the driver and the links solved before ``step`` at the
-    angles ``at`` (the path's own poses when ``at`` is the path)."""
+    angles ``at`` (the path's own poses when ``at`` is the path), in the path's modes
+    (continued from its nearest point)."""
     if np.array_equal(at, theta):
         return pose
-    from dataclasses import replace
-    head = replace(plan, steps=plan.steps[:plan.steps.index(step)])
-    return evaluate(head, at).pose
+    i = plan.steps.index(step)
+    if head is None:
+        from dataclasses import replace
+        return evaluate(replace(plan, steps=plan.steps[:i]), at).pose
+    k = np.abs(theta[:, None] - at[None, :]).argmin(axis=0)
+    return evaluate_at(plan, at, head.reference(k), upto=i)[0]
 
 
 def _group_tangent(plan, step, known, q, theta):

@@ -295,7 +295,8 @@ def test_sweep_rows_and_csv_columns(tmp_path):
                 f"ay:{name}"} <= set(header)
     assert {"s:S", "v:S", "a:S"} <= set(header)
     # the crank's line runs through its joints A then O (id order): theta - 180
-    assert float(rows[2][header.index("angle:crank")]) == pytest.approx(30.0 - 180.0)
+    angle = float(rows[2][header.index("angle:crank")])
+    assert math.remainder(angle - (30.0 - 180.0), 360.0) == pytest.approx(0.0, abs=1e-9)
 
 
 def test_points_are_tracked():
@@ -475,13 +476,22 @@ def test_bad_mechanisms_are_refused_with_a_reason():
         build_plan(four.with_mechanism("frame"))
 
 
-def test_block_pin_off_its_line_is_reported_with_the_distance():
+def test_block_whose_pin_is_off_its_sliding_line_moves_as_an_offset_slider():
+    """A P joint's line may lie anywhere on the block (issue 10, item 7): a block whose
+    pin B is 3 mm below the sliding line moves exactly as the pin of an offset slider
+    crank with its line through B (offset e = 10)."""
     chain = slider_crank()
-    joints = [j if j.id != "S" else P("S", ["frame", "slider"], (j.at[0], j.at[1] + 3.0), 0.0)
+    joints = [j if j.id != "S" else P("S", ["frame", "slider"], (j.at[0] - 25.0, j.at[1] + 3.0), 0.0)
               for j in chain.joints]
-    bad = Chain(chain.name, tuple(joints), mechanism=chain.mechanism, units="mm")
-    with pytest.raises(MechanismError, match=r"joint 'S'.*pin 'B' is 3 mm off the sliding line"):
-        build_plan(bad)
+    offset = Chain(chain.name, tuple(joints), mechanism=chain.mechanism, units="mm")
+    a, rod, e = 40.0, 120.0, 10.0
+    m = solve(offset, steps=72)
+    th = np.radians(m["theta"])
+    x = a * np.cos(th) + np.sqrt(rod ** 2 - (e - a * np.sin(th)) ** 2)
+    assert np.allclose(m["x:B"], x, atol=1e-9) and np.allclose(m["y:B"], e, atol=1e-9)
+    assert np.allclose(m["s:S"], x - x[0], atol=1e-9)
+    exact = math.sqrt((rod + a) ** 2 - e ** 2) - math.sqrt((rod - a) ** 2 - e ** 2)
+    assert m.summary["stroke"] == pytest.approx(exact, rel=1e-9)
 
 
 @pytest.mark.parametrize("args, words", [
