@@ -168,11 +168,15 @@ def _cmd_solve(args) -> int:
         ["time ratio", _fmt(s["time_ratio"])],
         ["forward / return", f"{_fmt(s['forward_deg'])} / {_fmt(s['return_deg'])} degrees"],
         ["extremes at", ", ".join(f"{t:.6g}" for t in s["extremes"] or []) or "-"],
+        ["every extreme", ", ".join(f"{e['kind']} {e['value']:.6g} at {e['input']:.6g}"
+                                    for e in s.get("extreme_positions") or []) or "-"],
         ["transmission angle", "-" if s["transmission_angle"] is None else
          f"{s['transmission_angle']['min']:.6g} to {s['transmission_angle']['max']:.6g} deg"],
         ["dead centres", ", ".join(f"{t:.6g}" for t in s["dead_centres"]) or "none"],
         ["mobility", f"{s['numeric_mobility']} at the drawn pose (Kutzbach: {s['mobility']})"],
     ]
+    if s.get("note"):
+        rows.append(["note", s["note"]])
     print(_table(rows, ["", ""]).split("\n", 2)[2])
     return 0
 

@@ -30,7 +30,7 @@ from .errors import AssemblyError
 __all__ = ["Evaluation", "Reference", "evaluate", "evaluate_at", "rates", "residuals",
            "make_pose", "rotate"]
 
-_DISC_TOL = 1e-10
+_DISC_TOL = 1e-13   # dimensionless discriminant: rounding is about 1e-16
 
 
 # -- small geometry on arrays --------------------------------------------------------
