@@ -139,7 +139,7 @@ def _fmt(value, unit=""):
 
 
 def _cmd_solve(args) -> int:
-    from .motion import solve
+    from .motion import solve, summary_rows
     chain = load(args.file)
     motion = solve(chain, fixed=args.fixed, driver=args.driver, start=args.start,
                    stop=args.stop, steps=args.steps)
@@ -154,29 +154,9 @@ def _cmd_solve(args) -> int:
     if args.json:
         _print_json(motion.to_dict())
         return 0
-    s = motion.summary
-    unit = f" {s['stroke_unit']}" if s["stroke_unit"] else ""
-    rows = [
-        ["mechanism", motion.name],
-        ["fixed link", motion.fixed],
-        ["driver", motion.driver + ("  (turns fully)" if s["full_turn"] else "  (rocks)")],
-        ["sweep", f"{motion.theta[0]:.6g} to {motion.theta[-1]:.6g} degrees, "
-                  f"{motion.steps} steps"],
-        ["input range", " to ".join(f"{t:.6g}" for t in s["input_range"]) + " degrees"],
-        ["output", s["output"] or "-"],
-        ["stroke", _fmt(s["stroke"], unit)],
-        ["time ratio", _fmt(s["time_ratio"])],
-        ["forward / return", f"{_fmt(s['forward_deg'])} / {_fmt(s['return_deg'])} degrees"],
-        ["extremes at", ", ".join(f"{t:.6g}" for t in s["extremes"] or []) or "-"],
-        ["every extreme", ", ".join(f"{e['kind']} {e['value']:.6g} at {e['input']:.6g}"
-                                    for e in s.get("extreme_positions") or []) or "-"],
-        ["transmission angle", "-" if s["transmission_angle"] is None else
-         f"{s['transmission_angle']['min']:.6g} to {s['transmission_angle']['max']:.6g} deg"],
-        ["dead centres", ", ".join(f"{t:.6g}" for t in s["dead_centres"]) or "none"],
-        ["mobility", f"{s['numeric_mobility']} at the drawn pose (Kutzbach: {s['mobility']})"],
-    ]
-    if s.get("note"):
-        rows.append(["note", s["note"]])
+    rows = [("mechanism", motion.name), *summary_rows(motion)]
+    rows.insert(3, ("sweep", f"{motion.theta[0]:.6g} to {motion.theta[-1]:.6g} degrees, "
+                             f"{motion.steps} steps"))        # after the driver
     print(_table(rows, ["", ""]).split("\n", 2)[2])
     return 0
 

@@ -20,7 +20,8 @@ from .errors import AssemblyError, MechanismError
 from .plan import build_plan
 from .solver import Evaluation, check_poses, evaluate, evaluate_at, rates, rotate
 
-__all__ = ["Motion", "Cycle", "solve", "cycle", "feasible_range", "full_turns"]
+__all__ = ["Motion", "Cycle", "solve", "cycle", "feasible_range", "full_turns",
+           "summary_rows"]
 
 
 
@@ -341,8 +342,7 @@ def solve(mechanism, *, fixed=None, driver=None, start=None, stop=None, steps=36
     else:
         lo = c.low if start is None else float(start)
         hi = c.high if stop is None else float(stop)
-    theta = np.linspace(lo, hi, steps + 1)
-    theta[0], theta[-1] = lo, hi       # exactly the ends (a rocker's limits)
+    theta = np.linspace(lo, hi, steps + 1)    # both ends exact (a rocker's limits)
     ev = _evaluate_sweep(plan, theta)
     check_poses(plan, ev.pose, ev.feasible)
     vel, acc, _ = rates(plan, ev.pose, omega, theta.size, measure=False)
@@ -390,6 +390,46 @@ def full_turns(chain, fixed):
     return fallback
 
 
+def summary_rows(motion):
+    """The summary as (label, text) rows, for the command line and the report.
+
+    Examples
+    --------
+    >>> import chaingraph
+    >>> from chaingraph.catalog import catalog_path
+    >>> m = chaingraph.solve(chaingraph.load(catalog_path("beam-engine")), steps=12)
+    >>> dict(summary_rows(m))["time ratio"]
+    '1.0466'
+    """
+    s = motion.summary
+
+    def num(value, unit=""):
+        if value is None or (isinstance(value, float) and not math.isfinite(value)):
+            return "-"
+        return f"{value:.6g}{unit}"
+    unit = f" {s['stroke_unit']}" if s["stroke_unit"] else ""
+    ta = s["transmission_angle"]
+    rows = [
+        ("fixed link", motion.fixed),
+        ("driver", motion.driver + ("  (turns fully)" if s["full_turn"] else "  (rocks)")),
+        ("input range", " to ".join(f"{t:.6g}" for t in s["input_range"]) + " degrees"),
+        ("output", s["output"] or "-"),
+        ("stroke", num(s["stroke"], unit)),
+        ("time ratio", num(s["time_ratio"])),
+        ("forward / return", f"{num(s['forward_deg'])} / {num(s['return_deg'])} degrees"),
+        ("extremes at", ", ".join(f"{t:.6g}" for t in s["extremes"] or []) or "-"),
+        ("every extreme", ", ".join(f"{e['kind']} {e['value']:.6g} at {e['input']:.6g}"
+                                    for e in s.get("extreme_positions") or []) or "-"),
+        ("transmission angle", "-" if ta is None else
+         f"{ta['min']:.6g} to {ta['max']:.6g} degrees"),
+        ("dead centres", ", ".join(f"{t:.6g}" for t in s["dead_centres"]) or "none"),
+        ("mobility", f"{s['numeric_mobility']} at the drawn pose (Kutzbach: {s['mobility']})"),
+    ]
+    if s.get("note"):
+        rows.append(("note", s["note"]))
+    return rows
+
+
 # -- columns -------------------------------------------------------------------------
 def _point_motion(pose, vel, acc, link, p):
     x, y = pose[link][:2]
@@ -414,10 +454,11 @@ def _link_direction(chain, link):
     return 0.0
 
 
-def _slide(pose, vel, acc, joint):
+def _slide(pose, vel, acc, joint, at):
+    """A P joint's slide, its rate and acceleration; ``at`` its point in the plan's frame."""
     g, b = joint.links
-    pg = _point_motion(pose, vel, acc, g, joint.at)
-    pb = _point_motion(pose, vel, acc, b, joint.at)
+    pg = _point_motion(pose, vel, acc, g, at)
+    pb = _point_motion(pose, vel, acc, b, at)
     d = (pb[0] - pg[0], pb[1] - pg[1])
     dd = (pb[2] - pg[2], pb[3] - pg[3])
     ddd = (pb[4] - pg[4], pb[5] - pg[5])
@@ -464,16 +505,18 @@ def _columns(plan, theta, pose, vel, acc):
     items = [(j.id, j.block if j.kind == "P" else min(j.links, key=lambda x: rank.get(x, 2)),
               j.at) for j in chain.joints]
     items += [(p.id, p.link, p.at) for p in chain.points]
+    ox, oy = plan.origin
     for name, link, at in items:
         if link == plan.fixed:
             values = (at[0], at[1], 0.0, 0.0, 0.0, 0.0)
         else:
-            values = _point_motion(pose, vel, acc, link, at)
+            x, y, *rest = _point_motion(pose, vel, acc, link, plan.local(at))
+            values = (x + ox, y + oy, *rest)
         for key, v in zip(("x", "y", "vx", "vy", "ax", "ay"), values):
             cols[f"{key}:{name}"] = _array(v, n)
     for j in chain.joints:
         if j.kind == "P":
-            for key, v in zip(("s", "v", "a"), _slide(pose, vel, acc, j)):
+            for key, v in zip(("s", "v", "a"), _slide(pose, vel, acc, j, plan.local(j.at))):
                 cols[f"{key}:{j.id}"] = _array(v, n)
     return cols
 
@@ -493,6 +536,18 @@ def _output_signal(plan, output, cols):
             return ("angle", output)
         output = chain.joints_of(output)[0].id
     return ("point", output)
+
+
+def path_direction(cols, name):
+    """The main direction of point ``name``'s path (a unit vector), along which its
+    stroke is measured: its sign points towards the path's point farthest from the
+    path's mean, so that it turns with the drawing and does not depend on its frame."""
+    xy = np.column_stack([cols[f"x:{name}"], cols[f"y:{name}"]])
+    centred = xy - xy.mean(axis=0)
+    _, _, vt = np.linalg.svd(centred, full_matrices=False)
+    far = centred[int(np.argmax(np.hypot(centred[:, 0], centred[:, 1])))]
+    d = vt[0] if far @ vt[0] >= 0 else -vt[0]
+    return float(d[0]), float(d[1])
 
 
 def _signal_values(kind, name, cols, direction=None):
@@ -570,11 +625,7 @@ def _summary(plan, output, omega, c):
         summary["note"] = "no output is named, so there is no stroke or time ratio"
         return summary
     kind, name = signal
-    direction = None
-    if kind == "point":
-        xy = np.column_stack([cols[f"x:{name}"], cols[f"y:{name}"]])
-        _, _, vt = np.linalg.svd(xy - xy.mean(axis=0), full_matrices=False)
-        direction = tuple(vt[0])
+    direction = path_direction(cols, name) if kind == "point" else None
     u, du, _ = _signal_values(kind, name, cols, direction)
     summary["stroke_unit"] = "deg" if kind == "angle" else plan.chain.units
     if kind == "angle" and c.full_turn and abs(u[-1] - u[0]) > 180.0:
@@ -615,47 +666,33 @@ def _output_extremes(plan, ev, kind, name, direction, u, du, scale, c):
     refined by Newton's method on its rate (safeguarded by bisection), and for a rocker
     the values at the input's limits. Each {"input", "value", "kind"}."""
     theta = ev.theta
-    n = theta.size
-    significant = np.abs(du) > 1e-9 * scale
-    sign = np.where(significant, np.sign(du), 0.0)
+    sign = np.where(np.abs(du) > 1e-9 * scale, np.sign(du), 0.0)
     # the rate's sign changes between significant samples (a dwell's rounding noise and
-    # exact zeros on the grid are skipped over, not counted)
-    idx = np.nonzero(sign != 0)[0]
-    flips = idx[:-1][sign[idx[:-1]] != sign[idx[1:]]]
-    nxt = idx[1:][sign[idx[:-1]] != sign[idx[1:]]]
+    # exact zeros on the grid are skipped over, not counted); a crank's cycle closes on
+    # itself, so a change across its seam counts too, one period on
+    idx = np.nonzero(sign)[0]
+    ka, kb = idx[:-1], idx[1:]
+    tb = theta[kb]
+    if c.full_turn and idx.size and sign[idx[-1]] != sign[idx[0]]:
+        ka, kb = np.append(ka, idx[-1]), np.append(kb, idx[0])
+        tb = np.append(tb, theta[idx[0]] + c.period)
+    change = sign[ka] != sign[kb]
+    ka, kb, tb = ka[change], kb[change], tb[change]
     found = []
-    if flips.size:
-        a, b = theta[flips], theta[nxt]
-        t = _bracketed_roots(lambda t: _rate_and_slope(plan, ev, flips, t, kind, name,
-                                                       direction),
-                             a, b, du[flips], du[nxt], newton=True)
-        cols, _, _ = _pointwise(plan, ev, flips, t)
+    if ka.size:
+        t = _bracketed_roots(lambda t: _rate_and_slope(plan, ev, ka, t, kind, name, direction),
+                             theta[ka], tb, du[ka], du[kb], newton=True)
+        cols, _, _ = _pointwise(plan, ev, ka, t)
         value = _signal_values(kind, name, cols, direction)[0]
         if kind == "angle":      # the same turn as the sweep's own values
-            value = u[flips] + np.remainder(value - u[flips] + 180.0, 360.0) - 180.0
-        for ti, vi, k in zip(t, value, flips):
-            found.append({"input": float(ti), "value": float(vi),
-                          "kind": "max" if sign[k] > 0 else "min"})
-    if not c.full_turn:
-        first = sign[idx[0]] if idx.size else 0.0
-        last = sign[idx[-1]] if idx.size else 0.0
+            value = u[ka] + np.remainder(value - u[ka] + 180.0, 360.0) - 180.0
+        found = [{"input": float(ti), "value": float(vi), "kind": "max" if sign[k] > 0 else "min"}
+                 for ti, vi, k in sorted(zip(t, value, ka))]
+    if not c.full_turn and idx.size:
         found.insert(0, {"input": float(theta[0]), "value": float(u[0]),
-                         "kind": "min" if first > 0 else "max"})
+                         "kind": "min" if sign[idx[0]] > 0 else "max"})
         found.append({"input": float(theta[-1]), "value": float(u[-1]),
-                      "kind": "max" if last > 0 else "min"})
-    if c.full_turn and idx.size and sign[idx[-1]] != sign[idx[0]]:
-        # the cycle's end meets its start: a sign change across the seam
-        k = int(idx[-1])
-        t = _bracketed_roots(lambda t: _rate_and_slope(plan, ev, np.array([k]), t, kind,
-                                                       name, direction),
-                             theta[k:k + 1], theta[-1:] + (theta[idx[0]] - theta[0]),
-                             du[k:k + 1], du[idx[:1]], newton=True)
-        cols, _, _ = _pointwise(plan, ev, np.array([k]), t)
-        value = _signal_values(kind, name, cols, direction)[0]
-        if kind == "angle":
-            value = u[k] + np.remainder(value - u[k] + 180.0, 360.0) - 180.0
-        found.append({"input": float(t[0]), "value": float(value[0]),
-                      "kind": "max" if sign[k] > 0 else "min"})
+                      "kind": "max" if sign[idx[-1]] > 0 else "min"})
     return found or [{"input": float(theta[int(np.argmax(u))]), "value": float(np.max(u)),
                       "kind": "max"},
                      {"input": float(theta[int(np.argmin(u))]), "value": float(np.min(u)),
@@ -710,30 +747,44 @@ def _dead_centres(plan, ev, measure, c):
     normalized determinant changes sign (refined all at once), where a dyad's two
     modes touch (a change point), and a rocker's limits."""
     theta = ev.theta
-    found = [t for ts in ev.switches.values() for t in ts]
+    # where a dyad's modes touch, and a rocker's limits, are known precisely; a root of
+    # a determinant near one (where positions carry the square root of the rounding
+    # error) is the same dead centre
+    exact = [t for ts in ev.switches.values() for t in ts]
+    if not c.full_turn:
+        exact += [c.low, c.high]
+    # a rocker's limits are folds, where a determinant is zero with no meaningful
+    # sign: the samples there are left out of the search
+    inner = np.ones(theta.size, dtype=bool)
+    if not c.full_turn:
+        inner[[0, -1]] = False
+    roots = []
     for i, m in enumerate(measure):
         m = np.asarray(m, dtype=float)
-        finite = np.isfinite(m) & (m != 0)
-        idx = np.nonzero(finite)[0]
+        idx = np.nonzero(inner & np.isfinite(m) & (m != 0))[0]
         change = np.sign(m[idx[:-1]]) != np.sign(m[idx[1:]])
         ka, kb = idx[:-1][change], idx[1:][change]
-        found += [float(theta[k]) for k in np.nonzero(m == 0)[0]]
+        roots += [float(theta[k]) for k in np.nonzero(inner & (m == 0))[0]]
         if ka.size:
             def f(t, ka=ka, i=i):
                 _, mm, _ = _pointwise(plan, ev, ka, t)
                 return mm[i]
-            found += list(_bracketed_roots(f, theta[ka], theta[kb], m[ka], m[kb]))
-    if not c.full_turn:
-        found += [c.low, c.high]
-    # (at a change point positions carry the square root of the rounding error, so
-    # the two ways of finding it agree to about 1e-5 degrees: one dead centre)
+            roots += list(_bracketed_roots(f, theta[ka], theta[kb], m[ka], m[kb]))
+    found = exact + [t for t in roots if all(abs(t - x) > 1e-5 for x in exact)]
     found = sorted(_turn(t, c) for t in found)
-    merged = [t for i, t in enumerate(found) if i == 0 or t - found[i - 1] > 1e-5]
-    if c.full_turn and len(merged) > 1 and merged[0] + 360.0 - merged[-1] <= 1e-5:
+    merged = [t for i, t in enumerate(found) if i == 0 or t - found[i - 1] > _SAME_ANGLE]
+    if c.full_turn and len(merged) > 1 and merged[0] + 360.0 - merged[-1] <= _SAME_ANGLE:
         merged.pop()
     return merged
 
 
+_SAME_ANGLE = 1e-7     # degrees: how precisely change points and limits are found
+
+
 def _turn(t, c):
-    """An angle of a full-turn cycle in [0, 360); a rocker's as it is."""
-    return float(t % 360.0) if c.full_turn else float(t)
+    """An angle of a full-turn cycle in [0, 360) (within ``_SAME_ANGLE`` of 360 is 0);
+    a rocker's as it is."""
+    if not c.full_turn:
+        return float(t)
+    t = float(t % 360.0)
+    return 0.0 if t > 360.0 - _SAME_ANGLE else t

@@ -20,7 +20,7 @@ triad of Stephenson's third inversion), solved by Newton's method.
 from __future__ import annotations
 
 import math
-from dataclasses import dataclass
+from dataclasses import dataclass, replace
 
 import numpy as np
 
@@ -69,13 +69,22 @@ class Plan:
     size: float               # the mechanism's size (for tolerances)
     mobility: int             # Kutzbach
     numeric_mobility: int     # coordinates minus rank of the constraint Jacobian
+    origin: tuple[float, float] = (0.0, 0.0)   # the drawing's centre: see ``local``
 
     @property
     def moving(self):
         return tuple(x for x in self.chain.links if x != self.fixed)
 
+    def local(self, p):
+        """A drawn point in the plan's frame, centred on the drawing (so that precision
+        does not depend on where the mechanism is drawn): the constraints, the pivot
+        and every pose are in this frame."""
+        return (p[0] - self.origin[0], p[1] - self.origin[1])
 
-def _constraints(chain, fixed, driver, pivot):
+
+def _constraints(chain, fixed, driver, pivot, origin):
+    def local(p):
+        return (p[0] - origin[0], p[1] - origin[1])
     out = []
     for j in sorted(chain.joints, key=lambda j: j.id):
         if j.kind == "R":
@@ -83,9 +92,9 @@ def _constraints(chain, fixed, driver, pivot):
             for x in j.links:
                 if x == ref or (j.id == pivot and {x, ref} == {fixed, driver}):
                     continue
-                out.append(Constraint("R", j.id, ref, x, j.at))
+                out.append(Constraint("R", j.id, ref, x, local(j.at)))
         else:
-            out.append(Constraint("P", j.id, j.links[0], j.links[1], j.at, j.axis))
+            out.append(Constraint("P", j.id, j.links[0], j.links[1], local(j.at), j.axis))
     return out
 
 
@@ -200,9 +209,11 @@ def build_plan(chain, fixed=None, driver=None, *, closed_form=True) -> Plan:
     points = [j.at for j in chain.joints] + [p.at for p in chain.points]
     xs, ys = [p[0] for p in points], [p[1] for p in points]
     size = max(max(xs) - min(xs), max(ys) - min(ys), 1e-300)
-    constraints = tuple(_constraints(chain, fixed, driver, pivot.id))
+    origin = (0.5 * (max(xs) + min(xs)), 0.5 * (max(ys) + min(ys)))
+    constraints = tuple(_constraints(chain, fixed, driver, pivot.id, origin))
     mobility = 3 * (len(chain.links) - 1) - 2 * sum(j.order - 1 for j in chain.joints)
-    numeric = _numeric_mobility(chain, fixed, driver, pivot, size)
+    numeric = _numeric_mobility(chain, fixed, _constraints(chain, fixed, driver, "", origin),
+                                size)
     # a drawn pose at a dead centre or change point loses rank there: that is no reason
     # to refuse a chain whose count says it moves (its range says where it can go)
     if numeric != 1 and not (mobility == 1 and numeric > 1):
@@ -212,23 +223,24 @@ def build_plan(chain, fixed=None, driver=None, *, closed_form=True) -> Plan:
             "(mobility 1)", mechanism=name, mobility=numeric)
     steps = _steps(chain, fixed, driver, constraints, closed_form)
     return Plan(chain=chain, fixed=fixed, driver=driver, pivot=pivot.id,
-                pivot_point=pivot.at, theta0=theta0, steps=steps, constraints=constraints,
-                size=size, mobility=mobility, numeric_mobility=numeric)
+                pivot_point=(pivot.at[0] - origin[0], pivot.at[1] - origin[1]),
+                theta0=theta0, steps=steps, constraints=constraints, size=size,
+                mobility=mobility, numeric_mobility=numeric, origin=origin)
 
 
-def _numeric_mobility(chain, fixed, driver, pivot, size):
-    """Coordinates (3 per moving link) minus the rank of all constraints at the drawn pose.
+def _numeric_mobility(chain, fixed, constraints, size):
+    """Coordinates (3 per moving link) minus the rank of all ``constraints`` (every
+    joint's, the driver's pivot included) at the drawn pose.
 
-    The Jacobian is taken about the drawing's centre and in units of its size, so that
-    its rank does not depend on where the mechanism is drawn or how large it is."""
+    The constraints are about the drawing's centre; the Jacobian is taken in units of
+    its size, so that its rank does not depend on where the mechanism is drawn or how
+    large it is."""
     moving = [x for x in chain.links if x != fixed]
     col = {x: 3 * i for i, x in enumerate(moving)}
     rows = []
-    points = [j.at for j in chain.joints]
-    centre = (sum(p[0] for p in points) / len(points), sum(p[1] for p in points) / len(points))
-    for c in _constraints(chain, fixed, driver, pivot=""):
-        local = ((c.point[0] - centre[0]) / size, (c.point[1] - centre[1]) / size)
-        for coeffs in _rows_at_drawn_pose(Constraint(c.kind, c.joint, c.a, c.b, local, c.axis)):
+    for c in constraints:
+        scaled = (c.point[0] / size, c.point[1] / size)
+        for coeffs in _rows_at_drawn_pose(replace(c, point=scaled)):
             row = np.zeros(3 * len(moving))
             for link, vec in coeffs.items():
                 if link != fixed:

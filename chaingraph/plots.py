@@ -23,7 +23,7 @@ def _pyplot():
 
 def output_series(motion):
     """The output's (label, displacement, velocity, acceleration, unit) along the sweep."""
-    from .motion import _output_signal, _signal_values
+    from .motion import _output_signal, _signal_values, path_direction
     output = motion.summary.get("output") if motion.summary else None
     if output is None and motion.plan.chain.mechanism is not None:
         output = motion.plan.chain.mechanism.output
@@ -33,9 +33,8 @@ def output_series(motion):
     kind, name = signal
     units = motion.units or "length"
     if kind == "point":
-        xy = np.column_stack([motion[f"x:{name}"], motion[f"y:{name}"]])
-        _, _, vt = np.linalg.svd(xy - xy.mean(axis=0), full_matrices=False)
-        u, v, a = _signal_values(kind, name, motion.columns, tuple(vt[0]))
+        u, v, a = _signal_values(kind, name, motion.columns,
+                                 path_direction(motion.columns, name))
         return f"point {name} (along its path's main direction)", u, v, a, units
     u, v, a = _signal_values(kind, name, motion.columns)
     if kind == "angle":
@@ -60,15 +59,17 @@ def plot_motion(motion, path):
         for ax in axes:
             for tt in _in_sweep(t, theta):
                 ax.axvline(tt, color="#c00000", lw=1.0, ls="--")
-    for t in s.get("extremes") or []:
-        for tt in _in_sweep(t, theta):
-            k = int(np.argmin(np.abs(theta - tt)))
-            axes[0].plot([theta[k]], [u[k]], "o", color="#e07b00", ms=6)
+    for e in s.get("extreme_positions") or []:     # every extreme, where it was refined
+        for tt in _in_sweep(e["input"], theta):
+            axes[0].plot([tt], [e["value"]], "o", color="#e07b00", ms=6)
     axes[-1].set_xlabel("input angle θ (degrees)")
     title = f"{motion.name}: {label}"
     if s.get("time_ratio"):
         title += f"\nstroke {s['stroke']:.4g} {s.get('stroke_unit') or ''}, " \
                  f"time ratio {s['time_ratio']:.4f}"
+    elif s.get("note"):
+        import textwrap
+        title += "\n" + textwrap.fill(s["note"], 80)
     axes[0].set_title(title, fontsize=10)
     handles = [plt.Line2D([], [], color="#e07b00", marker="o", ls="", label="extreme"),
                plt.Line2D([], [], color="#c00000", ls="--", label="dead centre")]

@@ -407,21 +407,8 @@ def _entry_page(e):
 
 
 def _motion_section(e):
-    m, s = e.motion, e.motion.summary
-    unit = s.get("stroke_unit") or ""
-    ta = s.get("transmission_angle")
-    rows = [("fixed link", m.fixed), ("driver", m.driver + (" (turns fully)" if s["full_turn"]
-                                                            else " (rocks)")),
-            ("output", s.get("output") or "–"),
-            ("input range", " to ".join(f"{t:.6g}" for t in s["input_range"]) + " degrees"),
-            ("stroke", f"{_fmt(s['stroke'])} {unit}" if s["stroke"] is not None else "–"),
-            ("time ratio", _fmt(s["time_ratio"])),
-            ("forward / return", f"{_fmt(s['forward_deg'])} / {_fmt(s['return_deg'])} degrees"),
-            ("extremes at", ", ".join(f"{t:.6g}" for t in s["extremes"] or []) or "–"),
-            ("transmission angle", "–" if ta is None else
-             f"{ta['min']:.6g} to {ta['max']:.6g} degrees"),
-            ("dead centres", ", ".join(f"{t:.6g}" for t in s["dead_centres"]) or "none"),
-            ("mobility", f"{s['numeric_mobility']} at the drawn pose (Kutzbach {s['mobility']})")]
+    from .motion import summary_rows
+    rows = summary_rows(e.motion)
     out = ["<h2>Motion</h2><table id=\"summary\">"]
     out += [f"<tr><th>{_esc(a)}</th><td>{_esc(b)}</td></tr>" for a, b in rows]
     out.append("</table><div class=\"figures\">")

@@ -415,14 +415,13 @@ def _track(plan, i, step, head, disc, sign0):
         right = np.r_[d[1:], np.inf if last == n else -np.inf]
         candidates = np.nonzero((d <= left) & (d <= right) & (d < _TOUCH_CANDIDATE))[0]
         for k in candidates:
-            if k >= last:
-                break
             lo, hi = theta[max(k - 1, 0)], theta[min(k + 1, last - 1)]
             tstar, dmin = _zoom_minimum(plan, i, step, head, int(k), lo, hi)
             if dmin < -_DISC_TOL:          # a window where it cannot be assembled
                 last = min(last, int(np.argmax(direction * (theta - tstar) >= 0)))
                 break
             if dmin <= _DISC_TOL:
+                tstar = _touch_vertex(plan, i, step, head, int(k), tstar)
                 sign = sign0 * (-1.0) ** len(found)
                 if _switches_label(plan, i, step, head, int(k), tstar, direction, sign):
                     if not found or abs(tstar - found[-1]) > 1e-7:
@@ -460,6 +459,19 @@ def _zoom_minimum(plan, i, step, head, k, lo, hi):
         if abs(hi - lo) < 1e-9:
             break
     return tstar, dmin
+
+
+def _touch_vertex(plan, i, step, head, k, tstar, width=1e-3):
+    """Where the two modes touch, more precisely than the least sample: near a touch
+    the discriminant is a (t - t*)**2, so the vertex of the parabola through it at
+    tstar and tstar -+ ``width`` degrees (far enough out to dwarf the rounding)."""
+    ts = np.array([tstar - width, tstar, tstar + width])
+    _, d = _head_roots(plan, i, step, head, k, ts)
+    curve = d[0] - 2 * d[1] + d[2]
+    if not (np.all(np.isfinite(d)) and curve > 0):
+        return tstar
+    shift = 0.5 * width * (d[0] - d[2]) / curve
+    return tstar + shift if abs(shift) < width else tstar
 
 
 def _switches_label(plan, i, step, head, k, tstar, direction, sign):
@@ -711,10 +723,21 @@ class _Factor:
             self._measure = np.where(np.isfinite(measure), measure, 0.0)
             self.singular = self._measure <= _SINGULAR_GROUP
             self.inverse = inv
+            if not self.normal:
+                # signed, so that a dead centre is a change of sign: the determinant
+                # over the product of the column lengths (the columns' units cancel)
+                good = np.isfinite(self.mat).all(axis=(1, 2))
+                signed = np.zeros(n)
+                if good.any():
+                    mg = self.mat[good]
+                    signed[good] = np.linalg.det(mg) / (
+                        np.prod(np.linalg.norm(mg, axis=1), axis=1) + 1e-300)
+                self._measure = signed
 
     @property
     def measure(self):
-        """The step's normalized determinant along the sweep (0 at a dead centre)."""
+        """The step's normalized determinant along the sweep (0 at a dead centre;
+        signed, except for a group with more equations than unknowns)."""
         if self.step.kind == "single":
             return np.where(self.singular, 0.0, 1.0)
         if self.step.kind == "dyad":
@@ -769,20 +792,37 @@ class _Factor:
 
 
 class _NullSpace:
-    """Two rows on one link's three rates: their null direction and a particular solution."""
+    """Two rows on one link's three rates: their null direction and a particular solution.
+
+    The particular solution is solved on the two columns whose 2 x 2 minor is largest
+    (those minors are the null direction's components), not through the rows' Gram
+    matrix, which squares the conditioning: a rotation column carries the drawing's
+    absolute coordinates, so far from the origin the Gram determinant cancels to 0.
+    """
 
     def __init__(self, m1, m2):
         self.m1, self.m2 = m1, m2
         self.e = (_sub(_mul(m1[1], m2[2]), _mul(m1[2], m2[1])),
                   _sub(_mul(m1[2], m2[0]), _mul(m1[0], m2[2])),
                   _sub(_mul(m1[0], m2[1]), _mul(m1[1], m2[0])))
-        self.g11, self.g12, self.g22 = _dot3(m1, m1), _dot3(m1, m2), _dot3(m2, m2)
-        self.det = self.g11 * self.g22 - self.g12 * self.g12
+        self.drop = np.argmax(np.abs(np.array(np.broadcast_arrays(*self.e), dtype=float)),
+                              axis=0)
 
     def particular(self, c1, c2):
-        y1 = (c1 * self.g22 - c2 * self.g12) / self.det
-        y2 = (self.g11 * c2 - self.g12 * c1) / self.det
-        return tuple(_add(_mul(y1, self.m1[i]), _mul(y2, self.m2[i])) for i in range(3))
+        m1, m2 = self.m1, self.m2
+        y = [0.0, 0.0, 0.0]
+        with np.errstate(divide="ignore", invalid="ignore"):
+            for i in range(3):
+                use = self.drop == i
+                if not np.any(use):
+                    continue
+                j, k = (i + 1) % 3, (i + 2) % 3
+                det = np.asarray(self.e[i], dtype=float)        # m1[j] m2[k] - m1[k] m2[j]
+                yj = (c1 * m2[k] - c2 * m1[k]) / det
+                yk = (m1[j] * c2 - m2[j] * c1) / det
+                y[j] = np.where(use, yj, y[j])
+                y[k] = np.where(use, yk, y[k])
+        return tuple(y)
 
 
 def _mul(a, b):
@@ -1124,7 +1164,7 @@ def _slice(pose, idx):
             for k, p in pose.items()}
 
 
-def _newton_path(plan, step, pose, theta, q0, coarse_deg=10.0, *, head=None):
+def _newton_path(plan, step, pose, theta, q0, coarse_deg=10.0, *, head):
     """Group coordinates along the path, from q0 at its first point.
 
     A coarse trace of the group's branch by pseudo-arclength continuation (steps of
@@ -1193,24 +1233,27 @@ class _Branch:
         self.plan, self.step, self.pose, self.theta, self.head = plan, step, pose, theta, head
         m = _form(step).size
         self.scale = np.tile([plan.size, plan.size, 1.0], m // 3)
+        self.head_steps = plan.steps[:plan.steps.index(step)]
 
-    def _residual(self, zq, t_deg):
-        t_deg = np.atleast_1d(np.asarray(t_deg, dtype=float))
-        known = _known_along(self.plan, self.step, self.pose, self.theta, t_deg, self.head)
-        q = np.repeat((self.scale * zq)[None], t_deg.size, axis=0)
-        return _group_residual(self.step, _with_group(known, self.step, q)), known, q
+    def _full(self, z):
+        known = _known_along(self.plan, self.step, self.pose, self.theta,
+                             np.array([math.degrees(z[-1])]), self.head)
+        return _with_group(known, self.step, (self.scale * z[:-1])[None])
 
     def residual(self, z):
-        return self._residual(z[:-1], math.degrees(z[-1]))[0][0] / self.plan.size
+        return _group_residual(self.step, self._full(z))[0] / self.plan.size
 
     def jacobian(self, z):
-        t = math.degrees(z[-1])
-        _, known, q = self._residual(z[:-1], t)
-        fq = _group_jacobian(self.step, _with_group(known, self.step, q), 1)[0] * self.scale
-        d = 1e-6
-        r = self._residual(z[:-1], [t - d, t + d])[0]
-        ft = (r[1] - r[0]) / (2 * math.radians(d))
-        return np.column_stack([fq, ft]) / self.plan.size
+        """d(residual)/dz: the group's Jacobian in its unknowns, and its derivative in
+        the input, which is minus the velocity equations' right-hand side at unit
+        input rate."""
+        full = self._full(z)
+        vel, _, _ = rates(self.plan, full, 1.0, 1, steps=self.head_steps, measure=False,
+                          accelerations=False)
+        f = _Factor(self.step, full, 1, self.plan.size)
+        ft = -np.array([float(np.broadcast_to(v, (1,))[0])
+                        for v in f.right_hand_sides(vel)])
+        return np.column_stack([f.mat[0] * self.scale, ft]) / self.plan.size
 
     def tangent(self, z, like=None, direction=1.0):
         jac = self.jacobian(z)
@@ -1221,6 +1264,22 @@ class _Branch:
         if like is not None:
             return tau if tau @ like >= 0 else -tau
         return tau if tau[-1] * direction >= 0 else -tau
+
+    def correct(self, zp, tau, tol=1e-11):
+        """Newton's method from the predicted zp on the branch and the hyperplane
+        through zp normal to tau; None if it does not converge."""
+        x = zp.copy()
+        for _ in range(12):
+            r = np.append(self.residual(x), tau @ (x - zp))
+            if not np.all(np.isfinite(r)):
+                return None
+            if np.abs(r).max() <= tol:
+                return x
+            a = np.vstack([self.jacobian(x), tau])
+            if not np.isfinite(a).all():
+                return None
+            x = x + np.linalg.lstsq(a, -r, rcond=None)[0]
+        return None
 
     def dq(self, tau):
         """dq / d(input) per radian along the branch (infinite at a fold)."""
@@ -1240,7 +1299,6 @@ def _trace(plan, step, pose, theta, head, q, t, end, direction, h_deg):
     fold = None
     h = math.radians(h_deg)
     ds = h
-    tol = 1e-11
     while direction * (math.degrees(z[-1]) - end) < -1e-12 and ds > 1e-6 * h:
         # no further along the arc than reaching the end needs (far, near a fold)
         remaining = math.radians(abs(end - math.degrees(z[-1])))
@@ -1248,19 +1306,8 @@ def _trace(plan, step, pose, theta, head, q, t, end, direction, h_deg):
         ds = min(ds, reach) if reach > 1e-6 * h else ds
         h_here = max(h, min(reach, math.radians(10.0)))
         zp = z + ds * tau
-        x, good = zp.copy(), False
-        for _ in range(12):
-            r = np.append(branch.residual(x), tau @ (x - zp))
-            if not np.all(np.isfinite(r)):
-                break
-            if np.abs(r).max() <= tol:
-                good = True
-                break
-            a = np.vstack([branch.jacobian(x), tau])
-            if not np.isfinite(a).all():
-                break
-            x = x + np.linalg.lstsq(a, -r, rcond=None)[0]
-        if not good or np.linalg.norm(x - zp) > 0.25 * ds:
+        x = branch.correct(zp, tau)
+        if x is None or np.linalg.norm(x - zp) > 0.25 * ds:
             ds /= 2
             continue
         tau_new = branch.tangent(x, like=tau)
@@ -1284,24 +1331,12 @@ def _fold(branch, z, tau, ds, direction):
     lo, hi, best = 0.0, ds, None
     for _ in range(40):
         mid = 0.5 * (lo + hi)
-        zp = z + mid * tau
-        x = zp.copy()
-        for _ in range(12):
-            r = np.append(branch.residual(x), tau @ (x - zp))
-            if not np.all(np.isfinite(r)):
-                return best
-            if np.abs(r).max() <= 1e-12:
-                break
-            a = np.vstack([branch.jacobian(x), tau])
-            if not np.isfinite(a).all():
-                return best
-            x = x + np.linalg.lstsq(a, -r, rcond=None)[0]
-        t_here = branch.tangent(x, like=tau)
-        if t_here is None:
+        x = branch.correct(z + mid * tau, tau, tol=1e-12)
+        here = None if x is None else branch.tangent(x, like=tau)
+        if here is None:
             return best
-        if t_here[-1] * direction > 0:
-            lo = mid
-            best = (math.degrees(x[-1]), branch.scale * x[:-1])
+        if here[-1] * direction > 0:
+            lo, best = mid, (math.degrees(x[-1]), branch.scale * x[:-1])
         else:
             hi = mid
     return best
@@ -1322,29 +1357,14 @@ def _approach(plan, step, pose, theta, head, t_from, q_from, t_to):
     return q
 
 
-def _known_along(plan, step, pose, theta, at, head=None):
+def _known_along(plan, step, pose, theta, at, head):
     """Poses of the fixed link, the driver and the links solved before ``step`` at the
     angles ``at`` (the path's own poses when ``at`` is the path), in the path's modes
-    (continued from its nearest point)."""
+    (continued from its nearest point of ``head``, the path's evaluation so far)."""
     if np.array_equal(at, theta):
         return pose
-    i = plan.steps.index(step)
-    if head is None:
-        from dataclasses import replace
-        return evaluate(replace(plan, steps=plan.steps[:i]), at).pose
     k = np.abs(theta[:, None] - at[None, :]).argmin(axis=0)
-    return evaluate_at(plan, at, head.reference(k), upto=i)[0]
-
-
-def _group_tangent(plan, step, known, q, theta):
-    """d q / d theta (per radian) of the group at converged points."""
-    n = q.shape[0]
-    full = _with_group(known, step, q)
-    head = plan.steps[:plan.steps.index(step)]
-    vel, _, _ = rates(plan, full, 1.0, n, steps=head, measure=False, accelerations=False)
-    f = _Factor(step, full, n, plan.size)
-    found = f.solve(f.right_hand_sides(vel))
-    return np.stack([v for link in f.form.bodies for v in found[link]], axis=-1)
+    return evaluate_at(plan, at, head.reference(k), upto=plan.steps.index(step))[0]
 
 
 def _hermite(tc, qc, dqc, t):
