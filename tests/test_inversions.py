@@ -126,7 +126,9 @@ def test_non_grashof_four_bar_is_a_triple_rocker_everywhere():
     result = inversions(chain)
     assert [i.behaviour for i in result.inversions] == ["triple rocker"] * 4
     assert all(i.full_turns == () for i in result.inversions)
-    assert all(i.names == () for i in result.inversions)
+    # the catalog's non-Grashof four-bar is a triple rocker too: its name, every time
+    assert all(i.names == ("Non-Grashof four-bar (triple rocker)",)
+               for i in result.inversions)
 
 
 def test_change_point_cases():
