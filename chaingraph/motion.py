@@ -589,10 +589,11 @@ def _bracketed_roots(f, a, b, fa, fb, *, newton=False, tol=1e-10, iterations=60)
     a, b, fa, fb = (np.array(v, dtype=float) for v in (a, b, fa, fb))
     t = 0.5 * (a + b)
     for it in range(iterations):
-        if newton and it > 0:
-            trial = t - value / slope
-        else:
-            trial = b - fb * (b - a) / (fb - fa)
+        with np.errstate(divide="ignore", invalid="ignore"):   # a zero slope: bisect
+            if newton and it > 0:
+                trial = t - value / slope
+            else:
+                trial = b - fb * (b - a) / (fb - fa)
         inside = np.isfinite(trial) & ((trial - a) * (trial - b) < 0)
         t = np.where(inside & (it % 2 == 0 or newton), trial, 0.5 * (a + b))
         out = f(t)

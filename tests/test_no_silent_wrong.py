@@ -209,6 +209,36 @@ def test_a_range_wider_than_a_turn_is_not_called_a_crank():
     assert not m.summary["full_turn"] and hi - lo > 360.0
 
 
+@pytest.mark.slow
+def test_every_input_of_every_inversion_of_every_catalog_chain_solves_or_is_refused():
+    """Every (fixed link, link pinned to it) of every catalog file with a drawn pose
+    solves over its default sweep (a full turn, or its whole range, limits included);
+    the only refusals are the legitimate ones: a cam pair, or a mobility other than 1
+    with that driver."""
+    from chaingraph import MechanismError
+    from chaingraph.catalog import catalog_files
+    solved = 0
+    for path in catalog_files():
+        chain = chaingraph.load(path)
+        if not chain.has_pose:
+            continue
+        for fixed in chain.links:
+            for j in chain.joints:
+                if j.kind != "R" or fixed not in j.links:
+                    continue
+                for driver in j.links:
+                    if driver == fixed:
+                        continue
+                    try:
+                        m = chaingraph.solve(chain, fixed=fixed, driver=driver, steps=12)
+                    except MechanismError as e:
+                        assert "mobility" in str(e) or "only R and P" in str(e), (path, e)
+                        continue
+                    assert all(np.isfinite(m[f"x:{k.id}"]).all() for k in chain.joints)
+                    solved += 1
+    assert solved >= 300
+
+
 def test_every_rocking_input_of_the_stephenson_chain_solves():
     chain = chaingraph.load(catalog_path("stephenson-six-bar-chain"))
     for fixed in chain.links:
