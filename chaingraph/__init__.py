@@ -20,8 +20,8 @@ from .errors import (AssemblyError, AtlasSizeError, ChainFileError, ChainGraphEr
 from .identify import Identification, identify
 from .inversions import Inversion, Inversions, inversions
 from .isomorphism import automorphism_orbits, canonical_form, is_isomorphic, isomorphism
-from .motion import Motion, feasible_range, solve
-from .plan import Plan, build_plan
+from .kinematics import Motion, feasible_range, solve
+from .kinematics import Plan, build_plan
 from .rigidity import rigid_subchains
 
 __version__ = "0.1.0"

@@ -189,7 +189,7 @@ def behaviour_key(chain, fixed):
 def _numeric(chain, fixed):
     if any(j.kind not in ("R", "P") for j in chain.joints) or len(chain.pieces) > 1:
         return None
-    from .motion import full_turns
+    from .kinematics import full_turns
     found = full_turns(chain, fixed)
     if found is None:
         return None

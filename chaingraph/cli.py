@@ -139,7 +139,7 @@ def _fmt(value, unit=""):
 
 
 def _cmd_solve(args) -> int:
-    from .motion import solve, summary_rows
+    from .kinematics import solve, summary_rows
     chain = load(args.file)
     motion = solve(chain, fixed=args.fixed, driver=args.driver, start=args.start,
                    stop=args.stop, steps=args.steps)

@@ -23,7 +23,7 @@ def _pyplot():
 
 def output_series(motion):
     """The output's (label, displacement, velocity, acceleration, unit) along the sweep."""
-    from .motion import _output_signal, _signal_values, path_direction
+    from .kinematics.summary import _output_signal, _signal_values, path_direction
     output = motion.summary.get("output") if motion.summary else None
     if output is None and motion.plan.chain.mechanism is not None:
         output = motion.plan.chain.mechanism.output

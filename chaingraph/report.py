@@ -208,7 +208,7 @@ def _entry_job(job):
 
 def _analyse(entry, steps):
     from .inversions import inversions
-    from .motion import solve
+    from .kinematics import solve
     chain = load(entry.source)
     entry.chain = chain
     entry.classification = classify(chain)
@@ -407,7 +407,7 @@ def _entry_page(e):
 
 
 def _motion_section(e):
-    from .motion import summary_rows
+    from .kinematics import summary_rows
     rows = summary_rows(e.motion)
     out = ["<h2>Motion</h2><table id=\"summary\">"]
     out += [f"<tr><th>{_esc(a)}</th><td>{_esc(b)}</td></tr>" for a, b in rows]

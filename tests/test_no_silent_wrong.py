@@ -320,7 +320,7 @@ def test_every_reported_extreme_is_a_stationary_point(name):
     assert len(maxima) == 1 and s["time_ratio"] is not None and s["note"] is None
     for e in s["extreme_positions"]:
         at = chaingraph.solve(chain, start=e["input"], stop=e["input"], steps=1, summary=False)
-        from chaingraph.motion import _output_signal, _signal_values
+        from chaingraph.kinematics.summary import _output_signal, _signal_values
         kind, out = _output_signal(at.plan, chain.mechanism.output, at.columns)
         if kind != "point":
             value, rate, _ = _signal_values(kind, out, at.columns)

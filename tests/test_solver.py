@@ -11,9 +11,12 @@ import pytest
 import chaingraph
 from chaingraph import AssemblyError, Chain, Joint, Mechanism, MechanismError
 from chaingraph.catalog import catalog_files, catalog_path
-from chaingraph.motion import _evaluate_sweep, solve
-from chaingraph.plan import build_plan
-from chaingraph.solver import evaluate, rates, residuals
+from chaingraph.kinematics import solve
+from chaingraph.kinematics.sweep import _evaluate_sweep
+from chaingraph.kinematics.plan import build_plan
+from chaingraph.kinematics.equations import residuals
+from chaingraph.kinematics.rates import rates
+from chaingraph.kinematics.tracking import evaluate
 
 from .conftest import run_cli
 
@@ -542,7 +545,7 @@ RRR_MECHANISMS = [p for p in SOLVABLE
 
 @pytest.mark.parametrize("path", RRR_MECHANISMS, ids=[p.stem for p in RRR_MECHANISMS])
 def test_rrr_fast_path_agrees_with_the_general_reduction(path, monkeypatch):
-    import chaingraph.solver as solver
+    import chaingraph.kinematics.rates as solver
     chain = chaingraph.load(path)
     plan = build_plan(chain)
     theta = np.linspace(plan.theta0, plan.theta0 + 5.0, 11)

@@ -24,7 +24,7 @@ from dataclasses import dataclass, replace
 
 import numpy as np
 
-from .errors import MechanismError
+from ..errors import MechanismError
 
 __all__ = ["Constraint", "Step", "Plan", "build_plan"]
 

@@ -1,0 +1,157 @@
+"""Closed-form position steps: a single link fixed by two attachments, and dyads.
+
+A *single* link is joined to known links by two constraints (RR, RP, PP) or welded to
+one by an input; a *dyad* of two links (RRR, RRP, PRR, RPR, PRP, RPP, PPR) is an
+intersection of circles and lines, or a rotation angle from a cosine, with two assembly
+modes where the discriminant is positive.
+"""
+
+from __future__ import annotations
+
+import math
+
+import numpy as np
+
+from .geometry import (_clamp_disc, _fit_two_points, _from_point, _line_of, _unit, _world,
+                       make_pose, rotate)
+
+
+# -- closed-form steps ---------------------------------------------------------------
+def _single(step, pose):
+    u = step.links[0]
+    c1, c2 = step.constraints[:2]
+    if c1.kind == "R" and c2.kind == "R":
+        w1 = _world(pose, c1.other(u), c1.point)
+        w2 = _world(pose, c2.other(u), c2.point)
+        return {u: _fit_two_points(c1.point, w1, c2.point, w2)}
+    if c1.kind == "R":
+        return {u: _from_point(pose[c2.other(u)], c1.point,
+                               _world(pose, c1.other(u), c1.point))}
+    return {u: _two_lines(pose, u, c1, c2)}
+
+
+def _two_lines(pose, u, c1, c2):
+    """Pose of link u with two P attachments to known links (its rotation from c1)."""
+    turn = pose[c1.other(u)]
+    rows, rhs = [], []
+    for c in (c1, c2):
+        base, dirn, _ = _line_of(pose, c, u, c.point)
+        nx_, ny_ = -dirn[1], dirn[0]
+        rx, ry = rotate(turn, c.point)
+        rows.append((nx_, ny_))
+        rhs.append(nx_ * (base[0] - rx) + ny_ * (base[1] - ry))
+    (a, b), (c, d) = rows
+    det = a * d - b * c
+    x = (rhs[0] * d - b * rhs[1]) / det
+    y = (a * rhs[1] - c * rhs[0]) / det
+    return make_pose(x, y, turn[2], turn[3], turn[4])
+
+
+def _dyad_roots(step, pose, scale):
+    """A dyad's assembly modes.
+
+    Returns (keys, build, ok, disc): ``keys`` the two modes' joint point (or rotation as
+    a unit vector), arrays of shape (N, 2) or None for a dyad with one mode;
+    ``build(sign)`` the poses of the dyad's links for an array of mode signs (+1 or -1);
+    ``ok`` where the dyad can be assembled; ``disc`` the discriminant over the size
+    squared (dimensionless: negative where the dyad cannot be assembled, zero where its
+    two modes meet), or None for a dyad with one mode.
+    """
+    a, b = step.links
+    ca, cb, cj = step.constraints
+    pattern = step.pattern
+    if pattern in ("PRR", "PPR"):  # mirror to the R-first form
+        a, b, ca, cb = b, a, cb, ca
+        pattern = pattern[::-1]
+    q = cj.point
+    if pattern in ("RRR", "RRP"):
+        wa = _world(pose, ca.other(a), ca.point)
+        ra = math.dist(q, ca.point)
+        if pattern == "RRR":
+            wb = _world(pose, cb.other(b), cb.point)
+            rb = math.dist(q, cb.point)
+            dx, dy = wb[0] - wa[0], wb[1] - wa[1]
+            d2 = dx * dx + dy * dy
+            d = np.sqrt(d2)
+            along = (ra * ra - rb * rb + d2) / (2 * d)
+            raw = ra * ra - along * along
+            h2, ok = _clamp_disc(raw, scale * scale)
+            h = np.sqrt(h2)
+            ux, uy = dx / d, dy / d
+            mid = (wa[0] + along * ux, wa[1] + along * uy)
+            off = (-h * uy, h * ux)
+        else:
+            base, dirn, turn_b = _line_of(pose, cb, b, q)
+            ex, ey = base[0] - wa[0], base[1] - wa[1]
+            beta = dirn[0] * ex + dirn[1] * ey
+            raw = beta * beta - (ex * ex + ey * ey - ra * ra)
+            disc, ok = _clamp_disc(raw, scale * scale)
+            root_disc = np.sqrt(disc)
+            mid = (base[0] - beta * dirn[0], base[1] - beta * dirn[1])
+            off = (root_disc * dirn[0], root_disc * dirn[1])
+        keys = (np.stack((mid[0] + off[0], mid[1] + off[1]), axis=-1),
+                np.stack((mid[0] - off[0], mid[1] - off[1]), axis=-1))
+
+        def build(sign):
+            x, y = mid[0] + sign * off[0], mid[1] + sign * off[1]
+            pa = _fit_two_points(ca.point, wa, q, (x, y))
+            if pattern == "RRR":
+                return {a: pa, b: _fit_two_points(cb.point, wb, q, (x, y))}
+            return {a: pa, b: _from_point(turn_b, q, (x, y))}
+        return keys, build, ok, raw / (scale * scale)
+    if pattern == "RPR":
+        wa = _world(pose, ca.other(a), ca.point)
+        wb = _world(pose, cb.other(b), cb.point)
+        nx_, ny_ = -_unit(cj.axis)[1], _unit(cj.axis)[0]
+        dx, dy = wb[0] - wa[0], wb[1] - wa[1]
+        dist = np.hypot(dx, dy)
+        c = nx_ * (cb.point[0] - ca.point[0]) + ny_ * (cb.point[1] - ca.point[1])
+        ratio = c / dist
+        raw = 1.0 - ratio * ratio
+        disc, ok = _clamp_disc(raw, 1.0)
+        # rotation phi = start +- spread, with cos(spread) = ratio
+        cs0, sn0 = dx / dist, dy / dist            # direction of the centre line
+        cn, sn = nx_, ny_                           # drawn normal: rotate back by it
+        cst, snt = cs0 * cn + sn0 * sn, sn0 * cn - cs0 * sn   # start = delta - nu
+        root = np.sqrt(disc)
+
+        def turn(sign):
+            c1, s1 = cst * ratio - snt * sign * root, snt * ratio + cst * sign * root
+            return c1, s1
+        keys = tuple(np.stack(turn(sg), axis=-1) for sg in (1.0, -1.0))
+
+        def build(sign):
+            c1, s1 = turn(sign)
+            e = make_pose(0.0, 0.0, np.arctan2(s1, c1), c1, s1)
+            return {a: _from_point(e, ca.point, wa), b: _from_point(e, cb.point, wb)}
+        return keys, build, ok, raw
+    if pattern == "PRP":
+        base_a, dir_a, turn_a = _line_of(pose, ca, a, q)
+        base_b, dir_b, turn_b = _line_of(pose, cb, b, q)
+        det = dir_a[0] * -dir_b[1] + dir_b[0] * dir_a[1]
+        rx, ry = base_b[0] - base_a[0], base_b[1] - base_a[1]
+        s_ = (rx * -dir_b[1] + dir_b[0] * ry) / det
+        x, y = base_a[0] + s_ * dir_a[0], base_a[1] + s_ * dir_a[1]
+
+        def build(sign):
+            return {a: _from_point(turn_a, q, (x, y)), b: _from_point(turn_b, q, (x, y))}
+        return None, build, np.isfinite(x), None
+    if pattern == "RPP":
+        wa = _world(pose, ca.other(a), ca.point)
+        pa = _from_point(pose[cb.other(b)], ca.point, wa)
+
+        def build(sign):
+            known = dict(pose)
+            known[a] = pa
+            return {a: pa, b: _two_lines(known, b, cb, cj)}
+        return None, build, np.isfinite(wa[0]), None
+    raise ValueError(f"no closed form for a {pattern} dyad")
+
+
+def _initial_sign(keys, drawn):
+    """The mode of the drawn pose: the one whose first point is nearest the drawing."""
+    kp, km = keys
+    dp = np.hypot(kp[0, 0] - drawn[0], kp[0, 1] - drawn[1])
+    dm = np.hypot(km[0, 0] - drawn[0], km[0, 1] - drawn[1])
+    return 1.0 if dp <= dm else -1.0
+

@@ -1,0 +1,339 @@
+"""The constraint equations: residuals, Jacobian rows and the quadratic velocity terms
+of every joint, and a group's equations in reduced coordinates.
+
+Constraints (see :mod:`chaingraph.kinematics.plan`): an R pair keeps two links' points
+together; a P joint keeps the block's rotation equal to the guide's and its point on the
+guide's line; an input joint adds the prescribed relative rotation (R) or slide (P).
+"""
+
+from __future__ import annotations
+
+import math
+
+import numpy as np
+
+from ..errors import AssemblyError
+from .geometry import _fit_two_points, _unit, _world, make_pose, rotate
+
+__all__ = ["residuals", "check_poses"]
+
+
+# -- constraint rows (Jacobian and quadratic velocity terms) ------------------------
+def _perp(v):
+    return -v[1], v[0]
+
+
+def _geometry(c, pose):
+    """What a constraint's rows and acceleration terms share, computed once."""
+    ra = rotate(pose[c.a], c.point)
+    rb = rotate(pose[c.b], c.point)
+    if c.kind == "R":
+        return ra, rb, None, None
+    n = rotate(pose[c.a], _perp(_unit(c.axis)))
+    d = (rb[0] + pose[c.b][0] - ra[0] - pose[c.a][0], rb[1] + pose[c.b][1] - ra[1] - pose[c.a][1])
+    return ra, rb, n, d
+
+
+def _rows(c, pose, geom=None):
+    """Rows of the constraint Jacobian, each {link: (cx, cy, cphi)} (constant entries as
+    Python floats)."""
+    ra, rb, n, d = geom or _geometry(c, pose)
+    if c.kind == "R":
+        return [{c.a: (1.0, 0.0, -ra[1]), c.b: (-1.0, 0.0, rb[1])},
+                {c.a: (0.0, 1.0, ra[0]), c.b: (0.0, -1.0, -rb[0])}]
+    g, b = c.a, c.b
+    pn = _perp(n)
+    prb, prg = _perp(rb), _perp(ra)
+    return [{b: (0.0, 0.0, 1.0), g: (0.0, 0.0, -1.0)},
+            {b: (n[0], n[1], n[0] * prb[0] + n[1] * prb[1]),
+             g: (-n[0], -n[1], pn[0] * d[0] + pn[1] * d[1] - (n[0] * prg[0] + n[1] * prg[1]))}]
+
+
+def _gammas(c, pose, vel, geom=None):
+    """Right-hand sides of the acceleration equations from the velocities alone."""
+    ra, rb, n, d = geom or _geometry(c, pose)
+    if c.kind == "R":
+        wa2, wb2 = vel[c.a][2] ** 2, vel[c.b][2] ** 2
+        return [wa2 * ra[0] - wb2 * rb[0], wa2 * ra[1] - wb2 * rb[1]]
+    g, b = c.a, c.b
+    rg = ra
+    pn = _perp(n)
+    prb, prg = _perp(rb), _perp(rg)
+    (vbx, vby, wb_), (vgx, vgy, wg_) = vel[b], vel[g]
+    dd = (vbx + wb_ * prb[0] - vgx - wg_ * prg[0], vby + wb_ * prb[1] - vgy - wg_ * prg[1])
+    return [0.0, (-2 * wg_ * (pn[0] * dd[0] + pn[1] * dd[1])
+                  + wg_ ** 2 * (n[0] * d[0] + n[1] * d[1])
+                  + n[0] * (wb_ ** 2 * rb[0] - wg_ ** 2 * rg[0])
+                  + n[1] * (wb_ ** 2 * rb[1] - wg_ ** 2 * rg[1]))]
+
+
+def residuals(plan, pose):
+    """Largest constraint residual at every point (lengths; rotations times the size)."""
+    worst = None
+    for c in plan.constraints:
+        if c.kind == "R":
+            wa, wb = _world(pose, c.a, c.point), _world(pose, c.b, c.point)
+            r = np.hypot(wa[0] - wb[0], wa[1] - wb[1])
+        else:
+            dphi = np.abs(np.remainder(pose[c.b][2] - pose[c.a][2] + np.pi, 2 * np.pi) - np.pi)
+            n = rotate(pose[c.a], _perp(_unit(c.axis)))
+            wg, wb = _world(pose, c.a, c.point), _world(pose, c.b, c.point)
+            r = np.maximum(np.abs(n[0] * (wb[0] - wg[0]) + n[1] * (wb[1] - wg[1])),
+                           dphi * plan.size)
+        worst = r if worst is None else np.maximum(worst, r)
+    return worst
+
+
+def _dot3(c, v):
+    """c . v for three-vectors whose entries may be constant Python floats."""
+    total = 0.0
+    for ci, vi in zip(c, v):
+        if isinstance(vi, float) and vi == 0.0:
+            continue
+        if isinstance(ci, float):
+            if ci == 0.0:
+                continue
+            total = total + (vi if ci == 1.0 else -vi if ci == -1.0 else ci * vi)
+        else:
+            total = total + ci * vi
+    return total
+
+
+
+def _mul(a, b):
+    if isinstance(a, float) and a == 0.0 or isinstance(b, float) and b == 0.0:
+        return 0.0
+    if isinstance(a, float) and a == 1.0:
+        return b
+    if isinstance(b, float) and b == 1.0:
+        return a
+    return a * b
+
+
+def _add(a, b):
+    if isinstance(a, float) and a == 0.0:
+        return b
+    if isinstance(b, float) and b == 0.0:
+        return a
+    return a + b
+
+
+def _sub(a, b):
+    if isinstance(b, float) and b == 0.0:
+        return a
+    return a - b
+
+
+def _group_matrix(links, rows, n):
+    col = {link: 3 * k for k, link in enumerate(links)}
+    size = 3 * len(links)
+    entries = [[0.0] * size for _ in rows]
+    for i, (coef, _) in enumerate(rows):
+        for link, cf in coef.items():
+            for k in range(3):
+                entries[i][col[link] + k] = cf[k]
+    mat = np.empty((n, len(rows), size))
+    for i, row in enumerate(entries):
+        for j, v in enumerate(row):
+            mat[:, i, j] = v
+    rhs = np.empty((n, len(rows)))
+    for i, (_, r) in enumerate(rows):
+        rhs[:, i] = r
+    return mat, rhs
+
+
+
+# -- groups: reduced coordinates ------------------------------------------------------
+class _GroupForm:
+    """A group's equations in reduced coordinates.
+
+    A binary link of the group pinned by R joints to two links that are not such bars
+    says only that its two pins keep their distance: its three coordinates and four
+    equations become one distance equation between the links it joins. The unknowns are
+    the other links (``bodies``); the bars' poses and rates follow from their pins. (In
+    Stephenson's third inversion this turns 12 unknowns into 3.)
+    """
+
+    def __init__(self, step):
+        links = set(step.links)
+        touching = {x: [c for c in step.constraints if x in (c.a, c.b)] for x in links}
+        candidates = {x for x, cs in touching.items()
+                      if len(cs) == 2 and all(c.kind == "R" for c in cs)
+                      and cs[0].other(x) != cs[1].other(x)}
+        bars = {x for x in candidates
+                if not any(c.other(x) in candidates for c in touching[x])}
+        self.bodies = tuple(x for x in step.links if x not in bars)
+        if not self.bodies:                        # nothing to reduce onto
+            bars, self.bodies = set(), tuple(step.links)
+        self.bars = []
+        for x in step.links:
+            if x in bars:
+                c1, c2 = touching[x]
+                self.bars.append((x, c1.other(x), c1.point, c2.other(x), c2.point,
+                                  math.dist(c1.point, c2.point)))
+        self.others = tuple(c for c in step.constraints if c.a not in bars and c.b not in bars)
+        self.size = 3 * len(self.bodies)
+
+    def residual(self, pose):
+        out = list(_group_residual_of(self.others, pose).T) if self.others else []
+        for _, x, px, y, py, length in self.bars:
+            wx, wy = _world(pose, x, px), _world(pose, y, py)
+            d2 = (wx[0] - wy[0]) ** 2 + (wx[1] - wy[1]) ** 2
+            out.append((d2 - length * length) / (2 * length))
+        return np.stack(np.broadcast_arrays(*out), axis=-1)
+
+    def rows(self, pose):
+        rows = [coef for c in self.others for coef in _rows(c, pose)]
+        for _, x, px, y, py, length in self.bars:
+            rx, ry_ = rotate(pose[x], px), rotate(pose[y], py)
+            d = (rx[0] + pose[x][0] - ry_[0] - pose[y][0], rx[1] + pose[x][1] - ry_[1] - pose[y][1])
+            px_, py_ = _perp(rx), _perp(ry_)
+            row = {x: (d[0] / length, d[1] / length, (d[0] * px_[0] + d[1] * px_[1]) / length)}
+            other = (-d[0] / length, -d[1] / length, -(d[0] * py_[0] + d[1] * py_[1]) / length)
+            if y in row:
+                row[y] = tuple(a + b for a, b in zip(row[y], other))
+            else:
+                row[y] = other
+            rows.append(row)
+        return rows
+
+    def gammas(self, pose, vel):
+        out = [g for c in self.others for g in _gammas(c, pose, vel)]
+        for _, x, px, y, py, length in self.bars:
+            rx, ry_ = rotate(pose[x], px), rotate(pose[y], py)
+            d = (rx[0] + pose[x][0] - ry_[0] - pose[y][0], rx[1] + pose[x][1] - ry_[1] - pose[y][1])
+            vx_, vy_ = _point_rate(vel[x], rx), _point_rate(vel[y], ry_)
+            dd = (vx_[0] - vy_[0], vx_[1] - vy_[1])
+            wx2, wy2 = vel[x][2] ** 2, vel[y][2] ** 2
+            acc_terms = (wx2 * rx[0] - wy2 * ry_[0], wx2 * rx[1] - wy2 * ry_[1])
+            out.append((d[0] * acc_terms[0] + d[1] * acc_terms[1]
+                        - dd[0] * dd[0] - dd[1] * dd[1]) / length)
+        return out
+
+    def set_bodies(self, pose, q):
+        full = dict(pose)
+        for k, link in enumerate(self.bodies):
+            full[link] = make_pose(q[:, 3 * k], q[:, 3 * k + 1], q[:, 3 * k + 2])
+        return full
+
+    def complete(self, pose):
+        """Add the bars' poses (each fitted to its two pins)."""
+        for bar, x, px, y, py, _ in self.bars:
+            pose[bar] = _fit_two_points(px, _world(pose, x, px), py, _world(pose, y, py))
+        return pose
+
+    def bar_rates(self, pose, vel, acc=None):
+        """The bars' velocities (or, with ``acc``, accelerations) from their pins'."""
+        out = {}
+        for bar, x, px, y, py, _ in self.bars:
+            r1, r2 = rotate(pose[bar], px), rotate(pose[bar], py)
+            d = (r2[0] - r1[0], r2[1] - r1[1])
+            d2 = d[0] * d[0] + d[1] * d[1]
+            if acc is None:
+                v1 = _point_rate(vel[x], rotate(pose[x], px))
+                v2 = _point_rate(vel[y], rotate(pose[y], py))
+                w = (d[0] * (v2[1] - v1[1]) - d[1] * (v2[0] - v1[0])) / d2
+                out[bar] = (v1[0] + w * r1[1], v1[1] - w * r1[0], w)
+            else:
+                a1 = _point_accel(acc[x], vel[x], rotate(pose[x], px))
+                a2 = _point_accel(acc[y], vel[y], rotate(pose[y], py))
+                al = (d[0] * (a2[1] - a1[1]) - d[1] * (a2[0] - a1[0])) / d2
+                w = vel[bar][2]
+                out[bar] = (a1[0] + al * r1[1] + w * w * r1[0], a1[1] - al * r1[0] + w * w * r1[1], al)
+        return out
+
+
+def _point_rate(rate, r):
+    return rate[0] - rate[2] * r[1], rate[1] + rate[2] * r[0]
+
+
+def _point_accel(acc, vel, r):
+    w2 = vel[2] * vel[2]
+    return acc[0] - acc[2] * r[1] - w2 * r[0], acc[1] + acc[2] * r[0] - w2 * r[1]
+
+
+_FORMS = {}
+
+
+def _form(step):
+    form = _FORMS.get(step)
+    if form is None:
+        form = _FORMS[step] = _GroupForm(step)
+    return form
+
+
+# -- Newton's method for groups ------------------------------------------------------
+def _group_residual_of(constraints, pose):
+    out = []
+    for c in constraints:
+        if c.kind == "R":
+            wa, wb = _world(pose, c.a, c.point), _world(pose, c.b, c.point)
+            out += [wa[0] - wb[0], wa[1] - wb[1]]
+        else:
+            dphi = np.remainder(pose[c.b][2] - pose[c.a][2] + np.pi, 2 * np.pi) - np.pi
+            n = rotate(pose[c.a], _perp(_unit(c.axis)))
+            wg, wb = _world(pose, c.a, c.point), _world(pose, c.b, c.point)
+            out += [dphi, n[0] * (wb[0] - wg[0]) + n[1] * (wb[1] - wg[1])]
+    return np.stack(out, axis=-1)
+
+
+def _with_group(pose, step, q):
+    return _form(step).set_bodies(pose, q)
+
+
+def _group_residual(step, pose):
+    return _form(step).residual(pose)
+
+
+def _group_jacobian(step, pose, n):
+    form = _form(step)
+    rows = [({k: v for k, v in coef.items() if k in form.bodies}, 0.0)
+            for coef in form.rows(pose)]
+    return _group_matrix(form.bodies, rows, n)[0]
+
+
+
+def _batched_inverse(mat):
+    """Stacked inverses; a singular matrix gets its pseudo-inverse, a matrix with
+    non-finite entries (an earlier step that failed) NaN."""
+    out = np.full(mat.shape[:1] + mat.shape[:0:-1], np.nan)
+    good = np.isfinite(mat).all(axis=(1, 2))
+    if good.any():
+        m = mat[good]
+        try:
+            out[good] = np.linalg.inv(m)
+        except np.linalg.LinAlgError:
+            out[good] = np.linalg.pinv(m)
+    return out
+
+
+def _batched_solve(mat, rhs):
+    """Solve stacked systems; a singular one (at a fold) gets its least-squares step,
+    one with non-finite entries NaN."""
+    out = np.full(rhs.shape, np.nan)
+    good = np.isfinite(mat).all(axis=(1, 2)) & np.isfinite(rhs).all(axis=1)
+    if good.any():
+        m, r = mat[good], rhs[good]
+        try:
+            out[good] = np.linalg.solve(m, r[..., None])[..., 0]
+        except np.linalg.LinAlgError:
+            out[good] = np.einsum("nij,nj->ni", np.linalg.pinv(m), r)
+    return out
+
+
+def _slice(pose, idx):
+    return {k: tuple(v if isinstance(v, float) else np.asarray(v)[idx] for v in p)
+            for k, p in pose.items()}
+
+
+
+def check_poses(plan, pose, feasible):
+    """Raise AssemblyError where a returned pose does not close its loops."""
+    res = residuals(plan, pose)
+    bad = feasible & ~(res <= 1e-9 * plan.size)
+    if bad.any():
+        i = int(np.argmax(bad))
+        raise AssemblyError(f"loop closure fails at step {i} (residual {res[i]:.3g}, "
+                            f"more than 1e-9 of the mechanism's size {plan.size:g})",
+                            mechanism=plan.chain.name)
+    return res

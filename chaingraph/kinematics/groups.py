@@ -1,0 +1,295 @@
+"""Groups of higher class (Assur groups that no closed form solves, such as the triad
+of Stephenson's third inversion): Newton's method, and continuation along the path.
+
+A coarse trace of the group's branch by pseudo-arclength continuation follows the
+assembly mode and finds a fold (the input turns back: the path cannot go on); every point
+is then corrected at once by batched Newton from Hermite-interpolated guesses.
+"""
+
+from __future__ import annotations
+
+import math
+
+import numpy as np
+
+from .equations import (_batched_inverse, _batched_solve, _form, _group_jacobian,
+                        _group_residual, _slice, _with_group)
+
+
+def _chord(plan, step, known, q, iterations=8):
+    """Newton's method with the Jacobian inverted once at the guesses (the chord
+    method): cheap for many points near their solutions. Returns (q, converged)."""
+    tol = 1e-12 * plan.size
+    full = _with_group(known, step, q)
+    mat = _group_jacobian(step, full, q.shape[0])
+    if mat.shape[1] != mat.shape[2]:
+        return q, np.zeros(q.shape[0], dtype=bool)
+    inv = _batched_inverse(mat)
+    q = q.copy()
+    for _ in range(iterations):
+        r = _group_residual(step, _with_group(known, step, q))
+        q -= np.einsum("nij,nj->ni", inv, r)   # one more step after tol: to the rounding
+        if np.all(np.abs(r).max(axis=1) <= tol):
+            break
+    err = np.abs(_group_residual(step, _with_group(known, step, q))).max(axis=1)
+    return q, err <= 1e-9 * plan.size
+
+
+def _newton(plan, step, known, q, iterations=40, tol_rel=1e-12):
+    """Batched Newton's method on the group's loop-closure equations; each point
+    iterates until its residual is below 1e-12 of the size (linear convergence at a
+    fold needs more iterations than elsewhere, so only unconverged points go on).
+    Returns (q, converged: residual <= 1e-9 of the size)."""
+    n = q.shape[0]
+    q = q.copy()
+    tol = tol_rel * plan.size
+    active = np.arange(n)
+    last = np.full(n, np.inf)
+    for it in range(iterations):
+        sub = _slice(known, active) if active.size < n else known
+        full = _with_group(sub, step, q[active])
+        r = _group_residual(step, full)
+        err = np.abs(r).max(axis=1)
+        # go on where not converged and still improving (a fold converges linearly)
+        todo = (err > tol) & np.isfinite(err) & ((it < 4) | (err < 0.9 * last[active]))
+        last[active] = err
+        if not todo.any():
+            break
+        active, r = active[todo], r[todo]
+        full = _slice(full, np.nonzero(todo)[0])
+        mat = _group_jacobian(step, full, active.size)
+        if mat.shape[1] != mat.shape[2]:
+            rhs = np.einsum("nij,ni->nj", mat, -r)
+            mat = np.einsum("nij,nik->njk", mat, mat)
+        else:
+            rhs = -r
+        q[active] += _batched_solve(mat, rhs)
+    full = _with_group(known, step, q)
+    err = np.abs(_group_residual(step, full)).max(axis=1)
+    return q, err <= 1e-9 * plan.size
+
+
+
+def _newton_path(plan, step, pose, theta, q0, coarse_deg=10.0, *, head):
+    """Group coordinates along the path, from q0 at its first point.
+
+    A coarse trace of the group's branch by pseudo-arclength continuation (steps of
+    at most ``coarse_deg`` in scaled coordinates) follows the assembly mode through
+    places where the input angle alone would be a poor parameter, and finds a fold
+    (the input turns back: the path cannot go on); every point is then corrected at
+    once by batched Newton from Hermite-interpolated guesses. Points past where the
+    trace ends are infeasible.
+    """
+    n = theta.size
+    q0 = np.asarray(q0, dtype=float)
+    if n == 1:
+        q, ok = _newton(plan, step, pose, q0[None])
+        return q, ok
+    span = theta[-1] - theta[0]
+    direction = 1.0 if span >= 0 else -1.0
+    h = min(coarse_deg, max(abs(span) / 8.0, 1e-9))
+    t = float(theta[0])
+    known = _known_along(plan, step, pose, theta, np.array([t]), head)
+    qi, ok = _newton(plan, step, known, q0[None])
+    if not ok[0]:
+        return np.zeros((n, q0.size)), np.zeros(n, dtype=bool)
+    ts, qs, dqs, fold = _trace(plan, step, pose, theta, head, qi[0], t, float(theta[-1]),
+                               direction, h)
+    tc, qc, dqc = np.array(ts), np.array(qs), np.array(dqs)
+    reached = direction * (theta - tc[-1]) <= 1e-9
+    guess = _hermite(tc, qc, dqc, theta)
+    if fold is not None:
+        # between the trace's last point and the fold, q moves as the square root of
+        # the input's distance from the fold: predict it so, on this side
+        t_f, q_f = fold
+        near = ~reached & (direction * (theta - t_f) <= 1e-12)
+        with np.errstate(invalid="ignore", divide="ignore"):
+            frac = np.sqrt(np.clip((t_f - theta[near]) / (t_f - tc[-1]), 0.0, 1.0))
+        guess[near] = q_f + (qc[-1] - q_f) * frac[:, None]
+        reached = reached | near
+    guess = np.where(np.isfinite(guess), guess, 0.0)
+    q, ok = _chord(plan, step, pose, guess)
+    if not ok.all():
+        redo = np.nonzero(~ok)[0]
+        q2, ok2 = _newton(plan, step, _slice(pose, redo), guess[redo])
+        q[redo], ok[redo] = q2, ok2
+    ok &= np.linalg.norm(q - guess, axis=1) <= 0.05 * plan.size
+    ok &= reached
+    # near a fold the tangent blows up and guesses are poor: continue point by point,
+    # approaching each point through ever finer substeps (a limit of the range is a
+    # fold, where Newton's method converges only linearly)
+    for i in range(1, n):
+        if ok[i]:
+            continue
+        if not ok[i - 1]:
+            break
+        qi = _approach(plan, step, pose, theta, head, float(theta[i - 1]), q[i - 1],
+                       float(theta[i]))
+        if qi is None:
+            break
+        q[i], ok[i] = qi, True
+    return q, ok
+
+
+class _Branch:
+    """A group's equations in the scaled unknowns z = (q / scale, input in radians),
+    for continuation along its branch."""
+
+    def __init__(self, plan, step, pose, theta, head):
+        self.plan, self.step, self.pose, self.theta, self.head = plan, step, pose, theta, head
+        m = _form(step).size
+        self.scale = np.tile([plan.size, plan.size, 1.0], m // 3)
+        self.head_steps = plan.steps[:plan.steps.index(step)]
+
+    def _full(self, z):
+        known = _known_along(self.plan, self.step, self.pose, self.theta,
+                             np.array([math.degrees(z[-1])]), self.head)
+        return _with_group(known, self.step, (self.scale * z[:-1])[None])
+
+    def residual(self, z):
+        return _group_residual(self.step, self._full(z))[0] / self.plan.size
+
+    def jacobian(self, z):
+        """d(residual)/dz: the group's Jacobian in its unknowns, and its derivative in
+        the input, which is minus the velocity equations' right-hand side at unit
+        input rate."""
+        from .rates import _Factor, rates     # rates use groups' forms: import here
+        full = self._full(z)
+        vel, _, _ = rates(self.plan, full, 1.0, 1, steps=self.head_steps, measure=False,
+                          accelerations=False)
+        f = _Factor(self.step, full, 1, self.plan.size)
+        ft = -np.array([float(np.broadcast_to(v, (1,))[0])
+                        for v in f.right_hand_sides(vel)])
+        return np.column_stack([f.mat[0] * self.scale, ft]) / self.plan.size
+
+    def tangent(self, z, like=None, direction=1.0):
+        jac = self.jacobian(z)
+        if not np.isfinite(jac).all():
+            return None
+        _, _, vt = np.linalg.svd(jac)
+        tau = vt[-1]
+        if like is not None:
+            return tau if tau @ like >= 0 else -tau
+        return tau if tau[-1] * direction >= 0 else -tau
+
+    def correct(self, zp, tau, tol=1e-11):
+        """Newton's method from the predicted zp on the branch and the hyperplane
+        through zp normal to tau; None if it does not converge."""
+        x = zp.copy()
+        for _ in range(12):
+            r = np.append(self.residual(x), tau @ (x - zp))
+            if not np.all(np.isfinite(r)):
+                return None
+            if np.abs(r).max() <= tol:
+                return x
+            a = np.vstack([self.jacobian(x), tau])
+            if not np.isfinite(a).all():
+                return None
+            x = x + np.linalg.lstsq(a, -r, rcond=None)[0]
+        return None
+
+    def dq(self, tau):
+        """dq / d(input) per radian along the branch (infinite at a fold)."""
+        with np.errstate(divide="ignore", invalid="ignore"):
+            return self.scale * tau[:-1] / tau[-1]
+
+
+def _trace(plan, step, pose, theta, head, q, t, end, direction, h_deg):
+    """Points (input degrees, q, dq/dinput) along the group's branch from (t, q)
+    towards ``end``, by pseudo-arclength continuation; stops at ``end`` or a fold."""
+    branch = _Branch(plan, step, pose, theta, head)
+    z = np.append(q / branch.scale, math.radians(t))
+    tau = branch.tangent(z, direction=direction)
+    if tau is None:
+        return [t], [q], [np.zeros_like(q)], None
+    ts, qs, dqs = [t], [q], [branch.dq(tau)]
+    fold = None
+    h = math.radians(h_deg)
+    ds = h
+    while direction * (math.degrees(z[-1]) - end) < -1e-12 and ds > 1e-6 * h:
+        # no further along the arc than reaching the end needs (far, near a fold)
+        remaining = math.radians(abs(end - math.degrees(z[-1])))
+        reach = 1.05 * remaining / max(abs(tau[-1]), 1e-300)
+        ds = min(ds, reach) if reach > 1e-6 * h else ds
+        h_here = max(h, min(reach, math.radians(10.0)))
+        zp = z + ds * tau
+        x = branch.correct(zp, tau)
+        if x is None or np.linalg.norm(x - zp) > 0.25 * ds:
+            ds /= 2
+            continue
+        tau_new = branch.tangent(x, like=tau)
+        if tau_new is None or tau_new @ tau < 0.9:
+            ds /= 2
+            continue
+        if tau_new[-1] * direction <= 0 and tau[-1] * direction > 0:
+            # the input turned back between z and x: a fold, where the path ends
+            fold = _fold(branch, z, tau, ds, direction)
+            break
+        z, tau = x, tau_new
+        ts.append(math.degrees(z[-1])), qs.append(branch.scale * z[:-1])
+        dqs.append(branch.dq(tau))
+        ds = min(h_here, 1.5 * ds)
+    return ts, qs, dqs, fold
+
+
+def _fold(branch, z, tau, ds, direction):
+    """The fold between z and z + ds tau along the arc (where the input turns back),
+    by bisection on the sign of the tangent's input component: (input degrees, q)."""
+    lo, hi, best = 0.0, ds, None
+    for _ in range(40):
+        mid = 0.5 * (lo + hi)
+        x = branch.correct(z + mid * tau, tau, tol=1e-12)
+        here = None if x is None else branch.tangent(x, like=tau)
+        if here is None:
+            return best
+        if here[-1] * direction > 0:
+            lo, best = mid, (math.degrees(x[-1]), branch.scale * x[:-1])
+        else:
+            hi = mid
+    return best
+
+
+def _approach(plan, step, pose, theta, head, t_from, q_from, t_to):
+    """Group coordinates at ``t_to`` continued from ``q_from`` at ``t_from`` through
+    substeps that shrink geometrically towards ``t_to``; None if it cannot be reached."""
+    ts = t_to - (t_to - t_from) * 4.0 ** -np.arange(1, 9)
+    q = q_from
+    for t in list(ts) + [t_to]:
+        known = _known_along(plan, step, pose, theta, np.array([t]), head)
+        qi, good = _newton(plan, step, known, q[None], iterations=100)
+        if good[0] and np.linalg.norm(qi[0] - q) <= 0.1 * plan.size:
+            q = qi[0]
+        elif t == t_to:
+            return None
+    return q
+
+
+def _known_along(plan, step, pose, theta, at, head):
+    """Poses of the fixed link, the driver and the links solved before ``step`` at the
+    angles ``at`` (the path's own poses when ``at`` is the path), in the path's modes
+    (continued from its nearest point of ``head``, the path's evaluation so far)."""
+    if np.array_equal(at, theta):
+        return pose
+    from .tracking import evaluate_at       # tracking solves groups by this module
+    k = np.abs(theta[:, None] - at[None, :]).argmin(axis=0)
+    return evaluate_at(plan, at, head.reference(k), upto=plan.steps.index(step))[0]
+
+
+def _hermite(tc, qc, dqc, t):
+    """Cubic Hermite interpolation of q(theta) (degrees) with dq/dtheta per radian."""
+    if tc.size == 0:
+        return np.full((t.size, qc.shape[1]), np.nan)
+    if tc.size == 1:
+        return np.repeat(qc[:1], t.size, axis=0)
+    order = np.argsort(tc)
+    tc, qc, dqc = tc[order], qc[order], dqc[order]
+    dqc = np.where(np.isfinite(dqc), dqc, 0.0)
+    idx = np.clip(np.searchsorted(tc, t) - 1, 0, tc.size - 2)
+    t0, t1 = tc[idx], tc[idx + 1]
+    h = t1 - t0
+    s = ((t - t0) / h)[:, None]
+    hr = np.radians(h)[:, None]
+    h00, h10 = 2 * s ** 3 - 3 * s ** 2 + 1, s ** 3 - 2 * s ** 2 + s
+    h01, h11 = -2 * s ** 3 + 3 * s ** 2, s ** 3 - s ** 2
+    return h00 * qc[idx] + h10 * hr * dqc[idx] + h01 * qc[idx + 1] + h11 * hr * dqc[idx + 1]
+

@@ -1,0 +1,198 @@
+"""Solving a mechanism over an input sweep: the :class:`Motion` and its summary.
+
+:func:`solve` is what ``chaingraph solve`` runs. The plan (structure) is built once per
+inversion; the motion (arrays) is the result. The summary describes the mechanism's
+whole cycle, whatever rows were asked for: one full turn of a crank, or a rocking
+driver's whole feasible range.
+"""
+
+from __future__ import annotations
+
+import csv
+import io
+import math
+from dataclasses import dataclass, field
+from functools import lru_cache
+
+import numpy as np
+
+from ..errors import AssemblyError, MechanismError
+from .columns import _columns
+from .equations import check_poses
+from .plan import build_plan
+from .rates import rates
+from .summary import _cycle_theta, _summary
+from .sweep import _evaluate_sweep, cycle
+
+__all__ = ["Motion", "solve", "full_turns"]
+
+
+@lru_cache(maxsize=256)
+def _plan(chain, fixed, driver):
+    return build_plan(chain, fixed, driver)
+
+
+@dataclass(frozen=True, eq=False)
+class Motion:
+    """A solved sweep: numpy arrays looked up by CSV column name, and the summary.
+
+    ``motion["theta"]`` is the input angle (degrees); ``motion["angle:crank"]``,
+    ``motion["omega:crank"]``, ``motion["alpha:crank"]`` a link's direction (degrees),
+    angular velocity and acceleration; ``motion["x:B"]``, ``"vx:B"``, ``"ax:B"``... a
+    joint's or point's position, velocity, acceleration; ``motion["s:S"]``, ``"v:S"``,
+    ``"a:S"`` a P joint's slide. Rates are at the constant input speed ``omega``; NaN
+    at a dead centre.
+    """
+
+    name: str
+    fixed: str
+    driver: str
+    omega: float
+    columns: dict
+    summary: dict
+    units: str | None = None
+    plan: object = field(default=None, repr=False)
+
+    def __getitem__(self, name) -> np.ndarray:
+        return self.columns[name]
+
+    @property
+    def theta(self) -> np.ndarray:
+        return self.columns["theta"]
+
+    @property
+    def steps(self) -> int:
+        return self.theta.size - 1
+
+    def to_csv(self, path=None) -> str | None:
+        """Write the CSV (one row per step); returns the text when ``path`` is None."""
+        names = list(self.columns)
+        data = np.column_stack([self.columns[n] for n in names])
+        buf = io.StringIO()
+        writer = csv.writer(buf, lineterminator="\n")
+        writer.writerow(names)
+        for row in data:
+            writer.writerow(["nan" if not np.isfinite(v) else repr(float(v)) for v in row])
+        if path is None:
+            return buf.getvalue()
+        with open(path, "w", encoding="utf-8", newline="") as f:
+            f.write(buf.getvalue())
+        return None
+
+    def to_dict(self) -> dict:
+        """The JSON of ``chaingraph solve --json``."""
+        return {"name": self.name, "fixed": self.fixed, "driver": self.driver,
+                "steps": self.steps, "summary": self.summary}
+
+
+
+def solve(mechanism, *, fixed=None, driver=None, start=None, stop=None, steps=360,
+          omega=None, summary=True) -> Motion:
+    """Solve a mechanism's motion over an input sweep.
+
+    Parameters
+    ----------
+    mechanism : Chain
+        A chain with a drawn pose; its ``[mechanism]`` gives the fixed link, driver,
+        output and input speed unless overridden here.
+    fixed, driver : str, optional
+        Choose the inversion and input link.
+    start, stop : float, optional
+        The sweep of input angles, degrees (the driver's direction from its fixed
+        pivot, CCW from +x). By default one full turn from the drawn pose, or a rocking
+        driver's whole feasible range.
+    steps : int
+        Equal intervals of the sweep: ``steps + 1`` rows.
+    omega : float, optional
+        Constant input speed, rad/s (default: the file's, else 1).
+    summary : bool
+        Also work out the summary (stroke, time ratio, extremes, dead centres...) over
+        the whole cycle; without it ``Motion.summary`` is empty.
+
+    Returns
+    -------
+    Motion
+
+    Raises
+    ------
+    MechanismError
+        A mechanism that cannot be solved as asked (bad input, exit status 2).
+    AssemblyError
+        A sweep past the range that can be assembled (exit status 1); the message and
+        ``feasible_range`` give the range.
+
+    Examples
+    --------
+    >>> import chaingraph
+    >>> from chaingraph.catalog import catalog_path
+    >>> shaper = chaingraph.load(catalog_path("crank-and-slotted-lever-mechanism"))
+    >>> motion = chaingraph.solve(shaper, steps=36)
+    >>> round(motion.summary["time_ratio"], 5), len(motion["theta"])
+    (1.70995, 37)
+    """
+    chain = mechanism
+    if not isinstance(steps, int) or steps < 1:
+        raise MechanismError(f"steps must be a positive whole number, got {steps!r}",
+                             mechanism=chain.name)
+    m = chain.mechanism
+    plan = _plan(chain, fixed or (m.fixed if m else None), driver or (m.driver if m else None))
+    if omega is None:
+        omega = m.omega if m else 1.0
+    output = m.output if m else None
+    for value, flag in ((start, "--from"), (stop, "--to")):
+        if value is not None and not math.isfinite(value):
+            raise MechanismError(f"{flag} must be a finite angle", mechanism=chain.name)
+    c = cycle(plan)
+    if c.full_turn:
+        lo = plan.theta0 if start is None else float(start)
+        hi = lo + 360.0 if stop is None else float(stop)
+    else:
+        lo = c.low if start is None else float(start)
+        hi = c.high if stop is None else float(stop)
+    theta = np.linspace(lo, hi, steps + 1)    # both ends exact (a rocker's limits)
+    ev = _evaluate_sweep(plan, theta)
+    check_poses(plan, ev.pose, ev.feasible)
+    vel, acc, _ = rates(plan, ev.pose, omega, theta.size, measure=False)
+    columns = _columns(plan, theta, ev.pose, vel, acc)
+    summary = _summary(plan, output, omega, c) if summary else {}
+    return Motion(name=chain.name, fixed=plan.fixed, driver=plan.driver, omega=omega,
+                  columns=columns, summary=summary, units=chain.units, plan=plan)
+
+
+def full_turns(chain, fixed):
+    """The links that make full turns relative to ``fixed``, from a solved cycle.
+
+    The driver is the chain's own when its mechanism fixes ``fixed``, else each link
+    pinned to ``fixed`` in turn until one turns fully (a rocking driver's range is used
+    when none does). Returns (frozenset of links, driver) or None when the inversion
+    cannot be solved (no pose, joints other than R and P, mobility other than 1).
+    """
+    m = chain.mechanism
+    if m is not None and m.fixed == fixed and m.driver:
+        drivers = [m.driver]
+    else:
+        drivers = [x for x in chain.links if x != fixed and any(
+            j.kind == "R" and fixed in j.links and x in j.links for j in chain.joints)]
+    fallback = None
+    for driver in drivers:
+        try:
+            plan = _plan(chain, fixed, driver)
+        except MechanismError:
+            continue
+        try:
+            c = cycle(plan)
+            ev = _evaluate_sweep(plan, _cycle_theta(plan, c, 720))
+        except AssemblyError:
+            continue
+        turning = set()
+        for link in chain.links:
+            if link == fixed:
+                continue
+            phi = np.unwrap(np.broadcast_to(ev.pose[link][2], ev.theta.shape))
+            if np.ptp(phi) >= 2 * math.pi - 1e-9:
+                turning.add(link)
+        if c.full_turn:
+            return frozenset(turning), driver
+        fallback = fallback or (frozenset(turning), driver)
+    return fallback
+

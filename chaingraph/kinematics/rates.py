@@ -1,0 +1,338 @@
+"""Velocities and accelerations: the constraint Jacobian times the rates equals the known
+links' terms (and, for accelerations, the quadratic velocity terms).
+
+Per step this is an exact linear solve: each link's constraint to a known link leaves it
+one free rate (a null-space direction), and the dyad's own joint gives a 2 x 2 system in
+those two rates; a group is solved whole. Where that system is singular (a dead centre)
+the rates are NaN, never a finite wrong number.
+"""
+
+from __future__ import annotations
+
+import numpy as np
+
+from .equations import (_add, _batched_inverse, _dot3, _form, _gammas, _geometry,
+                        _group_matrix, _mul, _rows, _sub)
+from .geometry import rotate
+
+__all__ = ["rates"]
+
+
+_SINGULAR = 1e-4          # velocities are NaN below this normalized determinant
+_SINGULAR_ACC = 1e-3      # accelerations below this (their error grows as its cube)
+_SINGULAR_GROUP = 1e-12   # a group's inverse Frobenius condition number
+_POINT_DYADS = True      # RRR dyads in point coordinates (tests compare both ways)
+
+
+def _column_free_det(p11, p12, p21, p22):
+    """The 2 x 2 determinant over the product of its column lengths: the signed sine of
+    the angle between the columns, 0 when singular whatever the units of the rates.
+    (A tangency leaves positions accurate to about the square root of the rounding
+    error, so rates are refused (NaN) below ``_SINGULAR``, not at zero only: near a
+    tangency a position error e becomes about e / d in velocities and e / d**3 in
+    accelerations, for the normalized determinant d.)"""
+    return (p11 * p22 - p12 * p21) / ((np.hypot(p11, p21) + 1e-300) *
+                                       (np.hypot(p12, p22) + 1e-300))
+
+
+class _PointDyad:
+    """An RRR dyad in the coordinates of its middle joint X: the constraints
+    (X - W_a) . (dX - dW_a) = 0 and (X - W_b) . (dX - dW_b) = 0 make a 2 x 2 Jacobian
+    [u_a; u_b], solved by Cramer's rule for velocities and again for accelerations; the
+    links' rates follow from X's. The same answers as the general reduction in far fewer
+    array operations, for the commonest dyad."""
+
+    def __init__(self, step, pose, n, size):
+        self.step = step
+        a, b = step.links
+        ca, cb, cj = step.constraints
+        self.ka, self.kb = ca.other(a), cb.other(b)
+        self.pa, self.pb, self.q = ca.point, cb.point, cj.point
+        self.ra_k = rotate(pose[self.ka], self.pa)
+        self.rb_k = rotate(pose[self.kb], self.pb)
+        wa = (self.ra_k[0] + pose[self.ka][0], self.ra_k[1] + pose[self.ka][1])
+        wb = (self.rb_k[0] + pose[self.kb][0], self.rb_k[1] + pose[self.kb][1])
+        self.rq = {a: rotate(pose[a], self.q), b: rotate(pose[b], self.q)}
+        x = (self.rq[a][0] + pose[a][0], self.rq[a][1] + pose[a][1])
+        self.ua = (x[0] - wa[0], x[1] - wa[1])
+        self.ub = (x[0] - wb[0], x[1] - wb[1])
+        det = self.ua[0] * self.ub[1] - self.ua[1] * self.ub[0]
+        self.ra2 = self.ua[0] ** 2 + self.ua[1] ** 2
+        self.rb2 = self.ub[0] ** 2 + self.ub[1] ** 2
+        self.singular = det * det <= _SINGULAR ** 2 * self.ra2 * self.rb2
+        self.det = np.where(self.singular, 1.0, det)
+        self._det = det
+
+    @property
+    def measure(self):
+        return self._det / np.sqrt(self.ra2 * self.rb2)
+
+    def _known_point(self, table, link, r, second=None):
+        v = table[link]
+        if second is None:      # velocity of the point: v + w perp(R p)
+            return _add(v[0], _mul(-1.0, _mul(v[2], r[1]))), _add(v[1], _mul(v[2], r[0]))
+        w = second[link][2]     # acceleration: a + alpha perp(R p) - w^2 R p
+        w2 = _mul(w, w)
+        return (_add(_add(v[0], _mul(-1.0, _mul(v[2], r[1]))), _mul(-1.0, _mul(w2, r[0]))),
+                _add(_add(v[1], _mul(v[2], r[0])), _mul(-1.0, _mul(w2, r[1]))))
+
+    def solve_velocity(self, vel):
+        dwa = self._known_point(vel, self.ka, self.ra_k)
+        dwb = self._known_point(vel, self.kb, self.rb_k)
+        return self._solve(dwa, dwb, 0.0, 0.0, second=False)
+
+    def solve_acceleration(self, acc, vel):
+        dwa = self._known_point(acc, self.ka, self.ra_k, vel)
+        dwb = self._known_point(acc, self.kb, self.rb_k, vel)
+        ga, gb = _sq(self._rel_a), _sq(self._rel_b)
+        return self._solve(dwa, dwb, ga, gb, second=True, vel=vel)
+
+    def _solve(self, dwa, dwb, ga, gb, *, second, vel=None):
+        ua, ub = self.ua, self.ub
+        ca = ua[0] * dwa[0] + ua[1] * dwa[1] - ga
+        cb = ub[0] * dwb[0] + ub[1] * dwb[1] - gb
+        dx = (ca * ub[1] - ua[1] * cb) / self.det
+        dy = (ua[0] * cb - ca * ub[0]) / self.det
+        dx = np.where(self.singular, np.nan, dx)
+        a, b = self.step.links
+        out = {}
+        for link, u, dw, r2 in ((a, ua, dwa, self.ra2), (b, ub, dwb, self.rb2)):
+            rel = (dx - dw[0], dy - dw[1])
+            w = (u[0] * rel[1] - u[1] * rel[0]) / r2
+            rq = self.rq[link]
+            if not second:
+                setattr(self, "_rel_a" if link == a else "_rel_b", rel)
+                out[link] = (dx + w * rq[1], dy - w * rq[0], w)
+            else:
+                w0 = vel[link][2]
+                out[link] = (dx + w * rq[1] + w0 * w0 * rq[0],
+                             dy - w * rq[0] + w0 * w0 * rq[1], w)
+        return out
+
+
+def _sq(v):
+    return v[0] * v[0] + v[1] * v[1]
+
+
+class _Factor:
+    """One step's constraint Jacobian, factored once for the velocity and acceleration
+    solves (which differ only in their right-hand sides)."""
+
+    def __init__(self, step, pose, n, size):
+        self.step = step
+        self.n = n
+        self.rows = []                       # (unknown coefficients, known coefficients)
+        if step.kind == "group":
+            self.form = _form(step)
+            unknowns = self.form.bodies
+            coefs = self.form.rows(pose)
+        else:
+            self.geometry = [_geometry(c, pose) for c in step.constraints]
+            unknowns = step.links
+            coefs = [coef for c, geom in zip(step.constraints, self.geometry)
+                     for coef in _rows(c, pose, geom)]
+        for coef in coefs:
+            unknown = {k: v for k, v in coef.items() if k in unknowns}
+            known = {k: v for k, v in coef.items() if k not in unknowns}
+            self.rows.append((unknown, known))
+        if step.kind == "single":
+            u = step.links[0]
+            self.null = _NullSpace(self.rows[0][0][u], self.rows[1][0][u])
+            self.extra = [_dot3(r[0][u], self.null.e) for r in self.rows[2:]]
+            den = sum(m * m for m in self.extra)
+            self.singular = np.abs(den) <= _SINGULAR ** 2 * (_dot3(self.null.e, self.null.e))
+            self.den = np.where(self.singular, 1.0, den)
+        elif step.kind == "dyad":
+            a, b = step.links
+            self.null_a = _NullSpace(self.rows[0][0][a], self.rows[1][0][a])
+            self.null_b = _NullSpace(self.rows[2][0][b], self.rows[3][0][b])
+            p = []
+            for unknown, _ in self.rows[4:6]:
+                pa = _dot3(unknown[a], self.null_a.e) if a in unknown else 0.0 * n
+                pb = _dot3(unknown[b], self.null_b.e) if b in unknown else 0.0 * n
+                p.append((pa, pb))
+            (p11, p12), (p21, p22) = p
+            w = size if step.constraints[2].kind == "P" else 1.0  # angle row in lengths
+            self._weighted = (w * p11, w * p12, p21, p22)
+            det = p11 * p22 - p12 * p21
+            wdet = w * det
+            self.singular = wdet * wdet <= _SINGULAR ** 2 * (
+                (w * w * p11 * p11 + p21 * p21) * (w * w * p12 * p12 + p22 * p22))
+            self.p = (p11, p12, p21, p22, np.where(self.singular, 1.0, det))
+        else:
+            self.mat, _ = _group_matrix(self.form.bodies, [(u, 0.0) for u, _ in self.rows], n)
+            m = self.mat
+            self.normal = m.shape[1] != m.shape[2]
+            if self.normal:
+                m = np.einsum("nij,nik->njk", self.mat, self.mat)
+            inv = _batched_inverse(m)
+            # 1 / (Frobenius condition number): 0 when singular, whatever the scale
+            measure = 1.0 / (np.sqrt((m * m).sum(axis=(1, 2)) *
+                                     (inv * inv).sum(axis=(1, 2))) + 1e-300)
+            self._measure = np.where(np.isfinite(measure), measure, 0.0)
+            self.singular = self._measure <= _SINGULAR_GROUP
+            self.inverse = inv
+            if not self.normal:
+                # signed, so that a dead centre is a change of sign: the determinant
+                # over the product of the column lengths (the columns' units cancel)
+                good = np.isfinite(self.mat).all(axis=(1, 2))
+                signed = np.zeros(n)
+                if good.any():
+                    mg = self.mat[good]
+                    signed[good] = np.linalg.det(mg) / (
+                        np.prod(np.linalg.norm(mg, axis=1), axis=1) + 1e-300)
+                self._measure = signed
+
+    @property
+    def measure(self):
+        """The step's normalized determinant along the sweep (0 at a dead centre;
+        signed, except for a group with more equations than unknowns)."""
+        if self.step.kind == "single":
+            return np.where(self.singular, 0.0, 1.0)
+        if self.step.kind == "dyad":
+            return _column_free_det(*self._weighted)
+        return self._measure
+
+    def solve(self, rhs):
+        """Rates of the step's links for right-hand sides ``rhs`` (one per row)."""
+        step = self.step
+        if step.kind == "single":
+            u = step.links[0]
+            q0 = self.null.particular(rhs[0], rhs[1])
+            num = 0.0
+            for m, (unknown, _), r in zip(self.extra, self.rows[2:], rhs[2:]):
+                num = num + m * (r - _dot3(unknown[u], q0))
+            z = np.where(self.singular, np.nan, num / self.den)
+            e = self.null.e
+            return {u: tuple(q0[i] + z * e[i] for i in range(3))}
+        if step.kind == "dyad":
+            a, b = step.links
+            qa = self.null_a.particular(rhs[0], rhs[1])
+            qb = self.null_b.particular(rhs[2], rhs[3])
+            r = []
+            for (unknown, _), value in zip(self.rows[4:6], rhs[4:6]):
+                if a in unknown:
+                    value = value - _dot3(unknown[a], qa)
+                if b in unknown:
+                    value = value - _dot3(unknown[b], qb)
+                r.append(value)
+            p11, p12, p21, p22, det = self.p
+            za = np.where(self.singular, np.nan, (r[0] * p22 - p12 * r[1]) / det)
+            zb = np.where(self.singular, np.nan, (p11 * r[1] - p21 * r[0]) / det)
+            ea, eb = self.null_a.e, self.null_b.e
+            return {a: tuple(qa[i] + za * ea[i] for i in range(3)),
+                    b: tuple(qb[i] + zb * eb[i] for i in range(3))}
+        vec = np.stack([np.broadcast_to(v, (self.n,)) for v in rhs], axis=-1)
+        if self.normal:
+            vec = np.einsum("nij,ni->nj", self.mat, vec)
+        x = np.einsum("nij,nj->ni", self.inverse, vec)
+        x[self.singular] = np.nan
+        return {link: (x[:, 3 * k], x[:, 3 * k + 1], x[:, 3 * k + 2])
+                for k, link in enumerate(self.form.bodies)}
+
+    def right_hand_sides(self, rates_known, gammas=None):
+        out = []
+        for i, (_, known) in enumerate(self.rows):
+            value = gammas[i] if gammas is not None else 0.0
+            for link, cf in known.items():
+                value = value - _dot3(cf, rates_known[link])
+            out.append(value)
+        return out
+
+
+class _NullSpace:
+    """Two rows on one link's three rates: their null direction and a particular solution.
+
+    The particular solution is solved on the two columns whose 2 x 2 minor is largest
+    (those minors are the null direction's components), not through the rows' Gram
+    matrix, which squares the conditioning: a rotation column carries the drawing's
+    absolute coordinates, so far from the origin the Gram determinant cancels to 0.
+    """
+
+    def __init__(self, m1, m2):
+        self.m1, self.m2 = m1, m2
+        self.e = (_sub(_mul(m1[1], m2[2]), _mul(m1[2], m2[1])),
+                  _sub(_mul(m1[2], m2[0]), _mul(m1[0], m2[2])),
+                  _sub(_mul(m1[0], m2[1]), _mul(m1[1], m2[0])))
+        self.drop = np.argmax(np.abs(np.array(np.broadcast_arrays(*self.e), dtype=float)),
+                              axis=0)
+
+    def particular(self, c1, c2):
+        m1, m2 = self.m1, self.m2
+        y = [0.0, 0.0, 0.0]
+        with np.errstate(divide="ignore", invalid="ignore"):
+            for i in range(3):
+                use = self.drop == i
+                if not np.any(use):
+                    continue
+                j, k = (i + 1) % 3, (i + 2) % 3
+                det = np.asarray(self.e[i], dtype=float)        # m1[j] m2[k] - m1[k] m2[j]
+                yj = (c1 * m2[k] - c2 * m1[k]) / det
+                yk = (m1[j] * c2 - m2[j] * c1) / det
+                y[j] = np.where(use, yj, y[j])
+                y[k] = np.where(use, yk, y[k])
+        return tuple(y)
+
+
+
+def rates(plan, pose, omega, n, *, steps=None, measure=True, accelerations=True):
+    """Velocities and accelerations of every link at constant input speed ``omega``.
+
+    Returns
+    -------
+    vel, acc : dict link -> (vx, vy, omega) and (ax, ay, alpha) arrays (the fixed
+        link's as zeros)
+    singularity : (S, N) array, each step's normalized determinant (0 at a dead
+        centre); None unless ``measure``
+
+    With ``accelerations=False`` the accelerations are left out (zeros for the fixed
+    link and the driver only).
+    """
+    zero = np.zeros(n)
+    ox, oy = plan.pivot_point
+    rx, ry = rotate(pose[plan.driver], (ox, oy))
+    vel = {plan.fixed: (0.0, 0.0, 0.0),
+           plan.driver: (omega * ry, -omega * rx, omega + zero)}
+    acc = {plan.fixed: (0.0, 0.0, 0.0),
+           plan.driver: (omega ** 2 * rx, omega ** 2 * ry, 0.0)}
+    measures = [] if measure else None
+    factors = []
+    for step in (plan.steps if steps is None else steps):
+        if step.kind == "dyad" and step.pattern == "RRR" and _POINT_DYADS:
+            f = _PointDyad(step, pose, n, plan.size)
+            vel.update(f.solve_velocity(vel))
+        else:
+            f = _Factor(step, pose, n, plan.size)
+            vel.update(f.solve(f.right_hand_sides(vel)))
+            if step.kind == "group":
+                vel.update(f.form.bar_rates(pose, vel))
+        factors.append(f)
+        if measure:
+            measures.append(np.broadcast_to(f.measure, (n,)))
+    for f in (factors if accelerations else []):
+        if isinstance(f, _PointDyad):
+            acc.update(_refuse_near_singular(f, f.solve_acceleration(acc, vel)))
+            continue
+        if f.step.kind == "group":
+            acc.update(f.solve(f.right_hand_sides(acc, f.form.gammas(pose, vel))))
+            acc.update(f.form.bar_rates(pose, vel, acc))
+            continue
+        gammas = [g for c, geom in zip(f.step.constraints, f.geometry)
+                  for g in _gammas(c, pose, vel, geom)]
+        acc.update(_refuse_near_singular(f, f.solve(f.right_hand_sides(acc, gammas))))
+    for table in (vel, acc):
+        table[plan.fixed] = (zero, zero, zero)
+        table[plan.driver] = tuple(v + zero for v in table[plan.driver])
+    return vel, acc, (np.array(measures) if measure else None)
+
+
+def _refuse_near_singular(factor, found):
+    """NaN accelerations where a dyad is too near a singular pose for them to be exact."""
+    if factor.step.kind != "dyad":
+        return found
+    near = np.abs(factor.measure) < _SINGULAR_ACC
+    if not np.any(near):
+        return found
+    return {link: tuple(np.where(near, np.nan, v) for v in values)
+            for link, values in found.items()}
+

@@ -1,0 +1,329 @@
+"""The summary of a motion over the mechanism's whole cycle: the output's stroke and
+extremes, the time ratio, the transmission angle and the dead centres, each refined from
+the sweep (not read off its grid).
+"""
+
+from __future__ import annotations
+
+import math
+
+import numpy as np
+
+from .columns import _columns
+from .geometry import rotate
+from .rates import rates
+from .sweep import _evaluate_sweep
+from .tracking import evaluate_at
+
+__all__ = ["summary_rows", "path_direction"]
+
+
+def summary_rows(motion):
+    """The summary as (label, text) rows, for the command line and the report.
+
+    Examples
+    --------
+    >>> import chaingraph
+    >>> from chaingraph.catalog import catalog_path
+    >>> m = chaingraph.solve(chaingraph.load(catalog_path("beam-engine")), steps=12)
+    >>> dict(summary_rows(m))["time ratio"]
+    '1.0466'
+    """
+    s = motion.summary
+
+    def num(value, unit=""):
+        if value is None or (isinstance(value, float) and not math.isfinite(value)):
+            return "-"
+        return f"{value:.6g}{unit}"
+    unit = f" {s['stroke_unit']}" if s["stroke_unit"] else ""
+    ta = s["transmission_angle"]
+    rows = [
+        ("fixed link", motion.fixed),
+        ("driver", motion.driver + ("  (turns fully)" if s["full_turn"] else "  (rocks)")),
+        ("input range", " to ".join(f"{t:.6g}" for t in s["input_range"]) + " degrees"),
+        ("output", s["output"] or "-"),
+        ("stroke", num(s["stroke"], unit)),
+        ("time ratio", num(s["time_ratio"])),
+        ("forward / return", f"{num(s['forward_deg'])} / {num(s['return_deg'])} degrees"),
+        ("extremes at", ", ".join(f"{t:.6g}" for t in s["extremes"] or []) or "-"),
+        ("every extreme", ", ".join(f"{e['kind']} {e['value']:.6g} at {e['input']:.6g}"
+                                    for e in s.get("extreme_positions") or []) or "-"),
+        ("transmission angle", "-" if ta is None else
+         f"{ta['min']:.6g} to {ta['max']:.6g} degrees"),
+        ("dead centres", ", ".join(f"{t:.6g}" for t in s["dead_centres"]) or "none"),
+        ("mobility", f"{s['numeric_mobility']} at the drawn pose (Kutzbach: {s['mobility']})"),
+    ]
+    if s.get("note"):
+        rows.append(("note", s["note"]))
+    return rows
+
+
+
+# -- the summary -----------------------------------------------------------------------
+def _output_signal(plan, output, cols):
+    """How the output's position is measured: (kind, column name or vector, unit word)."""
+    chain = plan.chain
+    if output is None:
+        return None
+    if output in chain.links:
+        for j in chain.joints:
+            if j.kind == "P" and set(j.links) == {output, plan.fixed}:
+                return ("slide", j.id)
+        angle = cols[f"angle:{output}"]
+        if np.ptp(angle) > 1e-9:
+            return ("angle", output)
+        output = chain.joints_of(output)[0].id
+    return ("point", output)
+
+
+def path_direction(cols, name):
+    """The main direction of point ``name``'s path (a unit vector), along which its
+    stroke is measured: its sign points towards the path's point farthest from the
+    path's mean, so that it turns with the drawing and does not depend on its frame."""
+    xy = np.column_stack([cols[f"x:{name}"], cols[f"y:{name}"]])
+    centred = xy - xy.mean(axis=0)
+    _, _, vt = np.linalg.svd(centred, full_matrices=False)
+    far = centred[int(np.argmax(np.hypot(centred[:, 0], centred[:, 1])))]
+    d = vt[0] if far @ vt[0] >= 0 else -vt[0]
+    return float(d[0]), float(d[1])
+
+
+def _signal_values(kind, name, cols, direction=None):
+    """(u, du/dt, d2u/dt2) of the output along the sweep."""
+    if kind == "slide":
+        return cols[f"s:{name}"], cols[f"v:{name}"], cols[f"a:{name}"]
+    if kind == "angle":
+        return cols[f"angle:{name}"], np.degrees(cols[f"omega:{name}"]), \
+            np.degrees(cols[f"alpha:{name}"])
+    ux, uy = direction
+    return (cols[f"x:{name}"] * ux + cols[f"y:{name}"] * uy,
+            cols[f"vx:{name}"] * ux + cols[f"vy:{name}"] * uy,
+            cols[f"ax:{name}"] * ux + cols[f"ay:{name}"] * uy)
+
+
+def _cycle_theta(plan, c, steps_per_turn=3600):
+    """The summary's grid: one period of a crank from the drawn pose, or a rocker's
+    whole range, limits included exactly."""
+    if c.full_turn:
+        n = int(round(steps_per_turn * c.period / 360.0))
+        return plan.theta0 + c.period * np.arange(n + 1) / n
+    theta = np.linspace(c.low, c.high, steps_per_turn + 1)
+    theta[0], theta[-1] = c.low, c.high
+    return theta
+
+
+def _pointwise(plan, ev, k, t):
+    """Columns and step measures at angles ``t``, each continued from ev's point k."""
+    pose, feasible, _ = evaluate_at(plan, t, ev.reference(k))
+    vel, acc, measure = rates(plan, pose, 1.0, t.size)
+    return _columns(plan, t, pose, vel, acc), measure, feasible
+
+
+def _bracketed_roots(f, a, b, fa, fb, *, newton=False, tol=1e-10, iterations=60):
+    """Roots of f between a and b (arrays of brackets with fa, fb of opposite signs),
+    all at once: Newton's step (``newton``: f returns the value and its derivative
+    per degree) or the secant, kept inside the bracket, with a bisection every other
+    step so that the bracket at least halves. Returns the roots."""
+    a, b, fa, fb = (np.array(v, dtype=float) for v in (a, b, fa, fb))
+    t = 0.5 * (a + b)
+    for it in range(iterations):
+        with np.errstate(divide="ignore", invalid="ignore"):   # a zero slope: bisect
+            if newton and it > 0:
+                trial = t - value / slope
+            else:
+                trial = b - fb * (b - a) / (fb - fa)
+        inside = np.isfinite(trial) & ((trial - a) * (trial - b) < 0)
+        t = np.where(inside & (it % 2 == 0 or newton), trial, 0.5 * (a + b))
+        out = f(t)
+        value, slope = out if newton else (out, None)
+        left = np.sign(value) == np.sign(fa)
+        a, fa = np.where(left, t, a), np.where(left, value, fa)
+        b, fb = np.where(left, b, t), np.where(left, fb, value)
+        done = (np.abs(b - a) < tol) | (value == 0) | ~np.isfinite(value)
+        if done.all():
+            break
+    return np.where(np.isfinite(t), t, 0.5 * (a + b))
+
+
+def _summary(plan, output, omega, c):
+    theta = _cycle_theta(plan, c)
+    ev = _evaluate_sweep(plan, theta)
+    vel, acc, measure = rates(plan, ev.pose, 1.0, theta.size)
+    cols = _columns(plan, theta, ev.pose, vel, acc)
+    summary = {"output": output, "stroke": None, "stroke_unit": None, "time_ratio": None,
+               "forward_deg": None, "return_deg": None, "extremes": None,
+               "extreme_positions": None,
+               "transmission_angle": _transmission(plan, ev, theta),
+               "dead_centres": _dead_centres(plan, ev, measure, c),
+               "input_range": [float(theta[0]), float(theta[-1])],
+               "full_turn": c.full_turn,
+               "mobility": plan.mobility, "numeric_mobility": plan.numeric_mobility,
+               "omega": omega, "note": None}
+    signal = _output_signal(plan, output, cols)
+    if signal is None:
+        summary["note"] = "no output is named, so there is no stroke or time ratio"
+        return summary
+    kind, name = signal
+    direction = path_direction(cols, name) if kind == "point" else None
+    u, du, _ = _signal_values(kind, name, cols, direction)
+    summary["stroke_unit"] = "deg" if kind == "angle" else plan.chain.units
+    if kind == "angle" and c.full_turn and abs(u[-1] - u[0]) > 180.0:
+        summary["output_turns_fully"] = True
+        summary["note"] = "the output turns fully, so it has no stroke or time ratio"
+        return summary
+    scale = np.nanmax(np.abs(du))
+    if not np.isfinite(scale) or np.nanmax(u) - np.nanmin(u) <= 1e-12 * max(
+            plan.size if kind != "angle" else 360.0, 1e-300):
+        summary.update(stroke=0.0, note="the output does not move")
+        return summary
+    extremes = _output_extremes(plan, ev, kind, name, direction, u, du, scale, c)
+    values = [e["value"] for e in extremes]
+    hi_e = extremes[int(np.argmax(values))]
+    lo_e = extremes[int(np.argmin(values))]
+    summary["stroke"] = hi_e["value"] - lo_e["value"]
+    summary["extremes"] = [_turn(lo_e["input"], c), _turn(hi_e["input"], c)]
+    summary["extreme_positions"] = [dict(e, input=_turn(e["input"], c)) for e in extremes]
+    if not c.full_turn:
+        summary["note"] = "the input rocks, so there is no time ratio"
+        return summary
+    maxima = sum(e["kind"] == "max" for e in extremes)
+    if maxima != 1:
+        summary["note"] = (f"the output reaches {maxima} maxima and {len(extremes) - maxima} "
+                           "minima in a cycle, so no single forward and return stroke "
+                           "(and no time ratio) is defined")
+        return summary
+    a = (hi_e["input"] - lo_e["input"]) % c.period
+    b = c.period - a
+    forward, back = max(a, b), min(a, b)
+    summary.update(forward_deg=forward, return_deg=back,
+                   time_ratio=forward / back if back > 0 else None)
+    return summary
+
+
+def _output_extremes(plan, ev, kind, name, direction, u, du, scale, c):
+    """Every extreme of the output over the cycle, in input order: stationary points
+    refined by Newton's method on its rate (safeguarded by bisection), and for a rocker
+    the values at the input's limits. Each {"input", "value", "kind"}."""
+    theta = ev.theta
+    sign = np.where(np.abs(du) > 1e-9 * scale, np.sign(du), 0.0)
+    # the rate's sign changes between significant samples (a dwell's rounding noise and
+    # exact zeros on the grid are skipped over, not counted); a crank's cycle closes on
+    # itself, so a change across its seam counts too, one period on
+    idx = np.nonzero(sign)[0]
+    ka, kb = idx[:-1], idx[1:]
+    tb = theta[kb]
+    if c.full_turn and idx.size and sign[idx[-1]] != sign[idx[0]]:
+        ka, kb = np.append(ka, idx[-1]), np.append(kb, idx[0])
+        tb = np.append(tb, theta[idx[0]] + c.period)
+    change = sign[ka] != sign[kb]
+    ka, kb, tb = ka[change], kb[change], tb[change]
+    found = []
+    if ka.size:
+        t = _bracketed_roots(lambda t: _rate_and_slope(plan, ev, ka, t, kind, name, direction),
+                             theta[ka], tb, du[ka], du[kb], newton=True)
+        cols, _, _ = _pointwise(plan, ev, ka, t)
+        value = _signal_values(kind, name, cols, direction)[0]
+        if kind == "angle":      # the same turn as the sweep's own values
+            value = u[ka] + np.remainder(value - u[ka] + 180.0, 360.0) - 180.0
+        found = [{"input": float(ti), "value": float(vi), "kind": "max" if sign[k] > 0 else "min"}
+                 for ti, vi, k in sorted(zip(t, value, ka))]
+    if not c.full_turn and idx.size:
+        found.insert(0, {"input": float(theta[0]), "value": float(u[0]),
+                         "kind": "min" if sign[idx[0]] > 0 else "max"})
+        found.append({"input": float(theta[-1]), "value": float(u[-1]),
+                      "kind": "max" if sign[idx[-1]] > 0 else "min"})
+    return found or [{"input": float(theta[int(np.argmax(u))]), "value": float(np.max(u)),
+                      "kind": "max"},
+                     {"input": float(theta[int(np.argmin(u))]), "value": float(np.min(u)),
+                      "kind": "min"}]
+
+
+def _rate_and_slope(plan, ev, k, t, kind, name, direction):
+    """The output's rate and its derivative per degree of input at angles t."""
+    cols, _, _ = _pointwise(plan, ev, k, t)
+    _, d1, d2 = _signal_values(kind, name, cols, direction)
+    return d1, d2 * (math.pi / 180.0)      # d2 is per radian of input, t in degrees
+
+
+def _transmission(plan, ev, theta):
+    """Transmission angle range of the four-bar loop (RRR dyad) at the output, if any."""
+    dyads = [s for s in plan.steps if s.kind == "dyad" and s.pattern == "RRR"]
+    if not dyads:
+        return None
+    out = plan.chain.mechanism.output if plan.chain.mechanism else None
+    step = next((s for s in dyads if out in s.links), dyads[0])
+    a, b = step.links
+    ca, cb, cj = step.constraints
+    pose = ev.pose
+
+    def world(link, p):
+        rx, ry = rotate(pose[link], p)
+        return rx + pose[link][0], ry + pose[link][1]
+    x = world(a, cj.point)
+    pa = world(a, ca.point)
+    pb = world(b, cb.point)
+    v1 = (pa[0] - x[0], pa[1] - x[1])
+    v2 = (pb[0] - x[0], pb[1] - x[1])
+    mu = np.degrees(np.arctan2(np.abs(v1[0] * v2[1] - v1[1] * v2[0]),
+                               v1[0] * v2[0] + v1[1] * v2[1]))
+    return {"min": _refined_extreme(mu, np.argmin(mu)),
+            "max": _refined_extreme(mu, np.argmax(mu))}
+
+
+def _refined_extreme(y, k):
+    """A sampled extreme refined by the parabola through its neighbours."""
+    k = int(k)
+    if 0 < k < y.size - 1:
+        y0, y1, y2 = y[k - 1], y[k], y[k + 1]
+        den = y0 - 2 * y1 + y2
+        if den != 0:
+            return float(y1 - 0.125 * (y2 - y0) ** 2 / den)
+    return float(y[k])
+
+
+def _dead_centres(plan, ev, measure, c):
+    """Input angles where the driven mechanism is singular: where a step's signed,
+    normalized determinant changes sign (refined all at once), where a dyad's two
+    modes touch (a change point), and a rocker's limits."""
+    theta = ev.theta
+    # where a dyad's modes touch, and a rocker's limits, are known precisely; a root of
+    # a determinant near one (where positions carry the square root of the rounding
+    # error) is the same dead centre
+    exact = [t for ts in ev.switches.values() for t in ts]
+    if not c.full_turn:
+        exact += [c.low, c.high]
+    # a rocker's limits are folds, where a determinant is zero with no meaningful
+    # sign: the samples there are left out of the search
+    inner = np.ones(theta.size, dtype=bool)
+    if not c.full_turn:
+        inner[[0, -1]] = False
+    roots = []
+    for i, m in enumerate(measure):
+        m = np.asarray(m, dtype=float)
+        idx = np.nonzero(inner & np.isfinite(m) & (m != 0))[0]
+        change = np.sign(m[idx[:-1]]) != np.sign(m[idx[1:]])
+        ka, kb = idx[:-1][change], idx[1:][change]
+        roots += [float(theta[k]) for k in np.nonzero(inner & (m == 0))[0]]
+        if ka.size:
+            def f(t, ka=ka, i=i):
+                _, mm, _ = _pointwise(plan, ev, ka, t)
+                return mm[i]
+            roots += list(_bracketed_roots(f, theta[ka], theta[kb], m[ka], m[kb]))
+    found = exact + [t for t in roots if all(abs(t - x) > 1e-5 for x in exact)]
+    found = sorted(_turn(t, c) for t in found)
+    merged = [t for i, t in enumerate(found) if i == 0 or t - found[i - 1] > _SAME_ANGLE]
+    if c.full_turn and len(merged) > 1 and merged[0] + 360.0 - merged[-1] <= _SAME_ANGLE:
+        merged.pop()
+    return merged
+
+
+_SAME_ANGLE = 1e-7     # degrees: how precisely change points and limits are found
+
+
+def _turn(t, c):
+    """An angle of a full-turn cycle in [0, 360) (within ``_SAME_ANGLE`` of 360 is 0);
+    a rocker's as it is."""
+    if not c.full_turn:
+        return float(t)
+    t = float(t % 360.0)
+    return 0.0 if t > 360.0 - _SAME_ANGLE else t

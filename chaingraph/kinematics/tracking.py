@@ -1,0 +1,275 @@
+"""Positions along a path of input values: the plan's steps one after another, each
+dyad kept in its assembly mode, each group continued by Newton's method.
+
+A dyad's two modes meet only where its discriminant reaches zero: every sampled local
+minimum of the discriminant is refined, so that a narrow window where the dyad cannot be
+assembled is found (the path stops there) and, where the modes touch (a parallelogram's
+change point), the motion continues into the label that continues it smoothly. Poses at
+an input value therefore do not depend on how finely the path is sampled.
+"""
+
+from __future__ import annotations
+
+import math
+
+import numpy as np
+
+from .closed_form import _dyad_roots, _initial_sign, _single
+from .equations import _form
+from .geometry import _DISC_TOL, _FIXED, make_pose, rotate
+from .groups import _newton, _newton_path
+
+__all__ = ["Evaluation", "Reference", "evaluate", "evaluate_at"]
+
+
+# -- the sweep -----------------------------------------------------------------------
+def _known_poses(plan, theta):
+    n = theta.size
+    zero = np.zeros(n)
+    alpha = np.radians(theta - plan.theta0)
+    turn = make_pose(zero, zero, alpha)
+    ox, oy = plan.pivot_point
+    rx, ry = rotate(turn, (ox, oy))
+    return {plan.fixed: _FIXED,
+            plan.driver: make_pose(ox - rx, oy - ry, alpha, turn[3], turn[4])}
+
+
+class Reference:
+    """Where pointwise evaluations continue from: per point, an input angle, each
+    dyad's mode sign there, each group's coordinates there, and the angles where each
+    dyad's modes change label (``switches``: its two modes meet there and the motion
+    continues smoothly into the other label)."""
+
+    def __init__(self, theta, signs, group_q, switches):
+        self.theta = np.asarray(theta, dtype=float)
+        self.signs = signs
+        self.group_q = group_q
+        self.switches = switches
+
+    def sign(self, i, theta):
+        """Step i's mode sign at ``theta``, from the reference's across its switches."""
+        s = np.broadcast_to(self.signs[i], self.theta.shape).astype(float)
+        for t in self.switches.get(i, ()):
+            s = np.where((t - self.theta) * (t - theta) < 0, -s, s)
+        return s
+
+
+def evaluate_at(plan, theta, ref, *, upto=None):
+    """Poses at the angles ``theta`` (degrees, shape (M,)), each point continued from
+    the same point of ``ref`` (a :class:`Reference` of M points, close by) without
+    tracking: the modes are the reference's, across its switches; groups are solved by
+    Newton's method from the reference's coordinates. Only the first ``upto`` steps of
+    the plan when given.
+
+    Returns (pose, feasible, group_q).
+    """
+    theta = np.asarray(theta, dtype=float)
+    with np.errstate(divide="ignore", invalid="ignore", over="ignore"):
+        pose = _known_poses(plan, theta)
+        feasible = np.ones(theta.size, dtype=bool)
+        group_q = {}
+        for i, step in enumerate(plan.steps[:upto]):
+            if step.kind == "single":
+                pose.update(_single(step, pose))
+            elif step.kind == "dyad":
+                keys, build, ok, _ = _dyad_roots(step, pose, plan.size)
+                feasible &= ok
+                pose.update(build(1.0 if keys is None else ref.sign(i, theta)))
+            else:
+                q0 = np.broadcast_to(ref.group_q[i], (theta.size, _form(step).size))
+                q, ok = _newton(plan, step, pose, q0)
+                feasible &= ok
+                group_q[i] = q
+                pose.update(_form(step).complete(_form(step).set_bodies(pose, q)))
+    return pose, feasible, group_q
+
+
+class Evaluation:
+    """Poses of every link along a path of input angles, with what the next needs."""
+
+    def __init__(self, theta, pose, feasible, signs, group_q, switches):
+        self.theta = theta            # degrees, (N,)
+        self.pose = pose              # link -> (x, y, phi) arrays
+        self.feasible = feasible      # (N,) bool
+        self.signs = signs            # step index -> (N,) branch signs
+        self.group_q = group_q        # step index -> (N, 3k) group coordinates
+        self.switches = switches      # step index -> angles where the mode label changes
+
+    def at(self, k):
+        """The state at point k, to continue a new path from (its first angle)."""
+        return _Start({i: float(v[k]) for i, v in self.signs.items()},
+                      {i: q[k] for i, q in self.group_q.items()})
+
+    def reference(self, k):
+        """A :class:`Reference` for pointwise evaluations near the points ``k`` (array)."""
+        k = np.asarray(k)
+        return Reference(self.theta[k], {i: v[k] for i, v in self.signs.items()},
+                         {i: q[k] for i, q in self.group_q.items()}, self.switches)
+
+    def take(self, k):
+        """The evaluation at the points ``k`` only (an index array)."""
+        def pick(v):
+            return v if np.ndim(v) == 0 else v[k]
+        return Evaluation(self.theta[k], {x: tuple(pick(v) for v in p)
+                                          for x, p in self.pose.items()},
+                          self.feasible[k], {i: v[k] for i, v in self.signs.items()},
+                          {i: q[k] for i, q in self.group_q.items()}, self.switches)
+
+
+class _Start:
+    def __init__(self, signs, group_q):
+        self.signs = signs
+        self.group_q = group_q
+
+
+def evaluate(plan, theta, *, start=None) -> Evaluation:
+    """Poses along a path of input angles (degrees), continued from ``start`` (an
+    Evaluation's state at the path's first point), else from the drawn pose, which
+    must then be the path's first point.
+
+    Each dyad keeps its assembly mode along the path. Its two modes meet only where
+    its discriminant reaches zero; every sampled local minimum of the discriminant is
+    refined between the neighbouring samples, so that a narrow window where the dyad
+    cannot be assembled is found (the path stops there), and where the modes touch
+    the motion continues into whichever label continues it smoothly (as a
+    parallelogram passes its change points). The poses at an angle therefore do not
+    depend on how finely the path is sampled.
+    """
+    # a degenerate step (two attachment points at one place) gives NaN, which counts as
+    # "cannot be assembled", not as a warning
+    with np.errstate(divide="ignore", invalid="ignore", over="ignore"):
+        return _evaluate(plan, np.asarray(theta, dtype=float), start)
+
+
+_TOUCH_CANDIDATE = 0.05   # sampled discriminant minima below this are refined
+_ZOOM_POINTS = 33
+_SWITCH_STEP = 1e-4       # degrees either side of a touch, to see which label continues
+
+
+def _evaluate(plan, theta, start):
+    pose = _known_poses(plan, theta)
+    feasible = np.ones(theta.size, dtype=bool)
+    signs, group_q, switches = {}, {}, {}
+    for i, step in enumerate(plan.steps):
+        if step.kind == "single":
+            pose.update(_single(step, pose))
+            continue
+        if step.kind == "dyad":
+            keys, build, ok, disc = _dyad_roots(step, pose, plan.size)
+            if keys is None:
+                feasible &= ok
+                pose.update(build(1.0))
+                continue
+            drawn = (1.0, 0.0) if step.pattern == "RPR" else step.constraints[2].point
+            sign0 = start.signs[i] if start is not None else _initial_sign(keys, drawn)
+            ref = Evaluation(theta, pose, feasible, signs, group_q, switches)
+            chosen, ok, found = _track(plan, i, step, ref, np.where(feasible, disc, np.nan),
+                                       sign0)
+            feasible &= ok
+            signs[i] = chosen
+            switches[i] = found
+            pose.update(build(chosen))
+            continue
+        q0 = start.group_q[i] if start is not None else np.zeros(_form(step).size)
+        head = Evaluation(theta, pose, feasible, signs, group_q, switches)
+        q, ok = _newton_path(plan, step, pose, theta, q0, head=head)
+        feasible &= ok
+        group_q[i] = q
+        pose.update(_form(step).complete(_form(step).set_bodies(pose, q)))
+    if not feasible.all():
+        first_bad = int(np.argmin(feasible))
+        feasible[first_bad:] = False
+    return Evaluation(theta, pose, feasible, signs, group_q, switches)
+
+
+def _track(plan, i, step, head, disc, sign0):
+    """Mode signs of dyad step i along the path, where it can be assembled, and the
+    angles where its label switches.
+
+    ``head`` is the path's evaluation so far (the steps before i); ``disc`` the dyad's
+    sampled discriminant (NaN where an earlier step failed).
+    """
+    theta = head.theta
+    n = theta.size
+    ok = disc >= -_DISC_TOL
+    last = n if ok.all() else int(np.argmin(ok))
+    direction = 1.0 if n < 2 or theta[-1] >= theta[0] else -1.0
+    found = []
+    if last >= 2:
+        d = disc[:last]
+        left = np.r_[np.inf, d[:-1]]
+        right = np.r_[d[1:], np.inf if last == n else -np.inf]
+        candidates = np.nonzero((d <= left) & (d <= right) & (d < _TOUCH_CANDIDATE))[0]
+        for k in candidates:
+            lo, hi = theta[max(k - 1, 0)], theta[min(k + 1, last - 1)]
+            tstar, dmin = _zoom_minimum(plan, i, step, head, int(k), lo, hi)
+            if dmin < -_DISC_TOL:          # a window where it cannot be assembled
+                last = min(last, int(np.argmax(direction * (theta - tstar) >= 0)))
+                break
+            if dmin <= _DISC_TOL:
+                tstar = _touch_vertex(plan, i, step, head, int(k), tstar)
+                sign = sign0 * (-1.0) ** len(found)
+                if _switches_label(plan, i, step, head, int(k), tstar, direction, sign):
+                    if not found or abs(tstar - found[-1]) > 1e-7:
+                        found.append(float(tstar))
+    signs = np.full(n, float(sign0))
+    for t in found:
+        signs = np.where(direction * (theta - t) > 0, -signs, signs)
+    ok = np.zeros(n, dtype=bool)
+    ok[:last] = True
+    return signs, ok, found
+
+
+def _head_roots(plan, i, step, head, k, ts):
+    ref = head.reference(np.full(ts.size, k))
+    pose, feasible, _ = evaluate_at(plan, ts, ref, upto=i)
+    with np.errstate(divide="ignore", invalid="ignore", over="ignore"):
+        keys, _, _, disc = _dyad_roots(step, pose, plan.size)
+    return keys, np.where(feasible, disc, np.nan)
+
+
+def _zoom_minimum(plan, i, step, head, k, lo, hi):
+    """The least discriminant of dyad i between angles lo and hi (sampled ever more
+    finely around the least sample), stopping early once it is negative."""
+    tstar, dmin = float(head.theta[k]), math.inf
+    for _ in range(12):
+        ts = np.linspace(lo, hi, _ZOOM_POINTS)
+        _, d = _head_roots(plan, i, step, head, k, ts)
+        if np.all(np.isnan(d)):
+            break
+        j = int(np.nanargmin(d))
+        tstar, dmin = float(ts[j]), float(d[j])
+        if dmin < -_DISC_TOL:
+            break
+        lo, hi = ts[max(j - 1, 0)], ts[min(j + 1, ts.size - 1)]
+        if abs(hi - lo) < 1e-9:
+            break
+    return tstar, dmin
+
+
+def _touch_vertex(plan, i, step, head, k, tstar, width=1e-3):
+    """Where the two modes touch, more precisely than the least sample: near a touch
+    the discriminant is a (t - t*)**2, so the vertex of the parabola through it at
+    tstar and tstar -+ ``width`` degrees (far enough out to dwarf the rounding)."""
+    ts = np.array([tstar - width, tstar, tstar + width])
+    _, d = _head_roots(plan, i, step, head, k, ts)
+    curve = d[0] - 2 * d[1] + d[2]
+    if not (np.all(np.isfinite(d)) and curve > 0):
+        return tstar
+    shift = 0.5 * width * (d[0] - d[2]) / curve
+    return tstar + shift if abs(shift) < width else tstar
+
+
+def _switches_label(plan, i, step, head, k, tstar, direction, sign):
+    """At a touch of the two modes, whether the motion continues in the other label:
+    the label whose point is nearer the straight continuation of the last two."""
+    h = _SWITCH_STEP * direction
+    ts = np.array([tstar - 2 * h, tstar - h, tstar + h])
+    keys, disc = _head_roots(plan, i, step, head, k, ts)
+    if not np.all(disc[1:] >= -_DISC_TOL):
+        return False             # a fold: the path cannot pass, nothing to continue
+    cur = keys[0] if sign > 0 else keys[1]
+    alt = keys[1] if sign > 0 else keys[0]
+    pred = cur[1] + 2 * (cur[1] - cur[0])
+    return bool(np.linalg.norm(alt[2] - pred) < np.linalg.norm(cur[2] - pred))
+
