@@ -12,7 +12,7 @@ solve its motion and draw it.
 
 from . import design
 from .atlas import atlas
-from .chain import Chain, Joint, Mechanism, Point
+from .chain import Chain, Input, Joint, Mechanism, Point
 from .chainfile import dumps, from_document, load, loads, save
 from .classify import Check, Classification, classify
 from .errors import (AssemblyError, AtlasSizeError, ChainFileError, ChainGraphError,
@@ -27,7 +27,7 @@ from .rigidity import rigid_subchains
 __version__ = "0.1.0"
 
 __all__ = [
-    "Chain", "Joint", "Mechanism", "Point",
+    "Chain", "Joint", "Mechanism", "Point", "Input",
     "load", "loads", "from_document", "dumps", "save",
     "classify", "Classification", "Check", "rigid_subchains",
     "inversions", "Inversions", "Inversion", "identify", "Identification",

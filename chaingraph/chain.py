@@ -21,7 +21,7 @@ import networkx as nx
 from .errors import ChainFileError
 from .pairs import PAIR_KINDS
 
-__all__ = ["Joint", "Point", "Mechanism", "Chain", "link_node", "joint_node"]
+__all__ = ["Joint", "Point", "Input", "Mechanism", "Chain", "link_node", "joint_node"]
 
 SPACES = ("planar", "spatial")
 CLOSURES = ("form", "force")
@@ -102,13 +102,29 @@ class Point:
 
 
 @dataclass(frozen=True)
+class Input:
+    """An input of a mechanism: a joint whose relative motion is prescribed, swept from
+    ``start`` to ``stop`` (degrees for an R joint, length units of slide for a P joint),
+    or held at its drawn value when neither is given."""
+
+    joint: str
+    start: float | None = None
+    stop: float | None = None
+
+
+@dataclass(frozen=True)
 class Mechanism:
-    """What makes a chain a mechanism: the fixed link, the driver and the output."""
+    """What makes a chain a mechanism: the fixed link, the inputs and the output.
+
+    ``driver`` is the short form of the commonest input (a link turning about its R
+    joint with the fixed link); ``inputs`` names input joints, one per degree of
+    freedom, and takes precedence when both are given."""
 
     fixed: str
     driver: str | None = None
     omega: float = 1.0
     output: str | None = None
+    inputs: tuple[Input, ...] = ()
 
 
 @dataclass(frozen=True)
@@ -275,21 +291,25 @@ class Chain:
             out = ren(lk, out) if out in self.links else ren(pt, out)
             mech = replace(mech, fixed=ren(lk, mech.fixed),
                            driver=None if mech.driver is None else ren(lk, mech.driver),
-                           output=out)
+                           output=out,
+                           inputs=tuple(replace(i, joint=ren(jt, i.joint))
+                                        for i in mech.inputs))
         return replace(self, joints=new_joints, points=new_points, mechanism=mech)
 
     def with_mechanism(self, fixed: str, driver: str | None = None, *,
                        omega: float | None = None, output: str | None = None) -> "Chain":
         """The inversion with ``fixed`` fixed and ``driver`` as input.
 
-        Output and input speed are kept from the chain's own mechanism unless given.
+        Output and input speed are kept from the chain's own mechanism unless given;
+        its inputs are kept when neither the fixed link nor the driver changes.
         """
         old = self.mechanism
         if omega is None:
             omega = old.omega if old else 1.0
         if output is None and old is not None:
             output = old.output
-        return replace(self, mechanism=Mechanism(fixed, driver, omega, output))
+        inputs = old.inputs if old and old.fixed == fixed and driver is None else ()
+        return replace(self, mechanism=Mechanism(fixed, driver, omega, output, inputs))
 
     def __str__(self):
         return self.name
@@ -377,6 +397,22 @@ def _validate(chain: Chain) -> None:
                      f"(links: {', '.join(chain.links)})", "[mechanism]")
             if m.driver == m.fixed:
                 fail("'driver' is the fixed link", "[mechanism]")
+        joint_ids = {j.id: j for j in chain.joints}
+        named = set()
+        for i, item in enumerate(m.inputs):
+            where = f"[mechanism] inputs #{i + 1}"
+            if item.joint not in joint_ids:
+                fail(f"'inputs' names no joint of the chain: {item.joint!r} "
+                     f"(joints: {', '.join(sorted(joint_ids))})", where)
+            if item.joint in named:
+                fail(f"joint {item.joint!r} is named twice in 'inputs'", where)
+            named.add(item.joint)
+            if joint_ids[item.joint].kind not in ("R", "P"):
+                fail(f"an input must be an R or P joint; {item.joint!r} is "
+                     f"{joint_ids[item.joint].kind}", where)
+            if (item.start is None) != (item.stop is None):
+                fail("give both 'from' and 'to', or neither (the input then stays at "
+                     "its drawn value)", where)
         if m.output is not None and m.output not in links and m.output not in point_ids:
             fail(f"'output' names no link or point of the chain: {m.output!r}", "[mechanism]")
         if (isinstance(m.omega, bool) or not isinstance(m.omega, (int, float))

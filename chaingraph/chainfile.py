@@ -16,7 +16,7 @@ import os
 import re
 import tomllib
 
-from .chain import Chain, Joint, Mechanism, Point
+from .chain import Chain, Input, Joint, Mechanism, Point
 from .errors import ChainFileError
 
 __all__ = ["load", "loads", "from_document", "dumps", "save"]
@@ -24,7 +24,8 @@ __all__ = ["load", "loads", "from_document", "dumps", "save"]
 TOP_KEYS = ("name", "family", "units", "space", "notes", "joints", "points", "mechanism")
 JOINT_KEYS = ("id", "kind", "links", "at", "axis", "closure")
 POINT_KEYS = ("id", "link", "at")
-MECHANISM_KEYS = ("fixed", "driver", "omega", "output")
+MECHANISM_KEYS = ("fixed", "driver", "inputs", "omega", "output")
+INPUT_KEYS = ("joint", "from", "to")
 
 
 def load(path) -> Chain:
@@ -221,7 +222,33 @@ def _mechanism(table, fail):
     driver = _optional_string(table, "driver", where + " key 'driver'", fail)
     output = _optional_string(table, "output", where + " key 'output'", fail)
     omega = _number(table["omega"], where + " key 'omega'", fail) if "omega" in table else 1.0
-    return Mechanism(fixed=fixed, driver=driver, omega=omega, output=output)
+    inputs = _inputs(table["inputs"], fail) if "inputs" in table else ()
+    return Mechanism(fixed=fixed, driver=driver, omega=omega, output=output, inputs=inputs)
+
+
+def _inputs(value, fail):
+    """``inputs = ["A", {joint = "E", from = 110.0, to = 50.0}, ...]``"""
+    where = "[mechanism] key 'inputs'"
+    if not isinstance(value, list) or not value:
+        fail("'inputs' must be a non-empty array of joint ids or tables "
+             f"{{joint, from, to}}, got {_show(value)}", where)
+    out = []
+    for i, item in enumerate(value):
+        here = f"[mechanism] inputs #{i + 1}"
+        if isinstance(item, str):
+            out.append(Input(_string(item, here, fail)))
+            continue
+        if not isinstance(item, dict):
+            fail(f"an input must be a joint id or a table {{joint, from, to}}, "
+                 f"got {_type_name(item)}", here)
+        _no_unknown_keys(item, INPUT_KEYS, None, lambda problem, w: fail(problem, here))
+        if "joint" not in item:
+            fail("missing required key 'joint'", here)
+        joint = _string(item["joint"], here + " key 'joint'", fail)
+        start = _number(item["from"], here + " key 'from'", fail) if "from" in item else None
+        stop = _number(item["to"], here + " key 'to'", fail) if "to" in item else None
+        out.append(Input(joint, start, stop))
+    return tuple(out)
 
 
 # -- writing ------------------------------------------------------------------------
@@ -280,11 +307,20 @@ def dumps(chain: Chain) -> str:
         lines += ["", "[mechanism]", f"fixed = {_toml_string(m.fixed)}"]
         if m.driver is not None:
             lines.append(f"driver = {_toml_string(m.driver)}")
+        if m.inputs:
+            lines.append("inputs = [" + ", ".join(_toml_input(i) for i in m.inputs) + "]")
         if m.omega != 1.0:
             lines.append(f"omega = {_toml_number(m.omega)}")
         if m.output is not None:
             lines.append(f"output = {_toml_string(m.output)}")
     return "\n".join(lines) + "\n"
+
+
+def _toml_input(item) -> str:
+    if item.start is None:
+        return _toml_string(item.joint)
+    return (f"{{joint = {_toml_string(item.joint)}, from = {_toml_number(item.start)}, "
+            f"to = {_toml_number(item.stop)}}}")
 
 
 def save(chain: Chain, path) -> None:

@@ -141,8 +141,8 @@ def _fmt(value, unit=""):
 def _cmd_solve(args) -> int:
     from .kinematics import solve, summary_rows
     chain = load(args.file)
-    motion = solve(chain, fixed=args.fixed, driver=args.driver, start=args.start,
-                   stop=args.stop, steps=args.steps)
+    motion = solve(chain, fixed=args.fixed, driver=args.driver, inputs=args.inputs,
+                   start=args.start, stop=args.stop, steps=args.steps)
     if args.csv:
         motion.to_csv(args.csv)
     if args.plot:
@@ -155,8 +155,13 @@ def _cmd_solve(args) -> int:
         _print_json(motion.to_dict())
         return 0
     rows = [("mechanism", motion.name), *summary_rows(motion)]
-    rows.insert(3, ("sweep", f"{motion.theta[0]:.6g} to {motion.theta[-1]:.6g} degrees, "
-                             f"{motion.steps} steps"))        # after the driver
+    if motion.inputs:
+        sweep = "; ".join(f"{i.joint} {motion['input:' + i.joint][0]:.6g} to "
+                          f"{motion['input:' + i.joint][-1]:.6g}" for i in motion.inputs)
+        unit = "" if len(motion.inputs) > 1 else " " + motion.plan.lead_unit
+    else:
+        sweep, unit = f"{motion.theta[0]:.6g} to {motion.theta[-1]:.6g}", " degrees"
+    rows.insert(3, ("sweep", f"{sweep}{unit}, {motion.steps} steps"))   # after the input
     print(_table(rows, ["", ""]).split("\n", 2)[2])
     return 0
 
@@ -259,14 +264,20 @@ def build_parser() -> argparse.ArgumentParser:
 
     p = sub.add_parser("solve", help="position, velocity and acceleration over an input sweep",
                        description="Solve the mechanism (the file's [mechanism], or the "
-                                   "inversion --fixed and --driver choose) over the input "
-                                   "sweep, in the assembly mode of the drawn pose.")
+                                   "inversion --fixed and --driver or --input choose) over the "
+                                   "input sweep, in the assembly mode of the drawn pose.")
     p.add_argument("file", metavar="FILE", help="a mechanism file (TOML) with a drawn pose")
     p.add_argument("--fixed", metavar="LINK", help="the fixed link")
-    p.add_argument("--driver", metavar="LINK",
-                   help="the input link, pinned to the fixed link by an R joint")
-    p.add_argument("--from", dest="start", type=float, metavar="DEG", help="first input angle")
-    p.add_argument("--to", dest="stop", type=float, metavar="DEG", help="last input angle")
+    given = p.add_mutually_exclusive_group()
+    given.add_argument("--driver", metavar="LINK",
+                       help="the input link, pinned to the fixed link by an R joint")
+    given.add_argument("--input", dest="inputs", action="append", metavar="JOINT",
+                       help="an input joint (R or P, between any two links); repeat it, "
+                            "one per degree of freedom")
+    p.add_argument("--from", dest="start", type=float, metavar="X",
+                   help="the first input's first value (degrees, or slide for a P input)")
+    p.add_argument("--to", dest="stop", type=float, metavar="X",
+                   help="the first input's last value")
     p.add_argument("--steps", type=int, default=360, metavar="N",
                    help="equal intervals of the sweep (N + 1 rows; default 360)")
     p.add_argument("--json", action="store_true", help="print the JSON summary")

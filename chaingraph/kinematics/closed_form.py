@@ -19,6 +19,8 @@ from .geometry import (_clamp_disc, _fit_two_points, _from_point, _line_of, _uni
 # -- closed-form steps ---------------------------------------------------------------
 def _single(step, pose):
     u = step.links[0]
+    if step.pattern[0] == "W":
+        return {u: _welded(pose, u, step.constraints[0])}
     c1, c2 = step.constraints[:2]
     if c1.kind == "R" and c2.kind == "R":
         w1 = _world(pose, c1.other(u), c1.point)
@@ -28,6 +30,20 @@ def _single(step, pose):
         return {u: _from_point(pose[c2.other(u)], c1.point,
                                _world(pose, c1.other(u), c1.point))}
     return {u: _two_lines(pose, u, c1, c2)}
+
+
+def _welded(pose, u, c):
+    """Pose of link u welded to a known link by input joint c at the input's value: an
+    R joint turned by delta (the second link relative to the first), or a P joint's
+    block slid by delta along the guide."""
+    known = pose[c.other(u)]
+    delta = pose[c.drive][2]
+    sign = 1.0 if u == c.b else -1.0
+    w = _world(pose, c.other(u), c.point)
+    if c.kind == "R":
+        return _from_point(make_pose(0.0, 0.0, known[2] + sign * delta), c.point, w)
+    t = rotate(known, _unit(c.axis))
+    return _from_point(known, c.point, (w[0] + sign * delta * t[0], w[1] + sign * delta * t[1]))
 
 
 def _two_lines(pose, u, c1, c2):

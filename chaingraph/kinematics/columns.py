@@ -76,13 +76,17 @@ def _array(v, n):
 def _columns(plan, theta, pose, vel, acc):
     chain = plan.chain
     n = theta.size
-    cols = {"theta": theta}
+    cols = {}
+    if not plan.from_driver:      # with inputs: each input's value first
+        for item, value in zip(plan.inputs, plan.values(theta)):
+            cols["input:" + item.joint] = np.array(np.broadcast_to(value, theta.shape), dtype=float)
+    cols["theta"] = theta if plan.from_driver else np.asarray(plan.value(theta), dtype=float)
     for link in chain.links:
         direction = math.radians(_link_direction(chain, link)) + pose[link][2]
         cols[f"angle:{link}"] = _continuous_degrees(direction, n)
         cols[f"omega:{link}"] = _array(vel[link][2], n)
         cols[f"alpha:{link}"] = _array(acc[link][2], n)
-    rank = {plan.fixed: 0, plan.driver: 1}
+    rank = {plan.fixed: 0}
     items = [(j.id, j.block if j.kind == "P" else min(j.links, key=lambda x: rank.get(x, 2)),
               j.at) for j in chain.joints]
     items += [(p.id, p.link, p.at) for p in chain.points]

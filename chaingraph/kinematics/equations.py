@@ -24,62 +24,106 @@ def _perp(v):
 
 
 def _geometry(c, pose):
-    """What a constraint's rows and acceleration terms share, computed once."""
+    """What a constraint's rows and acceleration terms share, computed once: the
+    constraint point's arms on both links and, for a P joint, the guide's normal and
+    the block's offset from the guide's point (and the guide's direction when the
+    joint is an input)."""
     ra = rotate(pose[c.a], c.point)
     rb = rotate(pose[c.b], c.point)
     if c.kind == "R":
         return ra, rb, None, None
-    n = rotate(pose[c.a], _perp(_unit(c.axis)))
+    u = rotate(pose[c.a], _unit(c.axis))
     d = (rb[0] + pose[c.b][0] - ra[0] - pose[c.a][0], rb[1] + pose[c.b][1] - ra[1] - pose[c.a][1])
-    return ra, rb, n, d
+    return ra, rb, (_perp(u), u), d
 
 
-def _rows(c, pose, geom=None):
-    """Rows of the constraint Jacobian, each {link: (cx, cy, cphi)} (constant entries as
-    Python floats)."""
-    ra, rb, n, d = geom or _geometry(c, pose)
-    if c.kind == "R":
-        return [{c.a: (1.0, 0.0, -ra[1]), c.b: (-1.0, 0.0, rb[1])},
-                {c.a: (0.0, 1.0, ra[0]), c.b: (0.0, -1.0, -rb[0])}]
-    g, b = c.a, c.b
+def _along_row(g, b, n, ra, rb, d):
+    """The row of n . d (d the block's offset from the guide's point, n turning with the
+    guide): the guide's normal keeps the block on its line; its direction, for a P
+    input, measures the slide."""
     pn = _perp(n)
     prb, prg = _perp(rb), _perp(ra)
-    return [{b: (0.0, 0.0, 1.0), g: (0.0, 0.0, -1.0)},
-            {b: (n[0], n[1], n[0] * prb[0] + n[1] * prb[1]),
-             g: (-n[0], -n[1], pn[0] * d[0] + pn[1] * d[1] - (n[0] * prg[0] + n[1] * prg[1]))}]
+    return {b: (n[0], n[1], n[0] * prb[0] + n[1] * prb[1]),
+            g: (-n[0], -n[1], pn[0] * d[0] + pn[1] * d[1] - (n[0] * prg[0] + n[1] * prg[1]))}
 
 
-def _gammas(c, pose, vel, geom=None):
-    """Right-hand sides of the acceleration equations from the velocities alone."""
-    ra, rb, n, d = geom or _geometry(c, pose)
-    if c.kind == "R":
-        wa2, wb2 = vel[c.a][2] ** 2, vel[c.b][2] ** 2
-        return [wa2 * ra[0] - wb2 * rb[0], wa2 * ra[1] - wb2 * rb[1]]
-    g, b = c.a, c.b
+def _along_gamma(g, b, n, ra, rb, d, vel):
+    """The acceleration equation's velocity terms for the row of n . d."""
     rg = ra
     pn = _perp(n)
     prb, prg = _perp(rb), _perp(rg)
     (vbx, vby, wb_), (vgx, vgy, wg_) = vel[b], vel[g]
     dd = (vbx + wb_ * prb[0] - vgx - wg_ * prg[0], vby + wb_ * prb[1] - vgy - wg_ * prg[1])
-    return [0.0, (-2 * wg_ * (pn[0] * dd[0] + pn[1] * dd[1])
-                  + wg_ ** 2 * (n[0] * d[0] + n[1] * d[1])
-                  + n[0] * (wb_ ** 2 * rb[0] - wg_ ** 2 * rg[0])
-                  + n[1] * (wb_ ** 2 * rb[1] - wg_ ** 2 * rg[1]))]
+    return (-2 * wg_ * (pn[0] * dd[0] + pn[1] * dd[1])
+            + wg_ ** 2 * (n[0] * d[0] + n[1] * d[1])
+            + n[0] * (wb_ ** 2 * rb[0] - wg_ ** 2 * rg[0])
+            + n[1] * (wb_ ** 2 * rb[1] - wg_ ** 2 * rg[1]))
+
+
+def _rows(c, pose, geom=None):
+    """Rows of the constraint Jacobian, each {link: (cx, cy, cphi)} (constant entries as
+    Python floats). An input joint's prescribed value is one more row, whose known
+    part is the input's rate (its table entry, the rate in the rotation's place)."""
+    ra, rb, frame, d = geom or _geometry(c, pose)
+    if c.kind == "R":
+        rows = [{c.a: (1.0, 0.0, -ra[1]), c.b: (-1.0, 0.0, rb[1])},
+                {c.a: (0.0, 1.0, ra[0]), c.b: (0.0, -1.0, -rb[0])}]
+        if c.drive is not None:          # phi_b - phi_a = delta
+            rows.append({c.b: (0.0, 0.0, 1.0), c.a: (0.0, 0.0, -1.0), c.drive: (0.0, 0.0, -1.0)})
+        return rows
+    g, b = c.a, c.b
+    n, u = frame
+    rows = [{b: (0.0, 0.0, 1.0), g: (0.0, 0.0, -1.0)}, _along_row(g, b, n, ra, rb, d)]
+    if c.drive is not None:              # u . d = delta
+        rows.append(dict(_along_row(g, b, u, ra, rb, d), **{c.drive: (0.0, 0.0, -1.0)}))
+    return rows
+
+
+def _gammas(c, pose, vel, geom=None):
+    """Right-hand sides of the acceleration equations from the velocities alone (the
+    inputs' accelerations are zero: they move at constant rates)."""
+    ra, rb, frame, d = geom or _geometry(c, pose)
+    if c.kind == "R":
+        wa2, wb2 = vel[c.a][2] ** 2, vel[c.b][2] ** 2
+        return [wa2 * ra[0] - wb2 * rb[0], wa2 * ra[1] - wb2 * rb[1]] + \
+            ([0.0] if c.drive is not None else [])
+    n, u = frame
+    out = [0.0, _along_gamma(c.a, c.b, n, ra, rb, d, vel)]
+    if c.drive is not None:
+        out.append(_along_gamma(c.a, c.b, u, ra, rb, d, vel))
+    return out
+
+
+def _constraint_residuals(c, pose):
+    """The constraint's equations at the pose: lengths, and rotations in radians."""
+    wa, wb = _world(pose, c.a, c.point), _world(pose, c.b, c.point)
+    dphi = np.remainder(pose[c.b][2] - pose[c.a][2] + np.pi, 2 * np.pi) - np.pi
+    if c.kind == "R":
+        out = [wa[0] - wb[0], wa[1] - wb[1]]
+        if c.drive is not None:
+            out.append(np.remainder(dphi - pose[c.drive][2] + np.pi, 2 * np.pi) - np.pi)
+        return out
+    n = rotate(pose[c.a], _perp(_unit(c.axis)))
+    out = [dphi, n[0] * (wb[0] - wa[0]) + n[1] * (wb[1] - wa[1])]
+    if c.drive is not None:
+        u = rotate(pose[c.a], _unit(c.axis))
+        out.append(u[0] * (wb[0] - wa[0]) + u[1] * (wb[1] - wa[1]) - pose[c.drive][2])
+    return out
 
 
 def residuals(plan, pose):
     """Largest constraint residual at every point (lengths; rotations times the size)."""
     worst = None
     for c in plan.constraints:
+        eqs = _constraint_residuals(c, pose)
         if c.kind == "R":
-            wa, wb = _world(pose, c.a, c.point), _world(pose, c.b, c.point)
-            r = np.hypot(wa[0] - wb[0], wa[1] - wb[1])
+            r = np.hypot(eqs[0], eqs[1])
+            if c.drive is not None:
+                r = np.maximum(r, np.abs(eqs[2]) * plan.size)
         else:
-            dphi = np.abs(np.remainder(pose[c.b][2] - pose[c.a][2] + np.pi, 2 * np.pi) - np.pi)
-            n = rotate(pose[c.a], _perp(_unit(c.axis)))
-            wg, wb = _world(pose, c.a, c.point), _world(pose, c.b, c.point)
-            r = np.maximum(np.abs(n[0] * (wb[0] - wg[0]) + n[1] * (wb[1] - wg[1])),
-                           dphi * plan.size)
+            r = np.maximum(np.abs(eqs[1]), np.abs(eqs[0]) * plan.size)
+            if c.drive is not None:
+                r = np.maximum(r, np.abs(eqs[2]))
         worst = r if worst is None else np.maximum(worst, r)
     return worst
 
@@ -158,7 +202,7 @@ class _GroupForm:
         links = set(step.links)
         touching = {x: [c for c in step.constraints if x in (c.a, c.b)] for x in links}
         candidates = {x for x, cs in touching.items()
-                      if len(cs) == 2 and all(c.kind == "R" for c in cs)
+                      if len(cs) == 2 and all(c.kind == "R" and c.drive is None for c in cs)
                       and cs[0].other(x) != cs[1].other(x)}
         bars = {x for x in candidates
                 if not any(c.other(x) in candidates for c in touching[x])}
@@ -264,17 +308,7 @@ def _form(step):
 
 # -- Newton's method for groups ------------------------------------------------------
 def _group_residual_of(constraints, pose):
-    out = []
-    for c in constraints:
-        if c.kind == "R":
-            wa, wb = _world(pose, c.a, c.point), _world(pose, c.b, c.point)
-            out += [wa[0] - wb[0], wa[1] - wb[1]]
-        else:
-            dphi = np.remainder(pose[c.b][2] - pose[c.a][2] + np.pi, 2 * np.pi) - np.pi
-            n = rotate(pose[c.a], _perp(_unit(c.axis)))
-            wg, wb = _world(pose, c.a, c.point), _world(pose, c.b, c.point)
-            out += [dphi, n[0] * (wb[0] - wg[0]) + n[1] * (wb[1] - wg[1])]
-    return np.stack(out, axis=-1)
+    return np.stack([e for c in constraints for e in _constraint_residuals(c, pose)], axis=-1)
 
 
 def _with_group(pose, step, q):

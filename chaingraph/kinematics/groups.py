@@ -155,8 +155,9 @@ class _Branch:
         input rate."""
         from .rates import _Factor, rates     # rates use groups' forms: import here
         full = self._full(z)
-        vel, _, _ = rates(self.plan, full, 1.0, 1, steps=self.head_steps, measure=False,
-                          accelerations=False)
+        # the input's rate that moves tau by one radian per second
+        vel, _, _ = rates(self.plan, full, self.plan.rate_scale * 180.0 / math.pi, 1,
+                          steps=self.head_steps, measure=False, accelerations=False)
         f = _Factor(self.step, full, 1, self.plan.size)
         ft = -np.array([float(np.broadcast_to(v, (1,))[0])
                         for v in f.right_hand_sides(vel)])

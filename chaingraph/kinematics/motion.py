@@ -16,6 +16,7 @@ from functools import lru_cache
 
 import numpy as np
 
+from ..chain import Input
 from ..errors import AssemblyError, MechanismError
 from .columns import _columns
 from .equations import check_poses
@@ -28,15 +29,16 @@ __all__ = ["Motion", "solve", "full_turns"]
 
 
 @lru_cache(maxsize=256)
-def _plan(chain, fixed, driver):
-    return build_plan(chain, fixed, driver)
+def _plan(chain, fixed, driver, inputs=None):
+    return build_plan(chain, fixed, driver, inputs=inputs)
 
 
 @dataclass(frozen=True, eq=False)
 class Motion:
     """A solved sweep: numpy arrays looked up by CSV column name, and the summary.
 
-    ``motion["theta"]`` is the input angle (degrees); ``motion["angle:crank"]``,
+    ``motion["theta"]`` is the input angle (degrees; with inputs, the lead input's
+    value, and ``motion["input:J"]`` each input's); ``motion["angle:crank"]``,
     ``motion["omega:crank"]``, ``motion["alpha:crank"]`` a link's direction (degrees),
     angular velocity and acceleration; ``motion["x:B"]``, ``"vx:B"``, ``"ax:B"``... a
     joint's or point's position, velocity, acceleration; ``motion["s:S"]``, ``"v:S"``,
@@ -46,12 +48,13 @@ class Motion:
 
     name: str
     fixed: str
-    driver: str
+    driver: str | None
     omega: float
     columns: dict
     summary: dict
     units: str | None = None
     plan: object = field(default=None, repr=False)
+    inputs: tuple = ()            # the input joints, when not given as a driver
 
     def __getitem__(self, name) -> np.ndarray:
         return self.columns[name]
@@ -81,30 +84,44 @@ class Motion:
 
     def to_dict(self) -> dict:
         """The JSON of ``chaingraph solve --json``."""
-        return {"name": self.name, "fixed": self.fixed, "driver": self.driver,
-                "steps": self.steps, "summary": self.summary}
+        out = {"name": self.name, "fixed": self.fixed, "driver": self.driver}
+        if self.inputs:
+            out["inputs"] = [
+                {"joint": i.joint, "kind": i.kind,
+                 "from": float(self.columns["input:" + i.joint][0]),
+                 "to": float(self.columns["input:" + i.joint][-1])} for i in self.inputs]
+        out.update(steps=self.steps, summary=self.summary)
+        return out
 
 
 
-def solve(mechanism, *, fixed=None, driver=None, start=None, stop=None, steps=360,
-          omega=None, summary=True) -> Motion:
+def solve(mechanism, *, fixed=None, driver=None, inputs=None, start=None, stop=None,
+          steps=360, omega=None, summary=True) -> Motion:
     """Solve a mechanism's motion over an input sweep.
 
     Parameters
     ----------
     mechanism : Chain
-        A chain with a drawn pose; its ``[mechanism]`` gives the fixed link, driver,
-        output and input speed unless overridden here.
+        A chain with a drawn pose; its ``[mechanism]`` gives the fixed link, inputs (or
+        driver), output and input speed unless overridden here.
     fixed, driver : str, optional
-        Choose the inversion and input link.
+        Choose the inversion and input link (turning about its R joint with the fixed
+        link).
+    inputs : sequence, optional
+        Input joints instead of a driver, one per degree of freedom: joint ids, or
+        :class:`~chaingraph.Input` items (or ``(joint, from, to)`` tuples) with their
+        sweeps. All move together, linearly, over the same steps; an input without a
+        sweep stays at its drawn value.
     start, stop : float, optional
-        The sweep of input angles, degrees (the driver's direction from its fixed
-        pivot, CCW from +x). By default one full turn from the drawn pose, or a rocking
-        driver's whole feasible range.
+        The sweep of the (first) input: degrees for a driver or an R input (the
+        driver's direction from its fixed pivot, CCW from +x), length units of slide
+        from the drawn pose for a P input. By default one full turn from the drawn pose
+        for an input that can turn fully, else its whole feasible range, limit to limit.
     steps : int
         Equal intervals of the sweep: ``steps + 1`` rows.
     omega : float, optional
-        Constant input speed, rad/s (default: the file's, else 1).
+        Constant speed of the (first) input: rad/s, or length units/s for a P input
+        (default: the file's, else 1).
     summary : bool
         Also work out the summary (stroke, time ratio, extremes, dead centres...) over
         the whole cycle; without it ``Motion.summary`` is empty.
@@ -129,34 +146,106 @@ def solve(mechanism, *, fixed=None, driver=None, start=None, stop=None, steps=36
     >>> motion = chaingraph.solve(shaper, steps=36)
     >>> round(motion.summary["time_ratio"], 5), len(motion["theta"])
     (1.70995, 37)
+
+    The engine driven by its piston's slide, limit to limit:
+
+    >>> engine = chaingraph.load(catalog_path("reciprocating-engine"))
+    >>> m = chaingraph.solve(engine, inputs=["S"], steps=4)
+    >>> [round(float(v), 3) for v in m["input:S"]], round(m.summary["stroke"], 6)
+    ([-56.205, -36.205, -16.205, 3.795, 23.795], 80.0)
+    >>> m.summary["dead_centres"] == m.summary["input_range"]   # both ends of the stroke
+    True
     """
     chain = mechanism
-    if not isinstance(steps, int) or steps < 1:
+    if isinstance(steps, bool) or not isinstance(steps, int) or steps < 1:
         raise MechanismError(f"steps must be a positive whole number, got {steps!r}",
                              mechanism=chain.name)
     m = chain.mechanism
-    plan = _plan(chain, fixed or (m.fixed if m else None), driver or (m.driver if m else None))
+    for value, what in ((start, "start"), (stop, "stop")):
+        if value is not None and not math.isfinite(value):
+            raise MechanismError(f"the sweep's {what} must be a finite number, got {value}",
+                                 mechanism=chain.name)
+    fixed = fixed or (m.fixed if m else None)
+    items = _as_inputs(inputs, chain)
+    if not items and driver is None and m is not None and m.inputs and fixed == m.fixed:
+        items = m.inputs
+    if items:
+        first = items[0]
+        if start is not None or stop is not None:
+            first = Input(first.joint, start if start is not None else first.start,
+                          stop if stop is not None else first.stop)
+            start, stop = first.start, first.stop
+        elif first.start is not None:
+            start, stop = first.start, first.stop
+        if (first.start is None) != (first.stop is None):
+            if len(items) > 1 and any(i.start is not None for i in items[1:]):
+                raise MechanismError(
+                    f"the input {first.joint!r} has a sweep's start or stop but not both, "
+                    "while other inputs move: give both", mechanism=chain.name)
+            first = Input(first.joint)
+        items = (first,) + tuple(items[1:])
+        plan = _plan(chain, fixed, None, items)
+    else:
+        plan = _plan(chain, fixed, driver or (m.driver if m else None))
     if omega is None:
         omega = m.omega if m else 1.0
     output = m.output if m else None
-    for value, flag in ((start, "--from"), (stop, "--to")):
-        if value is not None and not math.isfinite(value):
-            raise MechanismError(f"{flag} must be a finite angle", mechanism=chain.name)
-    c = cycle(plan)
-    if c.full_turn:
-        lo = plan.theta0 if start is None else float(start)
-        hi = lo + 360.0 if stop is None else float(stop)
+    lead = plan.inputs[plan.lead]
+    if lead.sweep is not None:
+        start, stop = lead.sweep
+    if plan.theta0 is None or start is not None and stop is not None:
+        lo, hi = plan.tau(start), plan.tau(stop)
+        c = cycle(plan) if summary or plan.theta0 is not None else None
     else:
-        lo = c.low if start is None else float(start)
-        hi = c.high if stop is None else float(stop)
+        c = cycle(plan)
+        if c.full_turn:
+            lo = c.low if start is None else plan.tau(start)
+            hi = lo + 360.0 if stop is None else plan.tau(stop)
+        else:
+            lo = c.low if start is None else plan.tau(start)
+            hi = c.high if stop is None else plan.tau(stop)
     theta = np.linspace(lo, hi, steps + 1)    # both ends exact (a rocker's limits)
+    if c is None:
+        c = cycle(plan)
     ev = _evaluate_sweep(plan, theta)
     check_poses(plan, ev.pose, ev.feasible)
     vel, acc, _ = rates(plan, ev.pose, omega, theta.size, measure=False)
     columns = _columns(plan, theta, ev.pose, vel, acc)
     summary = _summary(plan, output, omega, c) if summary else {}
     return Motion(name=chain.name, fixed=plan.fixed, driver=plan.driver, omega=omega,
-                  columns=columns, summary=summary, units=chain.units, plan=plan)
+                  columns=columns, summary=summary, units=chain.units, plan=plan,
+                  inputs=() if plan.from_driver else plan.inputs)
+
+
+def _as_inputs(inputs, chain):
+    """Inputs given to :func:`solve` as Input items (None when none are given)."""
+    if inputs is None:
+        return None
+    if isinstance(inputs, (str, Input)):
+        inputs = [inputs]
+    out = []
+    for item in inputs:
+        if isinstance(item, Input):
+            out.append(item)
+        elif isinstance(item, str):
+            out.append(Input(item))
+        elif isinstance(item, dict) and "joint" in item:
+            out.append(Input(item["joint"], item.get("from"), item.get("to")))
+        elif isinstance(item, (tuple, list)) and len(item) == 3:
+            out.append(Input(*item))
+        else:
+            raise MechanismError(f"an input must be a joint id, an Input or (joint, from, to), "
+                                 f"got {item!r}", mechanism=chain.name)
+    for item in out:
+        for value in (item.start, item.stop):
+            if value is not None and (isinstance(value, bool) or
+                                      not isinstance(value, (int, float)) or
+                                      not math.isfinite(value)):
+                raise MechanismError(f"the input {item.joint!r} has a sweep value that is "
+                                     f"not a finite number: {value!r}", mechanism=chain.name)
+    if not out:
+        raise MechanismError("no inputs given", mechanism=chain.name)
+    return tuple(out)
 
 
 def full_turns(chain, fixed):

@@ -1,20 +1,30 @@
 """The solve plan of an inversion: which links are found from which, in what order.
 
-Built once per (chain, fixed link, driver) and immutable. Coordinates: every link
+Built once per (chain, fixed link, inputs) and immutable. Coordinates: every link
 carries a rigid motion (x, y, phi) from its drawn pose, so a point p of the drawing
 moves to ``R(phi) p + (x, y)``; the drawn pose is all zeros. Constraints:
 
 * an R joint of links a, b at point P: a's P and b's P coincide (a joint of k links
-  gives k - 1 such pairs, each against the fixed link, else the driver, else the first);
+  gives k - 1 such pairs, each against the fixed link, else the first);
 * a P joint of guide g and block b at point A with direction u: equal rotations, and
   b's A stays on the line through g's A along g's u (the same line with either link
-  as guide, since their rotations are equal).
+  as guide, since their rotations are equal);
+* an *input* joint adds one equation that prescribes its relative motion: the rotation
+  of its second link relative to its first (R), or the block's slide along the guide
+  (P), as the input's value ``delta`` (radians or length units from the drawn pose).
+
+The inputs move along a line in their own space, parameterized by one path parameter
+``tau`` (in "degrees": an R input's angle itself; a P input's slide over the size, as an
+angle in degrees), so that the tracking of assembly modes and the grids work alike
+whatever the inputs: ``delta_i = c_i + k_i tau``.
 
 Steps, in the order the graph allows: a *single* link joined to known links by two
-constraints (RR, RP, PP); a *dyad* of two links, each joined to known links by one
-constraint and to each other by one (RRR, RRP, PRR, RPR, PRP, RPP, PPR), both solved in
-closed form; what is left is one *group* (an Assur group of higher class, such as the
-triad of Stephenson's third inversion), solved by Newton's method.
+constraints (RR, RP, PP) or welded to a known link by an input joint (WR, WP); a *dyad*
+of two links, each joined to known links by one constraint and to each other by one
+(RRR, RRP, PRR, RPR, PRP, RPP, PPR), both solved in closed form; what is left is one
+*group* (an Assur group of higher class, such as the triad of Stephenson's third
+inversion, or links welded by an input between two moving links), solved by Newton's
+method.
 """
 
 from __future__ import annotations
@@ -26,12 +36,14 @@ import numpy as np
 
 from ..errors import MechanismError
 
-__all__ = ["Constraint", "Step", "Plan", "build_plan"]
+__all__ = ["Constraint", "Step", "InputJoint", "Plan", "build_plan"]
 
 
 @dataclass(frozen=True)
 class Constraint:
-    """One R pair (links a, b) or P joint (a the guide, b the block) at ``point``."""
+    """One R pair (links a, b) or P joint (a the guide, b the block) at ``point``;
+    ``drive`` names the input (its key in pose and rate tables) that prescribes the
+    pair's relative motion, if it is an input."""
 
     kind: str
     joint: str
@@ -39,6 +51,7 @@ class Constraint:
     b: str
     point: tuple[float, float]
     axis: float | None = None
+    drive: str | None = None
 
     def other(self, link):
         return self.b if link == self.a else self.a
@@ -55,21 +68,51 @@ class Step:
 
 
 @dataclass(frozen=True)
+class InputJoint:
+    """An input of the plan: joint ``joint`` of kind R or P between links ``a`` (the
+    fixed link for an R joint on it, the joint's first link, or the guide) and ``b``.
+    ``value0`` is its value in the drawn pose (degrees for R, 0 slide for P);
+    ``sweep`` the (from, to) asked for, or None."""
+
+    joint: str
+    kind: str
+    a: str
+    b: str
+    value0: float
+    sweep: tuple[float, float] | None = None
+
+    @property
+    def key(self):
+        """The input's entry in pose and rate tables (never a link's name)."""
+        return "@input:" + self.joint
+
+    @property
+    def unit(self):
+        return "deg" if self.kind == "R" else "length"
+
+    def native(self, value):
+        """A value (degrees or length) as the solver's delta: radians or length."""
+        return math.radians(value) if self.kind == "R" else value
+
+
+@dataclass(frozen=True)
 class Plan:
-    """How to solve one inversion."""
+    """How to solve one inversion with its inputs."""
 
     chain: object
     fixed: str
-    driver: str
-    pivot: str                # the R joint about which the driver turns
-    pivot_point: tuple[float, float]
-    theta0: float             # input angle of the drawn pose, degrees
+    driver: str | None        # the input link, when the input is an R joint on the fixed link
+    inputs: tuple[InputJoint, ...]
+    lead: int                 # the input that ``tau`` measures (the first that moves)
+    line: tuple[tuple[float, float], ...]   # per input (c, k): delta = c + k tau
+    theta0: float | None      # tau at the drawn pose, None if the line misses it
     steps: tuple[Step, ...]
     constraints: tuple[Constraint, ...]
     size: float               # the mechanism's size (for tolerances)
     mobility: int             # Kutzbach
-    numeric_mobility: int     # coordinates minus rank of the constraint Jacobian
+    numeric_mobility: int     # coordinates minus rank of the joints' constraint Jacobian
     origin: tuple[float, float] = (0.0, 0.0)   # the drawing's centre: see ``local``
+    from_driver: bool = False  # given as ``driver = LINK`` (the CSV keeps ``theta`` first)
 
     @property
     def moving(self):
@@ -77,24 +120,73 @@ class Plan:
 
     def local(self, p):
         """A drawn point in the plan's frame, centred on the drawing (so that precision
-        does not depend on where the mechanism is drawn): the constraints, the pivot
-        and every pose are in this frame."""
+        does not depend on where the mechanism is drawn): the constraints and every
+        pose are in this frame."""
         return (p[0] - self.origin[0], p[1] - self.origin[1])
 
+    @property
+    def rate_scale(self):
+        """d(delta of the lead input)/d(tau): the lead's native units per degree of tau."""
+        return self.line[self.lead][1]
 
-def _constraints(chain, fixed, driver, pivot, origin):
+    def deltas(self, tau):
+        """Each input's delta (radians or length) at the path parameters ``tau``."""
+        tau = np.asarray(tau, dtype=float)
+        return [c + k * tau for c, k in self.line]
+
+    def values(self, tau):
+        """Each input's value (degrees for R, slide for P) at ``tau``."""
+        out = []
+        for n, (item, delta) in enumerate(zip(self.inputs, self.deltas(tau))):
+            if n == self.lead and item.kind == "R":
+                out.append(np.asarray(tau, dtype=float))   # tau is the lead's angle itself
+            else:
+                out.append(item.value0 + (np.degrees(delta) if item.kind == "R" else delta))
+        return out
+
+    def value(self, tau):
+        """The lead input's value at ``tau`` (what the summary is expressed in)."""
+        return self.values(tau)[self.lead]
+
+    def tau(self, value):
+        """The path parameter at which the lead input has ``value``."""
+        item = self.inputs[self.lead]
+        if item.kind == "R":
+            return float(value)
+        c, k = self.line[self.lead]
+        return (value - c) / k
+
+    def describe(self):
+        """The input in words, for messages: the driver or the input joints."""
+        if self.from_driver:
+            return f"the driver {self.driver!r}"
+        names = ", ".join(repr(i.joint) for i in self.inputs)
+        return f"the input {names}" if len(self.inputs) == 1 else f"the inputs {names}"
+
+    @property
+    def lead_unit(self):
+        """The unit word of the lead input's values."""
+        return "degrees" if self.inputs[self.lead].kind == "R" else \
+            (self.chain.units or "length units")
+
+
+def _constraints(chain, fixed, inputs, origin):
     def local(p):
         return (p[0] - origin[0], p[1] - origin[1])
+    driven = {i.joint: i for i in inputs}
     out = []
     for j in sorted(chain.joints, key=lambda j: j.id):
+        item = driven.get(j.id)
         if j.kind == "R":
-            ref = fixed if fixed in j.links else driver if driver in j.links else j.links[0]
+            ref = item.a if item else fixed if fixed in j.links else j.links[0]
             for x in j.links:
-                if x == ref or (j.id == pivot and {x, ref} == {fixed, driver}):
+                if x == ref:
                     continue
-                out.append(Constraint("R", j.id, ref, x, local(j.at)))
+                drive = item.key if item and x == item.b else None
+                out.append(Constraint("R", j.id, ref, x, local(j.at), drive=drive))
         else:
-            out.append(Constraint("P", j.id, j.links[0], j.links[1], local(j.at), j.axis))
+            out.append(Constraint("P", j.id, j.links[0], j.links[1], local(j.at), j.axis,
+                                  drive=item.key if item else None))
     return out
 
 
@@ -102,8 +194,8 @@ def _parallel(c1, c2):
     return abs(math.sin(math.radians(c1.axis - c2.axis))) < 1e-9
 
 
-def _steps(chain, fixed, driver, constraints, closed_form=True):
-    known = {fixed, driver}
+def _steps(chain, fixed, constraints, closed_form=True):
+    known = {fixed}
     remaining = list(constraints)
     steps = []
     order = list(chain.links)
@@ -115,6 +207,10 @@ def _steps(chain, fixed, driver, constraints, closed_form=True):
         step = None
         for u in (unknown if closed_form else []):
             att = attachments(u)
+            welded = [c for c in att if c.drive is not None]
+            if welded:
+                step = Step("single", (u,), (welded[0],), "W" + welded[0].kind)
+                break
             if len(att) >= 2 and not (att[0].kind == att[1].kind == "P"
                                       and _parallel(att[0], att[1])):
                 if att[0].kind == "P" and att[1].kind == "R":
@@ -127,7 +223,7 @@ def _steps(chain, fixed, driver, constraints, closed_form=True):
                 if not att_a:
                     continue
                 for c in remaining:
-                    if a not in (c.a, c.b) or c.other(a) in known:
+                    if a not in (c.a, c.b) or c.other(a) in known or c.drive is not None:
                         continue
                     b = c.other(a)
                     att_b = attachments(b)
@@ -148,33 +244,149 @@ def _steps(chain, fixed, driver, constraints, closed_form=True):
     return tuple(steps)
 
 
-def build_plan(chain, fixed=None, driver=None, *, closed_form=True) -> Plan:
-    """Check that an inversion can be solved and plan how.
+def _direction(chain, link, joint):
+    """The direction (degrees) of a link's line from ``joint`` to its first other joint
+    by id order (the next one when that one is at the same place; +x when none)."""
+    here = joint.at
+    others = [j for j in sorted(chain.joints_of(link), key=lambda j: j.id) if j.id != joint.id]
+    far = [j for j in others if math.dist(j.at, here) > 0]
+    if not far:
+        return 0.0
+    ref = far[0].at
+    return math.degrees(math.atan2(ref[1] - here[1], ref[0] - here[0]))
 
-    ``closed_form=False`` solves every link by Newton's method in one group (slower;
-    the tests use it to check the closed forms and Newton against each other).
+
+def _input_joints(chain, fixed, driver, inputs, name):
+    """The plan's inputs from ``driver`` (a link) or ``inputs`` (Input items)."""
+    if inputs:
+        out = []
+        for item in inputs:
+            try:
+                j = chain.joint(item.joint)
+            except KeyError:
+                j = None
+            if j is None:
+                raise MechanismError(f"the input {item.joint!r} is not a joint of the chain "
+                                     f"(joints: {', '.join(sorted(x.id for x in chain.joints))})",
+                                     mechanism=name)
+            if j.kind not in ("R", "P"):
+                raise MechanismError(f"the input {item.joint!r} is a {j.pair.name} ({j.kind}); "
+                                     "an input must be an R or P joint", mechanism=name)
+            if j.kind == "R":
+                if fixed in j.links:
+                    a, b = fixed, next(x for x in j.links if x != fixed)
+                    value0 = _direction(chain, b, j)
+                else:
+                    a, b = j.links[0], j.links[1]
+                    value0 = math.remainder(_direction(chain, b, j) - _direction(chain, a, j),
+                                            360.0)
+            else:
+                a, b = j.links
+                value0 = 0.0
+            sweep = None if item.start is None else (float(item.start), float(item.stop))
+            out.append(InputJoint(j.id, j.kind, a, b, value0, sweep))
+        if len({i.joint for i in out}) < len(out):
+            raise MechanismError("an input joint is named twice", mechanism=name)
+        return tuple(out)
+    if driver is None:
+        raise MechanismError("no input: give [mechanism] driver or inputs, or --driver or "
+                             "--input", mechanism=name)
+    if driver not in chain.links:
+        raise MechanismError(f"the driver link {driver!r} is not a link of the chain "
+                             f"(links: {', '.join(chain.links)})", mechanism=name)
+    if fixed == driver:
+        raise MechanismError("the driver is the fixed link", mechanism=name)
+    pivots = sorted(j.id for j in chain.joints
+                    if j.kind == "R" and fixed in j.links and driver in j.links)
+    if not pivots:
+        raise MechanismError(f"the driver {driver!r} is not pinned to the fixed link "
+                             f"{fixed!r} by an R joint, so it cannot be turned as the input",
+                             mechanism=name)
+    pivot = chain.joint(pivots[0])
+    if len(chain.joints_of(driver)) < 2:
+        raise MechanismError(f"the driver {driver!r} has no joint besides its pivot",
+                             mechanism=name)
+    return (InputJoint(pivot.id, "R", fixed, driver, _direction(chain, driver, pivot)),)
+
+
+def _line(inputs, size):
+    """(lead, line, tau at the drawn pose or None) for inputs moving together."""
+    def moves(i):
+        return i.sweep is not None and i.sweep[0] != i.sweep[1]
+    lead = next((n for n, i in enumerate(inputs) if moves(i)),
+                next((n for n, i in enumerate(inputs) if i.sweep is not None), 0))
+    m = inputs[lead]
+    # the lead's own parameter: its angle (R) or its slide as an angle over the size (P)
+    k_m = math.pi / 180.0 if m.kind == "R" else size * math.pi / 180.0
+    c_m = -math.radians(m.value0) if m.kind == "R" else 0.0
+    b_m = 1.0 if m.kind == "R" else k_m          # d(value)/d(tau) in the lead's units
+    a_m = 0.0                                     # value = a_m + b_m tau
+    line = []
+    for n, item in enumerate(inputs):
+        if n == lead:
+            line.append((c_m, k_m))
+            continue
+        f = math.pi / 180.0 if item.kind == "R" else 1.0
+        if item.sweep is None:
+            line.append((0.0, 0.0))
+        elif not moves(m) or not moves(item):
+            line.append((f * (item.sweep[0] - item.value0), 0.0))
+        else:
+            (f_i, t_i), (f_m, t_m) = item.sweep, m.sweep
+            r = (t_i - f_i) / (t_m - f_m)
+            line.append((f * (f_i + r * (a_m - f_m) - item.value0), f * r * b_m))
+    tau0 = m.value0 if m.kind == "R" else 0.0     # where the lead's delta is 0
+    scale = [1.0 if i.kind == "R" else size for i in inputs]
+    through = all(abs(c + k * tau0) <= 1e-12 * s for (c, k), s in zip(line, scale))
+    return lead, tuple(line), (tau0 if through else None)
+
+
+def build_plan(chain, fixed=None, driver=None, *, inputs=None, closed_form=True) -> Plan:
+    """Check that an inversion can be solved with its inputs and plan how.
+
+    Parameters
+    ----------
+    chain : Chain
+        A chain with a drawn pose.
+    fixed, driver : str, optional
+        The fixed link and the input link (turning about its R joint with the fixed
+        link); by default the chain's ``[mechanism]``.
+    inputs : sequence of Input, optional
+        Input joints instead of a driver (R or P, between any two links), one per
+        degree of freedom, each with its sweep or none.
+    closed_form : bool
+        ``False`` solves every link by Newton's method in one group (slower; the tests
+        use it to check the closed forms and Newton against each other).
 
     Raises
     ------
     MechanismError
         For a higher pair or spatial joint, a joint without a position, a driver not
-        pinned to the fixed link by an R joint, or a mobility other than 1 with this
-        driver (the mobility found is said).
+        pinned to the fixed link by an R joint, an input that is not an R or P joint
+        of the chain, or as many inputs as there are not degrees of freedom (the
+        mobility found is said).
+
+    Examples
+    --------
+    >>> import chaingraph
+    >>> from chaingraph.catalog import catalog_path
+    >>> engine = chaingraph.load(catalog_path("reciprocating-engine"))
+    >>> plan = build_plan(engine, inputs=[chaingraph.Input("S")])
+    >>> [(s.pattern, s.links) for s in plan.steps]
+    [('WP', ('crosshead',)), ('RRR', ('crank', 'connecting rod'))]
     """
     name = chain.source or chain.name
     m = chain.mechanism
     fixed = fixed or (m.fixed if m else None)
-    driver = driver or (m.driver if m else None)
+    if not inputs and driver is None and m is not None and m.inputs and fixed == m.fixed:
+        inputs = m.inputs            # the file's inputs, unless a driver is asked for
+    if not inputs:
+        driver = driver or (m.driver if m else None)
     if fixed is None:
         raise MechanismError("no fixed link: give [mechanism] fixed or --fixed", mechanism=name)
-    if driver is None:
-        raise MechanismError("no driver: give [mechanism] driver or --driver", mechanism=name)
-    for role, link in (("fixed", fixed), ("driver", driver)):
-        if link not in chain.links:
-            raise MechanismError(f"the {role} link {link!r} is not a link of the chain "
-                                 f"(links: {', '.join(chain.links)})", mechanism=name)
-    if fixed == driver:
-        raise MechanismError("the driver is the fixed link", mechanism=name)
+    if fixed not in chain.links:
+        raise MechanismError(f"the fixed link {fixed!r} is not a link of the chain "
+                             f"(links: {', '.join(chain.links)})", mechanism=name)
     if chain.space != "planar":
         raise MechanismError("only planar chains can be solved; this one is spatial",
                              mechanism=name)
@@ -190,47 +402,46 @@ def build_plan(chain, fixed=None, driver=None, *, closed_form=True) -> Plan:
     if len(chain.pieces) > 1:
         raise MechanismError("the chain is in several pieces that share no joint",
                              mechanism=name)
-    pivots = sorted(j.id for j in chain.joints
-                    if j.kind == "R" and fixed in j.links and driver in j.links)
-    if not pivots:
-        raise MechanismError(f"the driver {driver!r} is not pinned to the fixed link "
-                             f"{fixed!r} by an R joint, so it cannot be turned as the input",
-                             mechanism=name)
-    pivot = chain.joint(pivots[0])
-    others = [j for j in chain.joints_of(driver) if j.id != pivot.id]
-    if not others:
-        raise MechanismError(f"the driver {driver!r} has no joint besides its pivot",
-                             mechanism=name)
-    ref = others[0].at
-    if math.dist(ref, pivot.at) == 0:
-        far = [j for j in others if math.dist(j.at, pivot.at) > 0]
-        ref = far[0].at if far else (pivot.at[0] + 1.0, pivot.at[1])
-    theta0 = math.degrees(math.atan2(ref[1] - pivot.at[1], ref[0] - pivot.at[0]))
+    inputs = tuple(inputs or ())
+    items = _input_joints(chain, fixed, driver, inputs, name)
+    from_driver = not inputs
+    lone = items[0] if len(items) == 1 and items[0].kind == "R" and items[0].a == fixed else None
     points = [j.at for j in chain.joints] + [p.at for p in chain.points]
     xs, ys = [p[0] for p in points], [p[1] for p in points]
     size = max(max(xs) - min(xs), max(ys) - min(ys), 1e-300)
     origin = (0.5 * (max(xs) + min(xs)), 0.5 * (max(ys) + min(ys)))
-    constraints = tuple(_constraints(chain, fixed, driver, pivot.id, origin))
+    constraints = tuple(_constraints(chain, fixed, items, origin))
     mobility = 3 * (len(chain.links) - 1) - 2 * sum(j.order - 1 for j in chain.joints)
-    numeric = _numeric_mobility(chain, fixed, _constraints(chain, fixed, driver, "", origin),
-                                size)
+    numeric = _numeric_mobility(chain, fixed, constraints, size, with_inputs=False)
+    count = len(items)
     # a drawn pose at a dead centre or change point loses rank there: that is no reason
     # to refuse a chain whose count says it moves (its range says where it can go)
-    if numeric != 1 and not (mobility == 1 and numeric > 1):
+    if numeric != count and not (mobility == count and numeric > count):
+        said = (f"driver {driver!r}" if from_driver else
+                f"{count} input{'s' if count > 1 else ''} ({', '.join(i.joint for i in items)})")
         raise MechanismError(
-            f"the mobility with driver {driver!r} and {fixed!r} fixed is {numeric} at the "
-            f"drawn pose (Kutzbach: {mobility}); the driver must determine the motion "
-            "(mobility 1)", mechanism=name, mobility=numeric)
-    steps = _steps(chain, fixed, driver, constraints, closed_form)
-    return Plan(chain=chain, fixed=fixed, driver=driver, pivot=pivot.id,
-                pivot_point=(pivot.at[0] - origin[0], pivot.at[1] - origin[1]),
-                theta0=theta0, steps=steps, constraints=constraints, size=size,
-                mobility=mobility, numeric_mobility=numeric, origin=origin)
+            f"the mobility with {fixed!r} fixed is {numeric} at the drawn pose (Kutzbach: "
+            f"{mobility}), so it needs {numeric} input{'s' if numeric != 1 else ''}, one per "
+            f"degree of freedom; given the {said}", mechanism=name, mobility=numeric)
+    if numeric == count:
+        left = _numeric_mobility(chain, fixed, constraints, size, with_inputs=True)
+        if left:
+            raise MechanismError(
+                f"the inputs {', '.join(i.joint for i in items)} do not determine the "
+                f"motion: with them held, {left} degree{'s' if left > 1 else ''} of freedom "
+                "remain (two inputs that drive the same freedom?)", mechanism=name,
+                mobility=numeric)
+    steps = _steps(chain, fixed, constraints, closed_form)
+    lead, line, tau0 = _line(items, size)
+    return Plan(chain=chain, fixed=fixed, driver=lone.b if lone else None, inputs=items,
+                lead=lead, line=line, theta0=tau0, steps=steps, constraints=constraints,
+                size=size, mobility=mobility, numeric_mobility=numeric, origin=origin,
+                from_driver=from_driver)
 
 
-def _numeric_mobility(chain, fixed, constraints, size):
+def _numeric_mobility(chain, fixed, constraints, size, *, with_inputs=False):
     """Coordinates (3 per moving link) minus the rank of all ``constraints`` (every
-    joint's, the driver's pivot included) at the drawn pose.
+    joint's; with ``with_inputs`` the inputs' equations too) at the drawn pose.
 
     The constraints are about the drawing's centre; the Jacobian is taken in units of
     its size, so that its rank does not depend on where the mechanism is drawn or how
@@ -240,7 +451,7 @@ def _numeric_mobility(chain, fixed, constraints, size):
     rows = []
     for c in constraints:
         scaled = (c.point[0] / size, c.point[1] / size)
-        for coeffs in _rows_at_drawn_pose(replace(c, point=scaled)):
+        for coeffs in _rows_at_drawn_pose(replace(c, point=scaled), with_inputs):
             row = np.zeros(3 * len(moving))
             for link, vec in coeffs.items():
                 if link != fixed:
@@ -252,14 +463,19 @@ def _numeric_mobility(chain, fixed, constraints, size):
     return 3 * len(moving) - int(rank)
 
 
-def _rows_at_drawn_pose(c):
+def _rows_at_drawn_pose(c, with_inputs=False):
     px, py = c.point
+    driven = with_inputs and c.drive is not None
     if c.kind == "R":
-        return [{c.a: np.array([1.0, 0.0, -py]), c.b: np.array([-1.0, 0.0, py])},
+        rows = [{c.a: np.array([1.0, 0.0, -py]), c.b: np.array([-1.0, 0.0, py])},
                 {c.a: np.array([0.0, 1.0, px]), c.b: np.array([0.0, -1.0, -px])}]
+        if driven:
+            rows.append({c.b: np.array([0.0, 0.0, 1.0]), c.a: np.array([0.0, 0.0, -1.0])})
+        return rows
     a = math.radians(c.axis)
-    nx_, ny_ = -math.sin(a), math.cos(a)
+    rows = [{c.b: np.array([0.0, 0.0, 1.0]), c.a: np.array([0.0, 0.0, -1.0])}]
     # at the drawn pose d = 0, so the guide's rotation term n . perp(R A) cancels out
-    perp_b = nx_ * -py + ny_ * px
-    return [{c.b: np.array([0.0, 0.0, 1.0]), c.a: np.array([0.0, 0.0, -1.0])},
-            {c.b: np.array([nx_, ny_, perp_b]), c.a: np.array([-nx_, -ny_, -perp_b])}]
+    for ux, uy in ((-math.sin(a), math.cos(a)),) + (((math.cos(a), math.sin(a)),) if driven else ()):
+        perp_b = ux * -py + uy * px
+        rows.append({c.b: np.array([ux, uy, perp_b]), c.a: np.array([-ux, -uy, -perp_b])})
+    return rows

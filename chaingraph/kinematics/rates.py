@@ -140,7 +140,10 @@ class _Factor:
             self.null = _NullSpace(self.rows[0][0][u], self.rows[1][0][u])
             self.extra = [_dot3(r[0][u], self.null.e) for r in self.rows[2:]]
             den = sum(m * m for m in self.extra)
-            self.singular = np.abs(den) <= _SINGULAR ** 2 * (_dot3(self.null.e, self.null.e))
+            # an input's weld always determines the link (its row and the null direction
+            # are in different units, so no ratio of them means anything)
+            self.singular = (np.abs(den) <= _SINGULAR ** 2 * (_dot3(self.null.e, self.null.e))
+                             if step.pattern[0] != "W" else np.zeros(n, dtype=bool))
             self.den = np.where(self.singular, 1.0, den)
         elif step.kind == "dyad":
             a, b = step.links
@@ -276,25 +279,26 @@ class _NullSpace:
 
 
 def rates(plan, pose, omega, n, *, steps=None, measure=True, accelerations=True):
-    """Velocities and accelerations of every link at constant input speed ``omega``.
+    """Velocities and accelerations of every link with the inputs at constant rates,
+    the lead input's ``omega`` (rad/s for an R input, length units/s for a P input;
+    the other inputs in proportion, as they move together along the sweep).
 
     Returns
     -------
     vel, acc : dict link -> (vx, vy, omega) and (ax, ay, alpha) arrays (the fixed
-        link's as zeros)
+        link's as zeros), plus each input's entry (its rate in the rotation's place)
     singularity : (S, N) array, each step's normalized determinant (0 at a dead
         centre); None unless ``measure``
 
-    With ``accelerations=False`` the accelerations are left out (zeros for the fixed
-    link and the driver only).
+    With ``accelerations=False`` the accelerations are left out.
     """
     zero = np.zeros(n)
-    ox, oy = plan.pivot_point
-    rx, ry = rotate(pose[plan.driver], (ox, oy))
-    vel = {plan.fixed: (0.0, 0.0, 0.0),
-           plan.driver: (omega * ry, -omega * rx, omega + zero)}
-    acc = {plan.fixed: (0.0, 0.0, 0.0),
-           plan.driver: (omega ** 2 * rx, omega ** 2 * ry, 0.0)}
+    tau_rate = omega / plan.rate_scale          # d(tau)/dt, "degrees" per second
+    vel = {plan.fixed: (0.0, 0.0, 0.0)}
+    acc = {plan.fixed: (0.0, 0.0, 0.0)}
+    for item, (_, k) in zip(plan.inputs, plan.line):
+        vel[item.key] = (0.0, 0.0, k * tau_rate)
+        acc[item.key] = (0.0, 0.0, 0.0)
     measures = [] if measure else None
     factors = []
     for step in (plan.steps if steps is None else steps):
@@ -322,7 +326,6 @@ def rates(plan, pose, omega, n, *, steps=None, measure=True, accelerations=True)
         acc.update(_refuse_near_singular(f, f.solve(f.right_hand_sides(acc, gammas))))
     for table in (vel, acc):
         table[plan.fixed] = (zero, zero, zero)
-        table[plan.driver] = tuple(v + zero for v in table[plan.driver])
     return vel, acc, (np.array(measures) if measure else None)
 
 

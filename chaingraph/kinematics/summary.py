@@ -37,10 +37,20 @@ def summary_rows(motion):
         return f"{value:.6g}{unit}"
     unit = f" {s['stroke_unit']}" if s["stroke_unit"] else ""
     ta = s["transmission_angle"]
+    plan = motion.plan
+    how = "  (turns fully)" if s["full_turn"] else "  (rocks)"
+    if motion.inputs:
+        lead = plan.inputs[plan.lead]
+        how = how if lead.kind == "R" else "  (slides)"
+        said = ("inputs", ", ".join(f"{i.joint} ({i.kind})" for i in motion.inputs)
+                + (f"; {lead.joint} leads" if len(motion.inputs) > 1 else "") + how)
+    else:
+        said = ("driver", motion.driver + how)
     rows = [
         ("fixed link", motion.fixed),
-        ("driver", motion.driver + ("  (turns fully)" if s["full_turn"] else "  (rocks)")),
-        ("input range", " to ".join(f"{t:.6g}" for t in s["input_range"]) + " degrees"),
+        said,
+        ("input range", " to ".join(f"{t:.6g}" for t in s["input_range"])
+         + f" {plan.lead_unit}"),
         ("output", s["output"] or "-"),
         ("stroke", num(s["stroke"], unit)),
         ("time ratio", num(s["time_ratio"])),
@@ -106,7 +116,7 @@ def _cycle_theta(plan, c, steps_per_turn=3600):
     whole range, limits included exactly."""
     if c.full_turn:
         n = int(round(steps_per_turn * c.period / 360.0))
-        return plan.theta0 + c.period * np.arange(n + 1) / n
+        return c.low + c.period * np.arange(n + 1) / n
     theta = np.linspace(c.low, c.high, steps_per_turn + 1)
     theta[0], theta[-1] = c.low, c.high
     return theta
@@ -155,7 +165,7 @@ def _summary(plan, output, omega, c):
                "extreme_positions": None,
                "transmission_angle": _transmission(plan, ev, theta),
                "dead_centres": _dead_centres(plan, ev, measure, c),
-               "input_range": [float(theta[0]), float(theta[-1])],
+               "input_range": [float(plan.value(theta[0])), float(plan.value(theta[-1]))],
                "full_turn": c.full_turn,
                "mobility": plan.mobility, "numeric_mobility": plan.numeric_mobility,
                "omega": omega, "note": None}
@@ -181,10 +191,13 @@ def _summary(plan, output, omega, c):
     hi_e = extremes[int(np.argmax(values))]
     lo_e = extremes[int(np.argmin(values))]
     summary["stroke"] = hi_e["value"] - lo_e["value"]
-    summary["extremes"] = [_turn(lo_e["input"], c), _turn(hi_e["input"], c)]
-    summary["extreme_positions"] = [dict(e, input=_turn(e["input"], c)) for e in extremes]
+    summary["extremes"] = [_turn(plan, lo_e["input"], c), _turn(plan, hi_e["input"], c)]
+    summary["extreme_positions"] = [dict(e, input=_turn(plan, e["input"], c))
+                                    for e in extremes]
     if not c.full_turn:
-        summary["note"] = "the input rocks, so there is no time ratio"
+        summary["note"] = ("the input rocks, so there is no time ratio"
+                           if plan.inputs[plan.lead].kind == "R" else
+                           "the input slides to and fro, so there is no time ratio")
         return summary
     maxima = sum(e["kind"] == "max" for e in extremes)
     if maxima != 1:
@@ -242,7 +255,7 @@ def _rate_and_slope(plan, ev, k, t, kind, name, direction):
     """The output's rate and its derivative per degree of input at angles t."""
     cols, _, _ = _pointwise(plan, ev, k, t)
     _, d1, d2 = _signal_values(kind, name, cols, direction)
-    return d1, d2 * (math.pi / 180.0)      # d2 is per radian of input, t in degrees
+    return d1, d2 * plan.rate_scale        # d2 per unit of input squared, t in tau
 
 
 def _transmission(plan, ev, theta):
@@ -310,7 +323,7 @@ def _dead_centres(plan, ev, measure, c):
                 return mm[i]
             roots += list(_bracketed_roots(f, theta[ka], theta[kb], m[ka], m[kb]))
     found = exact + [t for t in roots if all(abs(t - x) > 1e-5 for x in exact)]
-    found = sorted(_turn(t, c) for t in found)
+    found = sorted(_turn(plan, t, c) for t in found)
     merged = [t for i, t in enumerate(found) if i == 0 or t - found[i - 1] > _SAME_ANGLE]
     if c.full_turn and len(merged) > 1 and merged[0] + 360.0 - merged[-1] <= _SAME_ANGLE:
         merged.pop()
@@ -320,10 +333,11 @@ def _dead_centres(plan, ev, measure, c):
 _SAME_ANGLE = 1e-7     # degrees: how precisely change points and limits are found
 
 
-def _turn(t, c):
-    """An angle of a full-turn cycle in [0, 360) (within ``_SAME_ANGLE`` of 360 is 0);
-    a rocker's as it is."""
+def _turn(plan, t, c):
+    """The lead input's value at tau = t: an angle of a full-turn cycle in [0, 360)
+    (within ``_SAME_ANGLE`` of 360 is 0); a rocking or sliding input's as it is."""
+    t = float(plan.value(t))
     if not c.full_turn:
-        return float(t)
+        return t
     t = float(t % 360.0)
     return 0.0 if t > 360.0 - _SAME_ANGLE else t

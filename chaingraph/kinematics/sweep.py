@@ -5,7 +5,7 @@ the poses at any input values, continued on one internal grid whatever was asked
 from __future__ import annotations
 
 import math
-from dataclasses import dataclass, field
+from dataclasses import dataclass, field, replace
 from functools import lru_cache
 
 import numpy as np
@@ -13,7 +13,7 @@ import numpy as np
 from ..errors import AssemblyError
 from .tracking import Evaluation, evaluate
 
-__all__ = ["Cycle", "cycle", "feasible_range"]
+__all__ = ["Cycle", "Anchor", "cycle", "anchor", "feasible_range"]
 
 
 # -- the cycle and the sweep -----------------------------------------------------------
@@ -23,9 +23,10 @@ _MAX_TURNS = 4          # how far a driver is followed each way before giving up
 
 @dataclass(frozen=True)
 class Cycle:
-    """What the driver can do from the drawn pose: turn fully, returning to the drawn
-    pose after ``period`` degrees (360 for an ordinary crank), or rock between the
-    limits ``low`` and ``high`` (degrees, dead centres where the motion folds back)."""
+    """What the inputs can do from the drawn pose: turn fully, returning to the drawn
+    pose after ``period`` degrees (360 for an ordinary crank), or rock (or slide)
+    between the limits ``low`` and ``high`` (dead centres where the motion folds back).
+    All in the plan's path parameter ``tau`` (an R input's angle in degrees)."""
 
     period: float | None
     low: float
@@ -37,21 +38,75 @@ class Cycle:
         return self.period is not None
 
 
+@dataclass(frozen=True)
+class Anchor:
+    """Where every path starts: the drawn pose (``state`` None), or, when the inputs'
+    sweep line does not pass through the drawn pose, the sweep's first point, reached
+    from the drawn pose along a straight path in the inputs' space. ``pose`` is each
+    moving link's (x, y, phi) there."""
+
+    tau: float
+    state: object
+    pose: dict
+
+
+def anchor(plan) -> Anchor:
+    """The plan's :class:`Anchor` (cached per plan).
+
+    Raises
+    ------
+    AssemblyError
+        When the sweep's first point cannot be reached from the drawn pose.
+    """
+    return _anchor(plan)
+
+
+@lru_cache(maxsize=256)
+def _anchor(plan):
+    if plan.theta0 is not None:
+        return Anchor(plan.theta0, None, {x: (0.0, 0.0, 0.0) for x in plan.moving})
+    item = plan.inputs[plan.lead]
+    tau = plan.tau(item.sweep[0])
+    target = [float(d) for d in plan.deltas(tau)]
+    span = max(math.degrees(abs(d) / (1.0 if i.kind == "R" else plan.size))
+               for i, d in zip(plan.inputs, target))
+    span = max(span, 1e-9)
+    toward = replace(plan, line=tuple((0.0, d / span) for d in target), theta0=0.0)
+    n = max(1, int(math.ceil(span / _GRID_DEG)))
+    path = span * np.arange(n + 1) / n
+    ev = evaluate(toward, path)
+    if not ev.feasible.all():
+        k = int(np.argmin(ev.feasible))
+        at = ", ".join(f"{i.joint} = {v:.6g}" for i, v in
+                       zip(plan.inputs, (float(x) for x in toward.values(path[k]))))
+        raise AssemblyError(
+            f"the sweep's first point cannot be reached from the drawn pose: moving the "
+            f"inputs straight there, the mechanism cannot be assembled at {at}",
+            mechanism=plan.chain.source or plan.chain.name)
+    pose = {x: tuple(float(np.broadcast_to(v, path.shape)[-1]) for v in ev.pose[x][:3])
+            for x in plan.moving}
+    return Anchor(tau, ev.at(n), pose)
+
+
 def _returns(plan, pose, k):
-    """Whether every link is back in its drawn pose at point k (up to whole turns)."""
+    """Whether every link is back in its pose at the anchor at point k (up to whole
+    turns)."""
+    home = anchor(plan).pose
     for link in plan.moving:
         x, y, phi = (float(np.broadcast_to(v, (k + 1,))[k]) for v in pose[link][:3])
-        if max(abs(x), abs(y)) > 1e-7 * plan.size or \
-                abs(math.remainder(phi, 2 * math.pi)) > 1e-7:
+        x0, y0, phi0 = home[link]
+        if max(abs(x - x0), abs(y - y0)) > 1e-7 * plan.size or \
+                abs(math.remainder(phi - phi0, 2 * math.pi)) > 1e-7:
             return False
     return True
 
 
 def _walk(plan, direction):
-    """Follow the driver from the drawn pose one way: (limit, None) where the motion
-    stops, (None, period) where it returns to the drawn pose, (None, None) if neither
-    within ``_MAX_TURNS`` turns."""
-    t, start = plan.theta0, None
+    """Follow the inputs from the anchor one way: (limit, None) where the motion
+    stops, (None, period) where it returns to the anchor's pose, (None, None) if
+    neither within ``_MAX_TURNS`` turns."""
+    home = anchor(plan)
+    t, start = home.tau, home.state
     steps = int(round(360.0 / _GRID_DEG))
     for m in range(1, _MAX_TURNS + 1):
         path = t + direction * np.linspace(0.0, 360.0, steps + 1)
@@ -101,63 +156,70 @@ def cycle(plan) -> Cycle:
 
 @lru_cache(maxsize=256)
 def _cycle(plan):
-    t0 = plan.theta0
+    t0 = anchor(plan).tau
     high, period = _walk(plan, 1.0)
     if period is not None:
         return Cycle(period, t0, t0 + period)
     low, _ = _walk(plan, -1.0) if high is not None else (None, None)
     if high is None or low is None:
+        lead = plan.inputs[plan.lead]
+        how = (f"turns {_MAX_TURNS} times" if lead.kind == "R" else
+               f"slides {_MAX_TURNS * 2 * math.pi:.4g} times the mechanism's size")
         raise AssemblyError(
-            f"the driver {plan.driver!r} turns {_MAX_TURNS} times without returning to "
-            "the drawn pose or reaching a limit", mechanism=plan.chain.source or plan.chain.name)
+            f"{plan.describe()} {how} without returning to the drawn pose or reaching a "
+            "limit", mechanism=plan.chain.source or plan.chain.name)
     # the poses at the limits as found there (at a fold the last digits depend on the
     # path, so the sweep takes them from here)
     return Cycle(None, low[0], high[0], (low[1], high[1]))
 
 
 def feasible_range(plan):
-    """The input angles that can be assembled from the drawn pose, or None for a crank.
+    """The input values that can be assembled from the drawn pose, or None for a crank.
 
     Returns
     -------
-    (low, high) in degrees around the drawn pose's angle, or None when the driver makes
-    full turns. A range may be wider than a turn.
+    (low, high) of the lead input (degrees for an R input, slide for a P input) around
+    its drawn value, or None when it makes full turns. A range may be wider than a turn.
     """
     c = cycle(plan)
-    return None if c.full_turn else (c.low, c.high)
+    return None if c.full_turn else tuple(sorted(float(plan.value(t)) for t in (c.low, c.high)))
 
 
 def _outside(plan, lo, hi):
+    """The error for a sweep from ``lo`` to ``hi`` (values of the lead input) that leaves
+    the range that can be assembled."""
     rng = feasible_range(plan)
+    unit = plan.lead_unit
+    verb = "turn" if plan.inputs[plan.lead].kind == "R" else "slide"
     return AssemblyError(
-        f"the sweep {lo:g} to {hi:g} degrees leaves the range that can be assembled: "
-        f"the driver {plan.driver!r} can turn only from {rng[0]:.6f} to {rng[1]:.6f} "
-        f"degrees", mechanism=plan.chain.source or plan.chain.name,
-        feasible_range=rng)
+        f"the sweep {lo:g} to {hi:g} {unit} leaves the range that can be assembled: "
+        f"{plan.describe()} can {verb} only from {rng[0]:.6f} to {rng[1]:.6f} {unit}",
+        mechanism=plan.chain.source or plan.chain.name, feasible_range=rng)
 
 
 def _along(plan, end, targets):
-    """Poses at ``targets`` (all between the drawn pose's angle and ``end``), reached by
-    continuation from the drawn pose on the internal grid to ``end`` with the targets
+    """Poses at ``targets`` (all between the anchor's tau and ``end``), reached by
+    continuation from the anchor on the internal grid to ``end`` with the targets
     inserted, so that they do not depend on which other targets were asked for."""
-    t0 = plan.theta0
+    home = anchor(plan)
+    t0 = home.tau
     span = end - t0
     n = max(1, int(math.ceil(abs(span) / _GRID_DEG)))
     grid = np.concatenate([t0 + span * np.arange(n + 1) / n, targets])
     sign = 1.0 if span >= 0 else -1.0
     grid = sign * np.unique(sign * grid)      # in path order
-    ev = evaluate(plan, grid)
+    ev = evaluate(plan, grid, start=home.state)
     idx = np.searchsorted(sign * grid, sign * targets)
     return ev.take(idx)
 
 
 def _evaluate_sweep(plan, theta):
-    """Poses at the angles ``theta`` (degrees): a crank's from its angle within one
-    period of the drawn pose, a rocker's from the drawn pose outward, both continued on
-    the same internal grid whatever the sweep."""
+    """Poses at the path parameters ``theta`` (a driver's angles, degrees): a crank's
+    from its angle within one period of the anchor, a rocker's from the anchor
+    outward, both continued on the same internal grid whatever the sweep."""
     theta = np.asarray(theta, dtype=float)
     c = cycle(plan)
-    t0 = plan.theta0
+    t0 = anchor(plan).tau
     if c.full_turn:
         phase = t0 + np.mod(theta - t0, c.period)
         ev = _along(plan, t0 + c.period, phase)
@@ -165,7 +227,7 @@ def _evaluate_sweep(plan, theta):
         return ev
     lo, hi = float(theta.min()), float(theta.max())
     if lo < c.low - 1e-9 or hi > c.high + 1e-9:
-        raise _outside(plan, lo, hi)
+        raise _outside(plan, float(plan.value(lo)), float(plan.value(hi)))
     clipped = np.clip(theta, c.low, c.high)
     # each side on its own path from the drawn pose; a limit itself (a fold, where
     # the last digits depend on the path) as the cycle found it
@@ -180,7 +242,7 @@ def _evaluate_sweep(plan, theta):
             parts.append((np.nonzero(limit)[0], found.take(np.zeros(limit.sum(), dtype=int))))
     ev = parts[0][1] if len(parts) == 1 else _merge(parts, theta.size)
     if not ev.feasible.all():
-        raise _outside(plan, lo, hi)
+        raise _outside(plan, float(plan.value(lo)), float(plan.value(hi)))
     ev.theta = theta
     return ev
 

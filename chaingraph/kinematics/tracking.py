@@ -16,7 +16,7 @@ import numpy as np
 
 from .closed_form import _dyad_roots, _initial_sign, _single
 from .equations import _form
-from .geometry import _DISC_TOL, _FIXED, make_pose, rotate
+from .geometry import _DISC_TOL, _FIXED
 from .groups import _newton, _newton_path
 
 __all__ = ["Evaluation", "Reference", "evaluate", "evaluate_at"]
@@ -24,14 +24,12 @@ __all__ = ["Evaluation", "Reference", "evaluate", "evaluate_at"]
 
 # -- the sweep -----------------------------------------------------------------------
 def _known_poses(plan, theta):
-    n = theta.size
-    zero = np.zeros(n)
-    alpha = np.radians(theta - plan.theta0)
-    turn = make_pose(zero, zero, alpha)
-    ox, oy = plan.pivot_point
-    rx, ry = rotate(turn, (ox, oy))
-    return {plan.fixed: _FIXED,
-            plan.driver: make_pose(ox - rx, oy - ry, alpha, turn[3], turn[4])}
+    """The fixed link, and each input's value (its delta, in the rotation's place) at
+    the path parameters ``theta``: everything else is found from these."""
+    pose = {plan.fixed: _FIXED}
+    for item, delta in zip(plan.inputs, plan.deltas(theta)):
+        pose[item.key] = (0.0, 0.0, np.broadcast_to(delta, theta.shape), 1.0, 0.0)
+    return pose
 
 
 class Reference:
