@@ -289,8 +289,8 @@ def _input_joints(chain, fixed, driver, inputs, name):
             raise MechanismError("an input joint is named twice", mechanism=name)
         return tuple(out)
     if driver is None:
-        raise MechanismError("no input: give [mechanism] driver or inputs, or --driver or "
-                             "--input", mechanism=name)
+        raise MechanismError("no driver or input: name the driver link or the input joints "
+                             "([mechanism] driver or inputs)", mechanism=name)
     if driver not in chain.links:
         raise MechanismError(f"the driver link {driver!r} is not a link of the chain "
                              f"(links: {', '.join(chain.links)})", mechanism=name)
@@ -383,7 +383,7 @@ def build_plan(chain, fixed=None, driver=None, *, inputs=None, closed_form=True)
     if not inputs:
         driver = driver or (m.driver if m else None)
     if fixed is None:
-        raise MechanismError("no fixed link: give [mechanism] fixed or --fixed", mechanism=name)
+        raise MechanismError("no fixed link: name it ([mechanism] fixed)", mechanism=name)
     if fixed not in chain.links:
         raise MechanismError(f"the fixed link {fixed!r} is not a link of the chain "
                              f"(links: {', '.join(chain.links)})", mechanism=name)
