@@ -28,7 +28,7 @@ def output_series(motion):
     if output is None and motion.plan.chain.mechanism is not None:
         output = motion.plan.chain.mechanism.output
     if output is None:
-        output = motion.driver
+        output = motion.driver or motion.plan.inputs[motion.plan.lead].b
     signal = _output_signal(motion.plan, output, motion.columns)
     kind, name = signal
     units = motion.units or "length"
@@ -62,7 +62,7 @@ def plot_motion(motion, path):
     for e in s.get("extreme_positions") or []:     # every extreme, where it was refined
         for tt in _in_sweep(e["input"], theta):
             axes[0].plot([tt], [e["value"]], "o", color="#e07b00", ms=6)
-    axes[-1].set_xlabel("input angle θ (degrees)")
+    axes[-1].set_xlabel(_input_label(motion))
     title = f"{motion.name}: {label}"
     if s.get("time_ratio"):
         title += f"\nstroke {s['stroke']:.4g} {s.get('stroke_unit') or ''}, " \
@@ -77,6 +77,26 @@ def plot_motion(motion, path):
     fig.tight_layout()
     fig.savefig(path)
     plt.close(fig)
+
+
+def _input_symbol(motion):
+    plan = motion.plan
+    return "θ" if not motion.inputs else plan.inputs[plan.lead].joint
+
+
+def _input_unit(motion):
+    plan = motion.plan
+    return "°" if plan.inputs[plan.lead].kind == "R" else " " + plan.lead_unit
+
+
+def _input_label(motion):
+    """The x axis of the motion plot: the (lead) input, in its units."""
+    plan = motion.plan
+    lead = plan.inputs[plan.lead]
+    if not motion.inputs:
+        return "input angle θ (degrees)"
+    what = "angle" if lead.kind == "R" else "slide"
+    return f"input {lead.joint}: {what} ({plan.lead_unit})"
 
 
 def _in_sweep(t, theta):
@@ -96,8 +116,12 @@ def draw_mechanism(motion, path, *, pose_index=0):
         if np.ptp(x) + np.ptp(y) > 1e-9:
             ax.plot(x, y, lw=0.8, color="#7f7f7f", alpha=0.8)
     ax.set_aspect("equal")
-    ax.set_title(f"{motion.name}\n({motion.fixed} fixed, {motion.driver} driving; "
-                 f"paths over θ = {motion.theta[0]:.4g}..{motion.theta[-1]:.4g}°)", fontsize=10)
+    driving = (f"{motion.driver} driving" if not motion.inputs else
+               "input" + ("s " if len(motion.inputs) > 1 else " ")
+               + ", ".join(i.joint for i in motion.inputs))
+    ax.set_title(f"{motion.name}\n({motion.fixed} fixed, {driving}; paths over "
+                 f"{_input_symbol(motion)} = {motion.theta[0]:.4g}..{motion.theta[-1]:.4g}"
+                 f"{_input_unit(motion)})", fontsize=10)
     ax.grid(True, color="#eeeeee", lw=0.5)
     fig.tight_layout()
     fig.savefig(path)

@@ -215,7 +215,7 @@ def _analyse(entry, steps):
     if len(chain.pieces) == 1:
         entry.inversions = inversions(chain)
     m = chain.mechanism
-    if m is not None and m.driver is not None and chain.has_pose:
+    if m is not None and (m.driver is not None or m.inputs) and chain.has_pose:
         try:
             entry.motion = solve(chain, steps=steps)
         except ChainGraphError as e:

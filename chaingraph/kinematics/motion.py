@@ -23,7 +23,7 @@ from .equations import check_poses
 from .plan import build_plan
 from .rates import rates
 from .summary import _cycle_theta, _summary
-from .sweep import _evaluate_sweep, cycle
+from .sweep import Cycle, _evaluate_sweep, cycle
 
 __all__ = ["Motion", "solve", "full_turns"]
 
@@ -211,10 +211,22 @@ def solve(mechanism, *, fixed=None, driver=None, inputs=None, start=None, stop=N
     check_poses(plan, ev.pose, ev.feasible)
     vel, acc, _ = rates(plan, ev.pose, omega, theta.size, measure=False)
     columns = _columns(plan, theta, ev.pose, vel, acc)
+    if not c.full_turn:
+        # a limit of the range is a fold: the inputs do not determine the rates there
+        at_limit = (theta == c.low) | (theta == c.high)
+        if at_limit.any():
+            for key, values in columns.items():
+                if key.split(":")[0] in _RATE_COLUMNS and np.any(values != 0):
+                    values[at_limit] = np.nan      # (what is fixed keeps its zeros)
+    if sum(k != 0 for _, k in plan.line) > 1:     # several inputs move: summarize the sweep
+        c = Cycle(None, min(lo, hi), max(lo, hi), ends="sweep")
     summary = _summary(plan, output, omega, c) if summary else {}
     return Motion(name=chain.name, fixed=plan.fixed, driver=plan.driver, omega=omega,
                   columns=columns, summary=summary, units=chain.units, plan=plan,
                   inputs=() if plan.from_driver else plan.inputs)
+
+
+_RATE_COLUMNS = {"omega", "alpha", "vx", "vy", "ax", "ay", "v", "a"}
 
 
 def _as_inputs(inputs, chain):

@@ -39,6 +39,8 @@ def summary_rows(motion):
     ta = s["transmission_angle"]
     plan = motion.plan
     how = "  (turns fully)" if s["full_turn"] else "  (rocks)"
+    if motion.inputs and sum(k != 0 for _, k in plan.line) > 1:
+        how = "  (moving together)"
     if motion.inputs:
         lead = plan.inputs[plan.lead]
         how = how if lead.kind == "R" else "  (slides)"
@@ -165,7 +167,7 @@ def _summary(plan, output, omega, c):
                "extreme_positions": None,
                "transmission_angle": _transmission(plan, ev, theta),
                "dead_centres": _dead_centres(plan, ev, measure, c),
-               "input_range": [float(plan.value(theta[0])), float(plan.value(theta[-1]))],
+               "input_range": _input_range(plan, theta, c),
                "full_turn": c.full_turn,
                "mobility": plan.mobility, "numeric_mobility": plan.numeric_mobility,
                "omega": omega, "note": None}
@@ -194,6 +196,10 @@ def _summary(plan, output, omega, c):
     summary["extremes"] = [_turn(plan, lo_e["input"], c), _turn(plan, hi_e["input"], c)]
     summary["extreme_positions"] = [dict(e, input=_turn(plan, e["input"], c))
                                     for e in extremes]
+    if c.ends == "sweep":
+        summary["note"] = ("the inputs move together over the sweep given, so there is no "
+                           "time ratio")
+        return summary
     if not c.full_turn:
         summary["note"] = ("the input rocks, so there is no time ratio"
                            if plan.inputs[plan.lead].kind == "R" else
@@ -213,12 +219,27 @@ def _summary(plan, output, omega, c):
     return summary
 
 
+def _input_range(plan, theta, c):
+    """The lead input's values that can be assembled: the summary's own range, or, for
+    a sweep of several inputs, the range along their line."""
+    if c.ends == "sweep":
+        from .sweep import cycle
+        whole = cycle(plan)
+        ends = (whole.low, whole.low + whole.period) if whole.full_turn else (whole.low, whole.high)
+        return [float(plan.value(t)) for t in ends]
+    return [float(plan.value(theta[0])), float(plan.value(theta[-1]))]
+
+
 def _output_extremes(plan, ev, kind, name, direction, u, du, scale, c):
     """Every extreme of the output over the cycle, in input order: stationary points
     refined by Newton's method on its rate (safeguarded by bisection), and for a rocker
     the values at the input's limits. Each {"input", "value", "kind"}."""
     theta = ev.theta
     sign = np.where(np.abs(du) > 1e-9 * scale, np.sign(du), 0.0)
+    if not c.full_turn and sign.size > 2:
+        # a limit of the range is a fold, where the rate is infinite and its computed
+        # sign means nothing: the samples inside say which way the output goes there
+        sign[[0, -1]] = 0.0
     # the rate's sign changes between significant samples (a dwell's rounding noise and
     # exact zeros on the grid are skipped over, not counted); a crank's cycle closes on
     # itself, so a change across its seam counts too, one period on
@@ -303,12 +324,13 @@ def _dead_centres(plan, ev, measure, c):
     # a determinant near one (where positions carry the square root of the rounding
     # error) is the same dead centre
     exact = [t for ts in ev.switches.values() for t in ts]
-    if not c.full_turn:
+    folds = not c.full_turn and c.ends == "limits"
+    if folds:
         exact += [c.low, c.high]
     # a rocker's limits are folds, where a determinant is zero with no meaningful
     # sign: the samples there are left out of the search
     inner = np.ones(theta.size, dtype=bool)
-    if not c.full_turn:
+    if folds:
         inner[[0, -1]] = False
     roots = []
     for i, m in enumerate(measure):
@@ -323,6 +345,8 @@ def _dead_centres(plan, ev, measure, c):
                 return mm[i]
             roots += list(_bracketed_roots(f, theta[ka], theta[kb], m[ka], m[kb]))
     found = exact + [t for t in roots if all(abs(t - x) > 1e-5 for x in exact)]
+    if c.ends == "sweep":
+        found = [t for t in found if c.low - 1e-9 <= t <= c.high + 1e-9]
     found = sorted(_turn(plan, t, c) for t in found)
     merged = [t for i, t in enumerate(found) if i == 0 or t - found[i - 1] > _SAME_ANGLE]
     if c.full_turn and len(merged) > 1 and merged[0] + 360.0 - merged[-1] <= _SAME_ANGLE:

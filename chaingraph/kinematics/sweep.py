@@ -26,12 +26,17 @@ class Cycle:
     """What the inputs can do from the drawn pose: turn fully, returning to the drawn
     pose after ``period`` degrees (360 for an ordinary crank), or rock (or slide)
     between the limits ``low`` and ``high`` (dead centres where the motion folds back).
-    All in the plan's path parameter ``tau`` (an R input's angle in degrees)."""
+    All in the plan's path parameter ``tau`` (an R input's angle in degrees).
+
+    ``ends`` is ``"limits"`` when ``low`` and ``high`` are where the motion folds back,
+    ``"sweep"`` when they are the ends of a sweep of several inputs moving together
+    (whose summary is of that sweep: its ends are no dead centres)."""
 
     period: float | None
     low: float
     high: float
     limit_poses: tuple = field(default=(), compare=False, repr=False)
+    ends: str = "limits"
 
     @property
     def full_turn(self) -> bool:
