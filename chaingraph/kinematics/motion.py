@@ -23,7 +23,7 @@ from .equations import check_poses
 from .plan import build_plan
 from .rates import rates
 from .summary import _cycle_theta, _summary
-from .sweep import Cycle, _evaluate_sweep, cycle
+from .sweep import Cycle, _evaluate_near, _evaluate_sweep, cycle
 
 __all__ = ["Motion", "solve", "full_turns"]
 
@@ -193,25 +193,29 @@ def solve(mechanism, *, fixed=None, driver=None, inputs=None, start=None, stop=N
     lead = plan.inputs[plan.lead]
     if lead.sweep is not None:
         start, stop = lead.sweep
-    if plan.theta0 is None or start is not None and stop is not None:
+    explicit = start is not None and stop is not None
+    c = cycle(plan) if summary or not explicit else None
+    if explicit:
         lo, hi = plan.tau(start), plan.tau(stop)
-        c = cycle(plan) if summary or plan.theta0 is not None else None
+    elif c.full_turn:
+        lo = c.low if start is None else plan.tau(start)
+        hi = lo + 360.0 if stop is None else plan.tau(stop)
     else:
-        c = cycle(plan)
-        if c.full_turn:
-            lo = c.low if start is None else plan.tau(start)
-            hi = lo + 360.0 if stop is None else plan.tau(stop)
-        else:
-            lo = c.low if start is None else plan.tau(start)
-            hi = c.high if stop is None else plan.tau(stop)
+        lo = c.low if start is None else plan.tau(start)
+        hi = c.high if stop is None else plan.tau(stop)
     theta = np.linspace(lo, hi, steps + 1)    # both ends exact (a rocker's limits)
-    if c is None:
-        c = cycle(plan)
-    ev = _evaluate_sweep(plan, theta)
+    ev = _evaluate_sweep(plan, theta) if c is not None else _evaluate_near(plan, theta)
     check_poses(plan, ev.pose, ev.feasible)
     vel, acc, _ = rates(plan, ev.pose, omega, theta.size, measure=False)
     columns = _columns(plan, theta, ev.pose, vel, acc)
-    if not c.full_turn:
+    if explicit and not plan.from_driver:
+        # the values asked for, exactly (tau carries them to the last bit or so)
+        for n, item in enumerate(plan.inputs):
+            ends = (start, stop) if n == plan.lead else item.sweep
+            if ends is not None and (n == plan.lead or plan.line[n][1] != 0):
+                columns["input:" + item.joint] = np.linspace(ends[0], ends[1], steps + 1)
+        columns["theta"] = columns["input:" + lead.joint]
+    if c is not None and not c.full_turn:
         # a limit of the range is a fold: the inputs do not determine the rates there
         at_limit = (theta == c.low) | (theta == c.high)
         if at_limit.any():

@@ -390,6 +390,11 @@ def build_plan(chain, fixed=None, driver=None, *, inputs=None, closed_form=True)
     if chain.space != "planar":
         raise MechanismError("only planar chains can be solved; this one is spatial",
                              mechanism=name)
+    for item in inputs or ():
+        j = next((x for x in chain.joints if x.id == item.joint), None)
+        if j is not None and j.kind not in ("R", "P"):
+            raise MechanismError(f"the input {item.joint!r} is a {j.pair.name} ({j.kind}); "
+                                 "an input must be an R or P joint", mechanism=name)
     for j in chain.joints:
         if j.kind not in ("R", "P"):
             raise MechanismError(

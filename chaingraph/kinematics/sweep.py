@@ -218,6 +218,24 @@ def _along(plan, end, targets):
     return ev.take(idx)
 
 
+def _evaluate_near(plan, theta):
+    """Poses at ``theta`` continued from the anchor on each side, without working out
+    the cycle first (for an explicit sweep without summary); the cycle is worked out
+    only to say the range when the sweep leaves it."""
+    theta = np.asarray(theta, dtype=float)
+    t0 = anchor(plan).tau
+    parts = []
+    for side in (theta > t0, theta <= t0):
+        if side.any():
+            end = float(theta[side].max() if theta[side][0] > t0 else theta[side].min())
+            parts.append((np.nonzero(side)[0], _along(plan, end, theta[side])))
+    ev = parts[0][1] if len(parts) == 1 else _merge(parts, theta.size)
+    if not ev.feasible.all():
+        return _evaluate_sweep(plan, theta)      # says the range
+    ev.theta = theta
+    return ev
+
+
 def _evaluate_sweep(plan, theta):
     """Poses at the path parameters ``theta`` (a driver's angles, degrees): a crank's
     from its angle within one period of the anchor, a rocker's from the anchor
