@@ -10,7 +10,10 @@ accelerations of every link, joint and point (``solve(..., summary=False)``), af
 warm-up (the plan and the feasible range are built once per inversion and cached).
 Targets (issue 4): the crank-rocker four-bar at least as fast as pylinkage's numba path
 and 20 times faster than its pure-Python path; the six-link shaper at most three times
-the four-bar; Stephenson's third inversion (Newton's method) under 100 ms.
+the four-bar; Stephenson's third inversion (Newton's method) under 100 ms. Issue 11:
+the whole call *with* its summary (stroke, extremes, time ratio, dead centres, all
+refined) no slower than pylinkage's numba path for the bare sweep; and the same four-bar
+driven through an input joint, and an engine driven by its piston, timed too.
 """
 
 import argparse
@@ -62,9 +65,9 @@ def stephenson_three():
     return chain.with_mechanism("b4", "t2")
 
 
-def sweep_ms(chain, start=None, stop=None, repeats=20):
+def sweep_ms(chain, start=None, stop=None, repeats=20, summary=False, inputs=None):
     return best_ms(lambda: chaingraph.solve(chain, start=start, stop=stop, steps=STEPS,
-                                            summary=False), repeats)
+                                            summary=summary, inputs=inputs), repeats)
 
 
 def pylinkage(python):
@@ -96,6 +99,10 @@ def main():
         ms = sweep_ms(chain)
         print(f"{chain.name[:48]:48s} {ms:8.2f} {1000 * ms / STEPS:8.3f}")
     four = sweep_ms(crank_rocker(), repeats=50)
+    four_full = sweep_ms(crank_rocker(), repeats=50, summary=True)
+    four_input = sweep_ms(crank_rocker(), repeats=50, summary=True, inputs=["A"])
+    engine = chaingraph.load(catalog_path("reciprocating-engine"))
+    piston = sweep_ms(engine, repeats=20, summary=True, inputs=["S"])
     shaper = sweep_ms(chaingraph.load(catalog_path("shaper-crank-and-slotted-lever")), repeats=50)
     s3 = stephenson_three()
     t0 = chaingraph.build_plan(s3).theta0
@@ -103,6 +110,9 @@ def main():
     newton = sweep_ms(chaingraph.load(catalog_path("stephenson-iii-mechanism")), repeats=10)
     print()
     print(f"crank-rocker four-bar:            {four:7.2f} ms")
+    print(f"  the whole call with its summary: {four_full:7.2f} ms "
+          f"(driven through its input joint A: {four_input:.2f} ms)")
+    print(f"reciprocating engine driven by its piston, with summary: {piston:7.2f} ms")
     print(f"six-link shaper:                  {shaper:7.2f} ms  ({shaper / four:.2f} x the four-bar)")
     print(f"Stephenson III mechanism (Newton, full turn): {newton:7.2f} ms")
     print(f"Stephenson chain, b4 fixed, t2 driving (Newton, 150 deg): {newton_chain:7.2f} ms")
@@ -114,6 +124,8 @@ def main():
         print(f"  step_fast_with_kinematics (numba): {fast:7.2f} ms")
         print(f"  step_with_derivatives (Python):    {slow:7.2f} ms")
         print(f"chaingraph / pylinkage numba:  {four / fast:.2f}  (target <= 1)")
+        print(f"chaingraph with summary / pylinkage numba bare sweep: {four_full / fast:.2f}  "
+              "(target <= 1)")
         print(f"pylinkage Python / chaingraph: {slow / four:.1f}  (target >= 20)")
         m = chaingraph.solve(crank_rocker(), steps=STEPS, summary=False)
         lo, hi = float(np.nanmin(m["x:C"])), float(np.nanmax(m["x:C"]))

@@ -203,11 +203,17 @@ def solve(mechanism, *, fixed=None, driver=None, inputs=None, start=None, stop=N
     else:
         lo = c.low if start is None else plan.tau(start)
         hi = c.high if stop is None else plan.tau(stop)
-    theta = np.linspace(lo, hi, steps + 1)    # both ends exact (a rocker's limits)
+    if c is not None and not explicit and c.full_turn and stop is None:
+        theta = lo + 360.0 * np.arange(steps + 1) / steps    # as the summary's grid
+    else:
+        theta = np.linspace(lo, hi, steps + 1)    # both ends exact (a rocker's limits)
     ev = _evaluate_sweep(plan, theta) if c is not None else _evaluate_near(plan, theta)
     check_poses(plan, ev.pose, ev.feasible)
-    vel, acc, _ = rates(plan, ev.pose, omega, theta.size, measure=False)
-    columns = _columns(plan, theta, ev.pose, vel, acc)
+    # rates at unit input speed, scaled to omega: the summary can then use this sweep
+    # when it is the summary's own grid
+    vel, acc, measure = rates(plan, ev.pose, 1.0, theta.size, measure=summary)
+    unit_columns = _columns(plan, theta, ev.pose, vel, acc)
+    columns = _scaled(unit_columns, omega)
     if explicit and not plan.from_driver:
         # the values asked for, exactly (tau carries them to the last bit or so)
         for n, item in enumerate(plan.inputs):
@@ -219,18 +225,36 @@ def solve(mechanism, *, fixed=None, driver=None, inputs=None, start=None, stop=N
         # a limit of the range is a fold: the inputs do not determine the rates there
         at_limit = (theta == c.low) | (theta == c.high)
         if at_limit.any():
-            for key, values in columns.items():
+            for key, values in list(columns.items()):
                 if key.split(":")[0] in _RATE_COLUMNS and np.any(values != 0):
-                    values[at_limit] = np.nan      # (what is fixed keeps its zeros)
+                    # (what is fixed keeps its zeros)
+                    columns[key] = np.where(at_limit, np.nan, values)
     if sum(k != 0 for _, k in plan.line) > 1:     # several inputs move: summarize the sweep
         c = Cycle(None, min(lo, hi), max(lo, hi), ends="sweep")
-    summary = _summary(plan, output, omega, c) if summary else {}
+    reuse = None
+    if summary and c.ends == "limits" and np.array_equal(theta, _cycle_theta(plan, c)):
+        reuse = (ev, measure, unit_columns)
+    summary = _summary(plan, output, omega, c, sweep=reuse) if summary else {}
     return Motion(name=chain.name, fixed=plan.fixed, driver=plan.driver, omega=omega,
                   columns=columns, summary=summary, units=chain.units, plan=plan,
                   inputs=() if plan.from_driver else plan.inputs)
 
 
 _RATE_COLUMNS = {"omega", "alpha", "vx", "vy", "ax", "ay", "v", "a"}
+_FIRST = {"omega", "vx", "vy", "v"}            # proportional to the input speed
+_SECOND = {"alpha", "ax", "ay", "a"}           # to its square
+
+
+def _scaled(columns, omega):
+    """The columns at input speed ``omega`` from those at unit speed."""
+    if omega == 1.0:
+        return dict(columns)
+    out = {}
+    for key, values in columns.items():
+        kind = key.split(":")[0]
+        out[key] = values * omega if kind in _FIRST else \
+            values * (omega * omega) if kind in _SECOND else values
+    return out
 
 
 def _as_inputs(inputs, chain):

@@ -429,7 +429,10 @@ def build_plan(chain, fixed=None, driver=None, *, inputs=None, closed_form=True)
             f"{mobility}), so it needs {numeric} input{'s' if numeric != 1 else ''}, one per "
             f"degree of freedom; given the {said}", mechanism=name, mobility=numeric)
     if numeric == count:
-        left = _numeric_mobility(chain, fixed, constraints, size, with_inputs=True)
+        # structurally (at a generic placement of the joints: the drawn pose may be a
+        # dead centre of these inputs, which its range will show)
+        left = _numeric_mobility(chain, fixed, constraints, size, with_inputs=True,
+                                 generic=True)
         if left:
             raise MechanismError(
                 f"the inputs {', '.join(i.joint for i in items)} do not determine the "
@@ -444,9 +447,11 @@ def build_plan(chain, fixed=None, driver=None, *, inputs=None, closed_form=True)
                 from_driver=from_driver)
 
 
-def _numeric_mobility(chain, fixed, constraints, size, *, with_inputs=False):
+def _numeric_mobility(chain, fixed, constraints, size, *, with_inputs=False, generic=False):
     """Coordinates (3 per moving link) minus the rank of all ``constraints`` (every
-    joint's; with ``with_inputs`` the inputs' equations too) at the drawn pose.
+    joint's; with ``with_inputs`` the inputs' equations too) at the drawn pose, or, with
+    ``generic``, at a random placement of the joints (any placement is the drawn pose of
+    some mechanism of this structure, so this is the structure's own count).
 
     The constraints are about the drawing's centre; the Jacobian is taken in units of
     its size, so that its rank does not depend on where the mechanism is drawn or how
@@ -454,8 +459,16 @@ def _numeric_mobility(chain, fixed, constraints, size, *, with_inputs=False):
     moving = [x for x in chain.links if x != fixed]
     col = {x: 3 * i for i, x in enumerate(moving)}
     rows = []
+    rng = np.random.default_rng(20261122)
+    joints = sorted({c.joint for c in constraints})
+    placed = {j: tuple(rng.uniform(-1.0, 1.0, 2)) for j in joints}
+    turned = {j: float(rng.uniform(0.0, 180.0)) for j in joints}
     for c in constraints:
-        scaled = (c.point[0] / size, c.point[1] / size)
+        if generic:
+            c = replace(c, point=placed[c.joint], axis=None if c.axis is None else turned[c.joint])
+            scaled = c.point
+        else:
+            scaled = (c.point[0] / size, c.point[1] / size)
         for coeffs in _rows_at_drawn_pose(replace(c, point=scaled), with_inputs):
             row = np.zeros(3 * len(moving))
             for link, vec in coeffs.items():

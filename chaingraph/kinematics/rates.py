@@ -9,6 +9,8 @@ the rates are NaN, never a finite wrong number.
 
 from __future__ import annotations
 
+import math
+
 import numpy as np
 
 from .equations import (_add, _batched_inverse, _dot3, _form, _gammas, _geometry,
@@ -108,6 +110,58 @@ class _PointDyad:
                 out[link] = (dx + w * rq[1] + w0 * w0 * rq[0],
                              dy - w * rq[0] + w0 * w0 * rq[1], w)
         return out
+
+
+class _Weld:
+    """A link welded to a known link by an input joint: its rates are the known link's
+    carried to the joint, plus the input's own (a relative rotation about the joint,
+    or a slide along the guide with its Coriolis term), in closed form."""
+
+    measure = 1.0           # an input's weld always determines the link
+
+    def __init__(self, step, pose):
+        self.step = step
+        self.u = step.links[0]
+        self.c = c = step.constraints[0]
+        self.k = c.other(self.u)
+        self.sign = 1.0 if self.u == c.b else -1.0
+        self.rk = rotate(pose[self.k], c.point)       # the joint's point from each link
+        self.ru = rotate(pose[self.u], c.point)
+        if c.kind == "P":
+            self.delta = pose[c.drive][2]
+            self.t = rotate(pose[self.k], (math.cos(math.radians(c.axis)),
+                                           math.sin(math.radians(c.axis))))
+
+    def solve_velocity(self, vel):
+        c, k, sg = self.c, self.k, self.sign
+        vk, wk, rate = vel[k], vel[k][2], vel[c.drive][2]
+        px = vk[0] - wk * self.rk[1]                  # the joint's point on k
+        py = vk[1] + wk * self.rk[0]
+        if c.kind == "R":
+            w = wk + sg * rate
+        else:
+            w = wk
+            t, d = self.t, self.delta
+            px = px + sg * (rate * t[0] - d * wk * t[1])
+            py = py + sg * (rate * t[1] + d * wk * t[0])
+        return {self.u: (px + w * self.ru[1], py - w * self.ru[0], w)}
+
+    def solve_acceleration(self, acc, vel):
+        c, k, sg = self.c, self.k, self.sign
+        ak, wk, alk = acc[k], vel[k][2], acc[k][2]
+        rate, rate2 = vel[c.drive][2], acc[c.drive][2]
+        rk, ru = self.rk, self.ru
+        ax = ak[0] - alk * rk[1] - wk * wk * rk[0]
+        ay = ak[1] + alk * rk[0] - wk * wk * rk[1]
+        if c.kind == "R":
+            w, al = wk + sg * rate, alk + sg * rate2
+        else:
+            w, al = wk, alk
+            t, d = self.t, self.delta
+            pt = (-t[1], t[0])
+            ax = ax + sg * (rate2 * t[0] + 2 * rate * wk * pt[0] + d * (alk * pt[0] - wk * wk * t[0]))
+            ay = ay + sg * (rate2 * t[1] + 2 * rate * wk * pt[1] + d * (alk * pt[1] - wk * wk * t[1]))
+        return {self.u: (ax + al * ru[1] + w * w * ru[0], ay - al * ru[0] + w * w * ru[1], al)}
 
 
 def _sq(v):
@@ -305,6 +359,9 @@ def rates(plan, pose, omega, n, *, steps=None, measure=True, accelerations=True)
         if step.kind == "dyad" and step.pattern == "RRR" and _POINT_DYADS:
             f = _PointDyad(step, pose, n, plan.size)
             vel.update(f.solve_velocity(vel))
+        elif step.pattern[0] == "W" and _POINT_DYADS:
+            f = _Weld(step, pose)
+            vel.update(f.solve_velocity(vel))
         else:
             f = _Factor(step, pose, n, plan.size)
             vel.update(f.solve(f.right_hand_sides(vel)))
@@ -314,6 +371,9 @@ def rates(plan, pose, omega, n, *, steps=None, measure=True, accelerations=True)
         if measure:
             measures.append(np.broadcast_to(f.measure, (n,)))
     for f in (factors if accelerations else []):
+        if isinstance(f, _Weld):
+            acc.update(f.solve_acceleration(acc, vel))
+            continue
         if isinstance(f, _PointDyad):
             acc.update(_refuse_near_singular(f, f.solve_acceleration(acc, vel)))
             continue

@@ -157,11 +157,17 @@ def _bracketed_roots(f, a, b, fa, fb, *, newton=False, tol=1e-10, iterations=60)
     return np.where(np.isfinite(t), t, 0.5 * (a + b))
 
 
-def _summary(plan, output, omega, c):
-    theta = _cycle_theta(plan, c)
-    ev = _evaluate_sweep(plan, theta)
-    vel, acc, measure = rates(plan, ev.pose, 1.0, theta.size)
-    cols = _columns(plan, theta, ev.pose, vel, acc)
+def _summary(plan, output, omega, c, *, sweep=None):
+    """The summary over the cycle ``c``; ``sweep`` is (evaluation, step measures,
+    columns at unit input speed) on the cycle's own grid when the caller has them."""
+    if sweep is None:
+        theta = _cycle_theta(plan, c)
+        ev = _evaluate_sweep(plan, theta)
+        vel, acc, measure = rates(plan, ev.pose, 1.0, theta.size)
+        cols = _columns(plan, theta, ev.pose, vel, acc)
+    else:
+        ev, measure, cols = sweep
+        theta = ev.theta
     summary = {"output": output, "stroke": None, "stroke_unit": None, "time_ratio": None,
                "forward_deg": None, "return_deg": None, "extremes": None,
                "extreme_positions": None,
@@ -177,7 +183,7 @@ def _summary(plan, output, omega, c):
         return summary
     kind, name = signal
     direction = path_direction(cols, name) if kind == "point" else None
-    u, du, _ = _signal_values(kind, name, cols, direction)
+    u, du, ddu = _signal_values(kind, name, cols, direction)
     summary["stroke_unit"] = "deg" if kind == "angle" else plan.chain.units
     if kind == "angle" and c.full_turn and abs(u[-1] - u[0]) > 180.0:
         summary["output_turns_fully"] = True
@@ -188,7 +194,7 @@ def _summary(plan, output, omega, c):
             plan.size if kind != "angle" else 360.0, 1e-300):
         summary.update(stroke=0.0, note="the output does not move")
         return summary
-    extremes = _output_extremes(plan, ev, kind, name, direction, u, du, scale, c)
+    extremes = _output_extremes(plan, ev, kind, name, direction, u, du, ddu, scale, c)
     values = [e["value"] for e in extremes]
     hi_e = extremes[int(np.argmax(values))]
     lo_e = extremes[int(np.argmin(values))]
@@ -230,10 +236,15 @@ def _input_range(plan, theta, c):
     return [float(plan.value(theta[0])), float(plan.value(theta[-1]))]
 
 
-def _output_extremes(plan, ev, kind, name, direction, u, du, scale, c):
-    """Every extreme of the output over the cycle, in input order: stationary points
-    refined by Newton's method on its rate (safeguarded by bisection), and for a rocker
-    the values at the input's limits. Each {"input", "value", "kind"}."""
+def _output_extremes(plan, ev, kind, name, direction, u, du, ddu, scale, c):
+    """Every extreme of the output over the cycle, in input order: stationary points,
+    and for a rocker the values at the input's limits. Each {"input", "value", "kind"}.
+
+    A stationary point is first placed from what the sweep already has (the root of the
+    cubic through the rate and its slope at the two samples around it, accurate to the
+    fourth power of the grid's step), then one Newton step on the exact rate there
+    finishes it; where that step does not land inside the bracket, Newton's method
+    safeguarded by bisection takes over."""
     theta = ev.theta
     sign = np.where(np.abs(du) > 1e-9 * scale, np.sign(du), 0.0)
     if not c.full_turn and sign.size > 2:
@@ -253,10 +264,26 @@ def _output_extremes(plan, ev, kind, name, direction, u, du, scale, c):
     ka, kb, tb = ka[change], kb[change], tb[change]
     found = []
     if ka.size:
-        t = _bracketed_roots(lambda t: _rate_and_slope(plan, ev, ka, t, kind, name, direction),
-                             theta[ka], tb, du[ka], du[kb], newton=True)
-        cols, _, _ = _pointwise(plan, ev, ka, t)
-        value = _signal_values(kind, name, cols, direction)[0]
+        ta = theta[ka]
+        slope_a, slope_b = ddu[ka] * plan.rate_scale, ddu[kb] * plan.rate_scale
+        guess = _cubic_roots(ta, tb, du[ka], du[kb], slope_a, slope_b)
+        cols, _, _ = _pointwise(plan, ev, ka, guess)
+        at_guess, rate, second = _signal_values(kind, name, cols, direction)
+        with np.errstate(divide="ignore", invalid="ignore"):   # (checked below)
+            step = -rate / (second * plan.rate_scale)
+            t = guess + step
+            # u moves by -rate^2 / (2 second) on the way to the root (rate = du / d input)
+            value = at_guess - 0.5 * rate * rate / second
+        good = (np.isfinite(t) & np.isfinite(value) & ((t - ta) * (t - tb) <= 0)
+                & (np.abs(step) <= 1e-3 * np.abs(tb - ta)))
+        if not good.all():
+            bad = np.nonzero(~good)[0]
+            kbad = ka[bad]
+            t[bad] = _bracketed_roots(
+                lambda tt: _rate_and_slope(plan, ev, kbad, tt, kind, name, direction),
+                ta[bad], tb[bad], du[kbad], du[kb[bad]], newton=True)
+            redo, _, _ = _pointwise(plan, ev, kbad, t[bad])
+            value[bad] = _signal_values(kind, name, redo, direction)[0]
         if kind == "angle":      # the same turn as the sweep's own values
             value = u[ka] + np.remainder(value - u[ka] + 180.0, 360.0) - 180.0
         found = [{"input": float(ti), "value": float(vi), "kind": "max" if sign[k] > 0 else "min"}
@@ -270,6 +297,33 @@ def _output_extremes(plan, ev, kind, name, direction, u, du, scale, c):
                       "kind": "max"},
                      {"input": float(theta[int(np.argmin(u))]), "value": float(np.min(u)),
                       "kind": "min"}]
+
+
+def _cubic_roots(t0, t1, f0, f1, g0, g1):
+    """The root in each bracket [t0, t1] (f0, f1 of opposite signs) of the cubic with
+    values f and slopes g at its ends (Hermite): Newton's method from the secant's
+    root, and bisection where it does not settle inside the bracket. No evaluation of
+    the mechanism, only of the cubic."""
+    h = t1 - t0
+    a0, a1 = f0, g0 * h                       # p(s) = a0 + a1 s + a2 s^2 + a3 s^3
+    a2 = 3 * (f1 - f0) - (2 * g0 + g1) * h
+    a3 = 2 * (f0 - f1) + (g0 + g1) * h
+
+    def cubic(s):
+        return a0 + s * (a1 + s * (a2 + s * a3))
+    with np.errstate(divide="ignore", invalid="ignore"):
+        s = f0 / (f0 - f1)
+        for _ in range(6):
+            s = np.clip(s - cubic(s) / (a1 + s * (2 * a2 + 3 * s * a3)), 0.0, 1.0)
+    settled = np.isfinite(s) & (np.abs(cubic(s)) <= 1e-13 * (np.abs(f0) + np.abs(f1)))
+    if not settled.all():                   # bisection, where Newton's did not settle
+        lo, hi = np.zeros_like(h), np.ones_like(h)
+        for _ in range(60):
+            mid = 0.5 * (lo + hi)
+            left = np.sign(cubic(mid)) == np.sign(f0)
+            lo, hi = np.where(left, mid, lo), np.where(left, hi, mid)
+        s = np.where(settled, s, 0.5 * (lo + hi))
+    return t0 + s * h
 
 
 def _rate_and_slope(plan, ev, k, t, kind, name, direction):
