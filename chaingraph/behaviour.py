@@ -19,7 +19,7 @@ Closed forms for the four-link loops of turning and sliding pairs:
 
 Lengths come from the drawn pose (distances between a link's joints). Other chains
 of R and P joints with a drawn pose and mobility 1 (six- and eight-bars...) are solved
-over a cycle (:func:`chaingraph.motion.full_turns`) and the links that make a net turn
+over a cycle (:func:`chaingraph.kinematics.full_turns`) and the links that make a net turn
 relative to the fixed link are reported. Otherwise None.
 """
 
