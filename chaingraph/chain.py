@@ -158,6 +158,7 @@ class Chain:
     points: tuple[Point, ...] = ()
     mechanism: Mechanism | None = None
     source: str | None = field(default=None, compare=False)
+    naming: str | None = None   # a catalog mechanism's name: "structure" or "behaviour"
 
     def __post_init__(self):
         object.__setattr__(self, "joints", tuple(self.joints))
@@ -360,10 +361,17 @@ def _validate(chain: Chain) -> None:
         if j.at is not None and not _is_finite_pair(j.at):
             fail("'at' must be two finite numbers [x, y]", where)
         if j.kind == "P":
-            if j.axis is None:
-                fail("a P joint needs 'axis' (direction of sliding, degrees)", where)
-            if (isinstance(j.axis, bool) or not isinstance(j.axis, (int, float))
-                    or not math.isfinite(j.axis)):
+            # 'at' and 'axis' go together: a chain written for its structure alone
+            # needs neither
+            if j.at is not None and j.axis is None:
+                fail("a P joint with 'at' needs 'axis' (direction of sliding, degrees); "
+                     "a chain written for its structure alone needs neither", where)
+            if j.axis is not None and j.at is None:
+                fail("a P joint with 'axis' needs 'at' (a point of the sliding line); "
+                     "a chain written for its structure alone needs neither", where)
+            if j.axis is not None and (isinstance(j.axis, bool)
+                                       or not isinstance(j.axis, (int, float))
+                                       or not math.isfinite(j.axis)):
                 fail("'axis' must be a finite number of degrees", where)
         elif j.axis is not None:
             fail("'axis' is only for P joints", where)
@@ -386,6 +394,10 @@ def _validate(chain: Chain) -> None:
             fail(f"'link' names no link of the chain: {p.link!r}", where)
         if not _is_finite_pair(p.at):
             fail("'at' must be two finite numbers [x, y]", where)
+    if chain.naming is not None and chain.naming not in ("structure", "behaviour"):
+        fail(f"'naming' must be \"structure\" (the name holds for any dimensions) or "
+             f"\"behaviour\" (it needs the catalog's behaviour), got {chain.naming!r}",
+             "key 'naming'")
     m = chain.mechanism
     if m is not None:
         if m.fixed not in links:

@@ -21,7 +21,8 @@ from .errors import ChainFileError
 
 __all__ = ["load", "loads", "from_document", "dumps", "save"]
 
-TOP_KEYS = ("name", "family", "units", "space", "notes", "joints", "points", "mechanism")
+TOP_KEYS = ("name", "family", "units", "space", "notes", "naming", "joints", "points",
+            "mechanism")
 JOINT_KEYS = ("id", "kind", "links", "at", "axis", "closure")
 POINT_KEYS = ("id", "link", "at")
 MECHANISM_KEYS = ("fixed", "driver", "inputs", "omega", "output")
@@ -107,6 +108,7 @@ def from_document(doc, *, source: str = "<document>") -> Chain:
     family = _optional_string(doc, "family", "key 'family'", fail)
     units = _optional_string(doc, "units", "key 'units'", fail)
     notes = _optional_string(doc, "notes", "key 'notes'", fail)
+    naming = _optional_string(doc, "naming", "key 'naming'", fail)
     space = _optional_string(doc, "space", "key 'space'", fail) or "planar"
     if "joints" not in doc:
         fail("missing [[joints]]: a chain needs at least one joint", "key 'joints'")
@@ -118,7 +120,8 @@ def from_document(doc, *, source: str = "<document>") -> Chain:
     if "mechanism" in doc:
         mechanism = _mechanism(doc["mechanism"], fail)
     return Chain(name=name, joints=joints, family=family, units=units, space=space,
-                 notes=notes, points=points, mechanism=mechanism, source=source)
+                 notes=notes, points=points, mechanism=mechanism, source=source,
+                 naming=naming)
 
 
 def _type_name(value) -> str:
@@ -284,7 +287,7 @@ def dumps(chain: Chain) -> str:
     True
     """
     lines = [f"name = {_toml_string(chain.name)}"]
-    for key in ("family", "units", "notes"):
+    for key in ("family", "units", "notes", "naming"):
         value = getattr(chain, key)
         if value is not None:
             lines.append(f"{key} = {_toml_string(value)}")

@@ -110,6 +110,9 @@ def _cmd_inversions(args) -> int:
     print(_table(rows, header))
     if args.with_input:
         print(f"classes with a designated input: {result.classes_with_input}")
+    for inv in result.inversions:
+        if inv.note:
+            print(f"{inv.fixed} fixed: {inv.note}")
     return 0
 
 
@@ -126,7 +129,15 @@ def _cmd_identify(args) -> int:
         print(f"inversion: {found.inversion or 'not in the catalog'}"
               f"{where(found.inversion_file)}")
     if found.mapping:
-        print("mapping:   " + ", ".join(f"{a} -> {b}" for a, b in found.mapping.items()))
+        onto = found.inversion or found.chain
+        print("mapping:   " + ", ".join(f"{a} -> {b}" for a, b in found.mapping.items())
+              + f"  (onto {onto})")
+    if found.joint_kinds == "ignored":
+        print("joints:    matched with every joint taken as a turning pair")
+    if found.orientation == "ignored":
+        print("sliding:   matched with P orientation forgotten (which link carries a guide)")
+    if found.note:
+        print(f"note:      {found.note}")
     return 0
 
 

@@ -65,7 +65,7 @@ def random_chain(links: int, joints: int | None = None, *, ternary: int = 0,
     result = []
     for i, g in enumerate(groups):
         if i in slides:
-            result.append(Joint(f"J{i}", "P", tuple(rng.sample(g, 2)), axis=0.0))
+            result.append(Joint(f"J{i}", "P", tuple(rng.sample(g, 2))))
         else:
             result.append(Joint(f"J{i}", "R", tuple(g)))
     return Chain(f"random chain ({links} links)", tuple(result))

@@ -1,10 +1,13 @@
 """Identify a chain or mechanism in the catalog.
 
-The chain is found by its canonical form (P orientation respected, then forgotten);
-the inversion, for a mechanism file, through :func:`chaingraph.inversions.catalog_matches`:
-its fixed link, its behaviour where both have dimensions, and its driver and output
-where both name them; among catalog inversions equal in all of that, the one of the
-nearest proportions (link lengths over the largest) is taken.
+The chain is found by structure alone, whatever the dimensions and with or without a
+mechanism: by its canonical form with P orientation respected, then forgotten, then
+with every joint taken as a turning pair (a sliding pair is a turning pair at infinity).
+The inversion, for a mechanism file, through :func:`chaingraph.inversions.catalog_matches`:
+its fixed link always; a name of behaviour (a beam engine is a crank-rocker) also needs
+the behaviour where both have dimensions; among the names that apply, the one whose
+driver and output correspond, then of the nearest proportions (link lengths over the
+largest), is taken. The mapping is the isomorphism behind the name given.
 """
 
 from __future__ import annotations
@@ -12,7 +15,8 @@ from __future__ import annotations
 import math
 from dataclasses import dataclass, field
 
-from .inversions import catalog_matches, require_connected
+from .behaviour import behaviour
+from .inversions import catalog_matches, naming_matches, require_connected
 from .isomorphism import canonical_form, isomorphism
 
 __all__ = ["Identification", "identify"]
@@ -27,9 +31,14 @@ class Identification:
     mapping: dict = field(default_factory=dict)
     chain_file: str | None = None
     inversion_file: str | None = None
+    orientation: str = "respected"     # or "ignored": P orientation had to be forgotten
+    joint_kinds: str = "respected"     # or "ignored": found with every joint as an R joint
+    note: str | None = None            # e.g. why no inversion is named
 
     def to_dict(self):
-        return {"chain": self.chain, "inversion": self.inversion, "mapping": dict(self.mapping)}
+        return {"chain": self.chain, "inversion": self.inversion, "mapping": dict(self.mapping),
+                "orientation": self.orientation, "joint_kinds": self.joint_kinds,
+                "note": self.note}
 
 
 def _lengths(chain):
@@ -84,29 +93,52 @@ def identify(chain, *, catalog=None) -> Identification:
         from .catalog import bundled_catalog
         catalog = bundled_catalog()
     chain_name = chain_file = None
-    mapping = {}
-    for oriented in (True, False):
-        form = canonical_form(chain, oriented=oriented)
-        entry = next((e for e in catalog if e.mechanism is None
-                      and len(e.links) == len(chain.links)
-                      and canonical_form(e, oriented=oriented) == form), None)
-        if entry is not None:
-            chain_name, chain_file = entry.name, entry.source
-            mapping = isomorphism(chain, entry, oriented=oriented)
+    mapping, orientation, kinds = {}, "respected", "respected"
+    chains = [e for e in catalog if e.mechanism is None]
+    for level in ("oriented", "unoriented", "kinds"):
+        mine = _as_turning_pairs(chain) if level == "kinds" else chain
+        oriented = level == "oriented"
+        form = canonical_form(mine, oriented=oriented)
+        for entry in chains:
+            theirs = _as_turning_pairs(entry) if level == "kinds" else entry
+            if len(entry.links) == len(chain.links) and \
+                    canonical_form(theirs, oriented=oriented) == form:
+                chain_name, chain_file = entry.name, entry.source
+                mapping = isomorphism(mine, theirs, oriented=oriented)
+                orientation = "respected" if oriented else "ignored"
+                kinds = "ignored" if level == "kinds" else "respected"
+                break
+        if chain_name is not None:
             break
-    inversion = inversion_file = None
+    inversion = inversion_file = note = None
     m = chain.mechanism
     if m is not None:
         matches = catalog_matches(chain, m.fixed, catalog, driver=m.driver, output=m.output)
-        if matches:
-            top = max(score for score, _, _ in matches)
-            tied = [(s_, e, mp) for s_, e, mp in matches if s_ == top]
-            # among equals, the entry of the nearest proportions (the file itself, when
-            # the file is a catalog entry)
-            _, entry, entry_mapping = min(
-                tied, key=lambda t: _proportion_distance(chain, t[1], t[2]))
-            inversion, inversion_file = entry.name, entry.source
-            if chain_name is None:
-                chain_name, mapping = entry.family, entry_mapping
+        naming = naming_matches(matches)
+        if naming:
+            # the behaviour's own name first, then the corresponding driver and output,
+            # then the nearest proportions (the file itself, when it is a catalog entry)
+            best = min(naming, key=lambda x: (x.alike is not True, -x.score,
+                                              _proportion_distance(chain, x.entry, x.mapping)))
+            inversion, inversion_file = best.entry.name, best.entry.source
+            mapping = best.mapping
+            orientation = "respected" if best.oriented else "ignored"
+        elif matches:
+            note = (f"by structure this is the catalog's "
+                    f"{', '.join(dict.fromkeys(x.entry.name for x in matches if x.oriented) or dict.fromkeys(x.entry.name for x in matches))}, but as "
+                    f"dimensioned it behaves otherwise ({behaviour(chain, m.fixed) or 'another way'})"
+                    ", and those names need the catalog's behaviour")
+        else:
+            note = "the catalog names no inversion of this structure with this link fixed"
+    if chain_name is None:
+        note = "; ".join(x for x in ("the catalog has no chain of this structure", note) if x)
     return Identification(chain=chain_name, inversion=inversion, mapping=mapping,
-                          chain_file=chain_file, inversion_file=inversion_file)
+                          chain_file=chain_file, inversion_file=inversion_file,
+                          orientation=orientation, joint_kinds=kinds, note=note)
+
+
+def _as_turning_pairs(chain):
+    """The chain's structure with every joint an R joint (no pose): a sliding pair is a
+    turning pair whose centre is at infinity."""
+    from .chain import Chain, Joint
+    return Chain(chain.name, tuple(Joint(j.id, "R", j.links) for j in chain.joints))

@@ -27,7 +27,8 @@ from .behaviour import behaviour, behaviour_key, turning_links
 from .errors import ChainStructureError
 from .isomorphism import automorphism_orbits, canonical_form, pair_orbits
 
-__all__ = ["Inversion", "InputClass", "Inversions", "inversions", "catalog_matches",
+__all__ = ["Inversion", "InputClass", "Inversions", "Match", "inversions", "catalog_matches",
+           "naming_matches",
            "link_isomorphisms", "require_connected"]
 
 
@@ -52,11 +53,13 @@ class Inversion:
     behaviour: str | None
     full_turns: tuple[str, ...] | None = None
     inputs: tuple[InputClass, ...] | None = None
+    note: str | None = None    # why a catalog name is missing, where one is
 
     def to_dict(self):
         d = {"fixed": self.fixed, "class": self.class_, "names": list(self.names),
              "behaviour": self.behaviour,
-             "full_turns": None if self.full_turns is None else list(self.full_turns)}
+             "full_turns": None if self.full_turns is None else list(self.full_turns),
+             "note": self.note}
         if self.inputs is not None:
             d["inputs"] = [i.to_dict() for i in self.inputs]
         return d
@@ -138,44 +141,84 @@ def _alike(key, entry_key, mapping) -> bool:
     return key == entry_key
 
 
+@dataclass(frozen=True)
+class Match:
+    """A catalog mechanism that is a chain with a given link fixed.
+
+    ``mapping`` maps the chain's links onto the entry's; ``score`` counts 2 when the
+    drivers correspond and 1 when the outputs do; ``oriented`` is False when P
+    orientation had to be forgotten; ``alike`` is True when both have dimensions and
+    behave alike, False when they behave differently, None when either has none."""
+
+    score: int
+    entry: object
+    mapping: dict
+    oriented: bool
+    alike: bool | None
+
+    @property
+    def structural(self) -> bool:
+        """Whether the entry's name is one of structure (holds for any dimensions)."""
+        return self.entry.naming == "structure"
+
+
+
 def catalog_matches(chain, fixed, catalog, *, driver=None, output=None):
-    """The catalog mechanisms that are this chain with ``fixed`` fixed.
+    """The catalog mechanisms that are this chain with ``fixed`` fixed, by structure.
+
+    Each entry is matched with P orientation respected, else with it forgotten (a
+    sliding pair's relative motion is the same whichever link carries the guide: the
+    textbook's crank and slotted lever is its slider crank chain's inversion only so).
+    Where both have dimensions, ``alike`` says whether they behave alike (the Grashof
+    category of a four-bar; otherwise which links turn fully). :func:`naming_matches`
+    says which of them name the inversion.
 
     Returns
     -------
-    list of (score, entry, mapping)
-        ``mapping`` maps the chain's links onto the entry's; ``score`` counts 2 when the
-        drivers correspond and 1 when the outputs do (where both name them); entries in
-        catalog order.
+    list of Match, those with orientation respected first, each in catalog order
     """
     file_key = behaviour_key(chain, fixed)
+    found, seen = [], set()
     for oriented in (True, False):
-        found = []
         for entry in catalog:
             m = entry.mechanism
-            if m is None or len(entry.links) != len(chain.links):
+            if m is None or len(entry.links) != len(chain.links) or id(entry) in seen:
                 continue
             entry_key = behaviour_key(entry, m.fixed)
             compare = file_key is not None and entry_key is not None
-            if not oriented and not compare:
-                continue
             best = None
             for mapping in link_isomorphisms(chain, entry, oriented=oriented,
                                              marks_a={fixed: "fixed"},
                                              marks_b={m.fixed: "fixed"}):
-                if compare and not _alike(file_key, entry_key, mapping):
-                    continue
+                alike = _alike(file_key, entry_key, mapping) if compare else None
                 score = 0
                 if driver and m.driver and mapping[driver] == m.driver:
                     score += 2
                 if output and m.output and _output_maps(chain, output, entry, mapping):
                     score += 1
-                if best is None or score > best[0]:
-                    best = (score, mapping)
+                rank = (alike is not False, score)
+                if best is None or rank > best[0]:
+                    best = (rank, Match(score, entry, mapping, oriented, alike))
             if best is not None:
-                found.append((best[0], entry, best[1]))
-        if found:
-            return found
+                found.append(best[1])
+                seen.add(id(entry))
+    return found
+
+
+def naming_matches(matches):
+    """Which catalog matches name the inversion: those that behave alike (where both
+    have dimensions); failing those, the names of structure (Watt I, the slider crank's
+    inversions: they hold whatever the dimensions) and the names that cannot be
+    checked (no dimensions on one side), with P orientation respected if any, else
+    forgotten. A name of behaviour whose behaviour differs never names it."""
+    alike = [x for x in matches if x.alike is True]
+    if alike:
+        return alike
+    for oriented in (True, False):
+        named = [x for x in matches if x.oriented == oriented
+                 and (x.structural or x.alike is None)]
+        if named:
+            return named
     return []
 
 
@@ -230,14 +273,24 @@ def inversions(chain, *, with_input: bool = False, catalog=None) -> Inversions:
     order = {x: i for i, x in enumerate(chain.links)}
     result = []
     for fixed in chain.links:
-        names = tuple(dict.fromkeys(e.name for _, e, _ in catalog_matches(chain, fixed, catalog)))
+        matches = catalog_matches(chain, fixed, catalog)
+        named = naming_matches(matches)
+        names = tuple(dict.fromkeys(x.entry.name for x in named))
+        differ = [x.entry.name for x in matches if x.alike is False and x.oriented
+                  and x.entry.name not in names]
+        how = behaviour(chain, fixed)
+        note = None
+        if differ:
+            note = (f"as dimensioned ({how or 'its own behaviour'}) it is not the catalog's "
+                    + ", ".join(dict.fromkeys(differ)) + ", whose names need that behaviour")
+        elif not names:
+            note = "the catalog names no inversion of this structure with this link fixed"
         turning = turning_links(chain, fixed)
         inputs = None
         if with_input:
             inputs = tuple(InputClass(d, pair_class[(fixed, d)]) for d in drivers[fixed])
         result.append(Inversion(
-            fixed=fixed, class_=class_of[fixed], names=names,
-            behaviour=behaviour(chain, fixed),
+            fixed=fixed, class_=class_of[fixed], names=names, behaviour=how, note=note,
             full_turns=None if turning is None else tuple(sorted(turning, key=order.get)),
             inputs=inputs))
     return Inversions(name=chain.name, links=len(chain.links), classes=len(orbits),

@@ -396,7 +396,9 @@ def _entry_page(e):
         for i in inv.inversions:
             body.append(f"<tr><td>{_esc(i.fixed)}</td><td class=\"num\">{i.class_}</td>"
                         f"<td>{_esc(i.behaviour or '–')}</td>"
-                        f"<td>{_esc('; '.join(i.names) or '–')}</td></tr>")
+                        f"<td>{_esc('; '.join(i.names) or '–')}"
+                        + (f"<br><small>{_esc(i.note)}</small>" if i.note else "")
+                        + "</td></tr>")
         body.append("</table>")
     if e.motion is not None:
         body += _motion_section(e)

@@ -193,7 +193,7 @@ def test_spatial_chain_uses_spatial_kutzbach():
 def test_rolling_pair_counts_as_one_freedom():
     # a wheel rolling on a rail, the wheel's axle sliding along the frame: 3 links
     rolling = Chain("wheel", (R("A", "axle", "wheel"), Joint("B", "rolling", ("wheel", "frame")),
-                              Joint("C", "P", ("frame", "axle"), axis=0.0)))
+                              Joint("C", "P", ("frame", "axle"))))
     c = classify(rolling)
     assert c.mobility == 0  # the wheel cannot move: rolling fixes its spin to its travel
     jc = c.check(J_RULE)

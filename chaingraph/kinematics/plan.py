@@ -401,9 +401,14 @@ def build_plan(chain, fixed=None, driver=None, *, inputs=None, closed_form=True)
                 f"a {j.pair.name} ({j.kind}) cannot be solved for motion: only R and P "
                 "joints can (classification and inversions take every kind)",
                 mechanism=name, where=f"joint {j.id!r}")
-        if j.at is None:
-            raise MechanismError("no position 'at': solving needs the drawn pose of every "
-                                 "joint", mechanism=name, where=f"joint {j.id!r}")
+    unplaced = [j.id for j in chain.joints if j.at is None]
+    if unplaced:
+        said = ", ".join(repr(x) for x in unplaced)
+        raise MechanismError(
+            f"solving needs a drawn pose ('at' of every joint, and 'axis' of every P "
+            f"joint): the chain is written for its structure alone; joint"
+            f"{'s' if len(unplaced) > 1 else ''} {said} {'have' if len(unplaced) > 1 else 'has'}"
+            " no position", mechanism=name)
     if len(chain.pieces) > 1:
         raise MechanismError("the chain is in several pieces that share no joint",
                              mechanism=name)
