@@ -6,6 +6,7 @@ from __future__ import annotations
 import json
 import math
 import random
+from pathlib import Path
 
 import pytest
 
@@ -16,6 +17,9 @@ from chaingraph.identify import identify
 from chaingraph.inversions import inversions
 
 from .conftest import run_cli
+from .test_inversions import _four_bar
+
+EXAMPLES = Path(__file__).parent.parent / "examples"
 
 SINGLE_SLIDER = '''name = "slider crank, structure only"
 [[joints]]
@@ -36,24 +40,10 @@ kind = "P"
 links = ["1", "4"]
 '''
 
-DOUBLE_SLIDER = '''name = "double slider, structure only"
-[[joints]]
-id = "A"
-kind = "R"
-links = ["1", "2"]
-[[joints]]
-id = "B"
-kind = "R"
-links = ["2", "3"]
-[[joints]]
-id = "C"
-kind = "P"
-links = ["4", "3"]
-[[joints]]
-id = "D"
-kind = "P"
-links = ["4", "1"]
-'''
+# the same loop with C a sliding pair too: link 4 carries both blocks' guides here
+DOUBLE_SLIDER = (SINGLE_SLIDER.replace("slider crank, structure only", "double slider, structure only")
+                 .replace('id = "C"\nkind = "R"\nlinks = ["3", "4"]', 'id = "C"\nkind = "P"\nlinks = ["4", "3"]')
+                 .replace('links = ["1", "4"]', 'links = ["4", "1"]'))
 
 
 def test_topology_only_single_slider_crank_chain_classifies_and_names_its_four_inversions(tmp_path):
@@ -139,20 +129,8 @@ def test_the_report_names_every_inversion_of_the_six_bar_chains(tmp_path):
         assert name in pages, name
 
 
-def _four_bar(frame, crank, coupler, rocker, angle=50.0):
-    A, D = (0.0, 0.0), (frame, 0.0)
-    B = (crank * math.cos(math.radians(angle)), crank * math.sin(math.radians(angle)))
-    dx, dy = D[0] - B[0], D[1] - B[1]
-    d = math.hypot(dx, dy)
-    x = (coupler ** 2 - rocker ** 2 + d * d) / (2 * d)
-    h = math.sqrt(coupler ** 2 - x * x)
-    C = (B[0] + x * dx / d - h * dy / d, B[1] + x * dy / d + h * dx / d)
-    return Chain("four-bar", (Joint("A", "R", ("frame", "a"), at=A), Joint("B", "R", ("a", "b"), at=B),
-                              Joint("C", "R", ("b", "c"), at=C), Joint("D", "R", ("c", "frame"), at=D)))
-
-
 def test_a_behaviour_that_matches_no_catalog_name_is_said_not_left_silent():
-    result = inversions(_four_bar(100, 70, 90, 60))          # a change-point four-bar
+    result = inversions(_four_bar(100, 70, 90, 60, names=("frame", "a", "b", "c")))  # change point
     for i in result.inversions:
         assert i.behaviour == "change point" and i.names == ()
         assert "Beam engine" in i.note and "need that behaviour" in i.note
@@ -167,32 +145,16 @@ def test_a_behaviour_that_matches_no_catalog_name_is_said_not_left_silent():
 
 
 def test_natural_crank_and_slotted_lever_maps_its_frame_onto_the_catalog_frame():
-    A, C = (0.0, 0.0), (0.0, 300.0)
-    B = (120.0, 300.0)
-    axis = math.degrees(math.atan2(B[1], B[0]))
-    chain = Chain("my shaper", (
-        Joint("O", "R", ("frame", "crank"), at=C), Joint("B", "R", ("crank", "block"), at=B),
-        Joint("slot", "P", ("lever", "block"), at=B, axis=axis),
-        Joint("A", "R", ("lever", "frame"), at=A)),
-        mechanism=Mechanism("frame", "crank", 1.0, "lever"))
-    found = identify(chain)
+    path = EXAMPLES / "slot-on-the-lever.toml"       # the slot on the lever, as drawn
+    found = identify(chaingraph.load(path))
     entry = chaingraph.load(found.inversion_file)
     assert found.inversion == "Crank and slotted lever quick return mechanism"
     assert found.mapping["frame"] == entry.mechanism.fixed
     assert found.mapping["crank"] == entry.mechanism.driver
     # the slot is on the lever here and on the block in the catalog's chain: said so
     assert found.orientation == "ignored"
-    code, out, err = run_cli("identify", "--json", _saved(chain))
+    code, out, err = run_cli("identify", "--json", str(path))
     assert json.loads(out)["orientation"] == "ignored"
-
-
-def _saved(chain, path=[0]):
-    import tempfile
-    from pathlib import Path
-    path[0] += 1
-    target = Path(tempfile.mkdtemp()) / f"chain{path[0]}.toml"
-    chaingraph.save(chain, target)
-    return str(target)
 
 
 def _scrambled(chain, seed, *, stretch):
