@@ -13,7 +13,7 @@ import numpy as np
 import pytest
 
 import chaingraph
-from chaingraph import AssemblyError, Chain, ChainFileError, Input, Joint, Mechanism, MechanismError
+from chaingraph import AssemblyError, Chain, ChainFileError, Input, Joint, MechanismError
 from chaingraph.catalog import catalog_files, catalog_path
 
 from .conftest import run_cli
@@ -296,7 +296,6 @@ def test_every_admissible_choice_of_inputs_of_the_atlas_to_8_links_solves():
     for links, dof in ((4, 1), (6, 1), (8, 1), (5, 2), (7, 2)):
         for entry in atlas_graphs(links, dof):
             chain = _random_pose_chain(entry.edges, links, seed=entry.id)
-            moving = [j.id for j in chain.joints if "L0" not in j.links]
             for fixed in chain.links:
                 choices = _admissible(chain, fixed, dof)
                 # and some between moving links: the first joint not on the fixed link
@@ -329,7 +328,6 @@ def test_every_admissible_choice_of_inputs_of_the_atlas_to_8_links_solves():
                         continue
                     _check_motion(m, plan.size)
                     solved += 1
-            del moving
     assert solved >= 300, (solved, refused[:5])
     assert CHECKED[0] >= 0.9 * CHECKED[1], CHECKED
     assert len(refused) <= 0.05 * (solved + len(refused)), refused

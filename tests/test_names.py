@@ -4,14 +4,13 @@ chains written for their structure alone (no drawn pose, P joints without axis).
 from __future__ import annotations
 
 import json
-import math
 import random
 from pathlib import Path
 
 import pytest
 
 import chaingraph
-from chaingraph import Chain, Joint, Mechanism, MechanismError, ChainFileError
+from chaingraph import Chain, Joint, MechanismError
 from chaingraph.catalog import catalog_files, catalog_path
 from chaingraph.identify import identify
 from chaingraph.inversions import inversions
