@@ -124,10 +124,11 @@ def identify(chain, *, catalog=None) -> Identification:
             mapping = best.mapping
             orientation = "respected" if best.oriented else "ignored"
         elif matches:
-            note = (f"by structure this is the catalog's "
-                    f"{', '.join(dict.fromkeys(x.entry.name for x in matches if x.oriented) or dict.fromkeys(x.entry.name for x in matches))}, but as "
-                    f"dimensioned it behaves otherwise ({behaviour(chain, m.fixed) or 'another way'})"
-                    ", and those names need the catalog's behaviour")
+            nearest = [x for x in matches if x.oriented] or matches
+            names = ", ".join(dict.fromkeys(x.entry.name for x in nearest))
+            how = behaviour(chain, m.fixed) or "another way"
+            note = (f"by structure this is the catalog's {names}, but as dimensioned it "
+                    f"behaves otherwise ({how}), and those names need the catalog's behaviour")
         else:
             note = "the catalog names no inversion of this structure with this link fixed"
     if chain_name is None:

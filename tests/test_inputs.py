@@ -249,7 +249,10 @@ def _random_pose_chain(edges, links, seed):
 
 
 def _check_motion(m, plan_size):
+    """Checks a short sweep's rates against finite differences; returns how many of
+    its points' accelerations were checked, and of how many."""
     chain = m.plan.chain
+    checked = total = 0
     # poses close: every joint's point is the same on each of its links (the solver's
     # own check raises otherwise); velocities and accelerations against finite
     # differences of the positions in the lead input's native units
@@ -273,15 +276,13 @@ def _check_motion(m, plan_size):
             calm_a = np.abs(fd_a - fd_a3) <= 1e-4 * (scale_v + np.abs(fd_a))
             ok_v = np.isfinite(v) & calm_v
             ok_a = np.isfinite(a) & calm_a
-            CHECKED[0] += int(ok_a.sum())
-            CHECKED[1] += v.size
+            checked += int(ok_a.sum())
+            total += v.size
             assert np.allclose(v[ok_v], fd_v[ok_v], atol=1e-6 * scale_v, rtol=1e-5), \
                 (chain.name, j.id)
             assert np.allclose(a[ok_a], fd_a[ok_a], atol=1e-3 * scale_v, rtol=1e-3), \
                 (chain.name, j.id)
-
-
-CHECKED = [0, 0]     # points whose accelerations were checked, of all
+    return checked, total
 
 
 def _admissible(chain, fixed, dof):
@@ -292,7 +293,7 @@ def _admissible(chain, fixed, dof):
 @pytest.mark.slow
 def test_every_admissible_choice_of_inputs_of_the_atlas_to_8_links_solves():
     from chaingraph.atlas import atlas_graphs
-    solved, refused = 0, []
+    solved, refused, checked, total = 0, [], 0, 0
     for links, dof in ((4, 1), (6, 1), (8, 1), (5, 2), (7, 2)):
         for entry in atlas_graphs(links, dof):
             chain = _random_pose_chain(entry.edges, links, seed=entry.id)
@@ -326,10 +327,11 @@ def test_every_admissible_choice_of_inputs_of_the_atlas_to_8_links_solves():
                     if m is None:
                         refused.append((chain.name, fixed, inputs, problem))
                         continue
-                    _check_motion(m, plan.size)
+                    done, of = _check_motion(m, plan.size)
+                    checked, total = checked + done, total + of
                     solved += 1
     assert solved >= 300, (solved, refused[:5])
-    assert CHECKED[0] >= 0.9 * CHECKED[1], CHECKED
+    assert checked >= 0.9 * total, (checked, total)
     assert len(refused) <= 0.05 * (solved + len(refused)), refused
 
 

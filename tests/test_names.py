@@ -20,29 +20,14 @@ from .test_inversions import _four_bar
 
 EXAMPLES = Path(__file__).parent.parent / "examples"
 
-SINGLE_SLIDER = '''name = "slider crank, structure only"
-[[joints]]
-id = "A"
-kind = "R"
-links = ["1", "2"]
-[[joints]]
-id = "B"
-kind = "R"
-links = ["2", "3"]
-[[joints]]
-id = "C"
-kind = "R"
-links = ["3", "4"]
-[[joints]]
-id = "D"
-kind = "P"
-links = ["1", "4"]
-'''
+# the slider crank chain written for its structure alone (no 'at', no 'axis'), ending
+# with its P joint D
+SINGLE_SLIDER = (EXAMPLES / "slider-crank-structure.toml").read_text()
 
 # the same loop with C a sliding pair too: link 4 carries both blocks' guides here
-DOUBLE_SLIDER = (SINGLE_SLIDER.replace("slider crank, structure only", "double slider, structure only")
-                 .replace('id = "C"\nkind = "R"\nlinks = ["3", "4"]', 'id = "C"\nkind = "P"\nlinks = ["4", "3"]')
-                 .replace('links = ["1", "4"]', 'links = ["4", "1"]'))
+DOUBLE_SLIDER = chaingraph.dumps(Chain("double slider, structure only", (
+    Joint("A", "R", ("1", "2")), Joint("B", "R", ("2", "3")),
+    Joint("C", "P", ("4", "3")), Joint("D", "P", ("4", "1")))))
 
 
 def test_topology_only_single_slider_crank_chain_classifies_and_names_its_four_inversions(tmp_path):

@@ -15,7 +15,6 @@ from hypothesis import strategies as st
 import chaingraph
 from chaingraph import AssemblyError, Chain, Joint, Mechanism
 from chaingraph.catalog import catalog_path
-from chaingraph.chain import Point
 
 from .conftest import run_cli
 

@@ -20,7 +20,7 @@ from ..chain import Input
 from ..errors import AssemblyError, MechanismError
 from .columns import _columns
 from .equations import check_poses
-from .plan import build_plan
+from .plan import build_plan, chosen_inputs
 from .rates import rates
 from .summary import _cycle_theta, _summary
 from .sweep import Cycle, _evaluate_near, _evaluate_sweep, cycle
@@ -165,10 +165,7 @@ def solve(mechanism, *, fixed=None, driver=None, inputs=None, start=None, stop=N
         if value is not None and not math.isfinite(value):
             raise MechanismError(f"the sweep's {what} must be a finite number, got {value}",
                                  mechanism=chain.name)
-    fixed = fixed or (m.fixed if m else None)
-    items = _as_inputs(inputs, chain)
-    if not items and driver is None and m is not None and m.inputs and fixed == m.fixed:
-        items = m.inputs
+    fixed, driver, items = chosen_inputs(chain, fixed, driver, _as_inputs(inputs, chain))
     if items:
         first = items[0]
         if start is not None or stop is not None:
@@ -186,7 +183,7 @@ def solve(mechanism, *, fixed=None, driver=None, inputs=None, start=None, stop=N
         items = (first,) + tuple(items[1:])
         plan = _plan(chain, fixed, None, items)
     else:
-        plan = _plan(chain, fixed, driver or (m.driver if m else None))
+        plan = _plan(chain, fixed, driver)
     if omega is None:
         omega = m.omega if m else 1.0
     output = m.output if m else None
@@ -195,18 +192,14 @@ def solve(mechanism, *, fixed=None, driver=None, inputs=None, start=None, stop=N
         start, stop = lead.sweep
     explicit = start is not None and stop is not None
     c = cycle(plan) if summary or not explicit else None
-    if explicit:
-        lo, hi = plan.tau(start), plan.tau(stop)
+    lo = c.low if start is None else plan.tau(start)
+    if stop is not None:
+        theta = np.linspace(lo, plan.tau(stop), steps + 1)
     elif c.full_turn:
-        lo = c.low if start is None else plan.tau(start)
-        hi = lo + 360.0 if stop is None else plan.tau(stop)
-    else:
-        lo = c.low if start is None else plan.tau(start)
-        hi = c.high if stop is None else plan.tau(stop)
-    if c is not None and not explicit and c.full_turn and stop is None:
         theta = lo + 360.0 * np.arange(steps + 1) / steps    # as the summary's grid
     else:
-        theta = np.linspace(lo, hi, steps + 1)    # both ends exact (a rocker's limits)
+        theta = np.linspace(lo, c.high, steps + 1)   # both ends exact (a rocker's limits)
+    hi = float(theta[-1])
     ev = _evaluate_sweep(plan, theta) if c is not None else _evaluate_near(plan, theta)
     check_poses(plan, ev.pose, ev.feasible)
     # rates at unit input speed, scaled to omega: the summary can then use this sweep
@@ -229,7 +222,7 @@ def solve(mechanism, *, fixed=None, driver=None, inputs=None, start=None, stop=N
                 if key.split(":")[0] in _RATE_COLUMNS and np.any(values != 0):
                     # (what is fixed keeps its zeros)
                     columns[key] = np.where(at_limit, np.nan, values)
-    if sum(k != 0 for _, k in plan.line) > 1:     # several inputs move: summarize the sweep
+    if plan.moving_inputs > 1:                  # several inputs move: summarize the sweep
         c = Cycle(None, min(lo, hi), max(lo, hi), ends="sweep")
     reuse = None
     if summary and c.ends == "limits" and np.array_equal(theta, _cycle_theta(plan, c)):

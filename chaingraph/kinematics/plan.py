@@ -36,7 +36,7 @@ import numpy as np
 
 from ..errors import MechanismError
 
-__all__ = ["Constraint", "Step", "InputJoint", "Plan", "build_plan"]
+__all__ = ["Constraint", "Step", "InputJoint", "Plan", "build_plan", "chosen_inputs"]
 
 
 @dataclass(frozen=True)
@@ -86,13 +86,6 @@ class InputJoint:
         """The input's entry in pose and rate tables (never a link's name)."""
         return "@input:" + self.joint
 
-    @property
-    def unit(self):
-        return "deg" if self.kind == "R" else "length"
-
-    def native(self, value):
-        """A value (degrees or length) as the solver's delta: radians or length."""
-        return math.radians(value) if self.kind == "R" else value
 
 
 @dataclass(frozen=True)
@@ -123,6 +116,11 @@ class Plan:
         does not depend on where the mechanism is drawn): the constraints and every
         pose are in this frame."""
         return (p[0] - self.origin[0], p[1] - self.origin[1])
+
+    @property
+    def moving_inputs(self):
+        """How many inputs move along the sweep (the others are held)."""
+        return sum(k != 0 for _, k in self.line)
 
     @property
     def rate_scale(self):
@@ -269,9 +267,6 @@ def _input_joints(chain, fixed, driver, inputs, name):
                 raise MechanismError(f"the input {item.joint!r} is not a joint of the chain "
                                      f"(joints: {', '.join(sorted(x.id for x in chain.joints))})",
                                      mechanism=name)
-            if j.kind not in ("R", "P"):
-                raise MechanismError(f"the input {item.joint!r} is a {j.pair.name} ({j.kind}); "
-                                     "an input must be an R or P joint", mechanism=name)
             if j.kind == "R":
                 if fixed in j.links:
                     a, b = fixed, next(x for x in j.links if x != fixed)
@@ -319,8 +314,7 @@ def _line(inputs, size):
     # the lead's own parameter: its angle (R) or its slide as an angle over the size (P)
     k_m = math.pi / 180.0 if m.kind == "R" else size * math.pi / 180.0
     c_m = -math.radians(m.value0) if m.kind == "R" else 0.0
-    b_m = 1.0 if m.kind == "R" else k_m          # d(value)/d(tau) in the lead's units
-    a_m = 0.0                                     # value = a_m + b_m tau
+    b_m = 1.0 if m.kind == "R" else k_m          # value = b_m tau, in the lead's units
     line = []
     for n, item in enumerate(inputs):
         if n == lead:
@@ -334,11 +328,24 @@ def _line(inputs, size):
         else:
             (f_i, t_i), (f_m, t_m) = item.sweep, m.sweep
             r = (t_i - f_i) / (t_m - f_m)
-            line.append((f * (f_i + r * (a_m - f_m) - item.value0), f * r * b_m))
+            line.append((f * (f_i - r * f_m - item.value0), f * r * b_m))
     tau0 = m.value0 if m.kind == "R" else 0.0     # where the lead's delta is 0
     scale = [1.0 if i.kind == "R" else size for i in inputs]
     through = all(abs(c + k * tau0) <= 1e-12 * s for (c, k), s in zip(line, scale))
     return lead, tuple(line), (tau0 if through else None)
+
+
+def chosen_inputs(chain, fixed=None, driver=None, inputs=None):
+    """(fixed, driver, inputs) that a solve uses: those given, else the file's
+    ``[mechanism]``: its inputs when it fixes the same link and no driver is asked for,
+    else its driver."""
+    m = chain.mechanism
+    fixed = fixed or (m.fixed if m else None)
+    if not inputs and driver is None and m is not None and m.inputs and fixed == m.fixed:
+        inputs = m.inputs
+    if not inputs:
+        driver = driver or (m.driver if m else None)
+    return fixed, driver, inputs
 
 
 def build_plan(chain, fixed=None, driver=None, *, inputs=None, closed_form=True) -> Plan:
@@ -376,12 +383,7 @@ def build_plan(chain, fixed=None, driver=None, *, inputs=None, closed_form=True)
     [('WP', ('crosshead',)), ('RRR', ('crank', 'connecting rod'))]
     """
     name = chain.source or chain.name
-    m = chain.mechanism
-    fixed = fixed or (m.fixed if m else None)
-    if not inputs and driver is None and m is not None and m.inputs and fixed == m.fixed:
-        inputs = m.inputs            # the file's inputs, unless a driver is asked for
-    if not inputs:
-        driver = driver or (m.driver if m else None)
+    fixed, driver, inputs = chosen_inputs(chain, fixed, driver, inputs)
     if fixed is None:
         raise MechanismError("no fixed link: name it ([mechanism] fixed)", mechanism=name)
     if fixed not in chain.links:

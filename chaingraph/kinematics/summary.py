@@ -12,7 +12,7 @@ import numpy as np
 from .columns import _columns
 from .geometry import rotate
 from .rates import rates
-from .sweep import _evaluate_sweep
+from .sweep import _evaluate_sweep, cycle
 from .tracking import evaluate_at
 
 __all__ = ["summary_rows", "path_direction"]
@@ -39,7 +39,7 @@ def summary_rows(motion):
     ta = s["transmission_angle"]
     plan = motion.plan
     how = "  (turns fully)" if s["full_turn"] else "  (rocks)"
-    if motion.inputs and sum(k != 0 for _, k in plan.line) > 1:
+    if motion.inputs and plan.moving_inputs > 1:
         how = "  (moving together)"
     if motion.inputs:
         lead = plan.inputs[plan.lead]
@@ -229,7 +229,6 @@ def _input_range(plan, theta, c):
     """The lead input's values that can be assembled: the summary's own range, or, for
     a sweep of several inputs, the range along their line."""
     if c.ends == "sweep":
-        from .sweep import cycle
         whole = cycle(plan)
         ends = (whole.low, whole.low + whole.period) if whole.full_turn else (whole.low, whole.high)
         return [float(plan.value(t)) for t in ends]

@@ -225,10 +225,10 @@ def _evaluate_near(plan, theta):
     theta = np.asarray(theta, dtype=float)
     t0 = anchor(plan).tau
     parts = []
-    for side in (theta > t0, theta <= t0):
+    for side, farthest in ((theta > t0, np.max), (theta <= t0, np.min)):
         if side.any():
-            end = float(theta[side].max() if theta[side][0] > t0 else theta[side].min())
-            parts.append((np.nonzero(side)[0], _along(plan, end, theta[side])))
+            parts.append((np.nonzero(side)[0],
+                          _along(plan, float(farthest(theta[side])), theta[side])))
     ev = parts[0][1] if len(parts) == 1 else _merge(parts, theta.size)
     if not ev.feasible.all():
         return _evaluate_sweep(plan, theta)      # says the range
