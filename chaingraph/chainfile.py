@@ -22,11 +22,12 @@ from .errors import ChainFileError
 __all__ = ["load", "loads", "from_document", "dumps", "save"]
 
 TOP_KEYS = ("name", "family", "units", "space", "notes", "naming", "joints", "points",
-            "mechanism")
+            "mechanism", "lengths", "assembly")
 JOINT_KEYS = ("id", "kind", "links", "at", "axis", "closure")
 POINT_KEYS = ("id", "link", "at")
 MECHANISM_KEYS = ("fixed", "driver", "inputs", "omega", "output")
 INPUT_KEYS = ("joint", "from", "to")
+DIMENSION_JOINT_KEYS = ("offset", "angle", "block_offset", "block_angle", "near")
 
 
 def load(path) -> Chain:
@@ -56,6 +57,11 @@ def load(path) -> Chain:
     >>> chain.name, len(chain.links), len(chain.joints)
     ('Four-bar chain', 4, 4)
     """
+    return read_file(path)[0]
+
+
+def read_file(path):
+    """``(chain, assembly)`` from a chain file; see :func:`read_document`."""
     source = os.fspath(path)
     try:
         with open(source, "rb") as f:
@@ -70,7 +76,7 @@ def load(path) -> Chain:
         text = raw.decode("utf-8")
     except UnicodeDecodeError as e:
         raise ChainFileError(f"is not UTF-8 text (byte {e.start})", source=source) from None
-    return loads(text, source=source)
+    return read_text(text, source=source)
 
 
 def loads(text: str, *, source: str = "<string>") -> Chain:
@@ -84,6 +90,15 @@ def loads(text: str, *, source: str = "<string>") -> Chain:
     ...
     chaingraph.errors.ChainFileError: <string>: joint 'A': unknown kind 'Q' (expected one of R, P, screw, cylindrical, spherical, planar, rolling, cam, gear)
     """
+    return read_text(text, source=source)[0]
+
+
+def read_text(text: str, *, source: str = "<string>"):
+    """``(chain, assembly)`` from TOML text; see :func:`read_document`."""
+    return read_document(_parse_toml(text, source), source=source)
+
+
+def _parse_toml(text, source):
     try:
         doc = tomllib.loads(text)
     except tomllib.TOMLDecodeError as e:
@@ -91,11 +106,18 @@ def loads(text: str, *, source: str = "<string>") -> Chain:
         m = re.search(r"\(at line (\d+), column (\d+)\)", msg)
         line = int(m.group(1)) if m else None
         raise ChainFileError(f"TOML syntax error: {msg}", source=source, line=line) from None
-    return from_document(doc, source=source)
+    return doc
 
 
 def from_document(doc, *, source: str = "<document>") -> Chain:
     """Build a chain from a parsed document (the dict a TOML file gives)."""
+    return read_document(doc, source=source)[0]
+
+
+def read_document(doc, *, source: str = "<document>"):
+    """``(chain, assembly)`` from a parsed document: ``assembly`` is the
+    :class:`~chaingraph.assembly.Assembly` found for a mechanism given by its lengths
+    (its assembly modes, its groups), else None."""
     def fail(problem, where=None):
         raise ChainFileError(problem, source=source, where=where)
 
@@ -112,16 +134,53 @@ def from_document(doc, *, source: str = "<document>") -> Chain:
     space = _optional_string(doc, "space", "key 'space'", fail) or "planar"
     if "joints" not in doc:
         fail("missing [[joints]]: a chain needs at least one joint", "key 'joints'")
-    joints = tuple(_joint(t, i, fail) for i, t in
+    dimensioned = "lengths" in doc
+    joints = tuple(_joint(t, i, fail, dimensioned) for i, t in
                    enumerate(_tables(doc["joints"], "joints", fail)))
-    points = tuple(_point(t, i, fail) for i, t in
+    points = tuple(_point(t, i, fail, dimensioned) for i, t in
                    enumerate(_tables(doc.get("points", []), "points", fail)))
     mechanism = None
     if "mechanism" in doc:
-        mechanism = _mechanism(doc["mechanism"], fail)
-    return Chain(name=name, joints=joints, family=family, units=units, space=space,
-                 notes=notes, points=points, mechanism=mechanism, source=source,
-                 naming=naming)
+        mechanism = _mechanism(doc["mechanism"], fail, dimensioned="lengths" in doc)
+    meta = dict(name=name, family=family, units=units, space=space, notes=notes,
+                source=source, naming=naming)
+    if "lengths" in doc:
+        return _assembled(doc, joints, points, mechanism, meta, fail)
+    if "assembly" in doc:
+        fail("[assembly] chooses the assembly modes of a mechanism given by [lengths]; "
+             "this file has none", "[assembly]")
+    return Chain(joints=joints, points=points, mechanism=mechanism, **meta), None
+
+
+def _assembled(doc, joints, points, mechanism, meta, fail):
+    """A chain given by its dimensions, assembled into its drawn pose."""
+    from .assembly import assemble
+    from .dimensions import parse_dimensions
+
+    bare = tuple(Joint(j.id, j.kind, j.links, closure=j.closure) for j in joints)
+    # the points' places are found below; (0, 0) stands in while the structure is checked
+    structure = Chain(joints=bare, mechanism=mechanism,
+                      points=tuple(Point(p.id, p.link, (0.0, 0.0)) for p in points), **meta)
+    point_links = [(p.id, p.link) for p in points]
+    dims = parse_dimensions(doc, bare, point_links, fail)
+    for j in joints:
+        if j.at is not None:
+            dims.typed[j.id] = j.at
+        if j.axis is not None:
+            dims.axes[j.id] = j.axis
+    for p in points:
+        if p.at is not None:
+            dims.typed[p.id] = p.at
+    for kind, tables in (("joint", doc.get("joints", [])), ("point", doc.get("points", []))):
+        for t in tables:
+            if "near" in t:
+                dims.near[t["id"]] = _coordinates(t["near"], f"{kind} {t['id']!r} key 'near'",
+                                                  fail)
+    pose = assemble(structure, point_links, dims)
+    placed = tuple(Joint(j.id, j.kind, j.links, at=pose.joints[j.id],
+                         axis=pose.axes.get(j.id), closure=j.closure) for j in joints)
+    placed_points = tuple(Point(p.id, p.link, pose.points[p.id]) for p in points)
+    return Chain(joints=placed, points=placed_points, mechanism=mechanism, **meta), pose
 
 
 def _type_name(value) -> str:
@@ -178,12 +237,17 @@ def _tables(value, key, fail):
     return value
 
 
-def _joint(table, index, fail):
+def _joint(table, index, fail, dimensioned=False):
     label = f"joint #{index + 1}"
     if "id" in table and isinstance(table["id"], str) and table["id"]:
         label = f"joint {table['id']!r}"
-    _no_unknown_keys(table, JOINT_KEYS, None,
+    _no_unknown_keys(table, JOINT_KEYS + DIMENSION_JOINT_KEYS, None,
                      lambda problem, where: fail(problem, label))
+    if not dimensioned:
+        for key in DIMENSION_JOINT_KEYS:
+            if key in table:
+                fail(f"'{key}' belongs to a mechanism given by its lengths: add a "
+                     "[lengths] table", label)
     for key in ("id", "kind", "links"):
         if key not in table:
             fail(f"missing required key '{key}'", label)
@@ -201,35 +265,44 @@ def _joint(table, index, fail):
                  closure=closure)
 
 
-def _point(table, index, fail):
+def _point(table, index, fail, dimensioned=False):
     label = f"point #{index + 1}"
     if "id" in table and isinstance(table["id"], str) and table["id"]:
         label = f"point {table['id']!r}"
-    _no_unknown_keys(table, POINT_KEYS, None, lambda problem, where: fail(problem, label))
+    _no_unknown_keys(table, POINT_KEYS + ("near",), None,
+                     lambda problem, where: fail(problem, label))
+    if "near" in table and not dimensioned:
+        fail("'near' belongs to a mechanism given by its lengths: add a [lengths] table",
+             label)
     for key in POINT_KEYS:
-        if key not in table:
+        if key not in table and not (key == "at" and dimensioned):
             fail(f"missing required key '{key}'", label)
     point_id = _string(table["id"], label + " key 'id'", fail)
     link = _string(table["link"], label + " key 'link'", fail)
-    return Point(id=point_id, link=link, at=_coordinates(table["at"], label, fail))
+    at = _coordinates(table["at"], label, fail) if "at" in table else None
+    return Point(id=point_id, link=link, at=at)
 
 
-def _mechanism(table, fail):
+def _mechanism(table, fail, dimensioned=False):
     where = "[mechanism]"
     if not isinstance(table, dict):
         fail(f"'mechanism' must be a table ([mechanism]), got {_type_name(table)}", where)
-    _no_unknown_keys(table, MECHANISM_KEYS, None, lambda problem, w: fail(problem, where))
+    _no_unknown_keys(table, MECHANISM_KEYS + ("at",), None,
+                     lambda problem, w: fail(problem, where))
+    if "at" in table and not dimensioned:
+        fail("'at' (the input's value in the drawn pose) belongs to a mechanism given by "
+             "its lengths: add a [lengths] table", where)
     if "fixed" not in table:
         fail("missing required key 'fixed' (the fixed link)", where)
     fixed = _string(table["fixed"], where + " key 'fixed'", fail)
     driver = _optional_string(table, "driver", where + " key 'driver'", fail)
     output = _optional_string(table, "output", where + " key 'output'", fail)
     omega = _number(table["omega"], where + " key 'omega'", fail) if "omega" in table else 1.0
-    inputs = _inputs(table["inputs"], fail) if "inputs" in table else ()
+    inputs = _inputs(table["inputs"], fail, dimensioned) if "inputs" in table else ()
     return Mechanism(fixed=fixed, driver=driver, omega=omega, output=output, inputs=inputs)
 
 
-def _inputs(value, fail):
+def _inputs(value, fail, dimensioned=False):
     """``inputs = ["A", {joint = "E", from = 110.0, to = 50.0}, ...]``"""
     where = "[mechanism] key 'inputs'"
     if not isinstance(value, list) or not value:
@@ -244,7 +317,11 @@ def _inputs(value, fail):
         if not isinstance(item, dict):
             fail(f"an input must be a joint id or a table {{joint, from, to}}, "
                  f"got {_type_name(item)}", here)
-        _no_unknown_keys(item, INPUT_KEYS, None, lambda problem, w: fail(problem, here))
+        _no_unknown_keys(item, INPUT_KEYS + ("at",), None,
+                         lambda problem, w: fail(problem, here))
+        if "at" in item and not dimensioned:
+            fail("'at' (the input's value in the drawn pose) belongs to a mechanism given "
+                 "by its lengths: add a [lengths] table", here)
         if "joint" not in item:
             fail("missing required key 'joint'", here)
         joint = _string(item["joint"], here + " key 'joint'", fail)

@@ -12,11 +12,14 @@ from __future__ import annotations
 __all__ = [
     "ChainGraphError",
     "ChainFileError",
+    "DimensionError",
     "ChainStructureError",
     "MechanismError",
     "AssemblyError",
     "AtlasSizeError",
     "DesignError",
+    "ChainGraphWarning",
+    "PoseAdjustedWarning",
 ]
 
 
@@ -52,6 +55,22 @@ class ChainFileError(ChainGraphError, ValueError):
         parts = [p for p in (self.source, self.where) if p]
         parts.append(self.problem)
         return ": ".join(parts)
+
+
+class DimensionError(ChainFileError):
+    """Dimensions (lengths, offsets, the input's value, assembly modes) that give no
+    pose: a missing or non-positive length, a triangle that cannot close, a mechanism
+    that cannot be assembled at the given input. Bad input: exit status 2.
+
+    Extra fields: ``part`` (the link, joint or dyad at fault) and ``feasible_range``
+    (the input values where the mechanism can be assembled, when it was found).
+    """
+
+    def __init__(self, problem, *, source=None, where=None, part=None,
+                 feasible_range=None):
+        self.part = part
+        self.feasible_range = feasible_range
+        super().__init__(problem, source=source, where=where)
 
 
 class ChainStructureError(ChainGraphError, ValueError):
@@ -108,3 +127,20 @@ class DesignError(ChainGraphError, ValueError):
         self.kind = kind
         self.parameter = parameter
         super().__init__(f"design {kind}: {problem}" if kind else problem)
+
+
+class ChainGraphWarning(UserWarning):
+    """Base class of the warnings chaingraph gives (the command line prints each as one
+    line on standard error)."""
+
+
+class PoseAdjustedWarning(ChainGraphWarning):
+    """A drawn pose that was off by drawing-level rounding and was moved to the nearest
+    consistent pose. Fields: ``joint`` (the joint or point that moved most), ``distance``
+    (how far it moved, in the file's units) and ``size`` (the mechanism's size)."""
+
+    def __init__(self, message, *, joint=None, distance=None, size=None):
+        self.joint = joint
+        self.distance = distance
+        self.size = size
+        super().__init__(message)
