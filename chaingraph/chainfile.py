@@ -149,7 +149,8 @@ def read_document(doc, *, source: str = "<document>"):
     if "assembly" in doc:
         fail("[assembly] chooses the assembly modes of a mechanism given by [lengths]; "
              "this file has none", "[assembly]")
-    return Chain(joints=joints, points=points, mechanism=mechanism, **meta), None
+    from .assembly import snap_to_lines
+    return snap_to_lines(Chain(joints=joints, points=points, mechanism=mechanism, **meta)), None
 
 
 def _assembled(doc, joints, points, mechanism, meta, fail):

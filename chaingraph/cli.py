@@ -10,10 +10,11 @@ from __future__ import annotations
 import argparse
 import json
 import sys
+import warnings
 
 from .chainfile import load
 from .classify import classify
-from .errors import ChainGraphError
+from .errors import ChainGraphError, ChainGraphWarning
 
 __all__ = ["main"]
 
@@ -177,6 +178,62 @@ def _cmd_solve(args) -> int:
     return 0
 
 
+def _mode_lines(assembly) -> list[str]:
+    return [f"{m.part}: {m.word} {m.reference} ({m.source})" for m in assembly.modes]
+
+
+def _cmd_assemble(args) -> int:
+    from .chainfile import dumps, read_file
+    chain, assembly = read_file(args.file)
+    if args.json:
+        out = {"name": chain.name, "file": args.file,
+               "joints": {j.id: list(j.at) for j in chain.joints},
+               "axes": {j.id: j.axis for j in chain.joints if j.kind == "P"},
+               "points": {p.id: list(p.at) for p in chain.points},
+               "modes": [{"part": m.part, "mode": m.word, "reference": m.reference,
+                          "source": m.source} for m in assembly.modes] if assembly else [],
+               "groups": [list(g) for g in assembly.groups] if assembly else []}
+    text = dumps(chain)
+    if assembly is not None:
+        head = [f"# assembled by chaingraph from the lengths in {args.file}"]
+        if assembly.modes:
+            head.append("# assembly modes (change them under [assembly] in the lengths file):")
+            head += [f"#   {line}" for line in _mode_lines(assembly)]
+        text = "\n".join(head) + "\n" + text
+    if args.output:
+        _write(args.output, text)
+    if args.json:
+        _print_json(out)
+    elif args.output:
+        print(f"{chain.name}: drawn pose written to {args.output}")
+        for line in (_mode_lines(assembly) if assembly else []):
+            print(f"  {line}")
+    else:
+        sys.stdout.write(text)
+    return 0
+
+
+def _cmd_measure(args) -> int:
+    from .assembly import measure
+    text = measure(load(args.file))
+    if args.output:
+        _write(args.output, text)
+        print(f"dimensions written to {args.output} (chaingraph assemble {args.output} "
+              "gives back the drawn pose)")
+    else:
+        sys.stdout.write(text)
+    return 0
+
+
+def _write(path, text) -> None:
+    from .errors import ChainFileError
+    try:
+        with open(path, "w", encoding="utf-8") as f:
+            f.write(text)
+    except OSError as e:
+        raise ChainFileError(f"cannot be written ({e.strerror})", source=path) from None
+
+
 def _cmd_report(args) -> int:
     from .catalog import catalog_dir
     from .report import build_report
@@ -299,6 +356,25 @@ def build_parser() -> argparse.ArgumentParser:
                    help="draw the mechanism in its drawn pose with the paths of its points")
     p.set_defaults(run=_cmd_solve)
 
+    p = sub.add_parser("assemble", help="the drawn pose of a mechanism given by its lengths",
+                       description="Find every joint's position from the file's lengths, the "
+                                   "input's value and the assembly modes, and write the "
+                                   "mechanism with coordinates (to standard output, or OUT). "
+                                   "The modes used are listed, with where each came from.")
+    p.add_argument("file", metavar="FILE", help="a mechanism file (TOML) with [lengths]")
+    p.add_argument("-o", "--output", metavar="OUT", help="write the assembled file here")
+    p.add_argument("--json", action="store_true",
+                   help="print the positions and the assembly modes as JSON")
+    p.set_defaults(run=_cmd_assemble)
+
+    p = sub.add_parser("measure", help="the lengths of a drawn mechanism",
+                       description="Write a drawn mechanism as its dimensions: the lengths "
+                                   "of its links, its sliding lines, the input's value and "
+                                   "every assembly mode (the inverse of assemble).")
+    p.add_argument("file", metavar="FILE", help="a mechanism file (TOML) with a drawn pose")
+    p.add_argument("-o", "--output", metavar="OUT", help="write the file with lengths here")
+    p.set_defaults(run=_cmd_measure)
+
     p = sub.add_parser("report", help="the browsable HTML catalog",
                        description="Write DIR/index.html and a page per entry for the given "
                                    "chain files or folders (by default the bundled catalog). "
@@ -347,6 +423,15 @@ def main(argv=None) -> int:
     """Run the command line; returns the exit status."""
     parser = build_parser()
     args = parser.parse_args(argv)
+    shown = warnings.showwarning
+
+    def show(message, category, filename, lineno, file=None, line=None):
+        if issubclass(category, ChainGraphWarning):
+            print(f"chaingraph: warning: {message}", file=sys.stderr)
+        else:
+            shown(message, category, filename, lineno, file, line)
+
+    warnings.showwarning = show
     try:
         return args.run(args)
     except ChainGraphError as e:
@@ -354,3 +439,5 @@ def main(argv=None) -> int:
         return e.exit_status
     except BrokenPipeError:
         return 0
+    finally:
+        warnings.showwarning = shown
