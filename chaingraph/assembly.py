@@ -1040,11 +1040,21 @@ def _pose(model, solver):
         angle, offset = solver.world_line(guide, j.id)
         axes[j.id] = math.degrees(math.remainder(angle, 2 * math.pi))
         n, u = _normal(angle), _unit(angle)
+        # a sliding line on the fixed link is given by 'at' and 'axis'; its block's
+        # reference point is that 'at', unless the (moving) block's pin is on the line
         ref = model.dims.typed.get(j.id)
+        if ref is not None and model.fixed in j.links and block != model.fixed:
+            pins = [x for x in model.chain.joints_of(block) if x.kind == "R"
+                    and model.fixed not in x.links
+                    and abs(_dot(n, joints[x.id]) - offset) <= 1e-9 * model.scale]
+            if pins:
+                ref = joints[sorted(x.id for x in pins)[0]]
         if ref is None:
             ref = _reference(model, solver, j, joints)
         h = offset - _dot(n, ref)
-        joints[j.id] = (ref[0] + h * n[0], ref[1] + h * n[1])
+        # a pin on the line is the reference point itself, to the last digit
+        joints[j.id] = (tuple(ref) if abs(h) <= 1e-12 * model.scale
+                        else (ref[0] + h * n[0], ref[1] + h * n[1]))
     pts = {pid: solver.world_point(link, pid) for pid, link in model.points}
     every = list(joints.values()) + list(pts.values())
     xs, ys = [p[0] for p in every], [p[1] for p in every]
@@ -1177,7 +1187,7 @@ def measure(chain):
     crank = 120.0
     <BLANKLINE>
     [assembly]
-    S = "behind"
+    S = "ahead"
     <BLANKLINE>
     [mechanism]
     fixed = "frame"
