@@ -1039,7 +1039,7 @@ def _pose(model, solver):
         guide, block = j.links
         angle, offset = solver.world_line(guide, j.id)
         axes[j.id] = math.degrees(math.remainder(angle, 2 * math.pi))
-        n, u = _normal(angle), _unit(angle)
+        n = _normal(angle)
         # a sliding line on the fixed link is given by 'at' and 'axis'; its block's
         # reference point is that 'at', unless the (moving) block's pin is on the line
         ref = model.dims.typed.get(j.id)
