@@ -11,12 +11,14 @@ solve its motion and draw it.
 """
 
 from . import design
+from .assembly import measure
 from .atlas import atlas
 from .chain import Chain, Input, Joint, Mechanism, Point
 from .chainfile import dumps, from_document, load, loads, save
 from .classify import Check, Classification, classify
 from .errors import (AssemblyError, AtlasSizeError, ChainFileError, ChainGraphError,
-                     ChainStructureError, DesignError, MechanismError)
+                     ChainGraphWarning, ChainStructureError, DesignError, DimensionError,
+                     MechanismError, PoseAdjustedWarning)
 from .identify import Identification, identify
 from .inversions import Inversion, Inversions, inversions
 from .isomorphism import automorphism_orbits, canonical_form, is_isomorphic, isomorphism
@@ -32,7 +34,8 @@ __all__ = [
     "classify", "Classification", "Check", "rigid_subchains",
     "inversions", "Inversions", "Inversion", "identify", "Identification",
     "canonical_form", "is_isomorphic", "isomorphism", "automorphism_orbits",
-    "atlas", "design", "solve", "Motion", "feasible_range", "build_plan", "Plan",
+    "atlas", "design", "solve", "measure", "Motion", "feasible_range", "build_plan", "Plan",
     "ChainGraphError", "ChainFileError", "ChainStructureError", "MechanismError",
-    "AssemblyError", "AtlasSizeError", "DesignError",
+    "AssemblyError", "AtlasSizeError", "DesignError", "DimensionError",
+    "ChainGraphWarning", "PoseAdjustedWarning",
 ]

@@ -647,7 +647,7 @@ class _Solver:
                                    "are at one place")
         x = (d * d + r1 * r1 - r2 * r2) / (2 * d)
         h2 = r1 * r1 - x * x
-        if h2 < -1e-12 * max(r1, r2, d) ** 2:
+        if h2 < -1e-12 * max(r1, r2, d) * max(r1, r2, d):
             raise _DoesNotClose(j, f"the dyad of links {self._name(b1)} and {self._name(b2)} "
                                    f"at joint {j} does not close: {c1[1]} and {c2[1]} are "
                                    f"{_fmt(d)} apart, and the links reach from "
@@ -682,7 +682,7 @@ class _Solver:
         h = c_line - _dot(n, w1)
         a2 = r * r - h * h
         j = c12[1]
-        if a2 < -1e-12 * max(r, abs(h)) ** 2:
+        if a2 < -1e-12 * max(r, abs(h)) * max(r, abs(h)):
             raise _DoesNotClose(j, f"the dyad of links {self._name(b1)} and {self._name(b2)} "
                                    f"at joint {j} does not close: {c1[1]} is {_fmt(abs(h))} "
                                    f"from the line that {j} slides on, farther than "

@@ -165,7 +165,12 @@ def _assembled(doc, joints, points, mechanism, meta, fail):
     point_links = [(p.id, p.link) for p in points]
     dims = parse_dimensions(doc, bare, point_links, fail)
     for j in joints:
+        if j.axis is not None and j.kind != "P":
+            fail("'axis' is only for P joints", f"joint {j.id!r}")
         if j.at is not None:
+            if max(abs(v) for v in j.at) > 1e100:
+                fail("'at' is too large to assemble with (coordinates at most 1e100)",
+                     f"joint {j.id!r}")
             dims.typed[j.id] = j.at
         if j.axis is not None:
             dims.axes[j.id] = j.axis

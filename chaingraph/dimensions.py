@@ -123,6 +123,8 @@ def _number(value, where, fail, *, positive=False):
         fail(f"must be a finite number, got {value}", where)
     if positive and value <= 0:
         fail(f"a length must be positive, got {value:g}", where)
+    if abs(value) > 1e100:
+        fail(f"{value:g} is too large to assemble with (at most 1e100)", where)
     return float(value)
 
 
@@ -145,6 +147,11 @@ def parse_dimensions(doc, joints, points, fail):
             for key, x in value.items():
                 if key == "direction":
                     directions[link] = _number(x, f"{where} key 'direction'", fail)
+                    fixed = doc.get("mechanism", {}).get("fixed") if isinstance(
+                        doc.get("mechanism"), dict) else None
+                    if link != fixed:
+                        fail("'direction' places the fixed link's reference line; a moving "
+                             "link's direction follows from the assembly", where)
                     continue
                 names = split_key(key, features)
                 if names is None or len(set(names)) != len(names):
@@ -188,7 +195,7 @@ def _modes(table, fail):
         fail("'assembly' must be a table ([assembly]) of modes", where)
 
     def word(value, here):
-        if value not in MODE_WORDS:
+        if not isinstance(value, str) or value not in MODE_WORDS:
             fail(f"an assembly mode is one of {', '.join(map(repr, MODE_WORDS))}, "
                  f"got {value!r}", here)
         return value

@@ -438,3 +438,38 @@ def test_measure_command_writes_a_file_that_assembles_back(tmp_path):
     drawn, again = chaingraph.load(catalog_path("watt-i-mechanism")), chaingraph.load(out)
     for j in drawn.joints:
         assert close(again.joint(j.id).at, j.at)
+
+
+def test_malformed_dimension_keys_raise_only_file_errors():
+    """A fuzz of the dimension keys: every value of the wrong type, size or sign gives a
+    ChainFileError (one clear line on the command line), never another exception."""
+    import copy
+    import random
+    import tomllib
+
+    from chaingraph.chainfile import read_document
+    bases = [tomllib.loads(open(p).read()) for p in
+             ("examples/four-bar-lengths.toml", "catalog/shaper-crank-and-slotted-lever.toml")]
+    values = [0, -1, 1e308, -1e308, 1e-308, "x", [1], [1, 2], {"a": 1}, {}, True, 3.5, [],
+              [[1]], {"B-C": 1}, {"A-B-C": 400}, "left", "ahead", {"C": "left"}, 1e200]
+    rng = random.Random(7)
+    with warnings.catch_warnings():
+        warnings.simplefilter("ignore")
+        for _ in range(600):
+            doc = copy.deepcopy(rng.choice(bases))
+            for _ in range(rng.randint(1, 3)):
+                where, value = rng.choice(["lengths", "assembly", "mechanism", "joint"]), \
+                    rng.choice(values)
+                if where == "lengths":
+                    doc["lengths"][rng.choice(["crank", "coupler", "link", "frame", "zz"])] = value
+                elif where == "assembly":
+                    doc.setdefault("assembly", {})[rng.choice(["C", "R", "crank", "X"])] = value
+                elif where == "mechanism":
+                    doc["mechanism"][rng.choice(["at", "inputs", "driver"])] = value
+                else:
+                    rng.choice(doc["joints"])[rng.choice(
+                        ["at", "near", "offset", "angle", "block_offset", "axis"])] = value
+            try:
+                read_document(doc, source="fuzz.toml")
+            except ChainFileError:
+                pass
