@@ -337,7 +337,7 @@ class _Solver:
             welds.setdefault(a, []).append((j, a, b, value))
             welds.setdefault(b, []).append((j, a, b, value))
         order = [model.fixed] + [x for x in self.chain.links if x != model.fixed]
-        self.loops = []
+        self.loops, tree = [], set()
         for start in order:
             if start in body and start != model.fixed:
                 continue
@@ -352,9 +352,10 @@ class _Solver:
                     if x == b:
                         rel = _inverse(rel)
                     if y in body:
-                        if body[y][0] != body[x][0] or j not in [w[0] for w in self.loops]:
+                        if j.id not in tree:       # a weld that closes a loop of welds
                             self.loops.append((j, x, y, rel))
                         continue
+                    tree.add(j.id)
                     body[y] = (body[x][0], _compose(body[x][1], rel))
                     stack.append(y)
         self.body = body
@@ -1244,7 +1245,7 @@ def measure(chain):
             for key, value in zip(keys, (angle, offset)):
                 if abs(value) > 1e-12 * _span(where):
                     line_keys.setdefault(j.id, {})[key] = value
-    fixed_, driver, inputs = chosen_inputs(chain)
+    _, driver, inputs = chosen_inputs(chain)
     values = {}
     if inputs:
         for item in inputs:
