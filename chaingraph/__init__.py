@@ -12,6 +12,7 @@ solve its motion and draw it.
 
 from . import design
 from .assembly import measure
+from .notebook import animate
 from .atlas import atlas
 from .chain import Chain, Input, Joint, Mechanism, Point
 from .chainfile import dumps, from_document, load, loads, save
@@ -34,7 +35,7 @@ __all__ = [
     "classify", "Classification", "Check", "rigid_subchains",
     "inversions", "Inversions", "Inversion", "identify", "Identification",
     "canonical_form", "is_isomorphic", "isomorphism", "automorphism_orbits",
-    "atlas", "design", "solve", "measure", "Motion", "feasible_range", "build_plan", "Plan",
+    "atlas", "design", "solve", "measure", "animate", "Motion", "feasible_range", "build_plan", "Plan",
     "ChainGraphError", "ChainFileError", "ChainStructureError", "MechanismError",
     "AssemblyError", "AtlasSizeError", "DesignError", "DimensionError",
     "ChainGraphWarning", "PoseAdjustedWarning",

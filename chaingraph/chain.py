@@ -312,6 +312,21 @@ class Chain:
         inputs = old.inputs if old and old.fixed == fixed and driver is None else ()
         return replace(self, mechanism=Mechanism(fixed, driver, omega, output, inputs))
 
+    def __repr__(self):
+        m = self.mechanism
+        tail = ""
+        if m is not None:
+            inputs = [i.joint for i in m.inputs]
+            tail = f", fixed={m.fixed!r}" + (f", inputs={inputs!r}" if inputs
+                                              else f", driver={m.driver!r}")
+        return (f"Chain({self.name!r}, links={len(self.links)}, joints={len(self.joints)}"
+                f"{tail})")
+
+    def _repr_svg_(self):
+        """A notebook shows a chain as its link-joint graph."""
+        from .notebook import chain_svg
+        return chain_svg(self)
+
     def __str__(self):
         return self.name
 

@@ -32,11 +32,11 @@ def layout(chain):
     return nx.spring_layout(g, seed=7)
 
 
-def draw_link_joint_graph(chain, path):
-    """Write the link-joint graph of ``chain`` as SVG (or PNG, by the file's ending)."""
-    import matplotlib
-    matplotlib.use("Agg")
-    import matplotlib.pyplot as plt
+def draw_link_joint_graph(chain, path=None):
+    """The link-joint graph of ``chain``: written as SVG (or PNG, by the file's ending)
+    to ``path``, or returned as a matplotlib Figure without one."""
+    from .plots import _finish, _pyplot
+    plt = _pyplot()
     g = chain.graph
     pos = layout(chain)
     fixed = chain.mechanism.fixed if chain.mechanism else None
@@ -73,5 +73,4 @@ def draw_link_joint_graph(chain, path):
     ax.set_axis_off()
     ax.margins(0.12)
     fig.tight_layout()
-    fig.savefig(path)
-    plt.close(fig)
+    return _finish(plt, fig, path)

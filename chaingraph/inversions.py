@@ -75,6 +75,15 @@ class Inversions:
     inversions: tuple[Inversion, ...]
     classes_with_input: int | None = None
 
+    def __repr__(self):
+        from .notebook import short_list
+        return (f"Inversions({self.name!r}, links={self.links}, classes={self.classes}, "
+                f"fixed={short_list(i.fixed for i in self.inversions)})")
+
+    def _repr_html_(self):
+        from .notebook import inversions_html
+        return inversions_html(self)
+
     def inversion(self, fixed: str) -> Inversion:
         """The inversion with ``fixed`` fixed."""
         return next(i for i in self.inversions if i.fixed == fixed)

@@ -15,8 +15,11 @@ __all__ = ["plot_motion", "draw_mechanism", "output_series"]
 
 
 def _pyplot():
+    import sys
+
     import matplotlib
-    matplotlib.use("Agg")
+    if "matplotlib.pyplot" not in sys.modules:
+        matplotlib.use("Agg")       # headless; a notebook that chose a backend keeps it
     import matplotlib.pyplot as plt
     return plt
 
@@ -42,8 +45,11 @@ def output_series(motion):
     return f"{output} (slide of joint {name})", u, v, a, units
 
 
-def plot_motion(motion, path):
-    """Write an SVG (or PNG, by the file's ending) of the output against input angle."""
+def plot_motion(motion, path=None):
+    """The output's displacement, velocity and acceleration against the input.
+
+    Writes an SVG (or PNG, by the file's ending) to ``path``; without a path, returns
+    the matplotlib Figure (a notebook shows it)."""
     plt = _pyplot()
     label, u, v, a, unit = output_series(motion)
     theta = motion.theta
@@ -75,8 +81,17 @@ def plot_motion(motion, path):
                plt.Line2D([], [], color="#c00000", ls="--", label="dead centre")]
     axes[0].legend(handles=handles, fontsize=8, loc="best")
     fig.tight_layout()
-    fig.savefig(path)
+    return _finish(plt, fig, path)
+
+
+def _finish(plt, fig, path):
+    """Save and close the figure, or, without a path, hand it back (closed to pyplot, so
+    that it is shown once, where it is returned)."""
     plt.close(fig)
+    if path is None:
+        return fig
+    fig.savefig(path)
+    return None
 
 
 def _input_symbol(motion):
@@ -104,8 +119,9 @@ def _in_sweep(t, theta):
     return [t + 360 * k for k in range(-3, 4) if lo - 1e-9 <= t + 360 * k <= hi + 1e-9]
 
 
-def draw_mechanism(motion, path, *, pose_index=0):
-    """Write an SVG (or PNG) of the mechanism in a pose with every joint's and point's path."""
+def draw_mechanism(motion, path=None, *, pose_index=0):
+    """The mechanism in a pose with every joint's and point's path: written as SVG (or
+    PNG) to ``path``, or returned as a matplotlib Figure without one."""
     plt = _pyplot()
     chain = motion.plan.chain
     fig, ax = plt.subplots(figsize=(7, 6))
@@ -124,8 +140,7 @@ def draw_mechanism(motion, path, *, pose_index=0):
                  f"{_input_unit(motion)})", fontsize=10)
     ax.grid(True, color="#eeeeee", lw=0.5)
     fig.tight_layout()
-    fig.savefig(path)
-    plt.close(fig)
+    return _finish(plt, fig, path)
 
 
 _COLOURS = ["#1f77b4", "#2ca02c", "#d62728", "#9467bd", "#8c564b", "#e377c2", "#17becf",

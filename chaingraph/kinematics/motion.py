@@ -56,6 +56,28 @@ class Motion:
     plan: object = field(default=None, repr=False)
     inputs: tuple = ()            # the input joints, when not given as a driver
 
+    def __repr__(self):
+        from ..notebook import short_list
+        given = (f"inputs={[i.joint for i in self.inputs]!r}" if self.inputs
+                 else f"driver={self.driver!r}")
+        return (f"Motion({self.name!r}, fixed={self.fixed!r}, {given}, steps={self.steps}, "
+                f"columns={short_list(self.columns)})")
+
+    def _repr_html_(self):
+        """A notebook shows a motion as its summary and the output's plot."""
+        from ..notebook import motion_html
+        return motion_html(self)
+
+    def to_frame(self):
+        """The CSV's columns as a pandas DataFrame, one row per step (needs pandas:
+        ``pip install chaingraph[notebook]``)."""
+        try:
+            import pandas
+        except ImportError:
+            raise ImportError("Motion.to_frame needs pandas: pip install "
+                              "'chaingraph[notebook]' (or pandas)") from None
+        return pandas.DataFrame({name: np.asarray(v) for name, v in self.columns.items()})
+
     def __getitem__(self, name) -> np.ndarray:
         return self.columns[name]
 

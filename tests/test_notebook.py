@@ -1,0 +1,91 @@
+"""Notebook displays: short reprs, rich HTML and SVG, figures, tables, the walkthrough."""
+
+import json
+import xml.dom.minidom
+from html.parser import HTMLParser
+from pathlib import Path
+
+import pytest
+
+import chaingraph
+from chaingraph.plots import draw_mechanism, plot_motion
+
+from .conftest import catalog_path
+
+ROOT = Path(__file__).resolve().parent.parent
+
+
+def well_formed_html(text):
+    class Check(HTMLParser):
+        def __init__(self):
+            super().__init__()
+            self.stack = []
+
+        def handle_starttag(self, tag, attrs):
+            if tag not in ("br", "img", "meta", "path", "use", "stop"):
+                self.stack.append(tag)
+
+        def handle_endtag(self, tag):
+            if self.stack and self.stack[-1] == tag:
+                self.stack.pop()
+
+    check = Check()
+    check.feed(text)
+    return "<table>" in text and not [t for t in check.stack if t in ("table", "tr", "td")]
+
+
+@pytest.fixture(scope="module")
+def watt():
+    chain = chaingraph.load(catalog_path("watt-i-mechanism"))
+    return chain, chaingraph.solve(chain)
+
+
+def test_reprs_are_short(watt):
+    chain, motion = watt
+    for obj in (chain, chaingraph.classify(chain), chaingraph.inversions(chain), motion,
+                chaingraph.animate(motion, frames=8)):
+        assert len(repr(obj)) < 2000, type(obj)
+    assert repr(motion).startswith("Motion('Watt I six-bar mechanism', fixed='frame', "
+                                   "driver='crank', steps=360, columns=['theta'")
+    five = chaingraph.solve(chaingraph.load(ROOT / "examples" / "five-bar-robot.toml"), steps=10)
+    assert "inputs=['A', 'E']" in repr(five)
+
+
+def test_rich_displays_are_valid(watt):
+    chain, motion = watt
+    xml.dom.minidom.parseString(chain._repr_svg_())
+    xml.dom.minidom.parseString(chaingraph.animate(motion, frames=8)._repr_svg_())
+    for html in (chaingraph.classify(chain)._repr_html_(),
+                 chaingraph.inversions(chain)._repr_html_(), motion._repr_html_()):
+        assert well_formed_html(html)
+    assert "<svg" in motion._repr_html_() and "time ratio" in motion._repr_html_()
+
+
+def test_plots_return_figures_without_a_path(watt, tmp_path):
+    from matplotlib.figure import Figure
+    _, motion = watt
+    assert isinstance(plot_motion(motion), Figure)
+    assert isinstance(draw_mechanism(motion), Figure)
+    assert plot_motion(motion, tmp_path / "p.svg") is None and (tmp_path / "p.svg").exists()
+
+
+def test_to_frame_is_a_dataframe_or_says_what_to_install(watt):
+    _, motion = watt
+    try:
+        import pandas  # noqa: F401
+    except ImportError:
+        with pytest.raises(ImportError, match=r"chaingraph\[notebook\]"):
+            motion.to_frame()
+    else:
+        frame = motion.to_frame()
+        assert list(frame.columns) == list(motion.columns) and len(frame) == motion.steps + 1
+
+
+def test_the_walkthrough_notebook_runs():
+    nb = json.loads((ROOT / "docs" / "walkthrough.ipynb").read_text())
+    namespace = {}
+    for cell in nb["cells"]:
+        if cell["cell_type"] == "code":
+            source = "".join(cell["source"])
+            exec(compile(source, "walkthrough.ipynb", "exec"), namespace)
+    assert round(namespace["motion"].summary["time_ratio"], 3) == 1.71
