@@ -161,8 +161,12 @@ def _cmd_solve(args) -> int:
         from .plots import plot_motion
         plot_motion(motion, args.plot)
     if args.draw:
-        from .plots import draw_mechanism
-        draw_mechanism(motion, args.draw)
+        if str(args.draw).lower().endswith(".svg"):
+            from .drawing import mechanism_svg
+            _write(args.draw, mechanism_svg(motion))
+        else:
+            from .plots import draw_mechanism       # PNG and the other raster formats
+            draw_mechanism(motion, args.draw)
     if args.json:
         _print_json(motion.to_dict())
         return 0

@@ -107,8 +107,8 @@ def animate(motion, *, frames=48, seconds=4.0) -> Animation:
     >>> from chaingraph.catalog import catalog_path
     >>> m = chaingraph.solve(chaingraph.load(catalog_path("beam-engine")), steps=36)
     >>> a = animate(m, frames=12)
-    >>> a.svg.startswith("<svg") and "<animate" in a.svg
+    >>> a.svg.startswith("<svg") and a.svg.count('class="frame"') == 12
     True
     """
-    from .report import animated_svg
-    return Animation(animated_svg(motion, frames=frames, seconds=seconds))
+    from .drawing import mechanism_svg
+    return Animation(mechanism_svg(motion, frames=frames, seconds=seconds))

@@ -17,7 +17,6 @@ import sys
 from dataclasses import dataclass, field
 from pathlib import Path
 
-import numpy as np
 
 from .chainfile import load
 from .classify import classify
@@ -224,85 +223,17 @@ def _analyse(entry, steps):
 
 # -- images ----------------------------------------------------------------------------
 def _write_images(entry, out, frames):
+    from .drawing import mechanism_svg
     from .graphdraw import draw_link_joint_graph
-    from .plots import draw_mechanism, plot_motion
+    from .plots import plot_motion
     img = out / "img"
     draw_link_joint_graph(entry.chain, img / f"{entry.slug}-graph.svg")
     if entry.motion is not None:
-        draw_mechanism(entry.motion, img / f"{entry.slug}-pose.svg")
+        (img / f"{entry.slug}-pose.svg").write_text(mechanism_svg(entry.motion),
+                                                     encoding="utf-8")
         plot_motion(entry.motion, img / f"{entry.slug}-motion.svg")
-        (img / f"{entry.slug}-cycle.svg").write_text(animated_svg(entry.motion, frames),
-                                                      encoding="utf-8")
-
-
-def animated_svg(motion, frames=48, seconds=4.0, width=640, height=480):
-    """One cycle of the mechanism as an SVG animated with SMIL (no script, no network)."""
-    chain = motion.plan.chain
-    theta = motion.theta
-    picks = np.linspace(0, theta.size - 1, min(frames, theta.size)).round().astype(int)
-    if motion.summary and not motion.summary.get("full_turn", True):
-        picks = np.concatenate([picks, picks[::-1][1:]])  # a rocker goes there and back
-    names = [j.id for j in chain.joints] + [p.id for p in chain.points]
-    xs = np.array([motion[f"x:{n}"] for n in names])
-    ys = np.array([motion[f"y:{n}"] for n in names])
-    ok = np.isfinite(xs).all(axis=0) & np.isfinite(ys).all(axis=0)
-    lo_x, hi_x = np.nanmin(xs[:, ok]), np.nanmax(xs[:, ok])
-    lo_y, hi_y = np.nanmin(ys[:, ok]), np.nanmax(ys[:, ok])
-    span = max(hi_x - lo_x, hi_y - lo_y, 1e-9)
-    pad = 0.08 * span
-    scale = min((width - 2 * pad * 0) / (hi_x - lo_x + 2 * pad), (height) / (hi_y - lo_y + 2 * pad))
-
-    def sx(x):
-        return (x - lo_x + pad) * scale
-
-    def sy(y):
-        return height - (y - lo_y + pad) * scale
-    index = {n: i for i, n in enumerate(names)}
-    dur = f"{seconds:g}s"
-    parts = [f'<svg xmlns="http://www.w3.org/2000/svg" width="{width}" height="{height}" '
-             f'viewBox="0 0 {width} {height}">',
-             '<rect width="100%" height="100%" fill="white"/>',
-             f'<title>{html.escape(motion.name)}: one cycle</title>']
-    for n in names:   # paths, faint
-        i = index[n]
-        pts = " ".join(f"{sx(x):.2f},{sy(y):.2f}" for x, y in zip(xs[i], ys[i])
-                       if math.isfinite(x) and math.isfinite(y))
-        parts.append(f'<polyline points="{pts}" fill="none" stroke="#bbbbbb" stroke-width="1"/>')
-    colours = ["#1f77b4", "#2ca02c", "#d62728", "#9467bd", "#8c564b", "#e377c2", "#17becf",
-               "#bcbd22", "#ff7f0e"]
-    for c, link in enumerate(chain.links):
-        members = [j.id for j in chain.joints_of(link)] + [p.id for p in chain.points
-                                                           if p.link == link]
-        if len(members) < 2 or link == motion.fixed:
-            continue
-        frames_pts = []
-        for k in picks:
-            pts = [(sx(xs[index[n], k]), sy(ys[index[n], k])) for n in members]
-            if not all(math.isfinite(v) for p in pts for v in p):
-                continue
-            frames_pts.append(" ".join(f"{x:.2f},{y:.2f}" for x, y in pts + pts[:1]))
-        if not frames_pts:
-            continue
-        colour = colours[c % len(colours)]
-        parts.append(f'<polyline points="{frames_pts[0]}" fill="{colour}" fill-opacity="0.15" '
-                     f'stroke="{colour}" stroke-width="4" stroke-linejoin="round">'
-                     f'<animate attributeName="points" dur="{dur}" repeatCount="indefinite" '
-                     f'values="{";".join(frames_pts)}"/></polyline>')
-    for n in names:
-        i = index[n]
-        cx = [f"{sx(xs[i, k]):.2f}" for k in picks if math.isfinite(xs[i, k])]
-        cy = [f"{sy(ys[i, k]):.2f}" for k in picks if math.isfinite(ys[i, k])]
-        if not cx:
-            continue
-        on_fixed = any(n == j.id for j in chain.joints_of(motion.fixed))
-        fill = "#555555" if on_fixed else "white"
-        parts.append(f'<circle cx="{cx[0]}" cy="{cy[0]}" r="5" fill="{fill}" stroke="black" '
-                     f'stroke-width="1.5"><animate attributeName="cx" dur="{dur}" '
-                     f'repeatCount="indefinite" values="{";".join(cx)}"/>'
-                     f'<animate attributeName="cy" dur="{dur}" repeatCount="indefinite" '
-                     f'values="{";".join(cy)}"/></circle>')
-    parts.append("</svg>")
-    return "\n".join(parts)
+        (img / f"{entry.slug}-cycle.svg").write_text(
+            mechanism_svg(entry.motion, frames=frames), encoding="utf-8")
 
 
 # -- pages ------------------------------------------------------------------------------
