@@ -293,7 +293,8 @@ def mechanism_svg(motion, *, frames=None, seconds=4.0, width=640):
     width_m, height_m = scene.size
     height = int(round(width * height_m / width_m))
     units = motion.units or "units"
-    parts = [f'<svg xmlns="http://www.w3.org/2000/svg" width="{width}" height="{height}" '
+    parts = ['<?xml version="1.0"?>',
+             f'<svg xmlns="http://www.w3.org/2000/svg" width="{width}" height="{height}" '
              f'viewBox="0 0 {width_m:.6g} {height_m:.6g}">',
              f'<title>{html.escape(motion.name)}</title>',
              '<rect class="background" width="100%" height="100%" fill="white"/>']

@@ -107,7 +107,7 @@ def animate(motion, *, frames=48, seconds=4.0) -> Animation:
     >>> from chaingraph.catalog import catalog_path
     >>> m = chaingraph.solve(chaingraph.load(catalog_path("beam-engine")), steps=36)
     >>> a = animate(m, frames=12)
-    >>> a.svg.startswith("<svg") and a.svg.count('class="frame"') == 12
+    >>> "<svg" in a.svg and a.svg.count('class="frame"') == 12
     True
     """
     from .drawing import mechanism_svg
