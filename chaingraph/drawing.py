@@ -21,7 +21,7 @@ import math
 
 import numpy as np
 
-__all__ = ["mechanism_svg"]
+__all__ = ["mechanism_svg", "frame_steps"]
 
 _COLOURS = ["#1f77b4", "#2ca02c", "#d62728", "#9467bd", "#8c564b", "#e377c2", "#17becf",
             "#bcbd22", "#ff7f0e"]
@@ -258,6 +258,16 @@ def _frame(scene, k):
     return out
 
 
+def frame_steps(motion, frames):
+    """The steps of the motion that an animation of ``frames`` frames shows: evenly
+    over the sweep, and back again for a rocker."""
+    n = motion.theta.size
+    picks = [int(k) for k in np.linspace(0, n - 1, min(frames, n)).round()]
+    if motion.summary and not motion.summary.get("full_turn", True):
+        picks = picks + picks[::-1][1:-1]
+    return picks
+
+
 def mechanism_svg(motion, *, frames=None, seconds=4.0, width=640):
     """The mechanism drawn in the textbook's style, as SVG text.
 
@@ -283,13 +293,7 @@ def mechanism_svg(motion, *, frames=None, seconds=4.0, width=640):
     (1, 1, 1)
     """
     scene = _Scene(motion)
-    n = scene.n
-    if frames:
-        picks = list(np.linspace(0, n - 1, min(frames, n)).round().astype(int))
-        if motion.summary and not motion.summary.get("full_turn", True):
-            picks = picks + picks[::-1][1:-1]
-    else:
-        picks = [0]
+    picks = frame_steps(motion, frames) if frames else [0]
     width_m, height_m = scene.size
     height = int(round(width * height_m / width_m))
     units = motion.units or "units"

@@ -17,6 +17,8 @@ import sys
 from dataclasses import dataclass, field
 from pathlib import Path
 
+import numpy as np
+
 
 from .chainfile import load
 from .classify import classify
@@ -66,6 +68,7 @@ class Entry:
     motion: object = None
     error: str | None = None
     warnings: list = field(default_factory=list)
+    frames: int = 48
 
 
 @dataclass
@@ -191,6 +194,7 @@ def _entry_job(job):
             warnings.simplefilter("ignore", RuntimeWarning)
             _analyse(entry, steps)
             _write_images(entry, Path(out), frames)
+            entry.frames = frames
         (Path(out) / f"{slug}.html").write_text(_entry_page(entry), encoding="utf-8")
     except ChainGraphError as e:
         row.error = str(e)
@@ -344,13 +348,115 @@ def _motion_section(e):
     rows = summary_rows(e.motion)
     out = ["<h2>Motion</h2><table id=\"summary\">"]
     out += [f"<tr><th>{_esc(a)}</th><td>{_esc(b)}</td></tr>" for a, b in rows]
-    out.append("</table><div class=\"figures\">")
+    out.append("</table>")
+    out += _player(e)
+    out.append("<div class=\"figures\">")
     out.append(f"<figure><img src=\"img/{e.slug}-pose.svg\" alt=\"drawn pose\" width=\"480\">"
                "<figcaption>The drawn pose with the paths of its joints and points."
                "</figcaption></figure>")
-    out.append(f"<figure><img src=\"img/{e.slug}-cycle.svg\" alt=\"one cycle, animated\" "
-               "width=\"480\"><figcaption>One cycle of the input.</figcaption></figure>")
     out.append(f"<figure><img src=\"img/{e.slug}-motion.svg\" alt=\"output motion\" "
                "width=\"560\"><figcaption>The output's displacement, velocity and "
                "acceleration against the input angle.</figcaption></figure></div>")
     return out
+
+
+def _player(e):
+    """The interactive cycle: the animated drawing inline, play/pause, a slider per
+    input and the output's plot with the current point marked. A small inline script
+    drives it; without script the drawing plays by SMIL."""
+    import json
+
+    from .drawing import frame_steps, mechanism_svg
+    from .plots import output_series
+
+    m = e.motion
+    frames = e.frames
+    picks = frame_steps(m, frames)
+    drawing = mechanism_svg(m, frames=frames, width=480).split("?>", 1)[-1]
+    if m.inputs:
+        inputs = [(i.joint, m["input:" + i.joint]) for i in m.inputs]
+    else:
+        inputs = [("\u03b8 (degrees)", m.theta)]
+    try:
+        label, u, *_ = output_series(m)
+    except Exception:
+        label, u = None, None
+    data = {"inputs": [[float(v[k]) for k in picks] for _, v in inputs]}
+    out = ["<h3>One cycle: play it, or drag the input</h3>",
+           f"<div class=\"player\" id=\"player\" data-frame=\"0\" data-frames=\"{len(picks)}\">",
+           "<div class=\"controls\"><button type=\"button\" id=\"play\">pause</button>"]
+    for n, (name, values) in enumerate(inputs):
+        out.append(f"<label>{_esc(name)} <input type=\"range\" class=\"input-slider\" "
+                   f"data-index=\"{n}\" min=\"0\" max=\"{len(picks) - 1}\" step=\"1\" "
+                   f"value=\"0\"> <output>{values[picks[0]]:.4g}</output></label>")
+    out.append("</div>")
+    out.append(f"<div class=\"stage\" id=\"stage\">{drawing}</div>")
+    if u is not None:
+        x, y = np.asarray(m.theta, dtype=float), np.asarray(u, dtype=float)
+        ok = np.isfinite(x) & np.isfinite(y)
+        w, h, pad = 480.0, 200.0, 24.0
+        x0, x1 = float(x[ok].min()), float(x[ok].max())
+        y0, y1 = float(y[ok].min()), float(y[ok].max())
+
+        def px(v):
+            return pad + (v - x0) / max(x1 - x0, 1e-12) * (w - 2 * pad)
+
+        def py(v):
+            return h - pad - (v - y0) / max(y1 - y0, 1e-12) * (h - 2 * pad)
+
+        line = " ".join(f"{px(a):.2f},{py(b):.2f}" for a, b in zip(x[ok], y[ok]))
+        data["px"] = [px(float(x[k])) if ok[k] else None for k in picks]
+        data["py"] = [py(float(y[k])) if ok[k] else None for k in picks]
+        out.append(f"<div class=\"stage\"><svg id=\"output-plot\" xmlns=\"http://www.w3.org/2000/svg\" "
+                   f"width=\"{w:g}\" height=\"{h:g}\" viewBox=\"0 0 {w:g} {h:g}\">"
+                   f"<rect width=\"100%\" height=\"100%\" fill=\"white\"/>"
+                   f"<polyline points=\"{line}\" fill=\"none\" stroke=\"#1f4e79\" stroke-width=\"1.5\"/>"
+                   f"<circle id=\"marker\" cx=\"{data['px'][0] or 0:.2f}\" cy=\"{data['py'][0] or 0:.2f}\" "
+                   f"r=\"5\" fill=\"#e07b00\"/>"
+                   f"<text x=\"{pad:g}\" y=\"14\" font-size=\"11\" font-family=\"sans-serif\">"
+                   f"{_esc(label)} against the input</text></svg></div>")
+    out.append(f"<p><a href=\"img/{e.slug}-cycle.svg\">the animation alone</a> (SVG, plays "
+               "without script)</p></div>")
+    out.append("<script>\nvar PLAYER = " + json.dumps(data) + ";\n" + _PLAYER_SCRIPT + "</script>")
+    return out
+
+
+_PLAYER_SCRIPT = """
+(function () {
+  var player = document.getElementById('player');
+  var svg = document.querySelector('#stage svg');
+  var groups = Array.prototype.slice.call(svg.querySelectorAll('g.frame'));
+  groups.forEach(function (g) {       // the script drives the frames: SMIL off
+    Array.prototype.slice.call(g.querySelectorAll('animate')).forEach(function (a) { a.remove(); });
+  });
+  var sliders = Array.prototype.slice.call(player.querySelectorAll('input.input-slider'));
+  var marker = document.getElementById('marker');
+  var button = document.getElementById('play');
+  var n = groups.length, frame = 0, timer = null;
+  function show(i) {
+    frame = i;
+    groups.forEach(function (g, k) { g.setAttribute('visibility', k === i ? 'visible' : 'hidden'); });
+    sliders.forEach(function (s) {
+      s.value = i;
+      s.nextElementSibling.textContent = Number(PLAYER.inputs[+s.dataset.index][i]).toPrecision(4);
+    });
+    if (marker && PLAYER.px && PLAYER.px[i] !== null) {
+      marker.setAttribute('cx', PLAYER.px[i].toFixed(2));
+      marker.setAttribute('cy', PLAYER.py[i].toFixed(2));
+    }
+    player.setAttribute('data-frame', i);
+  }
+  function pause() { if (timer) { clearInterval(timer); timer = null; } button.textContent = 'play'; }
+  function play() {
+    pause();
+    timer = setInterval(function () { show((frame + 1) % n); }, 4000 / n);
+    button.textContent = 'pause';
+  }
+  button.addEventListener('click', function () { if (timer) { pause(); } else { play(); } });
+  sliders.forEach(function (s) {
+    s.addEventListener('input', function () { pause(); show(+s.value); });
+  });
+  var asked = /frame=(\\d+)/.exec(window.location.hash);
+  if (asked) { pause(); show(Math.min(+asked[1], n - 1)); } else { show(0); play(); }
+})();
+"""
