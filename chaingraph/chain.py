@@ -323,7 +323,7 @@ class Chain:
                 f"{tail})")
 
     def _repr_svg_(self):
-        """A notebook shows a chain as its link-joint graph."""
+        """A notebook shows a chain as its kinematic skeleton."""
         from .notebook import chain_svg
         return chain_svg(self)
 

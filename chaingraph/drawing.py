@@ -21,7 +21,7 @@ import math
 
 import numpy as np
 
-__all__ = ["mechanism_svg", "frame_steps"]
+__all__ = ["mechanism_svg", "frame_steps", "skeleton_svg"]
 
 _COLOURS = ["#1f77b4", "#2ca02c", "#d62728", "#9467bd", "#8c564b", "#e377c2", "#17becf",
             "#bcbd22", "#ff7f0e"]
@@ -337,5 +337,88 @@ def mechanism_svg(motion, *, frames=None, seconds=4.0, width=640):
                  f'<text x="{x0:.4g}" y="{y0 - 0.02 * scene.span:.4g}" '
                  f'font-size="{0.035 * scene.span:.3g}" font-family="sans-serif">'
                  f'{bar:g} {html.escape(units)}</text></g>')
+    parts.append("</svg>")
+    return "\n".join(parts)
+
+
+def skeleton_svg(chain, *, width=420):
+    """The kinematic skeleton of any chain, mechanism or not: its links as bars (binary)
+    and plates (three or more joints) between its joints, R joints as pins, P joints as
+    blocks, higher pairs as dashed rings, the fixed link (if any) on hatched ground.
+    From the drawn pose when every joint has one, else from a computed layout.
+
+    Examples
+    --------
+    >>> import chaingraph
+    >>> from chaingraph.catalog import catalog_path
+    >>> svg = skeleton_svg(chaingraph.load(catalog_path("stephenson-six-bar-chain")))
+    >>> svg.count('class="plate"'), svg.count('class="bar"'), svg.count('class="pin"')
+    (2, 4, 7)
+    """
+    import networkx as nx
+
+    drawn = all(j.at is not None for j in chain.joints)
+    if drawn:
+        pos = {j.id: j.at for j in chain.joints}
+    else:
+        g = nx.Graph()
+        g.add_nodes_from(j.id for j in chain.joints)
+        for link in chain.links:
+            ids = [j.id for j in chain.joints_of(link)]
+            g.add_edges_from((a, b) for i, a in enumerate(ids) for b in ids[i + 1:])
+        layout = nx.spring_layout(g, seed=7, iterations=200)
+        pos = {k: (float(v[0]) * 100, float(v[1]) * 100) for k, v in layout.items()}
+    xs, ys = [p[0] for p in pos.values()], [p[1] for p in pos.values()]
+    span = max(max(xs) - min(xs), max(ys) - min(ys), 1e-9)
+    pad = 0.15 * span
+    w_m, h_m = max(xs) - min(xs) + 2 * pad, max(ys) - min(ys) + 2 * pad
+
+    def pt(p):
+        return f"{p[0] - min(xs) + pad:.4g},{max(ys) - p[1] + pad:.4g}"
+
+    fixed = chain.mechanism.fixed if chain.mechanism else None
+    r, stroke = 0.025 * span, 0.01 * span
+    parts = ['<?xml version="1.0"?>',
+             f'<svg xmlns="http://www.w3.org/2000/svg" width="{width}" '
+             f'height="{int(round(width * h_m / w_m))}" viewBox="0 0 {w_m:.6g} {h_m:.6g}">',
+             f'<title>{html.escape(chain.name)}: kinematic skeleton'
+             f'{"" if drawn else " (computed layout)"}</title>',
+             '<rect width="100%" height="100%" fill="white"/>']
+    for c, link in enumerate(chain.links):
+        ends = [pos[j.id] for j in chain.joints_of(link)]
+        colour = "#444444" if link == fixed else _COLOURS[c % len(_COLOURS)]
+        name = html.escape(link, quote=True)
+        if len(ends) >= 3:
+            hull = _hull([(round(x, 12), round(y, 12)) for x, y in ends])
+            parts.append(f'<polygon class="plate" data-link="{name}" points="'
+                         + " ".join(pt(p) for p in hull) + f'" fill="{colour}" '
+                         f'fill-opacity="0.2" stroke="{colour}" stroke-width="{stroke:.3g}"/>')
+        elif len(ends) == 2:
+            parts.append(f'<polyline class="bar" data-link="{name}" points="'
+                         + " ".join(pt(p) for p in ends) + f'" stroke="{colour}" '
+                         f'stroke-width="{2 * stroke:.3g}" stroke-linecap="round"/>')
+    for j in chain.joints:
+        x, y = (float(v) for v in pt(pos[j.id]).split(","))
+        jid = html.escape(j.id, quote=True)
+        if fixed in j.links:
+            parts.append(f'<polygon class="ground" points="{x:.4g},{y:.4g} {x - 1.4 * r:.4g},'
+                         f'{y + 2 * r:.4g} {x + 1.4 * r:.4g},{y + 2 * r:.4g}" fill="#dddddd" '
+                         f'stroke="#222222" stroke-width="{0.6 * stroke:.3g}"/>')
+        if j.kind == "R":
+            parts.append(f'<circle class="pin" data-joint="{jid}" cx="{x:.4g}" cy="{y:.4g}" '
+                         f'r="{r:.3g}" fill="white" stroke="#111111" '
+                         f'stroke-width="{0.8 * stroke:.3g}"/>')
+        elif j.kind == "P":
+            parts.append(f'<rect class="block" data-joint="{jid}" x="{x - 1.5 * r:.4g}" '
+                         f'y="{y - r:.4g}" width="{3 * r:.3g}" height="{2 * r:.3g}" '
+                         f'fill="#f2f2f2" stroke="#222222" stroke-width="{0.8 * stroke:.3g}"/>')
+        else:
+            parts.append(f'<circle class="higher" data-joint="{jid}" cx="{x:.4g}" '
+                         f'cy="{y:.4g}" r="{1.3 * r:.3g}" fill="none" stroke="#b05000" '
+                         f'stroke-dasharray="{stroke:.3g}" stroke-width="{0.8 * stroke:.3g}"/>')
+        parts.append(f'<text x="{x + 1.2 * r:.4g}" y="{y - 1.2 * r:.4g}" '
+                     f'font-size="{0.06 * span:.3g}" font-family="sans-serif" '
+                     f'paint-order="stroke" stroke="white" stroke-width="{0.015 * span:.3g}">'
+                     f'{html.escape(j.id)}</text>')
     parts.append("</svg>")
     return "\n".join(parts)

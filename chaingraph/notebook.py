@@ -2,7 +2,7 @@
 classifications, inversions and solved motions, and an inline animation.
 
 The classes call these functions from their ``_repr_*_`` methods, so Jupyter shows a
-chain as its link-joint graph, a classification and inversions as tables, and a motion
+chain as its kinematic skeleton, a classification and inversions as tables, and a motion
 as its summary and plot. Nothing here needs IPython; :meth:`Motion.to_frame` needs
 pandas (``pip install chaingraph[notebook]``).
 """
@@ -47,8 +47,8 @@ def _table(rows, header=None) -> str:
 
 
 def chain_svg(chain) -> str:
-    from .graphdraw import draw_link_joint_graph
-    return figure_svg(draw_link_joint_graph(chain, None))
+    from .drawing import skeleton_svg
+    return skeleton_svg(chain)
 
 
 def classification_html(result) -> str:

@@ -232,6 +232,8 @@ def _write_images(entry, out, frames):
     from .plots import plot_motion
     img = out / "img"
     draw_link_joint_graph(entry.chain, img / f"{entry.slug}-graph.svg")
+    from .drawing import skeleton_svg
+    (img / f"{entry.slug}-skeleton.svg").write_text(skeleton_svg(entry.chain), encoding="utf-8")
     if entry.motion is not None:
         (img / f"{entry.slug}-pose.svg").write_text(mechanism_svg(entry.motion),
                                                      encoding="utf-8")
@@ -295,12 +297,17 @@ def _entry_page(e):
             f"<code>{_esc(Path(e.source).name)}</code></p>"]
     if chain.notes:
         body.append(f"<p class=\"notes\">{_esc(chain.notes)}</p>")
-    body.append("<h2>Link-joint graph</h2>")
+    body.append("<h2>The chain and its link-joint graph</h2><div class=\"figures\">")
+    body.append(f"<figure><img src=\"img/{e.slug}-skeleton.svg\" alt=\"kinematic skeleton of "
+                f"{_esc(chain.name)}\" width=\"360\"><figcaption>The kinematic skeleton: "
+                "links as bars and plates, R joints as pins, P joints as blocks"
+                + (", from the drawn pose" if chain.has_pose else ", in a computed layout "
+                   "(the file gives no pose)") + ".</figcaption></figure>")
     body.append(f"<figure><img src=\"img/{e.slug}-graph.svg\" alt=\"link-joint graph of "
                 f"{_esc(chain.name)}\" width=\"560\"><figcaption>Links as circles, joints as "
                 "squares labelled with their kind (R turning, P sliding: the arrow points to "
                 "the link carrying the guide; higher pairs dashed); the fixed link is drawn "
-                "dark.</figcaption></figure>")
+                "dark.</figcaption></figure></div>")
     body.append("<h2>Classification</h2><table id=\"classification\">")
     facts = [("links L", c.links, ", ".join(f"{k} {v}" for k, v in c.link_orders.items() if v)),
              ("pairs P", c.pairs, ", ".join(f"{k} {v}" for k, v in c.pair_kinds.items())),

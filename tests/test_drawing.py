@@ -90,3 +90,16 @@ def test_solve_draw_writes_the_drawing(tmp_path):
     assert code == 0, err
     root = ET.fromstring(out.read_text())
     assert len(root.findall(".//s:polygon[@class='block']", NS)) == 2
+
+
+@pytest.mark.parametrize("path", CATALOG, ids=[p.stem for p in CATALOG])
+def test_every_chain_has_a_skeleton(path):
+    from chaingraph.drawing import skeleton_svg
+    chain = chaingraph.load(path)
+    root = ET.fromstring(skeleton_svg(chain))
+    marks = (root.findall(".//s:circle[@class='pin']", NS) + root.findall(".//s:rect[@class='block']", NS)
+             + root.findall(".//s:circle[@class='higher']", NS))
+    assert len(marks) == len(chain.joints)
+    drawn = [e for e in root.iter() if e.get("data-link")]
+    assert {e.get("data-link") for e in drawn} == {x for x in chain.links
+                                                   if len(chain.joints_of(x)) >= 2}
