@@ -593,7 +593,7 @@ class _Solver:
                     return True
         return False
 
-    def _choose(self, part, reference, candidates, words, bodies):
+    def _choose(self, part, reference, candidates, words):
         """Pick one of two candidate placements ``{body: pose}``: the mode given in
         ``[assembly]``, else the one nearest the sketched positions, else the first."""
         given = self.model.dims.modes.get(part)
@@ -664,8 +664,7 @@ class _Solver:
         cands.sort(key=lambda t: t[0])
         placements = [{b1: _from_two(q1, w1, s1, p), b2: _from_two(q2, w2, s2, p)}
                       for _, p in cands]
-        self._choose(j, f"of the line {ka}\u2192{kb}", placements, ("left", "right"),
-                     (b1, b2))
+        self._choose(j, f"of the line {ka}\u2192{kb}", placements, ("left", "right"))
 
     def _rrp(self, b1, b2, one, link, two):
         """b1 turns about a placed joint; b2 (direction known) slides on a placed line;
@@ -696,7 +695,7 @@ class _Solver:
             placements.append({b1: _from_two(q1, w1, s1, p),
                                b2: (angle2, p[0] - s2w[0], p[1] - s2w[1])})
         self._choose(j, f"of the foot of {c1[1]} along the sliding line of {c2[1]}",
-                     placements, ("ahead", "behind"), (b1, b2))
+                     placements, ("ahead", "behind"))
 
     def _rpr(self, b1, b2, one, link, two):
         """Two bodies joined by a sliding pair, each turning about a placed joint."""
@@ -730,7 +729,7 @@ class _Solver:
         placements.sort(key=lambda t: t[0])
         guide, block = (c1[1], c2[1]) if guide_first else (c2[1], c1[1])
         self._choose(j, f"of {guide} along the sliding line, for the pin {block}",
-                     [p for _, p in placements], ("ahead", "behind"), (b1, b2))
+                     [p for _, p in placements], ("ahead", "behind"))
 
     def _group(self, free):
         """Bodies left after every closed-form step: Newton's method from the rough

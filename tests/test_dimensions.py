@@ -320,9 +320,6 @@ def test_round_trip_measure_then_assemble_gives_the_same_pose(path):
 
 
 # -- drawing-level rounding -------------------------------------------------------------------
-SIZE = None
-
-
 def test_typed_pose_within_rounding_assembles_with_one_warning_beyond_refused():
     chain = loads(four_bar_text())
     size = max(j.at[0] for j in chain.joints) - min(j.at[0] for j in chain.joints)
