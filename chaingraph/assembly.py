@@ -30,7 +30,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from .dimensions import LineSpec, MODE_WORDS, link_features, link_shape
+from .dimensions import LineSpec, MODE_WORDS, _rotate, _sub, link_features, link_shape
 from .errors import DimensionError, PoseAdjustedWarning
 
 __all__ = ["Assembly", "Mode", "assemble", "measure", "snap_to_lines",
@@ -84,8 +84,7 @@ class _DoesNotClose(Exception):
 
 # -- small geometry --------------------------------------------------------------------
 def _rot(phi, p):
-    c, s = math.cos(phi), math.sin(phi)
-    return (c * p[0] - s * p[1], s * p[0] + c * p[1])
+    return _rotate(p, phi)
 
 
 def _apply(pose, p):
@@ -118,10 +117,6 @@ def _dot(a, b):
 
 def _cross(a, b):
     return a[0] * b[1] - a[1] * b[0]
-
-
-def _sub(a, b):
-    return (a[0] - b[0], a[1] - b[1])
 
 
 def _line_in(pose, line):
@@ -1056,9 +1051,7 @@ def _pose(model, solver):
         joints[j.id] = (tuple(ref) if abs(h) <= 1e-12 * model.scale
                         else (ref[0] + h * n[0], ref[1] + h * n[1]))
     pts = {pid: solver.world_point(link, pid) for pid, link in model.points}
-    every = list(joints.values()) + list(pts.values())
-    xs, ys = [p[0] for p in every], [p[1] for p in every]
-    size = max(max(xs) - min(xs), max(ys) - min(ys), 1e-300)
+    size = _span({**joints, **pts})
     modes = tuple(model.shape_modes) + tuple(solver.modes)
     frames = {link: _compose(solver.pose[body], t) for link, (body, t) in solver.body.items()}
     return Assembly(joints, axes, pts, modes, tuple(solver.groups), size, frames)
@@ -1342,6 +1335,8 @@ def measure(chain):
 
 
 def _span(where):
+    """The mechanism's size, as the solver takes it: the longer side of the box round
+    its joints and points."""
     xs = [p[0] for p in where.values()]
     ys = [p[1] for p in where.values()]
     return max(max(xs) - min(xs), max(ys) - min(ys), 1e-300)
@@ -1419,20 +1414,19 @@ def snap_to_lines(chain):
     def position(name):
         return x[index[name]:index[name] + 2] if name in index else np.array(where[name])
 
-    for _ in range(3):
-        rows, res = [], []
-        for p, name, _ in on:
-            n = _normal(math.radians(chain.joint(p).axis))
-            row = np.zeros(len(x))
-            for f, sign in ((name, 1.0), (p, -1.0)):
-                if f in index:
-                    row[index[f]:index[f] + 2] += sign * np.array(n)
-            rows.append(row)
-            res.append(_dot(n, position(name) - position(p)))
-        J, r = np.array(rows), np.array(res)
-        if np.abs(r).max() <= 1e-14 * size:
-            break
-        x = x - J.T @ np.linalg.lstsq(J @ J.T, r, rcond=None)[0]
+    # each constraint n . (feature - line point) = 0 is linear in the positions (the axes
+    # stay), so one minimum-norm step lands on the nearest consistent pose
+    rows, res = [], []
+    for p, name, _ in on:
+        n = np.array(_normal(math.radians(chain.joint(p).axis)))
+        row = np.zeros(len(x))
+        for f, sign in ((name, 1.0), (p, -1.0)):
+            if f in index:
+                row[index[f]:index[f] + 2] += sign * n
+        rows.append(row)
+        res.append(float(n @ (position(name) - position(p))))
+    J, r = np.array(rows), np.array(res)
+    x = x - J.T @ np.linalg.lstsq(J @ J.T, r, rcond=None)[0]
     if max(abs(_dot(_normal(math.radians(chain.joint(p).axis)), position(name) - position(p)))
            for p, name, _ in on) > 1e-12 * size:
         return chain      # the fixed link's joints themselves disagree: leave it as drawn

@@ -73,11 +73,7 @@ def motion_html(motion) -> str:
     from .kinematics import summary_rows
     from .plots import plot_motion
     rows = [("mechanism", motion.name), *summary_rows(motion)]
-    try:
-        plot = figure_svg(plot_motion(motion))
-    except Exception:                      # a motion with no output to plot
-        plot = ""
-    return _table(rows) + plot
+    return _table(rows) + figure_svg(plot_motion(motion))
 
 
 class Animation:

@@ -384,10 +384,7 @@ def _player(e):
         inputs = [(i.joint, m["input:" + i.joint]) for i in m.inputs]
     else:
         inputs = [("\u03b8 (degrees)", m.theta)]
-    try:
-        label, u, *_ = output_series(m)
-    except Exception:
-        label, u = None, None
+    label, u, *_ = output_series(m)
     data = {"inputs": [[float(v[k]) for k in picks] for _, v in inputs]}
     out = ["<h3>One cycle: play it, or drag the input</h3>",
            f"<div class=\"player\" id=\"player\" data-frame=\"0\" data-frames=\"{len(picks)}\">",
@@ -398,30 +395,29 @@ def _player(e):
                    f"value=\"0\"> <output>{values[picks[0]]:.4g}</output></label>")
     out.append("</div>")
     out.append(f"<div class=\"stage\" id=\"stage\">{drawing}</div>")
-    if u is not None:
-        x, y = np.asarray(m.theta, dtype=float), np.asarray(u, dtype=float)
-        ok = np.isfinite(x) & np.isfinite(y)
-        w, h, pad = 480.0, 200.0, 24.0
-        x0, x1 = float(x[ok].min()), float(x[ok].max())
-        y0, y1 = float(y[ok].min()), float(y[ok].max())
+    x, y = np.asarray(m.theta, dtype=float), np.asarray(u, dtype=float)
+    ok = np.isfinite(x) & np.isfinite(y)
+    w, h, pad = 480.0, 200.0, 24.0
+    x0, x1 = float(x[ok].min()), float(x[ok].max())
+    y0, y1 = float(y[ok].min()), float(y[ok].max())
 
-        def px(v):
-            return pad + (v - x0) / max(x1 - x0, 1e-12) * (w - 2 * pad)
+    def px(v):
+        return pad + (v - x0) / max(x1 - x0, 1e-12) * (w - 2 * pad)
 
-        def py(v):
-            return h - pad - (v - y0) / max(y1 - y0, 1e-12) * (h - 2 * pad)
+    def py(v):
+        return h - pad - (v - y0) / max(y1 - y0, 1e-12) * (h - 2 * pad)
 
-        line = " ".join(f"{px(a):.2f},{py(b):.2f}" for a, b in zip(x[ok], y[ok]))
-        data["px"] = [px(float(x[k])) if ok[k] else None for k in picks]
-        data["py"] = [py(float(y[k])) if ok[k] else None for k in picks]
-        out.append(f"<div class=\"stage\"><svg id=\"output-plot\" xmlns=\"http://www.w3.org/2000/svg\" "
-                   f"width=\"{w:g}\" height=\"{h:g}\" viewBox=\"0 0 {w:g} {h:g}\">"
-                   f"<rect width=\"100%\" height=\"100%\" fill=\"white\"/>"
-                   f"<polyline points=\"{line}\" fill=\"none\" stroke=\"#1f4e79\" stroke-width=\"1.5\"/>"
-                   f"<circle id=\"marker\" cx=\"{data['px'][0] or 0:.2f}\" cy=\"{data['py'][0] or 0:.2f}\" "
-                   f"r=\"5\" fill=\"#e07b00\"/>"
-                   f"<text x=\"{pad:g}\" y=\"14\" font-size=\"11\" font-family=\"sans-serif\">"
-                   f"{_esc(label)} against the input</text></svg></div>")
+    line = " ".join(f"{px(a):.2f},{py(b):.2f}" for a, b in zip(x[ok], y[ok]))
+    data["px"] = [px(float(x[k])) if ok[k] else None for k in picks]
+    data["py"] = [py(float(y[k])) if ok[k] else None for k in picks]
+    out.append(f"<div class=\"stage\"><svg id=\"output-plot\" xmlns=\"http://www.w3.org/2000/svg\" "
+               f"width=\"{w:g}\" height=\"{h:g}\" viewBox=\"0 0 {w:g} {h:g}\">"
+               f"<rect width=\"100%\" height=\"100%\" fill=\"white\"/>"
+               f"<polyline points=\"{line}\" fill=\"none\" stroke=\"#1f4e79\" stroke-width=\"1.5\"/>"
+               f"<circle id=\"marker\" cx=\"{data['px'][0] or 0:.2f}\" cy=\"{data['py'][0] or 0:.2f}\" "
+               f"r=\"5\" fill=\"#e07b00\"/>"
+               f"<text x=\"{pad:g}\" y=\"14\" font-size=\"11\" font-family=\"sans-serif\">"
+               f"{_esc(label)} against the input</text></svg></div>")
     out.append(f"<p><a href=\"img/{e.slug}-cycle.svg\">the animation alone</a> (SVG, plays "
                "without script)</p></div>")
     out.append("<script>\nvar PLAYER = " + json.dumps(data) + ";\n" + _PLAYER_SCRIPT + "</script>")

@@ -470,3 +470,18 @@ def test_malformed_dimension_keys_raise_only_file_errors():
                 read_document(doc, source="fuzz.toml")
             except ChainFileError:
                 pass
+
+
+def test_fixed_link_by_its_length_and_direction():
+    """The fixed pivots by a distance and the direction of the line between them."""
+    A = (10.0, 5.0)
+    D = polar(A, 100.0, 30.0)
+    text = four_bar_text().replace("at = [100.0, 0.0]\n", "").replace(
+        "at = [0.0, 0.0]", "at = [10.0, 5.0]").replace(
+        "[lengths]\n", "[lengths]\nframe = {A-D = 100.0, direction = 30.0}\n")
+    chain = loads(text)
+    B = polar(A, 40.0, 60.0)
+    for name, at in zip("ABCD", (A, B, circles(B, 120.0, D, 80.0, 1), D)):
+        assert close(chain.joint(name).at, at), name
+    with pytest.raises(ChainFileError, match="'direction' places the fixed link"):
+        loads(text.replace("crank = 40.0", "crank = {A-B = 40.0, direction = 5.0}"))
