@@ -63,15 +63,58 @@ def test_every_animation_moves(drawings, name):
 
 def test_the_slot_is_drawn_on_the_link_that_reaches_past_the_block(drawings):
     """The textbook numbers the crank and slotted lever so that its small block carries
-    the pair's guide; the slot is drawn on the lever. A guide whose pin is a fixed pivot
-    (the oscillating cylinder's trunnion) keeps it."""
+    the pair's guide; the slot is drawn on the lever."""
     _, svg = drawings["crank-and-slotted-lever-mechanism"]
     guide = svg.find("s:g[@class='frame']/s:line[@class='guide']", NS)
     assert guide.get("data-link") == "slotted lever"
-    motion, svg = drawings["oscillating-cylinder-engine"]
+    assert svg.findall("s:g[@class='frame']/s:line[@class='slot']", NS)
+
+
+@pytest.mark.parametrize("name, cylinder, rod", [
+    ("oscillating-cylinder-engine", "cylinder", "piston rod"),
+    ("pendulum-pump", None, None),
+])
+def test_an_oscillating_cylinder_is_a_barrel_with_the_rod_and_piston_in_it(drawings, name,
+                                                                           cylinder, rod):
+    """A block on a pin to the frame is a trunnion: the barrel swings on it, closed at
+    the end away from the rod, and the piston (the block) stays inside it in every frame,
+    joined to the rod's pin by the rod. (The pendulum pump's cylinder is the frame: a
+    way.)"""
+    motion, svg = drawings[name]
     (slide,) = [j for j in motion.plan.chain.joints if j.kind == "P"]
-    guide = svg.find("s:g[@class='frame']/s:line[@class='guide']", NS)
-    assert guide.get("data-link") == slide.links[0]
+    barrels = svg.findall(".//s:polyline[@class='barrel']", NS)
+    if cylinder is None:
+        assert not barrels and svg.findall(".//s:line[@class='hatch']", NS)
+        return
+    assert len(barrels) == len(svg.findall("s:g[@class='frame']", NS))
+    for frame in svg.findall("s:g[@class='frame']", NS):
+        (barrel,) = frame.findall(f"s:polyline[@class='barrel'][@data-joint='{slide.id}']", NS)
+        assert barrel.get("data-link") == cylinder
+        (p0, p1, p2, p3) = points(barrel)            # open end, closed end, closed end, open
+        (block,) = frame.findall(f"s:polygon[@class='block'][@data-joint='{slide.id}']", NS)
+        cx = sum(p[0] for p in points(block)) / 4
+        cy = sum(p[1] for p in points(block)) / 4
+        # the piston's centre lies inside the barrel's rectangle
+        ax, ay = p1[0] - p0[0], p1[1] - p0[1]
+        bx, by = p3[0] - p0[0], p3[1] - p0[1]
+        t = ((cx - p0[0]) * ax + (cy - p0[1]) * ay) / (ax * ax + ay * ay)
+        n = ((cx - p0[0]) * bx + (cy - p0[1]) * by) / (bx * bx + by * by)
+        assert 0 < t < 1 and 0 < n < 1, (t, n)
+        (bar,) = frame.findall(f"s:polyline[@class='bar'][@data-link='{rod}']", NS)
+        ends = points(bar)
+        assert min(math.hypot(x - cx, y - cy) for x, y in ends) < 1e-2 * math.hypot(ax, ay)
+
+
+def test_a_link_without_pins_is_drawn_between_its_guides(drawings):
+    """The Scotch yoke's yoke has no R joint: its body joins the block in the frame's
+    way to the middle of its slot, and it moves with them."""
+    motion, svg = drawings["scotch-yoke"]
+    frames = svg.findall("s:g[@class='frame']", NS)
+    bars = [f.find("s:polyline[@class='bar'][@data-link='yoke']", NS) for f in frames]
+    assert all(b is not None for b in bars)
+    assert len({b.get("points") for b in bars}) > 1
+    way = frames[0].find("s:line[@class='guide'][@data-joint='G1']", NS)
+    assert way.get("data-link") == "frame"          # the yoke slides in the frame's way
 
 
 def test_fixed_pivots_stand_on_hatched_ground_and_names_are_text(tmp_path):
