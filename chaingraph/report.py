@@ -69,6 +69,7 @@ class Entry:
     error: str | None = None
     warnings: list = field(default_factory=list)
     frames: int = 48
+    grid: object = None           # two moving inputs: the poses over both, row by row
 
 
 @dataclass
@@ -223,6 +224,37 @@ def _analyse(entry, steps):
             entry.motion = solve(chain, steps=steps)
         except ChainGraphError as e:
             entry.warnings.append(f"motion not solved: {e}")
+        else:
+            entry.grid = input_grid(chain, entry.motion)
+
+
+def input_grid(chain, motion, *, size=13):
+    """For a mechanism whose two inputs move, its poses over every pair of input
+    values (``size`` values of each over its sweep), as one motion whose rows run
+    through the first input for each value of the second: what lets the player's two
+    sliders move independently. None when the inputs are not two moving ones, or when
+    some pair of values cannot be assembled."""
+    from .chain import Input
+    from .kinematics import solve
+    from .kinematics.motion import Motion
+    if len(motion.inputs) != 2 or motion.plan.moving_inputs != 2:
+        return None
+    first, second = (np.asarray(motion["input:" + i.joint]) for i in motion.inputs)
+    rows = []
+    for value in np.linspace(second[0], second[-1], size):
+        try:
+            rows.append(solve(chain, inputs=[Input(motion.inputs[0].joint, float(first[0]),
+                                                   float(first[-1])),
+                                             Input(motion.inputs[1].joint, float(value),
+                                                   float(value))],
+                              steps=size - 1, summary=False))
+        except ChainGraphError:
+            return None
+    columns = {key: np.concatenate([np.broadcast_to(r[key], (size,)) for r in rows])
+               for key in rows[0].columns}
+    return Motion(name=motion.name, fixed=motion.fixed, driver=None, omega=motion.omega,
+                  columns=columns, summary={}, units=motion.units, plan=rows[0].plan,
+                  inputs=motion.inputs)
 
 
 # -- images ----------------------------------------------------------------------------
@@ -370,32 +402,43 @@ def _motion_section(e):
 def _player(e):
     """The interactive cycle: the animated drawing inline, play/pause, a slider per
     input and the output's plot with the current point marked. A small inline script
-    drives it; without script the drawing plays by SMIL."""
+    drives it; without script the drawing plays by SMIL. With two moving inputs the
+    sliders are independent (the drawing holds a pose for every pair of values);
+    otherwise they follow the one sweep together."""
     import json
 
     from .drawing import frame_steps, mechanism_svg
     from .plots import output_series
 
-    m = e.motion
-    frames = e.frames
-    picks = frame_steps(m, frames)
-    drawing = mechanism_svg(m, frames=frames, width=480).split("?>", 1)[-1]
+    m = e.grid if e.grid is not None else e.motion
+    grid = e.grid is not None
+    picks = list(range(m.theta.size)) if grid else frame_steps(m, e.frames)
+    drawing = mechanism_svg(m, frames=len(picks), width=480, paths=not grid).split("?>", 1)[-1]
     if m.inputs:
         inputs = [(i.joint, m["input:" + i.joint]) for i in m.inputs]
     else:
         inputs = [("\u03b8 (degrees)", m.theta)]
     label, u, *_ = output_series(m)
-    data = {"inputs": [[float(v[k]) for k in picks] for _, v in inputs]}
-    out = ["<h3>One cycle: play it, or drag the input</h3>",
+    if grid:
+        size = int(round(math.sqrt(m.theta.size)))
+        data = {"grid": size, "inputs": [[float(v) for v in inputs[0][1][:size]],
+                                         [float(v) for v in inputs[1][1][::size]]]}
+    else:
+        size = None
+        data = {"inputs": [[float(v[k]) for k in picks] for _, v in inputs]}
+    out = ["<h3>" + ("Drag each input" if grid else "One cycle: play it, or drag the input")
+           + "</h3>",
            f"<div class=\"player\" id=\"player\" data-frame=\"0\" data-frames=\"{len(picks)}\">",
            "<div class=\"controls\"><button type=\"button\" id=\"play\">pause</button>"]
     for n, (name, values) in enumerate(inputs):
+        top = (size if grid else len(picks)) - 1
         out.append(f"<label>{_esc(name)} <input type=\"range\" class=\"input-slider\" "
-                   f"data-index=\"{n}\" min=\"0\" max=\"{len(picks) - 1}\" step=\"1\" "
+                   f"data-index=\"{n}\" min=\"0\" max=\"{top}\" step=\"1\" "
                    f"value=\"0\"> <output>{values[picks[0]]:.4g}</output></label>")
     out.append("</div>")
     out.append(f"<div class=\"stage\" id=\"stage\">{drawing}</div>")
-    x, y = np.asarray(m.theta, dtype=float), np.asarray(u, dtype=float)
+    x = np.asarray(inputs[0][1] if grid else m.theta, dtype=float)
+    y = np.asarray(u, dtype=float)
     ok = np.isfinite(x) & np.isfinite(y)
     w, h, pad = 480.0, 200.0, 24.0
     x0, x1 = float(x[ok].min()), float(x[ok].max())
@@ -407,17 +450,21 @@ def _player(e):
     def py(v):
         return h - pad - (v - y0) / max(y1 - y0, 1e-12) * (h - 2 * pad)
 
-    line = " ".join(f"{px(a):.2f},{py(b):.2f}" for a, b in zip(x[ok], y[ok]))
+    runs = [range(r, r + size) for r in range(0, x.size, size)] if grid else [range(x.size)]
+    lines = "".join(
+        "<polyline points=\"" + " ".join(f"{px(x[k]):.2f},{py(y[k]):.2f}" for k in run if ok[k])
+        + "\" fill=\"none\" stroke=\"#1f4e79\" stroke-width=\"" + ("0.8" if grid else "1.5")
+        + "\"/>" for run in runs)
     data["px"] = [px(float(x[k])) if ok[k] else None for k in picks]
     data["py"] = [py(float(y[k])) if ok[k] else None for k in picks]
+    against = f"{inputs[0][0]}, one line per value of {inputs[1][0]}" if grid else "the input"
     out.append(f"<div class=\"stage\"><svg id=\"output-plot\" xmlns=\"http://www.w3.org/2000/svg\" "
                f"width=\"{w:g}\" height=\"{h:g}\" viewBox=\"0 0 {w:g} {h:g}\">"
-               f"<rect width=\"100%\" height=\"100%\" fill=\"white\"/>"
-               f"<polyline points=\"{line}\" fill=\"none\" stroke=\"#1f4e79\" stroke-width=\"1.5\"/>"
+               f"<rect width=\"100%\" height=\"100%\" fill=\"white\"/>{lines}"
                f"<circle id=\"marker\" cx=\"{data['px'][0] or 0:.2f}\" cy=\"{data['py'][0] or 0:.2f}\" "
                f"r=\"5\" fill=\"#e07b00\"/>"
                f"<text x=\"{pad:g}\" y=\"14\" font-size=\"11\" font-family=\"sans-serif\">"
-               f"{_esc(label)} against the input</text></svg></div>")
+               f"{_esc(label)} against {_esc(against)}</text></svg></div>")
     out.append(f"<p><a href=\"img/{e.slug}-cycle.svg\">the animation alone</a> (SVG, plays "
                "without script)</p></div>")
     out.append("<script>\nvar PLAYER = " + json.dumps(data) + ";\n" + _PLAYER_SCRIPT + "</script>")
@@ -435,13 +482,15 @@ _PLAYER_SCRIPT = """
   var sliders = Array.prototype.slice.call(player.querySelectorAll('input.input-slider'));
   var marker = document.getElementById('marker');
   var button = document.getElementById('play');
-  var n = groups.length, frame = 0, timer = null;
+  var n = groups.length, frame = 0, timer = null, grid = PLAYER.grid || 0;
   function show(i) {
     frame = i;
     groups.forEach(function (g, k) { g.setAttribute('visibility', k === i ? 'visible' : 'hidden'); });
     sliders.forEach(function (s) {
-      s.value = i;
-      s.nextElementSibling.textContent = Number(PLAYER.inputs[+s.dataset.index][i]).toPrecision(4);
+      var n = +s.dataset.index;         // on a grid: the first input along a row
+      var at = grid ? (n === 0 ? i % grid : Math.floor(i / grid)) : i;
+      s.value = at;
+      s.nextElementSibling.textContent = Number(PLAYER.inputs[n][at]).toPrecision(4);
     });
     if (marker && PLAYER.px && PLAYER.px[i] !== null) {
       marker.setAttribute('cx', PLAYER.px[i].toFixed(2));
@@ -457,7 +506,10 @@ _PLAYER_SCRIPT = """
   }
   button.addEventListener('click', function () { if (timer) { pause(); } else { play(); } });
   sliders.forEach(function (s) {
-    s.addEventListener('input', function () { pause(); show(+s.value); });
+    s.addEventListener('input', function () {
+      pause();
+      show(grid ? +sliders[0].value + grid * +sliders[1].value : +s.value);
+    });
   });
   var asked = /frame=(\\d+)/.exec(window.location.hash);
   if (asked) { pause(); show(Math.min(+asked[1], n - 1)); } else { show(0); play(); }

@@ -98,44 +98,83 @@ def test_pages_in_a_real_browser(report):
                 assert f'id="{table}"' in dom
 
 
-def _dom_at_frame(page: Path, frame: int) -> str:
-    proc = subprocess.run([CHROMIUM, *FLAGS, "--virtual-time-budget=3000", "--dump-dom",
-                           page.as_uri() + f"#frame={frame}"],
-                          capture_output=True, text=True, timeout=120)
-    return proc.stdout
+_STATE = """(function () {
+  var shown = Array.prototype.filter.call(document.querySelectorAll('#stage g.frame'),
+    function (g) { return g.getAttribute('visibility') === 'visible'; });
+  var pins = {};
+  if (shown.length === 1) {
+    Array.prototype.forEach.call(shown[0].querySelectorAll('circle.pin'), function (c) {
+      pins[c.getAttribute('data-joint')] = [+c.getAttribute('cx'), +c.getAttribute('cy')];
+    });
+  }
+  var marker = document.getElementById('marker');
+  return {shown: shown.length, pins: pins,
+          frame: +document.getElementById('player').getAttribute('data-frame'),
+          readouts: Array.prototype.map.call(document.querySelectorAll('.player output'),
+                                             function (o) { return o.textContent; }),
+          marker: [+marker.getAttribute('cx'), +marker.getAttribute('cy')]};
+})()"""
 
 
-def _visible_frame(dom):
-    import xml.etree.ElementTree as ET
-    svg = re.search(r'<div class="stage" id="stage">(.*?)</div>', dom, re.S).group(1)
-    root = ET.fromstring(svg)
-    ns = {"s": "http://www.w3.org/2000/svg"}
-    shown = [g for g in root.findall("s:g[@class='frame']", ns) if g.get("visibility") == "visible"]
-    assert len(shown) == 1
-    return {c.get("data-joint"): (float(c.get("cx")), float(c.get("cy")))
-            for c in shown[0].findall("s:circle[@class='pin']", ns)}
+def _drag(browser, page, slider, value):
+    """Move a slider as a user does (its value, then its ``input`` event) and read the
+    drawing back from the DOM."""
+    browser.evaluate(page, f"(function () {{ var s = document.querySelectorAll("
+                           f"'input.input-slider')[{slider}]; s.value = {value}; "
+                           f"s.dispatchEvent(new Event('input')); return true; }})()")
+    return browser.evaluate(page, _STATE)
 
 
-@pytest.mark.skipif(CHROMIUM is None, reason="Chromium is not installed (.ci/run installs "
-                                             "Debian's chromium; install it to run this test)")
+needs_chromium = pytest.mark.skipif(
+    CHROMIUM is None, reason="Chromium is not installed (.ci/run installs Debian's "
+                             "chromium; install it to run this test)")
+
+
+@needs_chromium
 @pytest.mark.parametrize("name, joint", [("shaper-crank-and-slotted-lever", "P"),
                                          ("elliptical-trammels", "B")])
 def test_the_input_slider_moves_the_drawing_and_the_marker(report, name, joint):
-    """The page's script reads the frame from the address (as a dragged slider sets it)
-    and shows that frame only, moves the slider and the plot's marker."""
+    """Dragging the slider shows that frame only, moves the drawing, the read-out and
+    the plot's marker; the address can also name a frame."""
+    from .browser import Browser
     _, out = report
     page = out / f"{name}.html"
-    first, later = _dom_at_frame(page, 0), _dom_at_frame(page, 12)
-    for dom, frame in ((first, 0), (later, 12)):
-        assert f'id="player" data-frame="{frame}"' in dom
-    # the slider's read-out shows the input's value at that frame
-    shown = [re.search(r'class="input-slider"[^>]*> <output>([^<]*)</output>', d).group(1)
-             for d in (first, later)]
-    assert shown[0] != shown[1]
-    a, b = _visible_frame(first), _visible_frame(later)
-    assert math.dist(a[joint], b[joint]) > 1.0          # the drawing moved
-    marker = [re.search(r'<circle id="marker" cx="([-\d.]+)"', d).group(1) for d in (first, later)]
-    assert marker[0] != marker[1]
+    with Browser() as browser:
+        tab = browser.open(page.as_uri())
+        first = _drag(browser, tab, 0, 0)
+        later = _drag(browser, tab, 0, 12)
+        linked = browser.open(page.as_uri() + "#frame=12")
+        named = browser.evaluate(linked, _STATE)
+    assert (first["frame"], later["frame"], named["frame"]) == (0, 12, 12)
+    assert first["shown"] == later["shown"] == 1
+    assert first["readouts"] != later["readouts"]
+    assert math.dist(first["pins"][joint], later["pins"][joint]) > 1.0   # the drawing moved
+    assert first["marker"] != later["marker"]
+    assert named["pins"] == later["pins"]
     # without script the drawing still plays by SMIL
     static = page.read_text()
     assert "<animate" in static and "attributeName=\"visibility\"" in static
+
+
+@needs_chromium
+def test_two_inputs_have_two_independent_sliders(tmp_path):
+    """The five-bar robot's two cranks: each slider moves its own crank and the arms,
+    and leaves the other crank where it is."""
+    from .browser import Browser
+    example = Path(__file__).parents[1] / "examples" / "five-bar-robot.toml"
+    build_report([example], tmp_path, progress=None)
+    page = tmp_path / "five-bar-robot.html"
+    with Browser() as browser:
+        tab = browser.open(page.as_uri())
+        start = _drag(browser, tab, 0, 0)
+        start = _drag(browser, tab, 1, 0)
+        right = _drag(browser, tab, 1, 8)          # the right crank (input E) only
+        left = _drag(browser, tab, 0, 5)           # then the left crank (input A)
+    assert right["frame"] == 8 * 13 and left["frame"] == 8 * 13 + 5
+    assert right["readouts"][0] == start["readouts"][0] != left["readouts"][0]
+    assert right["readouts"][1] == left["readouts"][1] != start["readouts"][1]
+    assert right["pins"]["B"] == start["pins"]["B"]            # the left crank stayed
+    assert math.dist(right["pins"]["D"], start["pins"]["D"]) > 1.0
+    assert left["pins"]["D"] == right["pins"]["D"]             # the right crank stayed
+    assert math.dist(left["pins"]["B"], right["pins"]["B"]) > 1.0
+    assert math.dist(left["pins"]["C"], right["pins"]["C"]) > 1.0   # the pen follows both
