@@ -17,7 +17,8 @@ from .atlas import atlas
 from .chain import Chain, Input, Joint, Mechanism, Point
 from .chainfile import dumps, from_document, load, loads, save
 from .classify import Check, Classification, classify
-from .errors import (AssemblyError, AtlasSizeError, ChainFileError, ChainGraphError,
+from .errors import (AssemblyError, AtlasRunError, AtlasSizeError, ChainFileError,
+                     ChainGraphError,
                      ChainGraphWarning, ChainStructureError, DesignError, DimensionError,
                      MechanismError, PoseAdjustedWarning)
 from .identify import Identification, identify
@@ -37,6 +38,6 @@ __all__ = [
     "canonical_form", "is_isomorphic", "isomorphism", "automorphism_orbits",
     "atlas", "design", "solve", "measure", "animate", "Motion", "feasible_range", "build_plan", "Plan",
     "ChainGraphError", "ChainFileError", "ChainStructureError", "MechanismError",
-    "AssemblyError", "AtlasSizeError", "DesignError", "DimensionError",
+    "AssemblyError", "AtlasRunError", "AtlasSizeError", "DesignError", "DimensionError",
     "ChainGraphWarning", "PoseAdjustedWarning",
 ]

@@ -9,6 +9,7 @@ from __future__ import annotations
 
 import argparse
 import json
+import os
 import sys
 import warnings
 
@@ -252,38 +253,81 @@ def _cmd_report(args) -> int:
     return report.exit_status
 
 
+def _workers(value, *, flag="--workers") -> int:
+    """The number of processes asked for, refused below 1 and capped at the CPUs."""
+    cpus = os.cpu_count() or 1
+    if value < 1:
+        raise ChainGraphError(f"{flag} must be 1 or more, got {value}")
+    if value > cpus:
+        print(f"chaingraph: note: {flag} {value} capped at the {cpus} CPUs of this machine",
+              file=sys.stderr)
+    return min(value, cpus)
+
+
 def _cmd_atlas(args) -> int:
     import time
-    from .atlas import atlas_dict, atlas_graphs, joints_for, write_atlas
+    from pathlib import Path
+
+    from .atlas import DaskRunner, atlas_dict, process_runner, run_atlas, write_atlas
+    from .atlas.contracted import joints_for
+    from .atlas.estimate import check_size
     from .progress import ProgressBar
     joints_for(args.links, args.dof)   # a size with no chain: exit 2 with the reason
+    if args.scheduler is None or args.scheduler == "local":
+        workers = _workers(args.workers)
+    else:
+        workers = args.workers
+    check_size(args.links, args.dof, cores=workers, cluster=args.scheduler is not None)
+    if args.resume and not args.out:
+        raise ChainGraphError("--resume continues a run in its output folder: give --out DIR")
     start = time.perf_counter()
-    bar = None
+    bar = ProgressBar(1000, None if args.quiet else sys.stderr, percent=True, start=start)
 
-    def progress(done, total):
-        nonlocal bar
-        bar = bar or ProgressBar(total, None if args.quiet else sys.stderr)
-        bar.show(done, "pieces")
-    entries = atlas_graphs(args.links, args.dof, workers=args.workers, progress=progress)
-    if bar is not None:
+    def progress(fraction, text):
+        bar.show(int(round(1000 * fraction)), text)
+    listing = (args.json and not args.summary) or (not args.out and not args.summary)
+    try:
+        if args.scheduler is not None:
+            with DaskRunner(args.scheduler, workers=workers) as runner:
+                result = run_atlas(args.links, args.dof, runner=runner, out=args.out,
+                                   resume=args.resume, progress=progress, keep=listing)
+        else:
+            result = run_atlas(args.links, args.dof, runner=process_runner(workers),
+                               out=args.out, resume=args.resume, progress=progress,
+                               keep=listing)
+    finally:
         bar.close()
     elapsed = time.perf_counter() - start
+    paths = None
     if args.out:
-        paths = write_atlas(entries, args.links, args.dof, args.out)
-    if args.json:
-        _print_json(atlas_dict(entries, args.links, args.dof))
+        paths = write_atlas(result, args.out, shard_dir=Path(args.out) / "shards",
+                            no_fractionated=args.no_fractionated,
+                            chain_files=args.chain_files)
+    if listing and args.no_fractionated:
+        result = result.without_fractionated()
+    if args.json or args.summary:
+        _print_json(atlas_dict(result, no_fractionated=args.no_fractionated,
+                               chains=args.json and not args.summary))
         return 0
-    total = sum(e.inversion_classes for e in entries)
-    print(f"{len(entries)} chains of {args.links} links and {args.dof} degree(s) of freedom, "
-          f"{total} distinct inversions ({elapsed:.2f} s)")
-    if len(entries) <= 60:
+    count = result.count_non_fractionated if args.no_fractionated else result.count
+    inversions = (result.distinct_inversions_non_fractionated if args.no_fractionated
+                  else result.distinct_inversions)
+    which = ("non-fractionated " if args.no_fractionated else "")
+    also = ("" if args.no_fractionated else
+            f" ({result.count_non_fractionated} non-fractionated)")
+    print(f"{count} {which}chains of {args.links} links and {args.dof} degree(s) of "
+          f"freedom{also}, {inversions} distinct inversions ({elapsed:.2f} s)")
+    if listing and count <= 60:
         rows = [[e.id, ", ".join(f"{v} {k}" for k, v in e.link_orders.items()),
-                 e.inversion_classes, " ".join(f"{a}-{b}" for a, b in e.edges)]
-                for e in entries]
-        print(_table(rows, ["id", "link assortment", "inversions", "joints (link pairs)"]))
-    if args.out:
-        print(f"written: {paths['json']}, {paths['graph6']}, {len(paths['chains'])} chain "
-              f"files in {paths['json'].parent / 'chains'}, {paths['html']}")
+                 e.inversion_classes, "yes" if e.fractionated else "no",
+                 " ".join(f"{a}-{b}" for a, b in e.edges)] for e in result]
+        print(_table(rows, ["id", "link assortment", "inversions", "fractionated",
+                            "joints (link pairs)"]))
+    if paths:
+        chains = (f", {len(paths['chains'])} chain files in {paths['chain_dir']}"
+                  if paths["chain_dir"] else "")
+        print(f"written: {paths['json']}, {paths['graph6']}, {paths['html']}{chains}; "
+              f"shards in {Path(args.out) / 'shards'}")
     return 0
 
 
@@ -392,14 +436,31 @@ def build_parser() -> argparse.ArgumentParser:
     p = sub.add_parser("atlas", help="every chain of N links and F degrees of freedom",
                        description="Every non-isomorphic, non-degenerate planar chain with "
                                    "simple revolute joints (non-planar link graphs and "
-                                   "fractionated chains included).")
+                                   "fractionated chains included). Sizes estimated to take "
+                                   "over an hour here are refused with the estimate.")
     p.add_argument("--links", type=int, required=True, metavar="N")
     p.add_argument("--dof", type=int, default=1, metavar="F")
     p.add_argument("--json", action="store_true", help="print JSON")
+    p.add_argument("--summary", action="store_true",
+                   help="print the counts alone (JSON without the chains)")
+    p.add_argument("--no-fractionated", action="store_true",
+                   help="keep only the non-fractionated chains")
     p.add_argument("--out", metavar="DIR",
-                   help="write atlas.json, a graph6 file, chain files and index.html")
+                   help="write atlas.json, a graph6 file, index.html and (up to 10,000 "
+                        "chains) chain files, with the run's shards under DIR/shards")
+    files = p.add_mutually_exclusive_group()
+    files.add_argument("--chain-files", dest="chain_files", action="store_true",
+                       default=None, help="write one chain file per chain whatever the size")
+    files.add_argument("--no-chain-files", dest="chain_files", action="store_false",
+                       help="write no chain files")
     p.add_argument("--workers", type=int, default=1, metavar="K",
-                   help="processes that run the pieces side by side")
+                   help="local processes that run the pieces side by side (at most the "
+                        "CPUs); with --scheduler local, the embedded cluster's workers")
+    p.add_argument("--scheduler", metavar="ADDRESS",
+                   help="run the pieces on a Dask cluster (tcp://host:8786), or 'local' "
+                        "for an embedded one (pip install 'chaingraph[cluster]')")
+    p.add_argument("--resume", action="store_true",
+                   help="continue an interrupted run in its --out folder")
     p.add_argument("-q", "--quiet", action="store_true", help="no progress bar")
     p.set_defaults(run=_cmd_atlas)
 
@@ -443,5 +504,8 @@ def main(argv=None) -> int:
         return e.exit_status
     except BrokenPipeError:
         return 0
+    except KeyboardInterrupt:
+        print("chaingraph: interrupted", file=sys.stderr)
+        return 130
     finally:
         warnings.showwarning = shown

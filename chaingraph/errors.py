@@ -17,6 +17,7 @@ __all__ = [
     "MechanismError",
     "AssemblyError",
     "AtlasSizeError",
+    "AtlasRunError",
     "DesignError",
     "ChainGraphWarning",
     "PoseAdjustedWarning",
@@ -107,6 +108,18 @@ class AssemblyError(ChainGraphError, RuntimeError):
         self.angle = angle
         self.feasible_range = feasible_range
         super().__init__(f"{mechanism}: {problem}" if mechanism else problem)
+
+
+class AtlasRunError(ChainGraphError, RuntimeError):
+    """An atlas run that cannot go on: a Dask scheduler that cannot be reached, Dask not
+    installed, or an output folder that holds no run to resume or a different one.
+    Bad input: exit status 2. ``reason`` is ``"unreachable"``, ``"missing"`` or
+    ``"resume"``."""
+
+    def __init__(self, problem, *, reason=None):
+        self.problem = problem
+        self.reason = reason
+        super().__init__(problem)
 
 
 class AtlasSizeError(ChainGraphError, ValueError):

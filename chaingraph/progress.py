@@ -22,9 +22,10 @@ class ProgressBar:
     True
     """
 
-    def __init__(self, total, stream, *, width=30):
+    def __init__(self, total, stream, *, width=30, percent=False, start=None):
         self.total, self.stream, self.width = total, stream, width
-        self.start = time.perf_counter()
+        self.percent = percent                    # show a percentage, not done/total
+        self.start = time.perf_counter() if start is None else start
         self._label, self._tenth = None, None
 
     @property
@@ -36,18 +37,25 @@ class ProgressBar:
         if self.stream is None:
             return
         if not self.terminal:
-            # a plain line when the stage changes, at every tenth, and at the end
+            # a plain line when the stage changes (for a percentage: at every tenth
+            # alone), and at the end
             tenth = 10 * done // max(self.total, 1)
-            if label and (label != self._label or tenth != self._tenth or done == self.total):
-                self.stream.write(f"[{done}/{self.total}] {label}\n")
+            changed = tenth != self._tenth or (label != self._label and not self.percent)
+            if label and (changed or (done == self.total and label != self._label)):
+                self.stream.write(f"[{self._count(done)}] {label}\n")
                 self.stream.flush()
             self._label, self._tenth = label, tenth
             return
         filled = int(self.width * done / max(self.total, 1))
         elapsed = time.perf_counter() - self.start
-        self.stream.write(f"\r[{'#' * filled}{'.' * (self.width - filled)}] {done}/{self.total} "
-                          f"{elapsed:6.1f} s  {label[:40]:40s}")
+        self.stream.write(f"\r[{'#' * filled}{'.' * (self.width - filled)}] "
+                          f"{self._count(done)} {elapsed:6.1f} s  {label[:40]:40s}")
         self.stream.flush()
+
+    def _count(self, done):
+        if self.percent:
+            return f"{100 * done / max(self.total, 1):3.0f}%"
+        return f"{done}/{self.total}"
 
     def close(self):
         if self.stream is not None and self.terminal:

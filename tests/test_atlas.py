@@ -133,9 +133,12 @@ def test_cli_json_and_out(tmp_path):
                              "--workers", "2")
     assert code == 0, err
     d = json.loads(out)
-    assert set(d) == {"links", "dof", "count", "distinct_inversions", "chains"}
-    assert (d["count"], d["distinct_inversions"]) == (16, 71)
-    assert set(d["chains"][0]) == {"id", "edges", "link_orders", "inversion_classes"}
+    assert set(d) == {"links", "dof", "count", "count_non_fractionated",
+                      "distinct_inversions", "chains"}
+    assert (d["count"], d["count_non_fractionated"], d["distinct_inversions"]) == (16, 16, 71)
+    assert set(d["chains"][0]) == {"id", "edges", "link_orders", "inversion_classes",
+                                   "fractionated"}
+    assert [c["id"] for c in d["chains"]] == list(range(1, 17))
     assert json.loads((tmp_path / "atlas.json").read_text()) == d
     lines = (tmp_path / "atlas-8-links-1-dof.g6").read_bytes().splitlines()
     assert len(lines) == 16
