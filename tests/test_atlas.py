@@ -25,11 +25,42 @@ def test_published_one_dof_counts(links, count, inversions):
     assert sum(e.inversion_classes for e in entries) == inversions
 
 
-@pytest.mark.slow
 def test_twelve_links_6856():
     entries = atlas_graphs(12, 1, workers=2)
-    assert len(entries) == 6856
+    assert (entries.count, entries.distinct_inversions) == (6856, 75397)
 
+
+@pytest.mark.slow
+def test_fourteen_links_from_the_command_line():
+    code, out, err = run_cli("atlas", "--links", "14", "--dof", "1", "--workers", "2",
+                             "--summary", "-q")
+    assert code == 0, err
+    assert json.loads(out) == {"links": 14, "dof": 1, "count": 318162,
+                               "count_non_fractionated": 318162,
+                               "distinct_inversions": 4274510}
+
+
+# Tuttle's tables and the literature count non-fractionated chains; both are checked
+@pytest.mark.parametrize("links, dof, count, whole", [
+    (7, 2, 4, 3), (9, 2, 40, 35), (11, 2, 839, 753),
+    (8, 3, 7, 5), (10, 3, 98, 74), (12, 3, 2422, 1962)])
+def test_published_multi_dof_counts(links, dof, count, whole):
+    entries = atlas_graphs(links, dof)
+    assert (entries.count, entries.count_non_fractionated) == (count, whole)
+    assert entries.without_fractionated().count == whole
+
+
+@pytest.mark.parametrize("links, dof", [(8, 1), (10, 1), (9, 2), (10, 3)])
+def test_nauty_and_the_own_labelling_give_the_same_chains(links, dof):
+    """The project's canonical labelling is the reference: the graphs nauty labels are,
+    by the project's own canonical form, the graphs the own labelling gives."""
+    from chaingraph.isomorphism import canonical_form
+    by = {}
+    for labelling in ("nauty", "own"):
+        entries = atlas_graphs(links, dof, labelling=labelling)
+        by[labelling] = sorted((canonical_form(e.chain()), e.inversion_classes, e.fractionated)
+                               for e in entries)
+    assert by["nauty"] == by["own"]
 
 # -- an independent brute force: every graph of the size, by networkx ---------------
 def _rigid_part(g):
@@ -63,6 +94,7 @@ def _all_graphs(n, m):
 
 
 def _brute_force(n, dof):
+    """(chains, distinct inversions, non-fractionated chains), by networkx alone."""
     twice = 3 * (n - 1) - dof
     if twice % 2 or twice // 2 < n:
         return None
@@ -73,7 +105,9 @@ def _brute_force(n, dof):
     for g in chains:
         autos = list(nx.algorithms.isomorphism.GraphMatcher(g, g).isomorphisms_iter())
         orbits += len({frozenset(a[v] for a in autos) for v in g})
-    return len(chains), orbits
+    # fractionated: a link (cut vertex) or a joint (bridge) whose removal splits it
+    whole = sum(1 for g in chains if nx.is_biconnected(g))
+    return len(chains), orbits, whole
 
 
 SIZES = [(n, f) for f in (1, 2, 3) for n in range(3, 9) if not (3 * (n - 1) - f) % 2
@@ -84,7 +118,10 @@ SIZES = [(n, f) for f in (1, 2, 3) for n in range(3, 9) if not (3 * (n - 1) - f)
 def test_atlas_against_brute_force(links, dof):
     expected = _brute_force(links, dof)
     entries = atlas_graphs(links, dof)
-    assert (len(entries), sum(e.inversion_classes for e in entries)) == expected
+    assert (len(entries), sum(e.inversion_classes for e in entries),
+            entries.count_non_fractionated) == expected
+    for e in entries:                    # the flag of each chain, not only the count
+        assert e.fractionated == (not nx.is_biconnected(nx.Graph(list(e.edges))))
 
 
 def test_sizes_without_chains_and_bad_numbers():
@@ -151,3 +188,182 @@ def test_cli_json_and_out(tmp_path):
     assert all(c.mobility == 1 and not c.degenerate for c in loaded)
     page = (tmp_path / "index.html").read_text()
     assert page.count("<svg") == 16 and "71 distinct inversions" in page
+
+
+# -- the run: shards, resume, cluster, interrupts, sizes ------------------------------
+def _atlas_json(folder):
+    return json.loads((folder / "atlas.json").read_text())
+
+
+def test_summary_and_no_fractionated(tmp_path):
+    code, out, err = run_cli("atlas", "--links", "9", "--dof", "2", "--summary", "-q")
+    assert code == 0, err
+    assert json.loads(out) == {"links": 9, "dof": 2, "count": 40, "count_non_fractionated": 35,
+                               "distinct_inversions": 254}
+    code, out, err = run_cli("atlas", "--links", "9", "--dof", "2", "--json",
+                             "--no-fractionated", "--out", tmp_path, "-q")
+    assert code == 0, err
+    d = json.loads(out)
+    assert (d["count"], d["count_non_fractionated"]) == (35, 35)
+    assert [c["id"] for c in d["chains"]] == list(range(1, 36))
+    assert not any(c["fractionated"] for c in d["chains"])
+    assert d["distinct_inversions"] == sum(c["inversion_classes"] for c in d["chains"])
+    assert _atlas_json(tmp_path) == d
+    assert len((tmp_path / "atlas-9-links-2-dof.g6").read_bytes().splitlines()) == 35
+    code, out, err = run_cli("atlas", "--links", "9", "--dof", "2")
+    assert code == 0 and "40 chains" in out and "(35 non-fractionated)" in out
+    assert "fractionated" in out.splitlines()[1]          # the table's column
+
+
+def test_graph6_lines_match_networkx():
+    import random
+
+    import numpy as np
+
+    from chaingraph.atlas.output import graph6_lines
+    rng = random.Random(3)
+    for n in (2, 5, 13, 20):
+        graphs = [nx.gnm_random_graph(n, n, seed=rng.randrange(10**6)) for _ in range(20)]
+        edges = np.array([list(g.edges()) for g in graphs])
+        expected = b"".join(nx.to_graph6_bytes(g, header=False) for g in graphs)
+        assert graph6_lines(n, edges) == expected
+
+
+def test_chain_files_are_the_files_dumps_writes(tmp_path):
+    from chaingraph.atlas.output import chain_text
+    for entry in atlas_graphs(10, 1)[:20]:
+        assert chain_text(entry, 1) == chaingraph.dumps(entry.chain(1))
+    code, out, err = run_cli("atlas", "--links", "10", "--no-chain-files", "--out", tmp_path,
+                             "-q")
+    assert code == 0 and not (tmp_path / "chains").exists()
+
+
+def test_resume_redoes_only_the_missing_shards(tmp_path):
+    code, _, err = run_cli("atlas", "--links", "11", "--dof", "2", "--out", tmp_path, "-q")
+    assert code == 0, err
+    whole = _atlas_json(tmp_path)
+    shards = sorted((tmp_path / "shards").glob("shard-*.jsonl"))
+    assert len(shards) > 10
+    # a run that died: some shards never finished (one with its graph6 written and its
+    # JSON lines not yet), no final files
+    for path in shards[3:9]:
+        path.unlink()
+    (tmp_path / "shards" / "shard-00001.g6").unlink()
+    (tmp_path / "atlas.json").unlink()
+    kept = {p.name: p.stat().st_mtime_ns for p in (tmp_path / "shards").glob("*.jsonl")}
+    code, out, err = run_cli("atlas", "--links", "11", "--dof", "2", "--out", tmp_path,
+                             "--resume", "-q")
+    assert code == 0, err
+    assert _atlas_json(tmp_path) == whole
+    for name, mtime in kept.items():            # finished shards were not done again
+        if name != "shard-00001.jsonl":
+            assert (tmp_path / "shards" / name).stat().st_mtime_ns == mtime
+
+
+def test_resume_refuses_what_it_cannot_continue(tmp_path):
+    code, out, err = run_cli("atlas", "--links", "10", "--resume", "--out", tmp_path)
+    assert code == 2 and "no run to resume" in err and "Traceback" not in err
+    run_cli("atlas", "--links", "8", "--out", tmp_path, "-q")
+    code, out, err = run_cli("atlas", "--links", "10", "--resume", "--out", tmp_path)
+    assert code == 2 and "holds a run of 8 links" in err
+    code, out, err = run_cli("atlas", "--links", "10", "--resume")
+    assert code == 2 and "--out" in err
+
+
+def test_a_local_dask_cluster_gives_the_local_run():
+    pytest.importorskip("distributed")
+    import numpy as np
+
+    from chaingraph.atlas import DaskRunner, run_atlas
+    local = run_atlas(11, 2, workers=2)
+    with DaskRunner("local", workers=2) as runner:
+        cluster = run_atlas(11, 2, runner=runner)
+    assert np.array_equal(local.edges, cluster.edges)
+    assert np.array_equal(local.inversion_classes, cluster.inversion_classes)
+    assert np.array_equal(local.fractionated, cluster.fractionated)
+    code, out, err = run_cli("atlas", "--links", "10", "--scheduler", "local", "--workers",
+                             "2", "--summary", "-q")
+    assert code == 0, err
+    assert json.loads(out)["count"] == 230
+
+
+def test_an_unreachable_scheduler_is_one_line():
+    pytest.importorskip("distributed")
+    code, out, err = run_cli("atlas", "--links", "8", "--scheduler", "tcp://127.0.0.1:9",
+                             "-q")
+    assert code == 2 and "Traceback" not in err
+    assert err.strip().count("\n") == 0 and "cannot reach the Dask scheduler" in err
+
+
+@pytest.mark.parametrize("args, words", [
+    (["--links", "18"], "refused on this machine"),
+    (["--links", "1000000000"], "at most 40 links"),
+    (["--links", "22", "--scheduler", "tcp://127.0.0.1:9"], "core-hours"),
+    (["--links", "8", "--workers", "0"], "--workers must be 1 or more"),
+])
+def test_sizes_that_cannot_finish_are_refused_up_front(args, words):
+    import time
+    start = time.perf_counter()
+    code, out, err = run_cli("atlas", *args)
+    assert code == 2 and words in err and "Traceback" not in err
+    assert time.perf_counter() - start < 10
+    if "18" in args:
+        assert "--scheduler" in err and "days" in err      # the estimate and the way
+
+
+def test_the_estimate_is_near_every_count():
+    from chaingraph.atlas.estimate import KNOWN, _FIT, estimate
+    for (links, dof), count in KNOWN.items():
+        assert estimate(links, dof).chains == pytest.approx(count)
+        loops = (links - 1 - dof) / 2
+        a, b, c, d = _FIT
+        fitted = 10 ** (a + b * links + c * loops + d * links * loops)
+        if count >= 40:
+            assert count / 2 <= fitted <= 2 * count, (links, dof)
+
+
+def test_workers_are_capped_at_the_cpus():
+    code, out, err = run_cli("atlas", "--links", "8", "--workers", "500", "-q")
+    assert code == 0 and "capped" in err and "16 chains" in out
+
+
+def test_progress_without_a_terminal_is_a_few_plain_lines():
+    code, out, err = run_cli("atlas", "--links", "11", "--dof", "2")
+    lines = err.splitlines()
+    assert code == 0 and "\r" not in err and 2 <= len(lines) <= 12
+    assert lines[0].endswith("plan: contracted graphs") and lines[-1].startswith("[100%]")
+
+
+@pytest.mark.slow
+def test_ctrl_c_leaves_no_worker_and_a_resumable_folder(tmp_path):
+    import os
+    import signal
+    import subprocess
+    import sys
+    import time
+    out = tmp_path / "run"
+    proc = subprocess.Popen([sys.executable, "-m", "chaingraph", "atlas", "--links", "14",
+                             "--workers", "2", "--out", str(out), "-q"],
+                            stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True,
+                            start_new_session=True)
+    deadline = time.monotonic() + 120
+    while not list(out.glob("shards/*.jsonl")) and time.monotonic() < deadline:
+        time.sleep(0.1)
+    time.sleep(1)
+    os.killpg(proc.pid, signal.SIGINT)              # as a terminal's Ctrl-C does
+    _, err = proc.communicate(timeout=60)
+    assert proc.returncode == 130 and err.strip() == "chaingraph: interrupted"
+    time.sleep(0.5)
+    left = []
+    for pid in filter(str.isdigit, os.listdir("/proc")):
+        try:
+            if str(out) in open(f"/proc/{pid}/cmdline").read():
+                left.append(pid)
+        except OSError:
+            pass
+    assert not left                                  # no worker process behind
+    assert not list(out.glob("shards/*.tmp"))
+    code, stdout, err = run_cli("atlas", "--links", "14", "--workers", "2", "--out", out,
+                                "--resume", "--summary", "-q")
+    assert code == 0, err
+    assert json.loads(stdout)["distinct_inversions"] == 4274510

@@ -17,7 +17,8 @@ from dataclasses import dataclass
 from ..errors import AtlasSizeError
 from .contracted import joints_for
 
-__all__ = ["Estimate", "estimate", "check_size", "LOCAL_HOURS", "CLUSTER_CORE_HOURS"]
+__all__ = ["Estimate", "estimate", "check_size", "LOCAL_HOURS", "CLUSTER_CORE_HOURS",
+           "MAX_LINKS"]
 
 #: exact counts (links, dof) -> chains: A233288, and the multi-dof counts of the tests
 KNOWN = {(4, 1): 1, (6, 1): 2, (8, 1): 16, (10, 1): 230, (12, 1): 6856, (14, 1): 318162,
@@ -26,6 +27,8 @@ KNOWN = {(4, 1): 1, (6, 1): 2, (8, 1): 16, (10, 1): 230, (12, 1): 6856, (14, 1):
 _FIT = (-1.31521923, 0.13475271, 0.05599872, 0.05632598)
 #: CPU seconds per chain at 14 links; grows with the chain's size
 SECONDS_PER_CHAIN = 150e-6
+#: no atlas is tried beyond this many links, whatever the machine
+MAX_LINKS = 40
 #: without a cluster, a run estimated longer than this (wall clock) is refused
 LOCAL_HOURS = 1.0
 #: on a cluster, a run estimated at more core-hours than this is refused
@@ -73,7 +76,7 @@ def _big(log10):
 
 
 def _duration(log10_seconds):
-    if log10_seconds > 9:
+    if log10_seconds > 13.5:
         return f"10^{log10_seconds - math.log10(3.156e7):.0f} years"
     s = 10 ** log10_seconds
     for unit, size in (("years", 3.156e7), ("days", 86400), ("hours", 3600),
@@ -109,10 +112,13 @@ def check_size(links: int, dof: int, *, cores: int, cluster: bool) -> Estimate:
     """Refuse, with the estimate and what to do instead, a size that cannot finish in
     reasonable time: over :data:`LOCAL_HOURS` on ``cores`` local processes, or over
     :data:`CLUSTER_CORE_HOURS` on a cluster. Returns the estimate otherwise."""
+    joints_for(links, dof)
+    if links > MAX_LINKS:
+        raise AtlasSizeError(
+            f"{links} links is beyond the atlas: at most {MAX_LINKS} links (the number of "
+            "chains grows about a hundredfold every two links; 16 links already have "
+            "19,819,281)", links=links, dof=dof)
     e = estimate(links, dof)
-    if links > 255:
-        raise AtlasSizeError(f"{links} links is beyond the atlas (at most 255 links; "
-                             f"{e.describe()})", links=links, dof=dof)
     if cluster:
         if e.log10_cpu_seconds > math.log10(CLUSTER_CORE_HOURS * 3600):
             raise AtlasSizeError(

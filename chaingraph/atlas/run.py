@@ -323,6 +323,7 @@ def run_atlas(links, dof=1, *, workers=1, runner=None, out=None, resume=False,
     for s in range(len(shards)):
         if resume and shard_dir is not None and _shard_done(shard_dir, s):
             results[s] = _read_shard(shard_dir, s, joints) if keep else _count_shard(shard_dir, s)
+            counts["chains"] += len(results[s][1]) if keep else results[s][0]
             counts["done"] += 1
             counts["work"] += shard_work[s]
         else:
