@@ -1,7 +1,7 @@
 """How long an atlas takes, told before it starts, and the sizes refused.
 
 The time goes into the pieces, and a piece's time into its chains (canonical labelling
-and the vectorised tests cost about 150 microseconds of CPU per chain at 12 to 14
+and the vectorised tests cost about 100 to 130 microseconds of CPU per chain at 12 to 16
 links, measured by ``benchmarks/atlas.py``). The number of chains is the published
 count where there is one (OEIS A233288 for one degree of freedom, the multi-dof counts
 of the tests) and otherwise a fit of the counts measured here, ``log10 count = a + b N +
@@ -26,7 +26,7 @@ KNOWN = {(4, 1): 1, (6, 1): 2, (8, 1): 16, (10, 1): 230, (12, 1): 6856, (14, 1):
          (8, 3): 7, (10, 3): 98, (12, 3): 2422}
 _FIT = (-1.31521923, 0.13475271, 0.05599872, 0.05632598)
 #: CPU seconds per chain at 14 links; grows with the chain's size
-SECONDS_PER_CHAIN = 150e-6
+SECONDS_PER_CHAIN = 130e-6
 #: no atlas is tried beyond this many links, whatever the machine
 MAX_LINKS = 40
 #: without a cluster, a run estimated longer than this (wall clock) is refused
