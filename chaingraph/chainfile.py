@@ -106,6 +106,12 @@ def _parse_toml(text, source):
         m = re.search(r"\(at line (\d+), column (\d+)\)", msg)
         line = int(m.group(1)) if m else None
         raise ChainFileError(f"TOML syntax error: {msg}", source=source, line=line) from None
+    except ValueError as e:          # an integer past Python's 4,300-digit conversion limit
+        raise ChainFileError(f"a number cannot be read ({str(e).split(':')[0]}); numbers "
+                             f"must be at most {LARGEST:g} in size", source=source) from None
+    except RecursionError:
+        raise ChainFileError("arrays or tables nested too deeply (a chain file needs three "
+                             "levels at most)", source=source) from None
     return doc
 
 
@@ -211,25 +217,44 @@ def _optional_string(table, key, where, fail):
     return _string(table[key], where, fail) if key in table else None
 
 
-def _number(value, where, fail):
+#: the largest number a chain file may hold (a coordinate, a length, an angle, a speed):
+#: beyond it, squares and products overflow or a float cannot hold a thousandth
+LARGEST = 1e9
+
+
+def number(value, where, fail, *, positive=False):
+    """A finite number of at most :data:`LARGEST` in size (a float), or ``fail``."""
     if isinstance(value, bool) or not isinstance(value, (int, float)):
         fail(f"must be a number, got {_type_name(value)}", where)
-    if not math.isfinite(value):
+    if isinstance(value, float) and not math.isfinite(value):
         fail(f"must be a finite number, got {value}", where)
+    if abs(value) > LARGEST:                 # (compares an integer of any size exactly)
+        fail(f"{_show(value)} is too large: at most {LARGEST:g} in size", where)
+    if positive and value <= 0:
+        fail(f"a length must be positive, got {value:g}", where)
     return float(value)
+
+
+_number = number
 
 
 def _coordinates(value, where, fail):
     if (not isinstance(value, list) or len(value) != 2
             or any(isinstance(v, bool) or not isinstance(v, (int, float)) for v in value)):
         fail(f"'at' must be two finite numbers [x, y], got {_show(value)}", where)
-    if not all(math.isfinite(v) for v in value):
+    if any(isinstance(v, float) and not math.isfinite(v) for v in value):
         fail(f"'at' must be two finite numbers [x, y], got {_show(value)}", where)
-    return (float(value[0]), float(value[1]))
+    return (number(value[0], where + " 'at' x", fail), number(value[1], where + " 'at' y", fail))
 
 
 def _show(value) -> str:
-    text = repr(value)
+    if isinstance(value, int) and abs(value) > 10**30:
+        # (no decimal text of a huge integer: Python refuses past 4,300 digits)
+        return f"an integer of about {int(value.bit_length() * 0.30103) + 1:,} digits"
+    if isinstance(value, list):
+        text = "[" + ", ".join(_show(v) for v in value[:4]) + (", ...]" if len(value) > 4 else "]")
+    else:
+        text = repr(value)
     return text if len(text) <= 60 else text[:57] + "..."
 
 

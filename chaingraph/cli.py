@@ -12,10 +12,11 @@ import json
 import os
 import sys
 import warnings
+from pathlib import Path
 
 from .chainfile import load
 from .classify import classify
-from .errors import ChainGraphError, ChainGraphWarning
+from .errors import ChainGraphError, ChainGraphWarning, OutputError
 
 __all__ = ["main"]
 
@@ -154,20 +155,29 @@ def _fmt(value, unit=""):
 def _cmd_solve(args) -> int:
     from .kinematics import solve, summary_rows
     chain = load(args.file)
+    if args.csv:
+        output_file(args.csv, what="CSV")
+    if args.plot:
+        picture_file(args.plot, what="plot")
+    if args.draw:
+        picture_file(args.draw, what="drawing")
     motion = solve(chain, fixed=args.fixed, driver=args.driver, inputs=args.inputs,
                    start=args.start, stop=args.stop, steps=args.steps)
     if args.csv:
-        motion.to_csv(args.csv)
+        with _writing(args.csv):
+            motion.to_csv(args.csv)
     if args.plot:
         from .plots import plot_motion
-        plot_motion(motion, args.plot)
+        with _writing(args.plot):
+            plot_motion(motion, args.plot)
     if args.draw:
         if str(args.draw).lower().endswith(".svg"):
             from .drawing import mechanism_svg
             _write(args.draw, mechanism_svg(motion))
         else:
             from .plots import draw_mechanism       # PNG and the other raster formats
-            draw_mechanism(motion, args.draw)
+            with _writing(args.draw):
+                draw_mechanism(motion, args.draw)
     if args.json:
         _print_json(motion.to_dict())
         return 0
@@ -231,21 +241,91 @@ def _cmd_measure(args) -> int:
 
 
 def _write(path, text) -> None:
-    from .errors import ChainFileError
+    output_file(path)
     try:
         with open(path, "w", encoding="utf-8") as f:
             f.write(text)
     except OSError as e:
-        raise ChainFileError(f"cannot be written ({e.strerror})", source=path) from None
+        raise OutputError(path, f"cannot be written ({e.strerror})") from None
+
+
+class _writing:
+    """Turn a write that fails midway (a full disk, a lost mount) into one line naming
+    the output."""
+
+    def __init__(self, path):
+        self.path = path
+
+    def __enter__(self):
+        return self
+
+    def __exit__(self, kind, error, trace):
+        if isinstance(error, OSError) and not isinstance(error, ChainGraphError):
+            raise OutputError(error.filename or self.path,
+                              f"cannot be written ({error.strerror or error})") from None
+        return False
+
+
+def _existing_folder_above(path):
+    """The nearest folder above ``path`` that exists, or OutputError when a file is in
+    the way."""
+    above = Path(os.path.abspath(path)).parent
+    while not above.exists():
+        above = above.parent
+    if not above.is_dir():
+        raise OutputError(path, f"{above} is a file, not a folder")
+    return above
+
+
+def output_file(path, *, what="output"):
+    """Check a file to write before the work starts, and make its missing folders."""
+    p = Path(path)
+    if p.is_dir():
+        raise OutputError(path, f"is a folder; give a file name for the {what}")
+    above = _existing_folder_above(p)
+    if not os.access(above, os.W_OK | os.X_OK):
+        raise OutputError(path, f"no permission to write in {above}")
+    if p.exists() and not os.access(p, os.W_OK):
+        raise OutputError(path, "no permission to write it")
+    p.parent.mkdir(parents=True, exist_ok=True)
+    return p
+
+
+def output_folder(path, *, what="output"):
+    """Check a folder to write into before the work starts, and make it."""
+    p = Path(path)
+    if p.exists() and not p.is_dir():
+        raise OutputError(path, f"is a file; the {what} needs a folder")
+    above = _existing_folder_above(p) if not p.exists() else p
+    if not os.access(above, os.W_OK | os.X_OK):
+        raise OutputError(path, f"no permission to write in {above}")
+    p.mkdir(parents=True, exist_ok=True)
+    return p
+
+
+def picture_file(path, *, what):
+    """An output picture: a known format (by the file's ending), then as output_file."""
+    suffix = Path(path).suffix.lower().lstrip(".")
+    if suffix:
+        from matplotlib.backend_bases import FigureCanvasBase
+        formats = FigureCanvasBase.get_supported_filetypes()
+        if suffix not in formats:
+            raise OutputError(path, f"unknown picture format '.{suffix}' for the {what}; "
+                                    f"one of {', '.join('.' + f for f in sorted(formats))}")
+    return output_file(path, what=what)
 
 
 def _cmd_report(args) -> int:
     from .catalog import catalog_dir
     from .report import build_report
     paths = args.paths or [catalog_dir()]
-    report = build_report(paths, args.output, progress=None if args.quiet else sys.stderr)
+    output_folder(args.output, what="report")
+    workers = _workers(args.workers) if args.workers is not None else None
+    report = build_report(paths, args.output, progress=None if args.quiet else sys.stderr,
+                          workers=workers)
     for path, problem in report.failures:
-        print(f"chaingraph: error: {path}: {problem}", file=sys.stderr)
+        where = "" if problem.startswith(str(path)) else f"{path}: "
+        print(f"chaingraph: error: {where}{problem}", file=sys.stderr)
     done = sum(1 for e in report.entries if not e.error)
     print(f"report of {done} entries written to {report.index}"
           + (f"; {len(report.failures)} could not be included (listed on the index)"
@@ -266,7 +346,6 @@ def _workers(value, *, flag="--workers") -> int:
 
 def _cmd_atlas(args) -> int:
     import time
-    from pathlib import Path
 
     from .atlas import DaskRunner, atlas_dict, process_runner, run_atlas, write_atlas
     from .atlas.contracted import joints_for
@@ -280,6 +359,8 @@ def _cmd_atlas(args) -> int:
     check_size(args.links, args.dof, cores=workers, cluster=args.scheduler is not None)
     if args.resume and not args.out:
         raise ChainGraphError("--resume continues a run in its output folder: give --out DIR")
+    if args.out:
+        output_folder(args.out, what="atlas")
     start = time.perf_counter()
     bar = ProgressBar(1000, None if args.quiet else sys.stderr, percent=True, start=start)
 
@@ -334,9 +415,12 @@ def _cmd_atlas(args) -> int:
 def _cmd_design(args) -> int:
     from .chainfile import save
     from .design import KINDS
+    if args.out:
+        output_file(args.out, what="mechanism file")
     design = KINDS[args.kind](time_ratio=args.time_ratio, crank=args.crank, stroke=args.stroke)
     if args.out:
-        save(design.mechanism, args.out)
+        with _writing(args.out):
+            save(design.mechanism, args.out)
     if args.json:
         _print_json(design.to_dict())
         return 0
@@ -348,8 +432,16 @@ def _cmd_design(args) -> int:
     return 0
 
 
+class _Parser(argparse.ArgumentParser):
+    """argparse, with a usage error as one line (``chaingraph COMMAND: error: ...``)."""
+
+    def error(self, message):
+        usage = " ".join(self.format_usage().split())
+        self.exit(2, f"{self.prog}: error: {message} ({usage})\n")
+
+
 def build_parser() -> argparse.ArgumentParser:
-    parser = argparse.ArgumentParser(
+    parser = _Parser(
         prog="chaingraph",
         description="Analyse planar kinematic chains as link-joint graphs.")
     parser.add_argument("--version", action="version", version=f"%(prog)s {_version()}")
@@ -431,6 +523,9 @@ def build_parser() -> argparse.ArgumentParser:
     p.add_argument("-o", "--output", default="report", metavar="DIR",
                    help="output folder (default: report)")
     p.add_argument("-q", "--quiet", action="store_true", help="no progress bar")
+    p.add_argument("--workers", type=int, metavar="K",
+                   help="processes that analyse entries side by side (default and at most: "
+                        "the CPUs)")
     p.set_defaults(run=_cmd_report)
 
     p = sub.add_parser("atlas", help="every chain of N links and F degrees of freedom",
@@ -507,5 +602,9 @@ def main(argv=None) -> int:
     except KeyboardInterrupt:
         print("chaingraph: interrupted", file=sys.stderr)
         return 130
+    except OSError as e:             # a write that failed midway: a full disk, a lost mount
+        where = f"{e.filename}: " if e.filename else ""
+        print(f"chaingraph: error: {where}{e.strerror or e}", file=sys.stderr)
+        return 2
     finally:
         warnings.showwarning = shown

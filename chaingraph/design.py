@@ -53,10 +53,14 @@ class Design:
 
 
 def _check(kind, time_ratio, crank, stroke):
+    from .chainfile import LARGEST
     for name, value in (("--time-ratio", time_ratio), ("--crank", crank), ("--stroke", stroke)):
         if isinstance(value, bool) or not isinstance(value, (int, float)) or not math.isfinite(value):
             raise DesignError(f"{name} must be a finite number, got {value!r}", kind=kind,
                               parameter=name)
+        if abs(value) > LARGEST:
+            raise DesignError(f"{name} {value:g} is too large: at most {LARGEST:g} (larger "
+                              "values overflow)", kind=kind, parameter=name)
     if time_ratio <= 1:
         raise DesignError(f"the time ratio must be above 1 (the forward stroke is the slower "
                           f"one), got {time_ratio:g}", kind=kind, parameter="--time-ratio")

@@ -117,15 +117,8 @@ def split_key(key, features):
 
 
 def _number(value, where, fail, *, positive=False):
-    if isinstance(value, bool) or not isinstance(value, (int, float)):
-        fail(f"must be a number, got {type(value).__name__}", where)
-    if not math.isfinite(value):
-        fail(f"must be a finite number, got {value}", where)
-    if positive and value <= 0:
-        fail(f"a length must be positive, got {value:g}", where)
-    if abs(value) > 1e100:
-        fail(f"{value:g} is too large to assemble with (at most 1e100)", where)
-    return float(value)
+    from .chainfile import number
+    return number(value, where, fail, positive=positive)
 
 
 def parse_dimensions(doc, joints, points, fail):

@@ -18,6 +18,7 @@ __all__ = [
     "AssemblyError",
     "AtlasSizeError",
     "AtlasRunError",
+    "OutputError",
     "DesignError",
     "ChainGraphWarning",
     "PoseAdjustedWarning",
@@ -108,6 +109,21 @@ class AssemblyError(ChainGraphError, RuntimeError):
         self.angle = angle
         self.feasible_range = feasible_range
         super().__init__(f"{mechanism}: {problem}" if mechanism else problem)
+
+
+class OutputError(ChainGraphError, OSError):
+    """An output (a file or folder to write) that cannot be written: a folder where a
+    file is asked for, a file where a folder is needed, no permission, a full disk, a
+    format nobody draws. Bad input: exit status 2. ``path`` is the output at fault and
+    ``reason`` why."""
+
+    def __init__(self, path, reason):
+        self.path = str(path)
+        self.reason = reason
+        super().__init__(f"{path}: {reason}")
+
+    def __str__(self):
+        return f"{self.path}: {self.reason}"
 
 
 class AtlasRunError(ChainGraphError, RuntimeError):

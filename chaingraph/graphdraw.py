@@ -12,6 +12,8 @@ from __future__ import annotations
 import networkx as nx
 import numpy as np
 
+from .plots import plain_text
+
 __all__ = ["draw_link_joint_graph", "layout"]
 
 
@@ -32,6 +34,7 @@ def layout(chain):
     return nx.spring_layout(g, seed=7)
 
 
+@plain_text
 def draw_link_joint_graph(chain, path=None):
     """The link-joint graph of ``chain``: written as SVG (or PNG, by the file's ending)
     to ``path``, or returned as a matplotlib Figure without one."""

@@ -14,6 +14,19 @@ import numpy as np
 __all__ = ["plot_motion", "draw_mechanism", "output_series"]
 
 
+def plain_text(draw):
+    """Draw with mathtext off: names are text, so ``$\\frac{a}{b}$`` in a link's name is
+    drawn as typed instead of being parsed (and failing) as mathematics."""
+    import functools
+
+    @functools.wraps(draw)
+    def wrapper(*args, **kwargs):
+        import matplotlib
+        with matplotlib.rc_context({"text.parse_math": False}):
+            return draw(*args, **kwargs)
+    return wrapper
+
+
 def _pyplot():
     import sys
 
@@ -45,6 +58,7 @@ def output_series(motion):
     return f"{output} (slide of joint {name})", u, v, a, units
 
 
+@plain_text
 def plot_motion(motion, path=None):
     """The output's displacement, velocity and acceleration against the input.
 
@@ -87,10 +101,13 @@ def plot_motion(motion, path=None):
 def _finish(plt, fig, path):
     """Save and close the figure, or, without a path, hand it back (closed to pyplot, so
     that it is shown once, where it is returned)."""
-    plt.close(fig)
     if path is None:
+        plt.close(fig)
         return fig
-    fig.savefig(path)
+    try:
+        fig.savefig(path)     # before closing: a closed figure's canvas hides write errors
+    finally:
+        plt.close(fig)
     return None
 
 
@@ -119,6 +136,7 @@ def _in_sweep(t, theta):
     return [t + 360 * k for k in range(-3, 4) if lo - 1e-9 <= t + 360 * k <= hi + 1e-9]
 
 
+@plain_text
 def draw_mechanism(motion, path=None, *, pose_index=0):
     """The mechanism in a pose with every joint's and point's path: written as SVG (or
     PNG) to ``path``, or returned as a matplotlib Figure without one."""

@@ -103,6 +103,20 @@ def chain_paths(paths):
     return files, problems
 
 
+#: names the report itself uses: no entry may take them (a chain file called Index.toml
+#: would otherwise overwrite the index, one called img.toml sit beside the image folder)
+RESERVED = frozenset({"index", "img"})
+
+
+def _write_page(path, text):
+    """Write a page under a temporary name and rename it: a page is never seen half
+    written, even when the run is interrupted."""
+    import os
+    tmp = path.with_name(path.name + ".tmp")
+    tmp.write_text(text, encoding="utf-8")
+    os.replace(tmp, path)
+
+
 def _slug(text, taken):
     base = re.sub(r"[^a-z0-9]+", "-", text.lower()).strip("-") or "entry"
     slug, k = base, 2
@@ -141,9 +155,13 @@ def build_report(paths, out_dir, *, progress=sys.stderr, steps=180, frames=48,
     (out / "img").mkdir(parents=True, exist_ok=True)
     files, problems = chain_paths(paths)
     failures = list(problems)
-    taken = set()
+    taken = set(RESERVED)
     jobs = [(str(path), _slug(path.stem, taken), str(out), steps, frames) for path in files]
-    workers = workers or min(os.cpu_count() or 1, max(len(jobs), 1))
+    cpus = os.cpu_count() or 1
+    if workers is not None and (isinstance(workers, bool) or not isinstance(workers, int)
+                                or workers < 1):
+        raise ValueError(f"workers must be a whole number of 1 or more, got {workers!r}")
+    workers = min(workers or cpus, cpus, max(len(jobs), 1))
     bar = ProgressBar(len(jobs), progress)
     bar.show(0, "")
     results = {}
@@ -163,7 +181,7 @@ def build_report(paths, out_dir, *, progress=sys.stderr, steps=180, frames=48,
     entries = [results[job[1]] for job in jobs]
     failures += [(e.source, e.error) for e in entries if e.error]
     index = out / "index.html"
-    index.write_text(_index_page(entries, failures), encoding="utf-8")
+    _write_page(index, _index_page(entries, failures))
     return Report(index=index, entries=entries, failures=failures)
 
 
@@ -196,7 +214,7 @@ def _entry_job(job):
             _analyse(entry, steps)
             _write_images(entry, Path(out), frames)
             entry.frames = frames
-        (Path(out) / f"{slug}.html").write_text(_entry_page(entry), encoding="utf-8")
+        _write_page(Path(out) / f"{slug}.html", _entry_page(entry))
     except ChainGraphError as e:
         row.error = str(e)
         return row

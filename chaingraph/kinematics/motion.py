@@ -90,19 +90,35 @@ class Motion:
         return self.theta.size - 1
 
     def to_csv(self, path=None) -> str | None:
-        """Write the CSV (one row per step); returns the text when ``path`` is None."""
-        names = list(self.columns)
-        data = np.column_stack([self.columns[n] for n in names])
-        buf = io.StringIO()
-        writer = csv.writer(buf, lineterminator="\n")
-        writer.writerow(names)
-        for row in data:
-            writer.writerow(["nan" if not np.isfinite(v) else repr(float(v)) for v in row])
+        """Write the CSV (one row per step); returns the text when ``path`` is None.
+
+        Numbers are written as Python writes them (the shortest text that reads back to
+        the same float), ``nan`` where there is no value; the file is written in blocks
+        of rows, so memory does not grow with the sweep."""
         if path is None:
+            buf = io.StringIO()
+            self._write_csv(buf)
             return buf.getvalue()
         with open(path, "w", encoding="utf-8", newline="") as f:
-            f.write(buf.getvalue())
+            self._write_csv(f)
         return None
+
+    def _write_csv(self, out, block=20_000):
+        names = list(self.columns)
+        header = io.StringIO()
+        csv.writer(header, lineterminator="\n").writerow(names)
+        out.write(header.getvalue())
+        columns = [np.asarray(self.columns[n], dtype=float) for n in names]
+        for s in range(0, self.steps + 1, block):
+            texts = []
+            for column in columns:
+                part = column[s:s + block]
+                text = list(map(repr, part.tolist()))
+                if not np.isfinite(part).all():
+                    for i in np.flatnonzero(~np.isfinite(part)):
+                        text[i] = "nan"
+                texts.append(text)
+            out.write("".join(",".join(row) + "\n" for row in zip(*texts)))
 
     def to_dict(self) -> dict:
         """The JSON of ``chaingraph solve --json``."""
@@ -187,6 +203,11 @@ def solve(mechanism, *, fixed=None, driver=None, inputs=None, start=None, stop=N
         if value is not None and not math.isfinite(value):
             raise MechanismError(f"the sweep's {what} must be a finite number, got {value}",
                                  mechanism=chain.name)
+        if value is not None and abs(value) > LARGEST_INPUT:
+            raise MechanismError(
+                f"the sweep's {what} {value:g} is too large: at most {LARGEST_INPUT:g} in "
+                "size (beyond it a float cannot hold a thousandth of a degree or a "
+                "millimetre)", mechanism=chain.name)
     fixed, driver, items = chosen_inputs(chain, fixed, driver, _as_inputs(inputs, chain))
     if items:
         first = items[0]
@@ -206,6 +227,7 @@ def solve(mechanism, *, fixed=None, driver=None, inputs=None, start=None, stop=N
         plan = _plan(chain, fixed, None, items)
     else:
         plan = _plan(chain, fixed, driver)
+    _check_memory(plan, steps)
     if omega is None:
         omega = m.omega if m else 1.0
     output = m.output if m else None
@@ -253,6 +275,37 @@ def solve(mechanism, *, fixed=None, driver=None, inputs=None, start=None, stop=N
     return Motion(name=chain.name, fixed=plan.fixed, driver=plan.driver, omega=omega,
                   columns=columns, summary=summary, units=chain.units, plan=plan,
                   inputs=() if plan.from_driver else plan.inputs)
+
+
+#: the largest input value a sweep may start or stop at
+LARGEST_INPUT = 1e9
+#: bytes a sweep holds per step and column (the columns and the working arrays, measured)
+_BYTES_PER_VALUE = 24
+
+
+def memory_budget() -> int:
+    """Bytes a sweep may take: half of this machine's memory, at most 8 GiB."""
+    import os
+    try:
+        physical = os.sysconf("SC_PAGE_SIZE") * os.sysconf("SC_PHYS_PAGES")
+    except (ValueError, OSError, AttributeError):
+        physical = 4 << 30
+    return int(min(physical // 2, 8 << 30))
+
+
+def _check_memory(plan, steps):
+    """Refuse up front a sweep that would not fit in memory, with what it would need."""
+    chain = plan.chain
+    columns = 10 * (len(chain.joints) + len(chain.points)) + 3 * len(chain.links) + 4
+    need = (steps + 1) * columns * _BYTES_PER_VALUE
+    budget = memory_budget()
+    if need > budget:
+        most = budget // (columns * _BYTES_PER_VALUE) - 1
+        raise MechanismError(
+            f"a sweep of {steps:,} steps would need about {need / 2**30:,.1f} GiB of memory "
+            f"({columns} columns); at most {most:,} steps fit in the {budget / 2**30:.1f} "
+            "GiB a sweep may take here (half of this machine's memory, at most 8 GiB)",
+            mechanism=chain.name)
 
 
 _RATE_COLUMNS = {"omega", "alpha", "vx", "vy", "ax", "ay", "v", "a"}
