@@ -194,13 +194,73 @@ def canonical(chain, *, oriented: bool = True) -> Canon:
     >>> canonical(chaingraph.load(catalog_path("four-bar-chain"))).group_size
     8
     """
+    if len(chain.links) > MAX_LINKS:
+        from .errors import ChainStructureError
+        raise ChainStructureError(
+            f"canonical labelling (for isomorphism, inversions and identify) takes chains of "
+            f"at most {MAX_LINKS:,} links, which it labels in seconds; this one has "
+            f"{len(chain.links):,}", chain=chain.name)
     return _canonical_cached(chain, oriented)
+
+
+#: the most links a chain may have for canonical labelling: polynomial in practice,
+#: seconds up to here, but very symmetric graphs of many thousands take minutes
+MAX_LINKS = 2000
+
+
+#: link-joint graphs of more nodes than this are labelled by nauty (the search here is
+#: exact at any size, but nauty's is much faster on large, very symmetric graphs);
+#: isomorphic chains have as many nodes, so they are always labelled the same way
+NAUTY_FROM = 160
+
+
+def _search_nauty(labels, adj):
+    """:func:`_search` by nauty. Edges of the most common label join their ends
+    directly; an edge of another label becomes a node of its own colour between its
+    ends. The colour classes are ordered by label, the graph's nodes first, so the
+    canonical order of the nodes is the first ``n`` of nauty's; the certificate is the
+    sorted labelled edge list in that order, as :func:`_search` makes it."""
+    import pynauty
+    n = len(labels)
+    kinds = sorted(set(labels))
+    edges = [(v, u, e) for v in range(n) for u, e in adj[v] if v < u]
+    counts = {}
+    for _, _, e in edges:
+        counts[e] = counts.get(e, 0) + 1
+    common = max(sorted(counts), key=counts.get) if counts else 0
+    others = [(v, u, e) for v, u, e in edges if e != common]
+    adjacency = {v: [] for v in range(n + len(others))}
+    for v, u, e in edges:
+        if e == common:
+            adjacency[v].append(u)
+    for i, (v, u, _) in enumerate(others):
+        adjacency[n + i] = [v, u]
+    colouring = [{v for v in range(n) if labels[v] == k} for k in kinds]
+    colouring += [{n + i for i, (_, _, e) in enumerate(others) if e == k}
+                  for k in sorted({e for _, _, e in others})]
+    g = pynauty.Graph(n + len(others), adjacency_dict=adjacency, vertex_coloring=colouring)
+    order = list(pynauty.canon_label(g)[:n])
+    generators, size1, size2, _, _ = pynauty.autgrp(g)
+    size = int(round(size1 * 1e6)) * 10 ** size2 // 10 ** 6
+    position = [0] * n
+    for i, v in enumerate(order):
+        position[v] = i
+    cert = tuple(sorted((min(position[v], position[u]), max(position[v], position[u]), e)
+                        for v, u, e in edges))
+    return cert, order, [list(p[:n]) for p in generators], size
 
 
 @lru_cache(maxsize=4096)
 def _canonical_cached(chain, oriented):
     nodes, labels, adj = _structure(chain, oriented)
-    cert, order, gens, size = _search(labels, adj)
+    search = _search
+    if len(nodes) > NAUTY_FROM:
+        try:
+            import pynauty  # noqa: F401
+            search = _search_nauty
+        except ImportError:                       # pragma: no cover - a dependency
+            pass
+    cert, order, gens, size = search(labels, adj)
     form = (tuple(labels[v] for v in order), cert)
     generators = tuple({nodes[x]: nodes[g[x]] for x in range(len(nodes))} for g in gens)
     return Canon(form=form, order=tuple(nodes[v] for v in order), generators=generators,

@@ -171,12 +171,24 @@ def build_report(paths, out_dir, *, progress=sys.stderr, steps=180, frames=48,
             bar.show(k + 1, Path(job[0]).name)
     else:
         from concurrent.futures import ProcessPoolExecutor, as_completed
-        with ProcessPoolExecutor(max_workers=workers) as pool:
+
+        from .atlas.run import ignore_interrupts
+        pool = ProcessPoolExecutor(max_workers=workers, initializer=ignore_interrupts)
+        try:
             futures = {pool.submit(_entry_job, job): job for job in jobs}
             for k, future in enumerate(as_completed(futures)):
                 job = futures[future]
                 results[job[1]] = future.result()
                 bar.show(k + 1, Path(job[0]).name)
+        except BaseException:
+            # Ctrl-C or a failure: stop the workers now; the index is not written, so
+            # no half-made report is presented as complete
+            for process in list(getattr(pool, "_processes", {}).values()):
+                process.terminate()
+            pool.shutdown(wait=True, cancel_futures=True)
+            bar.close()
+            raise
+        pool.shutdown()
     bar.close()
     entries = [results[job[1]] for job in jobs]
     failures += [(e.source, e.error) for e in entries if e.error]

@@ -25,14 +25,23 @@ from .errors import ChainStructureError
 __all__ = ["rigid_subchains", "subchain_mobility", "MAX_LINKS"]
 
 MAX_LINKS = 26
-_BLOCK = 1 << 20
+#: subset-joint pairs evaluated at once (bounds the memory: 8 bytes each)
+_BLOCK_CELLS = 1 << 23
+#: subset-joint pairs a search may take in all (under a minute here); more is refused
+MAX_WORK = 1 << 31
 
 
 def _incidence(chain):
+    """Link index, d, and the joints as (link mask, constraint weight), joints that join
+    the same links merged (their weights add: a bundle of parallel joints costs one)."""
     index = {name: i for i, name in enumerate(chain.links)}
     d = 3 if chain.space == "planar" else 6
-    masks = np.array([sum(1 << index[x] for x in j.links) for j in chain.joints], dtype=np.int64)
-    weights = np.array([d - j.pair.freedom(chain.space) for j in chain.joints], dtype=np.int64)
+    merged = {}
+    for j in chain.joints:
+        mask = sum(1 << index[x] for x in j.links)
+        merged[mask] = merged.get(mask, 0) + d - j.pair.freedom(chain.space)
+    masks = np.array(list(merged), dtype=np.int64)
+    weights = np.array(list(merged.values()), dtype=np.int64)
     return index, d, masks, weights
 
 
@@ -96,14 +105,21 @@ def rigid_subchains(chain) -> list[tuple[str, ...]]:
             f"at most {MAX_LINKS} links; this one has {n_links}", chain=chain.name)
     _, d, masks, weights = _incidence(chain)
     total = 1 << n_links
+    if total * max(1, len(masks)) > MAX_WORK:
+        raise ChainStructureError(
+            f"the rigid sub-chain search is exhaustive over link sets: {n_links} links and "
+            f"{len(masks)} distinct joints make {total * len(masks):.2g} subset-joint "
+            f"checks, more than the {MAX_WORK:.2g} it may take (about a minute)",
+            chain=chain.name)
     full = total - 1
     found = []
-    for start in range(0, total, _BLOCK):
-        subsets = np.arange(start, min(total, start + _BLOCK), dtype=np.int64)
+    block = max(1, _BLOCK_CELLS // max(1, len(masks)))
+    for start in range(0, total, block):
+        subsets = np.arange(start, min(total, start + block), dtype=np.int64)
         mob = _mobility(subsets, d, masks, weights)
         rigid = (mob <= 0) & (np.bitwise_count(subsets) >= 2) & (subsets != full)
-        found.append(subsets[rigid])
-    candidates = np.concatenate(found)
+        found.append(subsets[rigid].astype(np.uint32))     # 26 links fit in 32 bits
+    candidates = np.concatenate(found).astype(np.int64) if found else np.zeros(0, np.int64)
     order = np.lexsort((candidates, np.bitwise_count(candidates)))
     candidates = candidates[order]
     minimal = []

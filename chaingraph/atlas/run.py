@@ -181,13 +181,21 @@ def _serial(fn, tasks, on_result):
         on_result(i, fn(task))
 
 
+def ignore_interrupts():
+    """In a worker process: leave Ctrl-C to the main process, which stops the workers
+    (so that no worker prints a traceback of its own)."""
+    import signal
+    signal.signal(signal.SIGINT, signal.SIG_IGN)
+
+
 def process_runner(workers):
     """A runner on ``workers`` local processes (results in any order)."""
     def run(fn, tasks, on_result):
         if workers <= 1 or len(tasks) <= 1:
             return _serial(fn, tasks, on_result)
         from concurrent.futures import FIRST_COMPLETED, ProcessPoolExecutor, wait
-        pool = ProcessPoolExecutor(max_workers=min(workers, len(tasks)))
+        pool = ProcessPoolExecutor(max_workers=min(workers, len(tasks)),
+                                   initializer=ignore_interrupts)
         try:
             pending = {pool.submit(fn, task): i for i, task in enumerate(tasks)}
             while pending:
