@@ -104,8 +104,11 @@ def _finish(plt, fig, path):
     if path is None:
         plt.close(fig)
         return fig
+    from pathlib import Path
     try:
-        fig.savefig(path)     # before closing: a closed figure's canvas hides write errors
+        # before closing; PNG without an ending, written to the very path asked for
+        # (matplotlib would otherwise append ".png" to it)
+        fig.savefig(path, format=None if Path(str(path)).suffix else "png")
     finally:
         plt.close(fig)
     return None

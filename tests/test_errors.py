@@ -1,0 +1,321 @@
+"""Every failure a clear error, every run bounded (issue 16): fuzzed documents and text,
+output paths, adversarial numbers and sizes, each ending in one line and the right exit
+status, never a traceback; resource tests under a memory limit."""
+
+import contextlib
+import io
+import json
+import os
+import resource
+import signal
+import subprocess
+import sys
+import time
+import tomllib
+
+import pytest
+from hypothesis import HealthCheck, given, settings
+from hypothesis import strategies as st
+
+import chaingraph
+from chaingraph import ChainGraphError
+from chaingraph.catalog import catalog_path
+from chaingraph.cli import main
+
+from .conftest import run_cli
+
+CRANK = str(catalog_path("crank-rocker-with-slider"))
+FOUR_BAR = catalog_path("four-bar-chain")
+
+
+def _main(*args):
+    """The command line in this process: (exit status, stdout, stderr)."""
+    out, err = io.StringIO(), io.StringIO()
+    with contextlib.redirect_stdout(out), contextlib.redirect_stderr(err):
+        try:
+            code = main([str(a) for a in args])
+        except SystemExit as e:                 # argparse's usage errors
+            code = e.code
+    return code, out.getvalue(), err.getvalue()
+
+
+def _one_line(err):
+    return err.count("\n") <= 1 and "Traceback" not in err and err.startswith("chaingraph")
+
+
+# -- fuzzing the loader ------------------------------------------------------------
+SOURCE = FOUR_BAR.read_text()
+DOC = tomllib.loads(SOURCE)
+
+values = st.recursive(
+    st.none().map(lambda _: "x") | st.booleans() | st.integers() | st.floats()
+    | st.integers(min_value=10**300, max_value=10**400) | st.text(max_size=8)
+    | st.sampled_from(["$\\frac{a}{b}$", "R", "P", "", "a b", "crank"]),
+    lambda inner: st.lists(inner, max_size=4) | st.dictionaries(st.text(max_size=5), inner,
+                                                                  max_size=3),
+    max_leaves=8)
+
+
+@st.composite
+def mutated_documents(draw):
+    doc = json.loads(json.dumps(DOC))
+    for _ in range(draw(st.integers(1, 3))):
+        node = doc
+        path = []
+        while isinstance(node, (dict, list)) and node and draw(st.booleans()):
+            key = (draw(st.sampled_from(sorted(node))) if isinstance(node, dict)
+                   else draw(st.integers(0, len(node) - 1)))
+            path.append((node, key))
+            node = node[key]
+        if path:
+            parent, key = path[-1]
+            if isinstance(parent, dict) and draw(st.booleans()):
+                del parent[key]
+            else:
+                parent[key] = draw(values)
+        else:
+            doc[draw(st.text(max_size=6))] = draw(values)
+    return doc
+
+
+@settings(max_examples=300, deadline=None, suppress_health_check=[HealthCheck.too_slow])
+@given(mutated_documents())
+def test_a_mutated_document_loads_or_says_what_is_wrong(doc):
+    try:
+        chain = chaingraph.from_document(doc, source="fuzz.toml")
+    except ChainGraphError as e:
+        assert str(e).startswith("fuzz.toml") and "\n" not in str(e)
+        return
+    chaingraph.classify(chain)
+
+
+@settings(max_examples=300, deadline=None)
+@given(st.data())
+def test_mutated_text_loads_or_says_what_is_wrong(data):
+    text = SOURCE
+    for _ in range(data.draw(st.integers(1, 4))):
+        i = data.draw(st.integers(0, len(text)))
+        j = data.draw(st.integers(i, min(len(text), i + 12)))
+        text = text[:i] + data.draw(st.sampled_from(
+            ["", "[", "]", "{", "\"", "=", "\n", "1e999", "9" * 5000, "[[joints]]", "$x$",
+             "nan", "-", "\\u0000"])) + text[j:]
+    try:
+        chaingraph.loads(text, source="fuzz.toml")
+    except ChainGraphError as e:
+        assert "fuzz.toml" in str(e) and "Traceback" not in str(e)
+
+
+def test_deep_nesting_is_the_files_error(tmp_path):
+    for text in ("x = " + "[" * 5000 + "]" * 5000, "x = " + "{a=" * 3000 + "1" + "}" * 3000):
+        path = tmp_path / "deep.toml"
+        path.write_text(text)
+        code, out, err = _main("classify", path)
+        assert code == 2 and _one_line(err) and "nested too deeply" in err
+
+
+# -- numbers -----------------------------------------------------------------------
+@pytest.mark.parametrize("replace, key", [
+    ("at = [1" + "0" * 400 + ", 2]", "'at' x"),
+    ("at = [1" + "0" * 5000 + ", 2]", "cannot be read"),
+    ("at = [1e300, 2]", "too large"),
+])
+def test_numbers_that_cannot_be_computed_are_refused(tmp_path, replace, key):
+    text = SOURCE.replace(SOURCE[SOURCE.index("at = ["):].split("\n")[0], replace, 1)
+    path = tmp_path / "big.toml"
+    path.write_text(text)
+    code, out, err = _main("classify", path)
+    assert code == 2 and _one_line(err) and key in err
+
+
+@pytest.mark.parametrize("args, words", [
+    (["design", "slotted-lever", "--time-ratio", "1.5", "--crank", "1e154", "--stroke",
+      "1e155"], "--crank"),
+    (["design", "whitworth", "--time-ratio", "1.5", "--crank", "100", "--stroke", "1e308"],
+     "--stroke"),
+    (["solve", CRANK, "--from", "1e308", "--steps", "2"], "too large"),
+    (["solve", CRANK, "--steps", "100000000"], "GiB"),
+    (["solve", CRANK, "--steps", "1e8"], "invalid int value"),
+    (["solve", CRANK, "--steps", "0"], "steps"),
+])
+def test_command_line_numbers_are_refused_up_front(args, words):
+    start = time.perf_counter()
+    code, out, err = _main(*args)
+    assert code == 2 and words in err and "Traceback" not in err
+    assert err.count("\n") == 1
+    assert time.perf_counter() - start < 10
+
+
+def test_far_angles_are_taken_modulo_a_turn():
+    near = chaingraph.solve(chaingraph.load(CRANK), start=30, stop=40, steps=2)
+    far = chaingraph.solve(chaingraph.load(CRANK), start=30 + 360 * 10**6,
+                           stop=40 + 360 * 10**6, steps=2)
+    for key in near.columns:
+        if key not in ("theta",) and not key.startswith("input:"):
+            assert far[key] == pytest.approx(near[key], abs=1e-6), key
+
+
+# -- output paths ------------------------------------------------------------------
+def _outputs(tmp_path):
+    afile = tmp_path / "afile"
+    afile.write_text("x")
+    return {
+        "a folder": (tmp_path, "is a folder"),
+        "under a file": (afile / "x.out", "is a file, not a folder"),
+        "a full disk": ("/dev/full", "No space left"),
+    }
+
+
+@pytest.mark.parametrize("case", ["a folder", "under a file", "a full disk"])
+@pytest.mark.parametrize("flag", ["--csv", "--plot", "--draw"])
+def test_solve_outputs_that_cannot_be_written(tmp_path, flag, case):
+    path, words = _outputs(tmp_path)[case]
+    if flag != "--csv" and case == "under a file":
+        path = str(path) + ".svg"
+    code, out, err = _main("solve", CRANK, flag, path)
+    assert code == 2 and _one_line(err) and words in err, err
+
+
+def test_folder_outputs_that_cannot_be_written(tmp_path):
+    afile = tmp_path / "afile"
+    afile.write_text("x")
+    for args in (["report", FOUR_BAR, "-o", afile, "-q"], ["atlas", "--links", "6", "--out",
+                                                           afile / "x", "-q"],
+                 ["design", "whitworth", "--time-ratio", "1.5", "--crank", "100", "--stroke",
+                  "300", "--out", tmp_path]):
+        code, out, err = _main(*args)
+        assert code == 2 and _one_line(err) and str(tmp_path) in err, (args, err)
+
+
+def test_unknown_picture_format_lists_the_formats(tmp_path):
+    code, out, err = _main("solve", CRANK, "--plot", tmp_path / "x.xyz")
+    assert code == 2 and _one_line(err) and ".png" in err and ".svg" in err
+
+
+def test_missing_folders_of_an_output_are_made(tmp_path):
+    path = tmp_path / "a" / "b" / "motion.csv"
+    code, out, err = _main("solve", CRANK, "--csv", path, "--steps", "8")
+    assert code == 0 and path.exists()
+
+
+# -- names drawn as text -------------------------------------------------------------
+def test_names_with_dollars_are_drawn_as_text(tmp_path):
+    text = CRANK_TEXT = open(CRANK).read()
+    chain = chaingraph.load(CRANK)
+    for link in chain.links:
+        text = text.replace(f'"{link}"', f'"$\\\\frac{{{link}}}{{b}}$"')
+    path = tmp_path / "dollars.toml"
+    path.write_text(text)
+    assert text != CRANK_TEXT
+    code, out, err = _main("solve", path, "--plot", tmp_path / "p.png", "--draw",
+                           tmp_path / "d.png", "--steps", "12")
+    assert code == 0, err
+    code, out, err = _main("report", path, "-o", tmp_path / "report", "-q")
+    assert code == 0, err
+    assert "$\\frac{" in (tmp_path / "report" / "dollars.html").read_text()
+
+
+# -- report pages ------------------------------------------------------------------
+def test_a_chain_file_called_index_keeps_its_page(tmp_path):
+    for name in ("Index.toml", "img.toml"):
+        (tmp_path / name).write_text(FOUR_BAR.read_text())
+    code, out, err = _main("report", tmp_path / "Index.toml", tmp_path / "img.toml",
+                           "-o", tmp_path / "out", "-q")
+    assert code == 0, err
+    index = (tmp_path / "out" / "index.html").read_text()
+    assert 'href="index-2.html"' in index and 'href="img-2.html"' in index
+    assert (tmp_path / "out" / "index-2.html").exists()
+
+
+@pytest.mark.parametrize("workers, code, words", [("0", 2, "must be 1 or more"),
+                                                   ("-3", 2, "must be 1 or more"),
+                                                   ("500", 0, "capped")])
+def test_report_workers_are_checked_and_capped(tmp_path, workers, code, words):
+    got, out, err = _main("report", FOUR_BAR, "-o", tmp_path, "-q", "--workers", workers)
+    assert got == code and words in err
+
+
+# -- sizes ---------------------------------------------------------------------------
+def _chain(edges, name):
+    from chaingraph.chain import Chain, Joint
+    return Chain(name, tuple(Joint(f"J{i}", "R", (f"L{a}", f"L{b}"))
+                             for i, (a, b) in enumerate(edges)))
+
+
+def test_structure_commands_refuse_what_they_cannot_finish():
+    import itertools
+    complete = _chain(list(itertools.combinations(range(26), 2)), "K26")
+    start = time.perf_counter()
+    with pytest.raises(chaingraph.ChainStructureError, match="subset-joint checks"):
+        chaingraph.classify(complete)
+    long_loop = _chain([(i, (i + 1) % 2001) for i in range(2001)], "loop")
+    with pytest.raises(chaingraph.ChainStructureError, match="at most 2,000 links"):
+        chaingraph.inversions(long_loop)
+    assert time.perf_counter() - start < 5
+
+
+def test_structure_commands_finish_on_hundreds_of_links():
+    import networkx as nx
+    cube = nx.convert_node_labels_to_integers(nx.hypercube_graph(8))
+    start = time.perf_counter()
+    inv = chaingraph.inversions(_chain(list(cube.edges()), "hypercube"))
+    assert inv.classes == 1                            # every link alike
+    loop = _chain([(i, (i + 1) % 500) for i in range(500)], "loop")
+    assert chaingraph.inversions(loop).classes == 1
+    chaingraph.identify(loop)
+    assert time.perf_counter() - start < 60
+
+
+# -- resource tests: run under a memory limit ------------------------------------------
+def _limited(args, *, memory, seconds):
+    """Run the command line under an address-space limit and a time limit."""
+    def limit():
+        resource.setrlimit(resource.RLIMIT_AS, (memory, memory))
+    start = time.perf_counter()
+    proc = subprocess.run([sys.executable, "-m", "chaingraph", *map(str, args)],
+                          capture_output=True, text=True, preexec_fn=limit,
+                          timeout=seconds)
+    return proc.returncode, proc.stdout, proc.stderr, time.perf_counter() - start
+
+
+def test_many_parallel_joints_classify_in_bounded_memory(tmp_path):
+    lines = ['name = "20 links, 10,000 parallel joints"']
+    edges = [(i, (i + 1) % 20) for i in range(20)] + [(0, 1)] * 10000
+    for i, (a, b) in enumerate(edges):
+        lines.append(f'[[joints]]\nid = "J{i}"\nkind = "R"\nlinks = ["L{a}", "L{b}"]')
+    path = tmp_path / "parallel.toml"
+    path.write_text("\n".join(lines))
+    code, out, err, elapsed = _limited(["classify", path], memory=2 << 30, seconds=120)
+    assert code == 0 and "degenerate" in out, err
+
+
+def test_a_long_sweep_to_csv_streams_in_bounded_memory(tmp_path):
+    path = tmp_path / "motion.csv"
+    code, out, err, elapsed = _limited(["solve", CRANK, "--steps", "300000", "--csv", path],
+                                       memory=3 << 30, seconds=180)
+    assert code == 0, err
+    with open(path) as f:
+        assert sum(1 for _ in f) == 300002
+
+
+def test_a_sweep_larger_than_memory_is_refused_under_the_limit():
+    code, out, err, elapsed = _limited(["solve", CRANK, "--steps", "2000000000"],
+                                       memory=2 << 30, seconds=60)
+    assert code == 2 and "GiB" in err and "Traceback" not in err and elapsed < 30
+
+
+# -- interrupts ----------------------------------------------------------------------
+@pytest.mark.slow
+def test_ctrl_c_in_report_is_one_line_and_exit_130(tmp_path):
+    out = tmp_path / "report"
+    proc = subprocess.Popen([sys.executable, "-m", "chaingraph", "report", "-o", str(out),
+                             "--workers", "2"], stdout=subprocess.PIPE,
+                            stderr=subprocess.PIPE, text=True, start_new_session=True)
+    deadline = time.monotonic() + 120
+    while not list(out.glob("*.html")) and time.monotonic() < deadline:
+        time.sleep(0.1)
+    os.killpg(proc.pid, signal.SIGINT)
+    _, err = proc.communicate(timeout=60)
+    assert proc.returncode == 130, err
+    assert err.strip().splitlines()[-1] == "chaingraph: interrupted"
+    assert "Traceback" not in err
+    assert not (out / "index.html").exists()           # no half report shown as whole
