@@ -255,11 +255,9 @@ def _canonical_cached(chain, oriented):
     nodes, labels, adj = _structure(chain, oriented)
     search = _search
     if len(nodes) > NAUTY_FROM:
-        try:
-            import pynauty  # noqa: F401
+        import importlib.util
+        if importlib.util.find_spec("pynauty") is not None:     # a dependency
             search = _search_nauty
-        except ImportError:                       # pragma: no cover - a dependency
-            pass
     cert, order, gens, size = search(labels, adj)
     form = (tuple(labels[v] for v in order), cert)
     generators = tuple({nodes[x]: nodes[g[x]] for x in range(len(nodes))} for g in gens)

@@ -22,7 +22,6 @@ from chaingraph import ChainGraphError
 from chaingraph.catalog import catalog_path
 from chaingraph.cli import main
 
-from .conftest import run_cli
 
 CRANK = str(catalog_path("crank-rocker-with-slider"))
 FOUR_BAR = catalog_path("four-bar-chain")
