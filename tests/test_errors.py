@@ -318,3 +318,53 @@ def test_ctrl_c_in_report_is_one_line_and_exit_130(tmp_path):
     assert err.strip().splitlines()[-1] == "chaingraph: interrupted"
     assert "Traceback" not in err
     assert not (out / "index.html").exists()           # no half report shown as whole
+
+
+# -- fuzzing the command line ---------------------------------------------------------
+_FLAG_VALUES = st.sampled_from(["0", "-1", "1e9", "1e308", "nan", "inf", "-inf", "3.5", "x",
+                                "", "100000000000", "7", "$x$", "B", "crank", "9" * 400])
+
+
+@settings(max_examples=120, deadline=None, suppress_health_check=[HealthCheck.too_slow])
+@given(st.lists(st.tuples(st.sampled_from(["--from", "--to", "--steps", "--fixed",
+                                            "--driver", "--input", "--json"]),
+                          _FLAG_VALUES), max_size=4))
+def test_solve_with_any_flags_answers_in_one_line(flags):
+    args = ["solve", CRANK]
+    for flag, value in flags:
+        args += [flag] if flag == "--json" else [flag, value]
+    code, out, err = _main(*args)
+    assert code in (0, 1, 2)
+    if code:
+        assert err.count("\n") == 1 and "Traceback" not in err, err
+
+
+@settings(max_examples=60, deadline=None, suppress_health_check=[HealthCheck.too_slow])
+@given(st.sampled_from(["slotted-lever", "whitworth", "crank-rocker", ""]),
+       _FLAG_VALUES, _FLAG_VALUES, _FLAG_VALUES)
+def test_design_with_any_numbers_answers_in_one_line(kind, ratio, crank, stroke):
+    code, out, err = _main("design", kind, "--time-ratio", ratio, "--crank", crank,
+                           "--stroke", stroke)
+    assert code in (0, 2)
+    if code:
+        assert err.count("\n") == 1 and "Traceback" not in err, err
+
+
+@settings(max_examples=60, deadline=None)
+@given(st.sampled_from(["--links", "--dof", "--workers"]), _FLAG_VALUES)
+def test_atlas_with_any_numbers_answers_in_one_line(flag, value):
+    args = ["atlas", "--links", "6", "-q", flag, value]
+    code, out, err = _main(*args)
+    assert code in (0, 2)
+    if code:
+        assert err.count("\n") == 1 and "Traceback" not in err, err
+
+
+def test_a_far_sweep_without_summary_is_taken_within_a_turn():
+    chain = chaingraph.load(CRANK)
+    start = time.perf_counter()
+    far = chaingraph.solve(chain, start=0, stop=1e9, steps=2, summary=False)
+    assert time.perf_counter() - start < 10
+    with_summary = chaingraph.solve(chain, start=0, stop=1e9, steps=2)
+    for key in far.columns:
+        assert far[key] == pytest.approx(with_summary[key], nan_ok=True), key

@@ -31,8 +31,6 @@ as numpy arrays:
 from __future__ import annotations
 
 import math
-from functools import lru_cache
-
 import numpy as np
 
 from .labelling import graph_forms
@@ -66,17 +64,27 @@ def piece_work(job) -> int:
     return math.comb(spare + len(edges) - 1, len(edges) - 1) + 1
 
 
-@lru_cache(maxsize=256)
+_CACHE = {}
+#: compositions kept for reuse: small tables only (bounds a worker's memory)
+_CACHE_ROWS = 4096
+
+
 def _compositions(total, parts):
     """Every way to write ``total`` as ``parts`` ordered non-negative parts, as rows."""
+    key = (total, parts)
+    if key in _CACHE:
+        return _CACHE[key]
     if parts == 1:
-        return np.array([[total]], dtype=np.int16)
-    blocks = []
-    for first in range(total, -1, -1):
-        rest = _compositions(total - first, parts - 1)
-        blocks.append(np.hstack([np.full((len(rest), 1), first, dtype=np.int16), rest]))
-    out = np.vstack(blocks)
+        out = np.array([[total]], dtype=np.int16)
+    else:
+        blocks = []
+        for first in range(total, -1, -1):
+            rest = _compositions(total - first, parts - 1)
+            blocks.append(np.hstack([np.full((len(rest), 1), first, dtype=np.int16), rest]))
+        out = np.vstack(blocks)
     out.flags.writeable = False
+    if len(out) <= _CACHE_ROWS:
+        _CACHE[key] = out
     return out
 
 

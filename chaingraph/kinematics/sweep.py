@@ -224,6 +224,10 @@ def _evaluate_near(plan, theta):
     only to say the range when the sweep leaves it."""
     theta = np.asarray(theta, dtype=float)
     t0 = anchor(plan).tau
+    if np.max(np.abs(theta - t0)) > 720.0:
+        # far from the drawn pose: work out the cycle, so that a crank's angles are
+        # taken within one turn instead of walking the whole span on the grid
+        return _evaluate_sweep(plan, theta)
     parts = []
     for side, farthest in ((theta > t0, np.max), (theta <= t0, np.min)):
         if side.any():
