@@ -51,28 +51,8 @@ def graph_form(n, edges, *, backend="nauty"):
     >>> graph_form(4, [(0, 1), (1, 2), (2, 3), (3, 0)], backend="own")
     (((0, 1), (0, 2), (1, 3), (2, 3)), 1)
     """
-    _check(backend)
-    if backend == "nauty":
-        adjacency = {v: [] for v in range(n)}
-        for a, b in edges:
-            adjacency[a].append(b)
-        g = _nauty.Graph(n, adjacency_dict=adjacency)
-        order = _nauty.canon_label(g)
-        orbits = _nauty.autgrp(g)[4]
-    else:
-        labels = [("link",)] * n
-        adj = [[] for _ in range(n)]
-        for a, b in edges:
-            adj[a].append((b, 0))
-            adj[b].append((a, 0))
-        _, order, gens, _ = _search(labels, adj)
-        orbits = len(set(_orbits_of(gens, n)))
-    position = [0] * n
-    for i, v in enumerate(order):
-        position[v] = i
-    canon = tuple(sorted((min(position[a], position[b]), max(position[a], position[b]))
-                         for a, b in edges))
-    return canon, orbits
+    canonical, orbits = graph_forms(n, [list(edges)], backend=backend)
+    return tuple(map(tuple, canonical[0].tolist())), int(orbits[0])
 
 
 def graph_forms(n, edges, *, backend="nauty"):
