@@ -51,15 +51,21 @@ def graph6_lines(n, edges) -> bytes:
     return line.tobytes()
 
 
-def encode_chains(links, edges, orbits, fractionated):
+def encode_chains(links, edges, orbits, fractionated, *, block=8192):
     """A shard's chains as graph6 lines (bytes) and JSON lines (str), the JSON line of a
-    chain being its record in atlas.json without the id."""
-    orders = _orders_rows(edges, links)
-    lines = []
-    for e, o, x, key in zip(edges.tolist(), orbits.tolist(), fractionated.tolist(), orders):
-        lines.append(f'{{"edges": {json.dumps(e)}, "link_orders": {key}, '
-                     f'"inversion_classes": {o}, "fractionated": {"true" if x else "false"}}}\n')
-    return graph6_lines(links, edges), "".join(lines)
+    chain being its record in atlas.json without the id. Encoded in blocks of rows, so
+    that the working arrays stay small however many chains a shard holds."""
+    g6, lines = [], []
+    for s in range(0, len(orbits), block):
+        part = edges[s:s + block]
+        orders = _orders_rows(part, links)
+        for e, o, x, key in zip(part.tolist(), orbits[s:s + block].tolist(),
+                                fractionated[s:s + block].tolist(), orders):
+            lines.append(f'{{"edges": {json.dumps(e)}, "link_orders": {key}, '
+                         f'"inversion_classes": {o}, '
+                         f'"fractionated": {"true" if x else "false"}}}\n')
+        g6.append(graph6_lines(links, part))
+    return b"".join(g6), "".join(lines)
 
 
 def _orders_rows(edges, links):

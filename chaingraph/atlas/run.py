@@ -152,7 +152,7 @@ def _shard_task(task):
     """Stage 2 task: the chains of consecutive pieces, as arrays ``(edges, orbits,
     fractionated)``, and encoded (graph6 bytes, JSON lines) for the shard files."""
     from .output import encode_chains
-    jobs, links, joints, backend = task
+    jobs, links, joints, backend, encode = task
     edges = [np.zeros((0, joints, 2), np.uint8)]
     orbits = [np.zeros(0, np.int32)]
     fractionated = [np.zeros(0, bool)]
@@ -162,7 +162,7 @@ def _shard_task(task):
         orbits.append(found.orbits)
         fractionated.append(np.full(len(found), found.fractionated))
     arrays = np.concatenate(edges), np.concatenate(orbits), np.concatenate(fractionated)
-    return arrays + encode_chains(links, *arrays)
+    return arrays + (encode_chains(links, *arrays) if encode else (b"", ""))
 
 
 def _ring(links, backend):
@@ -350,8 +350,9 @@ def run_atlas(links, dof=1, *, workers=1, runner=None, out=None, resume=False,
         say(counts["work"] / total, f"shard {counts['done']}/{len(shards)}, "
                                     f"{counts['chains']:,} chains")
 
-    runner(_shard_task, [(jobs[slice(*shards[s])], links, joints, backend) for s in todo],
-           finished)
+    encode = shard_dir is not None
+    runner(_shard_task, [(jobs[slice(*shards[s])], links, joints, backend, encode)
+                         for s in todo], finished)
     parts = ([_ring(links, backend)] if links == dof + 3 else []) + results
     if not keep:
         return AtlasCounts(links, dof, [p if isinstance(p[0], int) else _counts(p)
