@@ -77,7 +77,7 @@ def mutated_documents(draw):
     return doc
 
 
-@settings(max_examples=300, deadline=None, suppress_health_check=[HealthCheck.too_slow])
+@settings(max_examples=200, deadline=None, suppress_health_check=[HealthCheck.too_slow])
 @given(mutated_documents())
 def test_a_mutated_document_loads_or_says_what_is_wrong(doc):
     try:
@@ -134,6 +134,7 @@ def test_numbers_that_cannot_be_computed_are_refused(tmp_path, replace, key):
     (["solve", CRANK, "--from", "1e308", "--steps", "2"], "too large"),
     (["solve", CRANK, "--steps", "100000000"], "GiB"),
     (["solve", CRANK, "--steps", "1e8"], "invalid int value"),
+    (["solve", CRANK, "--steps", "9" * 400], "about 10^399 steps"),
     (["solve", CRANK, "--steps", "0"], "steps"),
 ])
 def test_command_line_numbers_are_refused_up_front(args, words):
@@ -289,11 +290,11 @@ def test_many_parallel_joints_classify_in_bounded_memory(tmp_path):
 
 def test_a_long_sweep_to_csv_streams_in_bounded_memory(tmp_path):
     path = tmp_path / "motion.csv"
-    code, out, err, elapsed = _limited(["solve", CRANK, "--steps", "300000", "--csv", path],
+    code, out, err, elapsed = _limited(["solve", CRANK, "--steps", "150000", "--csv", path],
                                        memory=3 << 30, seconds=180)
     assert code == 0, err
     with open(path) as f:
-        assert sum(1 for _ in f) == 300002
+        assert sum(1 for _ in f) == 150002
 
 
 def test_a_sweep_larger_than_memory_is_refused_under_the_limit():

@@ -301,8 +301,11 @@ def _check_memory(plan, steps):
     budget = memory_budget()
     if need > budget:
         most = budget // (columns * _BYTES_PER_VALUE) - 1
+        gib = -(-need // 2**30)                # integers: steps may have any size
+        steps_text = f"{steps:,}" if steps < 10**15 else f"about 10^{len(str(steps)) - 1}"
+        gib_text = f"{gib:,}" if gib < 10**15 else f"10^{len(str(gib)) - 1}"
         raise MechanismError(
-            f"a sweep of {steps:,} steps would need about {need / 2**30:,.1f} GiB of memory "
+            f"a sweep of {steps_text} steps would need about {gib_text} GiB of memory "
             f"({columns} columns); at most {most:,} steps fit in the {budget / 2**30:.1f} "
             "GiB a sweep may take here (half of this machine's memory, at most 8 GiB)",
             mechanism=chain.name)
