@@ -9,12 +9,17 @@ $(BIN)/python:
 	$(PYTHON) -m venv $(VENV)
 	$(BIN)/python -m pip install --quiet --upgrade pip
 
-$(VENV)/.installed: pyproject.toml | $(BIN)/python
-	$(BIN)/python -m pip install --quiet -e .
+# a regular (not editable) install: setuptools warns on every editable install of a
+# flat layout; the install is redone whenever a source or catalog file changes, and the
+# tests import the source tree itself (pytest puts the checkout first on the path)
+SOURCES := $(shell find chaingraph catalog -name '*.py' -o -name '*.toml')
+
+$(VENV)/.installed: pyproject.toml $(SOURCES) | $(BIN)/python
+	$(BIN)/python -m pip install --quiet .
 	touch $@
 
 $(VENV)/.installed-test: pyproject.toml $(VENV)/.installed
-	$(BIN)/python -m pip install --quiet -e ".[test,cluster]"
+	$(BIN)/python -m pip install --quiet ".[test,cluster]"
 	touch $@
 
 report: $(VENV)/.installed
