@@ -354,8 +354,8 @@ def _cmd_atlas(args) -> int:
     joints_for(args.links, args.dof)   # a size with no chain: exit 2 with the reason
     if args.scheduler is None or args.scheduler == "local":
         workers = _workers(args.workers)
-    else:
-        workers = args.workers
+    else:                        # a remote cluster's cores are its own; refused below 1
+        workers = args.workers if args.workers >= 1 else _workers(args.workers)
     check_size(args.links, args.dof, cores=workers, cluster=args.scheduler is not None)
     if args.resume and not args.out:
         raise ChainGraphError("--resume continues a run in its output folder: give --out DIR")
