@@ -132,10 +132,11 @@ def _records(atlas, shard_dir, no_fractionated, block=4096):
 
 
 def _header(atlas, no_fractionated):
+    """The counts that open atlas.json (``distinct_inversions`` is added by the caller:
+    streamed, it is known only at the end)."""
     count = atlas.count_non_fractionated if no_fractionated else atlas.count
     return {"links": atlas.links, "dof": atlas.dof, "count": count,
-            "count_non_fractionated": atlas.count_non_fractionated,
-            "distinct_inversions": None}
+            "count_non_fractionated": atlas.count_non_fractionated}
 
 
 def atlas_dict(atlas, *, no_fractionated=False, chains=True) -> dict:
@@ -190,7 +191,6 @@ def write_atlas(atlas, out_dir, *, shard_dir=None, no_fractionated=False,
         paths["chain_dir"] = out / "chains"
         paths["chain_dir"].mkdir(exist_ok=True)
     header = _header(atlas, no_fractionated)
-    header.pop("distinct_inversions")
     json_tmp, json_file = _open_for_writing(paths["json"])
     g6_tmp, g6_file = _open_for_writing(paths["graph6"], "wb")
     by_assortment, figures, total = {}, [], 0

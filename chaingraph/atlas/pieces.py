@@ -139,7 +139,7 @@ def _candidate_sets(k, edges):
     return inside[possible].astype(np.int16), base[possible].astype(np.int16)
 
 
-def _keep(block, k, edges, runs, images, inside, base):
+def _keep(block, runs, images, inside, base):
     """Rows of ``block`` (distributions) that are orbit representatives and rigid-free."""
     keep = np.ones(len(block), dtype=bool)
     for (a, b), start, stop in runs:
@@ -229,7 +229,7 @@ def piece(job, *, backend="nauty") -> Piece:
         images = _images(k, edges, multigraph_automorphisms(k, edges, backend=backend))
         inside, base = _candidate_sets(k, edges)
         for block in _distribution_blocks(spare, len(edges)):
-            kept = _keep(block + minimum, k, edges, runs, images, inside, base)
+            kept = _keep(block + minimum, runs, images, inside, base)
             if not len(kept):
                 continue
             expanded = _expand(k, edges, kept)
