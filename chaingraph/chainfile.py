@@ -235,9 +235,6 @@ def number(value, where, fail, *, positive=False):
     return float(value)
 
 
-_number = number
-
-
 def _coordinates(value, where, fail):
     if (not isinstance(value, list) or len(value) != 2
             or any(isinstance(v, bool) or not isinstance(v, (int, float)) for v in value)):
@@ -290,7 +287,7 @@ def _joint(table, index, fail, dimensioned=False):
     if not isinstance(links, list) or not all(isinstance(x, str) for x in links):
         fail(f"'links' must be an array of link names, got {_show(links)}", label)
     at = _coordinates(table["at"], label, fail) if "at" in table else None
-    axis = _number(table["axis"], label + " key 'axis'", fail) if "axis" in table else None
+    axis = number(table["axis"], label + " key 'axis'", fail) if "axis" in table else None
     closure = _optional_string(table, "closure", label + " key 'closure'", fail)
     return Joint(id=joint_id, kind=kind, links=tuple(links), at=at, axis=axis,
                  closure=closure)
@@ -328,7 +325,7 @@ def _mechanism(table, fail, dimensioned=False):
     fixed = _string(table["fixed"], where + " key 'fixed'", fail)
     driver = _optional_string(table, "driver", where + " key 'driver'", fail)
     output = _optional_string(table, "output", where + " key 'output'", fail)
-    omega = _number(table["omega"], where + " key 'omega'", fail) if "omega" in table else 1.0
+    omega = number(table["omega"], where + " key 'omega'", fail) if "omega" in table else 1.0
     inputs = _inputs(table["inputs"], fail, dimensioned) if "inputs" in table else ()
     return Mechanism(fixed=fixed, driver=driver, omega=omega, output=output, inputs=inputs)
 
@@ -356,8 +353,8 @@ def _inputs(value, fail, dimensioned=False):
         if "joint" not in item:
             fail("missing required key 'joint'", here)
         joint = _string(item["joint"], here + " key 'joint'", fail)
-        start = _number(item["from"], here + " key 'from'", fail) if "from" in item else None
-        stop = _number(item["to"], here + " key 'to'", fail) if "to" in item else None
+        start = number(item["from"], here + " key 'from'", fail) if "from" in item else None
+        stop = number(item["to"], here + " key 'to'", fail) if "to" in item else None
         out.append(Input(joint, start, stop))
     return tuple(out)
 

@@ -165,30 +165,20 @@ def build_report(paths, out_dir, *, progress=sys.stderr, steps=180, frames=48,
     bar = ProgressBar(len(jobs), progress)
     bar.show(0, "")
     results = {}
-    if workers <= 1:
-        for k, job in enumerate(jobs):
-            results[job[1]] = _entry_job(job)
-            bar.show(k + 1, Path(job[0]).name)
-    else:
-        from concurrent.futures import ProcessPoolExecutor, as_completed
+    from .parallel import process_runner
 
-        from .atlas.run import ignore_interrupts
-        pool = ProcessPoolExecutor(max_workers=workers, initializer=ignore_interrupts)
-        try:
-            futures = {pool.submit(_entry_job, job): job for job in jobs}
-            for k, future in enumerate(as_completed(futures)):
-                job = futures[future]
-                results[job[1]] = future.result()
-                bar.show(k + 1, Path(job[0]).name)
-        except BaseException:
-            # Ctrl-C or a failure: stop the workers now; the index is not written, so
-            # no half-made report is presented as complete
-            for process in list(getattr(pool, "_processes", {}).values()):
-                process.terminate()
-            pool.shutdown(wait=True, cancel_futures=True)
-            bar.close()
-            raise
-        pool.shutdown()
+    def finished(k, row):
+        results[jobs[k][1]] = row
+        done.append(k)
+        bar.show(len(done), Path(jobs[k][0]).name)
+    done = []
+    try:
+        # the index is written only after every entry: an interrupted report is never
+        # presented as complete
+        process_runner(workers)(_entry_job, jobs, finished)
+    except BaseException:
+        bar.close()
+        raise
     bar.close()
     entries = [results[job[1]] for job in jobs]
     failures += [(e.source, e.error) for e in entries if e.error]

@@ -22,6 +22,7 @@ import numpy as np
 from ..errors import AtlasRunError
 from .contracted import assortments, contracted_graphs, joints_for
 from .labelling import default_backend
+from ..parallel import process_runner, serial
 from .pieces import piece, piece_work
 
 __all__ = ["Atlas", "plan", "run_atlas", "SHARDS"]
@@ -129,7 +130,7 @@ def plan(links, dof, *, backend=None, runner=None):
     joints = joints_for(links, dof)
     tasks = [(_degrees(a), a[0], backend) for a in assortments(links, joints) if _degrees(a)]
     results = [None] * len(tasks)
-    (runner or _serial)(_plan_task, tasks, lambda i, r: results.__setitem__(i, r))
+    (runner or serial)(_plan_task, tasks, lambda i, r: results.__setitem__(i, r))
     return [job for r in results for job in r]
 
 
@@ -176,42 +177,6 @@ def _ring(links, backend):
 
 
 # -- runners: where the tasks run --------------------------------------------------------
-def _serial(fn, tasks, on_result):
-    for i, task in enumerate(tasks):
-        on_result(i, fn(task))
-
-
-def ignore_interrupts():
-    """In a worker process: leave Ctrl-C to the main process, which stops the workers
-    (so that no worker prints a traceback of its own)."""
-    import signal
-    signal.signal(signal.SIGINT, signal.SIG_IGN)
-
-
-def process_runner(workers):
-    """A runner on ``workers`` local processes (results in any order)."""
-    def run(fn, tasks, on_result):
-        if workers <= 1 or len(tasks) <= 1:
-            return _serial(fn, tasks, on_result)
-        from concurrent.futures import FIRST_COMPLETED, ProcessPoolExecutor, wait
-        pool = ProcessPoolExecutor(max_workers=min(workers, len(tasks)),
-                                   initializer=ignore_interrupts)
-        try:
-            pending = {pool.submit(fn, task): i for i, task in enumerate(tasks)}
-            while pending:
-                done, _ = wait(pending, return_when=FIRST_COMPLETED)
-                for future in done:
-                    on_result(pending.pop(future), future.result())
-        except BaseException:
-            # Ctrl-C or a failure: stop every worker now, leave nothing running
-            for process in list(getattr(pool, "_processes", {}).values()):
-                process.terminate()
-            pool.shutdown(wait=True, cancel_futures=True)
-            raise
-        pool.shutdown()
-    return run
-
-
 class DaskRunner:
     """A runner on a Dask distributed cluster: ``address`` of a running scheduler
     (``tcp://host:8786``), or ``"local"`` for an embedded LocalCluster of ``workers``
@@ -330,8 +295,9 @@ def run_atlas(links, dof=1, *, workers=1, runner=None, out=None, resume=False,
     todo = []
     for s in range(len(shards)):
         if resume and shard_dir is not None and _shard_done(shard_dir, s):
-            results[s] = _read_shard(shard_dir, s, joints) if keep else _count_shard(shard_dir, s)
-            counts["chains"] += len(results[s][1]) if keep else results[s][0]
+            found = _read_shard(shard_dir, s, joints)
+            results[s] = found if keep else _counts(found)
+            counts["chains"] += len(found[1])
             counts["done"] += 1
             counts["work"] += shard_work[s]
         else:
@@ -420,19 +386,6 @@ def _read_shard(shard_dir, s, joints):
             fractionated.append(d["fractionated"])
     return (np.array(edges, dtype=np.uint8).reshape(len(edges), joints, 2),
             np.array(orbits, dtype=np.int32), np.array(fractionated, dtype=bool))
-
-
-def _count_shard(shard_dir, s):
-    count = non_fractionated = inversions = inversions_non_fractionated = 0
-    with open(_shard_path(shard_dir, s, ".jsonl"), encoding="utf-8") as f:
-        for line in f:
-            d = json.loads(line)
-            count += 1
-            inversions += d["inversion_classes"]
-            if not d["fractionated"]:
-                non_fractionated += 1
-                inversions_non_fractionated += d["inversion_classes"]
-    return (count, non_fractionated, inversions, inversions_non_fractionated)
 
 
 def _read_state(path, links, dof, backend):
