@@ -21,6 +21,7 @@ from .errors import (AssemblyError, AtlasRunError, AtlasSizeError, ChainFileErro
                      ChainGraphError,
                      ChainGraphWarning, ChainStructureError, DesignError, DimensionError,
                      MechanismError, PoseAdjustedWarning)
+from .graphical import instant_centres, velocity_polygon
 from .identify import Identification, identify
 from .inversions import Inversion, Inversions, inversions
 from .isomorphism import automorphism_orbits, canonical_form, is_isomorphic, isomorphism
@@ -36,7 +37,7 @@ __all__ = [
     "classify", "Classification", "Check", "rigid_subchains",
     "inversions", "Inversions", "Inversion", "identify", "Identification",
     "canonical_form", "is_isomorphic", "isomorphism", "automorphism_orbits",
-    "atlas", "design", "solve", "measure", "animate", "Motion", "feasible_range", "build_plan", "Plan",
+    "atlas", "design", "solve", "instant_centres", "velocity_polygon", "measure", "animate", "Motion", "feasible_range", "build_plan", "Plan",
     "ChainGraphError", "ChainFileError", "ChainStructureError", "MechanismError",
     "AssemblyError", "AtlasRunError", "AtlasSizeError", "DesignError", "DimensionError",
     "ChainGraphWarning", "PoseAdjustedWarning",

@@ -193,6 +193,86 @@ def _cmd_solve(args) -> int:
     return 0
 
 
+def _instant_arguments(args):
+    """The keyword arguments of instant_centres and velocity_polygon from the flags."""
+    at = args.at
+    return {"at": None if not at else at[0] if len(at) == 1 else at, "fixed": args.fixed,
+            "driver": args.driver, "inputs": args.inputs, "omega": args.omega}
+
+
+def _instant_heading(what, state) -> list[str]:
+    if state.inputs:
+        given = ", ".join(f"{j} = {v:.6g}" for j, v in state.inputs.items())
+        speed = f"the first input at {state.omega:g} per second"
+    else:
+        given = f"theta = {state.input:.6g} degrees"
+        speed = f"{state.driver} at {state.omega:g} rad/s"
+    lines = [f"{what} of {state.name}",
+             f"{state.fixed} fixed, {given} ({speed})"]
+    if len(state.plan.inputs) > 1:
+        lines.append("the inputs move together at their sweeps' rates")
+    return lines
+
+
+def _cmd_centres(args) -> int:
+    from .graphical import instant_centres
+    chain = load(args.file)
+    if args.draw:
+        picture_file(args.draw, what="drawing")
+    centres = instant_centres(chain, **_instant_arguments(args))
+    if args.draw:
+        from .graphical.draw import draw_centres
+        with _writing(args.draw):
+            draw_centres(centres, args.draw)
+    if args.json:
+        _print_json(centres.to_dict())
+        return 0
+    state = centres.state
+    print("\n".join(_instant_heading("Instantaneous centres", state)))
+    print("links: " + ", ".join(f"{n} {link}" for link, n in centres.numbers.items()))
+    print()
+    rows = centres.rows()
+    print(_table(rows, ["centre", "links", "x", "y", "found from"]))
+    omegas = centres.angular_velocities
+    if any(v is None for v in omegas.values()):
+        print("\nangular velocities: not determined at this pose (a dead centre)")
+    else:
+        print("\nangular velocities through the centres (rad/s): " + ", ".join(
+            f"{link} {_fmt(float(omegas[link]))}" for link in centres.numbers
+            if link != state.fixed))
+    return 0
+
+
+def _cmd_polygons(args) -> int:
+    from .graphical import velocity_polygon
+    chain = load(args.file)
+    if args.draw:
+        picture_file(args.draw, what="drawing")
+    polygons = velocity_polygon(chain, **_instant_arguments(args))
+    if args.draw:
+        from .graphical.draw import draw_polygons
+        with _writing(args.draw):
+            draw_polygons(polygons, args.draw)
+    if args.json:
+        _print_json(polygons.to_dict())
+        return 0
+    state = polygons.state
+    unit = state.units or "length units"
+    print("\n".join(_instant_heading("Velocity and acceleration polygons", state)))
+    print()
+    rows = polygons.image_rows()
+    print(f"images (velocity in {unit}/s, acceleration in {unit}/s^2, from the pole o)")
+    print(_table(rows, ["point", "link", "vx", "vy", "|v|", "ax", "ay", "|a|"]))
+    print()
+    rows = polygons.vector_rows()
+    print("relative vectors (direction in degrees CCW from +x)")
+    print(_table(rows, ["vector", "on", "component", "magnitude", "direction"]))
+    closure = polygons.closure
+    print(f"\nloops: {len(polygons.loops)}, closing to {closure['velocity']:.3g} "
+          f"{unit}/s and {closure['acceleration']:.3g} {unit}/s^2")
+    return 0
+
+
 def _mode_lines(assembly) -> list[str]:
     return [f"{m.part}: {m.word} {m.reference} ({m.source})" for m in assembly.modes]
 
@@ -495,6 +575,34 @@ def build_parser() -> argparse.ArgumentParser:
     p.add_argument("--draw", metavar="PATH.svg",
                    help="draw the mechanism in its drawn pose with the paths of its points")
     p.set_defaults(run=_cmd_solve)
+
+    for name, run, helptext, description in (
+            ("centres", _cmd_centres, "instantaneous centres (Kennedy's theorem)",
+             "Every instantaneous centre of the mechanism at one input value: the primary "
+             "ones from the joints, the others by Kennedy's theorem (the three centres of "
+             "three links lie on one line), each with its position (or direction at "
+             "infinity) and how it was found; the angular velocities through them."),
+            ("polygons", _cmd_polygons, "velocity and acceleration polygons",
+             "The velocity and acceleration polygons of the mechanism at one input value: "
+             "every point's image and the relative vectors, with their centripetal, "
+             "tangential, sliding and Coriolis components.")):
+        p = sub.add_parser(name, help=helptext, description=description)
+        p.add_argument("file", metavar="FILE", help="a mechanism file (TOML) with dimensions")
+        p.add_argument("--at", action="append", type=float, metavar="X",
+                       help="the input value (degrees, or slide for a P input; default: "
+                            "the drawn pose); with several inputs the first's value, or "
+                            "repeat it, one per input")
+        p.add_argument("--fixed", metavar="LINK", help="the fixed link")
+        given = p.add_mutually_exclusive_group()
+        given.add_argument("--driver", metavar="LINK",
+                           help="the input link, pinned to the fixed link by an R joint")
+        given.add_argument("--input", dest="inputs", action="append", metavar="JOINT",
+                           help="an input joint; repeat it, one per degree of freedom")
+        p.add_argument("--omega", type=float, metavar="W",
+                       help="the (first) input's speed (default: the file's, else 1)")
+        p.add_argument("--json", action="store_true", help="print JSON")
+        p.add_argument("--draw", metavar="PATH.svg", help="draw the construction")
+        p.set_defaults(run=run)
 
     p = sub.add_parser("assemble", help="the drawn pose of a mechanism given by its lengths",
                        description="Find every joint's position from the file's lengths, the "

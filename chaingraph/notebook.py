@@ -76,6 +76,25 @@ def motion_html(motion) -> str:
     return _table(rows) + figure_svg(plot_motion(motion))
 
 
+def centres_html(centres) -> str:
+    """The centres as a table and the picture of the construction."""
+    from .graphical.draw import draw_centres
+    return (f"<b>{html.escape(centres.name)}</b>: instantaneous centres at input "
+            f"{centres.input:.6g}" + _table(centres.rows(), ["centre", "links", "x", "y",
+                                                              "found from"])
+            + figure_svg(draw_centres(centres)))
+
+
+def polygons_html(polygons) -> str:
+    """The images as a table and the two polygons."""
+    from .graphical.draw import draw_polygons
+    return (f"<b>{html.escape(polygons.name)}</b>: velocity and acceleration polygons at "
+            f"input {polygons.input:.6g}"
+            + _table(polygons.image_rows(), ["point", "link", "vx", "vy", "|v|", "ax",
+                                             "ay", "|a|"])
+            + figure_svg(draw_polygons(polygons)))
+
+
 class Animation:
     """One cycle of a solved motion as an animated SVG (SMIL: no script, no network).
     A notebook shows it inline; :meth:`save` writes it."""

@@ -169,22 +169,29 @@ _COLOURS = ["#1f77b4", "#2ca02c", "#d62728", "#9467bd", "#8c564b", "#e377c2", "#
 
 
 def _draw_pose(ax, motion, k):
-    """Links as bars or polygons through their joints, R joints as circles, P joints as
-    squares on their sliding line, the fixed link as hatched ground marks."""
+    """The mechanism in the sweep's pose ``k`` (see :func:`draw_positions`)."""
     chain = motion.plan.chain
     pos = {}
     for j in chain.joints:
         pos[j.id] = (motion[f"x:{j.id}"][k], motion[f"y:{j.id}"][k])
     for p in chain.points:
         pos[p.id] = (motion[f"x:{p.id}"][k], motion[f"y:{p.id}"][k])
-    size = motion.plan.size
-    for j in chain.joints_of(motion.fixed):   # ground marks at the fixed link's joints
+    axes = {j.id: j.axis + motion[f"angle:{j.guide}"][k] - motion[f"angle:{j.guide}"][0]
+            for j in chain.joints if j.kind == "P"}
+    draw_positions(ax, chain, motion.fixed, pos, axes, motion.plan.size)
+
+
+def draw_positions(ax, chain, fixed, pos, axes, size):
+    """Links as bars or polygons through their joints, R joints as circles, P joints as
+    squares on their sliding line (``axes``: each P joint's direction now, degrees), the
+    fixed link as hatched ground marks; ``pos`` every joint's and point's position."""
+    for j in chain.joints_of(fixed):          # ground marks at the fixed link's joints
         x, y = pos[j.id]
         w = 0.035 * size
         ax.fill([x, x - w, x + w], [y, y - 1.6 * w, y - 1.6 * w], facecolor="#dddddd",
                 edgecolor="#555555", hatch="///", lw=0.8, zorder=1)
     for i, link in enumerate(chain.links):
-        if link == motion.fixed:
+        if link == fixed:
             continue
         pts = [pos[j.id] for j in chain.joints_of(link)]
         pts += [pos[p.id] for p in chain.points if p.link == link]
@@ -205,10 +212,8 @@ def _draw_pose(ax, motion, k):
     for j in chain.joints:
         x, y = pos[j.id]
         if j.kind == "P":
-            g = j.links[0]
-            angle = math.radians(j.axis) + math.radians(
-                motion[f"angle:{g}"][k] - motion[f"angle:{g}"][0])
-            span = 0.15 * motion.plan.size
+            angle = math.radians(axes[j.id])
+            span = 0.15 * size
             ax.plot([x - span * math.cos(angle), x + span * math.cos(angle)],
                     [y - span * math.sin(angle), y + span * math.sin(angle)],
                     color="#333333", lw=1.0, ls=":")

@@ -70,6 +70,8 @@ class Entry:
     warnings: list = field(default_factory=list)
     frames: int = 48
     grid: object = None           # two moving inputs: the poses over both, row by row
+    centres: object = None        # instantaneous centres at the drawn pose
+    polygons: object = None       # velocity and acceleration polygons at the drawn pose
 
 
 @dataclass
@@ -246,6 +248,15 @@ def _analyse(entry, steps):
             entry.warnings.append(f"motion not solved: {e}")
         else:
             entry.grid = input_grid(chain, entry.motion)
+            from .graphical.centres import centres_of
+            from .graphical.polygons import polygons_of
+            from .graphical.pose import pose_motion
+            try:
+                state = pose_motion(chain)
+            except ChainGraphError as e:
+                entry.warnings.append(f"centres and polygons not found: {e}")
+            else:
+                entry.centres, entry.polygons = centres_of(state), polygons_of(state)
 
 
 def input_grid(chain, motion, *, size=13):
@@ -292,6 +303,10 @@ def _write_images(entry, out, frames):
         plot_motion(entry.motion, img / f"{entry.slug}-motion.svg")
         (img / f"{entry.slug}-cycle.svg").write_text(
             mechanism_svg(entry.motion, frames=frames), encoding="utf-8")
+    if entry.centres is not None:
+        from .graphical.draw import draw_centres, draw_polygons
+        draw_centres(entry.centres, img / f"{entry.slug}-centres.svg")
+        draw_polygons(entry.polygons, img / f"{entry.slug}-polygons.svg")
 
 
 # -- pages ------------------------------------------------------------------------------
@@ -416,6 +431,36 @@ def _motion_section(e):
     out.append(f"<figure><img src=\"img/{e.slug}-motion.svg\" alt=\"output motion\" "
                "width=\"560\"><figcaption>The output's displacement, velocity and "
                "acceleration against the input angle.</figcaption></figure></div>")
+    if e.centres is not None:
+        out += _graphical_section(e)
+    return out
+
+
+def _graphical_section(e):
+    """The instantaneous centres and the polygons at the drawn pose."""
+    centres, polygons = e.centres, e.polygons
+    state = centres.state
+    given = (", ".join(f"{j} = {v:.6g}" for j, v in state.inputs.items()) if state.inputs
+             else f"&theta; = {state.input:.6g}&deg;")
+    out = [f"<h2>Instantaneous centres and polygons</h2><p>At the drawn pose ({given}, "
+           f"the input at {state.omega:g} per second). Links numbered "
+           + ", ".join(f"{n} {_esc(link)}" for link, n in centres.numbers.items())
+           + ".</p><table id=\"centres\"><tr><th>centre</th><th>links</th><th>x</th>"
+           "<th>y</th><th>found from</th></tr>"]
+    out += ["<tr>" + "".join(f"<td>{_esc(c)}</td>" for c in row) + "</tr>"
+            for row in centres.rows()]
+    out.append("</table>")
+    closure = polygons.closure
+    out.append("<div class=\"figures\">")
+    out.append(f"<figure><img src=\"img/{e.slug}-centres.svg\" alt=\"instantaneous "
+               "centres\" width=\"720\"><figcaption>The centres: filled from the joints, "
+               "open by Kennedy's theorem (the two lines that met dashed); the circle "
+               "diagram.</figcaption></figure>")
+    out.append(f"<figure><img src=\"img/{e.slug}-polygons.svg\" alt=\"velocity and "
+               "acceleration polygons\" width=\"720\"><figcaption>The velocity and "
+               "acceleration polygons (loops close to "
+               f"{closure['velocity']:.2g} and {closure['acceleration']:.2g}).</figcaption>"
+               "</figure></div>")
     return out
 
 

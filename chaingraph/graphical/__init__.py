@@ -1,0 +1,15 @@
+"""The textbook's graphical analysis, exact: instantaneous centres (Kennedy's theorem)
+and velocity and acceleration polygons at one input value.
+
+* :mod:`.pose` the mechanism solved at one input value, every link's motion;
+* :mod:`.centres` the instantaneous centres and the velocities through them;
+* :mod:`.polygons` the velocity and acceleration polygons (images and components);
+* :mod:`.draw` their pictures (matplotlib).
+"""
+
+from .centres import Centre, InstantCentres, instant_centres
+from .polygons import Component, Image, Polygons, Relative, velocity_polygon
+from .pose import LinkMotion, PoseMotion, pose_motion
+
+__all__ = ["instant_centres", "InstantCentres", "Centre", "velocity_polygon", "Polygons",
+           "Image", "Relative", "Component", "pose_motion", "PoseMotion", "LinkMotion"]
