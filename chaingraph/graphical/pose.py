@@ -139,10 +139,10 @@ class PoseMotion:
 def _check_value(value, what, name):
     if isinstance(value, bool) or not isinstance(value, (int, float)) \
             or not math.isfinite(value):
-        raise MechanismError(f"{what} must be a finite number, got {value!r}", mechanism=chain.source or name)
+        raise MechanismError(f"{what} must be a finite number, got {value!r}", mechanism=name)
     if abs(value) > LARGEST_INPUT:
         raise MechanismError(f"{what} {value:g} is too large: at most {LARGEST_INPUT:g} in "
-                             "size", mechanism=chain.source or name)
+                             "size", mechanism=name)
 
 
 def pose_motion(chain, *, at=None, fixed=None, driver=None, inputs=None,
@@ -178,16 +178,16 @@ def pose_motion(chain, *, at=None, fixed=None, driver=None, inputs=None,
     >>> round(state.links["slotted lever"].omega, 6)      # ω of the lever, ω2 = 1 rad/s
     0.4
     """
-    name = chain.name
+    name = chain.source or chain.name
     if not chain.has_pose:
         raise MechanismError("the chain has no drawn pose (joint positions or lengths): "
                              "instant centres and polygons need its dimensions",
-                             mechanism=chain.source or name)
+                             mechanism=name)
     values = None
     if at is not None:
         values = [at] if isinstance(at, (int, float)) else list(at)
         if not values:
-            raise MechanismError("no input value given", mechanism=chain.source or name)
+            raise MechanismError("no input value given", mechanism=name)
         for v in values:
             _check_value(v, "the input value", name)
     if omega is not None:
@@ -200,12 +200,12 @@ def pose_motion(chain, *, at=None, fixed=None, driver=None, inputs=None,
     else:
         if not driver and not fixed:
             raise MechanismError("the chain has no mechanism: name its fixed link and its "
-                                 "driver or inputs ([mechanism])", mechanism=chain.source or name)
+                                 "driver or inputs ([mechanism])", mechanism=name)
         plan = _plan(chain, fixed, driver)
     if values is not None and len(values) != 1 and len(values) != len(plan.inputs):
         raise MechanismError(f"{len(values)} input values given for {len(plan.inputs)} "
                              f"inputs: give one per input, or the first input's alone",
-                             mechanism=chain.source or name)
+                             mechanism=name)
     lead = plan.inputs[plan.lead]
     if values is None:
         tau = plan.tau(lead.value0) if plan.from_driver or lead.kind == "R" else \
@@ -273,7 +273,7 @@ def pose_motion(chain, *, at=None, fixed=None, driver=None, inputs=None,
             inputs_now[item.joint] = float(np.asarray(value).reshape(-1)[0])
     finite = all(math.isfinite(c) for m in links.values()
                  for c in (*m.velocity, m.omega, *m.acceleration, m.alpha))
-    return PoseMotion(name=name, fixed=plan.fixed, driver=plan.driver,
+    return PoseMotion(name=chain.name, fixed=plan.fixed, driver=plan.driver,
                       input=float(np.asarray(plan.value(theta)).reshape(-1)[0]),
                       inputs=inputs_now, omega=float(omega), units=chain.units,
                       links=links, positions=positions, slides=slides,
