@@ -203,14 +203,10 @@ def _instant_arguments(args):
 def _instant_heading(what, state) -> list[str]:
     if state.inputs:
         given = ", ".join(f"{j} = {v:.6g}" for j, v in state.inputs.items())
-        lead = state.plan.inputs[state.plan.lead]
-        unit = "rad/s" if lead.kind == "R" else f"{state.units or 'length units'}/s"
-        speed = f"{lead.joint} at {state.omega:g} {unit}"
     else:
         given = f"theta = {state.input:.6g} degrees"
-        speed = f"{state.driver} at {state.omega:g} rad/s"
     lines = [f"{what} of {state.name}",
-             f"{state.fixed} fixed, {given} ({speed})"]
+             f"{state.fixed} fixed, {given} ({state.speed_text})"]
     if len(state.plan.inputs) > 1:
         lines.append("the inputs move together at their sweeps' rates (a polygon per "
                      "input, by superposition, is not drawn yet)")

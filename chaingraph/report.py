@@ -443,7 +443,7 @@ def _graphical_section(e):
     given = (", ".join(f"{j} = {v:.6g}" for j, v in state.inputs.items()) if state.inputs
              else f"&theta; = {state.input:.6g}&deg;")
     out = [f"<h2>Instantaneous centres and polygons</h2><p>At the drawn pose ({given}, "
-           f"the input at {state.omega:g} per second). Links numbered "
+           f"{_esc(state.speed_text)}). Links numbered "
            + ", ".join(f"{n} {_esc(link)}" for link, n in centres.numbers.items())
            + ".</p><table id=\"centres\"><tr><th>centre</th><th>links</th><th>x</th>"
            "<th>y</th><th>found from</th></tr>"]

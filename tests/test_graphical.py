@@ -464,3 +464,26 @@ def test_several_inputs_on_the_command_line(capsys):
     assert "move together at their sweeps' rates" in capsys.readouterr().out
     assert main(["centres", path, "--at", "80", "--at", "100", "--at", "1"]) == 2
     assert "one per input" in capsys.readouterr().err
+
+
+def test_a_piston_driven_engine_through_its_centres():
+    """A P input: the slide's rate sets the angular velocities through the centres."""
+    chain = chaingraph.load(catalog_path("reciprocating-engine"))
+    motion = chaingraph.solve(chain, inputs=["S"], steps=8, summary=False)
+    for k in (2, 4, 6):
+        value = float(motion["input:S"][k])
+        centres = instant_centres(chain, inputs=["S"], at=value)
+        assert centres.state.inputs == {"S": pytest.approx(value, abs=1e-12)}
+        for link, w in centres.angular_velocities.items():
+            assert w == pytest.approx(motion["omega:" + link][k], abs=1e-12)
+        for name in centres.state.positions:
+            v = centres.velocity(name)
+            assert math.dist(v, (motion["vx:" + name][k], motion["vy:" + name][k])) <= 1e-9
+
+
+def test_notebook_displays():
+    chain = chaingraph.load(catalog_path("crank-and-slotted-lever-mechanism"))
+    centres_page = instant_centres(chain, at=45.0)._repr_html_()
+    polygons_page = velocity_polygon(chain, at=45.0)._repr_html_()
+    assert "<table>" in centres_page and "<svg" in centres_page and "I24" in centres_page
+    assert "<table>" in polygons_page and "<svg" in polygons_page and "B&#x27;" in polygons_page

@@ -188,6 +188,7 @@ def draw_polygons(polygons, path=None):
             ax.plot([p[0]], [p[1]], "o", color="#333333", ms=4)
             ax.annotate(_label(name), p, fontsize=9, xytext=(5, 4), textcoords="offset points")
         kinds = set()
+        reached = [(0.0, 0.0), *finite]
         for r in polygons.relatives:
             start = np.array(spots[r.start])
             colour = colours[r.link] if r.link else "#555555"
@@ -204,15 +205,20 @@ def draw_polygons(polygons, path=None):
                                     xytext=(3, 3), textcoords="offset points")
                     kinds.add(c.kind)
                 start = end
+                reached.append(tuple(end))
+        reached = np.array([p for p in reached if all(map(math.isfinite, p))])
+        lo, hi = reached.min(axis=0), reached.max(axis=0)
+        pad = 0.12 * max(float((hi - lo).max()), 1e-12)
+        ax.set_xlim(lo[0] - pad, hi[0] + pad)
+        ax.set_ylim(lo[1] - pad, hi[1] + pad)
         ax.set_aspect("equal")
         ax.grid(True, color="#eeeeee", lw=0.5)
-        ax.margins(0.12)
         unit = _unit_word(state, "s" if which == "velocity" else "s²")
         ax.set_xlabel(unit)
         ax.set_ylabel(unit)
         legend = ("relative vectors coloured by link" if which == "velocity" else
                   ", ".join(f"{_SHORT[k]} {k}" for k in sorted(kinds, key=list(_SHORT).index)))
-        ax.set_title(f"{which} polygon at {_input_text(state)}, ω = {state.omega:.6g} rad/s\n"
+        ax.set_title(f"{which} polygon at {_input_text(state)}, {state.speed_text}\n"
                      f"{legend}", fontsize=9)
     fig.suptitle(state.name, fontsize=10)
     fig.tight_layout()

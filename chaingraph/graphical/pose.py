@@ -116,6 +116,14 @@ class PoseMotion:
     chain: object
     plan: object
 
+    @property
+    def speed_text(self) -> str:
+        """The input's speed in words: "crank at 10 rad/s", "S at 5 mm/s"."""
+        lead = self.plan.inputs[self.plan.lead]
+        unit = "rad/s" if lead.kind == "R" else f"{self.units or 'length units'}/s"
+        who = self.driver if self.driver and not self.inputs else lead.joint
+        return f"{who} at {self.omega:g} {unit}"
+
     def link_of(self, name):
         """The link whose motion a joint's or point's CSV columns follow."""
         chain = self.chain
