@@ -259,6 +259,18 @@ def test_any_drawn_four_bar_by_hand(points):
             assert math.dist(centres.velocity(name), state.velocity(name)) <= 1e-9 * scale
 
 
+def test_links_named_by_numbers_keep_them():
+    text = FOUR_BAR
+    for old, new in (('"frame"', '"1"'), ('"crank"', '"2"'), ('"coupler"', '"3"'),
+                     ('"rocker"', '"4"')):
+        text = text.replace(old, new)
+    text = text.replace('links = ["2", "3"]', 'links = ["3", "2"]')
+    centres = instant_centres(chaingraph.loads(text), at=60.0)
+    assert centres.numbers == {"1": 1, "2": 2, "3": 3, "4": 4}
+    assert [c.name for c in centres.centres] == ["I12", "I13", "I14", "I23", "I24", "I34"]
+    assert centres.centre("3", "1").found_text(centres.numbers) == "I12-I23 x I14-I34"
+
+
 def test_slider_crank_rod_centre_by_hand():
     """The rod's centre: where the crank's line meets the perpendicular to the sliding
     line through the wrist pin."""

@@ -185,7 +185,16 @@ class InstantCentres:
 
 
 def link_numbers(chain, fixed) -> dict:
-    """The textbook's numbering: the fixed link 1, then the others in the chain's order."""
+    """The textbook's numbering: the links' own numbers when every name is one ("2",
+    "link 2"), else the fixed link 1, then the others in the chain's order."""
+    own = {}
+    for link in chain.links:
+        word = link.split()[-1] if link.split() else ""
+        if word.isdigit() and link in (word, f"link {word}", f"Link {word}"):
+            own[link] = int(word)
+    if len(own) == len(chain.links) and len(set(own.values())) == len(own) \
+            and all(n >= 1 for n in own.values()):
+        return dict(sorted(own.items(), key=lambda item: item[1]))
     order = [fixed] + [x for x in chain.links if x != fixed]
     return {link: n for n, link in enumerate(order, start=1)}
 
