@@ -213,18 +213,27 @@ def _instant_heading(what, state) -> list[str]:
     return lines
 
 
-def _cmd_centres(args) -> int:
-    from .graphical import instant_centres
+def _at_one_value(args, find, draw):
+    """The result of ``find`` at the flags' input value, drawn to --draw; None when
+    printed as JSON (--json), else the result for the text."""
     chain = load(args.file)
     if args.draw:
         picture_file(args.draw, what="drawing")
-    centres = instant_centres(chain, **_instant_arguments(args))
+    result = find(chain, **_instant_arguments(args))
     if args.draw:
-        from .graphical.draw import draw_centres
         with _writing(args.draw):
-            draw_centres(centres, args.draw)
+            draw(result, args.draw)
     if args.json:
-        _print_json(centres.to_dict())
+        _print_json(result.to_dict())
+        return None
+    return result
+
+
+def _cmd_centres(args) -> int:
+    from .graphical import instant_centres
+    from .graphical.draw import draw_centres
+    centres = _at_one_value(args, instant_centres, draw_centres)
+    if centres is None:
         return 0
     state = centres.state
     print("\n".join(_instant_heading("Instantaneous centres", state)))
@@ -244,16 +253,9 @@ def _cmd_centres(args) -> int:
 
 def _cmd_polygons(args) -> int:
     from .graphical import velocity_polygon
-    chain = load(args.file)
-    if args.draw:
-        picture_file(args.draw, what="drawing")
-    polygons = velocity_polygon(chain, **_instant_arguments(args))
-    if args.draw:
-        from .graphical.draw import draw_polygons
-        with _writing(args.draw):
-            draw_polygons(polygons, args.draw)
-    if args.json:
-        _print_json(polygons.to_dict())
+    from .graphical.draw import draw_polygons
+    polygons = _at_one_value(args, velocity_polygon, draw_polygons)
+    if polygons is None:
         return 0
     state = polygons.state
     unit = state.units or "length units"

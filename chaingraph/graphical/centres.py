@@ -29,7 +29,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from .pose import PoseMotion, perp, pose_motion
+from .pose import AtOneValue, PoseMotion, perp, pose_motion
 
 __all__ = ["Centre", "InstantCentres", "instant_centres"]
 
@@ -94,7 +94,7 @@ class Centre:
 
 
 @dataclass(frozen=True, eq=False)
-class InstantCentres:
+class InstantCentres(AtOneValue):
     """All the instantaneous centres of a mechanism at one input value (a result).
 
     Attributes
@@ -115,14 +115,6 @@ class InstantCentres:
     angular_velocities: dict
     translations: dict
     state: PoseMotion
-
-    @property
-    def name(self):
-        return self.state.name
-
-    @property
-    def input(self):
-        return self.state.input
 
     def centre(self, a, b) -> Centre:
         """The centre of links ``a`` and ``b`` (names, either order)."""
@@ -407,14 +399,16 @@ def instant_centres(chain, *, at=None, fixed=None, driver=None, inputs=None,
     ...     Joint("O2", "R", ("frame", "crank"), at=(0.0, 0.0)),
     ...     Joint("A", "R", ("crank", "coupler"), at=(0.0, 2.0)),
     ...     Joint("B", "R", ("coupler", "rocker"), at=(4.0, 3.0)),
-    ...     Joint("O4", "R", ("rocker", "frame"), at=(4.0, 0.0))),
+    ...     Joint("O4", "R", ("rocker", "frame"), at=(5.0, 0.0))),
     ...     mechanism=Mechanism(fixed="frame", driver="crank"))
     >>> centres = chaingraph.instant_centres(four_bar)
     >>> c = centres.centre("frame", "coupler")
-    >>> c.name, c.at, c.found_text(centres.numbers)
-    ('I13', (0.0, 0.0), 'I12-I23 x I14-I34')
-    >>> centres.angular_velocities["rocker"]          # the crank at 1 rad/s
-    0.0
+    >>> c.name, [round(x, 9) for x in c.at], c.found_text(centres.numbers)
+    ('I13', [0.0, 15.0], 'I12-I23 x I14-I34')
+    >>> centres.centre("crank", "rocker").at        # I24: O2O4 meets AB
+    (-8.0, 0.0)
+    >>> round(centres.angular_velocities["rocker"], 6)   # omega2 I12I24 / I14I24 = 8/13
+    0.615385
     """
     state = pose_motion(chain, at=at, fixed=fixed, driver=driver, inputs=inputs,
                         omega=omega)

@@ -25,7 +25,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from .pose import PoseMotion, perp, pose_motion
+from .pose import AtOneValue, PoseMotion, perp, pose_motion
 
 __all__ = ["Component", "Relative", "Image", "Polygons", "velocity_polygon"]
 
@@ -112,7 +112,7 @@ class Image:
 
 
 @dataclass(frozen=True, eq=False)
-class Polygons:
+class Polygons(AtOneValue):
     """The velocity and acceleration polygons of a mechanism at one input value.
 
     ``images`` (name -> Image) built from the pole along ``relatives``; ``loops`` one
@@ -124,14 +124,6 @@ class Polygons:
     relatives: tuple
     loops: tuple
     state: PoseMotion
-
-    @property
-    def name(self):
-        return self.state.name
-
-    @property
-    def input(self):
-        return self.state.input
 
     def relative(self, start, to) -> Relative:
         """The relative vector from image ``start`` to image ``to`` (either way round:
@@ -354,9 +346,9 @@ def velocity_polygon(chain, *, at=None, fixed=None, driver=None, inputs=None,
     >>> p = chaingraph.velocity_polygon(shaper, at=90.0, omega=10.0)
     >>> [round(x, 6) for x in p.images["B"].velocity]           # the crank pin: 1200 mm/s
     [-1200.0, 0.0]
-    >>> slide = p.relative("B'", "B")                      # B on the block, B' on the lever
-    >>> [(c.kind, round(c.magnitude, 6)) for c in slide.acceleration]
-    [('sliding', 0.0), ('Coriolis', 0.0)]
+    >>> slide = p.relative("B", "B'")             # B' on the lever relative to B on the block
+    >>> [(c.kind, round(c.magnitude, 6)) for c in slide.acceleration]   # 12000 - 420 (1200/420)^2
+    [('sliding', 8571.428571), ('Coriolis', 0.0)]
     >>> p.closure["velocity"] < 1e-9
     True
     """

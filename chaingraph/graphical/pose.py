@@ -24,7 +24,7 @@ from ..kinematics.plan import chosen_inputs
 from ..kinematics.rates import rates
 from ..kinematics.sweep import _evaluate_near
 
-__all__ = ["LinkMotion", "PoseMotion", "pose_motion"]
+__all__ = ["LinkMotion", "PoseMotion", "AtOneValue", "pose_motion"]
 
 
 def perp(v):
@@ -144,6 +144,20 @@ class PoseMotion:
         return self.links[self.link_of(name)].acceleration_at(self.positions[name])
 
 
+class AtOneValue:
+    """What the results at one input value share: they keep their solved ``state``."""
+
+    @property
+    def name(self):
+        """The mechanism's name."""
+        return self.state.name
+
+    @property
+    def input(self):
+        """The lead input's value."""
+        return self.state.input
+
+
 def _check_value(value, what, name):
     if isinstance(value, bool) or not isinstance(value, (int, float)) \
             or not math.isfinite(value):
@@ -183,8 +197,8 @@ def pose_motion(chain, *, at=None, fixed=None, driver=None, inputs=None,
     >>> from chaingraph.catalog import catalog_path
     >>> shaper = chaingraph.load(catalog_path("crank-and-slotted-lever-mechanism"))
     >>> state = pose_motion(shaper, at=90.0)
-    >>> round(state.links["slotted lever"].omega, 6)      # ω of the lever, ω2 = 1 rad/s
-    0.4
+    >>> round(state.links["slotted lever"].omega, 6)      # 120 mm/s across AB = 420 mm
+    0.285714
     """
     name = chain.source or chain.name
     if not chain.has_pose:
