@@ -147,7 +147,7 @@ def test_polygons_close_and_give_the_solvers_images(solved):
                                                   motion["vy:" + name][k])) <= 1e-9 * v_scale
                 assert math.dist(image.acceleration, (motion["ax:" + name][k],
                                                       motion["ay:" + name][k])) <= 1e-9 * a_scale
-        # each loop's sum of relative vectors, added up again from the vectors
+        # the slides the sliding components are made of: the solver's v:S and a:S
         for joint, slide in state.slides.items():
             assert slide.speed == pytest.approx(motion["v:" + joint][k], abs=1e-9 * v_scale)
             assert slide.acceleration == pytest.approx(motion["a:" + joint][k],

@@ -288,6 +288,8 @@ def _angular_velocities(state, centres, numbers):
     that centre at infinity) of unknown size; each relative centre says where two links'
     fields agree, and each input fixes a relative rate. Solved for all links at once."""
     plan, fixed = state.plan, state.fixed
+    if not state.finite_rates:                    # a dead centre: the input decides nothing
+        return None, None
     moving = [x for x in numbers if x != fixed]
     index = {x: n for n, x in enumerate(moving)}
     shapes = {}                                   # link -> (c per unit, omega per unit)
@@ -345,8 +347,6 @@ def _angular_velocities(state, centres, numbers):
             row(coeffs, rate / plan.size)
     a = np.array(rows)
     b = np.array(rhs)
-    if not state.finite_rates:
-        return None, None
     solution, *_ = np.linalg.lstsq(a, b, rcond=None)
     scale = max(1.0, float(np.abs(solution).max()))
     if np.linalg.matrix_rank(a, tol=1e-9 * max(1.0, float(np.abs(a).max()))) < len(moving) \

@@ -196,8 +196,8 @@ def _images_of(state):
         if name not in on_link[link]:
             on_link[link].append(name)
     for j in chain.joints:
-        if j.kind == "R":
-            for link in j.links:
+        if j.kind == "R":                          # a pivot's image is the fixed link's
+            for link in sorted(j.links, key=lambda x: x != fixed):
                 add(j.id, link, state.positions[j.id])
     for p in chain.points:
         add(p.id, p.link, state.positions[p.id])
@@ -260,9 +260,7 @@ def polygons_of(state: PoseMotion) -> Polygons:
             (Component("sliding", _vector(*(s.acceleration * u))),
              Component("Coriolis", _vector(*coriolis)))))
     # the images from the pole along a tree of the vectors; the others close loops
-    known = {n: ((0.0, 0.0), (0.0, 0.0)) for n, (link, _) in images.items() if link == fixed}
-    for n in on_link[fixed]:
-        known[n] = ((0.0, 0.0), (0.0, 0.0))
+    known = {n: ((0.0, 0.0), (0.0, 0.0)) for n in on_link[fixed]}
     parent = {n: None for n in known}
     tree, loops = set(), []
     pending = list(range(len(relatives)))
