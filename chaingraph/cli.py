@@ -201,12 +201,8 @@ def _instant_arguments(args):
 
 
 def _instant_heading(what, state) -> list[str]:
-    if state.inputs:
-        given = ", ".join(f"{j} = {v:.6g}" for j, v in state.inputs.items())
-    else:
-        given = f"theta = {state.input:.6g} degrees"
     lines = [f"{what} of {state.name}",
-             f"{state.fixed} fixed, {given} ({state.speed_text})"]
+             f"{state.fixed} fixed, {state.input_text()} ({state.speed_text})"]
     if len(state.plan.inputs) > 1:
         lines.append("the inputs move together at their sweeps' rates (a polygon per "
                      "input, by superposition, is not drawn yet)")

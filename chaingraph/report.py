@@ -440,9 +440,8 @@ def _graphical_section(e):
     """The instantaneous centres and the polygons at the drawn pose."""
     centres, polygons = e.centres, e.polygons
     state = centres.state
-    given = (", ".join(f"{j} = {v:.6g}" for j, v in state.inputs.items()) if state.inputs
-             else f"&theta; = {state.input:.6g}&deg;")
-    out = [f"<h2>Instantaneous centres and polygons</h2><p>At the drawn pose ({given}, "
+    out = [f"<h2>Instantaneous centres and polygons</h2><p>At the drawn pose "
+           f"({_esc(state.input_text('θ', '°'))}, "
            f"{_esc(state.speed_text)}). Links numbered "
            + ", ".join(f"{n} {_esc(link)}" for link, n in centres.numbers.items())
            + ".</p><table id=\"centres\"><tr><th>centre</th><th>links</th><th>x</th>"

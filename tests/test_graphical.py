@@ -452,7 +452,8 @@ def test_centres_text_and_drawing(capsys, tmp_path):
     (["centres", "crank-and-slotted-lever-mechanism", "--at", "nan"], 2, "finite"),
     (["centres", "crank-and-slotted-lever-mechanism", "--draw", "x.nope"], 2,
      "unknown picture format"),
-    (["polygons", "crank-and-slotted-lever-mechanism", "--fixed", "crank"], 2, ""),
+    (["polygons", "crank-and-slotted-lever-mechanism", "--fixed", "crank"], 2,
+     "the driver is the fixed link"),
     (["centres", "crank-and-slotted-lever-mechanism", "--driver", "moon"], 2, "moon"),
 ])
 def test_bad_input_one_line(argv, status, words, capsys, tmp_path, monkeypatch):

@@ -208,11 +208,17 @@ def _finish(h, state):
     return (float(x / w * plan.size + ox), float(y / w * plan.size + oy)), None
 
 
+def _scaled(state, p):
+    """A point in the construction's frame: the plan's, over the mechanism's size."""
+    plan = state.plan
+    return ((p[0] - plan.origin[0]) / plan.size, (p[1] - plan.origin[1]) / plan.size)
+
+
 def _field(state, link):
     """A link's velocity field v(p) = c + omega k x p in the scaled frame: (c, omega)."""
     plan = state.plan
     m = state.links[link]
-    o = ((m.point[0] - plan.origin[0]) / plan.size, (m.point[1] - plan.origin[1]) / plan.size)
+    o = _scaled(state, m.point)
     v = (m.velocity[0] / plan.size, m.velocity[1] / plan.size)
     c = (v[0] + m.omega * o[1], v[1] - m.omega * o[0])
     return np.array(c), m.omega
@@ -233,12 +239,10 @@ def _from_velocities(state, a, b):
 
 def _primary(state):
     """The centres the joints give: (pair -> (homogeneous point, "joint J"))."""
-    chain, plan = state.chain, state.plan
     known = {}
-    for j in chain.joints:
+    for j in state.chain.joints:
         if j.kind == "R":
-            x, y = state.positions[j.id]
-            h = _unit(((x - plan.origin[0]) / plan.size, (y - plan.origin[1]) / plan.size, 1.0))
+            h = _unit((*_scaled(state, state.positions[j.id]), 1.0))
         else:
             u = state.slides[j.id].axis
             h = np.array([-u[1], u[0], 0.0])
@@ -292,13 +296,13 @@ def _angular_velocities(state, centres, numbers):
         return None, None
     moving = [x for x in numbers if x != fixed]
     index = {x: n for n, x in enumerate(moving)}
-    shapes = {}                                   # link -> (c per unit, omega per unit)
+    shapes = {fixed: (np.zeros(2), 0.0)}         # link -> (c per unit, omega per unit)
     for link in moving:
-        h = centres[frozenset((fixed, link))].homogeneous
-        if not np.isfinite(h).all() or centres[frozenset((fixed, link))].found == "indeterminate":
+        absolute = centres[frozenset((fixed, link))]
+        if absolute.found == "indeterminate":
             return None, None
-        x, y, w = h
-        if centres[frozenset((fixed, link))].at is None:
+        x, y, w = absolute.homogeneous
+        if absolute.at is None:
             shapes[link] = (np.array([-y, x]), 0.0)          # translation across d
         else:
             q = (x / w, y / w)
@@ -331,20 +335,13 @@ def _angular_velocities(state, centres, numbers):
     for item, (_, k) in zip(plan.inputs, plan.line):
         rate = k * tau_rate
         if item.kind == "R":
-            row([(item.b, shapes[item.b][1] if item.b != fixed else 0.0),
-                 (item.a, -(shapes[item.a][1] if item.a != fixed else 0.0))], rate)
+            row([(item.b, shapes[item.b][1]), (item.a, -shapes[item.a][1])], rate)
         else:
             s = state.slides[item.joint]
-            p = np.array([(s.at[0] - plan.origin[0]) / plan.size,
-                          (s.at[1] - plan.origin[1]) / plan.size])
-            kp = np.array(perp(p))
+            kp = np.array(perp(_scaled(state, s.at)))
             u = np.array(s.axis)
-            coeffs = []
-            for link, sign in ((s.block, 1.0), (s.guide, -1.0)):
-                if link != fixed:
-                    c, w = shapes[link]
-                    coeffs.append((link, sign * ((c + w * kp) @ u)))
-            row(coeffs, rate / plan.size)
+            row([(link, sign * ((shapes[link][0] + shapes[link][1] * kp) @ u))
+                 for link, sign in ((s.block, 1.0), (s.guide, -1.0))], rate / plan.size)
     a = np.array(rows)
     b = np.array(rhs)
     solution, *_ = np.linalg.lstsq(a, b, rcond=None)

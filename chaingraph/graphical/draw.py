@@ -35,12 +35,6 @@ def _positions_and_axes(state):
     return dict(state.positions), axes
 
 
-def _input_text(state):
-    if state.inputs:
-        return ", ".join(f"{j} = {v:.6g}" for j, v in state.inputs.items())
-    return f"θ = {state.input:.6g}°"
-
-
 @plain_text
 def draw_centres(centres, path=None):
     """The mechanism with its instantaneous centres (left) and the circle diagram
@@ -83,7 +77,7 @@ def draw_centres(centres, path=None):
         p0, p1 = base + d * (t - 3 * edge), base + d * (t + 3 * edge)
         ax.plot([p0[0], p1[0]], [p0[1], p1[1]], **style)
     for c in centres.centres:
-        if c.primary or isinstance(c.found, str):
+        if isinstance(c.found, str):             # from a joint, or not by Kennedy
             continue
         for pair1, pair2 in c.found:
             a = centres.centre(*pair1).homogeneous
@@ -121,7 +115,7 @@ def draw_centres(centres, path=None):
     ax.set_ylim(lo[1], hi[1])
     ax.set_aspect("equal")
     ax.grid(True, color="#eeeeee", lw=0.5)
-    ax.set_title(f"{state.name}\ninstantaneous centres at {_input_text(state)}", fontsize=10)
+    ax.set_title(f"{state.name}\ninstantaneous centres at {state.input_text('θ', '°')}", fontsize=10)
     _circle_diagram(circle, centres, numbers)
     fig.tight_layout()
     return _finish(plt, fig, path)
@@ -218,7 +212,7 @@ def draw_polygons(polygons, path=None):
         ax.set_ylabel(unit)
         legend = ("relative vectors coloured by link" if which == "velocity" else
                   ", ".join(f"{_SHORT[k]} {k}" for k in sorted(kinds, key=list(_SHORT).index)))
-        ax.set_title(f"{which} polygon at {_input_text(state)}, {state.speed_text}\n"
+        ax.set_title(f"{which} polygon at {state.input_text('θ', '°')}, {state.speed_text}\n"
                      f"{legend}", fontsize=9)
     fig.suptitle(state.name, fontsize=10)
     fig.tight_layout()

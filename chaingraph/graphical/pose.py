@@ -19,7 +19,8 @@ from ..chain import Input
 from ..errors import AssemblyError, MechanismError
 from ..kinematics.equations import check_poses
 from ..kinematics.geometry import rotate
-from ..kinematics.motion import LARGEST_INPUT, _as_inputs, _plan
+from ..kinematics.columns import _slide, reference_link
+from ..kinematics.motion import _as_inputs, _plan, check_input_value
 from ..kinematics.plan import chosen_inputs
 from ..kinematics.rates import rates
 from ..kinematics.sweep import _evaluate_near
@@ -116,6 +117,13 @@ class PoseMotion:
     chain: object
     plan: object
 
+    def input_text(self, symbol="theta", unit=" degrees") -> str:
+        """The input's value in words: "theta = 60 degrees", or each input's
+        "A = 80, E = 100"."""
+        if self.inputs:
+            return ", ".join(f"{j} = {v:.6g}" for j, v in self.inputs.items())
+        return f"{symbol} = {self.input:.6g}{unit}"
+
     @property
     def speed_text(self) -> str:
         """The input's speed in words: "crank at 10 rad/s", "S at 5 mm/s"."""
@@ -128,11 +136,7 @@ class PoseMotion:
         """The link whose motion a joint's or point's CSV columns follow."""
         chain = self.chain
         if name in chain._joint_index:
-            j = chain.joint(name)
-            if j.kind == "P":
-                return j.block
-            rank = {self.fixed: 0}
-            return min(j.links, key=lambda x: rank.get(x, 1))
+            return reference_link(chain.joint(name), self.fixed)
         return chain.point(name).link
 
     def velocity(self, name):
@@ -158,13 +162,9 @@ class AtOneValue:
         return self.state.input
 
 
-def _check_value(value, what, name):
-    if isinstance(value, bool) or not isinstance(value, (int, float)) \
-            or not math.isfinite(value):
-        raise MechanismError(f"{what} must be a finite number, got {value!r}", mechanism=name)
-    if abs(value) > LARGEST_INPUT:
-        raise MechanismError(f"{what} {value:g} is too large: at most {LARGEST_INPUT:g} in "
-                             "size", mechanism=name)
+def _first(value) -> float:
+    """The one step's value of a column (an array of one, or a constant)."""
+    return float(np.asarray(value).reshape(-1)[0])
 
 
 def pose_motion(chain, *, at=None, fixed=None, driver=None, inputs=None,
@@ -211,13 +211,13 @@ def pose_motion(chain, *, at=None, fixed=None, driver=None, inputs=None,
         if not values:
             raise MechanismError("no input value given", mechanism=name)
         for v in values:
-            _check_value(v, "the input value", name)
+            check_input_value(v, "the input value", name)
     if omega is not None:
-        _check_value(omega, "the input speed omega", name)
+        check_input_value(omega, "the input speed omega", name)
     fixed, driver, items = chosen_inputs(chain, fixed, driver, _as_inputs(inputs, chain))
     if items:
         plan = _plan(chain, fixed, None, items)
-        if values is not None and len(values) > 1 or at is None:
+        if at is None or len(values) > 1:
             plan = _plan(chain, fixed, None, _items_at(plan, values))
     else:
         if not driver and not fixed:
@@ -230,8 +230,7 @@ def pose_motion(chain, *, at=None, fixed=None, driver=None, inputs=None,
                              mechanism=name)
     lead = plan.inputs[plan.lead]
     if values is None:
-        tau = plan.tau(lead.value0) if plan.from_driver or lead.kind == "R" else \
-            plan.tau(0.0)
+        tau = plan.tau(lead.value0)               # the drawn pose (a P input's slide 0)
     else:
         tau = plan.tau(values[plan.lead] if len(values) > 1 else values[0])
     if omega is None:
@@ -243,60 +242,47 @@ def pose_motion(chain, *, at=None, fixed=None, driver=None, inputs=None,
         rng = e.feasible_range
         if rng is None:
             raise
-        value = float(np.asarray(plan.value(theta)).reshape(-1)[0])
+        value = _first(plan.value(theta))
         verb = "turn" if lead.kind == "R" else "slide"
         raise AssemblyError(
             f"the input value {value:g} {plan.lead_unit} cannot be assembled: "
             f"{plan.describe()} can {verb} only from {rng[0]:.6f} to {rng[1]:.6f} "
-            f"{plan.lead_unit}", mechanism=chain.source or name, feasible_range=rng) from None
+            f"{plan.lead_unit}", mechanism=name, feasible_range=rng) from None
     check_poses(plan, ev.pose, ev.feasible)
     vel, acc, _ = rates(plan, ev.pose, float(omega), 1, measure=False)
     ox, oy = plan.origin
+    pose = {link: tuple(map(_first, ev.pose[link])) for link in chain.links}
     links = {}
     for link in chain.links:
-        e = ev.pose[link]
-        x, y, phi = (float(np.asarray(e[k]).reshape(-1)[0]) for k in range(3))
-        v = [float(np.asarray(c).reshape(-1)[0]) for c in vel[link]]
-        a = [float(np.asarray(c).reshape(-1)[0]) for c in acc[link]]
+        x, y, phi = pose[link][:3]
+        v = [_first(c) for c in vel[link]]
+        a = [_first(c) for c in acc[link]]
         links[link] = LinkMotion(link, (x + ox, y + oy), phi, (v[0], v[1]), v[2],
                                  (a[0], a[1]), a[2])
-    pose0 = {link: tuple(float(np.asarray(c).reshape(-1)[0]) for c in ev.pose[link])
-             for link in chain.links}
 
     def world(link, p):
         if link == plan.fixed:                    # as drawn, to the last digit
             return (float(p[0]), float(p[1]))
-        r = rotate(pose0[link], plan.local(p))
-        return (r[0] + pose0[link][0] + ox, r[1] + pose0[link][1] + oy)
-    positions = {}
-    for j in chain.joints:
-        on = j.block if j.kind == "P" else \
-            (plan.fixed if plan.fixed in j.links else j.links[0])
-        positions[j.id] = world(on, j.at)
-    for p in chain.points:
-        positions[p.id] = world(p.link, p.at)
+        r = rotate(pose[link], plan.local(p))
+        return (r[0] + pose[link][0] + ox, r[1] + pose[link][1] + oy)
+    positions = {j.id: world(reference_link(j, plan.fixed), j.at) for j in chain.joints}
+    positions.update((p.id, world(p.link, p.at)) for p in chain.points)
     slides = {}
     for j in chain.joints:
-        if j.kind != "P":
-            continue
-        g, b = j.guide, j.block
-        u = rotate(pose0[g], (math.cos(math.radians(j.axis)), math.sin(math.radians(j.axis))))
-        p = positions[j.id]
-        lg, lb = links[g], links[b]
-        dv = np.subtract(lb.velocity_at(p), lg.velocity_at(p))
-        # the block's acceleration relative to the guide's coincident point, less the
-        # Coriolis term 2 omega k x v_rel, is the slide's acceleration along the line
-        da = np.subtract(lb.acceleration_at(p), lg.acceleration_at(p))
-        coriolis = 2.0 * lg.omega * np.array(perp(dv))
-        slides[j.id] = Slide(j.id, g, b, p, u, float(dv @ u), float((da - coriolis) @ u))
+        if j.kind == "P":                         # the solver's slide rates (the CSV's)
+            u = rotate(pose[j.guide], (math.cos(math.radians(j.axis)),
+                                       math.sin(math.radians(j.axis))))
+            _, speed, acceleration = _slide(ev.pose, vel, acc, j, plan.local(j.at))
+            slides[j.id] = Slide(j.id, j.guide, j.block, positions[j.id], u,
+                                 _first(speed), _first(acceleration))
     inputs_now = {}
     if not plan.from_driver:
         for item, value in zip(plan.inputs, plan.values(theta)):
-            inputs_now[item.joint] = float(np.asarray(value).reshape(-1)[0])
+            inputs_now[item.joint] = _first(value)
     finite = all(math.isfinite(c) for m in links.values()
                  for c in (*m.velocity, m.omega, *m.acceleration, m.alpha))
     return PoseMotion(name=chain.name, fixed=plan.fixed, driver=plan.driver,
-                      input=float(np.asarray(plan.value(theta)).reshape(-1)[0]),
+                      input=_first(plan.value(theta)),
                       inputs=inputs_now, omega=float(omega), units=chain.units,
                       links=links, positions=positions, slides=slides,
                       finite_rates=finite, chain=chain, plan=plan)

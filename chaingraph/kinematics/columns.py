@@ -35,6 +35,14 @@ def _link_direction(chain, link):
     return 0.0
 
 
+def reference_link(joint, fixed):
+    """The link whose motion a joint's CSV columns follow: a P joint's block, an R
+    joint's fixed link when it has it, else its first link."""
+    if joint.kind == "P":
+        return joint.block
+    return fixed if fixed in joint.links else joint.links[0]
+
+
 def _slide(pose, vel, acc, joint, at):
     """A P joint's slide, its rate and acceleration; ``at`` its point in the plan's frame."""
     g, b = joint.links
@@ -86,9 +94,7 @@ def _columns(plan, theta, pose, vel, acc):
         cols[f"angle:{link}"] = _continuous_degrees(direction, n)
         cols[f"omega:{link}"] = _array(vel[link][2], n)
         cols[f"alpha:{link}"] = _array(acc[link][2], n)
-    rank = {plan.fixed: 0}
-    items = [(j.id, j.block if j.kind == "P" else min(j.links, key=lambda x: rank.get(x, 2)),
-              j.at) for j in chain.joints]
+    items = [(j.id, reference_link(j, plan.fixed), j.at) for j in chain.joints]
     items += [(p.id, p.link, p.at) for p in chain.points]
     ox, oy = plan.origin
     for name, link, at in items:

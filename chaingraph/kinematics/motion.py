@@ -200,14 +200,8 @@ def solve(mechanism, *, fixed=None, driver=None, inputs=None, start=None, stop=N
                              mechanism=chain.name)
     m = chain.mechanism
     for value, what in ((start, "start"), (stop, "stop")):
-        if value is not None and not math.isfinite(value):
-            raise MechanismError(f"the sweep's {what} must be a finite number, got {value}",
-                                 mechanism=chain.name)
-        if value is not None and abs(value) > LARGEST_INPUT:
-            raise MechanismError(
-                f"the sweep's {what} {value:g} is too large: at most {LARGEST_INPUT:g} in "
-                "size (beyond it a float cannot hold a thousandth of a degree or a "
-                "millimetre)", mechanism=chain.name)
+        if value is not None:
+            check_input_value(value, f"the sweep's {what}", chain.name)
     fixed, driver, items = chosen_inputs(chain, fixed, driver, _as_inputs(inputs, chain))
     if items:
         first = items[0]
@@ -281,6 +275,20 @@ def solve(mechanism, *, fixed=None, driver=None, inputs=None, start=None, stop=N
 LARGEST_INPUT = 1e9
 #: bytes a sweep holds per step and column (the columns and the working arrays, measured)
 _BYTES_PER_VALUE = 24
+
+
+def check_input_value(value, what, mechanism):
+    """Refuse an input value (or speed) that is not a finite number or is past
+    ``LARGEST_INPUT``; ``what`` names it in the message."""
+    if isinstance(value, bool) or not isinstance(value, (int, float)) \
+            or not math.isfinite(value):
+        raise MechanismError(f"{what} must be a finite number, got {value}",
+                             mechanism=mechanism)
+    if abs(value) > LARGEST_INPUT:
+        raise MechanismError(
+            f"{what} {value:g} is too large: at most {LARGEST_INPUT:g} in size (beyond "
+            "it a float cannot hold a thousandth of a degree or a millimetre)",
+            mechanism=mechanism)
 
 
 def memory_budget() -> int:
