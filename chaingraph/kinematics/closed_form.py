@@ -63,8 +63,13 @@ def _two_lines(pose, u, c1, c2):
     return make_pose(x, y, turn[2], turn[3], turn[4])
 
 
-def _dyad_roots(step, pose, scale):
+def _dyad_roots(step, pose, scale, *, double=False):
     """A dyad's assembly modes.
+
+    ``double`` (a bool, or a bool per point) takes the discriminant as exactly zero:
+    the double root where the two modes meet, at a fold found as the discriminant's
+    root (there the computed discriminant is zero only to rounding, and the pose would
+    carry the square root of that rounding).
 
     Returns (keys, build, ok, disc): ``keys`` the two modes' joint point (or rotation as
     a unit vector), arrays of shape (N, 2) or None for a dyad with one mode;
@@ -91,7 +96,7 @@ def _dyad_roots(step, pose, scale):
             d = np.sqrt(d2)
             along = (ra * ra - rb * rb + d2) / (2 * d)
             raw = ra * ra - along * along
-            h2, ok = _clamp_disc(raw, scale * scale)
+            h2, ok = _clamp_disc(raw, scale * scale, double)
             h = np.sqrt(h2)
             ux, uy = dx / d, dy / d
             mid = (wa[0] + along * ux, wa[1] + along * uy)
@@ -101,7 +106,7 @@ def _dyad_roots(step, pose, scale):
             ex, ey = base[0] - wa[0], base[1] - wa[1]
             beta = dirn[0] * ex + dirn[1] * ey
             raw = beta * beta - (ex * ex + ey * ey - ra * ra)
-            disc, ok = _clamp_disc(raw, scale * scale)
+            disc, ok = _clamp_disc(raw, scale * scale, double)
             root_disc = np.sqrt(disc)
             mid = (base[0] - beta * dirn[0], base[1] - beta * dirn[1])
             off = (root_disc * dirn[0], root_disc * dirn[1])
@@ -124,7 +129,7 @@ def _dyad_roots(step, pose, scale):
         c = nx_ * (cb.point[0] - ca.point[0]) + ny_ * (cb.point[1] - ca.point[1])
         ratio = c / dist
         raw = 1.0 - ratio * ratio
-        disc, ok = _clamp_disc(raw, 1.0)
+        disc, ok = _clamp_disc(raw, 1.0, double)
         # rotation phi = start +- spread, with cos(spread) = ratio
         cs0, sn0 = dx / dist, dy / dist            # direction of the centre line
         cn, sn = nx_, ny_                           # drawn normal: rotate back by it

@@ -75,8 +75,10 @@ def _line_of(pose, attach, unknown, through):
     return (base[0] + ox, base[1] + oy), u, known
 
 
-def _clamp_disc(disc, scale):
+def _clamp_disc(disc, scale, double=False):
+    """A discriminant where the modes exist (within rounding of zero: zero), NaN
+    elsewhere, and where it is; zero where ``double`` (the modes' double root)."""
     tol = _DISC_TOL * scale
-    ok = disc >= -tol
-    return np.where(ok, np.maximum(disc, 0.0), np.nan), ok
+    ok = (disc >= -tol) | double
+    return np.where(double, 0.0, np.where(ok, np.maximum(disc, 0.0), np.nan)), ok
 

@@ -250,6 +250,54 @@ def _fold(branch, z, tau, ds, direction):
     return best
 
 
+def fold_point(plan, step, head, q, t, iterations=25):
+    """The fold of the group's branch near (``t``, ``q``): where the input turns back,
+    the loop-closure equations R(q, t) = 0 together with the Jacobian's null vector,
+    R_q v = 0 with c . v = 1, solved by Newton's method on that extended system, which
+    is regular at a simple fold (so converges quadratically, and the fold is exact to
+    the rounding, where Newton's method on R alone stalls at the square root of it).
+    The second derivatives d(R_q v)/d(q, t) are central differences.
+
+    ``head`` is the evaluation at ``t`` (a single point) of the steps before the group.
+    Returns (input degrees, q), or None where the iteration does not settle.
+    """
+    branch = _Branch(plan, step, head.pose, head.theta, head)
+    z = np.append(np.asarray(q, dtype=float) / branch.scale, math.radians(t))
+    m = z.size - 1
+    jac = branch.jacobian(z)
+    if not np.isfinite(jac).all():
+        return None
+    v = np.linalg.svd(jac[:, :m])[2][-1]
+    c = v.copy()
+    h = 1e-6
+    for _ in range(iterations):
+        jac = branch.jacobian(z)
+        a = jac[:, :m]
+        g = np.concatenate([branch.residual(z), a @ v, [c @ v - 1.0]])
+        if not (np.isfinite(g).all() and np.isfinite(jac).all()):
+            return None
+        d = np.empty((m, m + 1))
+        for k in range(m + 1):
+            e = np.zeros(m + 1)
+            e[k] = h
+            d[:, k] = (branch.jacobian(z + e)[:, :m] @ v - branch.jacobian(z - e)[:, :m] @ v) / (2 * h)
+        big = np.zeros((2 * m + 1, 2 * m + 1))
+        big[:m, :m + 1] = jac
+        big[m:2 * m, :m + 1] = d
+        big[m:2 * m, m + 1:] = a
+        big[2 * m, m + 1:] = c
+        try:
+            dx = np.linalg.solve(big, -g)
+        except np.linalg.LinAlgError:
+            return None
+        z, v = z + dx[:m + 1], v + dx[m + 1:]
+        if np.abs(dx[:m + 1]).max() <= 1e-15:
+            break
+    if not (np.isfinite(z).all() and np.abs(branch.residual(z)).max() <= 1e-12):
+        return None
+    return math.degrees(z[-1]), branch.scale * z[:-1]
+
+
 def _approach(plan, step, pose, theta, head, t_from, q_from, t_to):
     """Group coordinates at ``t_to`` continued from ``q_from`` at ``t_from`` through
     substeps that shrink geometrically towards ``t_to``; None if it cannot be reached."""

@@ -12,6 +12,7 @@ import numpy as np
 from .columns import _columns
 from .geometry import rotate
 from .rates import rates
+from .roots import bracketed_roots
 from .sweep import _evaluate_sweep, cycle
 from .tracking import evaluate_at
 
@@ -88,11 +89,15 @@ def _output_signal(plan, output, cols):
     return ("point", output)
 
 
-def path_direction(cols, name):
+def path_direction(cols, name, *, closed=False):
     """The main direction of point ``name``'s path (a unit vector), along which its
     stroke is measured: its sign points towards the path's point farthest from the
-    path's mean, so that it turns with the drawing and does not depend on its frame."""
+    path's mean, so that it turns with the drawing and does not depend on its frame.
+    ``closed``: the samples are a whole cycle whose last repeats the first, which is
+    counted once (twice, it would tilt the direction of a symmetric path)."""
     xy = np.column_stack([cols[f"x:{name}"], cols[f"y:{name}"]])
+    if closed and xy.shape[0] > 2:
+        xy = xy[:-1]
     centred = xy - xy.mean(axis=0)
     _, _, vt = np.linalg.svd(centred, full_matrices=False)
     far = centred[int(np.argmax(np.hypot(centred[:, 0], centred[:, 1])))]
@@ -131,32 +136,6 @@ def _pointwise(plan, ev, k, t):
     return _columns(plan, t, pose, vel, acc), measure, feasible
 
 
-def _bracketed_roots(f, a, b, fa, fb, *, newton=False, tol=1e-10, iterations=60):
-    """Roots of f between a and b (arrays of brackets with fa, fb of opposite signs),
-    all at once: Newton's step (``newton``: f returns the value and its derivative
-    per degree) or the secant, kept inside the bracket, with a bisection every other
-    step so that the bracket at least halves. Returns the roots."""
-    a, b, fa, fb = (np.array(v, dtype=float) for v in (a, b, fa, fb))
-    t = 0.5 * (a + b)
-    for it in range(iterations):
-        with np.errstate(divide="ignore", invalid="ignore"):   # a zero slope: bisect
-            if newton and it > 0:
-                trial = t - value / slope
-            else:
-                trial = b - fb * (b - a) / (fb - fa)
-        inside = np.isfinite(trial) & ((trial - a) * (trial - b) < 0)
-        t = np.where(inside & (it % 2 == 0 or newton), trial, 0.5 * (a + b))
-        out = f(t)
-        value, slope = out if newton else (out, None)
-        left = np.sign(value) == np.sign(fa)
-        a, fa = np.where(left, t, a), np.where(left, value, fa)
-        b, fb = np.where(left, b, t), np.where(left, fb, value)
-        done = (np.abs(b - a) < tol) | (value == 0) | ~np.isfinite(value)
-        if done.all():
-            break
-    return np.where(np.isfinite(t), t, 0.5 * (a + b))
-
-
 def _summary(plan, output, omega, c, *, sweep=None):
     """The summary over the cycle ``c``; ``sweep`` is (evaluation, step measures,
     columns at unit input speed) on the cycle's own grid when the caller has them."""
@@ -182,7 +161,7 @@ def _summary(plan, output, omega, c, *, sweep=None):
         summary["note"] = "no output is named, so there is no stroke or time ratio"
         return summary
     kind, name = signal
-    direction = path_direction(cols, name) if kind == "point" else None
+    direction = path_direction(cols, name, closed=c.full_turn) if kind == "point" else None
     u, du, ddu = _signal_values(kind, name, cols, direction)
     summary["stroke_unit"] = "deg" if kind == "angle" else plan.chain.units
     if kind == "angle" and c.full_turn and abs(u[-1] - u[0]) > 180.0:
@@ -278,7 +257,7 @@ def _output_extremes(plan, ev, kind, name, direction, u, du, ddu, scale, c):
         if not good.all():
             bad = np.nonzero(~good)[0]
             kbad = ka[bad]
-            t[bad] = _bracketed_roots(
+            t[bad] = bracketed_roots(
                 lambda tt: _rate_and_slope(plan, ev, kbad, tt, kind, name, direction),
                 ta[bad], tb[bad], du[kbad], du[kb[bad]], newton=True)
             redo, _, _ = _pointwise(plan, ev, kbad, t[bad])
@@ -396,7 +375,7 @@ def _dead_centres(plan, ev, measure, c):
             def f(t, ka=ka, i=i):
                 _, mm, _ = _pointwise(plan, ev, ka, t)
                 return mm[i]
-            roots += list(_bracketed_roots(f, theta[ka], theta[kb], m[ka], m[kb]))
+            roots += list(bracketed_roots(f, theta[ka], theta[kb], m[ka], m[kb]))
     found = exact + [t for t in roots if all(abs(t - x) > 1e-5 for x in exact)]
     if c.ends == "sweep":
         found = [t for t in found if c.low - 1e-9 <= t <= c.high + 1e-9]

@@ -11,7 +11,10 @@ from functools import lru_cache
 import numpy as np
 
 from ..errors import AssemblyError
-from .tracking import Evaluation, evaluate
+from . import groups
+from .closed_form import _dyad_roots
+from .roots import bracketed_roots
+from .tracking import Evaluation, Reference, evaluate, evaluate_at, failing_step
 
 __all__ = ["Cycle", "Anchor", "cycle", "anchor", "feasible_range"]
 
@@ -132,11 +135,15 @@ def _limit(plan, ev, k, bad):
     continued on ever finer paths from the last point that assembles: (angle, the
     evaluation at that angle)."""
     good, state, at = float(ev.theta[k]), ev.at(k), ev.take(np.array([k]))
+    far = bad
     for _ in range(16):
         ts = np.linspace(good, bad, 17)
         trial = evaluate(plan, ts, start=state)
         if trial.feasible.all():
-            return float(bad), trial.take(np.array([16]))
+            # reached from nearer (Newton's method near a group's fold depends on
+            # where it starts): the fold is past it, before ``far``
+            good, at, bad = float(bad), trial.take(np.array([16])), far
+            break
         j = int(np.argmin(trial.feasible)) - 1
         if j < 0:
             break
@@ -144,7 +151,65 @@ def _limit(plan, ev, k, bad):
         at = trial.take(np.array([j]))
         if abs(bad - good) < 1e-10:
             break
-    return good, at
+    return _fold(plan, at, good, bad, far)
+
+
+_DRAWN_FOLD = 1e-10     # degrees of tau: a fold this near the drawn value is the drawing's
+
+
+def _fold(plan, at, good, bad, far):
+    """The limit between ``good`` (assembled; ``at`` its evaluation) and ``bad`` (not)
+    exactly, as a fold of the step that fails there: a dyad's at its discriminant's root,
+    where it takes its double root; a group's by Newton's method on the extended system
+    (:func:`groups.fold_point`). Found by bisection alone, a limit's pose would carry
+    the square root of the bisection's tolerance. A fold at the drawn value is the
+    drawn pose itself. ``far`` is where the path first failed (a group's Newton's
+    method near its fold depends on where it starts: ``bad`` may assemble from ``good``,
+    where the path found it did not). Returns (angle, the evaluation there)."""
+    ref = at.reference(np.array([0]))
+    i = failing_step(plan, np.array([bad]), ref)
+    if i is None:
+        i = failing_step(plan, np.array([far]), ref)
+    if i is None:
+        return good, at
+    step = plan.steps[i]
+    double, group_q = (), dict(ref.group_q)
+    if step.kind == "dyad":
+        def disc(t):
+            t = np.atleast_1d(np.asarray(t, dtype=float))
+            pose, _, _ = evaluate_at(plan, t, _repeat(ref, t.size), upto=i)
+            with np.errstate(divide="ignore", invalid="ignore"):
+                return np.asarray(_dyad_roots(step, pose, plan.size)[3], dtype=float) \
+                    * np.ones(t.size)
+        d_good, d_bad = disc(good)[0], disc(bad)[0]
+        t = good
+        if d_good > 0 and np.isfinite(d_bad) and d_bad < 0:
+            t = float(bracketed_roots(disc, [good], [bad], [d_good], [d_bad],
+                                      tol=4e-16 * max(1.0, abs(good)), iterations=200)[0])
+        double = (i,)
+    else:
+        found = groups.fold_point(plan, step, at, at.group_q[i][0], good)
+        # the fold lies between the last point assembled and ``bad`` (a point a
+        # hair past the fold may count as assembled: Newton's method stalls there)
+        if found is None or (found[0] - good) * (found[0] - far) > 0 and \
+                abs(found[0] - good) > 1e-6:
+            return good, at
+        t, q = found
+        group_q[i] = q[None]
+    if plan.theta0 is not None and anchor(plan).state is None and \
+            abs(t - plan.theta0) <= _DRAWN_FOLD:
+        return plan.theta0, evaluate(plan, np.array([plan.theta0]))
+    ref = Reference(ref.theta, ref.signs, group_q, ref.switches)
+    pose, feasible, group_q = evaluate_at(plan, np.array([t]), ref, double=double)
+    if not feasible.all():
+        return good, at
+    return t, Evaluation(np.array([t]), pose, feasible, ref.signs, group_q, ref.switches)
+
+
+def _repeat(ref, n):
+    """The one-point reference ``ref`` for n points."""
+    return Reference(np.repeat(ref.theta, n), {i: np.repeat(v, n) for i, v in ref.signs.items()},
+                     {i: np.repeat(q, n, axis=0) for i, q in ref.group_q.items()}, ref.switches)
 
 
 def cycle(plan) -> Cycle:

@@ -19,7 +19,7 @@ from .equations import _form
 from .geometry import _DISC_TOL, _FIXED
 from .groups import _newton, _newton_path
 
-__all__ = ["Evaluation", "Reference", "evaluate", "evaluate_at"]
+__all__ = ["Evaluation", "Reference", "evaluate", "evaluate_at", "failing_step"]
 
 
 # -- the sweep -----------------------------------------------------------------------
@@ -52,16 +52,29 @@ class Reference:
         return s
 
 
-def evaluate_at(plan, theta, ref, *, upto=None):
+def evaluate_at(plan, theta, ref, *, upto=None, double=()):
     """Poses at the angles ``theta`` (degrees, shape (M,)), each point continued from
     the same point of ``ref`` (a :class:`Reference` of M points, close by) without
     tracking: the modes are the reference's, across its switches; groups are solved by
     Newton's method from the reference's coordinates. Only the first ``upto`` steps of
-    the plan when given.
+    the plan when given; the dyads of the steps numbered in ``double`` at their double
+    root (a fold, found as their discriminant's root).
 
     Returns (pose, feasible, group_q).
     """
+    pose, feasible, group_q, _ = _evaluate_at(plan, theta, ref, upto, double)
+    return pose, feasible, group_q
+
+
+def failing_step(plan, theta, ref):
+    """The index of the first step of the plan that cannot be assembled at any of the
+    angles ``theta`` (continued from ``ref`` as by :func:`evaluate_at`), or None."""
+    return _evaluate_at(plan, theta, ref, None, ())[3]
+
+
+def _evaluate_at(plan, theta, ref, upto, double):
     theta = np.asarray(theta, dtype=float)
+    first_bad = None
     with np.errstate(divide="ignore", invalid="ignore", over="ignore"):
         pose = _known_poses(plan, theta)
         feasible = np.ones(theta.size, dtype=bool)
@@ -69,17 +82,19 @@ def evaluate_at(plan, theta, ref, *, upto=None):
         for i, step in enumerate(plan.steps[:upto]):
             if step.kind == "single":
                 pose.update(_single(step, pose))
+                ok = True
             elif step.kind == "dyad":
-                keys, build, ok, _ = _dyad_roots(step, pose, plan.size)
-                feasible &= ok
+                keys, build, ok, _ = _dyad_roots(step, pose, plan.size, double=i in double)
                 pose.update(build(1.0 if keys is None else ref.sign(i, theta)))
             else:
                 q0 = np.broadcast_to(ref.group_q[i], (theta.size, _form(step).size))
                 q, ok = _newton(plan, step, pose, q0)
-                feasible &= ok
                 group_q[i] = q
                 pose.update(_form(step).complete(_form(step).set_bodies(pose, q)))
-    return pose, feasible, group_q
+            if first_bad is None and not np.all(ok):
+                first_bad = i
+            feasible &= ok
+    return pose, feasible, group_q, first_bad
 
 
 class Evaluation:
@@ -148,7 +163,14 @@ def _evaluate(plan, theta, start):
     pose = _known_poses(plan, theta)
     feasible = np.ones(theta.size, dtype=bool)
     signs, group_q, switches = {}, {}, {}
+    # a path from the drawn pose has it, as drawn, at its own value: the closed forms
+    # would give it only to rounding, and at a drawn dead centre to its square root
+    at_drawn = theta == plan.theta0 if start is None and plan.theta0 is not None else None
+    if at_drawn is not None and not at_drawn.any():
+        at_drawn = None
     for i, step in enumerate(plan.steps):
+        if at_drawn is not None and i:
+            _as_drawn(pose, plan.steps[i - 1].links, at_drawn, group_q.get(i - 1))
         if step.kind == "single":
             pose.update(_single(step, pose))
             continue
@@ -174,10 +196,23 @@ def _evaluate(plan, theta, start):
         feasible &= ok
         group_q[i] = q
         pose.update(_form(step).complete(_form(step).set_bodies(pose, q)))
+    if at_drawn is not None and plan.steps:
+        _as_drawn(pose, plan.steps[-1].links, at_drawn, group_q.get(len(plan.steps) - 1))
     if not feasible.all():
         first_bad = int(np.argmin(feasible))
         feasible[first_bad:] = False
     return Evaluation(theta, pose, feasible, signs, group_q, switches)
+
+
+def _as_drawn(pose, links, drawn, q=None):
+    """Put ``links`` in their drawn pose (no motion) at the points ``drawn``, and a
+    group's coordinates ``q`` (its bodies' motions) to zero there."""
+    shape = drawn.shape
+    for link in links:
+        pose[link] = tuple(np.where(drawn, rest, np.broadcast_to(v, shape))
+                           for v, rest in zip(pose[link], (0.0, 0.0, 0.0, 1.0, 0.0)))
+    if q is not None:
+        q[drawn] = 0.0
 
 
 def _track(plan, i, step, head, disc, sign0):
