@@ -154,16 +154,12 @@ def _limit(plan, ev, k, bad):
     return _fold(plan, at, good, bad, far)
 
 
-_DRAWN_FOLD = 1e-10     # degrees of tau: a fold this near the drawn value is the drawing's
-
-
 def _fold(plan, at, good, bad, far):
     """The limit between ``good`` (assembled; ``at`` its evaluation) and ``bad`` (not)
     exactly, as a fold of the step that fails there: a dyad's at its discriminant's root,
     where it takes its double root; a group's by Newton's method on the extended system
     (:func:`groups.fold_point`). Found by bisection alone, a limit's pose would carry
-    the square root of the bisection's tolerance. A fold at the drawn value is the
-    drawn pose itself. ``far`` is where the path first failed (a group's Newton's
+    the square root of the bisection's tolerance. ``far`` is where the path first failed (a group's Newton's
     method near its fold depends on where it starts: ``bad`` may assemble from ``good``,
     where the path found it did not). Returns (angle, the evaluation there)."""
     ref = at.reference(np.array([0]))
@@ -196,9 +192,6 @@ def _fold(plan, at, good, bad, far):
             return good, at
         t, q = found
         group_q[i] = q[None]
-    if plan.theta0 is not None and anchor(plan).state is None and \
-            abs(t - plan.theta0) <= _DRAWN_FOLD:
-        return plan.theta0, evaluate(plan, np.array([plan.theta0]))
     ref = Reference(ref.theta, ref.signs, group_q, ref.switches)
     pose, feasible, group_q = evaluate_at(plan, np.array([t]), ref, double=double)
     if not feasible.all():

@@ -1,0 +1,178 @@
+"""Dead centres exact to the rounding: a limit of the input's range is a fold of the
+constraint equations, computed as one (a dyad's double root, a group's extended
+system), so poses, strokes, extremes and time ratios there carry the rounding, not its
+square root; symmetric mechanisms give exactly symmetric answers."""
+
+import math
+
+import numpy as np
+import pytest
+from hypothesis import example, given, settings
+from hypothesis import strategies as st
+
+import chaingraph
+from chaingraph.catalog import catalog_path
+from chaingraph.kinematics.equations import residuals
+from chaingraph.kinematics.rates import rates
+from chaingraph.kinematics.sweep import cycle
+
+from .conftest import CATALOG
+
+EXAMPLES = sorted((__import__("pathlib").Path(__file__).parent.parent / "examples").glob("*.toml"))
+
+
+def _mechanisms():
+    for path in list(CATALOG) + EXAMPLES:
+        chain = chaingraph.load(path)
+        if chain.mechanism is not None and chain.has_pose:
+            yield path
+
+
+def _rocking():
+    out = []
+    for path in _mechanisms():
+        plan = chaingraph.solve(chaingraph.load(path), steps=4).plan
+        if not cycle(plan).full_turn:
+            out.append(path)
+    return out
+
+
+ROCKING = _rocking()
+
+
+def test_the_catalog_has_mechanisms_that_end_at_dead_centres():
+    names = {p.stem for p in ROCKING}
+    assert {"non-grashof-four-bar", "pendulum-pump", "watts-indicator-mechanism",
+            "hydraulic-boom", "elliptical-trammels"} <= names
+
+
+@pytest.mark.parametrize("path", ROCKING, ids=lambda p: p.stem)
+def test_a_limit_is_a_fold_to_the_rounding(path):
+    """At both ends of the range the loops close to 1e-12 of the size and the driven
+    mechanism is singular to the rounding (the normalized determinant of the step
+    that folds is zero); bisection alone left it near the square root of its
+    tolerance (1e-6)."""
+    plan = chaingraph.solve(chaingraph.load(path), steps=4).plan
+    for end in cycle(plan).limit_poses:
+        assert float(np.max(residuals(plan, end.pose))) <= 1e-12 * plan.size
+        _, _, measure = rates(plan, end.pose, 1.0, 1)
+        assert float(np.min(np.abs(measure))) <= 1e-12
+
+
+def _piston_driven_cylinder():
+    text = catalog_path("oscillating-cylinder-engine").read_text()
+    text = text.replace('driver = "crank"', 'inputs = ["S"]')
+    return chaingraph.loads(text.replace('output = "piston"', 'output = "crank"'))
+
+
+def test_an_oscillating_cylinder_driven_by_its_piston_ends_with_crank_and_cylinder_in_line():
+    """Crank 30 mm, pivots 100 apart: the piston's range ends where crank and cylinder
+    are in line, at crank angles 0 and 180 exactly (the crank pin on the line of
+    centres; it was 3e-4 mm off), so the crank's stroke is 180 degrees."""
+    motion = chaingraph.solve(_piston_driven_cylinder())
+    s = motion.summary
+    assert s["stroke"] == pytest.approx(180.0, abs=1e-12 * 180)
+    size = motion.plan.size
+    for k in (0, -1):
+        assert abs(motion["y:A"][k]) <= 1e-12 * size
+        assert abs(math.remainder(motion["angle:crank"][k], 180.0)) <= 1e-12 * 180
+    # the slide's range is the difference of the distances T to A at the two ends
+    low, high = s["input_range"]
+    assert high - low == pytest.approx((100 + 30) - (100 - 30), abs=1e-12 * size)
+
+
+@pytest.mark.parametrize("name, extremes", [
+    ("oscillating-cylinder-engine", (0.0, 180.0)),
+    ("reciprocating-engine", (0.0, 180.0)),
+    ("scotch-yoke", (0.0, 180.0)),
+])
+def test_mechanisms_symmetric_by_construction_give_time_ratio_one(name, extremes):
+    """A mechanism symmetric about the line of centres has equal forward and return
+    strokes: the time ratio is 1 and the extremes at 0 and 180 to 1e-12 (the oscillating
+    cylinder gave 1.00006 with extremes at 180.011 and 0.0059)."""
+    s = chaingraph.solve(chaingraph.load(catalog_path(name))).summary
+    assert s["time_ratio"] == pytest.approx(1.0, abs=1e-12)
+    assert sorted(s["extremes"]) == pytest.approx(extremes, abs=1e-9)
+    assert s["forward_deg"] == pytest.approx(180.0, abs=1e-9)
+
+
+FOUR_BAR = """
+name = "four-bar drawn at a dead centre"
+units = "mm"
+[[joints]]
+id = "O2"
+kind = "R"
+links = ["frame", "crank"]
+at = [{o2x!r}, {o2y!r}]
+[[joints]]
+id = "A"
+kind = "R"
+links = ["crank", "coupler"]
+at = [{ax!r}, {ay!r}]
+[[joints]]
+id = "B"
+kind = "R"
+links = ["coupler", "rocker"]
+at = [{bx!r}, {by!r}]
+[[joints]]
+id = "O4"
+kind = "R"
+links = ["rocker", "frame"]
+at = [{o4x!r}, {o4y!r}]
+[mechanism]
+fixed = "frame"
+driver = "crank"
+"""
+
+
+def _cross(p, q, r):
+    """The sine of the angle at q between q->p and q->r (0: the three in line)."""
+    u, v = np.subtract(p, q), np.subtract(r, q)
+    return abs(u[0] * v[1] - u[1] * v[0]) / (np.linalg.norm(u) * np.linalg.norm(v))
+
+
+@settings(max_examples=40, deadline=None)
+@given(crank=st.floats(10, 60), coupler=st.floats(40, 120), rocker=st.floats(20, 100),
+       heading=st.floats(-180, 180), at_crank=st.floats(-180, 180),
+       folded=st.booleans(), off=st.sampled_from([0.0, 1e-13, 1e-9, 1e-6, 1e-3]))
+@example(crank=20.0, coupler=80.03978258737749, rocker=24.53978258737749,
+         heading=90.0, at_crank=60.0, folded=True, off=0.0)
+def test_a_four_bar_drawn_at_or_near_its_dead_centre(crank, coupler, rocker, heading,
+                                                     at_crank, folded, off):
+    """Coupler and rocker drawn in line (``folded``: the rocker turned back along the
+    coupler), or a hair off it (``off`` of the size, across the line): the drawn value
+    gives the drawing itself, and each limit of the crank's range has coupler and rocker
+    in line to 1e-12 with the loops closed to 1e-12 of the size."""
+    if folded and abs(coupler - rocker) < 5:
+        return
+    u = (math.cos(math.radians(heading)), math.sin(math.radians(heading)))
+    a = (crank * math.cos(math.radians(at_crank)), crank * math.sin(math.radians(at_crank)))
+    b = (a[0] + coupler * u[0], a[1] + coupler * u[1])
+    sign = -1.0 if folded else 1.0
+    o4 = (b[0] + sign * rocker * u[0], b[1] + sign * rocker * u[1])
+    if math.dist(o4, (0.0, 0.0)) < 5 or math.dist(o4, a) < 5:
+        return
+    size = max(crank, coupler, rocker, math.dist(o4, (0.0, 0.0)))
+    b = (b[0] - off * size * u[1], b[1] + off * size * u[0])
+    text = FOUR_BAR.format(o2x=0.0, o2y=0.0, ax=a[0], ay=a[1], bx=b[0], by=b[1],
+                           o4x=o4[0], o4y=o4[1])
+    chain = chaingraph.loads(text)
+    try:
+        motion = chaingraph.solve(chain)
+    except chaingraph.AssemblyError:
+        return                       # a drawing that is already past no fold (rare)
+    plan = motion.plan
+    theta = motion["theta"]
+    drawn = math.degrees(math.atan2(a[1], a[0]))
+    at = chaingraph.solve(chain, start=drawn, stop=drawn, steps=1)
+    assert math.dist((at["x:B"][0], at["y:B"][0]), b) <= 1e-12 * size
+    c = cycle(plan)
+    if c.full_turn:                  # a hair off the line may leave a crank (Grashof)
+        return
+    for end in c.limit_poses:
+        assert float(np.max(residuals(plan, end.pose))) <= 1e-12 * plan.size
+    for k in (0, -1):
+        pa, pb = (motion["x:A"][k], motion["y:A"][k]), (motion["x:B"][k], motion["y:B"][k])
+        po4 = (motion["x:O4"][k], motion["y:O4"][k])
+        # at a limit either the coupler and rocker (the driven dyad) are in line
+        assert _cross(pa, pb, po4) <= 1e-12, theta[k]
