@@ -2,12 +2,13 @@
 
 A runner is ``runner(fn, tasks, on_result)``: it calls ``on_result(i, fn(tasks[i]))``
 for every task, in whatever order they finish. Workers leave Ctrl-C to the main
-process, which stops them all (no worker left behind, no traceback of theirs).
+process, which stops them all (no worker left behind, no traceback of theirs), and
+end by themselves when the main process is gone (killed with SIGKILL, say).
 """
 
 from __future__ import annotations
 
-__all__ = ["serial", "process_runner", "ignore_interrupts"]
+__all__ = ["serial", "process_runner", "ignore_interrupts", "prepare_worker"]
 
 
 def serial(fn, tasks, on_result):
@@ -20,6 +21,33 @@ def ignore_interrupts():
     """In a worker process: leave Ctrl-C to the main process, which stops the workers."""
     import signal
     signal.signal(signal.SIGINT, signal.SIG_IGN)
+
+
+def prepare_worker(parent):
+    """In a worker process: leave Ctrl-C to the main process, and end when the main
+    process ``parent`` (its pid) is gone however it went (killed, out of memory, a
+    closed terminal), so that no worker outlives it: the kernel is asked to kill the
+    worker with its parent (Linux), and a watch thread checks the parent every quarter
+    second everywhere (also where the kernel's request does not apply)."""
+    import os
+    import signal
+    import threading
+    import time
+    ignore_interrupts()
+    try:
+        import ctypes
+        libc = ctypes.CDLL(None, use_errno=True)
+        libc.prctl(1, signal.SIGKILL)            # PR_SET_PDEATHSIG
+    except (OSError, AttributeError):
+        pass
+
+    def watch():
+        while os.getppid() == parent:
+            time.sleep(0.25)
+        os._exit(1)
+    if os.getppid() != parent:                   # gone before the request was made
+        os._exit(1)
+    threading.Thread(target=watch, name="chaingraph-parent-watch", daemon=True).start()
 
 
 def process_runner(workers):
@@ -35,9 +63,10 @@ def process_runner(workers):
     def run(fn, tasks, on_result):
         if workers <= 1 or len(tasks) <= 1:
             return serial(fn, tasks, on_result)
+        import os
         from concurrent.futures import FIRST_COMPLETED, ProcessPoolExecutor, wait
         pool = ProcessPoolExecutor(max_workers=min(workers, len(tasks)),
-                                   initializer=ignore_interrupts)
+                                   initializer=prepare_worker, initargs=(os.getpid(),))
         try:
             pending = {pool.submit(fn, task): i for i, task in enumerate(tasks)}
             while pending:
