@@ -302,11 +302,10 @@ def test_an_unreachable_scheduler_is_one_line():
     (["--links", "8", "--workers", "0"], "--workers must be 1 or more"),
 ])
 def test_sizes_that_cannot_finish_are_refused_up_front(args, words):
-    import time
-    start = time.perf_counter()
+    """Refused by the estimate (or the arguments) before any work: the message says so,
+    and nothing is written."""
     code, out, err = run_cli("atlas", *args)
-    assert code == 2 and words in err and "Traceback" not in err
-    assert time.perf_counter() - start < 10
+    assert code == 2 and words in err and "Traceback" not in err and out == ""
     if "18" in args:
         assert "--scheduler" in err and "days" in err      # the estimate and the way
 

@@ -18,6 +18,7 @@ from hypothesis import HealthCheck, given, settings
 from hypothesis import strategies as st
 
 import chaingraph
+from chaingraph.kinematics import tracking
 from chaingraph import ChainGraphError
 from chaingraph.catalog import catalog_path
 from chaingraph.cli import main
@@ -137,12 +138,29 @@ def test_numbers_that_cannot_be_computed_are_refused(tmp_path, replace, key):
     (["solve", CRANK, "--steps", "9" * 400], "about 10^399 steps"),
     (["solve", CRANK, "--steps", "0"], "steps"),
 ])
-def test_command_line_numbers_are_refused_up_front(args, words):
-    start = time.perf_counter()
+def test_command_line_numbers_are_refused_up_front(args, words, monkeypatch):
+    """Refused before any position is solved."""
+    monkeypatch.setattr(tracking, "_evaluate", _no_work)
     code, out, err = _main(*args)
     assert code == 2 and words in err and "Traceback" not in err
     assert err.count("\n") == 1
-    assert time.perf_counter() - start < 10
+
+
+def _no_work(*args):
+    raise AssertionError("positions were solved before the refusal")
+
+
+class _Counted:
+    """Wraps the path evaluation: how many points were solved, and the longest path."""
+
+    def __init__(self, monkeypatch):
+        self.points, self.longest, self._evaluate = 0, 0, tracking._evaluate
+        monkeypatch.setattr(tracking, "_evaluate", self)
+
+    def __call__(self, plan, theta, start):
+        self.points += theta.size
+        self.longest = max(self.longest, theta.size)
+        return self._evaluate(plan, theta, start)
 
 
 def test_far_angles_are_taken_modulo_a_turn():
@@ -244,37 +262,33 @@ def _chain(edges, name):
 def test_structure_commands_refuse_what_they_cannot_finish():
     import itertools
     complete = _chain(list(itertools.combinations(range(26), 2)), "K26")
-    start = time.perf_counter()
     with pytest.raises(chaingraph.ChainStructureError, match="subset-joint checks"):
         chaingraph.classify(complete)
     long_loop = _chain([(i, (i + 1) % 2001) for i in range(2001)], "loop")
     with pytest.raises(chaingraph.ChainStructureError, match="at most 2,000 links"):
         chaingraph.inversions(long_loop)
-    assert time.perf_counter() - start < 5
 
 
 def test_structure_commands_finish_on_hundreds_of_links():
     import networkx as nx
     cube = nx.convert_node_labels_to_integers(nx.hypercube_graph(8))
-    start = time.perf_counter()
     inv = chaingraph.inversions(_chain(list(cube.edges()), "hypercube"))
     assert inv.classes == 1                            # every link alike
     loop = _chain([(i, (i + 1) % 500) for i in range(500)], "loop")
     assert chaingraph.inversions(loop).classes == 1
-    chaingraph.identify(loop)
-    assert time.perf_counter() - start < 60
+    assert chaingraph.identify(loop).chain is None
 
 
 # -- resource tests: run under a memory limit ------------------------------------------
 def _limited(args, *, memory, seconds):
-    """Run the command line under an address-space limit and a time limit."""
+    """Run the command line under an address-space limit (and a time-out that only
+    stops a run gone wrong)."""
     def limit():
         resource.setrlimit(resource.RLIMIT_AS, (memory, memory))
-    start = time.perf_counter()
     proc = subprocess.run([sys.executable, "-m", "chaingraph", *map(str, args)],
                           capture_output=True, text=True, preexec_fn=limit,
                           timeout=seconds)
-    return proc.returncode, proc.stdout, proc.stderr, time.perf_counter() - start
+    return proc.returncode, proc.stdout, proc.stderr
 
 
 def test_many_parallel_joints_classify_in_bounded_memory(tmp_path):
@@ -284,13 +298,13 @@ def test_many_parallel_joints_classify_in_bounded_memory(tmp_path):
         lines.append(f'[[joints]]\nid = "J{i}"\nkind = "R"\nlinks = ["L{a}", "L{b}"]')
     path = tmp_path / "parallel.toml"
     path.write_text("\n".join(lines))
-    code, out, err, elapsed = _limited(["classify", path], memory=2 << 30, seconds=120)
+    code, out, err = _limited(["classify", path], memory=2 << 30, seconds=120)
     assert code == 0 and "degenerate" in out, err
 
 
 def test_a_long_sweep_to_csv_streams_in_bounded_memory(tmp_path):
     path = tmp_path / "motion.csv"
-    code, out, err, elapsed = _limited(["solve", CRANK, "--steps", "150000", "--csv", path],
+    code, out, err = _limited(["solve", CRANK, "--steps", "150000", "--csv", path],
                                        memory=3 << 30, seconds=180)
     assert code == 0, err
     with open(path) as f:
@@ -298,9 +312,9 @@ def test_a_long_sweep_to_csv_streams_in_bounded_memory(tmp_path):
 
 
 def test_a_sweep_larger_than_memory_is_refused_under_the_limit():
-    code, out, err, elapsed = _limited(["solve", CRANK, "--steps", "2000000000"],
+    code, out, err = _limited(["solve", CRANK, "--steps", "2000000000"],
                                        memory=2 << 30, seconds=60)
-    assert code == 2 and "GiB" in err and "Traceback" not in err and elapsed < 30
+    assert code == 2 and "GiB" in err and "Traceback" not in err
 
 
 # -- interrupts ----------------------------------------------------------------------
@@ -361,11 +375,13 @@ def test_atlas_with_any_numbers_answers_in_one_line(flag, value):
         assert err.count("\n") == 1 and "Traceback" not in err, err
 
 
-def test_a_far_sweep_without_summary_is_taken_within_a_turn():
+def test_a_far_sweep_without_summary_is_taken_within_a_turn(monkeypatch):
+    """1e9 degrees away: the angles are taken within a turn, so at most a turn's grid
+    is walked (it walked 1e9 degrees and took 24 GB before)."""
     chain = chaingraph.load(CRANK)
-    start = time.perf_counter()
+    counted = _Counted(monkeypatch)
     far = chaingraph.solve(chain, start=0, stop=1e9, steps=2, summary=False)
-    assert time.perf_counter() - start < 10
+    assert counted.longest <= 2 * 361
     with_summary = chaingraph.solve(chain, start=0, stop=1e9, steps=2)
     for key in far.columns:
         assert far[key] == pytest.approx(with_summary[key], nan_ok=True), key

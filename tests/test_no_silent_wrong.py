@@ -300,12 +300,19 @@ def test_narrow_infeasible_window_is_found_with_its_exact_limits(eps, limit):
 
 
 # -- item 16: a summary costs no more than a sweep ---------------------------------------
-def test_rocking_group_summary_is_quick():
-    import time
+def test_rocking_group_summary_is_quick(monkeypatch):
+    """The summary of a rocking group solves a few thousand points, not a fine walk of
+    its range (5,494 when this was written: the sweep, the summary's grid of 3,601 and
+    the refinements)."""
+    from chaingraph.kinematics import tracking
+    solved = []
+    evaluate = tracking._evaluate
+    monkeypatch.setattr(tracking, "_evaluate",
+                        lambda plan, theta, start: solved.append(theta.size) or
+                        evaluate(plan, theta, start))
     chain = chaingraph.load(catalog_path("stephenson-six-bar-chain"))
-    start = time.perf_counter()
     chaingraph.solve(chain, fixed="t2", driver="b4")
-    assert time.perf_counter() - start < 20.0
+    assert sum(solved) <= 10_000
 
 
 # -- item 8: every extreme is stationary; one maximum per turn gives a time ratio -----------
