@@ -163,7 +163,8 @@ def test_a_four_bar_drawn_at_or_near_its_dead_centre(crank, coupler, rocker, hea
         return                       # a drawing that is already past no fold (rare)
     plan = motion.plan
     theta = motion["theta"]
-    drawn = math.degrees(math.atan2(a[1], a[0]))
+    drawn = plan.inputs[0].value0                 # the crank's drawn angle
+    assert drawn == pytest.approx(math.degrees(math.atan2(a[1], a[0])), abs=1e-12 * 360)
     at = chaingraph.solve(chain, start=drawn, stop=drawn, steps=1)
     assert math.dist((at["x:B"][0], at["y:B"][0]), b) <= 1e-12 * size
     c = cycle(plan)

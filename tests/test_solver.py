@@ -1,7 +1,9 @@
 """The numeric solver: closed-form geometry, finite differences, the textbook's figures,
 assembly modes, feasible ranges, dead centres and every bad input."""
 
+import contextlib
 import csv
+import io
 import json
 import math
 
@@ -11,6 +13,7 @@ import pytest
 import chaingraph
 from chaingraph import AssemblyError, Chain, Joint, Mechanism, MechanismError
 from chaingraph.catalog import catalog_files, catalog_path
+from chaingraph.cli import main
 from chaingraph.kinematics import solve
 from chaingraph.kinematics.sweep import _evaluate_sweep
 from chaingraph.kinematics.plan import build_plan
@@ -559,3 +562,21 @@ def test_rrr_fast_path_agrees_with_the_general_reduction(path, monkeypatch):
                 a = np.broadcast_to(table_fast[link][j], theta.shape)
                 b = np.broadcast_to(table_general[link][j], theta.shape)
                 assert np.allclose(a, b, rtol=1e-9, atol=1e-9), (link, j)
+
+
+# -- figures within rounding of a round number are that number ---------------------------
+def test_rounding_noise_is_not_printed_as_a_figure():
+    """The shaper's crank is drawn along +x (atan2 gives 1.357e-14 degrees), the engine
+    driven by its piston has coupler and crank in line at its ends (transmission angle
+    1.5e-14): text and JSON say 0."""
+    shaper = chaingraph.solve(chaingraph.load(catalog_path("shaper-crank-and-slotted-lever")))
+    assert shaper.theta[0] == 0.0 and shaper.summary["input_range"] == [0.0, 360.0]
+    engine = chaingraph.solve(chaingraph.load(catalog_path("reciprocating-engine")),
+                              inputs=["S"]).summary
+    assert engine["transmission_angle"] == {"min": 0.0, "max": 180.0}
+    assert engine["stroke"] == 80.0
+    out = io.StringIO()
+    with contextlib.redirect_stdout(out):
+        assert main(["solve", str(catalog_path("reciprocating-engine")), "--input", "S"]) == 0
+    assert "transmission angle  0 to 180 degrees" in out.getvalue()
+    assert "e-1" not in out.getvalue()

@@ -35,6 +35,7 @@ from dataclasses import dataclass, replace
 import numpy as np
 
 from ..errors import MechanismError
+from .geometry import tidy
 
 __all__ = ["Constraint", "Step", "InputJoint", "Plan", "build_plan", "chosen_inputs"]
 
@@ -251,7 +252,8 @@ def _direction(chain, link, joint):
     if not far:
         return 0.0
     ref = far[0].at
-    return math.degrees(math.atan2(ref[1] - here[1], ref[0] - here[0]))
+    # a drawing's 1.4e-14 degrees is its 0 (the drawn pose is kept exactly either way)
+    return tidy(math.degrees(math.atan2(ref[1] - here[1], ref[0] - here[0])), 360.0)
 
 
 def _input_joints(chain, fixed, driver, inputs, name):

@@ -10,7 +10,7 @@ import math
 import numpy as np
 
 from .columns import _columns
-from .geometry import rotate
+from .geometry import rotate, tidy
 from .rates import rates
 from .roots import bracketed_roots
 from .sweep import _evaluate_sweep, cycle
@@ -138,7 +138,29 @@ def _pointwise(plan, ev, k, t):
 
 def _summary(plan, output, omega, c, *, sweep=None):
     """The summary over the cycle ``c``; ``sweep`` is (evaluation, step measures,
-    columns at unit input speed) on the cycle's own grid when the caller has them."""
+    columns at unit input speed) on the cycle's own grid when the caller has them.
+    Figures within rounding of a round number are that number (:func:`tidy`)."""
+    s = _raw_summary(plan, output, omega, c, sweep=sweep)
+    length = plan.size
+    angle = 360.0
+    lead = angle if plan.inputs[plan.lead].kind == "R" else length
+    out = angle if s["stroke_unit"] == "deg" else length
+    for key, scale in (("stroke", out), ("forward_deg", angle), ("return_deg", angle),
+                       ("time_ratio", 1.0)):
+        s[key] = tidy(s[key], scale)
+    for key in ("extremes", "input_range", "dead_centres"):
+        if s[key] is not None:
+            s[key] = [tidy(t, lead) for t in s[key]]
+    if s["extreme_positions"] is not None:
+        s["extreme_positions"] = [dict(e, input=tidy(e["input"], lead),
+                                       value=tidy(e["value"], out))
+                                  for e in s["extreme_positions"]]
+    if s["transmission_angle"] is not None:
+        s["transmission_angle"] = {k: tidy(v, angle) for k, v in s["transmission_angle"].items()}
+    return s
+
+
+def _raw_summary(plan, output, omega, c, *, sweep=None):
     if sweep is None:
         theta = _cycle_theta(plan, c)
         ev = _evaluate_sweep(plan, theta)
