@@ -503,3 +503,26 @@ def test_notebook_displays():
     polygons_page = velocity_polygon(chain, at=45.0)._repr_html_()
     assert "<table>" in centres_page and "<svg" in centres_page and "I24" in centres_page
     assert "<table>" in polygons_page and "<svg" in polygons_page and "B&#x27;" in polygons_page
+
+
+def test_links_are_numbered_frame_input_then_along_the_chain():
+    """Frame 1, the input 2, then along the chain (Stephenson III was numbered 1 frame,
+    2 rocker, 3 crank, ..., 5 "link 1": I15 read as frame and link 1)."""
+    centres = instant_centres(chaingraph.load(catalog_path("stephenson-iii-mechanism")))
+    assert centres.numbers == {"frame": 1, "crank": 2, "ternary link": 3, "left link": 4,
+                               "right link": 5, "rocker": 6}
+    engine = instant_centres(chaingraph.load(catalog_path("reciprocating-engine")))
+    assert engine.numbers == {"frame": 1, "crank": 2, "connecting rod": 3, "crosshead": 4}
+
+
+@pytest.mark.parametrize("path", sorted(catalog_dir().glob("*.toml")) + sorted(EXAMPLES.glob("*.toml")),
+                         ids=lambda p: p.stem)
+def test_no_link_is_named_by_a_number_it_does_not_have(path):
+    """A name ending in a number (wheel 1, slider 3, link 5) is that link's number."""
+    chain = chaingraph.load(path)
+    if not (chain.has_pose and chain.mechanism):
+        return
+    numbers = instant_centres(chain).numbers
+    for link, n in numbers.items():
+        word = link.split()[-1]
+        assert not word.isdigit() or int(word) == n, (link, n)

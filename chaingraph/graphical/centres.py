@@ -102,7 +102,8 @@ class InstantCentres(AtOneValue):
     centres : tuple of Centre
         By link numbers: I12, I13, ..., I23, ...
     numbers : dict
-        link -> its number (the fixed link 1, then the others in the chain's order).
+        link -> its number (the fixed link 1, the input links next, then the others
+        along the chain: :func:`link_numbers`).
     angular_velocities : dict
         link -> angular velocity (rad/s) found through the centres from the input's
         speed (None at a dead centre, where the input does not determine them).
@@ -176,19 +177,48 @@ class InstantCentres(AtOneValue):
         return centres_html(self)
 
 
-def link_numbers(chain, fixed) -> dict:
-    """The textbook's numbering: the links' own numbers when every name is one ("2",
-    "link 2"), else the fixed link 1, then the others in the chain's order."""
+def link_numbers(chain, fixed, inputs=()) -> dict:
+    """The textbook's numbering: the fixed link 1, then the input links (``inputs``: the
+    moving links the inputs turn or slide), then the rest along the chain (breadth
+    first from the inputs, ties in the file's order); but a link whose name ends in a
+    number ("2", "link 2", "wheel 2", "slider 3") has that number, so that no name
+    says another number than the centres' (I12 is then wheel 1 and wheel 2), and the
+    others take the numbers left, in that order.
+
+    Examples
+    --------
+    >>> import chaingraph
+    >>> from chaingraph.catalog import catalog_path
+    >>> chain = chaingraph.load(catalog_path("stephenson-iii-mechanism"))
+    >>> link_numbers(chain, "frame", ["crank"])
+    {'frame': 1, 'crank': 2, 'ternary link': 3, 'left link': 4, 'right link': 5, 'rocker': 6}
+    >>> chain = chaingraph.load(catalog_path("stephenson-i-mechanism"))
+    >>> link_numbers(chain, "frame", ["crank"])
+    {'frame': 1, 'crank': 2, 'coupler': 3, 'rocker': 4, 'link 5': 5, 'link 6': 6}
+    """
+    count = len(chain.links)
     own = {}
     for link in chain.links:
         word = link.split()[-1] if link.split() else ""
-        if word.isdigit() and link in (word, f"link {word}", f"Link {word}"):
+        if word.isdigit() and 1 <= int(word) <= count:
             own[link] = int(word)
-    if len(own) == len(chain.links) and len(set(own.values())) == len(own) \
-            and all(n >= 1 for n in own.values()):
-        return dict(sorted(own.items(), key=lambda item: item[1]))
-    order = [fixed] + [x for x in chain.links if x != fixed]
-    return {link: n for n, link in enumerate(order, start=1)}
+    taken = [n for n in own.values()]
+    own = {link: n for link, n in own.items() if taken.count(n) == 1}
+    rank = {link: k for k, link in enumerate(chain.links)}
+    order = [fixed] + [x for x in dict.fromkeys(inputs) if x != fixed]
+    queue = list(order[1:]) or [fixed]
+    while queue:
+        here = queue.pop(0)
+        near = sorted({x for j in chain.joints if here in j.links for x in j.links},
+                      key=rank.get)
+        for x in near:
+            if x not in order:
+                order.append(x)
+                queue.append(x)
+    order += [x for x in chain.links if x not in order]     # pieces not joined to the rest
+    free = iter(n for n in range(1, count + 1) if n not in own.values())
+    numbers = {link: own[link] if link in own else next(free) for link in order}
+    return dict(sorted(numbers.items(), key=lambda item: item[1]))
 
 
 def _unit(h):
@@ -414,7 +444,9 @@ def instant_centres(chain, *, at=None, fixed=None, driver=None, inputs=None,
 
 def centres_of(state: PoseMotion) -> InstantCentres:
     """The instantaneous centres of a solved pose (see :func:`instant_centres`)."""
-    numbers = link_numbers(state.chain, state.fixed)
+    plan = state.plan
+    moving = [x for item in plan.inputs for x in (item.a, item.b) if x != state.fixed]
+    numbers = link_numbers(state.chain, state.fixed, moving)
     links = list(numbers)
     known = _kennedy(links, _primary(state))
     centres = {}
