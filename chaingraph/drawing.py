@@ -434,7 +434,8 @@ def mechanism_svg(motion, *, frames=None, seconds=4.0, width=640, paths=True):
 def skeleton_svg(chain, *, width=420):
     """The kinematic skeleton of any chain, mechanism or not: its links as bars (binary)
     and plates (three or more joints) between its joints, R joints as pins, P joints as
-    blocks, higher pairs as dashed rings, the fixed link (if any) on hatched ground.
+    blocks on their guides, higher pairs as dashed rings; the fixed link (if any) is the
+    ground: hatched pivots and ways, not a body. Pins are drawn over blocks.
     From the drawn pose when every joint has one, else from a computed layout.
 
     Examples
@@ -474,10 +475,14 @@ def skeleton_svg(chain, *, width=420):
              f'<title>{html.escape(chain.name)}: kinematic skeleton'
              f'{"" if drawn else " (computed layout)"}</title>',
              '<rect width="100%" height="100%" fill="white"/>']
-    for c, link in enumerate(chain.links):
+    colours = {link: _COLOURS[c % len(_COLOURS)] for c, link in enumerate(chain.links)}
+    # the moving links as plates and bars; the fixed link is the ground, drawn at its
+    # joints (hatched pivots, ways for its slots), never as a moving body
+    for link in chain.links:
+        if link == fixed:
+            continue
         ends = [pos[j.id] for j in chain.joints_of(link)]
-        colour = "#444444" if link == fixed else _COLOURS[c % len(_COLOURS)]
-        name = html.escape(link, quote=True)
+        colour, name = colours[link], html.escape(link, quote=True)
         if len(ends) >= 3:
             hull = _hull([(round(x, 12), round(y, 12)) for x, y in ends])
             parts.append(f'<polygon class="plate" data-link="{name}" points="'
@@ -487,10 +492,34 @@ def skeleton_svg(chain, *, width=420):
             parts.append(f'<polyline class="bar" data-link="{name}" points="'
                          + " ".join(pt(p) for p in ends) + f'" stroke="{colour}" '
                          f'stroke-width="{2 * stroke:.3g}" stroke-linecap="round"/>')
+    where = {j.id: tuple(float(v) for v in pt(pos[j.id]).split(",")) for j in chain.joints}
+    # sliding pairs: the guide along the axis on the link that carries it (a hatched
+    # way on the ground), the block across it; under the pins, which stay in sight
     for j in chain.joints:
-        x, y = (float(v) for v in pt(pos[j.id]).split(","))
+        if j.kind != "P":
+            continue
+        x, y = where[j.id]
+        turn = -(j.axis if drawn and j.axis is not None else 0.0)   # SVG's y points down
         jid = html.escape(j.id, quote=True)
-        if fixed in j.links:
+        on_ground = j.guide == fixed
+        colour = "#222222" if on_ground else colours[j.guide]
+        parts.append(f'<g class="guide" data-joint="{jid}" '
+                     f'transform="translate({x:.4g},{y:.4g}) rotate({turn:.4g})">'
+                     f'<line x1="{-4 * r:.4g}" y1="{r:.4g}" x2="{4 * r:.4g}" y2="{r:.4g}" '
+                     f'stroke="{colour}" stroke-width="{0.8 * stroke:.3g}"/>'
+                     + ("".join(f'<line x1="{t * r:.4g}" y1="{r:.4g}" x2="{(t - 0.6) * r:.4g}" '
+                                f'y2="{1.7 * r:.4g}" stroke="#222222" '
+                                f'stroke-width="{0.5 * stroke:.3g}"/>'
+                                for t in range(-4, 5, 2)) if on_ground else
+                        f'<line x1="{-4 * r:.4g}" y1="{-r:.4g}" x2="{4 * r:.4g}" '
+                        f'y2="{-r:.4g}" stroke="{colour}" stroke-width="{0.8 * stroke:.3g}"/>')
+                     + f'<rect class="block" x="{-1.5 * r:.4g}" y="{-r:.4g}" '
+                     f'width="{3 * r:.3g}" height="{2 * r:.3g}" fill="#f2f2f2" '
+                     f'stroke="#222222" stroke-width="{0.8 * stroke:.3g}"/></g>')
+    for j in chain.joints:
+        x, y = where[j.id]
+        jid = html.escape(j.id, quote=True)
+        if j.kind == "R" and fixed in j.links:
             parts.append(f'<polygon class="ground" points="{x:.4g},{y:.4g} {x - 1.4 * r:.4g},'
                          f'{y + 2 * r:.4g} {x + 1.4 * r:.4g},{y + 2 * r:.4g}" fill="#dddddd" '
                          f'stroke="#222222" stroke-width="{0.6 * stroke:.3g}"/>')
@@ -498,11 +527,7 @@ def skeleton_svg(chain, *, width=420):
             parts.append(f'<circle class="pin" data-joint="{jid}" cx="{x:.4g}" cy="{y:.4g}" '
                          f'r="{r:.3g}" fill="white" stroke="#111111" '
                          f'stroke-width="{0.8 * stroke:.3g}"/>')
-        elif j.kind == "P":
-            parts.append(f'<rect class="block" data-joint="{jid}" x="{x - 1.5 * r:.4g}" '
-                         f'y="{y - r:.4g}" width="{3 * r:.3g}" height="{2 * r:.3g}" '
-                         f'fill="#f2f2f2" stroke="#222222" stroke-width="{0.8 * stroke:.3g}"/>')
-        else:
+        elif j.kind != "P":
             parts.append(f'<circle class="higher" data-joint="{jid}" cx="{x:.4g}" '
                          f'cy="{y:.4g}" r="{1.3 * r:.3g}" fill="none" stroke="#b05000" '
                          f'stroke-dasharray="{stroke:.3g}" stroke-width="{0.8 * stroke:.3g}"/>')

@@ -144,5 +144,15 @@ def test_every_chain_has_a_skeleton(path):
              + root.findall(".//s:circle[@class='higher']", NS))
     assert len(marks) == len(chain.joints)
     drawn = [e for e in root.iter() if e.get("data-link")]
+    fixed = chain.mechanism.fixed if chain.mechanism else None
+    # the fixed link is the ground (hatched pivots and ways), never a moving body
     assert {e.get("data-link") for e in drawn} == {x for x in chain.links
-                                                   if len(chain.joints_of(x)) >= 2}
+                                                   if len(chain.joints_of(x)) >= 2
+                                                   and x != fixed}
+    grounds = root.findall(".//s:polygon[@class='ground']", NS)
+    assert len(grounds) == sum(1 for j in chain.joints if j.kind == "R" and fixed in j.links)
+    guides = root.findall(".//s:g[@class='guide']", NS)
+    assert len(guides) == sum(j.kind == "P" for j in chain.joints)
+    # every pin after every block: a pin at a block's place stays in sight
+    order = [e.get("class") for e in root.iter() if e.get("class") in ("pin", "block")]
+    assert "block" not in order[order.index("pin"):] if "pin" in order else True
