@@ -366,3 +366,26 @@ def test_ctrl_c_leaves_no_worker_and_a_resumable_folder(tmp_path):
                                 "--resume", "--summary", "-q")
     assert code == 0, err
     assert json.loads(stdout)["distinct_inversions"] == 4274510
+
+
+def test_the_atlas_page_draws_no_joint_at_a_crossing_and_numbers_links_as_the_files():
+    """A joint square at the crossing of two bars read as a multiple joint; the links are
+    numbered 1..N on the page, as L1..LN in the chain files."""
+    import re
+
+    from chaingraph.atlas import atlas_graphs
+    from chaingraph.atlas.output import _atlas_svg, _segment_distance, chain_text
+    for entry in atlas_graphs(10, 1):
+        svg = _atlas_svg(entry)
+        bars = [tuple(map(float, m)) for m in re.findall(
+            r'<line x1="([-\d.]+)" y1="([-\d.]+)" x2="([-\d.]+)" y2="([-\d.]+)"', svg)]
+        squares = [(float(x) + 3, float(y) + 3) for x, y in
+                   re.findall(r'<rect class="joint" x="([-\d.]+)" y="([-\d.]+)"', svg)]
+        assert len(bars) == len(squares) == len(entry.edges)
+        for k, p in enumerate(squares):
+            assert _segment_distance(p, bars[k][:2], bars[k][2:]) < 0.2      # on its bar
+            assert min(_segment_distance(p, b[:2], b[2:])
+                       for i, b in enumerate(bars) if i != k) >= 4.0
+        labels = sorted(int(t) for t in re.findall(r">(\d+)</text>", svg))
+        assert labels == list(range(1, entry.links + 1))
+        assert f'"L{entry.links}"' in chain_text(entry)

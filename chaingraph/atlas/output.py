@@ -250,8 +250,10 @@ def chain_text(entry, dof=None) -> str:
 
 
 def _atlas_svg(entry, size=170):
-    """A small SVG of one chain's link-joint graph: links as circles on a ring (ordered to
-    follow the chain), joints as squares on the bars between them."""
+    """A small SVG of one chain's link-joint graph: links as numbered circles on a ring
+    (ordered to follow the chain; L1 is link 1 of the chain file, edge 0 of atlas.json's
+    ``edges``), joints as squares on the bars between them, each placed where no other
+    bar crosses (a square at a crossing would read as a multiple joint)."""
     n = entry.links
     order = _ring_order(n, entry.edges)
     place = {}
@@ -262,22 +264,51 @@ def _atlas_svg(entry, size=170):
     for a, b in entry.edges:
         degree[a] += 1
         degree[b] += 1
+    bars = [(place[a], place[b]) for a, b in entry.edges]
     parts = [f'<svg xmlns="http://www.w3.org/2000/svg" width="{size}" height="{size}" '
              f'viewBox="0 0 {size} {size}">']
-    for a, b in entry.edges:
-        (x1, y1), (x2, y2) = place[a], place[b]
+    for (x1, y1), (x2, y2) in bars:
         parts.append(f'<line x1="{x1:.1f}" y1="{y1:.1f}" x2="{x2:.1f}" y2="{y2:.1f}" '
                      'stroke="#444" stroke-width="1.3"/>')
-        mx, my = (x1 + x2) / 2, (y1 + y2) / 2
-        parts.append(f'<rect x="{mx - 3:.1f}" y="{my - 3:.1f}" width="6" height="6" '
-                     'fill="#fff2cc" stroke="#7f6000" stroke-width="0.8"/>')
+    squares = []
+    for k, bar in enumerate(bars):
+        mx, my = _joint_place(bar, [b for i, b in enumerate(bars) if i != k], squares)
+        squares.append((mx, my))
+        parts.append(f'<rect class="joint" x="{mx - 3:.1f}" y="{my - 3:.1f}" width="6" '
+                     'height="6" fill="#fff2cc" stroke="#7f6000" stroke-width="0.8"/>')
     colour = {2: "#cfe3f5", 3: "#9fc5e8", 4: "#6fa8dc", 5: "#3d85c6"}
     for v, (x, y) in place.items():
-        parts.append(f'<circle cx="{x:.1f}" cy="{y:.1f}" r="7" '
+        dark = degree[v] >= 4
+        parts.append(f'<circle class="link" cx="{x:.1f}" cy="{y:.1f}" r="7" '
                      f'fill="{colour.get(degree[v], "#1f4e79")}" stroke="#1f4e79" '
-                     'stroke-width="1.2"/>')
+                     f'stroke-width="1.2"/><text x="{x:.1f}" y="{y + 3:.1f}" font-size="8" '
+                     f'text-anchor="middle" font-family="sans-serif" '
+                     f'fill="{"#fff" if dark else "#000"}">{v + 1}</text>')
     parts.append("</svg>")
     return "".join(parts)
+
+
+def _segment_distance(p, a, b):
+    """Distance from point p to the segment a-b."""
+    dx, dy = b[0] - a[0], b[1] - a[1]
+    t = max(0.0, min(1.0, ((p[0] - a[0]) * dx + (p[1] - a[1]) * dy) / (dx * dx + dy * dy)))
+    return math.hypot(p[0] - a[0] - t * dx, p[1] - a[1] - t * dy)
+
+
+def _joint_place(bar, others, squares, clear=5.0):
+    """Where on ``bar`` to draw its joint: the point nearest its middle that is at least
+    ``clear`` from every other bar and square (else the clearest point tried)."""
+    (x1, y1), (x2, y2) = bar
+    best, best_gap = None, -1.0
+    for t in (0.5, 0.4, 0.6, 0.32, 0.68, 0.26, 0.74, 0.45, 0.55, 0.36, 0.64, 0.3, 0.7):
+        p = (x1 + t * (x2 - x1), y1 + t * (y2 - y1))
+        gap = min([_segment_distance(p, a, b) for a, b in others]
+                  + [math.dist(p, q) for q in squares] + [math.inf])
+        if gap >= clear:
+            return p
+        if gap > best_gap:
+            best, best_gap = p, gap
+    return best
 
 
 def _ring_order(n, edges):
@@ -326,7 +357,8 @@ def _atlas_page(atlas, figures, by_assortment, count, total, no_fractionated):
             f"<h1>Kinematic chains of {links} links, {dof} degree(s) of freedom</h1>"
             f"<p>{count:,} chains (non-isomorphic, non-degenerate, simple revolute "
             f"joints; {which}), {total:,} distinct inversions. Links are circles (darker "
-            "for more joints), joints squares.</p>"
+            "for more joints) numbered as in the chain files (L1, L2, ...; atlas.json's "
+            "<code>edges</code> count them from 0), joints squares on the bars.</p>"
             "<table><tr><th>link assortment</th><th>chains</th><th>non-fractionated</th>"
             f"<th>distinct inversions</th></tr>{rows}</table>{shown}"
             f"<div class=\"grid\">{''.join(cells)}</div></body></html>\n")
