@@ -158,7 +158,7 @@ class Chain:
     points: tuple[Point, ...] = ()
     mechanism: Mechanism | None = None
     source: str | None = field(default=None, compare=False)
-    naming: str | None = None   # a catalog mechanism's name: "structure" or "behaviour"
+    naming: str | None = None   # a catalog mechanism's name: "structure", "behaviour", "example"
 
     def __post_init__(self):
         object.__setattr__(self, "joints", tuple(self.joints))
@@ -409,10 +409,11 @@ def _validate(chain: Chain) -> None:
             fail(f"'link' names no link of the chain: {p.link!r}", where)
         if not _is_finite_pair(p.at):
             fail("'at' must be two finite numbers [x, y]", where)
-    if chain.naming is not None and chain.naming not in ("structure", "behaviour"):
-        fail(f"'naming' must be \"structure\" (the name holds for any dimensions) or "
-             f"\"behaviour\" (it needs the catalog's behaviour), got {chain.naming!r}",
-             "key 'naming'")
+    if chain.naming is not None and chain.naming not in ("structure", "behaviour", "example"):
+        fail(f"'naming' must be \"structure\" (the name holds for any dimensions), "
+             f"\"behaviour\" (it needs the catalog's behaviour) or \"example\" (a worked "
+             f"example: as behaviour, and a general name is preferred to it), "
+             f"got {chain.naming!r}", "key 'naming'")
     m = chain.mechanism
     if m is not None:
         if m.fixed not in links:

@@ -14,8 +14,10 @@ from __future__ import annotations
 
 import math
 from dataclasses import dataclass, field
+from pathlib import Path
 
 from .behaviour import behaviour
+from .catalog import catalog_dir
 from .inversions import catalog_matches, naming_matches, require_connected
 from .isomorphism import canonical_form, isomorphism
 
@@ -103,7 +105,7 @@ def identify(chain, *, catalog=None) -> Identification:
             theirs = _as_turning_pairs(entry) if level == "kinds" else entry
             if len(entry.links) == len(chain.links) and \
                     canonical_form(theirs, oriented=oriented) == form:
-                chain_name, chain_file = entry.name, entry.source
+                chain_name, chain_file = entry.name, _shown(entry.source)
                 mapping = isomorphism(mine, theirs, oriented=oriented)
                 orientation = "respected" if oriented else "ignored"
                 kinds = "ignored" if level == "kinds" else "respected"
@@ -118,9 +120,13 @@ def identify(chain, *, catalog=None) -> Identification:
         if naming:
             # the behaviour's own name first, then the corresponding driver and output,
             # then the nearest proportions (the file itself, when it is a catalog entry)
-            best = min(naming, key=lambda x: (x.alike is not True, -x.score,
-                                              _proportion_distance(chain, x.entry, x.mapping)))
-            inversion, inversion_file = best.entry.name, best.entry.source
+            # a worked example's name only for the example itself: a general name first
+            def rank(x):
+                distance = _proportion_distance(chain, x.entry, x.mapping)
+                return (x.alike is not True, x.entry.naming == "example" and distance > 1e-9,
+                        -x.score, distance)
+            best = min(naming, key=rank)
+            inversion, inversion_file = best.entry.name, _shown(best.entry.source)
             mapping = best.mapping
             orientation = "respected" if best.oriented else "ignored"
         elif matches:
@@ -136,6 +142,20 @@ def identify(chain, *, catalog=None) -> Identification:
     return Identification(chain=chain_name, inversion=inversion, mapping=mapping,
                           chain_file=chain_file, inversion_file=inversion_file,
                           orientation=orientation, joint_kinds=kinds, note=note)
+
+
+def _shown(source):
+    """A catalog file as ``catalog/NAME.toml`` (where it is installed is no concern of
+    the reader's); any other file as it was given."""
+    if source is None:
+        return None
+    path = Path(source)
+    try:
+        if path.resolve().parent == catalog_dir().resolve():
+            return f"catalog/{path.name}"
+    except (OSError, FileNotFoundError):
+        pass
+    return str(source)
 
 
 def _as_turning_pairs(chain):

@@ -195,3 +195,18 @@ def test_every_catalog_entry_identifies_to_the_same_chain_relabelled_scaled_and_
 def _structural_names_of(chain):
     names = inversions(chain).inversion(chain.mechanism.fixed).names
     return set(names)
+
+
+def test_a_hand_written_shaper_gets_the_general_name_not_a_worked_examples():
+    """A shaper of other proportions than any worked example is the shaper, not
+    "assignment problem 2"; the worked example's own file keeps its name; catalog files
+    are shown as catalog/NAME.toml wherever the package is installed."""
+    text = catalog_path("quick-return-assignment-2").read_text()
+    text = text.replace("naming = \"example\"\n", "").replace("crank = 75.0 ", "crank = 80.0 ")
+    mine = chaingraph.loads(text.replace("(assignment problem 2)", "(mine)"))
+    found = chaingraph.identify(mine)
+    assert found.inversion == "Shaper: crank and slotted lever with ram"
+    assert found.inversion_file == "catalog/shaper-crank-and-slotted-lever.toml"
+    assert found.chain_file.startswith("catalog/")
+    itself = chaingraph.identify(chaingraph.load(catalog_path("quick-return-assignment-2")))
+    assert itself.inversion == "Crank and slotted lever with ram (assignment problem 2)"
