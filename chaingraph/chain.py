@@ -105,11 +105,17 @@ class Point:
 class Input:
     """An input of a mechanism: a joint whose relative motion is prescribed, swept from
     ``start`` to ``stop`` (degrees for an R joint, length units of slide for a P joint),
-    or held at its drawn value when neither is given."""
+    or held at its drawn value when neither is given.
+
+    ``at`` is a P input's value in the drawn pose, where its values are not measured
+    from the drawn pose itself: a file given by lengths places the block ``at`` along
+    the guide from the guide's origin, and its sweep, its ``input:`` column and its
+    values are measured from that origin too (one reference)."""
 
     joint: str
     start: float | None = None
     stop: float | None = None
+    at: float | None = None
 
 
 @dataclass(frozen=True)

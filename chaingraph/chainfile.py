@@ -15,6 +15,7 @@ import math
 import os
 import re
 import tomllib
+from dataclasses import replace
 
 from .chain import Chain, Input, Joint, Mechanism, Point
 from .errors import ChainFileError
@@ -150,6 +151,14 @@ def read_document(doc, *, source: str = "<document>"):
         mechanism = _mechanism(doc["mechanism"], fail, dimensioned="lengths" in doc)
     meta = dict(name=name, family=family, units=units, space=space, notes=notes,
                 source=source, naming=naming)
+    if mechanism is not None and not dimensioned:
+        kinds = {j.id: j.kind for j in joints}
+        for i, item in enumerate(mechanism.inputs):
+            if item.at is not None and kinds.get(item.joint) != "P":
+                fail("'at' (the input's value in the drawn pose) is given by the drawing "
+                     "for an R input; in a file of coordinates it is only for a P input "
+                     "(the origin its slide is measured from), or add a [lengths] table",
+                     f"[mechanism] inputs #{i + 1}")
     if "lengths" in doc:
         return _assembled(doc, joints, points, mechanism, meta, fail)
     if "assembly" in doc:
@@ -192,6 +201,13 @@ def _assembled(doc, joints, points, mechanism, meta, fail):
     placed = tuple(Joint(j.id, j.kind, j.links, at=pose.joints[j.id],
                          axis=pose.axes.get(j.id), closure=j.closure) for j in joints)
     placed_points = tuple(Point(p.id, p.link, pose.points[p.id]) for p in points)
+    if mechanism is not None and mechanism.inputs:
+        # a P input's values are measured from its guide's origin, as its 'at' is
+        kinds = {j.id: j.kind for j in joints}
+        single = dims.values.get(None) if len(mechanism.inputs) == 1 else None
+        mechanism = replace(mechanism, inputs=tuple(
+            replace(item, at=dims.values.get(item.joint, single))
+            if kinds.get(item.joint) == "P" else item for item in mechanism.inputs))
     return Chain(joints=placed, points=placed_points, mechanism=mechanism, **meta), pose
 
 
@@ -347,15 +363,13 @@ def _inputs(value, fail, dimensioned=False):
                  f"got {_type_name(item)}", here)
         _no_unknown_keys(item, INPUT_KEYS + ("at",), None,
                          lambda problem, w: fail(problem, here))
-        if "at" in item and not dimensioned:
-            fail("'at' (the input's value in the drawn pose) belongs to a mechanism given "
-                 "by its lengths: add a [lengths] table", here)
         if "joint" not in item:
             fail("missing required key 'joint'", here)
         joint = _string(item["joint"], here + " key 'joint'", fail)
         start = number(item["from"], here + " key 'from'", fail) if "from" in item else None
         stop = number(item["to"], here + " key 'to'", fail) if "to" in item else None
-        out.append(Input(joint, start, stop))
+        at = number(item["at"], here + " key 'at'", fail) if "at" in item else None
+        out.append(Input(joint, start, stop, None if dimensioned else at))
     return tuple(out)
 
 
@@ -425,10 +439,14 @@ def dumps(chain: Chain) -> str:
 
 
 def _toml_input(item) -> str:
-    if item.start is None:
+    if item.start is None and item.at is None:
         return _toml_string(item.joint)
-    return (f"{{joint = {_toml_string(item.joint)}, from = {_toml_number(item.start)}, "
-            f"to = {_toml_number(item.stop)}}}")
+    parts = [f"joint = {_toml_string(item.joint)}"]
+    if item.start is not None:
+        parts += [f"from = {_toml_number(item.start)}", f"to = {_toml_number(item.stop)}"]
+    if item.at is not None:
+        parts.append(f"at = {_toml_number(item.at)}")
+    return "{" + ", ".join(parts) + "}"
 
 
 def save(chain: Chain, path) -> None:

@@ -365,3 +365,33 @@ def test_every_inversion_of_the_catalog_with_every_input_on_the_fixed_link():
                 solved += 1
                 between += fixed not in j.links
     assert solved >= 100 and between >= 50, (solved, between)
+
+
+# -- a P input's value: one reference ------------------------------------------------------
+SLIDER_BY_LENGTHS = Path(__file__).parent / "data" / "slider-by-lengths-piston-input.toml"
+
+
+def test_a_piston_input_given_by_lengths_is_measured_from_the_guides_origin_throughout():
+    """``inputs = [{joint = "S", at = 180}]`` places the block 180 mm from the guide's
+    origin; the range, the sweep, the ``input:S`` column and --from/--to measure from
+    there too (they measured from the drawn pose: 0 there, -80 to 20): crank 50, rod 150
+    gives 100 to 200 mm, the block's own x."""
+    chain = chaingraph.load(SLIDER_BY_LENGTHS)
+    motion = chaingraph.solve(chain, steps=4)
+    assert motion.summary["input_range"] == pytest.approx([100.0, 200.0], abs=1e-9)
+    assert motion["input:S"] == pytest.approx(motion["x:B"], abs=1e-9)
+    again = chaingraph.solve(chain, inputs=["S"], start=150.0, stop=160.0, steps=1)
+    assert again["x:B"] == pytest.approx([150.0, 160.0], abs=1e-9)
+    # written out with coordinates, the file keeps the reference
+    text = chaingraph.dumps(chain)
+    assert '{joint = "S", at = 180.0}' in text
+    assert chaingraph.solve(chaingraph.loads(text), steps=4)["input:S"] == \
+        pytest.approx(motion["input:S"], abs=1e-9)
+
+
+def test_at_on_an_r_input_of_a_file_of_coordinates_is_refused():
+    text = chaingraph.dumps(chaingraph.load(SLIDER_BY_LENGTHS))
+    text = text.replace('inputs = [{joint = "S", at = 180.0}]',
+                        'inputs = [{joint = "O", at = 30.0}]')
+    with pytest.raises(chaingraph.ChainFileError, match="only for a P input"):
+        chaingraph.loads(text)

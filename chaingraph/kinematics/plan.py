@@ -153,7 +153,7 @@ class Plan:
         if item.kind == "R":
             return float(value)
         c, k = self.line[self.lead]
-        return (value - c) / k
+        return (value - item.value0 - c) / k
 
     def describe(self):
         """The input in words, for messages: the driver or the input joints."""
@@ -256,6 +256,17 @@ def _direction(chain, link, joint):
     return tidy(math.degrees(math.atan2(ref[1] - here[1], ref[0] - here[0])), 360.0)
 
 
+def _slide_origin(chain, item):
+    """A P input's value in the drawn pose: 0 (slides measured from the drawn pose), or
+    its ``at`` where the file gives one (a file by lengths: from the guide's origin),
+    also when the input is named again without it (``--input S``)."""
+    if item.at is not None:
+        return float(item.at)
+    m = chain.mechanism
+    same = [i.at for i in (m.inputs if m else ()) if i.joint == item.joint]
+    return float(same[0]) if same and same[0] is not None else 0.0
+
+
 def _input_joints(chain, fixed, driver, inputs, name):
     """The plan's inputs from ``driver`` (a link) or ``inputs`` (Input items)."""
     if inputs:
@@ -279,7 +290,7 @@ def _input_joints(chain, fixed, driver, inputs, name):
                                             360.0)
             else:
                 a, b = j.links
-                value0 = 0.0
+                value0 = _slide_origin(chain, item)
             sweep = None if item.start is None else (float(item.start), float(item.stop))
             out.append(InputJoint(j.id, j.kind, a, b, value0, sweep))
         if len({i.joint for i in out}) < len(out):
