@@ -993,7 +993,11 @@ def _unassemblable(model, values, error):
         tail = f"; it cannot be assembled {where}"
     else:
         said = " and ".join(f"from {_fmt(lo)} to {_fmt(hi)}{unit}" for lo, hi in ranges)
-        tail = f"; it can be assembled {said}"
+        where = ("[mechanism] at = VALUE" if r_input and a == model.fixed and
+                 model.chain.mechanism.driver else
+                 f"[mechanism] inputs = [{{joint = {joint.id!r}, at = VALUE}}, ...]".replace(
+                     "'", '"'))
+        tail = f"; it can be assembled {said} (its value is set by {where})"
     return DimensionError(f"cannot be assembled with {what}: {error.problem}{tail}",
                           source=model.chain.source, part=error.part,
                           feasible_range=ranges[0] if len(ranges) == 1 else ranges or None)

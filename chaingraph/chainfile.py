@@ -73,6 +73,9 @@ def read_file(path):
         raise ChainFileError("is a folder, not a chain file", source=source) from None
     except OSError as e:
         raise ChainFileError(f"cannot be read ({e.strerror})", source=source) from None
+    if raw[:2] in (b"\xff\xfe", b"\xfe\xff"):
+        raise ChainFileError("is UTF-16 text (it starts with a UTF-16 byte-order mark): save "
+                             "it as UTF-8", source=source)
     try:
         text = raw.decode("utf-8")
     except UnicodeDecodeError as e:
@@ -95,8 +98,9 @@ def loads(text: str, *, source: str = "<string>") -> Chain:
 
 
 def read_text(text: str, *, source: str = "<string>"):
-    """``(chain, assembly)`` from TOML text; see :func:`read_document`."""
-    return read_document(_parse_toml(text, source), source=source)
+    """``(chain, assembly)`` from TOML text; see :func:`read_document`. A leading
+    byte-order mark (as some editors save UTF-8) is read past."""
+    return read_document(_parse_toml(text.removeprefix("\ufeff"), source), source=source)
 
 
 def _parse_toml(text, source):
@@ -106,6 +110,12 @@ def _parse_toml(text, source):
         msg = str(e)
         m = re.search(r"\(at line (\d+), column (\d+)\)", msg)
         line = int(m.group(1)) if m else None
+        text_line = text.splitlines()[line - 1] if line and line <= len(text.splitlines()) else ""
+        spaced = re.match(r"\s*([A-Za-z0-9_-]+(?:[ \t]+[A-Za-z0-9_-]+)+)\s*=", text_line)
+        if spaced:
+            key = re.sub(r"\s+", " ", spaced.group(1))
+            msg += (f": a key with a space must be quoted, as in \"{key}\" = ... "
+                    "(link and joint names are keys in [lengths] and [assembly])")
         raise ChainFileError(f"TOML syntax error: {msg}", source=source, line=line) from None
     except ValueError as e:          # an integer past Python's 4,300-digit conversion limit
         raise ChainFileError(f"a number cannot be read ({str(e).split(':')[0]}); numbers "

@@ -563,7 +563,7 @@ def build_parser() -> argparse.ArgumentParser:
                    help="the first input's first value (degrees, or slide for a P input)")
     p.add_argument("--to", dest="stop", type=float, metavar="X",
                    help="the first input's last value")
-    p.add_argument("--steps", type=int, default=360, metavar="N",
+    p.add_argument("--steps", type=_whole_number, default=360, metavar="N",
                    help="equal intervals of the sweep (N + 1 rows; default 360)")
     p.add_argument("--json", action="store_true", help="print the JSON summary")
     p.add_argument("--csv", metavar="PATH", help="write every column of every step")
@@ -684,6 +684,23 @@ def _version() -> str:
     return __version__
 
 
+# the library's parameters as the command line's options, for its messages
+_FLAGS = {"fixed": "--fixed LINK", "driver": "--driver LINK", "inputs": "--input JOINT",
+          "steps": "--steps N", "start": "--from", "stop": "--to", "at": "--at",
+          "omega": "--omega"}
+
+
+def _whole_number(text):
+    """An option's whole number of 1 or more (a number of steps)."""
+    try:
+        value = int(text)
+    except ValueError:
+        raise argparse.ArgumentTypeError(f"invalid int value: {text!r}") from None
+    if value < 1:
+        raise argparse.ArgumentTypeError(f"must be 1 or more, got {value}")
+    return value
+
+
 def main(argv=None) -> int:
     """Run the command line; returns the exit status."""
     parser = build_parser()
@@ -700,7 +717,9 @@ def main(argv=None) -> int:
     try:
         return args.run(args)
     except ChainGraphError as e:
-        print(f"chaingraph: error: {e}", file=sys.stderr)
+        flag = _FLAGS.get(getattr(e, "parameter", None))
+        text = f"{e}" if flag is None else f"{e}; on the command line: {flag}"
+        print(f"chaingraph: error: {text}", file=sys.stderr)
         return e.exit_status
     except BrokenPipeError:
         return 0

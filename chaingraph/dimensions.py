@@ -116,6 +116,30 @@ def split_key(key, features):
     return found[0] if len(found) == 1 else None
 
 
+def _single_joint(link, joint, joints, points):
+    """Why one number cannot be the length of ``link``, which has a single joint or
+    point, and the likely cause: another link of a single joint whose name looks like
+    this one (a misspelling in some joint's ``links`` makes a link of its own)."""
+    import difflib
+    count = {}
+    for j in joints:
+        for x in j.links:
+            count.setdefault(x, []).append(j.id)
+    for pid, plink in points:
+        count.setdefault(plink, []).append(pid)
+    lonely = [x for x, ids in count.items() if len(ids) == 1 and x != link]
+    alike = difflib.get_close_matches(link, lonely, n=1, cutoff=0.6)
+    text = (f"{link!r} has a single joint ({joint}), so it has no length to give: a link "
+            "needs two joints or points")
+    if alike:
+        other = alike[0]
+        text += (f"; {other!r} has a single joint too ({count[other][0]}) and looks like "
+                 f"{link!r}: is it misspelt in the links of joint {count[other][0]!r}?")
+    else:
+        text += "; check the links of the joints (a misspelt name makes a link of its own)"
+    return text
+
+
 def _number(value, where, fail, *, positive=False):
     from .chainfile import number
     return number(value, where, fail, positive=positive)
@@ -155,10 +179,13 @@ def parse_dimensions(doc, joints, points, fail):
                                          positive=len(names) == 2)
             lengths[link] = entries
         else:
+            if len(features) == 1:
+                fail(_single_joint(link, features[0], joints, points), where)
             if len(features) != 2:
                 fail(f"one number is the length of a binary link, but {link!r} has "
                      f"{len(features)} joints and points ({', '.join(features)}): "
-                     f"give a table of distances, e.g. {{{features[0]}-{features[-1]} = ...}}"
+                     f"give a table of distances, e.g. {{{features[0]}-{features[1]} = ..., "
+                     f"{features[1]}-{features[2]} = ..., {features[0]}-{features[2]} = ...}}"
                      if features else f"{link!r} has no R joint or point to measure",
                      where)
             lengths[link] = {tuple(features): _number(value, where, fail, positive=True)}

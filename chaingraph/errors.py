@@ -86,13 +86,17 @@ class ChainStructureError(ChainGraphError, ValueError):
 
 
 class MechanismError(ChainGraphError, ValueError):
-    """A mechanism that cannot be solved as asked (wrong driver, mobility, joints)."""
+    """A mechanism that cannot be solved as asked (wrong driver, mobility, joints).
+    ``parameter`` names the parameter of the call at fault (``"fixed"``, ``"steps"``),
+    where one is: the command line names its option from it."""
 
-    def __init__(self, problem, *, mechanism=None, where=None, mobility=None):
+    def __init__(self, problem, *, mechanism=None, where=None, mobility=None,
+                 parameter=None):
         self.problem = problem
         self.mechanism = mechanism
         self.where = where
         self.mobility = mobility
+        self.parameter = parameter      # the function's parameter at fault, e.g. "fixed"
         parts = [p for p in (mechanism, where) if p]
         parts.append(problem)
         super().__init__(": ".join(parts))

@@ -12,6 +12,7 @@ import subprocess
 import sys
 import time
 import tomllib
+from pathlib import Path
 
 import pytest
 from hypothesis import HealthCheck, given, settings
@@ -385,3 +386,60 @@ def test_a_far_sweep_without_summary_is_taken_within_a_turn(monkeypatch):
     with_summary = chaingraph.solve(chain, start=0, stop=1e9, steps=2)
     for key in far.columns:
         assert far[key] == pytest.approx(with_summary[key], nan_ok=True), key
+
+
+# -- messages that say how to fix -------------------------------------------------------
+FOUR_BAR_LENGTHS = Path(__file__).parent.parent / "examples" / "four-bar-lengths.toml"
+
+
+def test_a_misspelt_link_is_named_with_the_link_it_looks_like(tmp_path):
+    path = tmp_path / "misspelt.toml"
+    path.write_text(FOUR_BAR_LENGTHS.read_text().replace('links = ["rocker", "frame"]',
+                                                         'links = ["rockr", "frame"]'))
+    code, out, err = _main("solve", path)
+    assert code == 2 and err.count("\n") == 1
+    assert "'rocker' has a single joint (C)" in err
+    assert "'rockr' has a single joint too (D) and looks like 'rocker'" in err
+    assert "C-C" not in err
+
+
+def test_a_file_with_a_byte_order_mark_is_read(tmp_path):
+    path = tmp_path / "bom.toml"
+    path.write_bytes(b"\xef\xbb\xbf" + FOUR_BAR.read_bytes())
+    read = chaingraph.load(path)
+    assert (read.name, read.joints) == (chaingraph.load(FOUR_BAR).name,
+                                        chaingraph.load(FOUR_BAR).joints)
+    path.write_bytes(FOUR_BAR.read_text().encode("utf-16"))
+    code, out, err = _main("classify", path)
+    assert code == 2 and "UTF-16" in err and "save it as UTF-8" in err
+
+
+def test_an_unquoted_key_with_a_space_is_told_to_be_quoted(tmp_path):
+    path = tmp_path / "spaced.toml"
+    path.write_text(FOUR_BAR_LENGTHS.read_text().replace("rocker = 80.0", "big rocker = 80.0"))
+    code, out, err = _main("solve", path)
+    assert code == 2 and err.count("\n") == 1
+    assert 'a key with a space must be quoted, as in "big rocker" = ...' in err
+
+
+def test_a_driver_without_a_fixed_link_names_the_option():
+    code, out, err = _main("solve", FOUR_BAR, "--driver", "crank")
+    assert code == 2 and "no fixed link" in err and "--fixed LINK" in err
+    with pytest.raises(chaingraph.MechanismError) as caught:
+        chaingraph.solve(chaingraph.load(FOUR_BAR), driver="crank")
+    assert caught.value.parameter == "fixed" and "--" not in str(caught.value)
+
+
+def test_steps_below_one_names_the_option():
+    code, out, err = _main("solve", FOUR_BAR, "--fixed", "frame", "--driver", "crank",
+                           "--steps", "0")
+    assert code == 2 and err.count("\n") == 1 and "argument --steps: must be 1 or more" in err
+
+
+def test_a_piston_input_out_of_its_range_shows_how_to_set_its_value(tmp_path):
+    path = tmp_path / "far.toml"
+    text = (Path(__file__).parent / "data" / "slider-by-lengths-piston-input.toml").read_text()
+    path.write_text(text.replace("at = 180.0", "at = 300.0"))
+    code, out, err = _main("solve", path)
+    assert code == 2 and "from 100 to 200" in err
+    assert 'inputs = [{joint = "S", at = VALUE}' in err

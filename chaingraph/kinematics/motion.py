@@ -197,7 +197,7 @@ def solve(mechanism, *, fixed=None, driver=None, inputs=None, start=None, stop=N
     chain = mechanism
     if isinstance(steps, bool) or not isinstance(steps, int) or steps < 1:
         raise MechanismError(f"steps must be a positive whole number, got {steps!r}",
-                             mechanism=chain.name)
+                             mechanism=chain.name, parameter="steps")
     m = chain.mechanism
     for value, what in ((start, "start"), (stop, "stop")):
         if value is not None:

@@ -398,7 +398,8 @@ def build_plan(chain, fixed=None, driver=None, *, inputs=None, closed_form=True)
     name = chain.source or chain.name
     fixed, driver, inputs = chosen_inputs(chain, fixed, driver, inputs)
     if fixed is None:
-        raise MechanismError("no fixed link: name it ([mechanism] fixed)", mechanism=name)
+        raise MechanismError("no fixed link: name it ([mechanism] fixed in the file, or the "
+                             "parameter fixed)", mechanism=name, parameter="fixed")
     if fixed not in chain.links:
         raise MechanismError(f"the fixed link {fixed!r} is not a link of the chain "
                              f"(links: {', '.join(chain.links)})", mechanism=name)
