@@ -142,11 +142,25 @@ def _in_sweep(t, theta):
 @plain_text
 def draw_mechanism(motion, path=None, *, pose_index=0):
     """The mechanism in a pose with every joint's and point's path: written as SVG (or
-    PNG) to ``path``, or returned as a matplotlib Figure without one."""
+    PNG) to ``path``, or returned as a matplotlib Figure without one.
+
+    ``motion`` is a solved :class:`~chaingraph.kinematics.Motion` (drawn in its pose
+    ``pose_index``), or a chain with a mechanism and a drawn pose: drawn in that pose,
+    with the paths over its default sweep.
+
+    Examples
+    --------
+    >>> import chaingraph
+    >>> from chaingraph.catalog import catalog_path
+    >>> fig = draw_mechanism(chaingraph.load(catalog_path("beam-engine")))
+    >>> fig.axes[0].get_title().splitlines()[0]
+    'Beam engine (crank and lever mechanism)'
+    """
     plt = _pyplot()
+    motion, drawn = _motion_and_pose(motion, pose_index)
     chain = motion.plan.chain
     fig, ax = plt.subplots(figsize=(7, 6))
-    _draw_pose(ax, motion, pose_index)
+    _draw_pose(ax, *drawn)
     names = [j.id for j in chain.joints] + [p.id for p in chain.points]
     for name in names:
         x, y = motion[f"x:{name}"], motion[f"y:{name}"]
@@ -166,6 +180,24 @@ def draw_mechanism(motion, path=None, *, pose_index=0):
 
 _COLOURS = ["#1f77b4", "#2ca02c", "#d62728", "#9467bd", "#8c564b", "#e377c2", "#17becf",
             "#bcbd22", "#ff7f0e"]
+
+
+def _motion_and_pose(given, k):
+    """(the motion whose paths are drawn, (motion, step) of the pose drawn) for a Motion
+    or a chain with a mechanism (its drawn pose, where its sweep passes through it)."""
+    from .chain import Chain
+    from .kinematics import Motion, solve
+    if isinstance(given, Motion):
+        return given, (given, k)
+    if not isinstance(given, Chain):
+        raise TypeError("draw_mechanism takes a solved motion (chaingraph.solve) or a chain "
+                        f"with a mechanism and a drawn pose, not {type(given).__name__}")
+    motion = solve(given, summary=False)
+    plan = motion.plan
+    if plan.theta0 is None:
+        return motion, (motion, 0)
+    value = float(plan.value(plan.theta0))
+    return motion, (solve(given, start=value, stop=value, steps=1, summary=False), 0)
 
 
 def _draw_pose(ax, motion, k):

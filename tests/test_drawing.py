@@ -1,6 +1,8 @@
 """The mechanism drawings, read back: blocks on guides in every frame, frames that move."""
 
 import math
+
+import numpy as np
 import xml.etree.ElementTree as ET
 
 import pytest
@@ -156,3 +158,18 @@ def test_every_chain_has_a_skeleton(path):
     # every pin after every block: a pin at a block's place stays in sight
     order = [e.get("class") for e in root.iter() if e.get("class") in ("pin", "block")]
     assert "block" not in order[order.index("pin"):] if "pin" in order else True
+
+
+def test_draw_mechanism_takes_a_chain_in_its_drawn_pose():
+    """A chain with a mechanism is drawn in its drawn pose (it raised AttributeError:
+    'Chain' object has no attribute 'plan'); anything else is one line saying what it
+    takes."""
+    from chaingraph.plots import draw_mechanism
+    chain = chaingraph.load(catalog_path("non-grashof-four-bar"))
+    fig = draw_mechanism(chain)
+    pins = [line.get_xydata()[0] for line in fig.axes[0].lines if line.get_marker() == "o"]
+    assert len(pins) == len(chain.joints)
+    for j in chain.joints:
+        assert min(math.dist(j.at, p) for p in pins) <= 1e-9 * 100, j.id
+    with pytest.raises(TypeError, match="takes a solved motion"):
+        draw_mechanism("beam-engine.toml")
