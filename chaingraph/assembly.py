@@ -1213,6 +1213,12 @@ def measure(chain):
             continue
         features = link_features(chain.joints, points, link)
         if len(features) < 2:
+            if not any(j.kind == "P" and link in j.links for j in chain.joints):
+                raise DimensionError(
+                    f"{link!r} has {'a single joint' if features else 'no joint'} and no "
+                    "sliding pair, so it has no dimensions to measure: every moving link "
+                    "of a mechanism given by its lengths needs two joints or points, or a "
+                    "sliding pair", source=chain.source, where=f"link {link!r}")
             continue
         f0, f1 = features[:2]
         if len(features) == 2:
@@ -1264,9 +1270,13 @@ def measure(chain):
                     ref.append((origin[0] + h * n[0], origin[1] + h * n[1]))
                 values[j.id] = _dot(_sub(ref[1], ref[0]), u)
     else:
-        pivot = chain.joint(sorted(j.id for j in chain.joints if j.kind == "R"
-                                   and fixed in j.links and driver in j.links)[0])
-        values[None] = _direction(chain, driver, pivot)
+        pivots = sorted(j.id for j in chain.joints if j.kind == "R" and fixed in j.links
+                        and driver in j.links)
+        if not pivots:
+            raise DimensionError(f"the driver {driver!r} is not pinned to the fixed link "
+                                 f"{fixed!r} by an R joint, so its angle cannot be measured",
+                                 source=chain.source, where="[mechanism] key 'driver'")
+        values[None] = _direction(chain, driver, chain.joint(pivots[0]))
 
     def write(extra_at, near, modes):
         lines = [f"name = {string(chain.name)}"]

@@ -15,6 +15,7 @@ import pytest
 
 import chaingraph
 from chaingraph.assembly import measure
+from chaingraph.catalog import catalog_files, catalog_path
 from chaingraph.chain import Chain, Input, Joint, Mechanism, Point
 from chaingraph.chainfile import loads, read_text
 from chaingraph.errors import ChainFileError, DimensionError, PoseAdjustedWarning
@@ -492,3 +493,41 @@ def test_fixed_link_by_its_length_and_direction():
         assert close(chain.joint(name).at, at), name
     with pytest.raises(ChainFileError, match="'direction' places the fixed link"):
         loads(text.replace("crank = 40.0", "crank = {A-B = 40.0, direction = 5.0}"))
+
+
+# -- measure on mutated files: one clear error or a file that reads back -----------------------
+def test_measure_of_mutated_mechanisms_is_a_file_or_one_clear_error():
+    """The fuzzing pass: one joint's link changed in a catalog mechanism (a link left
+    with one joint, a driver no longer pinned to the frame) ended in IndexError."""
+    import random
+    import tomllib
+
+    from chaingraph.chainfile import read_document
+    rng = random.Random(25)
+    files = [p for p in catalog_files() if "[mechanism]" in p.read_text()]
+    tried = 0
+    for _ in range(300):
+        path = rng.choice(files)
+        doc = tomllib.loads(path.read_text())
+        names = sorted({x for j in doc["joints"] for x in j["links"]}) + ["new"]
+        joint = rng.choice(doc["joints"])
+        joint["links"][rng.randrange(len(joint["links"]))] = rng.choice(names)
+        try:
+            chain = read_document(doc, source=str(path))[0]
+        except chaingraph.ChainGraphError:
+            continue
+        tried += 1
+        with warnings.catch_warnings():
+            warnings.simplefilter("ignore")
+            try:
+                loads(measure(chain))
+            except chaingraph.ChainGraphError as e:
+                assert "\n" not in str(e)
+    assert tried >= 150
+
+
+def test_measure_names_a_link_with_a_single_joint():
+    text = catalog_path("watt-ii-mechanism").read_text().replace(
+        'links = ["frame", "crank"]', 'links = ["frame", "dangle"]', 1)
+    with pytest.raises(chaingraph.DimensionError, match="'dangle' has a single joint"):
+        measure(loads(text))
