@@ -26,6 +26,7 @@ relative to the fixed link are reported. Otherwise None.
 from __future__ import annotations
 
 import math
+from functools import lru_cache
 
 __all__ = ["turning_links", "behaviour", "behaviour_key", "four_link_loop"]
 
@@ -200,6 +201,16 @@ def _numeric(chain, fixed):
 
 
 def _analyse(chain, fixed):
+    """(words, turning links) of the inversion, or None; solved once per chain and
+    fixed link (behaviour, its key and the turning links all ask for it)."""
+    try:
+        return _analysed(chain, fixed)
+    except TypeError:                    # a chain that cannot be hashed: not cached
+        return _analysed.__wrapped__(chain, fixed)
+
+
+@lru_cache(maxsize=1024)
+def _analysed(chain, fixed):
     if not chain.has_pose or chain.space != "planar":
         return None
     loop = four_link_loop(chain)

@@ -723,6 +723,11 @@ def main(argv=None) -> int:
         return e.exit_status
     except BrokenPipeError:
         return 0
+    except MemoryError:
+        print("chaingraph: error: out of memory: the analysis needs more memory than this "
+              "machine (or its limit) gives; try a smaller size or fewer steps",
+              file=sys.stderr)
+        return 1
     except KeyboardInterrupt:
         print("chaingraph: interrupted", file=sys.stderr)
         return 130

@@ -172,6 +172,11 @@ class Match:
 
 
 
+# the behaviour of every inversion solves each one's whole cycle (a few seconds for 30
+# links, growing as the cube of the links): beyond this, only where a name needs it
+BEHAVIOUR_LINKS = 40
+
+
 def catalog_matches(chain, fixed, catalog, *, driver=None, output=None):
     """The catalog mechanisms that are this chain with ``fixed`` fixed, by structure.
 
@@ -186,20 +191,27 @@ def catalog_matches(chain, fixed, catalog, *, driver=None, output=None):
     -------
     list of Match, those with orientation respected first, each in catalog order
     """
-    file_key = behaviour_key(chain, fixed)
+    keys = {}
+
+    def file_key():
+        # the inversion's behaviour is solved only where a catalog mechanism of its
+        # structure needs it for a name (a large chain has none: nothing is solved)
+        if "file" not in keys:
+            keys["file"] = behaviour_key(chain, fixed)
+        return keys["file"]
     found, seen = [], set()
     for oriented in (True, False):
         for entry in catalog:
             m = entry.mechanism
             if m is None or len(entry.links) != len(chain.links) or id(entry) in seen:
                 continue
-            entry_key = behaviour_key(entry, m.fixed)
-            compare = file_key is not None and entry_key is not None
             best = None
             for mapping in link_isomorphisms(chain, entry, oriented=oriented,
                                              marks_a={fixed: "fixed"},
                                              marks_b={m.fixed: "fixed"}):
-                alike = _alike(file_key, entry_key, mapping) if compare else None
+                entry_key = behaviour_key(entry, m.fixed)
+                compare = entry_key is not None and file_key() is not None
+                alike = _alike(file_key(), entry_key, mapping) if compare else None
                 score = 0
                 if driver and m.driver and mapping[driver] == m.driver:
                     score += 2
@@ -287,14 +299,18 @@ def inversions(chain, *, with_input: bool = False, catalog=None) -> Inversions:
         names = tuple(dict.fromkeys(x.entry.name for x in named))
         differ = [x.entry.name for x in matches if x.alike is False and x.oriented
                   and x.entry.name not in names]
-        how = behaviour(chain, fixed)
+        solved = len(chain.links) <= BEHAVIOUR_LINKS or matches
+        how = behaviour(chain, fixed) if solved else None
         note = None
         if differ:
             note = (f"as dimensioned ({how or 'its own behaviour'}) it is not the catalog's "
                     + ", ".join(dict.fromkeys(differ)) + ", whose names need that behaviour")
         elif not names:
             note = "the catalog names no inversion of this structure with this link fixed"
-        turning = turning_links(chain, fixed)
+        if not solved and chain.has_pose:
+            note += (f"; its behaviour is not solved (over {BEHAVIOUR_LINKS} links, every "
+                     "inversion's whole cycle; solve the inversion for it)")
+        turning = turning_links(chain, fixed) if solved else None
         inputs = None
         if with_input:
             inputs = tuple(InputClass(d, pair_class[(fixed, d)]) for d in drivers[fixed])

@@ -443,3 +443,15 @@ def test_a_piston_input_out_of_its_range_shows_how_to_set_its_value(tmp_path):
     code, out, err = _main("solve", path)
     assert code == 2 and "from 100 to 200" in err
     assert 'inputs = [{joint = "S", at = VALUE}' in err
+
+
+def test_running_out_of_memory_is_one_line_and_exit_1(monkeypatch):
+    """A 10,000-dyad solve under a memory limit ended in a MemoryError traceback."""
+    import chaingraph.kinematics.motion as motion
+
+    def exhausted(*args, **kwargs):
+        raise MemoryError
+    monkeypatch.setattr(motion, "cycle", exhausted)
+    code, out, err = _main("solve", FOUR_BAR, "--fixed", "frame", "--driver", "crank")
+    assert code == 1 and err.count("\n") == 1 and "out of memory" in err
+    assert "Traceback" not in err

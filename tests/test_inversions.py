@@ -315,3 +315,53 @@ def test_p_orientation_matters_only_when_asked():
     assert is_isomorphic(chain, flipped)  # every oriented slider crank chain is the same
     four = load("four-bar-chain")
     assert not is_isomorphic(four, chain) and not is_isomorphic(four, chain, oriented=False)
+
+
+# -- large chains: behaviour solved where a name needs it, and bounded ----------------------
+def _dyadic_chain(dyads):
+    """A four-bar with ``dyads`` dyads chained on, each pinned to the last and the
+    frame, drawn (4 + 2 dyads links)."""
+    joints = [Joint("O2", "R", ("frame", "crank"), at=(0.0, 0.0)),
+              Joint("A", "R", ("crank", "coupler"), at=(20.0, 35.0)),
+              Joint("B", "R", ("coupler", "rocker"), at=(110.0, 60.0)),
+              Joint("O4", "R", ("rocker", "frame"), at=(100.0, 0.0))]
+    prev, x = "rocker", 100.0
+    for k in range(dyads):
+        a, b = f"d{k}a", f"d{k}b"
+        x += 60.0
+        joints += [Joint(f"P{k}", "R", (prev, a), at=(x - 40.0, 50.0 + 3 * (k % 3))),
+                   Joint(f"Q{k}", "R", (a, b), at=(x, 90.0 - 2 * (k % 4))),
+                   Joint(f"R{k}", "R", (b, "frame"), at=(x + 20.0, 0.0))]
+        prev = b
+    return Chain(f"four-bar with {dyads} dyads", tuple(joints),
+                 mechanism=chaingraph.Mechanism("frame", driver="crank"))
+
+
+def _counting_full_turns(monkeypatch):
+    import chaingraph.kinematics as kinematics
+    calls = []
+    full_turns = kinematics.full_turns
+    monkeypatch.setattr(kinematics, "full_turns",
+                        lambda chain, fixed: calls.append(fixed) or full_turns(chain, fixed))
+    return calls
+
+
+def test_a_large_chain_solves_each_inversions_behaviour_once(monkeypatch):
+    """16 links, no catalog mechanism of its size: each inversion's behaviour is solved
+    once (for its own field), not again for catalog keys that no name needs (a 20-link
+    chain took over 100 s)."""
+    calls = _counting_full_turns(monkeypatch)
+    chain = _dyadic_chain(6)
+    found = inversions(chain)
+    assert len(found.inversions) == 16
+    assert sorted(calls) == sorted(chain.links)
+    assert found.inversions[0].behaviour is not None
+
+
+def test_past_the_bound_no_behaviour_is_solved_and_the_note_says_so(monkeypatch):
+    from chaingraph.inversions import BEHAVIOUR_LINKS
+    calls = _counting_full_turns(monkeypatch)
+    chain = _dyadic_chain((BEHAVIOUR_LINKS - 4) // 2 + 1)
+    found = inversions(chain)
+    assert calls == []
+    assert all(i.behaviour is None and "not solved" in i.note for i in found.inversions)

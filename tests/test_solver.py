@@ -503,7 +503,7 @@ def test_block_whose_pin_is_off_its_sliding_line_moves_as_an_offset_slider():
 @pytest.mark.parametrize("args, words", [
     (["--driver", "connecting rod"], "not pinned to the fixed link"),
     (["--fixed", "ground"], "'ground' is not a link"),
-    (["--steps", "0"], "steps must be"),
+    (["--steps", "0"], "--steps: must be 1 or more"),
 ])
 def test_cli_bad_solve_arguments_exit_2(args, words):
     code, out, err = run_cli("solve", catalog_path("beam-engine"), *args)
