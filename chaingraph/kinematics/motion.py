@@ -28,8 +28,14 @@ from .sweep import Cycle, _evaluate_near, _evaluate_sweep, cycle
 __all__ = ["Motion", "solve", "full_turns"]
 
 
-@lru_cache(maxsize=256)
 def _plan(chain, fixed, driver, inputs=None):
+    # the file is part of the key: chains equal but for their file share no plan, whose
+    # messages name the file
+    return _cached_plan(chain, chain.source, fixed, driver, inputs)
+
+
+@lru_cache(maxsize=256)
+def _cached_plan(chain, source, fixed, driver, inputs):
     return build_plan(chain, fixed, driver, inputs=inputs)
 
 
