@@ -478,7 +478,7 @@ def _cmd_atlas(args) -> int:
     if listing and count <= 60:
         rows = [[e.id, ", ".join(f"{v} {k}" for k, v in e.link_orders.items()),
                  e.inversion_classes, "yes" if e.fractionated else "no",
-                 " ".join(f"{a}-{b}" for a, b in e.edges)] for e in result]
+                 " ".join(f"{a + 1}-{b + 1}" for a, b in e.edges)] for e in result]
         print(_table(rows, ["id", "link assortment", "inversions", "fractionated",
                             "joints (link pairs)"]))
     if paths:
