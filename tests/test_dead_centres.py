@@ -177,3 +177,15 @@ def test_a_four_bar_drawn_at_or_near_its_dead_centre(crank, coupler, rocker, hea
         po4 = (motion["x:O4"][k], motion["y:O4"][k])
         # at a limit either the coupler and rocker (the driven dyad) are in line
         assert _cross(pa, pb, po4) <= 1e-12, theta[k]
+
+
+def test_a_limit_where_a_dyad_degenerates_is_no_fold():
+    """Six links on two ternary joints, c fixed and f driving: at 135 degrees a dyad's
+    two known joints meet (its discriminant is undefined there, not zero): the range
+    ends there with the loops closed, not with the dyad forced to a double root."""
+    chain = chaingraph.load(catalog_path("six-link-two-ternary-joints"))
+    for fixed, driver in (("c", "f"), ("f", "c")):
+        motion = chaingraph.solve(chain, fixed=fixed, driver=driver, steps=12)
+        plan = motion.plan
+        for end in cycle(plan).limit_poses:
+            assert float(np.max(residuals(plan, end.pose))) <= 1e-9 * plan.size

@@ -154,6 +154,9 @@ def _limit(plan, ev, k, bad):
     return _fold(plan, at, good, bad, far)
 
 
+_AT_FOLD = 1e-12     # a dyad's discriminant (over the size squared) this small: a fold
+
+
 def _fold(plan, at, good, bad, far):
     """The limit between ``good`` (assembled; ``at`` its evaluation) and ``bad`` (not)
     exactly, as a fold of the step that fails there: a dyad's at its discriminant's root,
@@ -178,10 +181,14 @@ def _fold(plan, at, good, bad, far):
                 return np.asarray(_dyad_roots(step, pose, plan.size)[3], dtype=float) \
                     * np.ones(t.size)
         d_good, d_bad = disc(good)[0], disc(bad)[0]
-        t = good
         if d_good > 0 and np.isfinite(d_bad) and d_bad < 0:
             t = float(bracketed_roots(disc, [good], [bad], [d_good], [d_bad],
                                       tol=4e-16 * max(1.0, abs(good)), iterations=200)[0])
+        elif abs(d_good) <= _AT_FOLD:
+            t = good
+        else:
+            # no fold: the dyad degenerates there (its two known joints meet)
+            return good, at
         double = (i,)
     else:
         found = groups.fold_point(plan, step, at, at.group_q[i][0], good)
