@@ -96,33 +96,13 @@ def test_mechanisms_symmetric_by_construction_give_time_ratio_one(name, extremes
     assert s["forward_deg"] == pytest.approx(180.0, abs=1e-9)
 
 
-FOUR_BAR = """
-name = "four-bar drawn at a dead centre"
-units = "mm"
-[[joints]]
-id = "O2"
-kind = "R"
-links = ["frame", "crank"]
-at = [{o2x!r}, {o2y!r}]
-[[joints]]
-id = "A"
-kind = "R"
-links = ["crank", "coupler"]
-at = [{ax!r}, {ay!r}]
-[[joints]]
-id = "B"
-kind = "R"
-links = ["coupler", "rocker"]
-at = [{bx!r}, {by!r}]
-[[joints]]
-id = "O4"
-kind = "R"
-links = ["rocker", "frame"]
-at = [{o4x!r}, {o4y!r}]
-[mechanism]
-fixed = "frame"
-driver = "crank"
-"""
+def _four_bar(o2, a, b, o4):
+    joints = (chaingraph.Joint("O2", "R", ("frame", "crank"), at=o2),
+              chaingraph.Joint("A", "R", ("crank", "coupler"), at=a),
+              chaingraph.Joint("B", "R", ("coupler", "rocker"), at=b),
+              chaingraph.Joint("O4", "R", ("rocker", "frame"), at=o4))
+    return chaingraph.Chain("four-bar drawn at a dead centre", joints, units="mm",
+                            mechanism=chaingraph.Mechanism("frame", driver="crank"))
 
 
 def _cross(p, q, r):
@@ -154,9 +134,7 @@ def test_a_four_bar_drawn_at_or_near_its_dead_centre(crank, coupler, rocker, hea
         return
     size = max(crank, coupler, rocker, math.dist(o4, (0.0, 0.0)))
     b = (b[0] - off * size * u[1], b[1] + off * size * u[0])
-    text = FOUR_BAR.format(o2x=0.0, o2y=0.0, ax=a[0], ay=a[1], bx=b[0], by=b[1],
-                           o4x=o4[0], o4y=o4[1])
-    chain = chaingraph.loads(text)
+    chain = _four_bar((0.0, 0.0), a, b, o4)
     try:
         motion = chaingraph.solve(chain)
     except chaingraph.AssemblyError:
