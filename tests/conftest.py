@@ -1,3 +1,5 @@
+import contextlib
+import io
 import os
 import subprocess
 import sys
@@ -14,6 +16,7 @@ settings.register_profile("explore", derandomize=False)
 settings.load_profile(os.environ.get("HYPOTHESIS_PROFILE", "derandomized"))
 
 from chaingraph.catalog import catalog_files, catalog_path  # noqa: F401  (used by the tests)
+from chaingraph.cli import main
 
 
 @pytest.fixture
@@ -27,7 +30,26 @@ def write(tmp_path):
 
 
 def run_cli(*args, cwd=None):
-    """Run `python -m chaingraph ARGS` in a fresh process; return (code, stdout, stderr)."""
+    """Run `chaingraph ARGS` in this process through ``main`` (from ``cwd`` when given);
+    return (exit status, stdout, stderr)."""
+    out, err = io.StringIO(), io.StringIO()
+    here = os.getcwd()
+    try:
+        if cwd is not None:
+            os.chdir(cwd)
+        with contextlib.redirect_stdout(out), contextlib.redirect_stderr(err):
+            try:
+                code = main([str(a) for a in args])
+            except SystemExit as e:          # argparse's usage errors and --help
+                code = e.code
+    finally:
+        os.chdir(here)
+    return code, out.getvalue(), err.getvalue()
+
+
+def run_console_script(*args, cwd=None):
+    """Run `python -m chaingraph ARGS` in a fresh process, for what only a process shows
+    (the exit status of the console script itself); (exit status, stdout, stderr)."""
     proc = subprocess.run([sys.executable, "-m", "chaingraph", *map(str, args)],
                           capture_output=True, text=True, cwd=cwd)
     return proc.returncode, proc.stdout, proc.stderr

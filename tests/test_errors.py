@@ -455,3 +455,15 @@ def test_running_out_of_memory_is_one_line_and_exit_1(monkeypatch):
     code, out, err = _main("solve", FOUR_BAR, "--fixed", "frame", "--driver", "crank")
     assert code == 1 and err.count("\n") == 1 and "out of memory" in err
     assert "Traceback" not in err
+
+
+def test_the_console_script_exits_0_2_and_1():
+    """The one check that needs a process: `python -m chaingraph` and its exit statuses
+    (the rest of the command line is tested in process through main)."""
+    from .conftest import run_console_script
+    assert run_console_script("classify", FOUR_BAR)[0] == 0
+    code, out, err = run_console_script("classify", "no-such-file.toml")
+    assert code == 2 and err.strip().startswith("chaingraph: error:")
+    code, out, err = run_console_script("solve", catalog_path("watts-indicator-mechanism"),
+                                        "--from", "0", "--to", "180")
+    assert code == 1 and "can turn only from" in err
