@@ -39,23 +39,15 @@ def _pyplot():
 
 def output_series(motion):
     """The output's (label, displacement, velocity, acceleration, unit) along the sweep."""
-    from .kinematics.summary import _output_signal, _signal_values, path_direction
+    from .kinematics import output_signal
     output = motion.summary.get("output") if motion.summary else None
     if output is None and motion.plan.chain.mechanism is not None:
         output = motion.plan.chain.mechanism.output
     if output is None:
         output = motion.driver or motion.plan.inputs[motion.plan.lead].b
-    signal = _output_signal(motion.plan, output, motion.columns)
-    kind, name = signal
-    units = motion.units or "length"
-    if kind == "point":
-        u, v, a = _signal_values(kind, name, motion.columns,
-                                 path_direction(motion.columns, name))
-        return f"point {name} (along its path's main direction)", u, v, a, units
-    u, v, a = _signal_values(kind, name, motion.columns)
-    if kind == "angle":
-        return f"link {output} (angle)", u, v, a, "deg"
-    return f"{output} (slide of joint {name})", u, v, a, units
+    signal = output_signal(motion.plan, output, motion.columns)
+    u, v, a = signal.values(motion.columns)
+    return signal.label, u, v, a, signal.unit or "length"
 
 
 @plain_text

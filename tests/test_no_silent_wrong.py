@@ -326,10 +326,11 @@ def test_every_reported_extreme_is_a_stationary_point(name):
     assert len(maxima) == 1 and s["time_ratio"] is not None and s["note"] is None
     for e in s["extreme_positions"]:
         at = chaingraph.solve(chain, start=e["input"], stop=e["input"], steps=1, summary=False)
-        from chaingraph.kinematics.summary import _output_signal, _signal_values
-        kind, out = _output_signal(at.plan, chain.mechanism.output, at.columns)
+        from chaingraph.kinematics import output_signal
+        signal = output_signal(at.plan, chain.mechanism.output, at.columns)
+        kind = signal.kind
         if kind != "point":
-            value, rate, _ = _signal_values(kind, out, at.columns)
+            value, rate, _ = signal.values(at.columns)
             assert rate[0] == pytest.approx(0.0, abs=1e-6 * max(1.0, abs(value[0])))
             assert value[0] == pytest.approx(e["value"], abs=1e-9 * max(1.0, abs(value[0])))
 

@@ -13,8 +13,9 @@
 
 from .motion import Motion, full_turns, solve
 from .plan import Plan, build_plan
-from .summary import path_direction, summary_rows
+from .summary import OutputSignal, output_signal, path_direction, summary_rows
 from .sweep import Cycle, cycle, feasible_range
 
 __all__ = ["Motion", "Plan", "Cycle", "solve", "build_plan", "cycle", "feasible_range",
-           "full_turns", "summary_rows", "path_direction"]
+           "full_turns", "summary_rows", "path_direction", "output_signal",
+           "OutputSignal"]

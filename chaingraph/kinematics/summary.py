@@ -6,6 +6,7 @@ the sweep (not read off its grid).
 from __future__ import annotations
 
 import math
+from dataclasses import dataclass
 
 import numpy as np
 
@@ -16,7 +17,7 @@ from .roots import bracketed_roots
 from .sweep import _evaluate_sweep, cycle
 from .tracking import evaluate_at
 
-__all__ = ["summary_rows", "path_direction"]
+__all__ = ["summary_rows", "path_direction", "output_signal", "OutputSignal"]
 
 
 def summary_rows(motion):
@@ -73,20 +74,76 @@ def summary_rows(motion):
 
 
 # -- the summary -----------------------------------------------------------------------
-def _output_signal(plan, output, cols):
-    """How the output's position is measured: (kind, column name or vector, unit word)."""
+@dataclass(frozen=True)
+class OutputSignal:
+    """How an output's position is measured along a sweep: a link's slide on the fixed
+    link (``kind`` "slide", ``name`` the P joint), a link's angle ("angle", the link),
+    or a point's travel along its path's main ``direction`` ("point", the joint or
+    point; a link that neither slides nor turns is measured by its first joint).
+    ``unit`` is "deg" for an angle, else the chain's length unit (None if it has none).
+    """
+
+    output: str
+    kind: str
+    name: str
+    unit: str | None
+    direction: tuple | None = None
+
+    def values(self, columns):
+        """(u, du/dt, d2u/dt2) along the sweep, from its columns (at unit input speed:
+        per degree or length unit of the input, as the columns are)."""
+        cols = columns
+        if self.kind == "slide":
+            return cols[f"s:{self.name}"], cols[f"v:{self.name}"], cols[f"a:{self.name}"]
+        if self.kind == "angle":
+            return (cols[f"angle:{self.name}"], np.degrees(cols[f"omega:{self.name}"]),
+                    np.degrees(cols[f"alpha:{self.name}"]))
+        ux, uy = self.direction
+        return (cols[f"x:{self.name}"] * ux + cols[f"y:{self.name}"] * uy,
+                cols[f"vx:{self.name}"] * ux + cols[f"vy:{self.name}"] * uy,
+                cols[f"ax:{self.name}"] * ux + cols[f"ay:{self.name}"] * uy)
+
+    @property
+    def label(self) -> str:
+        """The output in words, for a plot's title."""
+        if self.kind == "point":
+            return f"point {self.name} (along its path's main direction)"
+        if self.kind == "angle":
+            return f"link {self.output} (angle)"
+        return f"{self.output} (slide of joint {self.name})"
+
+
+def output_signal(plan, output, columns, *, closed=False) -> OutputSignal | None:
+    """How ``output`` (a link or point, or None) moves along the sweep whose ``columns``
+    are given: the one definition the summary and the plots share. ``closed``: the
+    columns are a whole cycle whose last row repeats the first (see
+    :func:`path_direction`).
+
+    Examples
+    --------
+    >>> import chaingraph
+    >>> from chaingraph.catalog import catalog_path
+    >>> m = chaingraph.solve(chaingraph.load(catalog_path("reciprocating-engine")), steps=8)
+    >>> s = output_signal(m.plan, "crosshead", m.columns)
+    >>> s.kind, s.name, s.unit
+    ('slide', 'S', 'mm')
+    """
     chain = plan.chain
     if output is None:
         return None
+    units = chain.units
     if output in chain.links:
         for j in chain.joints:
             if j.kind == "P" and set(j.links) == {output, plan.fixed}:
-                return ("slide", j.id)
-        angle = cols[f"angle:{output}"]
+                return OutputSignal(output, "slide", j.id, units)
+        angle = columns[f"angle:{output}"]
         if np.ptp(angle) > 1e-9:
-            return ("angle", output)
-        output = chain.joints_of(output)[0].id
-    return ("point", output)
+            return OutputSignal(output, "angle", output, "deg")
+        name = chain.joints_of(output)[0].id
+    else:
+        name = output
+    return OutputSignal(output, "point", name, units,
+                        path_direction(columns, name, closed=closed))
 
 
 def path_direction(cols, name, *, closed=False):
@@ -109,19 +166,6 @@ def path_direction(cols, name, *, closed=False):
     else:
         d = vt[0] if along[np.argmax(np.abs(along))] >= 0 else -vt[0]
     return float(d[0]), float(d[1])
-
-
-def _signal_values(kind, name, cols, direction=None):
-    """(u, du/dt, d2u/dt2) of the output along the sweep."""
-    if kind == "slide":
-        return cols[f"s:{name}"], cols[f"v:{name}"], cols[f"a:{name}"]
-    if kind == "angle":
-        return cols[f"angle:{name}"], np.degrees(cols[f"omega:{name}"]), \
-            np.degrees(cols[f"alpha:{name}"])
-    ux, uy = direction
-    return (cols[f"x:{name}"] * ux + cols[f"y:{name}"] * uy,
-            cols[f"vx:{name}"] * ux + cols[f"vy:{name}"] * uy,
-            cols[f"ax:{name}"] * ux + cols[f"ay:{name}"] * uy)
 
 
 def _cycle_theta(plan, c, steps_per_turn=3600):
@@ -184,14 +228,13 @@ def _raw_summary(plan, output, omega, c, *, sweep=None):
                "full_turn": c.full_turn,
                "mobility": plan.mobility, "numeric_mobility": plan.numeric_mobility,
                "omega": omega, "note": None}
-    signal = _output_signal(plan, output, cols)
+    signal = output_signal(plan, output, cols, closed=c.full_turn)
     if signal is None:
         summary["note"] = "no output is named, so there is no stroke or time ratio"
         return summary
-    kind, name = signal
-    direction = path_direction(cols, name, closed=c.full_turn) if kind == "point" else None
-    u, du, ddu = _signal_values(kind, name, cols, direction)
-    summary["stroke_unit"] = "deg" if kind == "angle" else plan.chain.units
+    kind = signal.kind
+    u, du, ddu = signal.values(cols)
+    summary["stroke_unit"] = signal.unit
     if kind == "angle" and c.full_turn and abs(u[-1] - u[0]) > 180.0:
         summary["output_turns_fully"] = True
         summary["note"] = "the output turns fully, so it has no stroke or time ratio"
@@ -201,7 +244,7 @@ def _raw_summary(plan, output, omega, c, *, sweep=None):
             plan.size if kind != "angle" else 360.0, 1e-300):
         summary.update(stroke=0.0, note="the output does not move")
         return summary
-    extremes = _output_extremes(plan, ev, kind, name, direction, u, du, ddu, scale, c)
+    extremes = _output_extremes(plan, ev, signal, u, du, ddu, scale, c)
     values = [e["value"] for e in extremes]
     hi_e = extremes[int(np.argmax(values))]
     lo_e = extremes[int(np.argmin(values))]
@@ -242,7 +285,7 @@ def _input_range(plan, theta, c):
     return [float(plan.value(theta[0])), float(plan.value(theta[-1]))]
 
 
-def _output_extremes(plan, ev, kind, name, direction, u, du, ddu, scale, c):
+def _output_extremes(plan, ev, signal, u, du, ddu, scale, c):
     """Every extreme of the output over the cycle, in input order: stationary points,
     and for a rocker the values at the input's limits. Each {"input", "value", "kind"}.
 
@@ -274,7 +317,7 @@ def _output_extremes(plan, ev, kind, name, direction, u, du, ddu, scale, c):
         slope_a, slope_b = ddu[ka] * plan.rate_scale, ddu[kb] * plan.rate_scale
         guess = _cubic_roots(ta, tb, du[ka], du[kb], slope_a, slope_b)
         cols, _, _ = _pointwise(plan, ev, ka, guess)
-        at_guess, rate, second = _signal_values(kind, name, cols, direction)
+        at_guess, rate, second = signal.values(cols)
         with np.errstate(divide="ignore", invalid="ignore"):   # (checked below)
             step = -rate / (second * plan.rate_scale)
             t = guess + step
@@ -286,11 +329,11 @@ def _output_extremes(plan, ev, kind, name, direction, u, du, ddu, scale, c):
             bad = np.nonzero(~good)[0]
             kbad = ka[bad]
             t[bad] = bracketed_roots(
-                lambda tt: _rate_and_slope(plan, ev, kbad, tt, kind, name, direction),
+                lambda tt: _rate_and_slope(plan, ev, kbad, tt, signal),
                 ta[bad], tb[bad], du[kbad], du[kb[bad]], newton=True)
             redo, _, _ = _pointwise(plan, ev, kbad, t[bad])
-            value[bad] = _signal_values(kind, name, redo, direction)[0]
-        if kind == "angle":      # the same turn as the sweep's own values
+            value[bad] = signal.values(redo)[0]
+        if signal.kind == "angle":      # the same turn as the sweep's own values
             value = u[ka] + np.remainder(value - u[ka] + 180.0, 360.0) - 180.0
         found = [{"input": float(ti), "value": float(vi), "kind": "max" if sign[k] > 0 else "min"}
                  for ti, vi, k in sorted(zip(t, value, ka))]
@@ -332,10 +375,10 @@ def _cubic_roots(t0, t1, f0, f1, g0, g1):
     return t0 + s * h
 
 
-def _rate_and_slope(plan, ev, k, t, kind, name, direction):
+def _rate_and_slope(plan, ev, k, t, signal):
     """The output's rate and its derivative per degree of input at angles t."""
     cols, _, _ = _pointwise(plan, ev, k, t)
-    _, d1, d2 = _signal_values(kind, name, cols, direction)
+    _, d1, d2 = signal.values(cols)
     return d1, d2 * plan.rate_scale        # d2 per unit of input squared, t in tau
 
 
