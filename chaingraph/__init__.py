@@ -31,6 +31,10 @@ from .rigidity import rigid_subchains
 
 __version__ = "0.1.0"
 
+if "IPython" in __import__("sys").modules:        # in a notebook: its rich displays
+    from .notebook import register as _register_displays
+    _register_displays()
+
 __all__ = [
     "Chain", "Joint", "Mechanism", "Point", "Input",
     "load", "loads", "from_document", "dumps", "save",

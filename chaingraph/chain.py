@@ -328,11 +328,6 @@ class Chain:
         return (f"Chain({self.name!r}, links={len(self.links)}, joints={len(self.joints)}"
                 f"{tail})")
 
-    def _repr_svg_(self):
-        """A notebook shows a chain as its kinematic skeleton."""
-        from .notebook import chain_svg
-        return chain_svg(self)
-
     def __str__(self):
         return self.name
 

@@ -99,10 +99,6 @@ class Classification:
                 f"mobility={self.mobility}, verdict={self.verdict!r}, "
                 f"degenerate={self.degenerate})")
 
-    def _repr_html_(self):
-        from .notebook import classification_html
-        return classification_html(self)
-
     def check(self, rule: str) -> Check:
         """The check whose rule is ``rule`` (``"L = 2P - 4"`` or ``"J + H/2 = 3L/2 - 2"``)."""
         return next(c for c in self.checks if c.rule == rule)

@@ -23,6 +23,7 @@ from dataclasses import dataclass
 import networkx as nx
 from networkx.algorithms.isomorphism import GraphMatcher
 
+from ._util import short_list
 from .behaviour import behaviour, behaviour_key, turning_links
 from .errors import ChainStructureError
 from .isomorphism import automorphism_orbits, canonical_form, pair_orbits
@@ -76,13 +77,9 @@ class Inversions:
     classes_with_input: int | None = None
 
     def __repr__(self):
-        from .notebook import short_list
         return (f"Inversions({self.name!r}, links={self.links}, classes={self.classes}, "
                 f"fixed={short_list(i.fixed for i in self.inversions)})")
 
-    def _repr_html_(self):
-        from .notebook import inversions_html
-        return inversions_html(self)
 
     def inversion(self, fixed: str) -> Inversion:
         """The inversion with ``fixed`` fixed."""

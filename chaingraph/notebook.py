@@ -1,10 +1,12 @@
 """Displays in a notebook: short plain reprs and rich HTML and SVG for chains,
 classifications, inversions and solved motions, and an inline animation.
 
-The classes call these functions from their ``_repr_*_`` methods, so Jupyter shows a
-chain as its kinematic skeleton, a classification and inversions as tables, and a motion
-as its summary and plot. Nothing here needs IPython; :meth:`Motion.to_frame` needs
-pandas (``pip install chaingraph[notebook]``).
+:func:`register` hands these functions to IPython's display formatters (``import
+chaingraph`` in a notebook does it), so Jupyter shows a chain as its kinematic skeleton,
+a classification and inversions as tables, a motion as its summary and plot, and
+instant centres and polygons as tables and pictures. The results themselves know
+nothing of notebooks (the displays are drawn here, above them). Nothing here needs
+IPython; :meth:`Motion.to_frame` needs pandas (``pip install chaingraph[notebook]``).
 """
 
 from __future__ import annotations
@@ -12,21 +14,7 @@ from __future__ import annotations
 import html
 import io
 
-__all__ = ["Animation", "animate", "figure_svg", "short_list"]
-
-
-def short_list(items, keep=6) -> str:
-    """``[a, b, c, ... (N)]``: a list cut to ``keep`` items for a repr.
-
-    Examples
-    --------
-    >>> short_list(["theta", "x:A", "y:A"], keep=2)
-    "['theta', 'x:A', ... (3)]"
-    """
-    items = list(items)
-    if len(items) <= keep:
-        return repr(items)
-    return "[" + ", ".join(repr(x) for x in items[:keep]) + f", ... ({len(items)})]"
+__all__ = ["Animation", "animate", "figure_svg", "register", "DISPLAYS"]
 
 
 def figure_svg(fig) -> str:
@@ -127,3 +115,54 @@ def animate(motion, *, frames=48, seconds=4.0) -> Animation:
     """
     from .drawing import mechanism_svg
     return Animation(mechanism_svg(motion, frames=frames, seconds=seconds))
+
+
+def _displays():
+    """(class, MIME type, function) of every rich display."""
+    from .chain import Chain
+    from .classify import Classification
+    from .graphical.centres import InstantCentres
+    from .graphical.polygons import Polygons
+    from .inversions import Inversions
+    from .kinematics import Motion
+    return ((Chain, "image/svg+xml", chain_svg),
+            (Classification, "text/html", classification_html),
+            (Inversions, "text/html", inversions_html),
+            (Motion, "text/html", motion_html),
+            (InstantCentres, "text/html", centres_html),
+            (Polygons, "text/html", polygons_html))
+
+
+DISPLAYS = ("Chain", "Classification", "Inversions", "Motion", "InstantCentres",
+            "Polygons")
+
+
+def register(shell=None) -> bool:
+    """Register the rich displays with an IPython shell's display formatters (the
+    running one by default); returns whether there was a shell to register with.
+
+    Examples
+    --------
+    >>> class Formatter:
+    ...     def __init__(self): self.types = {}
+    ...     def for_type(self, cls, fn): self.types[cls.__name__] = fn
+    >>> class Shell:
+    ...     class display_formatter:
+    ...         formatters = {"text/html": Formatter(), "image/svg+xml": Formatter()}
+    >>> register(Shell())
+    True
+    >>> sorted(Shell.display_formatter.formatters["text/html"].types)
+    ['Classification', 'InstantCentres', 'Inversions', 'Motion', 'Polygons']
+    """
+    if shell is None:
+        try:
+            from IPython import get_ipython
+        except ImportError:
+            return False
+        shell = get_ipython()
+        if shell is None:
+            return False
+    formatters = shell.display_formatter.formatters
+    for cls, mime, fn in _displays():
+        formatters[mime].for_type(cls, fn)
+    return True

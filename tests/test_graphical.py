@@ -499,8 +499,9 @@ def test_a_piston_driven_engine_through_its_centres():
 
 def test_notebook_displays():
     chain = chaingraph.load(catalog_path("crank-and-slotted-lever-mechanism"))
-    centres_page = instant_centres(chain, at=45.0)._repr_html_()
-    polygons_page = velocity_polygon(chain, at=45.0)._repr_html_()
+    from chaingraph.notebook import centres_html, polygons_html
+    centres_page = centres_html(instant_centres(chain, at=45.0))
+    polygons_page = polygons_html(velocity_polygon(chain, at=45.0))
     assert "<table>" in centres_page and "<svg" in centres_page and "I24" in centres_page
     assert "<table>" in polygons_page and "<svg" in polygons_page and "B&#x27;" in polygons_page
 

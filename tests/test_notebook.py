@@ -1,6 +1,7 @@
 """Notebook displays: short reprs, rich HTML and SVG, figures, tables, the walkthrough."""
 
 import json
+import sys
 import xml.dom.minidom
 from html.parser import HTMLParser
 from pathlib import Path
@@ -8,6 +9,7 @@ from pathlib import Path
 import pytest
 
 import chaingraph
+from chaingraph.notebook import register
 from chaingraph.plots import draw_mechanism, plot_motion
 
 from .conftest import catalog_path
@@ -51,14 +53,33 @@ def test_reprs_are_short(watt):
     assert "inputs=['A', 'E']" in repr(five)
 
 
+def _registered():
+    """The displays as a notebook's formatters hold them: MIME type -> class -> function."""
+    class Formatter(dict):
+        def for_type(self, cls, fn):
+            self[cls] = fn
+
+    class Shell:
+        class display_formatter:
+            formatters = {"text/html": Formatter(), "image/svg+xml": Formatter()}
+    assert register(Shell())
+    return Shell.display_formatter.formatters
+
+
 def test_rich_displays_are_valid(watt):
     chain, motion = watt
-    xml.dom.minidom.parseString(chain._repr_svg_())
+    shown = _registered()
+    svg, html = shown["image/svg+xml"], shown["text/html"]
+    xml.dom.minidom.parseString(svg[type(chain)](chain))
     xml.dom.minidom.parseString(chaingraph.animate(motion, frames=8)._repr_svg_())
-    for html in (chaingraph.classify(chain)._repr_html_(),
-                 chaingraph.inversions(chain)._repr_html_(), motion._repr_html_()):
-        assert well_formed_html(html)
-    assert "<svg" in motion._repr_html_() and "time ratio" in motion._repr_html_()
+    for result in (chaingraph.classify(chain), chaingraph.inversions(chain), motion):
+        assert well_formed_html(html[type(result)](result))
+    page = html[type(motion)](motion)
+    assert "<svg" in page and "time ratio" in page
+
+
+def test_without_ipython_nothing_is_registered():
+    assert register() is False or "IPython" in sys.modules
 
 
 def test_plots_return_figures_without_a_path(watt, tmp_path):

@@ -172,9 +172,6 @@ class InstantCentres(AtOneValue):
         out["angular_velocities"] = dict(self.angular_velocities)
         return out
 
-    def _repr_html_(self):
-        from ..notebook import centres_html
-        return centres_html(self)
 
 
 def link_numbers(chain, fixed, inputs=()) -> dict:

@@ -178,10 +178,6 @@ class Polygons(AtOneValue):
         out["closure"] = self.closure
         return out
 
-    def _repr_html_(self):
-        from ..notebook import polygons_html
-        return polygons_html(self)
-
 
 def _images_of(state):
     """Every image (name -> (link, position)) and each link's images in order, and the

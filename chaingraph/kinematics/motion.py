@@ -16,6 +16,7 @@ from functools import lru_cache
 
 import numpy as np
 
+from .._util import short_list
 from ..chain import Input
 from ..errors import AssemblyError, MechanismError
 from .columns import _columns
@@ -63,16 +64,10 @@ class Motion:
     inputs: tuple = ()            # the input joints, when not given as a driver
 
     def __repr__(self):
-        from ..notebook import short_list
         given = (f"inputs={[i.joint for i in self.inputs]!r}" if self.inputs
                  else f"driver={self.driver!r}")
         return (f"Motion({self.name!r}, fixed={self.fixed!r}, {given}, steps={self.steps}, "
                 f"columns={short_list(self.columns)})")
-
-    def _repr_html_(self):
-        """A notebook shows a motion as its summary and the output's plot."""
-        from ..notebook import motion_html
-        return motion_html(self)
 
     def to_frame(self):
         """The CSV's columns as a pandas DataFrame, one row per step (needs pandas:
