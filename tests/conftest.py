@@ -3,6 +3,7 @@ import io
 import os
 import subprocess
 import sys
+import time
 
 import pytest
 from hypothesis import settings
@@ -56,3 +57,36 @@ def run_console_script(*args, cwd=None):
 
 
 CATALOG = catalog_files()
+
+
+# -- processes (the Ctrl-C and SIGKILL tests) ------------------------------------------
+def children(pid):
+    out = []
+    for entry in filter(str.isdigit, os.listdir("/proc")):
+        try:
+            with open(f"/proc/{entry}/stat") as f:
+                fields = f.read().rsplit(")", 1)[1].split()
+        except OSError:
+            continue
+        if int(fields[1]) == pid:
+            out.append(int(entry))
+    return out
+
+
+def alive(pid):
+    try:
+        with open(f"/proc/{pid}/stat") as f:
+            return f.read().rsplit(")", 1)[1].split()[0] != "Z"
+    except OSError:
+        return False
+
+
+def wait_for(condition, limit):
+    """Poll ``condition`` until it holds or ``limit`` seconds pass (a bound on the
+    wait, not a measurement); returns whether it held."""
+    end = time.monotonic() + limit
+    while time.monotonic() < end:
+        if condition():
+            return True
+        time.sleep(0.05)
+    return condition()

@@ -345,10 +345,11 @@ def test_ctrl_c_leaves_no_worker_and_a_resumable_folder(tmp_path):
                              "--workers", "2", "--out", str(out), "-q"],
                             stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True,
                             start_new_session=True)
-    deadline = time.monotonic() + 120
-    while not list(out.glob("shards/*.jsonl")) and time.monotonic() < deadline:
-        time.sleep(0.1)
-    time.sleep(1)
+    from .conftest import children, wait_for
+    # interrupted while its workers are at work, with a shard written (a race else)
+    assert wait_for(lambda: len(children(proc.pid)) >= 2 and
+                    bool(list(out.glob("shards/*.jsonl"))), 120), "no shard written"
+    assert proc.poll() is None, "the atlas finished before it could be interrupted"
     os.killpg(proc.pid, signal.SIGINT)              # as a terminal's Ctrl-C does
     _, err = proc.communicate(timeout=60)
     assert proc.returncode == 130 and err.strip() == "chaingraph: interrupted"

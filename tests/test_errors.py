@@ -23,6 +23,7 @@ from chaingraph.kinematics import tracking
 from chaingraph import ChainGraphError
 from chaingraph.catalog import catalog_path
 from chaingraph.cli import main
+from .conftest import children, wait_for
 
 
 CRANK = str(catalog_path("crank-rocker-with-slider"))
@@ -325,9 +326,10 @@ def test_ctrl_c_in_report_is_one_line_and_exit_130(tmp_path):
     proc = subprocess.Popen([sys.executable, "-m", "chaingraph", "report", "-o", str(out),
                              "--workers", "2"], stdout=subprocess.PIPE,
                             stderr=subprocess.PIPE, text=True, start_new_session=True)
-    deadline = time.monotonic() + 120
-    while not list(out.glob("*.html")) and time.monotonic() < deadline:
-        time.sleep(0.1)
+    # interrupted while its workers are at work (not after the last page: a race)
+    assert wait_for(lambda: len(children(proc.pid)) >= 2, 120), "no workers started"
+    time.sleep(1)
+    assert proc.poll() is None, "the report finished before it could be interrupted"
     os.killpg(proc.pid, signal.SIGINT)
     _, err = proc.communicate(timeout=60)
     assert proc.returncode == 130, err
@@ -460,7 +462,7 @@ def test_running_out_of_memory_is_one_line_and_exit_1(monkeypatch):
 def test_the_console_script_exits_0_2_and_1():
     """The one check that needs a process: `python -m chaingraph` and its exit statuses
     (the rest of the command line is tested in process through main)."""
-    from .conftest import run_console_script
+    from .conftest import children, wait_for, run_console_script
     assert run_console_script("classify", FOUR_BAR)[0] == 0
     code, out, err = run_console_script("classify", "no-such-file.toml")
     assert code == 2 and err.strip().startswith("chaingraph: error:")

@@ -11,44 +11,14 @@ import pytest
 
 from chaingraph.parallel import process_runner, serial
 
+from .conftest import alive, children, wait_for
+
 
 def test_every_task_runs_once_on_processes_and_here():
     for runner in (process_runner(2), serial):
         found = {}
         runner(abs, [-3, 4, -5, 6], found.__setitem__)
         assert found == {0: 3, 1: 4, 2: 5, 3: 6}
-
-
-def _children(pid):
-    out = []
-    for entry in filter(str.isdigit, os.listdir("/proc")):
-        try:
-            with open(f"/proc/{entry}/stat") as f:
-                fields = f.read().rsplit(")", 1)[1].split()
-        except OSError:
-            continue
-        if int(fields[1]) == pid:
-            out.append(int(entry))
-    return out
-
-
-def _alive(pid):
-    try:
-        with open(f"/proc/{pid}/stat") as f:
-            return f.read().rsplit(")", 1)[1].split()[0] != "Z"
-    except OSError:
-        return False
-
-
-def _wait_for(condition, limit):
-    """Poll ``condition`` until it holds or ``limit`` seconds pass (a bound on the
-    wait, not a measurement); returns whether it held."""
-    end = time.monotonic() + limit
-    while time.monotonic() < end:
-        if condition():
-            return True
-        time.sleep(0.05)
-    return condition()
 
 
 @pytest.mark.skipif(not os.path.isdir("/proc"), reason="reads processes from /proc")
@@ -63,11 +33,11 @@ def test_workers_end_when_the_main_process_is_killed(tmp_path, argv):
     proc = subprocess.Popen([sys.executable, "-m", "chaingraph", *argv],
                             stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL)
     try:
-        assert _wait_for(lambda: len(_children(proc.pid)) >= 2, 120), "no workers started"
-        workers = _children(proc.pid)
+        assert wait_for(lambda: len(children(proc.pid)) >= 2, 120), "no workers started"
+        workers = children(proc.pid)
         proc.send_signal(signal.SIGKILL)
         proc.wait()
-        assert _wait_for(lambda: not any(_alive(w) for w in workers), 5), \
-            [w for w in workers if _alive(w)]
+        assert wait_for(lambda: not any(alive(w) for w in workers), 5), \
+            [w for w in workers if alive(w)]
     finally:
         proc.kill()
