@@ -15,7 +15,7 @@ from .assembly import measure
 from .notebook import animate
 from .atlas import atlas
 from .chain import Chain, Input, Joint, Mechanism, Point
-from .chainfile import dumps, from_document, load, loads, save
+from .files import dumps, from_document, load, loads, save
 from .classify import Check, Classification, classify
 from .errors import (AssemblyError, AtlasRunError, AtlasSizeError, ChainFileError,
                      ChainGraphError,

@@ -26,10 +26,12 @@ from __future__ import annotations
 
 import math
 import warnings
-from dataclasses import dataclass
+from dataclasses import dataclass, replace
 
 import numpy as np
 
+from .chain import Chain, Joint, Point
+from .chainfile import _toml_number, _toml_string, parse_text
 from .dimensions import LineSpec, MODE_WORDS, _rotate, _sub, link_features, link_shape
 from .errors import DimensionError, PoseAdjustedWarning
 
@@ -868,7 +870,7 @@ def assemble(chain, points, dims):
 
     Examples
     --------
-    >>> from chaingraph.chainfile import loads
+    >>> from chaingraph.files import loads
     >>> chain = loads('''
     ... name = "crank-rocker"
     ... [[joints]]
@@ -922,7 +924,6 @@ def _correct_inputs(model, result):
     """An input measured toward a sliding pair's reference point is known only once
     that point is placed: compare the direction the pose gives with the one the weld
     used and turn the link by the difference. True when something was corrected."""
-    from .chain import Chain, Joint
     from .kinematics.plan import _direction
 
     placed = None
@@ -1193,7 +1194,7 @@ def measure(chain):
     output = "slotted lever"
     <BLANKLINE>
     """
-    from .chainfile import _toml_number as num, _toml_string as string, read_text
+    num, string = _toml_number, _toml_string
     from .kinematics.plan import _direction, chosen_inputs
 
     m = chain.mechanism
@@ -1338,7 +1339,8 @@ def measure(chain):
     moving |= {p.id for p in chain.points if p.link != fixed}
     with warnings.catch_warnings():
         warnings.simplefilter("ignore")
-        trial, pose = read_text(write(set(), moving, {}), source=chain.source or "<measure>")
+        trial, pose = place(parse_text(write(set(), moving, {}),
+                                       source=chain.source or "<measure>"))
     near = {n for group in pose.groups for link in group
             for n in link_features(chain.joints, points, link)} & moving
     modes = {mode.part: mode.word for mode in pose.modes
@@ -1361,7 +1363,6 @@ def _bare(key):
 
 
 def _key(name):
-    from .chainfile import _toml_string
     return name if _bare(name) else _toml_string(name)
 
 
@@ -1468,3 +1469,28 @@ def snap_to_lines(chain):
             f"1e-3 of the size {_fmt(size)}; an offset slider is drawn farther off)",
             joint=moved[0][1], distance=moved[0][0], size=size), stacklevel=3)
     return snapped
+
+
+def place(document):
+    """A read chain file in its drawn pose: ``(chain, assembly)``. A file given by
+    lengths is assembled (``assembly`` is its :class:`Assembly`: modes and groups); a
+    file of coordinates has its drawing-level rounding mended (:func:`snap_to_lines`,
+    ``assembly`` None)."""
+    if document.dimensions is None:
+        return snap_to_lines(document.chain), None
+    structure, dims = document.chain, document.dimensions
+    point_links = [(p.id, p.link) for p in document.points]
+    pose = assemble(structure, point_links, dims)
+    placed = tuple(Joint(j.id, j.kind, j.links, at=pose.joints[j.id],
+                         axis=pose.axes.get(j.id), closure=j.closure)
+                   for j in document.joints)
+    placed_points = tuple(Point(p.id, p.link, pose.points[p.id]) for p in document.points)
+    mechanism = structure.mechanism
+    if mechanism is not None and mechanism.inputs:
+        # a P input's values are measured from its guide's origin, as its 'at' is
+        kinds = {j.id: j.kind for j in document.joints}
+        single = dims.values.get(None) if len(mechanism.inputs) == 1 else None
+        mechanism = replace(mechanism, inputs=tuple(
+            replace(item, at=dims.values.get(item.joint, single))
+            if kinds.get(item.joint) == "P" else item for item in mechanism.inputs))
+    return replace(structure, joints=placed, points=placed_points, mechanism=mechanism), pose

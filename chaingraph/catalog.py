@@ -9,7 +9,7 @@ from __future__ import annotations
 
 from pathlib import Path
 
-from .chainfile import load
+from .files import load
 
 __all__ = ["catalog_dir", "catalog_files", "catalog_path", "load_catalog"]
 

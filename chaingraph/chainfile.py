@@ -1,10 +1,11 @@
 """Reading and writing chain files (TOML, the public format).
 
-:func:`load` reads a file, :func:`loads` a string, :func:`from_document` an already
-parsed document (a dict). All three check the document's keys and types here and the
-chain's meaning in :class:`~chaingraph.chain.Chain` itself, so the catalog, a user's
-file and a chain built in Python are validated by the same code. Every problem raises
-:class:`~chaingraph.errors.ChainFileError` naming the file, the joint or key, and what
+:func:`parse_file` reads a file, :func:`parse_text` a string, :func:`parse_document` an
+already parsed document (a dict), each into a :class:`Document`: nothing is solved here
+(:mod:`chaingraph.files` places it; that is ``chaingraph.load``). The keys and types are
+checked here and the chain's meaning in :class:`~chaingraph.chain.Chain` itself, so the
+catalog, a user's file and a chain built in Python are validated by the same code. Every
+problem raises :class:`~chaingraph.errors.ChainFileError` naming the file, the joint or key, and what
 is wrong. :func:`dumps` writes a chain back in the same format.
 """
 
@@ -15,12 +16,14 @@ import math
 import os
 import re
 import tomllib
-from dataclasses import replace
+from dataclasses import dataclass
 
 from .chain import Chain, Input, Joint, Mechanism, Point
+from .dimensions import parse_dimensions
+from .values import LARGEST, number, shown, type_name
 from .errors import ChainFileError
 
-__all__ = ["load", "loads", "from_document", "dumps", "save"]
+__all__ = ["Document", "parse_file", "parse_text", "parse_document", "dumps", "save"]
 
 TOP_KEYS = ("name", "family", "units", "space", "notes", "naming", "joints", "points",
             "mechanism", "lengths", "assembly")
@@ -31,38 +34,23 @@ INPUT_KEYS = ("joint", "from", "to")
 DIMENSION_JOINT_KEYS = ("offset", "angle", "block_offset", "block_angle", "near")
 
 
-def load(path) -> Chain:
-    """Read a chain file.
+@dataclass(frozen=True)
+class Document:
+    """A chain file read and checked, not yet placed. ``chain`` is the chain as written:
+    for a file of coordinates, its drawn pose as typed (drawing-level rounding is mended
+    when it is placed); for a file given by lengths, its structure (points at the
+    origin), with ``dimensions`` (:class:`~chaingraph.dimensions.Dimensions`: lengths,
+    sliding lines, the inputs' values, modes, typed and rough positions) and the
+    ``joints`` and ``points`` as written. :func:`chaingraph.files.load` places it."""
 
-    Parameters
-    ----------
-    path : str or os.PathLike
-        A TOML chain file in the public format.
-
-    Returns
-    -------
-    Chain
-        The chain, with its pose, points and mechanism when the file has them.
-
-    Raises
-    ------
-    ChainFileError
-        When the file cannot be read or is not a valid chain; the message names the
-        file, the joint or key, and what is wrong.
-
-    Examples
-    --------
-    >>> import chaingraph
-    >>> from chaingraph.catalog import catalog_path
-    >>> chain = chaingraph.load(catalog_path("four-bar-chain"))
-    >>> chain.name, len(chain.links), len(chain.joints)
-    ('Four-bar chain', 4, 4)
-    """
-    return read_file(path)[0]
+    chain: Chain
+    dimensions: object = None
+    joints: tuple = ()
+    points: tuple = ()
 
 
-def read_file(path):
-    """``(chain, assembly)`` from a chain file; see :func:`read_document`."""
+def parse_file(path) -> Document:
+    """The :class:`Document` of a chain file (reads, checks; solves nothing)."""
     source = os.fspath(path)
     try:
         with open(source, "rb") as f:
@@ -80,27 +68,13 @@ def read_file(path):
         text = raw.decode("utf-8")
     except UnicodeDecodeError as e:
         raise ChainFileError(f"is not UTF-8 text (byte {e.start})", source=source) from None
-    return read_text(text, source=source)
+    return parse_text(text, source=source)
 
 
-def loads(text: str, *, source: str = "<string>") -> Chain:
-    """Read a chain from TOML text; see :func:`load`.
-
-    Examples
-    --------
-    >>> from chaingraph.chainfile import loads
-    >>> loads('name = "x"\\n[[joints]]\\nid = "A"\\nkind = "Q"\\nlinks = ["a", "b"]')
-    Traceback (most recent call last):
-    ...
-    chaingraph.errors.ChainFileError: <string>: joint 'A': unknown kind 'Q' (expected one of R, P, screw, cylindrical, spherical, planar, rolling, cam, gear)
-    """
-    return read_text(text, source=source)[0]
-
-
-def read_text(text: str, *, source: str = "<string>"):
-    """``(chain, assembly)`` from TOML text; see :func:`read_document`. A leading
-    byte-order mark (as some editors save UTF-8) is read past."""
-    return read_document(_parse_toml(text.removeprefix("\ufeff"), source), source=source)
+def parse_text(text: str, *, source: str = "<string>") -> Document:
+    """The :class:`Document` of TOML text. A leading byte-order mark (as some editors
+    save UTF-8) is read past."""
+    return parse_document(_parse_toml(text.removeprefix("\ufeff"), source), source=source)
 
 
 def _parse_toml(text, source):
@@ -126,20 +100,14 @@ def _parse_toml(text, source):
     return doc
 
 
-def from_document(doc, *, source: str = "<document>") -> Chain:
-    """Build a chain from a parsed document (the dict a TOML file gives)."""
-    return read_document(doc, source=source)[0]
-
-
-def read_document(doc, *, source: str = "<document>"):
-    """``(chain, assembly)`` from a parsed document: ``assembly`` is the
-    :class:`~chaingraph.assembly.Assembly` found for a mechanism given by its lengths
-    (its assembly modes, its groups), else None."""
+def parse_document(doc, *, source: str = "<document>") -> Document:
+    """The :class:`Document` of a parsed TOML document (a dict): every key checked,
+    nothing solved."""
     def fail(problem, where=None):
         raise ChainFileError(problem, source=source, where=where)
 
     if not isinstance(doc, dict):
-        fail(f"a chain document is a table of keys, not {_type_name(doc)}")
+        fail(f"a chain document is a table of keys, not {type_name(doc)}")
     _no_unknown_keys(doc, TOP_KEYS, None, fail)
     if "name" not in doc:
         fail("missing required key 'name'", "key 'name'")
@@ -170,21 +138,17 @@ def read_document(doc, *, source: str = "<document>"):
                      "(the origin its slide is measured from), or add a [lengths] table",
                      f"[mechanism] inputs #{i + 1}")
     if "lengths" in doc:
-        return _assembled(doc, joints, points, mechanism, meta, fail)
+        return _dimensioned(doc, joints, points, mechanism, meta, fail)
     if "assembly" in doc:
         fail("[assembly] chooses the assembly modes of a mechanism given by [lengths]; "
              "this file has none", "[assembly]")
-    from .assembly import snap_to_lines
-    return snap_to_lines(Chain(joints=joints, points=points, mechanism=mechanism, **meta)), None
+    return Document(Chain(joints=joints, points=points, mechanism=mechanism, **meta))
 
 
-def _assembled(doc, joints, points, mechanism, meta, fail):
-    """A chain given by its dimensions, assembled into its drawn pose."""
-    from .assembly import assemble
-    from .dimensions import parse_dimensions
-
+def _dimensioned(doc, joints, points, mechanism, meta, fail):
+    """The document of a chain given by its dimensions: its structure and dimensions."""
     bare = tuple(Joint(j.id, j.kind, j.links, closure=j.closure) for j in joints)
-    # the points' places are found below; (0, 0) stands in while the structure is checked
+    # the points' places are found when it is placed; (0, 0) stands in meanwhile
     structure = Chain(joints=bare, mechanism=mechanism,
                       points=tuple(Point(p.id, p.link, (0.0, 0.0)) for p in points), **meta)
     point_links = [(p.id, p.link) for p in points]
@@ -207,23 +171,7 @@ def _assembled(doc, joints, points, mechanism, meta, fail):
             if "near" in t:
                 dims.near[t["id"]] = _coordinates(t["near"], f"{kind} {t['id']!r} key 'near'",
                                                   fail)
-    pose = assemble(structure, point_links, dims)
-    placed = tuple(Joint(j.id, j.kind, j.links, at=pose.joints[j.id],
-                         axis=pose.axes.get(j.id), closure=j.closure) for j in joints)
-    placed_points = tuple(Point(p.id, p.link, pose.points[p.id]) for p in points)
-    if mechanism is not None and mechanism.inputs:
-        # a P input's values are measured from its guide's origin, as its 'at' is
-        kinds = {j.id: j.kind for j in joints}
-        single = dims.values.get(None) if len(mechanism.inputs) == 1 else None
-        mechanism = replace(mechanism, inputs=tuple(
-            replace(item, at=dims.values.get(item.joint, single))
-            if kinds.get(item.joint) == "P" else item for item in mechanism.inputs))
-    return Chain(joints=placed, points=placed_points, mechanism=mechanism, **meta), pose
-
-
-def _type_name(value) -> str:
-    return {bool: "a boolean", int: "an integer", float: "a number", str: "a string",
-            list: "an array", dict: "a table"}.get(type(value), f"a {type(value).__name__}")
+    return Document(structure, dims, joints, points)
 
 
 def _no_unknown_keys(table, allowed, where, fail):
@@ -235,7 +183,7 @@ def _no_unknown_keys(table, allowed, where, fail):
 
 def _string(value, where, fail):
     if not isinstance(value, str):
-        fail(f"must be a string, got {_type_name(value)}", where)
+        fail(f"must be a string, got {type_name(value)}", where)
     return value
 
 
@@ -245,40 +193,13 @@ def _optional_string(table, key, where, fail):
 
 #: the largest number a chain file may hold (a coordinate, a length, an angle, a speed):
 #: beyond it, squares and products overflow or a float cannot hold a thousandth
-LARGEST = 1e9
-
-
-def number(value, where, fail, *, positive=False):
-    """A finite number of at most :data:`LARGEST` in size (a float), or ``fail``."""
-    if isinstance(value, bool) or not isinstance(value, (int, float)):
-        fail(f"must be a number, got {_type_name(value)}", where)
-    if isinstance(value, float) and not math.isfinite(value):
-        fail(f"must be a finite number, got {value}", where)
-    if abs(value) > LARGEST:                 # (compares an integer of any size exactly)
-        fail(f"{_show(value)} is too large: at most {LARGEST:g} in size", where)
-    if positive and value <= 0:
-        fail(f"a length must be positive, got {value:g}", where)
-    return float(value)
-
-
 def _coordinates(value, where, fail):
     if (not isinstance(value, list) or len(value) != 2
             or any(isinstance(v, bool) or not isinstance(v, (int, float)) for v in value)):
-        fail(f"'at' must be two finite numbers [x, y], got {_show(value)}", where)
+        fail(f"'at' must be two finite numbers [x, y], got {shown(value)}", where)
     if any(isinstance(v, float) and not math.isfinite(v) for v in value):
-        fail(f"'at' must be two finite numbers [x, y], got {_show(value)}", where)
+        fail(f"'at' must be two finite numbers [x, y], got {shown(value)}", where)
     return (number(value[0], where + " 'at' x", fail), number(value[1], where + " 'at' y", fail))
-
-
-def _show(value) -> str:
-    if isinstance(value, int) and abs(value) > 10**30:
-        # (no decimal text of a huge integer: Python refuses past 4,300 digits)
-        return f"an integer of about {int(value.bit_length() * 0.30103) + 1:,} digits"
-    if isinstance(value, list):
-        text = "[" + ", ".join(_show(v) for v in value[:4]) + (", ...]" if len(value) > 4 else "]")
-    else:
-        text = repr(value)
-    return text if len(text) <= 60 else text[:57] + "..."
 
 
 def _tables(value, key, fail):
@@ -286,7 +207,7 @@ def _tables(value, key, fail):
         fail(f"'{key}' must be an array of tables: write [[{key}]] for each entry",
              f"key '{key}'")
     if not isinstance(value, list) or not all(isinstance(t, dict) for t in value):
-        fail(f"'{key}' must be an array of tables ([[{key}]]), got {_type_name(value)}",
+        fail(f"'{key}' must be an array of tables ([[{key}]]), got {type_name(value)}",
              f"key '{key}'")
     return value
 
@@ -311,7 +232,7 @@ def _joint(table, index, fail, dimensioned=False):
     kind = _string(table["kind"], label + " key 'kind'", fail)
     links = table["links"]
     if not isinstance(links, list) or not all(isinstance(x, str) for x in links):
-        fail(f"'links' must be an array of link names, got {_show(links)}", label)
+        fail(f"'links' must be an array of link names, got {shown(links)}", label)
     at = _coordinates(table["at"], label, fail) if "at" in table else None
     axis = number(table["axis"], label + " key 'axis'", fail) if "axis" in table else None
     closure = _optional_string(table, "closure", label + " key 'closure'", fail)
@@ -340,7 +261,7 @@ def _point(table, index, fail, dimensioned=False):
 def _mechanism(table, fail, dimensioned=False):
     where = "[mechanism]"
     if not isinstance(table, dict):
-        fail(f"'mechanism' must be a table ([mechanism]), got {_type_name(table)}", where)
+        fail(f"'mechanism' must be a table ([mechanism]), got {type_name(table)}", where)
     _no_unknown_keys(table, MECHANISM_KEYS + ("at",), None,
                      lambda problem, w: fail(problem, where))
     if "at" in table and not dimensioned:
@@ -361,7 +282,7 @@ def _inputs(value, fail, dimensioned=False):
     where = "[mechanism] key 'inputs'"
     if not isinstance(value, list) or not value:
         fail("'inputs' must be a non-empty array of joint ids or tables "
-             f"{{joint, from, to}}, got {_show(value)}", where)
+             f"{{joint, from, to}}, got {shown(value)}", where)
     out = []
     for i, item in enumerate(value):
         here = f"[mechanism] inputs #{i + 1}"
@@ -370,7 +291,7 @@ def _inputs(value, fail, dimensioned=False):
             continue
         if not isinstance(item, dict):
             fail(f"an input must be a joint id or a table {{joint, from, to}}, "
-                 f"got {_type_name(item)}", here)
+                 f"got {type_name(item)}", here)
         _no_unknown_keys(item, INPUT_KEYS + ("at",), None,
                          lambda problem, w: fail(problem, here))
         if "joint" not in item:
@@ -401,7 +322,7 @@ def dumps(chain: Chain) -> str:
     Examples
     --------
     >>> from chaingraph.chain import Chain, Joint
-    >>> from chaingraph.chainfile import dumps, loads
+    >>> from chaingraph.chainfile import dumps, parse_text
     >>> c = Chain("pair", (Joint("A", "R", ("a", "b"), at=(0.0, 1.5)),))
     >>> print(dumps(c))
     name = "pair"
@@ -412,7 +333,7 @@ def dumps(chain: Chain) -> str:
     links = ["a", "b"]
     at = [0.0, 1.5]
     <BLANKLINE>
-    >>> loads(dumps(c)) == c
+    >>> parse_text(dumps(c)).chain == c
     True
     """
     lines = [f"name = {_toml_string(chain.name)}"]

@@ -14,7 +14,7 @@ import sys
 import warnings
 from pathlib import Path
 
-from .chainfile import load
+from .files import load
 from .classify import classify
 from .errors import ChainGraphError, ChainGraphWarning, OutputError
 
@@ -275,7 +275,7 @@ def _mode_lines(assembly) -> list[str]:
 
 
 def _cmd_assemble(args) -> int:
-    from .chainfile import dumps, read_file
+    from .files import dumps, read_file
     chain, assembly = read_file(args.file)
     if args.json:
         out = {"name": chain.name, "file": args.file,
@@ -490,7 +490,7 @@ def _cmd_atlas(args) -> int:
 
 
 def _cmd_design(args) -> int:
-    from .chainfile import save
+    from .files import save
     from .design import KINDS
     if args.out:
         output_file(args.out, what="mechanism file")

@@ -21,6 +21,7 @@ from dataclasses import dataclass
 
 from .chain import Chain, Joint, Mechanism
 from .errors import DesignError
+from .values import LARGEST
 
 __all__ = ["Design", "slotted_lever", "whitworth", "KINDS"]
 
@@ -53,7 +54,6 @@ class Design:
 
 
 def _check(kind, time_ratio, crank, stroke):
-    from .chainfile import LARGEST
     for name, value in (("--time-ratio", time_ratio), ("--crank", crank), ("--stroke", stroke)):
         if isinstance(value, bool) or not isinstance(value, (int, float)) or not math.isfinite(value):
             raise DesignError(f"{name} must be a finite number, got {value!r}", kind=kind,

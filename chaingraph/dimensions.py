@@ -19,6 +19,8 @@ from __future__ import annotations
 import math
 from dataclasses import dataclass, field
 
+from .values import number
+
 __all__ = ["Dimensions", "LineSpec", "link_features", "link_shape", "parse_dimensions",
            "MODE_WORDS", "split_key"]
 
@@ -140,11 +142,6 @@ def _single_joint(link, joint, joints, points):
     return text
 
 
-def _number(value, where, fail, *, positive=False):
-    from .chainfile import number
-    return number(value, where, fail, positive=positive)
-
-
 def parse_dimensions(doc, joints, points, fail):
     """Read the dimension keys of ``doc`` (a parsed chain document that has a
     ``[lengths]`` table). ``joints`` are the parsed joints (without coordinates),
@@ -163,7 +160,7 @@ def parse_dimensions(doc, joints, points, fail):
             entries = {}
             for key, x in value.items():
                 if key == "direction":
-                    directions[link] = _number(x, f"{where} key 'direction'", fail)
+                    directions[link] = number(x, f"{where} key 'direction'", fail)
                     fixed = doc.get("mechanism", {}).get("fixed") if isinstance(
                         doc.get("mechanism"), dict) else None
                     if link != fixed:
@@ -175,7 +172,7 @@ def parse_dimensions(doc, joints, points, fail):
                     fail(f"{key!r} names no pair of its joints 'A-B' (a distance) or "
                          f"triple 'A-B-C' (the angle at B, degrees) "
                          f"(its joints and points: {', '.join(features)})", where)
-                entries[names] = _number(x, f"{where} key {key!r}", fail,
+                entries[names] = number(x, f"{where} key {key!r}", fail,
                                          positive=len(names) == 2)
             lengths[link] = entries
         else:
@@ -188,7 +185,7 @@ def parse_dimensions(doc, joints, points, fail):
                      f"{features[1]}-{features[2]} = ..., {features[0]}-{features[2]} = ...}}"
                      if features else f"{link!r} has no R joint or point to measure",
                      where)
-            lengths[link] = {tuple(features): _number(value, where, fail, positive=True)}
+            lengths[link] = {tuple(features): number(value, where, fail, positive=True)}
     lines = {}
     for t, j in zip(doc.get("joints", []), joints):
         where = f"joint {j.id!r}"
@@ -200,8 +197,8 @@ def parse_dimensions(doc, joints, points, fail):
             for role, (a_key, e_key) in enumerate((("angle", "offset"),
                                                    ("block_angle", "block_offset"))):
                 if a_key in t or e_key in t:
-                    angle = _number(t.get(a_key, 0.0), f"{where} key '{a_key}'", fail)
-                    offset = _number(t.get(e_key, 0.0), f"{where} key '{e_key}'", fail)
+                    angle = number(t.get(a_key, 0.0), f"{where} key '{a_key}'", fail)
+                    offset = number(t.get(e_key, 0.0), f"{where} key '{e_key}'", fail)
                     lines[(j.id, j.links[role])] = LineSpec(angle, offset)
     modes = _modes(doc.get("assembly", {}), fail)
     values = _values(doc.get("mechanism", {}), fail)
@@ -235,12 +232,12 @@ def _values(table, fail):
     if not isinstance(table, dict):
         return values
     if "at" in table:
-        values[None] = _number(table["at"], "[mechanism] key 'at'", fail)
+        values[None] = number(table["at"], "[mechanism] key 'at'", fail)
     items = table.get("inputs", [])
     if isinstance(items, list):
         for i, item in enumerate(items):
             if isinstance(item, dict) and "at" in item and isinstance(item.get("joint"), str):
-                values[item["joint"]] = _number(item["at"], f"[mechanism] inputs #{i + 1} "
+                values[item["joint"]] = number(item["at"], f"[mechanism] inputs #{i + 1} "
                                                 "key 'at'", fail)
     return values
 

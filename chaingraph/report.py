@@ -20,7 +20,7 @@ from pathlib import Path
 import numpy as np
 
 
-from .chainfile import load
+from .files import load
 from .classify import classify
 from .errors import ChainGraphError
 from .progress import ProgressBar

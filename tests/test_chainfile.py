@@ -6,7 +6,7 @@ import pytest
 
 import chaingraph
 from chaingraph import ChainFileError
-from chaingraph.chainfile import dumps, from_document, loads
+from chaingraph.files import dumps, from_document, loads
 
 from .conftest import CATALOG, catalog_path, run_cli
 

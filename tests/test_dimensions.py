@@ -17,7 +17,7 @@ import chaingraph
 from chaingraph.assembly import measure
 from chaingraph.catalog import catalog_files, catalog_path
 from chaingraph.chain import Chain, Input, Joint, Mechanism, Point
-from chaingraph.chainfile import loads, read_text
+from chaingraph.files import loads, read_text
 from chaingraph.errors import ChainFileError, DimensionError, PoseAdjustedWarning
 
 from .conftest import CATALOG, catalog_path, run_cli
@@ -101,7 +101,7 @@ def test_four_bar_from_lengths_is_the_hand_pose_and_solves_alike(mode, side):
 def test_the_default_mode_is_left_and_assemble_says_so(tmp_path):
     path = tmp_path / "four.toml"
     path.write_text(four_bar_text())
-    chain, assembly = chaingraph.chainfile.read_file(path)
+    chain, assembly = chaingraph.files.read_file(path)
     (mode,) = assembly.modes
     assert (mode.part, mode.word, mode.source) == ("C", "left", "default")
     assert "B\u2192D" in mode.reference
@@ -452,7 +452,7 @@ def test_malformed_dimension_keys_raise_only_file_errors():
     import random
     import tomllib
 
-    from chaingraph.chainfile import read_document
+    from chaingraph.files import read_document
     bases = [tomllib.loads(open(p).read()) for p in
              ("examples/four-bar-lengths.toml", "catalog/shaper-crank-and-slotted-lever.toml")]
     values = [0, -1, 1e308, -1e308, 1e-308, "x", [1], [1, 2], {"a": 1}, {}, True, 3.5, [],
@@ -502,7 +502,7 @@ def test_measure_of_mutated_mechanisms_is_a_file_or_one_clear_error():
     import random
     import tomllib
 
-    from chaingraph.chainfile import read_document
+    from chaingraph.files import read_document
     rng = random.Random(25)
     files = [p for p in catalog_files() if "[mechanism]" in p.read_text()]
     tried = 0

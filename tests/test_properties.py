@@ -7,7 +7,7 @@ from hypothesis import HealthCheck, given, settings
 from hypothesis import strategies as st
 
 from chaingraph import ChainFileError, Chain
-from chaingraph.chainfile import dumps, from_document, loads
+from chaingraph.files import dumps, from_document, loads
 
 BASE = {
     "name": "Offset slider crank",
