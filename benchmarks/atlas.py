@@ -21,9 +21,9 @@ import resource
 import tempfile
 import time
 
-from chaingraph.atlas import process_runner, run_atlas, write_atlas
-from chaingraph.atlas.pieces import piece, piece_work
-from chaingraph.atlas.run import plan
+from chaingraph.structure.atlas import process_runner, run_atlas, write_atlas
+from chaingraph.structure.atlas.pieces import piece, piece_work
+from chaingraph.structure.atlas.run import plan
 
 PUBLISHED = {4: 1, 6: 2, 8: 16, 10: 230, 12: 6856, 14: 318162, 16: 19819281}
 

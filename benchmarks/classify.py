@@ -11,7 +11,7 @@ import argparse
 import time
 
 from chaingraph import classify
-from chaingraph.generators import random_chain
+from chaingraph.structure.generators import random_chain
 
 
 def main():

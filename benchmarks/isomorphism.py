@@ -12,8 +12,8 @@ import time
 
 import networkx as nx
 
-from chaingraph.generators import random_chain
-from chaingraph.isomorphism import _canonical_cached, canonical_form
+from chaingraph.structure.generators import random_chain
+from chaingraph.structure.isomorphism import _canonical_cached, canonical_form
 
 
 def main():

@@ -28,7 +28,7 @@ import numpy as np
 
 import chaingraph
 from chaingraph import Chain, Joint, Mechanism
-from chaingraph.catalog import catalog_files, catalog_path
+from chaingraph.naming.catalog import catalog_files, catalog_path
 
 HERE = Path(__file__).resolve().parent
 STEPS = 3600

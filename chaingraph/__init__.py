@@ -4,35 +4,35 @@ Load a chain file, classify it, and (in later modules) enumerate its inversions,
 solve its motion and draw it.
 
 >>> import chaingraph
->>> from chaingraph.catalog import catalog_path
+>>> from chaingraph.naming.catalog import catalog_path
 >>> chain = chaingraph.load(catalog_path("four-bar-chain"))
 >>> chaingraph.classify(chain).verdict
 'kinematic chain'
 """
 
-from . import design
-from .assembly import measure
-from .notebook import animate
-from .atlas import atlas
-from .chain import Chain, Input, Joint, Mechanism, Point
-from .files import dumps, from_document, load, loads, save
-from .classify import Check, Classification, classify
-from .errors import (AssemblyError, AtlasRunError, AtlasSizeError, ChainFileError,
+from chaingraph.synthesis import design
+from chaingraph.kinematics.assembly import measure
+from chaingraph.drawing.notebook import animate
+from chaingraph.structure.atlas import atlas
+from chaingraph.model.chain import Chain, Input, Joint, Mechanism, Point
+from chaingraph.files import dumps, from_document, load, loads, save
+from chaingraph.structure.classify import Check, Classification, classify
+from chaingraph.errors import (AssemblyError, AtlasRunError, AtlasSizeError, ChainFileError,
                      ChainGraphError,
                      ChainGraphWarning, ChainStructureError, DesignError, DimensionError,
                      MechanismError, PoseAdjustedWarning)
-from .graphical import instant_centres, velocity_polygon
-from .identify import Identification, identify
-from .inversions import Inversion, Inversions, inversions
-from .isomorphism import automorphism_orbits, canonical_form, is_isomorphic, isomorphism
-from .kinematics import Motion, feasible_range, solve
-from .kinematics import Plan, build_plan
-from .rigidity import rigid_subchains
+from chaingraph.graphical import instant_centres, velocity_polygon
+from chaingraph.naming.identify import Identification, identify
+from chaingraph.naming.inversions import Inversion, Inversions, inversions
+from chaingraph.structure.isomorphism import automorphism_orbits, canonical_form, is_isomorphic, isomorphism
+from chaingraph.kinematics import Motion, feasible_range, solve
+from chaingraph.kinematics import Plan, build_plan
+from chaingraph.structure.rigidity import rigid_subchains
 
 __version__ = "0.1.0"
 
 if "IPython" in __import__("sys").modules:        # in a notebook: its rich displays
-    from .notebook import register as _register_displays
+    from chaingraph.drawing.notebook import register as _register_displays
     _register_displays()
 
 __all__ = [

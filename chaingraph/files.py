@@ -1,14 +1,14 @@
-"""Chain files in and out: read (:mod:`chaingraph.chainfile` parses and checks), then
+"""Chain files in and out: read (:mod:`chaingraph.model.chainfile` parses and checks), then
 placed (a file given by lengths assembled into its drawn pose, a file of coordinates
-with its drawing-level rounding mended: :func:`chaingraph.assembly.place`); written
+with its drawing-level rounding mended: :func:`chaingraph.kinematics.assembly.place`); written
 back by :func:`dumps` and :func:`save`.
 """
 
 from __future__ import annotations
 
-from .assembly import place
-from .chain import Chain
-from .chainfile import dumps, parse_document, parse_file, parse_text, save
+from chaingraph.kinematics.assembly import place
+from chaingraph.model.chain import Chain
+from chaingraph.model.chainfile import dumps, parse_document, parse_file, parse_text, save
 
 __all__ = ["load", "loads", "from_document", "dumps", "save", "read_file", "read_text",
            "read_document"]
@@ -37,7 +37,7 @@ def load(path) -> Chain:
     Examples
     --------
     >>> import chaingraph
-    >>> from chaingraph.catalog import catalog_path
+    >>> from chaingraph.naming.catalog import catalog_path
     >>> chain = chaingraph.load(catalog_path("four-bar-chain"))
     >>> chain.name, len(chain.links), len(chain.joints)
     ('Four-bar chain', 4, 4)
@@ -65,7 +65,7 @@ def from_document(doc, *, source: str = "<document>") -> Chain:
 
 def read_file(path):
     """``(chain, assembly)`` of a chain file: ``assembly`` is the
-    :class:`~chaingraph.assembly.Assembly` found for a mechanism given by its lengths
+    :class:`~chaingraph.kinematics.assembly.Assembly` found for a mechanism given by its lengths
     (its modes, its groups), else None."""
     return place(parse_file(path))
 

@@ -16,8 +16,8 @@ settings.register_profile("derandomized", derandomize=True, database=None, print
 settings.register_profile("explore", derandomize=False)
 settings.load_profile(os.environ.get("HYPOTHESIS_PROFILE", "derandomized"))
 
-from chaingraph.catalog import catalog_files, catalog_path  # noqa: F401  (used by the tests)
-from chaingraph.cli import main
+from chaingraph.naming.catalog import catalog_files, catalog_path  # noqa: F401  (used by the tests)
+from chaingraph.cli.main import main
 
 
 @pytest.fixture

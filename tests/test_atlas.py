@@ -8,7 +8,7 @@ import pytest
 
 import chaingraph
 from chaingraph import AtlasSizeError
-from chaingraph.atlas import assortments, atlas_graphs, joints_for
+from chaingraph.structure.atlas import assortments, atlas_graphs, joints_for
 
 from .conftest import run_cli
 
@@ -54,7 +54,7 @@ def test_published_multi_dof_counts(links, dof, count, whole):
 def test_nauty_and_the_own_labelling_give_the_same_chains(links, dof):
     """The project's canonical labelling is the reference: the graphs nauty labels are,
     by the project's own canonical form, the graphs the own labelling gives."""
-    from chaingraph.isomorphism import canonical_form
+    from chaingraph.structure.isomorphism import canonical_form
     by = {}
     for labelling in ("nauty", "own"):
         entries = atlas_graphs(links, dof, labelling=labelling)
@@ -152,8 +152,8 @@ def test_atlas_chains_are_chains():
         assert c.mobility == 1 and not c.degenerate and c.verdict == "kinematic chain"
         forms.add(chaingraph.canonical_form(chain))
     assert len(forms) == 16
-    watt = chaingraph.load(chaingraph.catalog.catalog_path("watt-six-bar-chain"))
-    steph = chaingraph.load(chaingraph.catalog.catalog_path("stephenson-six-bar-chain"))
+    watt = chaingraph.load(chaingraph.naming.catalog.catalog_path("watt-six-bar-chain"))
+    steph = chaingraph.load(chaingraph.naming.catalog.catalog_path("stephenson-six-bar-chain"))
     six = {chaingraph.canonical_form(c) for c in chaingraph.atlas(links=6, dof=1)}
     assert six == {chaingraph.canonical_form(watt), chaingraph.canonical_form(steph)}
 
@@ -220,7 +220,7 @@ def test_graph6_lines_match_networkx():
 
     import numpy as np
 
-    from chaingraph.atlas.output import graph6_lines
+    from chaingraph.structure.atlas.output import graph6_lines
     rng = random.Random(3)
     for n in (2, 5, 13, 20):
         graphs = [nx.gnm_random_graph(n, n, seed=rng.randrange(10**6)) for _ in range(20)]
@@ -230,7 +230,7 @@ def test_graph6_lines_match_networkx():
 
 
 def test_chain_files_are_the_files_dumps_writes(tmp_path):
-    from chaingraph.atlas.output import chain_text
+    from chaingraph.structure.atlas.output import chain_text
     for entry in atlas_graphs(10, 1)[:20]:
         assert chain_text(entry, 1) == chaingraph.dumps(entry.chain(1))
     code, out, err = run_cli("atlas", "--links", "10", "--no-chain-files", "--out", tmp_path,
@@ -274,7 +274,7 @@ def test_a_local_dask_cluster_gives_the_local_run():
     pytest.importorskip("distributed")
     import numpy as np
 
-    from chaingraph.atlas import DaskRunner, run_atlas
+    from chaingraph.structure.atlas import DaskRunner, run_atlas
     local = run_atlas(11, 2, workers=2)
     with DaskRunner("local", workers=2) as runner:
         cluster = run_atlas(11, 2, runner=runner)
@@ -311,7 +311,7 @@ def test_sizes_that_cannot_finish_are_refused_up_front(args, words):
 
 
 def test_the_estimate_is_near_every_count():
-    from chaingraph.atlas.estimate import KNOWN, _FIT, estimate
+    from chaingraph.structure.atlas.estimate import KNOWN, _FIT, estimate
     for (links, dof), count in KNOWN.items():
         assert estimate(links, dof).chains == pytest.approx(count)
         loops = (links - 1 - dof) / 2
@@ -374,8 +374,8 @@ def test_the_atlas_page_draws_no_joint_at_a_crossing_and_numbers_links_as_the_fi
     numbered 1..N on the page, as L1..LN in the chain files."""
     import re
 
-    from chaingraph.atlas import atlas_graphs
-    from chaingraph.atlas.output import _atlas_svg, _segment_distance, chain_text
+    from chaingraph.structure.atlas import atlas_graphs
+    from chaingraph.structure.atlas.output import _atlas_svg, _segment_distance, chain_text
     for entry in atlas_graphs(10, 1):
         svg = _atlas_svg(entry)
         bars = [tuple(map(float, m)) for m in re.findall(

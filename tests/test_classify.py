@@ -8,8 +8,8 @@ from hypothesis import strategies as st
 
 import chaingraph
 from chaingraph import Chain, Joint, classify
-from chaingraph.generators import random_chain
-from chaingraph.rigidity import rigid_subchains, subchain_mobility
+from chaingraph.structure.generators import random_chain
+from chaingraph.structure.rigidity import rigid_subchains, subchain_mobility
 
 from .conftest import catalog_path, run_cli
 

@@ -11,7 +11,7 @@ from hypothesis import example, given, settings
 from hypothesis import strategies as st
 
 import chaingraph
-from chaingraph.catalog import catalog_path
+from chaingraph.naming.catalog import catalog_path
 from chaingraph.kinematics.equations import residuals
 from chaingraph.kinematics.rates import rates
 from chaingraph.kinematics.sweep import cycle

@@ -7,7 +7,7 @@ import pytest
 
 import chaingraph
 from chaingraph import DesignError
-from chaingraph.design import slotted_lever, whitworth
+from chaingraph.synthesis.design import slotted_lever, whitworth
 
 from .conftest import run_cli
 
@@ -35,7 +35,7 @@ def test_whitworth_assignment():
 @pytest.mark.parametrize("ratio", [1.2, 1.5, 2.0, 2.6])
 @pytest.mark.parametrize("stroke", [150.0, 400.0])
 def test_round_trip_through_solve(kind, ratio, stroke, tmp_path):
-    design = chaingraph.design.KINDS[kind]
+    design = chaingraph.synthesis.design.KINDS[kind]
     d = design(time_ratio=ratio, crank=40.0, stroke=stroke)
     path = tmp_path / "designed.toml"
     chaingraph.save(d.mechanism, path)

@@ -14,9 +14,9 @@ import numpy as np
 import pytest
 
 import chaingraph
-from chaingraph.assembly import measure
-from chaingraph.catalog import catalog_files, catalog_path
-from chaingraph.chain import Chain, Input, Joint, Mechanism, Point
+from chaingraph.kinematics.assembly import measure
+from chaingraph.naming.catalog import catalog_files, catalog_path
+from chaingraph.model.chain import Chain, Input, Joint, Mechanism, Point
 from chaingraph.files import loads, read_text
 from chaingraph.errors import ChainFileError, DimensionError, PoseAdjustedWarning
 

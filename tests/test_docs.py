@@ -2,7 +2,7 @@
 
 A block's commands (lines starting with ``$ ``) run in a scratch folder that holds the
 project's ``catalog``, ``examples`` and ``tests`` folders: ``chaingraph ARGS`` in this
-process through :func:`chaingraph.cli.main`, a pipe into standard text tools (sed,
+process through :func:`chaingraph.cli.main.main`, a pipe into standard text tools (sed,
 head, cut, grep) or a redirection to a file after it as the shell would. The lines up
 to the next command are its output (standard output and error together), compared with
 ``...`` standing for any text, as in doctests. A block preceded by the comment
@@ -20,7 +20,7 @@ from pathlib import Path
 
 import pytest
 
-from chaingraph.cli import main
+from chaingraph.cli.main import main
 
 ROOT = Path(__file__).resolve().parent.parent
 PAGES = [ROOT / "README.md"] + sorted((ROOT / "docs").glob("*.md"))

@@ -8,7 +8,7 @@ import xml.etree.ElementTree as ET
 import pytest
 
 import chaingraph
-from chaingraph.drawing import mechanism_svg
+from chaingraph.drawing.mechanism import mechanism_svg
 
 from .conftest import CATALOG, catalog_path, run_cli
 
@@ -139,7 +139,7 @@ def test_solve_draw_writes_the_drawing(tmp_path):
 
 @pytest.mark.parametrize("path", CATALOG, ids=[p.stem for p in CATALOG])
 def test_every_chain_has_a_skeleton(path):
-    from chaingraph.drawing import skeleton_svg
+    from chaingraph.drawing.mechanism import skeleton_svg
     chain = chaingraph.load(path)
     root = ET.fromstring(skeleton_svg(chain))
     marks = (root.findall(".//s:circle[@class='pin']", NS) + root.findall(".//s:rect[@class='block']", NS)
@@ -164,7 +164,7 @@ def test_draw_mechanism_takes_a_chain_in_its_drawn_pose():
     """A chain with a mechanism is drawn in its drawn pose (it raised AttributeError:
     'Chain' object has no attribute 'plan'); anything else is one line saying what it
     takes."""
-    from chaingraph.plots import draw_mechanism
+    from chaingraph.drawing.plots import draw_mechanism
     chain = chaingraph.load(catalog_path("non-grashof-four-bar"))
     fig = draw_mechanism(chain)
     pins = [line.get_xydata()[0] for line in fig.axes[0].lines if line.get_marker() == "o"]

@@ -21,8 +21,8 @@ from hypothesis import strategies as st
 import chaingraph
 from chaingraph.kinematics import tracking
 from chaingraph import ChainGraphError
-from chaingraph.catalog import catalog_path
-from chaingraph.cli import main
+from chaingraph.naming.catalog import catalog_path
+from chaingraph.cli.main import main
 from .conftest import children, wait_for
 
 
@@ -256,7 +256,7 @@ def test_report_workers_are_checked_and_capped(tmp_path, workers, code, words):
 
 # -- sizes ---------------------------------------------------------------------------
 def _chain(edges, name):
-    from chaingraph.chain import Chain, Joint
+    from chaingraph.model.chain import Chain, Joint
     return Chain(name, tuple(Joint(f"J{i}", "R", (f"L{a}", f"L{b}"))
                              for i, (a, b) in enumerate(edges)))
 

@@ -14,12 +14,12 @@ from hypothesis import strategies as st
 
 import chaingraph
 from chaingraph import AssemblyError, MechanismError
-from chaingraph.catalog import catalog_dir, catalog_path
-from chaingraph.cli import main
+from chaingraph.naming.catalog import catalog_dir, catalog_path
+from chaingraph.cli.main import main
 from chaingraph.graphical import instant_centres, velocity_polygon
 from chaingraph.graphical.centres import centres_of
 from chaingraph.graphical.polygons import polygons_of
-from chaingraph.graphical.pose import pose_motion
+from chaingraph.kinematics.pose import pose_motion
 
 EXAMPLES = Path(__file__).resolve().parent.parent / "examples"
 
@@ -499,7 +499,7 @@ def test_a_piston_driven_engine_through_its_centres():
 
 def test_notebook_displays():
     chain = chaingraph.load(catalog_path("crank-and-slotted-lever-mechanism"))
-    from chaingraph.notebook import centres_html, polygons_html
+    from chaingraph.drawing.notebook import centres_html, polygons_html
     centres_page = centres_html(instant_centres(chain, at=45.0))
     polygons_page = polygons_html(velocity_polygon(chain, at=45.0))
     assert "<table>" in centres_page and "<svg" in centres_page and "I24" in centres_page

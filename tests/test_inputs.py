@@ -14,7 +14,7 @@ import pytest
 
 import chaingraph
 from chaingraph import AssemblyError, Chain, ChainFileError, Input, Joint, MechanismError
-from chaingraph.catalog import catalog_files, catalog_path
+from chaingraph.naming.catalog import catalog_files, catalog_path
 
 from .conftest import run_cli
 
@@ -292,7 +292,7 @@ def _admissible(chain, fixed, dof):
 
 @pytest.mark.slow
 def test_every_admissible_choice_of_inputs_of_the_atlas_to_8_links_solves():
-    from chaingraph.atlas import atlas_graphs
+    from chaingraph.structure.atlas import atlas_graphs
     solved, refused, checked, total = 0, [], 0, 0
     for links, dof in ((4, 1), (6, 1), (8, 1), (5, 2), (7, 2)):
         for entry in atlas_graphs(links, dof):

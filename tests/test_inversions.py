@@ -13,12 +13,12 @@ from networkx.algorithms.isomorphism import GraphMatcher
 
 import chaingraph
 from chaingraph import Chain, ChainStructureError, Joint, Mechanism
-from chaingraph.behaviour import behaviour, turning_links
-from chaingraph.catalog import catalog_files, catalog_path
-from chaingraph.generators import random_chain
-from chaingraph.identify import identify
-from chaingraph.inversions import inversions
-from chaingraph.isomorphism import (automorphism_orbits, canonical, canonical_form,
+from chaingraph.kinematics.behaviour import behaviour, turning_links
+from chaingraph.naming.catalog import catalog_files, catalog_path
+from chaingraph.structure.generators import random_chain
+from chaingraph.naming.identify import identify
+from chaingraph.naming.inversions import inversions
+from chaingraph.structure.isomorphism import (automorphism_orbits, canonical, canonical_form,
                                     is_isomorphic, isomorphism)
 
 from .conftest import run_cli
@@ -359,7 +359,7 @@ def test_a_large_chain_solves_each_inversions_behaviour_once(monkeypatch):
 
 
 def test_past_the_bound_no_behaviour_is_solved_and_the_note_says_so(monkeypatch):
-    from chaingraph.inversions import BEHAVIOUR_LINKS
+    from chaingraph.naming.inversions import BEHAVIOUR_LINKS
     calls = _counting_full_turns(monkeypatch)
     chain = _dyadic_chain((BEHAVIOUR_LINKS - 4) // 2 + 1)
     found = inversions(chain)

@@ -11,9 +11,9 @@ import pytest
 
 import chaingraph
 from chaingraph import Chain, Joint, MechanismError
-from chaingraph.catalog import catalog_files, catalog_path
-from chaingraph.identify import identify
-from chaingraph.inversions import inversions
+from chaingraph.naming.catalog import catalog_files, catalog_path
+from chaingraph.naming.identify import identify
+from chaingraph.naming.inversions import inversions
 
 from .conftest import run_cli
 from .test_inversions import _four_bar
@@ -103,7 +103,7 @@ def test_the_six_bar_chains_name_every_inversion_whatever_their_dimensions(stem,
 
 
 def test_the_report_names_every_inversion_of_the_six_bar_chains(tmp_path):
-    from chaingraph.report import build_report
+    from chaingraph.report.build import build_report
     build_report([catalog_path("watt-six-bar-chain"), catalog_path("stephenson-six-bar-chain")],
                  tmp_path / "r", progress=None)
     pages = "".join(p.read_text(encoding="utf-8") for p in (tmp_path / "r").rglob("*.html"))

@@ -14,7 +14,7 @@ from hypothesis import strategies as st
 
 import chaingraph
 from chaingraph import AssemblyError, Chain, Joint, Mechanism
-from chaingraph.catalog import catalog_path
+from chaingraph.naming.catalog import catalog_path
 
 from .conftest import run_cli
 
@@ -215,7 +215,7 @@ def test_every_input_of_every_inversion_of_every_catalog_chain_solves_or_is_refu
     the only refusals are the legitimate ones: a cam pair, or a mobility other than 1
     with that driver."""
     from chaingraph import MechanismError
-    from chaingraph.catalog import catalog_files
+    from chaingraph.naming.catalog import catalog_files
     solved = 0
     for path in catalog_files():
         chain = chaingraph.load(path)

@@ -9,8 +9,8 @@ from pathlib import Path
 import pytest
 
 import chaingraph
-from chaingraph.notebook import register
-from chaingraph.plots import draw_mechanism, plot_motion
+from chaingraph.drawing.notebook import register
+from chaingraph.drawing.plots import draw_mechanism, plot_motion
 
 from .conftest import catalog_path
 

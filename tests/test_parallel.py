@@ -9,7 +9,7 @@ import time
 
 import pytest
 
-from chaingraph.parallel import process_runner, serial
+from chaingraph._util.parallel import process_runner, serial
 
 from .conftest import alive, children, wait_for
 

@@ -8,8 +8,8 @@ from pathlib import Path
 
 import pytest
 
-from chaingraph.catalog import catalog_dir, catalog_files
-from chaingraph.report import build_report
+from chaingraph.naming.catalog import catalog_dir, catalog_files
+from chaingraph.report.build import build_report
 
 from .conftest import run_cli
 

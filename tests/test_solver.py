@@ -12,8 +12,8 @@ import pytest
 
 import chaingraph
 from chaingraph import AssemblyError, Chain, Joint, Mechanism, MechanismError
-from chaingraph.catalog import catalog_files, catalog_path
-from chaingraph.cli import main
+from chaingraph.naming.catalog import catalog_files, catalog_path
+from chaingraph.cli.main import main
 from chaingraph.kinematics import solve
 from chaingraph.kinematics.sweep import _evaluate_sweep
 from chaingraph.kinematics.plan import build_plan

@@ -7,9 +7,9 @@ and velocity and acceleration polygons at one input value.
 * :mod:`.draw` their pictures (matplotlib).
 """
 
-from .centres import Centre, InstantCentres, instant_centres
-from .polygons import Component, Image, Polygons, Relative, velocity_polygon
-from .pose import LinkMotion, PoseMotion, pose_motion
+from chaingraph.graphical.centres import Centre, InstantCentres, instant_centres
+from chaingraph.graphical.polygons import Component, Image, Polygons, Relative, velocity_polygon
+from chaingraph.kinematics.pose import LinkMotion, PoseMotion, pose_motion
 
 __all__ = ["instant_centres", "InstantCentres", "Centre", "velocity_polygon", "Polygons",
            "Image", "Relative", "Component", "pose_motion", "PoseMotion", "LinkMotion"]

@@ -29,7 +29,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from .pose import AtOneValue, PoseMotion, perp, pose_motion
+from chaingraph.kinematics.pose import AtOneValue, PoseMotion, perp, pose_motion
 
 __all__ = ["Centre", "InstantCentres", "instant_centres"]
 
@@ -185,7 +185,7 @@ def link_numbers(chain, fixed, inputs=()) -> dict:
     Examples
     --------
     >>> import chaingraph
-    >>> from chaingraph.catalog import catalog_path
+    >>> from chaingraph.naming.catalog import catalog_path
     >>> chain = chaingraph.load(catalog_path("stephenson-iii-mechanism"))
     >>> link_numbers(chain, "frame", ["crank"])
     {'frame': 1, 'crank': 2, 'ternary link': 3, 'left link': 4, 'right link': 5, 'rocker': 6}

@@ -25,7 +25,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from .pose import AtOneValue, PoseMotion, perp, pose_motion
+from chaingraph.kinematics.pose import AtOneValue, PoseMotion, perp, pose_motion
 
 __all__ = ["Component", "Relative", "Image", "Polygons", "velocity_polygon"]
 
@@ -335,7 +335,7 @@ def velocity_polygon(chain, *, at=None, fixed=None, driver=None, inputs=None,
     The crank and slotted lever, the crank at 90 degrees turning at 10 rad/s:
 
     >>> import chaingraph
-    >>> from chaingraph.catalog import catalog_path
+    >>> from chaingraph.naming.catalog import catalog_path
     >>> shaper = chaingraph.load(catalog_path("crank-and-slotted-lever-mechanism"))
     >>> p = chaingraph.velocity_polygon(shaper, at=90.0, omega=10.0)
     >>> [round(x, 6) for x in p.images["B"].velocity]           # the crank pin: 1200 mm/s

@@ -11,10 +11,10 @@
 * :mod:`.motion` :func:`solve` and the :class:`Motion` it returns (results).
 """
 
-from .motion import Motion, full_turns, solve
-from .plan import Plan, build_plan
-from .summary import OutputSignal, output_signal, path_direction, summary_rows
-from .sweep import Cycle, cycle, feasible_range
+from chaingraph.kinematics.motion import Motion, full_turns, solve
+from chaingraph.kinematics.plan import Plan, build_plan
+from chaingraph.kinematics.summary import OutputSignal, output_signal, path_direction, summary_rows
+from chaingraph.kinematics.sweep import Cycle, cycle, feasible_range
 
 __all__ = ["Motion", "Plan", "Cycle", "solve", "build_plan", "cycle", "feasible_range",
            "full_turns", "summary_rows", "path_direction", "output_signal",

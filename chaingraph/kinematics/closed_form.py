@@ -12,7 +12,7 @@ import math
 
 import numpy as np
 
-from .geometry import (_clamp_disc, _fit_two_points, _from_point, _line_of, _unit, _world,
+from chaingraph.kinematics.geometry import (_clamp_disc, _fit_two_points, _from_point, _line_of, _unit, _world,
                        make_pose, rotate)
 
 

@@ -8,7 +8,7 @@ import math
 
 import numpy as np
 
-from .geometry import rotate
+from chaingraph.kinematics.geometry import rotate
 
 
 # -- columns -------------------------------------------------------------------------

@@ -12,8 +12,8 @@ import math
 
 import numpy as np
 
-from ..errors import AssemblyError
-from .geometry import _fit_two_points, _unit, _world, make_pose, rotate
+from chaingraph.errors import AssemblyError
+from chaingraph.kinematics.geometry import _fit_two_points, _unit, _world, make_pose, rotate
 
 __all__ = ["residuals", "check_poses"]
 

@@ -12,7 +12,7 @@ import math
 
 import numpy as np
 
-from .equations import (_batched_inverse, _batched_solve, _form, _group_jacobian,
+from chaingraph.kinematics.equations import (_batched_inverse, _batched_solve, _form, _group_jacobian,
                         _group_residual, _slice, _with_group)
 
 
@@ -153,7 +153,7 @@ class _Branch:
         """d(residual)/dz: the group's Jacobian in its unknowns, and its derivative in
         the input, which is minus the velocity equations' right-hand side at unit
         input rate."""
-        from .rates import _Factor, rates     # rates use groups' forms: import here
+        from chaingraph.kinematics.rates import _Factor, rates     # rates use groups' forms: import here
         full = self._full(z)
         # the input's rate that moves tau by one radian per second
         vel, _, _ = rates(self.plan, full, self.plan.rate_scale * 180.0 / math.pi, 1,
@@ -319,7 +319,7 @@ def _known_along(plan, step, pose, theta, at, head):
     (continued from its nearest point of ``head``, the path's evaluation so far)."""
     if np.array_equal(at, theta):
         return pose
-    from .tracking import evaluate_at       # tracking solves groups by this module
+    from chaingraph.kinematics.tracking import evaluate_at       # tracking solves groups by this module
     k = np.abs(theta[:, None] - at[None, :]).argmin(axis=0)
     return evaluate_at(plan, at, head.reference(k), upto=plan.steps.index(step))[0]
 

@@ -16,15 +16,15 @@ from functools import lru_cache
 
 import numpy as np
 
-from .._util import short_list
-from ..chain import Input
-from ..errors import AssemblyError, MechanismError
-from .columns import _columns
-from .equations import check_poses
-from .plan import build_plan, chosen_inputs
-from .rates import rates
-from .summary import _cycle_theta, _summary
-from .sweep import Cycle, _evaluate_near, _evaluate_sweep, cycle
+from chaingraph._util.text import short_list
+from chaingraph.model.chain import Input
+from chaingraph.errors import AssemblyError, MechanismError
+from chaingraph.kinematics.columns import _columns
+from chaingraph.kinematics.equations import check_poses
+from chaingraph.kinematics.plan import build_plan, chosen_inputs
+from chaingraph.kinematics.rates import rates
+from chaingraph.kinematics.summary import _cycle_theta, _summary
+from chaingraph.kinematics.sweep import Cycle, _evaluate_near, _evaluate_sweep, cycle
 
 __all__ = ["Motion", "solve", "full_turns"]
 
@@ -180,7 +180,7 @@ def solve(mechanism, *, fixed=None, driver=None, inputs=None, start=None, stop=N
     Examples
     --------
     >>> import chaingraph
-    >>> from chaingraph.catalog import catalog_path
+    >>> from chaingraph.naming.catalog import catalog_path
     >>> shaper = chaingraph.load(catalog_path("crank-and-slotted-lever-mechanism"))
     >>> motion = chaingraph.solve(shaper, steps=36)
     >>> round(motion.summary["time_ratio"], 5), len(motion["theta"])

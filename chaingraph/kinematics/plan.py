@@ -34,8 +34,8 @@ from dataclasses import dataclass, replace
 
 import numpy as np
 
-from ..errors import MechanismError
-from .geometry import tidy
+from chaingraph.errors import MechanismError
+from chaingraph.kinematics.geometry import tidy
 
 __all__ = ["Constraint", "Step", "InputJoint", "Plan", "build_plan", "chosen_inputs"]
 
@@ -389,7 +389,7 @@ def build_plan(chain, fixed=None, driver=None, *, inputs=None, closed_form=True)
     Examples
     --------
     >>> import chaingraph
-    >>> from chaingraph.catalog import catalog_path
+    >>> from chaingraph.naming.catalog import catalog_path
     >>> engine = chaingraph.load(catalog_path("reciprocating-engine"))
     >>> plan = build_plan(engine, inputs=[chaingraph.Input("S")])
     >>> [(s.pattern, s.links) for s in plan.steps]

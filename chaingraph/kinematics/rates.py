@@ -13,9 +13,9 @@ import math
 
 import numpy as np
 
-from .equations import (_add, _batched_inverse, _dot3, _form, _gammas, _geometry,
+from chaingraph.kinematics.equations import (_add, _batched_inverse, _dot3, _form, _gammas, _geometry,
                         _group_matrix, _mul, _rows, _sub)
-from .geometry import rotate
+from chaingraph.kinematics.geometry import rotate
 
 __all__ = ["rates"]
 

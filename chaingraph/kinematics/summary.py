@@ -10,12 +10,12 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from .columns import _columns
-from .geometry import rotate, tidy
-from .rates import rates
-from .roots import bracketed_roots
-from .sweep import _evaluate_sweep, cycle
-from .tracking import evaluate_at
+from chaingraph.kinematics.columns import _columns
+from chaingraph.kinematics.geometry import rotate, tidy
+from chaingraph.kinematics.rates import rates
+from chaingraph.kinematics.roots import bracketed_roots
+from chaingraph.kinematics.sweep import _evaluate_sweep, cycle
+from chaingraph.kinematics.tracking import evaluate_at
 
 __all__ = ["summary_rows", "path_direction", "output_signal", "OutputSignal"]
 
@@ -26,7 +26,7 @@ def summary_rows(motion):
     Examples
     --------
     >>> import chaingraph
-    >>> from chaingraph.catalog import catalog_path
+    >>> from chaingraph.naming.catalog import catalog_path
     >>> m = chaingraph.solve(chaingraph.load(catalog_path("beam-engine")), steps=12)
     >>> dict(summary_rows(m))["time ratio"]
     '1.0466'
@@ -122,7 +122,7 @@ def output_signal(plan, output, columns, *, closed=False) -> OutputSignal | None
     Examples
     --------
     >>> import chaingraph
-    >>> from chaingraph.catalog import catalog_path
+    >>> from chaingraph.naming.catalog import catalog_path
     >>> m = chaingraph.solve(chaingraph.load(catalog_path("reciprocating-engine")), steps=8)
     >>> s = output_signal(m.plan, "crosshead", m.columns)
     >>> s.kind, s.name, s.unit

@@ -10,11 +10,11 @@ from functools import lru_cache
 
 import numpy as np
 
-from ..errors import AssemblyError
-from . import groups
-from .closed_form import _dyad_roots
-from .roots import bracketed_roots
-from .tracking import Evaluation, Reference, evaluate, evaluate_at, failing_step
+from chaingraph.errors import AssemblyError
+from chaingraph.kinematics import groups
+from chaingraph.kinematics.closed_form import _dyad_roots
+from chaingraph.kinematics.roots import bracketed_roots
+from chaingraph.kinematics.tracking import Evaluation, Reference, evaluate, evaluate_at, failing_step
 
 __all__ = ["Cycle", "Anchor", "cycle", "anchor", "feasible_range"]
 

@@ -14,10 +14,10 @@ import math
 
 import numpy as np
 
-from .closed_form import _dyad_roots, _initial_sign, _single
-from .equations import _form
-from .geometry import _DISC_TOL, _FIXED
-from .groups import _newton, _newton_path
+from chaingraph.kinematics.closed_form import _dyad_roots, _initial_sign, _single
+from chaingraph.kinematics.equations import _form
+from chaingraph.kinematics.geometry import _DISC_TOL, _FIXED
+from chaingraph.kinematics.groups import _newton, _newton_path
 
 __all__ = ["Evaluation", "Reference", "evaluate", "evaluate_at", "failing_step"]
 

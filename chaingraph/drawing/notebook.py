@@ -1,0 +1,168 @@
+"""Displays in a notebook: short plain reprs and rich HTML and SVG for chains,
+classifications, inversions and solved motions, and an inline animation.
+
+:func:`register` hands these functions to IPython's display formatters (``import
+chaingraph`` in a notebook does it), so Jupyter shows a chain as its kinematic skeleton,
+a classification and inversions as tables, a motion as its summary and plot, and
+instant centres and polygons as tables and pictures. The results themselves know
+nothing of notebooks (the displays are drawn here, above them). Nothing here needs
+IPython; :meth:`Motion.to_frame` needs pandas (``pip install chaingraph[notebook]``).
+"""
+
+from __future__ import annotations
+
+import html
+import io
+
+__all__ = ["Animation", "animate", "figure_svg", "register", "DISPLAYS"]
+
+
+def figure_svg(fig) -> str:
+    """A matplotlib Figure as SVG text."""
+    buf = io.StringIO()
+    fig.savefig(buf, format="svg")
+    return buf.getvalue()
+
+
+def _table(rows, header=None) -> str:
+    out = ["<table>"]
+    if header:
+        out.append("<tr>" + "".join(f"<th>{html.escape(str(h))}</th>" for h in header) + "</tr>")
+    for row in rows:
+        out.append("<tr>" + "".join(f"<td>{html.escape(str(c))}</td>" for c in row) + "</tr>")
+    out.append("</table>")
+    return "".join(out)
+
+
+def chain_svg(chain) -> str:
+    from chaingraph.drawing.mechanism import skeleton_svg
+    return skeleton_svg(chain)
+
+
+def classification_html(result) -> str:
+    rows = [("links L", result.links), ("pairs P", result.pairs),
+            ("joint equivalents J", result.joint_equivalents),
+            ("higher pairs H", result.higher_pairs), ("loops", result.loops),
+            ("mobility F", result.mobility)]
+    rows += [(c.rule, f"{c.lhs} vs {c.rhs}: {c.verdict}" if c.applicable
+              else f"not applicable: {c.note}") for c in result.checks]
+    rows += [("verdict", result.verdict), ("degenerate", "yes" if result.degenerate else "no")]
+    return f"<b>{html.escape(result.name)}</b>" + _table(rows)
+
+
+def inversions_html(result) -> str:
+    rows = [(i.fixed, i.class_, "; ".join(i.names) or "-", i.behaviour or "-")
+            for i in result.inversions]
+    return (f"<b>{html.escape(result.name)}</b>: {result.links} links, {result.classes} "
+            "distinct inversions" + _table(rows, ["fixed", "class", "names", "behaviour"]))
+
+
+def motion_html(motion) -> str:
+    from chaingraph.kinematics import summary_rows
+    from chaingraph.drawing.plots import plot_motion
+    rows = [("mechanism", motion.name), *summary_rows(motion)]
+    return _table(rows) + figure_svg(plot_motion(motion))
+
+
+def centres_html(centres) -> str:
+    """The centres as a table and the picture of the construction."""
+    from chaingraph.drawing.constructions import draw_centres
+    return (f"<b>{html.escape(centres.name)}</b>: instantaneous centres at input "
+            f"{centres.input:.6g}" + _table(centres.rows(), ["centre", "links", "x", "y",
+                                                              "found from"])
+            + figure_svg(draw_centres(centres)))
+
+
+def polygons_html(polygons) -> str:
+    """The images as a table and the two polygons."""
+    from chaingraph.drawing.constructions import draw_polygons
+    return (f"<b>{html.escape(polygons.name)}</b>: velocity and acceleration polygons at "
+            f"input {polygons.input:.6g}"
+            + _table(polygons.image_rows(), ["point", "link", "vx", "vy", "|v|", "ax",
+                                             "ay", "|a|"])
+            + figure_svg(draw_polygons(polygons)))
+
+
+class Animation:
+    """One cycle of a solved motion as an animated SVG (SMIL: no script, no network).
+    A notebook shows it inline; :meth:`save` writes it."""
+
+    def __init__(self, svg: str):
+        self.svg = svg
+
+    def __repr__(self):
+        return f"Animation(svg={len(self.svg)} characters)"
+
+    def _repr_svg_(self):
+        return self.svg
+
+    def save(self, path) -> None:
+        with open(path, "w", encoding="utf-8") as f:
+            f.write(self.svg)
+
+
+def animate(motion, *, frames=48, seconds=4.0) -> Animation:
+    """The motion animated, for a notebook (``chaingraph.animate(motion)``).
+
+    Examples
+    --------
+    >>> import chaingraph
+    >>> from chaingraph.naming.catalog import catalog_path
+    >>> m = chaingraph.solve(chaingraph.load(catalog_path("beam-engine")), steps=36)
+    >>> a = animate(m, frames=12)
+    >>> "<svg" in a.svg and a.svg.count('class="frame"') == 12
+    True
+    """
+    from chaingraph.drawing.mechanism import mechanism_svg
+    return Animation(mechanism_svg(motion, frames=frames, seconds=seconds))
+
+
+def _displays():
+    """(class, MIME type, function) of every rich display."""
+    from chaingraph.model.chain import Chain
+    from chaingraph.structure.classify import Classification
+    from chaingraph.graphical.centres import InstantCentres
+    from chaingraph.graphical.polygons import Polygons
+    from chaingraph.naming.inversions import Inversions
+    from chaingraph.kinematics import Motion
+    return ((Chain, "image/svg+xml", chain_svg),
+            (Classification, "text/html", classification_html),
+            (Inversions, "text/html", inversions_html),
+            (Motion, "text/html", motion_html),
+            (InstantCentres, "text/html", centres_html),
+            (Polygons, "text/html", polygons_html))
+
+
+DISPLAYS = ("Chain", "Classification", "Inversions", "Motion", "InstantCentres",
+            "Polygons")
+
+
+def register(shell=None) -> bool:
+    """Register the rich displays with an IPython shell's display formatters (the
+    running one by default); returns whether there was a shell to register with.
+
+    Examples
+    --------
+    >>> class Formatter:
+    ...     def __init__(self): self.types = {}
+    ...     def for_type(self, cls, fn): self.types[cls.__name__] = fn
+    >>> class Shell:
+    ...     class display_formatter:
+    ...         formatters = {"text/html": Formatter(), "image/svg+xml": Formatter()}
+    >>> register(Shell())
+    True
+    >>> sorted(Shell.display_formatter.formatters["text/html"].types)
+    ['Classification', 'InstantCentres', 'Inversions', 'Motion', 'Polygons']
+    """
+    if shell is None:
+        try:
+            from IPython import get_ipython
+        except ImportError:
+            return False
+        shell = get_ipython()
+        if shell is None:
+            return False
+    formatters = shell.display_formatter.formatters
+    for cls, mime, fn in _displays():
+        formatters[mime].for_type(cls, fn)
+    return True

@@ -1,0 +1,1496 @@
+"""Assembling a mechanism's drawn pose from its dimensions.
+
+:func:`assemble` takes a chain's structure (its joints and mechanism, without
+coordinates) and its :class:`~chaingraph.model.dimensions.Dimensions` (lengths, sliding lines,
+the inputs' values, assembly modes) and finds where every joint is, as a textbook
+solution does with compass and ruler:
+
+* each input joint welds its two links together at the input's value (the crank to the
+  frame at its angle, a piston to its cylinder at its slide);
+* a link joined to placed links at two points, or at one point with its direction known
+  (through a sliding pair), is placed directly; links whose directions are all known are
+  placed together by solving their (linear) equations;
+* a dyad (two links joined to each other and each to a placed link) is placed in closed
+  form: two circles (RRR), a circle and a line (RRP), or a line tangent to two circles
+  (RPR); each has two assembly modes, chosen by ``[assembly]``, else by the typed or
+  rough (``near``) positions of its joints, else by the default (``left``, ``ahead``);
+* what is left (an Assur group of higher class, as in Stephenson's third inversion) is
+  solved by Newton's method from the rough positions of its joints.
+
+:func:`measure` is the inverse: the dimensions of a drawn mechanism, written as a chain
+file. :func:`snap_to_lines` moves the joints of a coordinate file that lie within
+drawing-level rounding of a sliding line onto it.
+"""
+
+from __future__ import annotations
+
+import math
+import warnings
+from dataclasses import dataclass, replace
+
+import numpy as np
+
+from chaingraph.model.chain import Chain, Joint, Point
+from chaingraph.model.chainfile import _toml_number, _toml_string, parse_text
+from chaingraph.model.dimensions import LineSpec, MODE_WORDS, _rotate, _sub, link_features, link_shape
+from chaingraph.errors import DimensionError, PoseAdjustedWarning
+
+__all__ = ["Assembly", "Mode", "assemble", "measure", "snap_to_lines",
+           "SILENT", "ROUNDING"]
+
+#: typed positions within this fraction of the mechanism's size are taken as exact
+SILENT = 1e-6
+#: up to this fraction of the size a typed position is drawing-level rounding: moved to
+#: the consistent pose with a warning; beyond it, refused
+ROUNDING = 1e-3
+
+
+@dataclass(frozen=True)
+class Mode:
+    """The assembly mode of one part: ``part`` (the joint a dyad places, or
+    ``"LINK:JOINT"`` for the side of a link's joint), ``word`` (left, right, ahead,
+    behind), ``reference`` (what the word is relative to), ``source`` ("given",
+    "sketch" or "default")."""
+
+    part: str
+    word: str
+    reference: str
+    source: str
+
+
+@dataclass(frozen=True, eq=False)
+class Assembly:
+    """The drawn pose found from a mechanism's dimensions: ``joints`` ``{id: (x, y)}``
+    (for a P joint the block's reference point), ``axes`` ``{P joint: degrees}``,
+    ``points`` ``{id: (x, y)}``; ``modes`` the assembly mode of every part that has two;
+    ``groups`` the links solved by Newton's method; ``size`` the mechanism's size;
+    ``links`` ``{link: (phi, x, y)}`` where each link's frame is (radians, position)."""
+
+    joints: dict
+    axes: dict
+    points: dict
+    modes: tuple
+    groups: tuple
+    size: float
+    links: dict
+
+
+class _DoesNotClose(Exception):
+    """A part that cannot be assembled at the inputs' values (internal)."""
+
+    def __init__(self, part, problem):
+        self.part = part
+        self.problem = problem
+        super().__init__(problem)
+
+
+# -- small geometry --------------------------------------------------------------------
+def _rot(phi, p):
+    return _rotate(p, phi)
+
+
+def _apply(pose, p):
+    q = _rot(pose[0], p)
+    return (q[0] + pose[1], q[1] + pose[2])
+
+
+def _compose(a, b):
+    """The transform ``a`` after ``b``."""
+    t = _apply(a, (b[1], b[2]))
+    return (a[0] + b[0], t[0], t[1])
+
+
+def _inverse(a):
+    t = _rot(-a[0], (-a[1], -a[2]))
+    return (-a[0], t[0], t[1])
+
+
+def _normal(angle):
+    return (-math.sin(angle), math.cos(angle))
+
+
+def _unit(angle):
+    return (math.cos(angle), math.sin(angle))
+
+
+def _dot(a, b):
+    return a[0] * b[0] + a[1] * b[1]
+
+
+def _cross(a, b):
+    return a[0] * b[1] - a[1] * b[0]
+
+
+def _line_in(pose, line):
+    """A line (angle, offset) of a body frame, in the frame ``pose`` maps to."""
+    angle = line[0] + pose[0]
+    return (angle, line[1] + _dot(_normal(angle), (pose[1], pose[2])))
+
+
+def _from_two(q1, w1, q2, w2):
+    """The pose that takes body points q1, q2 to w1, w2 (their distances agree)."""
+    phi = (math.atan2(w2[1] - w1[1], w2[0] - w1[0])
+           - math.atan2(q2[1] - q1[1], q2[0] - q1[0]))
+    r = _rot(phi, q1)
+    return (phi, w1[0] - r[0], w1[1] - r[1])
+
+
+def _fmt(x):
+    return f"{x:.6g}"
+
+
+# -- the model: links' frames, bodies welded by inputs, constraints -------------------------
+class _Model:
+    """Everything the assembly needs, built once per (structure, dimensions)."""
+
+    def __init__(self, chain, points, dims, fail):
+        self.chain, self.points, self.dims, self.fail = chain, points, dims, fail
+        m = chain.mechanism
+        if m is None:
+            fail("a file with [lengths] needs [mechanism] (the fixed link and the input) "
+                 "to be assembled", "[mechanism]")
+        bad = [j.id for j in chain.joints if j.kind not in ("R", "P")]
+        if bad:
+            fail(f"only R and P joints can be given by lengths; {', '.join(bad)} "
+                 f"{'is' if len(bad) == 1 else 'are'} not", f"joint {bad[0]!r}")
+        self.fixed = m.fixed
+        self.inputs = self._inputs()
+        self.scale = self._scale()
+        self.sides_used = set()
+        self.shape_modes = []
+        self.corrections = {}
+        self.frames = {link: self._frame(link) for link in chain.links}
+        self.sketch = dict(dims.near)
+        self.sketch.update(dims.typed)
+
+    # inputs ---------------------------------------------------------------------------
+    def _inputs(self):
+        from chaingraph.kinematics.plan import chosen_inputs
+        chain, dims, fail = self.chain, self.dims, self.fail
+        fixed, driver, inputs = chosen_inputs(chain)
+        out = []
+        if inputs:
+            if None in dims.values:
+                fail("'at' in [mechanism] is the driver's angle; with 'inputs', give each "
+                     "input's value as 'at' in its table", "[mechanism]")
+            for item in inputs:
+                j = chain.joint(item.joint)
+                if j.kind == "R":
+                    a, b = ((fixed, next(x for x in j.links if x != fixed))
+                            if fixed in j.links else (j.links[0], j.links[1]))
+                else:
+                    a, b = j.links
+                out.append((j, a, b, dims.values.get(j.id, 0.0)))
+        elif driver is not None:
+            pivots = sorted(j.id for j in chain.joints
+                            if j.kind == "R" and fixed in j.links and driver in j.links)
+            if not pivots:
+                fail(f"the driver {driver!r} is not pinned to the fixed link {fixed!r} by an "
+                     "R joint", "[mechanism]")
+            out.append((chain.joint(pivots[0]), fixed, driver, dims.values.get(None, 0.0)))
+        else:
+            fail("no driver or inputs: the lengths are assembled at the input's value, so "
+                 "name the driver (or the inputs) and give 'at'", "[mechanism]")
+        named = {j.id for j, *_ in out}
+        for key in dims.values:
+            if key is not None and key not in named:
+                fail(f"'at' is given for {key!r}, which is not an input", "[mechanism]")
+        return out
+
+    def _scale(self):
+        values = [abs(v) for e in self.dims.lengths.values() for k, v in e.items()
+                  if len(k) == 2]
+        values += [abs(s.offset) for s in self.dims.lines.values()]
+        typed = list(self.dims.typed.values())
+        if typed:
+            xs, ys = [p[0] for p in typed], [p[1] for p in typed]
+            values += [max(xs) - min(xs), max(ys) - min(ys)]
+        return max(values + [1e-300])
+
+    # one link's frame --------------------------------------------------------------------
+    def _frame(self, link):
+        """``(points, lines)`` of ``link`` in its frame: points ``{id: (x, y)}`` (R
+        joints and points), lines ``{P joint: (angle rad, offset)}``."""
+        chain, dims, fail = self.chain, self.dims, self.fail
+        features = link_features(chain.joints, self.points, link)
+        slides = sorted((j for j in chain.joints if j.kind == "P" and link in j.links),
+                        key=lambda j: j.id)
+        given = link in dims.lengths
+        if link == self.fixed and not given:
+            return self._fixed_frame(link, features, slides)
+        if not given and len(features) >= 2:
+            fail(f"no length given for link {link!r} (joints and points: "
+                 f"{', '.join(features)}): add it under [lengths]",
+                 f"[lengths] {link!r}")
+        sides = dims.modes.get(link, {})
+        if isinstance(sides, str):
+            sides = {f: sides for f in features[2:]}
+        for f in sides:
+            if f not in features:
+                fail(f"names no joint or point of link {link!r} "
+                     f"({', '.join(features)})", f"[assembly] {link!r}")
+        signs = {f: MODE_WORDS[w] for f, w in sides.items()}
+        shape, placed = link_shape(link, features, dims.lengths.get(link, {}), signs,
+                                   lambda problem: fail(problem, f"[lengths] {link!r}"))
+        self.sides_used.add(link)
+        for f, (a, b, side) in placed.items():
+            self.shape_modes.append(Mode(f"{link}:{f}", "left" if side > 0 else "right",
+                                         f"of the line {a}\u2192{b} on link {link!r}",
+                                         "given" if f in sides else "default"))
+        lines = {}
+        for k, j in enumerate(slides):
+            spec = dims.lines.get((j.id, link))
+            where = f"joint {j.id!r}"
+            if len(features) < 2 and k == 0:
+                # this line is the link's reference line
+                if spec is not None and spec.angle != 0:
+                    fail(f"the sliding line is the reference line of {link!r} (a link "
+                         "with fewer than two joints and points), so its angle on that "
+                         "link is 0", where)
+                if not features and spec is not None and spec.offset != 0:
+                    fail(f"{link!r} has no R joint or point, so its origin is on this "
+                         "sliding line: the offset on it is 0", where)
+                lines[j.id] = (0.0, spec.offset if spec else 0.0)
+            else:
+                spec = spec or LineSpec()
+                lines[j.id] = (math.radians(spec.angle), spec.offset)
+        if link == self.fixed:
+            return self._place_fixed_shape(link, features, shape, lines, slides)
+        return shape, lines
+
+    def _fixed_frame(self, link, features, slides):
+        dims, fail = self.dims, self.fail
+        shape, lines = {}, {}
+        for f in features:
+            if f not in dims.typed:
+                fail(f"{f!r} is on the fixed link {link!r}: give its 'at' (or the fixed "
+                     f"link's lengths under [lengths])", f"joint {f!r}")
+            shape[f] = dims.typed[f]
+        for j in slides:
+            if (j.id, link) in dims.lines:
+                fail("the fixed link is given by coordinates: give its sliding line by "
+                     "'at' and 'axis'", f"joint {j.id!r}")
+            if j.id not in dims.typed or j.id not in dims.axes:
+                fail(f"the sliding line on the fixed link {link!r} needs 'at' (a point of "
+                     "it) and 'axis' (its direction, degrees)", f"joint {j.id!r}")
+            angle = math.radians(dims.axes[j.id])
+            lines[j.id] = (angle, _dot(_normal(angle), dims.typed[j.id]))
+        return shape, lines
+
+    def _place_fixed_shape(self, link, features, shape, lines, slides):
+        """A fixed link given by lengths: its first joint at its 'at' (else the
+        origin), its reference line in the direction given (else +x)."""
+        origin = self.dims.typed.get(features[0], (0.0, 0.0)) if features else (0.0, 0.0)
+        pose = (math.radians(self.dims.directions.get(link, 0.0)), origin[0], origin[1])
+        shape = {f: _apply(pose, p) for f, p in shape.items()}
+        out = {}
+        for j in slides:
+            if (j.id, link) in self.dims.lines or j.id not in self.dims.axes:
+                out[j.id] = _line_in(pose, lines[j.id])
+            else:
+                angle = math.radians(self.dims.axes[j.id])
+                out[j.id] = (angle, _dot(_normal(angle), self.dims.typed[j.id]))
+        return shape, out
+
+    # directions that inputs are measured by -------------------------------------------------
+    def _beta(self, link, joint):
+        """The direction, in ``link``'s frame, from ``joint`` to the link's first other
+        joint by id order (the input's angle is measured by it); 0 on the fixed link."""
+        if link == self.fixed:
+            return 0.0
+        shape = self.frames[link][0]
+        here = shape[joint.id]
+        for j in sorted(self.chain.joints_of(link), key=lambda j: j.id):
+            if j.id == joint.id:
+                continue
+            if j.kind != "R":
+                # toward a sliding pair's reference point: first along its line; the
+                # assembly corrects this once the point is placed (see ``assemble``)
+                return self.frames[link][1][j.id][0] + self.corrections.get(link, 0.0)
+            p = shape[j.id]
+            if math.dist(p, here) > 1e-12 * self.scale:
+                return math.atan2(p[1] - here[1], p[0] - here[0])
+        return 0.0
+
+
+# -- the assembly at given input values ---------------------------------------------------
+class _Solver:
+    def __init__(self, model, values):
+        self.model = model
+        self.chain = model.chain
+        self.values = values
+        self.modes = []
+        self.groups = []
+        self.used_modes = set()
+        self._bodies()
+        self._constraints()
+
+    def _bodies(self):
+        """Weld links by the inputs; ``self.body[link] = (body, transform in body)``."""
+        model = self.model
+        body = {model.fixed: (model.fixed, (0.0, 0.0, 0.0))}
+        welds = {}
+        for (j, a, b, _), value in zip(model.inputs, self.values):
+            welds.setdefault(a, []).append((j, a, b, value))
+            welds.setdefault(b, []).append((j, a, b, value))
+        order = [model.fixed] + [x for x in self.chain.links if x != model.fixed]
+        self.loops, tree = [], set()
+        for start in order:
+            if start in body and start != model.fixed:
+                continue
+            if start not in body:
+                body[start] = (start, (0.0, 0.0, 0.0))
+            stack = [start]
+            while stack:
+                x = stack.pop()
+                for j, a, b, value in welds.get(x, []):
+                    y = b if x == a else a
+                    rel = self._weld(j, a, b, value)     # b in a's frame
+                    if x == b:
+                        rel = _inverse(rel)
+                    if y in body:
+                        if j.id not in tree:       # a weld that closes a loop of welds
+                            self.loops.append((j, x, y, rel))
+                        continue
+                    tree.add(j.id)
+                    body[y] = (body[x][0], _compose(body[x][1], rel))
+                    stack.append(y)
+        self.body = body
+        self.pose = {model.fixed: (0.0, 0.0, 0.0)}
+        self.angle = {model.fixed: 0.0}
+
+    def _weld(self, joint, a, b, value):
+        model = self.model
+        (pa, la), (pb, lb) = model.frames[a], model.frames[b]
+        if joint.kind == "R":
+            phi = math.radians(value) - model._beta(b, joint) + model._beta(a, joint)
+            r = _rot(phi, pb[joint.id])
+            return (phi, pa[joint.id][0] - r[0], pa[joint.id][1] - r[1])
+        (ag, eg), (ak, ek) = la[joint.id], lb[joint.id]
+        phi = ag - ak
+        ref_g = tuple(eg * v for v in _normal(ag))
+        ref_k = _rot(phi, tuple(ek * v for v in _normal(ak)))
+        u = _unit(ag)
+        return (phi, ref_g[0] + value * u[0] - ref_k[0], ref_g[1] + value * u[1] - ref_k[1])
+
+    def _constraints(self):
+        """Non-input joints between links as (kind, joint, (link, link))."""
+        inputs = {j.id for j, *_ in self.model.inputs}
+        out = []
+        for j in self.chain.joints:
+            if j.id in inputs:
+                continue
+            if j.kind == "R":
+                base = self.model.fixed if self.model.fixed in j.links else j.links[0]
+                out += [("R", j.id, base, x) for x in j.links if x != base]
+            else:
+                out.append(("P", j.id, j.links[0], j.links[1]))
+        self.constraints = out
+
+    # features in body frames and in the world
+    def point(self, link, name):
+        body, t = self.body[link]
+        return body, _apply(t, self.model.frames[link][0][name])
+
+    def line(self, link, name):
+        body, t = self.body[link]
+        return body, _line_in(t, self.model.frames[link][1][name])
+
+    def world_point(self, link, name):
+        body, q = self.point(link, name)
+        return _apply(self.pose[body], q)
+
+    def world_line(self, link, name):
+        body, l = self.line(link, name)
+        return _line_in(self.pose[body], l)
+
+    def ends(self, c):
+        """The constraint's two bodies and their features in body frames."""
+        kind, j, a, b = c
+        get = self.point if kind == "R" else self.line
+        (ba, fa), (bb, fb) = get(a, j), get(b, j)
+        return (ba, fa), (bb, fb)
+
+    # the solve
+    def run(self):
+        bodies = {b for b, _ in self.body.values()}
+        guard = 0
+        while len(self.pose) < len(bodies):
+            guard += 1
+            if guard > 4 * len(bodies) + 8:
+                break
+            self._propagate_angles()
+            if self._singles() or self._clusters() or self._dyads():
+                continue
+            self._group([b for b in sorted(bodies) if b not in self.pose])
+        self._check()
+        return self
+
+    def _propagate_angles(self):
+        changed = True
+        while changed:
+            changed = False
+            for c in self.constraints:
+                if c[0] != "P":
+                    continue
+                (ba, la), (bb, lb) = self.ends(c)
+                for x, lx, y, ly in ((ba, la, bb, lb), (bb, lb, ba, la)):
+                    if x in self.angle and y not in self.angle:
+                        self.angle[y] = self.angle[x] + lx[0] - ly[0]
+                        changed = True
+
+    def _rows(self, bodies):
+        """Linear equations in the translations of ``bodies`` (directions known):
+        rows (coefficient dict, rhs)."""
+        rows = []
+        for c in self.constraints:
+            (ba, fa), (bb, fb) = self.ends(c)
+            if ba == bb or (ba not in bodies and bb not in bodies):
+                continue
+            if any(x not in bodies and x not in self.pose for x in (ba, bb)):
+                continue
+            if c[0] == "R":
+                wa, wb = _rot(self.angle[ba], fa), _rot(self.angle[bb], fb)
+                for k in (0, 1):
+                    coef, rhs = {}, wb[k] - wa[k]
+                    for x, sign in ((ba, 1.0), (bb, -1.0)):
+                        if x in bodies:
+                            coef[(x, k)] = coef.get((x, k), 0.0) + sign
+                        else:
+                            rhs -= sign * self.pose[x][1 + k]
+                    rows.append((coef, rhs))
+            else:
+                angle = fa[0] + self.angle[ba]
+                n = _normal(angle)
+                coef, rhs = {}, fb[1] - fa[1]
+                for x, sign in ((ba, 1.0), (bb, -1.0)):
+                    for k in (0, 1):
+                        if x in bodies:
+                            coef[(x, k)] = coef.get((x, k), 0.0) + sign * n[k]
+                        else:
+                            rhs -= sign * n[k] * self.pose[x][1 + k]
+                rows.append((coef, rhs))
+        return rows
+
+    def _solve_linear(self, bodies):
+        rows = self._rows(bodies)
+        keys = [(b, k) for b in bodies for k in (0, 1)]
+        if len(rows) < len(keys):
+            return False
+        A = np.array([[r[0].get(key, 0.0) for key in keys] for r in rows])
+        y = np.array([r[1] for r in rows])
+        if np.linalg.matrix_rank(A, tol=1e-9 * max(1.0, np.abs(A).max())) < len(keys):
+            return False
+        t, *_ = np.linalg.lstsq(A, y, rcond=None)
+        for b in bodies:
+            self.pose[b] = (self.angle[b], float(t[keys.index((b, 0))]),
+                            float(t[keys.index((b, 1))]))
+        return True
+
+    def _singles(self):
+        """Bodies placed from placed ones alone: two points, or directions known."""
+        done = False
+        for b in sorted({x for x, _ in self.body.values()}):
+            if b in self.pose:
+                continue
+            if b in self.angle:
+                if self._solve_linear([b]):
+                    done = True
+                continue
+            anchors = []
+            for c in self.constraints:
+                if c[0] != "R":
+                    continue
+                (ba, fa), (bb, fb) = self.ends(c)
+                for x, fx, y, fy in ((ba, fa, bb, fb), (bb, fb, ba, fa)):
+                    if x == b and y in self.pose and y != b:
+                        anchors.append((fx, _apply(self.pose[y], fy), c[1]))
+            far = [(q, w, j) for q, w, j in anchors
+                   if math.dist(q, anchors[0][0]) > 1e-9 * self.model.scale]
+            if anchors and far:
+                (q1, w1, j1), (q2, w2, j2) = anchors[0], far[0]
+                held, apart = math.dist(q1, q2), math.dist(w1, w2)
+                if abs(held - apart) > 1e-9 * self.model.scale:
+                    raise _DoesNotClose(j2, f"joints {j1} and {j2} are {_fmt(apart)} apart, "
+                                            f"but the link {self._name(b)} holds them "
+                                            f"{_fmt(held)} apart")
+                self.pose[b] = _from_two(q1, w1, q2, w2)
+                self.angle[b] = self.pose[b][0]
+                done = True
+        return done
+
+    def _clusters(self):
+        free = [b for b in self.angle if b not in self.pose]
+        if len(free) < 2:
+            return False
+        # components of free bodies joined by constraints
+        parent = {b: b for b in free}
+
+        def root(x):
+            while parent[x] != x:
+                x = parent[x]
+            return x
+
+        for c in self.constraints:
+            (ba, _), (bb, _) = self.ends(c)
+            if ba in parent and bb in parent:
+                parent[root(ba)] = root(bb)
+        groups = {}
+        for b in free:
+            groups.setdefault(root(b), []).append(b)
+        return any(self._solve_linear(sorted(g)) for g in groups.values() if len(g) > 1)
+
+    def _name(self, body):
+        links = [x for x, (b, _) in self.body.items() if b == body]
+        return " + ".join(repr(x) for x in links)
+
+    def _to_placed(self, b):
+        out = []
+        for c in self.constraints:
+            (ba, fa), (bb, fb) = self.ends(c)
+            if ba == b and bb in self.pose and bb != b:
+                out.append((c, fa, bb, fb))
+            elif bb == b and ba in self.pose and ba != b:
+                out.append((c, fb, ba, fa))
+        return out
+
+    def _between(self, b1, b2):
+        out = []
+        for c in self.constraints:
+            (ba, fa), (bb, fb) = self.ends(c)
+            if (ba, bb) == (b1, b2):
+                out.append((c, fa, fb))
+            elif (ba, bb) == (b2, b1):
+                out.append((c, fb, fa))
+        return out
+
+    def _dyads(self):
+        free = sorted(b for b in {x for x, _ in self.body.values()} if b not in self.pose)
+        for i, b1 in enumerate(free):
+            for b2 in free[i + 1:]:
+                link = self._between(b1, b2)
+                if len(link) != 1:
+                    continue
+                one, two = self._to_placed(b1), self._to_placed(b2)
+                if len(one) != 1 or len(two) != 1:
+                    continue
+                kinds = one[0][0][0] + link[0][0][0] + two[0][0][0]
+                if kinds == "RRR" and b1 not in self.angle and b2 not in self.angle:
+                    self._rrr(b1, b2, one[0], link[0], two[0])
+                    return True
+                if kinds == "RRP" and b1 not in self.angle and b2 in self.angle:
+                    self._rrp(b1, b2, one[0], link[0], two[0])
+                    return True
+                if kinds == "PRR" and b2 not in self.angle and b1 in self.angle:
+                    c, fa, fb = link[0]
+                    self._rrp(b2, b1, two[0], (c, fb, fa), one[0])
+                    return True
+                if kinds == "RPR" and b1 not in self.angle and b2 not in self.angle:
+                    self._rpr(b1, b2, one[0], link[0], two[0])
+                    return True
+        return False
+
+    def _choose(self, part, reference, candidates, words):
+        """Pick one of two candidate placements ``{body: pose}``: the mode given in
+        ``[assembly]``, else the one nearest the sketched positions, else the first."""
+        given = self.model.dims.modes.get(part)
+        self.used_modes.add(part)
+        if isinstance(given, str):
+            if given not in words:
+                raise DimensionError(
+                    f"the mode of {part} is {words[0]!r} or {words[1]!r} "
+                    f"({reference}), got {given!r}", source=self.chain.source,
+                    where=f"[assembly] {part!r}")
+            k, source = words.index(given), "given"
+        else:
+            scores = [self._distance_to_sketch(c) for c in candidates]
+            if None not in scores and scores[0] != scores[1]:
+                k, source = int(np.argmin(scores)), "sketch"
+            else:
+                k, source = 0, "default"
+        self.modes.append(Mode(part, words[k], reference, source))
+        self.pose.update(candidates[k])
+        for b, p in candidates[k].items():
+            self.angle[b] = p[0]
+
+    def _distance_to_sketch(self, placement):
+        total, seen = 0.0, False
+        sketch = self.model.sketch
+        for link, (body, t) in self.body.items():
+            if body not in placement:
+                continue
+            pts, lines = self.model.frames[link]
+            for name, p in pts.items():
+                if name in sketch:
+                    total += math.dist(_apply(placement[body], _apply(t, p)), sketch[name]) ** 2
+                    seen = True
+            for name, line in lines.items():
+                axis = self.model.dims.axes.get(name)
+                if axis is not None and self.chain.joint(name).links[0] == link:
+                    angle = line[0] + t[0] + placement[body][0]
+                    turn = math.remainder(angle - math.radians(axis), 2 * math.pi)
+                    total += (turn * self.model.scale) ** 2
+                    seen = True
+        return total if seen else None
+
+    def _rrr(self, b1, b2, one, link, two):
+        (c1, q1, _, f1), (c12, s1, s2), (c2, q2, _, f2) = one, link, two
+        w1, w2 = _apply(self.pose[one[2]], f1), _apply(self.pose[two[2]], f2)
+        r1, r2 = math.dist(q1, s1), math.dist(q2, s2)
+        j = c12[1]
+        d = math.dist(w1, w2)
+        known = sorted([(c1[1], w1), (c2[1], w2)])
+        if d == 0:
+            raise _DoesNotClose(j, f"the dyad at joint {j}: its joints {c1[1]} and {c2[1]} "
+                                   "are at one place")
+        x = (d * d + r1 * r1 - r2 * r2) / (2 * d)
+        h2 = r1 * r1 - x * x
+        if h2 < -1e-12 * max(r1, r2, d) * max(r1, r2, d):
+            raise _DoesNotClose(j, f"the dyad of links {self._name(b1)} and {self._name(b2)} "
+                                   f"at joint {j} does not close: {c1[1]} and {c2[1]} are "
+                                   f"{_fmt(d)} apart, and the links reach from "
+                                   f"{_fmt(abs(r1 - r2))} to {_fmt(r1 + r2)}")
+        h = math.sqrt(max(h2, 0.0))
+        u = ((w2[0] - w1[0]) / d, (w2[1] - w1[1]) / d)
+        (ka, wa), (kb, wb) = known
+        cands = []
+        for sign in (1.0, -1.0):
+            p = (w1[0] + x * u[0] - sign * h * u[1], w1[1] + x * u[1] + sign * h * u[0])
+            side = _cross(_sub(wb, wa), _sub(p, wa))
+            cands.append((-side, p))     # left (positive side) first
+        cands.sort(key=lambda t: t[0])
+        placements = [{b1: _from_two(q1, w1, s1, p), b2: _from_two(q2, w2, s2, p)}
+                      for _, p in cands]
+        self._choose(j, f"of the line {ka}\u2192{kb}", placements, ("left", "right"))
+
+    def _rrp(self, b1, b2, one, link, two):
+        """b1 turns about a placed joint; b2 (direction known) slides on a placed line;
+        they share an R joint."""
+        (c1, q1, _, f1), (c12, s1, s2), (c2, l2, o2, lo) = one, link, two
+        w1 = _apply(self.pose[one[2]], f1)
+        angle2 = self.angle[b2]
+        world = _line_in(self.pose[o2], lo)
+        psi = world[0]
+        n, u = _normal(psi), _unit(psi)
+        # n . t2 = c - e2, where b2's line in its body frame is l2
+        s2w = _rot(angle2, s2)
+        c_line = _dot(n, s2w) + world[1] - l2[1]
+        r = math.dist(q1, s1)
+        h = c_line - _dot(n, w1)
+        a2 = r * r - h * h
+        j = c12[1]
+        if a2 < -1e-12 * max(r, abs(h)) * max(r, abs(h)):
+            raise _DoesNotClose(j, f"the dyad of links {self._name(b1)} and {self._name(b2)} "
+                                   f"at joint {j} does not close: {c1[1]} is {_fmt(abs(h))} "
+                                   f"from the line that {j} slides on, farther than "
+                                   f"{_fmt(r)}")
+        along = math.sqrt(max(a2, 0.0))
+        foot = (w1[0] + h * n[0], w1[1] + h * n[1])
+        placements = []
+        for sign in (1.0, -1.0):
+            p = (foot[0] + sign * along * u[0], foot[1] + sign * along * u[1])
+            placements.append({b1: _from_two(q1, w1, s1, p),
+                               b2: (angle2, p[0] - s2w[0], p[1] - s2w[1])})
+        self._choose(j, f"of the foot of {c1[1]} along the sliding line of {c2[1]}",
+                     placements, ("ahead", "behind"))
+
+    def _rpr(self, b1, b2, one, link, two):
+        """Two bodies joined by a sliding pair, each turning about a placed joint."""
+        (c1, q1, _, f1), (c12, l1, l2), (c2, q2, _, f2) = one, link, two
+        A, B = _apply(self.pose[one[2]], f1), _apply(self.pose[two[2]], f2)
+        h1 = l1[1] - _dot(_normal(l1[0]), q1)
+        h2 = l2[1] - _dot(_normal(l2[0]), q2)
+        D = _sub(A, B)
+        d = math.hypot(*D)
+        j = c12[1]
+        if d == 0:
+            raise _DoesNotClose(j, f"the sliding pair {j}: joints {c1[1]} and {c2[1]} are at "
+                                   "one place")
+        q = (h2 - h1) / d
+        if abs(q) > 1 + 1e-12:
+            raise _DoesNotClose(j, f"the sliding pair {j} does not close: the line must pass "
+                                   f"{_fmt(abs(h1))} from {c1[1]} and {_fmt(abs(h2))} from "
+                                   f"{c2[1]}, which are only {_fmt(d)} apart")
+        delta = math.atan2(D[1], D[0])
+        base = math.asin(max(-1.0, min(1.0, q)))
+        guide_first = self.chain.joint(j).links[0] in [x for x, (b, _) in self.body.items()
+                                                        if b == b1]
+        placements = []
+        for psi in (delta - base, delta - (math.pi - base)):
+            phi1, phi2 = psi - l1[0], psi - l2[0]
+            r1, r2 = _rot(phi1, q1), _rot(phi2, q2)
+            place = {b1: (phi1, A[0] - r1[0], A[1] - r1[1]),
+                     b2: (phi2, B[0] - r2[0], B[1] - r2[1])}
+            pins = _sub(B, A) if guide_first else _sub(A, B)
+            placements.append((-_dot(pins, _unit(psi)), place))
+        placements.sort(key=lambda t: t[0])
+        guide, block = (c1[1], c2[1]) if guide_first else (c2[1], c1[1])
+        self._choose(j, f"of {guide} along the sliding line, for the pin {block}",
+                     [p for _, p in placements], ("ahead", "behind"))
+
+    def _group(self, free):
+        """Bodies left after every closed-form step: Newton's method from the rough
+        positions of their joints."""
+        model = self.model
+        guess = {}
+        lacking = []
+        for b in free:
+            pairs = []
+            for link, (body, t) in self.body.items():
+                if body != b:
+                    continue
+                for name, p in model.frames[link][0].items():
+                    if name in model.sketch:
+                        pairs.append((_apply(t, p), model.sketch[name]))
+            for c, fb, other, fo in self._to_placed(b):
+                if c[0] == "R":
+                    pairs.append((fb, _apply(self.pose[other], fo)))
+            distinct = [pr for pr in pairs if math.dist(pr[0], pairs[0][0]) > 1e-9 * model.scale]
+            if b in self.angle and pairs:
+                r = _rot(self.angle[b], pairs[0][0])
+                guess[b] = (self.angle[b], pairs[0][1][0] - r[0], pairs[0][1][1] - r[1])
+            elif pairs and distinct:
+                guess[b] = _fit(pairs)
+            else:
+                lacking.append(b)
+        if lacking:
+            joints = sorted({n for link, (body, _) in self.body.items() if body in free
+                             for n in model.frames[link][0] if n not in model.sketch
+                             and link != model.fixed})
+            raise DimensionError(
+                f"links {', '.join(self._name(b) for b in free)} form a group that cannot "
+                "be assembled dyad by dyad (an Assur group of higher class): give rough "
+                f"positions of its joints ({', '.join(joints)}) with near = [x, y] to "
+                "choose its assembly", source=self.chain.source, part=free[0])
+        x = np.array([v for b in free for v in guess[b]])
+
+        def residual(x):
+            for i, b in enumerate(free):
+                self.pose[b] = tuple(x[3 * i:3 * i + 3])
+            res = []
+            for c in self.constraints:
+                (ba, fa), (bb, fb) = self.ends(c)
+                if ba == bb or (ba not in free and bb not in free):
+                    continue
+                if ba not in self.pose or bb not in self.pose:
+                    continue
+                res += _residual(c[0], self.pose[ba], fa, self.pose[bb], fb, model.scale)
+            return np.array(res)
+
+        for _ in range(60):
+            r = residual(x)
+            if np.abs(r).max() <= 1e-13 * model.scale:
+                break
+            J = np.empty((len(r), len(x)))
+            for k in range(len(x)):
+                h = 1e-7 * (model.scale if k % 3 else 1.0)
+                dx = x.copy()
+                dx[k] += h
+                J[:, k] = (residual(dx) - r) / h
+            step, *_ = np.linalg.lstsq(J, -r, rcond=None)
+            x = x + step
+        r = residual(x)
+        if not np.all(np.isfinite(r)) or np.abs(r).max() > 1e-9 * model.scale:
+            for b in free:
+                self.pose.pop(b, None)
+            raise _DoesNotClose(free[0], f"the group of links "
+                                         f"{', '.join(self._name(b) for b in free)} does not "
+                                         "close near the rough positions given")
+        for b in free:
+            self.angle[b] = self.pose[b][0]
+        self.groups.append(tuple(x for x, (body, _) in self.body.items() if body in free))
+        self.modes.append(Mode("group " + "/".join(self._name(b) for b in free), "near",
+                               "the rough positions given", "sketch"))
+
+    def _check(self):
+        for c in self.constraints:
+            (ba, fa), (bb, fb) = self.ends(c)
+            res = _residual(c[0], self.pose[ba], fa, self.pose[bb], fb, self.model.scale)
+            if max(abs(v) for v in res) > 1e-9 * self.model.scale:
+                raise _DoesNotClose(c[1], f"joint {c[1]} does not close (off by "
+                                          f"{_fmt(max(abs(v) for v in res))})")
+        for j, x, y, rel in self.loops:
+            a = _compose(self.body[x][1], rel)
+            b = self.body[y][1]
+            if (abs(math.remainder(a[0] - b[0], 2 * math.pi)) > 1e-9
+                    or math.hypot(a[1] - b[1], a[2] - b[2]) > 1e-9 * self.model.scale):
+                raise _DoesNotClose(j.id, f"the inputs close a loop that their values do not "
+                                          f"fit (at input {j.id})")
+
+
+def _residual(kind, pa, fa, pb, fb, scale):
+    if kind == "R":
+        wa, wb = _apply(pa, fa), _apply(pb, fb)
+        return [wa[0] - wb[0], wa[1] - wb[1]]
+    la, lb = _line_in(pa, fa), _line_in(pb, fb)
+    return [math.remainder(la[0] - lb[0], 2 * math.pi) * scale, la[1] - lb[1]]
+
+
+def _fit(pairs):
+    """The rigid motion that best takes body points to their sketched positions."""
+    q = np.array([p for p, _ in pairs])
+    w = np.array([s for _, s in pairs])
+    qc, wc = q - q.mean(0), w - w.mean(0)
+    phi = math.atan2(np.sum(qc[:, 0] * wc[:, 1] - qc[:, 1] * wc[:, 0]),
+                     np.sum(qc[:, 0] * wc[:, 0] + qc[:, 1] * wc[:, 1]))
+    r = _rot(phi, tuple(q.mean(0)))
+    m = w.mean(0)
+    return (phi, float(m[0] - r[0]), float(m[1] - r[1]))
+
+
+# -- the public functions ----------------------------------------------------------------
+def assemble(chain, points, dims):
+    """The drawn pose of a mechanism given by its dimensions.
+
+    Parameters
+    ----------
+    chain : Chain
+        The structure: joints (no coordinates needed) and ``[mechanism]``.
+    points : sequence of (id, link)
+        The tracer points, placed by their distances like joints.
+    dims : Dimensions
+        Lengths, sliding lines, the inputs' values, modes, typed and rough positions.
+
+    Returns
+    -------
+    Assembly
+
+    Raises
+    ------
+    DimensionError
+        For lengths that give no pose: the message names the link, joint or dyad, and,
+        for a mechanism that cannot be assembled at the input's value, the range of
+        values where it can.
+
+    Warns
+    -----
+    PoseAdjustedWarning
+        When typed positions were off by drawing-level rounding (up to 1e-3 of the
+        mechanism's size) and were moved.
+
+    Examples
+    --------
+    >>> from chaingraph.files import loads
+    >>> chain = loads('''
+    ... name = "crank-rocker"
+    ... [[joints]]
+    ... id = "A"
+    ... kind = "R"
+    ... links = ["frame", "crank"]
+    ... at = [0.0, 0.0]
+    ... [[joints]]
+    ... id = "B"
+    ... kind = "R"
+    ... links = ["crank", "coupler"]
+    ... [[joints]]
+    ... id = "C"
+    ... kind = "R"
+    ... links = ["coupler", "rocker"]
+    ... [[joints]]
+    ... id = "D"
+    ... kind = "R"
+    ... links = ["rocker", "frame"]
+    ... at = [100.0, 0.0]
+    ... [lengths]
+    ... crank = 40.0
+    ... coupler = 120.0
+    ... rocker = 80.0
+    ... [mechanism]
+    ... fixed = "frame"
+    ... driver = "crank"
+    ... at = 90.0
+    ... ''')
+    >>> [round(v, 6) for v in chain.joint("C").at]
+    [113.538447, 78.846119]
+    """
+    def fail(problem, where=None):
+        raise DimensionError(problem, source=chain.source, where=where)
+
+    model = _Model(chain, points, dims, fail)
+    values = [v for *_, v in model.inputs]
+    for _ in range(6):
+        try:
+            solver = _Solver(model, values).run()
+        except _DoesNotClose as e:
+            raise _unassemblable(model, values, e) from None
+        result = _pose(model, solver)
+        if not _correct_inputs(model, result):
+            break
+    _check_modes(model, solver)
+    return _check_typed(model, result)
+
+
+def _correct_inputs(model, result):
+    """An input measured toward a sliding pair's reference point is known only once
+    that point is placed: compare the direction the pose gives with the one the weld
+    used and turn the link by the difference. True when something was corrected."""
+    from chaingraph.kinematics.plan import _direction
+
+    placed = None
+    changed = False
+    for j, a, b, value in model.inputs:
+        if j.kind != "R":
+            continue
+        for link in (a, b):
+            others = sorted((x for x in model.chain.joints_of(link) if x.id != j.id),
+                            key=lambda x: x.id)
+            if link == model.fixed or not others or others[0].kind == "R":
+                continue
+            if placed is None:
+                placed = Chain(model.chain.name, tuple(
+                    Joint(x.id, x.kind, x.links, at=result.joints[x.id],
+                          axis=result.axes.get(x.id)) for x in model.chain.joints))
+            got = math.radians(_direction(placed, link, placed.joint(j.id)))
+            used = result.links[link][0] + model._beta(link, j)
+            error = math.remainder(got - used, 2 * math.pi)
+            if abs(error) > 1e-12:
+                model.corrections[link] = model.corrections.get(link, 0.0) + error
+                changed = True
+    return changed
+
+
+def _solves(model, values):
+    try:
+        _Solver(model, values).run()
+    except _DoesNotClose:
+        return False
+    return True
+
+
+def _unassemblable(model, values, error):
+    """The error for a mechanism that does not close at the inputs' values, with the
+    range of the first input's values where it does (the others held)."""
+    joint, a, b, value = model.inputs[0]
+    r_input = joint.kind == "R"
+    what = (f"the driver {b!r} at {_fmt(value)} degrees" if r_input and a == model.fixed
+            else f"input {joint.id} at {_fmt(value)}" + (" degrees" if r_input else ""))
+    if r_input:
+        grid = value + np.arange(-180.0, 180.0, 1.0)
+    else:
+        span = 4 * model.scale
+        grid = value + np.linspace(-span, span, 801)
+
+    def ok(v):
+        return _solves(model, [v] + values[1:])
+
+    good = [ok(v) for v in grid]
+    runs, start = [], None
+    for k, g in enumerate(good + [False]):
+        if g and start is None:
+            start = k
+        if not g and start is not None:
+            runs.append((start, k - 1))
+            start = None
+    ranges = []
+    for s, e in runs:
+        lo = grid[s] if s == 0 else _edge(ok, grid[s - 1], grid[s])
+        hi = grid[e] if e == len(grid) - 1 else _edge(ok, grid[e + 1], grid[e])
+        ranges.append((float(lo), float(hi)))
+    if r_input and len(ranges) == 2 and runs[0][0] == 0 and runs[-1][1] == len(grid) - 1:
+        ranges = [(ranges[1][0], ranges[0][1] + 360.0)]
+    unit = " degrees" if r_input else ""
+    if not ranges:
+        where = "at any value of the input"
+        tail = f"; it cannot be assembled {where}"
+    else:
+        said = " and ".join(f"from {_fmt(lo)} to {_fmt(hi)}{unit}" for lo, hi in ranges)
+        where = ("[mechanism] at = VALUE" if r_input and a == model.fixed and
+                 model.chain.mechanism.driver else
+                 f"[mechanism] inputs = [{{joint = {joint.id!r}, at = VALUE}}, ...]".replace(
+                     "'", '"'))
+        tail = f"; it can be assembled {said} (its value is set by {where})"
+    return DimensionError(f"cannot be assembled with {what}: {error.problem}{tail}",
+                          source=model.chain.source, part=error.part,
+                          feasible_range=ranges[0] if len(ranges) == 1 else ranges or None)
+
+
+def _edge(ok, bad, good):
+    """The boundary between an input value that fails and one that assembles."""
+    for _ in range(50):
+        mid = 0.5 * (bad + good)
+        if ok(mid):
+            good = mid
+        else:
+            bad = mid
+    return good
+
+
+def _check_modes(model, solver):
+    parts = solver.used_modes | model.sides_used
+    for key in model.dims.modes:
+        if key not in parts:
+            named = sorted(parts)
+            raise DimensionError(
+                f"names no part with two assembly modes (the parts: "
+                f"{', '.join(named) if named else 'none'}: a dyad by the joint it places, "
+                "a link by its name)", source=model.chain.source,
+                where=f"[assembly] {key!r}", part=key)
+
+
+def _pose(model, solver):
+    chain = model.chain
+    joints, axes = {}, {}
+    for j in chain.joints:
+        if j.kind == "R":
+            joints[j.id] = solver.world_point(j.links[0], j.id)
+    for j in chain.joints:
+        if j.kind != "P":
+            continue
+        guide, block = j.links
+        angle, offset = solver.world_line(guide, j.id)
+        axes[j.id] = math.degrees(math.remainder(angle, 2 * math.pi))
+        n = _normal(angle)
+        # a sliding line on the fixed link is given by 'at' and 'axis'; its block's
+        # reference point is that 'at', unless the (moving) block's pin is on the line
+        ref = model.dims.typed.get(j.id)
+        if ref is not None and model.fixed in j.links and block != model.fixed:
+            pins = [x for x in model.chain.joints_of(block) if x.kind == "R"
+                    and model.fixed not in x.links
+                    and abs(_dot(n, joints[x.id]) - offset) <= 1e-9 * model.scale]
+            if pins:
+                ref = joints[sorted(x.id for x in pins)[0]]
+        if ref is None:
+            ref = _reference(model, solver, j, joints)
+        h = offset - _dot(n, ref)
+        # a pin on the line is the reference point itself, to the last digit
+        joints[j.id] = (tuple(ref) if abs(h) <= 1e-12 * model.scale
+                        else (ref[0] + h * n[0], ref[1] + h * n[1]))
+    pts = {pid: solver.world_point(link, pid) for pid, link in model.points}
+    size = _span({**joints, **pts})
+    modes = tuple(model.shape_modes) + tuple(solver.modes)
+    frames = {link: _compose(solver.pose[body], t) for link, (body, t) in solver.body.items()}
+    return Assembly(joints, axes, pts, modes, tuple(solver.groups), size, frames)
+
+
+def _reference(model, solver, joint, placed):
+    """Where a P joint's block reference point is drawn when the file does not say: at
+    the block's R joint nearest the line (not one on the fixed link), else the guide's,
+    else the block's origin."""
+    guide, block = joint.links
+    angle, offset = solver.world_line(guide, joint.id)
+    n = _normal(angle)
+    for link in (block, guide):
+        candidates = sorted((abs(_dot(n, placed[j.id]) - offset), j.id)
+                            for j in model.chain.joints_of(link)
+                            if j.kind == "R" and model.fixed not in j.links)
+        if candidates:
+            return placed[candidates[0][1]]
+    body, t = solver.body[block]
+    return _apply(solver.pose[body], (t[1], t[2]))
+
+
+def _check_typed(model, result):
+    """Typed positions of joints the lengths place: within SILENT of the size, exact;
+    within ROUNDING, moved with a warning; beyond, refused."""
+    dims, chain = model.dims, model.chain
+    fixed_by_coordinates = model.fixed not in dims.lengths
+    worst = []
+    for name, typed in dims.typed.items():
+        try:
+            j = chain.joint(name)
+        except KeyError:
+            j = None
+        if j is not None and model.fixed in j.links and fixed_by_coordinates:
+            continue
+        if j is not None and j.kind == "P":
+            angle = math.radians(result.axes[name])
+            at = result.joints[name]
+            d = abs(_dot(_normal(angle), _sub(typed, at)))
+            where = f"off the sliding line of {name} that the lengths give"
+        else:
+            at = result.joints[name] if j is not None else result.points[name]
+            d = math.dist(typed, at)
+            where = f"from where the lengths put it, ({_fmt(at[0])}, {_fmt(at[1])})"
+        worst.append((d, name, where))
+    for name, axis in dims.axes.items():
+        j = chain.joint(name)
+        if model.fixed in j.links and fixed_by_coordinates:
+            continue
+        turn = abs(math.remainder(axis - result.axes[name], 360.0))
+        worst.append((math.radians(turn) * result.size, name,
+                      f"(as a turn of its axis by {_fmt(turn)} degrees over the size) from "
+                      f"the direction the lengths give, {_fmt(result.axes[name])} degrees"))
+    if not worst:
+        return result
+    d, name, where = max(worst)
+    size = result.size
+    units = f" {chain.units}" if chain.units else ""
+    if d > ROUNDING * size:
+        raise DimensionError(
+            f"typed at {_fmt(d)}{units} {where}: more than drawing-level rounding (1e-3 of "
+            f"the mechanism's size {_fmt(size)}); correct its coordinates or the lengths, "
+            "or leave out its 'at'", source=chain.source, where=_label(chain, name),
+            part=name)
+    if d > SILENT * size:
+        others = sum(1 for x, *_ in worst if x > SILENT * size) - 1
+        more = f" (and {others} other{'s' if others > 1 else ''} less)" if others > 0 else ""
+        warnings.warn(PoseAdjustedWarning(
+            f"{chain.source or chain.name}: {_label(chain, name)} was typed "
+            f"{_fmt(d)}{units} {where}{more}: assembled to the consistent pose "
+            f"(drawing-level rounding, {d / size:.1e} of the size)",
+            joint=name, distance=d, size=size), stacklevel=4)
+    return result
+
+
+def _label(chain, name):
+    return (f"joint {name!r}" if any(j.id == name for j in chain.joints)
+            else f"point {name!r}")
+
+
+# -- the inverse: the dimensions of a drawn mechanism ---------------------------------------
+def _frame_of(chain, link, fixed):
+    """``(origin, direction in radians)`` of ``link``'s frame in the drawn pose."""
+    if link == fixed:
+        return (0.0, 0.0), 0.0
+    points = [(p.id, p.link) for p in chain.points]
+    features = link_features(chain.joints, points, link)
+    where = {j.id: j.at for j in chain.joints}
+    where.update({p.id: p.at for p in chain.points})
+    if len(features) >= 2:
+        o, t = where[features[0]], where[features[1]]
+        return o, math.atan2(t[1] - o[1], t[0] - o[0])
+    slides = sorted((j for j in chain.joints if j.kind == "P" and link in j.links),
+                    key=lambda j: j.id)
+    first = math.radians(slides[0].axis)
+    if features:
+        return where[features[0]], first
+    origin = slides[0].at
+    for other in slides[1:]:
+        a2 = math.radians(other.axis)
+        denom = math.sin(a2 - first)
+        if abs(denom) > 1e-9:
+            # where the second line crosses the first
+            s = _cross(_sub(other.at, origin), _unit(a2)) / denom
+            origin = (origin[0] + s * math.cos(first), origin[1] + s * math.sin(first))
+            break
+    return origin, first
+
+
+def measure(chain):
+    """The dimensions of a drawn mechanism, as the text of a chain file with
+    ``[lengths]`` that assembles to the same pose.
+
+    Every moving link gets its lengths (a binary link one number, a link with more
+    joints the distances from its first two joints to each other one), every sliding
+    line its offset and angle on its moving links, the inputs their values in the drawn
+    pose, and every part its assembly mode, written out.
+
+    Examples
+    --------
+    >>> import chaingraph
+    >>> from chaingraph.naming.catalog import catalog_path
+    >>> text = measure(chaingraph.load(catalog_path("crank-and-slotted-lever-mechanism")))
+    >>> print(text[text.index("[lengths]"):])
+    [lengths]
+    crank = 120.0
+    <BLANKLINE>
+    [assembly]
+    S = "ahead"
+    <BLANKLINE>
+    [mechanism]
+    fixed = "frame"
+    driver = "crank"
+    at = 0.0
+    output = "slotted lever"
+    <BLANKLINE>
+    """
+    num, string = _toml_number, _toml_string
+    from chaingraph.kinematics.plan import _direction, chosen_inputs
+
+    m = chain.mechanism
+    if m is None:
+        raise DimensionError("measuring needs [mechanism] (the fixed link and the input)",
+                             source=chain.source, where="[mechanism]")
+    if not chain.has_pose:
+        raise DimensionError("measuring needs the drawn pose ('at' of every joint)",
+                             source=chain.source)
+    fixed = m.fixed
+    points = [(p.id, p.link) for p in chain.points]
+    where = {j.id: j.at for j in chain.joints}
+    where.update({p.id: p.at for p in chain.points})
+    lengths, sides = {}, {}
+    for link in chain.links:
+        if link == fixed:
+            continue
+        features = link_features(chain.joints, points, link)
+        if len(features) < 2:
+            if not any(j.kind == "P" and link in j.links for j in chain.joints):
+                raise DimensionError(
+                    f"{link!r} has {'a single joint' if features else 'no joint'} and no "
+                    "sliding pair, so it has no dimensions to measure: every moving link "
+                    "of a mechanism given by its lengths needs two joints or points, or a "
+                    "sliding pair", source=chain.source, where=f"link {link!r}")
+            continue
+        f0, f1 = features[:2]
+        if len(features) == 2:
+            lengths[link] = math.dist(where[f0], where[f1])
+            continue
+        table = {(f0, f1): math.dist(where[f0], where[f1])}
+        for f in features[2:]:
+            table[(f0, f)] = math.dist(where[f0], where[f])
+            table[(f1, f)] = math.dist(where[f1], where[f])
+            if _cross(_sub(where[f1], where[f0]), _sub(where[f], where[f0])) < 0:
+                sides.setdefault(link, {})[f] = "right"
+        lengths[link] = table
+    frames = {link: _frame_of(chain, link, fixed) for link in chain.links}
+    line_keys = {}
+    for j in chain.joints:
+        if j.kind != "P":
+            continue
+        psi = math.radians(j.axis)
+        for role, link in enumerate(j.links):
+            if link == fixed:
+                continue
+            origin, x = frames[link]
+            angle = math.degrees(math.remainder(psi - x, 2 * math.pi))
+            offset = _dot(_normal(psi), _sub(j.at, origin))
+            keys = ("angle", "offset") if role == 0 else ("block_angle", "block_offset")
+            for key, value in zip(keys, (angle, offset)):
+                if abs(value) > 1e-12 * _span(where):
+                    line_keys.setdefault(j.id, {})[key] = value
+    _, driver, inputs = chosen_inputs(chain)
+    values = {}
+    if inputs:
+        for item in inputs:
+            j = chain.joint(item.joint)
+            if j.kind == "R":
+                if fixed in j.links:
+                    b = next(x for x in j.links if x != fixed)
+                    values[j.id] = _direction(chain, b, j)
+                else:
+                    values[j.id] = math.remainder(_direction(chain, j.links[1], j)
+                                                  - _direction(chain, j.links[0], j), 360.0)
+            else:
+                g, k = j.links
+                u = _unit(math.radians(j.axis))
+                ref = []
+                for link in (g, k):
+                    origin = frames[link][0]
+                    n = _normal(math.radians(j.axis))
+                    h = _dot(n, _sub(j.at, origin))
+                    ref.append((origin[0] + h * n[0], origin[1] + h * n[1]))
+                values[j.id] = _dot(_sub(ref[1], ref[0]), u)
+    else:
+        pivots = sorted(j.id for j in chain.joints if j.kind == "R" and fixed in j.links
+                        and driver in j.links)
+        if not pivots:
+            raise DimensionError(f"the driver {driver!r} is not pinned to the fixed link "
+                                 f"{fixed!r} by an R joint, so its angle cannot be measured",
+                                 source=chain.source, where="[mechanism] key 'driver'")
+        values[None] = _direction(chain, driver, chain.joint(pivots[0]))
+
+    def write(extra_at, near, modes):
+        lines = [f"name = {string(chain.name)}"]
+        for key in ("family", "units", "notes", "naming"):
+            if getattr(chain, key) is not None:
+                lines.append(f"{key} = {string(getattr(chain, key))}")
+        for j in chain.joints:
+            lines += ["", "[[joints]]", f"id = {string(j.id)}", f"kind = {string(j.kind)}",
+                      "links = [" + ", ".join(string(x) for x in j.links) + "]"]
+            if fixed in j.links or j.id in extra_at:
+                lines.append(f"at = [{num(j.at[0])}, {num(j.at[1])}]")
+            if j.kind == "P" and (fixed in j.links or j.id in near):
+                lines.append(f"axis = {num(j.axis)}")
+            for key, value in line_keys.get(j.id, {}).items():
+                lines.append(f"{key} = {num(value)}")
+            if j.id in near and j.kind == "R":
+                lines.append(f"near = [{num(j.at[0])}, {num(j.at[1])}]")
+        for p in chain.points:
+            lines += ["", "[[points]]", f"id = {string(p.id)}", f"link = {string(p.link)}"]
+            if p.link == fixed:
+                lines.append(f"at = [{num(p.at[0])}, {num(p.at[1])}]")
+            if p.id in near:
+                lines.append(f"near = [{num(p.at[0])}, {num(p.at[1])}]")
+        lines += ["", "[lengths]"]
+        for link, value in lengths.items():
+            if isinstance(value, dict):
+                body = ", ".join(f"{string('-'.join(k)) if not _bare('-'.join(k)) else '-'.join(k)}"
+                                 f" = {num(v)}" for k, v in value.items())
+                lines.append(f"{_key(link)} = {{{body}}}")
+            else:
+                lines.append(f"{_key(link)} = {num(value)}")
+        if modes or sides:
+            lines += ["", "[assembly]"]
+            for part, word in modes.items():
+                lines.append(f"{_key(part)} = {string(word)}")
+            for link, table in sides.items():
+                body = ", ".join(f"{_key(f)} = {string(w)}" for f, w in table.items())
+                lines.append(f"{_key(link)} = {{{body}}}")
+        lines += ["", "[mechanism]", f"fixed = {string(fixed)}"]
+        if inputs:
+            items = []
+            for item in inputs:
+                text = f"joint = {string(item.joint)}, at = {num(values[item.joint])}"
+                if item.start is not None:
+                    text += f", from = {num(item.start)}, to = {num(item.stop)}"
+                items.append("{" + text + "}")
+            lines.append("inputs = [" + ", ".join(items) + "]")
+        else:
+            lines += [f"driver = {string(driver)}", f"at = {num(values[None])}"]
+        if m.omega != 1.0:
+            lines.append(f"omega = {num(m.omega)}")
+        if m.output is not None:
+            lines.append(f"output = {string(m.output)}")
+        return "\n".join(lines) + "\n"
+
+    # assemble once with every moving joint as a rough position: that finds the modes,
+    # the groups (which keep their rough positions) and the reference points to type
+    moving = {j.id for j in chain.joints if fixed not in j.links}
+    moving |= {p.id for p in chain.points if p.link != fixed}
+    with warnings.catch_warnings():
+        warnings.simplefilter("ignore")
+        trial, pose = place(parse_text(write(set(), moving, {}),
+                                       source=chain.source or "<measure>"))
+    near = {n for group in pose.groups for link in group
+            for n in link_features(chain.joints, points, link)} & moving
+    modes = {mode.part: mode.word for mode in pose.modes
+             if ":" not in mode.part and not mode.part.startswith("group ")}
+    extra = {j.id for j in chain.joints if j.kind == "P" and fixed not in j.links
+             and math.dist(trial.joint(j.id).at, j.at) > 1e-9 * pose.size}
+    return write(extra, near, modes)
+
+
+def _span(where):
+    """The mechanism's size, as the solver takes it: the longer side of the box round
+    its joints and points."""
+    xs = [p[0] for p in where.values()]
+    ys = [p[1] for p in where.values()]
+    return max(max(xs) - min(xs), max(ys) - min(ys), 1e-300)
+
+
+def _bare(key):
+    return bool(key) and all(ch.isalnum() or ch in "_-" for ch in key) and key.isascii()
+
+
+def _key(name):
+    return name if _bare(name) else _toml_string(name)
+
+
+# -- drawing-level rounding in a file of coordinates -------------------------------------------
+def snap_to_lines(chain):
+    """The chain with every joint or point that lies within drawing-level rounding of a
+    sliding line it moves on (an R joint or point of the pair's guide or block, up to
+    1e-3 of the mechanism's size off) put on it exactly: the nearest such pose (least
+    movement of the typed coordinates, lines included). A joint farther off is an
+    offset slider, as drawn.
+
+    Warns with :class:`~chaingraph.errors.PoseAdjustedWarning` when something moved by
+    more than 1e-6 of the size; returns the chain itself when nothing moved.
+
+    Examples
+    --------
+    >>> import warnings
+    >>> from chaingraph.model.chain import Chain, Joint
+    >>> from chaingraph.model.chain import Mechanism
+    >>> engine = Chain("engine", (
+    ...     Joint("O", "R", ("frame", "crank"), at=(0.0, 0.0)),
+    ...     Joint("A", "R", ("crank", "rod"), at=(20.0, 34.64)),
+    ...     Joint("B", "R", ("rod", "piston"), at=(176.2, 0.01)),
+    ...     Joint("S", "P", ("frame", "piston"), at=(150.0, 0.0), axis=0.0)),
+    ...     mechanism=Mechanism("frame", "crank"))
+    >>> with warnings.catch_warnings(record=True) as said:
+    ...     warnings.simplefilter("always")
+    ...     snapped = snap_to_lines(engine)
+    >>> snapped.joint("B").at
+    (176.2, 0.0)
+    >>> print(said[0].message)  # doctest: +ELLIPSIS
+    engine: joint 'B' was 0.01 off the sliding line of S: moved onto it (taken as drawing-level rounding: ...)
+    """
+    if not chain.has_pose:
+        return chain
+    where = {j.id: j.at for j in chain.joints}
+    where.update({p.id: p.at for p in chain.points})
+    size = _span(where)
+    on = []          # (P joint, feature, distance)
+    for j in chain.joints:
+        if j.kind != "P":
+            continue
+        n = _normal(math.radians(j.axis))
+        names = {x.id for link in j.links for x in chain.joints_of(link) if x.kind == "R"}
+        names |= {p.id for p in chain.points if p.link in j.links}
+        for name in sorted(names):
+            d = abs(_dot(n, _sub(where[name], j.at)))
+            if d <= ROUNDING * size:
+                on.append((j.id, name, d))
+    if not any(d > 1e-12 * size for *_, d in on):
+        return chain
+    # the nearest pose: the typed axes and the fixed link's joints stay as drawn; the
+    # other joints and points and the lines' points move as little as they can
+    fixed = chain.mechanism.fixed if chain.mechanism else None
+    anchored = {x.id for x in chain.joints if fixed in x.links}
+    anchored |= {p.id for p in chain.points if p.link == fixed}
+    features = sorted(({name for _, name, _ in on} | {p for p, _, _ in on}) - anchored)
+    if not features:
+        return chain
+    index = {name: 2 * i for i, name in enumerate(features)}
+    x = np.array([v for name in features for v in where[name]])
+    x0 = x.copy()
+
+    def position(name):
+        return x[index[name]:index[name] + 2] if name in index else np.array(where[name])
+
+    # each constraint n . (feature - line point) = 0 is linear in the positions (the axes
+    # stay), so one minimum-norm step lands on the nearest consistent pose
+    rows, res = [], []
+    for p, name, _ in on:
+        n = np.array(_normal(math.radians(chain.joint(p).axis)))
+        row = np.zeros(len(x))
+        for f, sign in ((name, 1.0), (p, -1.0)):
+            if f in index:
+                row[index[f]:index[f] + 2] += sign * n
+        rows.append(row)
+        res.append(float(n @ (position(name) - position(p))))
+    J, r = np.array(rows), np.array(res)
+    x = x - J.T @ np.linalg.lstsq(J @ J.T, r, rcond=None)[0]
+    if max(abs(_dot(_normal(math.radians(chain.joint(p).axis)), position(name) - position(p)))
+           for p, name, _ in on) > 1e-12 * size:
+        return chain      # the fixed link's joints themselves disagree: leave it as drawn
+    moved = sorted(((math.dist(x[index[f]:index[f] + 2], x0[index[f]:index[f] + 2]), f)
+                    for f in features), reverse=True)
+    joints = []
+    for j in chain.joints:
+        at = tuple(float(v) for v in x[index[j.id]:index[j.id] + 2]) if j.id in index else j.at
+        joints.append(type(j)(j.id, j.kind, j.links, at=at, axis=j.axis, closure=j.closure))
+    points = [type(p)(p.id, p.link, tuple(float(v) for v in x[index[p.id]:index[p.id] + 2]))
+              if p.id in index else p for p in chain.points]
+    from dataclasses import replace
+    snapped = replace(chain, joints=tuple(joints), points=tuple(points))
+    far = max((d, p, name) for p, name, d in on)
+    if moved[0][0] > SILENT * size:
+        others = sum(1 for d, _ in moved[1:] if d > SILENT * size)
+        more = f" (and {others} other{'s' if others > 1 else ''} less)" if others else ""
+        units = f" {chain.units}" if chain.units else ""
+        d, p, name = far
+        how = ("moved onto it" if moved[0][1] == name else
+               f"{_label(chain, moved[0][1])} moved {_fmt(moved[0][0])}{units} to put it on it")
+        warnings.warn(PoseAdjustedWarning(
+            f"{chain.source or chain.name}: {_label(chain, name)} was {_fmt(d)}{units} off "
+            f"the sliding line of {p}: {how}{more} (taken as drawing-level rounding: up to "
+            f"1e-3 of the size {_fmt(size)}; an offset slider is drawn farther off)",
+            joint=moved[0][1], distance=moved[0][0], size=size), stacklevel=3)
+    return snapped
+
+
+def place(document):
+    """A read chain file in its drawn pose: ``(chain, assembly)``. A file given by
+    lengths is assembled (``assembly`` is its :class:`Assembly`: modes and groups); a
+    file of coordinates has its drawing-level rounding mended (:func:`snap_to_lines`,
+    ``assembly`` None)."""
+    if document.dimensions is None:
+        return snap_to_lines(document.chain), None
+    structure, dims = document.chain, document.dimensions
+    point_links = [(p.id, p.link) for p in document.points]
+    pose = assemble(structure, point_links, dims)
+    placed = tuple(Joint(j.id, j.kind, j.links, at=pose.joints[j.id],
+                         axis=pose.axes.get(j.id), closure=j.closure)
+                   for j in document.joints)
+    placed_points = tuple(Point(p.id, p.link, pose.points[p.id]) for p in document.points)
+    mechanism = structure.mechanism
+    if mechanism is not None and mechanism.inputs:
+        # a P input's values are measured from its guide's origin, as its 'at' is
+        kinds = {j.id: j.kind for j in document.joints}
+        single = dims.values.get(None) if len(mechanism.inputs) == 1 else None
+        mechanism = replace(mechanism, inputs=tuple(
+            replace(item, at=dims.values.get(item.joint, single))
+            if kinds.get(item.joint) == "P" else item for item in mechanism.inputs))
+    return replace(structure, joints=placed, points=placed_points, mechanism=mechanism), pose

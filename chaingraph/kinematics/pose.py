@@ -1,0 +1,304 @@
+"""A mechanism at one input value: every link's position, velocity and acceleration.
+
+This is what the graphical constructions start from (structure and dimensions in, one
+pose's rigid-body motions out): :func:`pose_motion` solves the mechanism at the input
+value asked for, in the assembly mode of the drawn pose, exactly as ``solve`` does
+along a sweep, and keeps each link's whole motion (a reference point's velocity and
+acceleration with the link's angular velocity and acceleration), from which the velocity
+and acceleration of any point of the link follow.
+"""
+
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass
+
+import numpy as np
+
+from chaingraph.model.chain import Input
+from chaingraph.errors import AssemblyError, MechanismError
+from chaingraph.kinematics.equations import check_poses
+from chaingraph.kinematics.geometry import rotate
+from chaingraph.kinematics.columns import _slide, reference_link
+from chaingraph.kinematics.motion import _as_inputs, _plan, check_input_value
+from chaingraph.kinematics.plan import chosen_inputs
+from chaingraph.kinematics.rates import rates
+from chaingraph.kinematics.sweep import _evaluate_near
+
+__all__ = ["LinkMotion", "PoseMotion", "AtOneValue", "pose_motion"]
+
+
+def perp(v):
+    """The vector turned a quarter turn counter-clockwise (k x v)."""
+    return (-v[1], v[0])
+
+
+@dataclass(frozen=True)
+class LinkMotion:
+    """One link's planar rigid-body motion at an instant, in the drawing's frame.
+
+    ``point`` is a reference point of the link (any: the link's frame origin), with
+    its ``velocity`` and ``acceleration``; ``omega`` and ``alpha`` the link's angular
+    velocity and acceleration (rad/s, rad/s^2, counter-clockwise positive); ``angle``
+    the rotation of the link from its drawn pose (radians)."""
+
+    link: str
+    point: tuple
+    angle: float
+    velocity: tuple
+    omega: float
+    acceleration: tuple
+    alpha: float
+
+    def velocity_at(self, p):
+        """Velocity of the link's point now at ``p``: v_O + omega k x (p - O)."""
+        r = (p[0] - self.point[0], p[1] - self.point[1])
+        return (self.velocity[0] - self.omega * r[1], self.velocity[1] + self.omega * r[0])
+
+    def acceleration_at(self, p):
+        """Acceleration of the link's point now at ``p``:
+        a_O + alpha k x (p - O) - omega^2 (p - O)."""
+        r = (p[0] - self.point[0], p[1] - self.point[1])
+        w2 = self.omega * self.omega
+        return (self.acceleration[0] - self.alpha * r[1] - w2 * r[0],
+                self.acceleration[1] + self.alpha * r[0] - w2 * r[1])
+
+
+@dataclass(frozen=True)
+class Slide:
+    """A P joint at the instant: ``at`` the block's reference point, ``axis`` the unit
+    vector of the sliding line (turned with the guide), ``speed`` and ``acceleration``
+    the block's slide along it relative to the guide (the CSV's ``v:S`` and ``a:S``)."""
+
+    joint: str
+    guide: str
+    block: str
+    at: tuple
+    axis: tuple
+    speed: float
+    acceleration: float
+
+
+@dataclass(frozen=True, eq=False)
+class PoseMotion:
+    """A mechanism solved at one input value (a result: numbers, no drawing).
+
+    Attributes
+    ----------
+    name, fixed, units : str
+    input : float
+        The lead input's value (degrees for a driver or an R input, slide for a P one).
+    inputs : dict
+        Each input joint's value, when the mechanism is given by inputs (else empty).
+    driver : str or None
+    omega : float
+        The lead input's speed.
+    links : dict
+        link -> :class:`LinkMotion` (the fixed link's all zeros).
+    positions : dict
+        joint or point id -> (x, y); a P joint's is its block's reference point.
+    slides : dict
+        P joint id -> :class:`Slide`.
+    finite_rates : bool
+        False at a dead centre, where the inputs do not determine the rates (NaN).
+    """
+
+    name: str
+    fixed: str
+    driver: str | None
+    input: float
+    inputs: dict
+    omega: float
+    units: str | None
+    links: dict
+    positions: dict
+    slides: dict
+    finite_rates: bool
+    chain: object
+    plan: object
+
+    def input_text(self, symbol="theta", unit=" degrees") -> str:
+        """The input's value in words: "theta = 60 degrees", or each input's
+        "A = 80, E = 100"."""
+        if self.inputs:
+            return ", ".join(f"{j} = {v:.6g}" for j, v in self.inputs.items())
+        return f"{symbol} = {self.input:.6g}{unit}"
+
+    @property
+    def speed_text(self) -> str:
+        """The input's speed in words: "crank at 10 rad/s", "S at 5 mm/s"."""
+        lead = self.plan.inputs[self.plan.lead]
+        unit = "rad/s" if lead.kind == "R" else f"{self.units or 'length units'}/s"
+        who = self.driver if self.driver and not self.inputs else lead.joint
+        return f"{who} at {self.omega:g} {unit}"
+
+    def link_of(self, name):
+        """The link whose motion a joint's or point's CSV columns follow."""
+        chain = self.chain
+        if name in chain._joint_index:
+            return reference_link(chain.joint(name), self.fixed)
+        return chain.point(name).link
+
+    def velocity(self, name):
+        """A joint's or point's velocity (the solver's)."""
+        return self.links[self.link_of(name)].velocity_at(self.positions[name])
+
+    def acceleration(self, name):
+        """A joint's or point's acceleration (the solver's)."""
+        return self.links[self.link_of(name)].acceleration_at(self.positions[name])
+
+
+class AtOneValue:
+    """What the results at one input value share: they keep their solved ``state``."""
+
+    @property
+    def name(self):
+        """The mechanism's name."""
+        return self.state.name
+
+    @property
+    def input(self):
+        """The lead input's value."""
+        return self.state.input
+
+
+def _first(value) -> float:
+    """The one step's value of a column (an array of one, or a constant)."""
+    return float(np.asarray(value).reshape(-1)[0])
+
+
+def pose_motion(chain, *, at=None, fixed=None, driver=None, inputs=None,
+                omega=None) -> PoseMotion:
+    """Solve a mechanism at one input value, keeping every link's motion.
+
+    Parameters
+    ----------
+    chain : Chain
+        A chain with a drawn pose and a mechanism (or ``fixed`` and ``driver``/``inputs``).
+    at : float or sequence of float, optional
+        The input value: the driver's angle (degrees, as ``solve``'s ``theta``), or
+        the lead input's value; with several inputs either the lead's value (the others
+        where the sweep puts them) or one value per input. By default the drawn pose.
+    fixed, driver, inputs, omega
+        As for :func:`chaingraph.solve`. With several inputs, they move at the rates
+        of their sweeps (the lead at ``omega``); an input without a sweep is held.
+
+    Raises
+    ------
+    MechanismError
+        No mechanism, no pose, or a bad input value (exit status 2).
+    AssemblyError
+        An input value outside the range that can be assembled (exit status 1): the
+        message gives the range.
+
+    Examples
+    --------
+    >>> import chaingraph
+    >>> from chaingraph.naming.catalog import catalog_path
+    >>> shaper = chaingraph.load(catalog_path("crank-and-slotted-lever-mechanism"))
+    >>> state = pose_motion(shaper, at=90.0)
+    >>> round(state.links["slotted lever"].omega, 6)      # 120 mm/s across AB = 420 mm
+    0.285714
+    """
+    name = chain.source or chain.name
+    if not chain.has_pose:
+        raise MechanismError("the chain has no drawn pose (joint positions or lengths): "
+                             "instant centres and polygons need its dimensions",
+                             mechanism=name)
+    values = None
+    if at is not None:
+        values = [at] if isinstance(at, (int, float)) else list(at)
+        if not values:
+            raise MechanismError("no input value given", mechanism=name)
+        for v in values:
+            check_input_value(v, "the input value", name)
+    if omega is not None:
+        check_input_value(omega, "the input speed omega", name)
+    fixed, driver, items = chosen_inputs(chain, fixed, driver, _as_inputs(inputs, chain))
+    if items:
+        plan = _plan(chain, fixed, None, items)
+        if at is None or len(values) > 1:
+            plan = _plan(chain, fixed, None, _items_at(plan, values))
+    else:
+        if not driver and not fixed:
+            raise MechanismError("the chain has no mechanism: name its fixed link and its "
+                                 "driver or inputs ([mechanism])", mechanism=name)
+        plan = _plan(chain, fixed, driver)
+    if values is not None and len(values) != 1 and len(values) != len(plan.inputs):
+        raise MechanismError(f"{len(values)} input values given for {len(plan.inputs)} "
+                             f"inputs: give one per input, or the first input's alone",
+                             mechanism=name)
+    lead = plan.inputs[plan.lead]
+    if values is None:
+        tau = plan.tau(lead.value0)               # the drawn pose (a P input's slide 0)
+    else:
+        tau = plan.tau(values[plan.lead] if len(values) > 1 else values[0])
+    if omega is None:
+        omega = chain.mechanism.omega if chain.mechanism else 1.0
+    theta = np.array([float(tau)])
+    try:
+        ev = _evaluate_near(plan, theta)
+    except AssemblyError as e:
+        rng = e.feasible_range
+        if rng is None:
+            raise
+        value = _first(plan.value(theta))
+        verb = "turn" if lead.kind == "R" else "slide"
+        raise AssemblyError(
+            f"the input value {value:g} {plan.lead_unit} cannot be assembled: "
+            f"{plan.describe()} can {verb} only from {rng[0]:.6f} to {rng[1]:.6f} "
+            f"{plan.lead_unit}", mechanism=name, feasible_range=rng) from None
+    check_poses(plan, ev.pose, ev.feasible)
+    vel, acc, _ = rates(plan, ev.pose, float(omega), 1, measure=False)
+    ox, oy = plan.origin
+    pose = {link: tuple(map(_first, ev.pose[link])) for link in chain.links}
+    links = {}
+    for link in chain.links:
+        x, y, phi = pose[link][:3]
+        v = [_first(c) for c in vel[link]]
+        a = [_first(c) for c in acc[link]]
+        links[link] = LinkMotion(link, (x + ox, y + oy), phi, (v[0], v[1]), v[2],
+                                 (a[0], a[1]), a[2])
+
+    def world(link, p):
+        if link == plan.fixed:                    # as drawn, to the last digit
+            return (float(p[0]), float(p[1]))
+        r = rotate(pose[link], plan.local(p))
+        return (r[0] + pose[link][0] + ox, r[1] + pose[link][1] + oy)
+    positions = {j.id: world(reference_link(j, plan.fixed), j.at) for j in chain.joints}
+    positions.update((p.id, world(p.link, p.at)) for p in chain.points)
+    slides = {}
+    for j in chain.joints:
+        if j.kind == "P":                         # the solver's slide rates (the CSV's)
+            u = rotate(pose[j.guide], (math.cos(math.radians(j.axis)),
+                                       math.sin(math.radians(j.axis))))
+            _, speed, acceleration = _slide(ev.pose, vel, acc, j, plan.local(j.at))
+            slides[j.id] = Slide(j.id, j.guide, j.block, positions[j.id], u,
+                                 _first(speed), _first(acceleration))
+    inputs_now = {}
+    if not plan.from_driver:
+        for item, value in zip(plan.inputs, plan.values(theta)):
+            inputs_now[item.joint] = _first(value)
+    finite = all(math.isfinite(c) for m in links.values()
+                 for c in (*m.velocity, m.omega, *m.acceleration, m.alpha))
+    return PoseMotion(name=chain.name, fixed=plan.fixed, driver=plan.driver,
+                      input=_first(plan.value(theta)),
+                      inputs=inputs_now, omega=float(omega), units=chain.units,
+                      links=links, positions=positions, slides=slides,
+                      finite_rates=finite, chain=chain, plan=plan)
+
+
+def _items_at(plan, values):
+    """Inputs that pass through ``values`` (one per input; None: the drawn pose), each
+    moving at its sweep's rate (an input without a sweep is held)."""
+    items = []
+    for n, item in enumerate(plan.inputs):
+        value = item.value0 if values is None else values[n]
+        _, k = plan.line[n]
+        extent = 0.0
+        if k != 0 and item.sweep is not None:
+            extent = item.sweep[1] - item.sweep[0]
+        elif n == plan.lead:
+            extent = 1.0
+        items.append(Input(item.joint, float(value), float(value) + extent))
+    return tuple(items)

@@ -1,0 +1,449 @@
+"""The chain model: links and joints as a bipartite networkx graph.
+
+A chain is an immutable value. Its joints are the data; its links are named by the
+joints that use them. The link-joint graph has a node for every link and every joint,
+and an edge between a joint and each link it connects, so a ternary or quaternary joint
+(several links on one pin) is a single node, not a triangle of binary joints. The
+link-adjacency multigraph and the contracted graph are views derived from it.
+
+Nodes of the link-joint graph are tuples ``("link", name)`` and ``("joint", id)``, so
+a link and a joint may share a name.
+"""
+
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass, field, replace
+from functools import cached_property
+
+import networkx as nx
+
+from chaingraph.errors import ChainFileError
+from chaingraph.model.pairs import PAIR_KINDS
+
+__all__ = ["Joint", "Point", "Input", "Mechanism", "Chain", "link_node", "joint_node"]
+
+SPACES = ("planar", "spatial")
+CLOSURES = ("form", "force")
+
+
+def link_node(name: str) -> tuple[str, str]:
+    """The link-joint graph node of a link."""
+    return ("link", name)
+
+
+def joint_node(joint_id: str) -> tuple[str, str]:
+    """The link-joint graph node of a joint."""
+    return ("joint", joint_id)
+
+
+@dataclass(frozen=True)
+class Joint:
+    """A joint (kinematic pair) joining two or more links.
+
+    Attributes
+    ----------
+    id : str
+        Unique joint name.
+    kind : str
+        A key of :data:`chaingraph.model.pairs.PAIR_KINDS` (``"R"``, ``"P"``, ``"cam"``...).
+    links : tuple of str
+        The links it joins. For a P joint the first link carries the guide and the
+        second is the block that slides in it.
+    at : tuple of float, optional
+        Position in the drawn pose (for a P joint, a point of the sliding line and the
+        block's reference point).
+    axis : float, optional
+        For a P joint, the direction of sliding in the drawn pose, degrees CCW from +x.
+    closure : str, optional
+        For a higher pair, ``"form"`` (closed pair) or ``"force"`` (unclosed pair).
+    """
+
+    id: str
+    kind: str
+    links: tuple[str, ...]
+    at: tuple[float, float] | None = None
+    axis: float | None = None
+    closure: str | None = None
+
+    @property
+    def order(self) -> int:
+        """Number of links on the joint: 2 binary, 3 ternary, 4 quaternary."""
+        return len(self.links)
+
+    @property
+    def pair(self):
+        """The joint's :class:`~chaingraph.model.pairs.PairKind`."""
+        return PAIR_KINDS[self.kind]
+
+    @property
+    def guide(self) -> str | None:
+        """For a P joint, the link that carries the guide; else None."""
+        return self.links[0] if self.kind == "P" else None
+
+    @property
+    def block(self) -> str | None:
+        """For a P joint, the link that slides in the guide; else None."""
+        return self.links[1] if self.kind == "P" else None
+
+    @property
+    def closed(self) -> bool:
+        """True for a closed pair (held mechanically); lower pairs always are."""
+        return self.pair.lower or self.closure != "force"
+
+
+@dataclass(frozen=True)
+class Point:
+    """A tracer point (coupler point, tool tip, pen) carried by a link."""
+
+    id: str
+    link: str
+    at: tuple[float, float]
+
+
+@dataclass(frozen=True)
+class Input:
+    """An input of a mechanism: a joint whose relative motion is prescribed, swept from
+    ``start`` to ``stop`` (degrees for an R joint, length units of slide for a P joint),
+    or held at its drawn value when neither is given.
+
+    ``at`` is a P input's value in the drawn pose, where its values are not measured
+    from the drawn pose itself: a file given by lengths places the block ``at`` along
+    the guide from the guide's origin, and its sweep, its ``input:`` column and its
+    values are measured from that origin too (one reference)."""
+
+    joint: str
+    start: float | None = None
+    stop: float | None = None
+    at: float | None = None
+
+
+@dataclass(frozen=True)
+class Mechanism:
+    """What makes a chain a mechanism: the fixed link, the inputs and the output.
+
+    ``driver`` is the short form of the commonest input (a link turning about its R
+    joint with the fixed link); ``inputs`` names input joints, one per degree of
+    freedom, and takes precedence when both are given."""
+
+    fixed: str
+    driver: str | None = None
+    omega: float = 1.0
+    output: str | None = None
+    inputs: tuple[Input, ...] = ()
+
+
+@dataclass(frozen=True)
+class Chain:
+    """A kinematic chain (or, with ``mechanism``, one inversion of it).
+
+    Build one with :func:`chaingraph.load` from a file, or directly; both validate the
+    same way and raise :class:`~chaingraph.errors.ChainFileError` naming the joint, point
+    or key at fault.
+
+    Examples
+    --------
+    >>> from chaingraph.model.chain import Chain, Joint
+    >>> four_bar = Chain("four-bar", (
+    ...     Joint("A", "R", ("frame", "crank")), Joint("B", "R", ("crank", "coupler")),
+    ...     Joint("C", "R", ("coupler", "rocker")), Joint("D", "R", ("rocker", "frame"))))
+    >>> four_bar.links
+    ('frame', 'crank', 'coupler', 'rocker')
+    >>> four_bar.graph.degree[("link", "crank")]
+    2
+    >>> four_bar.link_graph.number_of_edges()
+    4
+    """
+
+    name: str
+    joints: tuple[Joint, ...]
+    family: str | None = None
+    units: str | None = None
+    space: str = "planar"
+    notes: str | None = None
+    points: tuple[Point, ...] = ()
+    mechanism: Mechanism | None = None
+    source: str | None = field(default=None, compare=False)
+    naming: str | None = None   # a catalog mechanism's name: "structure", "behaviour", "example"
+
+    def __post_init__(self):
+        object.__setattr__(self, "joints", tuple(self.joints))
+        object.__setattr__(self, "points", tuple(self.points))
+        _validate(self)
+
+    # -- identity -------------------------------------------------------------------
+    @cached_property
+    def links(self) -> tuple[str, ...]:
+        """Link names, in order of first appearance in the joints."""
+        return tuple(dict.fromkeys(name for j in self.joints for name in j.links))
+
+    @cached_property
+    def _joint_index(self) -> dict[str, Joint]:
+        return {j.id: j for j in self.joints}
+
+    def joint(self, joint_id: str) -> Joint:
+        """The joint called ``joint_id``."""
+        return self._joint_index[joint_id]
+
+    def point(self, point_id: str) -> Point:
+        """The tracer point called ``point_id``."""
+        return {p.id: p for p in self.points}[point_id]
+
+    def joints_of(self, link: str) -> tuple[Joint, ...]:
+        """The joints on a link, in id order."""
+        return tuple(sorted((j for j in self.joints if link in j.links), key=lambda j: j.id))
+
+    @property
+    def has_pose(self) -> bool:
+        """True when every joint has a position in the drawn pose."""
+        return all(j.at is not None for j in self.joints)
+
+    # -- graphs ---------------------------------------------------------------------
+    @cached_property
+    def graph(self) -> nx.Graph:
+        """The link-joint graph (frozen).
+
+        Link nodes ``("link", name)`` carry ``part="link"``, ``bipartite=0``; joint
+        nodes ``("joint", id)`` carry ``part="joint"``, ``bipartite=1``, ``kind``,
+        ``order``, ``at``, ``axis`` and ``guide`` (the link carrying a P joint's
+        guide). Each edge carries ``role``: ``"guide"`` or ``"block"`` on a P joint,
+        ``"pin"`` otherwise.
+        """
+        g = nx.Graph(name=self.name)
+        for link in self.links:
+            g.add_node(link_node(link), part="link", bipartite=0, name=link)
+        for j in self.joints:
+            g.add_node(joint_node(j.id), part="joint", bipartite=1, name=j.id, kind=j.kind,
+                       order=j.order, at=j.at, axis=j.axis, guide=j.guide,
+                       closure=j.closure)
+            for i, link in enumerate(j.links):
+                role = ("guide" if i == 0 else "block") if j.kind == "P" else "pin"
+                g.add_edge(joint_node(j.id), link_node(link), role=role)
+        return nx.freeze(g)
+
+    @cached_property
+    def link_graph(self) -> nx.MultiGraph:
+        """The link-adjacency multigraph (frozen).
+
+        One node per link; one edge, keyed by the joint id, for every pair of links that
+        share a joint. A joint of k links gives k(k-1)/2 edges, so this view cannot tell
+        a ternary joint from three binary joints in a triangle: use :attr:`graph` for
+        that.
+        """
+        g = nx.MultiGraph(name=self.name)
+        g.add_nodes_from(self.links)
+        for j in self.joints:
+            for a in range(j.order):
+                for b in range(a + 1, j.order):
+                    g.add_edge(j.links[a], j.links[b], key=j.id, kind=j.kind)
+        return nx.freeze(g)
+
+    @cached_property
+    def contracted_graph(self) -> nx.MultiGraph:
+        """The contracted graph: runs of binary links and binary joints collapsed.
+
+        Its nodes are the nodes of the link-joint graph whose degree is not 2 (links
+        with one or three or more joints, joints of three or more links). Each edge
+        stands for a run of degree-2 nodes between two of them and carries ``links``,
+        the binary links along it, and ``joints``, the binary joints. A chain with no
+        such node (a single loop) contracts to one node, its first link, with a
+        self-loop carrying the whole loop.
+        """
+        g = self.graph
+        branch = [n for n in g if g.degree(n) != 2] or [link_node(self.links[0])]
+        c = nx.MultiGraph(name=self.name)
+        c.add_nodes_from(branch)
+        branch_set = set(branch)
+        seen_edges = set()
+        for start in branch:
+            for first in g[start]:
+                if frozenset((start, first)) in seen_edges:
+                    continue
+                path = [start, first]
+                seen_edges.add(frozenset((start, first)))
+                while path[-1] not in branch_set:
+                    prev, here = path[-2], path[-1]
+                    nxt = next(n for n in g[here] if n != prev)
+                    seen_edges.add(frozenset((here, nxt)))
+                    path.append(nxt)
+                inner = path[1:-1]
+                c.add_edge(start, path[-1],
+                           links=tuple(n[1] for n in inner if n[0] == "link"),
+                           joints=tuple(n[1] for n in inner if n[0] == "joint"))
+        return nx.freeze(c)
+
+    @cached_property
+    def pieces(self) -> tuple[tuple[str, ...], ...]:
+        """The links of each connected piece (one piece for a connected chain)."""
+        order = {name: i for i, name in enumerate(self.links)}
+        comps = []
+        for comp in nx.connected_components(self.graph):
+            links = sorted((n[1] for n in comp if n[0] == "link"), key=order.get)
+            comps.append(tuple(links))
+        return tuple(sorted(comps, key=lambda c: order[c[0]]))
+
+    # -- new chains from this one ---------------------------------------------------
+    def relabelled(self, links: dict[str, str] | None = None,
+                   joints: dict[str, str] | None = None,
+                   points: dict[str, str] | None = None) -> "Chain":
+        """A copy with links, joints and points renamed (names not given are kept)."""
+        lk, jt, pt = links or {}, joints or {}, points or {}
+        ren = lambda m, x: m.get(x, x)  # noqa: E731
+        new_joints = tuple(replace(j, id=ren(jt, j.id), links=tuple(ren(lk, x) for x in j.links))
+                           for j in self.joints)
+        new_points = tuple(replace(p, id=ren(pt, p.id), link=ren(lk, p.link)) for p in self.points)
+        mech = self.mechanism
+        if mech is not None:
+            out = mech.output
+            out = ren(lk, out) if out in self.links else ren(pt, out)
+            mech = replace(mech, fixed=ren(lk, mech.fixed),
+                           driver=None if mech.driver is None else ren(lk, mech.driver),
+                           output=out,
+                           inputs=tuple(replace(i, joint=ren(jt, i.joint))
+                                        for i in mech.inputs))
+        return replace(self, joints=new_joints, points=new_points, mechanism=mech)
+
+    def with_mechanism(self, fixed: str, driver: str | None = None, *,
+                       omega: float | None = None, output: str | None = None) -> "Chain":
+        """The inversion with ``fixed`` fixed and ``driver`` as input.
+
+        Output and input speed are kept from the chain's own mechanism unless given;
+        its inputs are kept when neither the fixed link nor the driver changes.
+        """
+        old = self.mechanism
+        if omega is None:
+            omega = old.omega if old else 1.0
+        if output is None and old is not None:
+            output = old.output
+        inputs = old.inputs if old and old.fixed == fixed and driver is None else ()
+        return replace(self, mechanism=Mechanism(fixed, driver, omega, output, inputs))
+
+    def __repr__(self):
+        m = self.mechanism
+        tail = ""
+        if m is not None:
+            inputs = [i.joint for i in m.inputs]
+            tail = f", fixed={m.fixed!r}" + (f", inputs={inputs!r}" if inputs
+                                              else f", driver={m.driver!r}")
+        return (f"Chain({self.name!r}, links={len(self.links)}, joints={len(self.joints)}"
+                f"{tail})")
+
+    def __str__(self):
+        return self.name
+
+
+def _is_finite_pair(value) -> bool:
+    return (isinstance(value, tuple) and len(value) == 2
+            and all(isinstance(v, (int, float)) and not isinstance(v, bool)
+                    and math.isfinite(v) for v in value))
+
+
+def _validate(chain: Chain) -> None:
+    """Check a chain's semantics; raise ChainFileError naming what is wrong and where."""
+    def fail(problem, where=None):
+        raise ChainFileError(problem, source=chain.source, where=where)
+
+    if not isinstance(chain.name, str) or not chain.name.strip():
+        fail("'name' must be a non-empty string", "key 'name'")
+    if chain.space not in SPACES:
+        fail(f"unknown space {chain.space!r} (expected 'planar' or 'spatial')", "key 'space'")
+    if not chain.joints:
+        fail("the chain has no joints (add [[joints]] tables)", "key 'joints'")
+    seen = set()
+    for j in chain.joints:
+        where = f"joint {j.id!r}"
+        if not isinstance(j.id, str) or not j.id:
+            fail("a joint id must be a non-empty string", "joint")
+        if j.id in seen:
+            fail("duplicate joint id", where)
+        seen.add(j.id)
+        if j.kind not in PAIR_KINDS:
+            fail(f"unknown kind {j.kind!r} (expected one of {', '.join(PAIR_KINDS)})", where)
+        pair = PAIR_KINDS[j.kind]
+        if pair.freedom(chain.space) is None:
+            other = "spatial" if chain.space == "planar" else "planar"
+            fail(f"a {pair.name} ({j.kind}) has no {chain.space} form; "
+                 f"it belongs in a chain with space = {other!r}", where)
+        if any(not isinstance(x, str) or not x for x in j.links):
+            fail("link names must be non-empty strings", where)
+        if len(j.links) < 2:
+            fail(f"a joint needs at least two links, got {len(j.links)}", where)
+        if len(set(j.links)) != len(j.links):
+            dup = next(x for x in j.links if j.links.count(x) > 1)
+            fail(f"link {dup!r} is named twice in one joint", where)
+        if j.kind != "R" and len(j.links) != 2:
+            fail(f"a {pair.name} ({j.kind}) joins exactly two links, got {len(j.links)}; "
+                 "only R joints may be multiple", where)
+        if j.at is not None and not _is_finite_pair(j.at):
+            fail("'at' must be two finite numbers [x, y]", where)
+        if j.kind == "P":
+            # 'at' and 'axis' go together: a chain written for its structure alone
+            # needs neither
+            if j.at is not None and j.axis is None:
+                fail("a P joint with 'at' needs 'axis' (direction of sliding, degrees); "
+                     "a chain written for its structure alone needs neither", where)
+            if j.axis is not None and j.at is None:
+                fail("a P joint with 'axis' needs 'at' (a point of the sliding line); "
+                     "a chain written for its structure alone needs neither", where)
+            if j.axis is not None and (isinstance(j.axis, bool)
+                                       or not isinstance(j.axis, (int, float))
+                                       or not math.isfinite(j.axis)):
+                fail("'axis' must be a finite number of degrees", where)
+        elif j.axis is not None:
+            fail("'axis' is only for P joints", where)
+        if j.closure is not None:
+            if j.closure not in CLOSURES:
+                fail(f"unknown closure {j.closure!r} (expected 'form' or 'force')", where)
+            if pair.lower and j.closure == "force":
+                fail("a lower pair is a closed pair; closure = 'force' is only for "
+                     "higher pairs", where)
+    links = set(chain.links)
+    point_ids = set()
+    for p in chain.points:
+        where = f"point {p.id!r}"
+        if not isinstance(p.id, str) or not p.id:
+            fail("a point id must be a non-empty string", "point")
+        if p.id in point_ids or p.id in seen:
+            fail("duplicate id (points and joints share one namespace)", where)
+        point_ids.add(p.id)
+        if p.link not in links:
+            fail(f"'link' names no link of the chain: {p.link!r}", where)
+        if not _is_finite_pair(p.at):
+            fail("'at' must be two finite numbers [x, y]", where)
+    if chain.naming is not None and chain.naming not in ("structure", "behaviour", "example"):
+        fail(f"'naming' must be \"structure\" (the name holds for any dimensions), "
+             f"\"behaviour\" (it needs the catalog's behaviour) or \"example\" (a worked "
+             f"example: as behaviour, and a general name is preferred to it), "
+             f"got {chain.naming!r}", "key 'naming'")
+    m = chain.mechanism
+    if m is not None:
+        if m.fixed not in links:
+            fail(f"'fixed' names no link of the chain: {m.fixed!r} "
+                 f"(links: {', '.join(chain.links)})", "[mechanism]")
+        if m.driver is not None:
+            if m.driver not in links:
+                fail(f"'driver' names no link of the chain: {m.driver!r} "
+                     f"(links: {', '.join(chain.links)})", "[mechanism]")
+            if m.driver == m.fixed:
+                fail("'driver' is the fixed link", "[mechanism]")
+        joint_ids = {j.id: j for j in chain.joints}
+        named = set()
+        for i, item in enumerate(m.inputs):
+            where = f"[mechanism] inputs #{i + 1}"
+            if item.joint not in joint_ids:
+                fail(f"'inputs' names no joint of the chain: {item.joint!r} "
+                     f"(joints: {', '.join(sorted(joint_ids))})", where)
+            if item.joint in named:
+                fail(f"joint {item.joint!r} is named twice in 'inputs'", where)
+            named.add(item.joint)
+            if joint_ids[item.joint].kind not in ("R", "P"):
+                fail(f"an input must be an R or P joint; {item.joint!r} is "
+                     f"{joint_ids[item.joint].kind}", where)
+            if (item.start is None) != (item.stop is None):
+                fail("give both 'from' and 'to', or neither (the input then stays at "
+                     "its drawn value)", where)
+        if m.output is not None and m.output not in links and m.output not in point_ids:
+            fail(f"'output' names no link or point of the chain: {m.output!r}", "[mechanism]")
+        if (isinstance(m.omega, bool) or not isinstance(m.omega, (int, float))
+                or not math.isfinite(m.omega) or m.omega == 0):
+            fail("'omega' must be a finite non-zero number (rad/s)", "[mechanism]")

@@ -1,0 +1,386 @@
+"""Reading and writing chain files (TOML, the public format).
+
+:func:`parse_file` reads a file, :func:`parse_text` a string, :func:`parse_document` an
+already parsed document (a dict), each into a :class:`Document`: nothing is solved here
+(:mod:`chaingraph.files` places it; that is ``chaingraph.load``). The keys and types are
+checked here and the chain's meaning in :class:`~chaingraph.model.chain.Chain` itself, so the
+catalog, a user's file and a chain built in Python are validated by the same code. Every
+problem raises :class:`~chaingraph.errors.ChainFileError` naming the file, the joint or key, and what
+is wrong. :func:`dumps` writes a chain back in the same format.
+"""
+
+from __future__ import annotations
+
+import json
+import math
+import os
+import re
+import tomllib
+from dataclasses import dataclass
+
+from chaingraph.model.chain import Chain, Input, Joint, Mechanism, Point
+from chaingraph.model.dimensions import parse_dimensions
+from chaingraph.model.values import LARGEST, number, shown, type_name
+from chaingraph.errors import ChainFileError
+
+__all__ = ["Document", "parse_file", "parse_text", "parse_document", "dumps", "save"]
+
+TOP_KEYS = ("name", "family", "units", "space", "notes", "naming", "joints", "points",
+            "mechanism", "lengths", "assembly")
+JOINT_KEYS = ("id", "kind", "links", "at", "axis", "closure")
+POINT_KEYS = ("id", "link", "at")
+MECHANISM_KEYS = ("fixed", "driver", "inputs", "omega", "output")
+INPUT_KEYS = ("joint", "from", "to")
+DIMENSION_JOINT_KEYS = ("offset", "angle", "block_offset", "block_angle", "near")
+
+
+@dataclass(frozen=True)
+class Document:
+    """A chain file read and checked, not yet placed. ``chain`` is the chain as written:
+    for a file of coordinates, its drawn pose as typed (drawing-level rounding is mended
+    when it is placed); for a file given by lengths, its structure (points at the
+    origin), with ``dimensions`` (:class:`~chaingraph.model.dimensions.Dimensions`: lengths,
+    sliding lines, the inputs' values, modes, typed and rough positions) and the
+    ``joints`` and ``points`` as written. :func:`chaingraph.files.load` places it."""
+
+    chain: Chain
+    dimensions: object = None
+    joints: tuple = ()
+    points: tuple = ()
+
+
+def parse_file(path) -> Document:
+    """The :class:`Document` of a chain file (reads, checks; solves nothing)."""
+    source = os.fspath(path)
+    try:
+        with open(source, "rb") as f:
+            raw = f.read()
+    except FileNotFoundError:
+        raise ChainFileError("no such file", source=source) from None
+    except IsADirectoryError:
+        raise ChainFileError("is a folder, not a chain file", source=source) from None
+    except OSError as e:
+        raise ChainFileError(f"cannot be read ({e.strerror})", source=source) from None
+    if raw[:2] in (b"\xff\xfe", b"\xfe\xff"):
+        raise ChainFileError("is UTF-16 text (it starts with a UTF-16 byte-order mark): save "
+                             "it as UTF-8", source=source)
+    try:
+        text = raw.decode("utf-8")
+    except UnicodeDecodeError as e:
+        raise ChainFileError(f"is not UTF-8 text (byte {e.start})", source=source) from None
+    return parse_text(text, source=source)
+
+
+def parse_text(text: str, *, source: str = "<string>") -> Document:
+    """The :class:`Document` of TOML text. A leading byte-order mark (as some editors
+    save UTF-8) is read past."""
+    return parse_document(_parse_toml(text.removeprefix("\ufeff"), source), source=source)
+
+
+def _parse_toml(text, source):
+    try:
+        doc = tomllib.loads(text)
+    except tomllib.TOMLDecodeError as e:
+        msg = str(e)
+        m = re.search(r"\(at line (\d+), column (\d+)\)", msg)
+        line = int(m.group(1)) if m else None
+        text_line = text.splitlines()[line - 1] if line and line <= len(text.splitlines()) else ""
+        spaced = re.match(r"\s*([A-Za-z0-9_-]+(?:[ \t]+[A-Za-z0-9_-]+)+)\s*=", text_line)
+        if spaced:
+            key = re.sub(r"\s+", " ", spaced.group(1))
+            msg += (f": a key with a space must be quoted, as in \"{key}\" = ... "
+                    "(link and joint names are keys in [lengths] and [assembly])")
+        raise ChainFileError(f"TOML syntax error: {msg}", source=source, line=line) from None
+    except ValueError as e:          # an integer past Python's 4,300-digit conversion limit
+        raise ChainFileError(f"a number cannot be read ({str(e).split(':')[0]}); numbers "
+                             f"must be at most {LARGEST:g} in size", source=source) from None
+    except RecursionError:
+        raise ChainFileError("arrays or tables nested too deeply (a chain file needs three "
+                             "levels at most)", source=source) from None
+    return doc
+
+
+def parse_document(doc, *, source: str = "<document>") -> Document:
+    """The :class:`Document` of a parsed TOML document (a dict): every key checked,
+    nothing solved."""
+    def fail(problem, where=None):
+        raise ChainFileError(problem, source=source, where=where)
+
+    if not isinstance(doc, dict):
+        fail(f"a chain document is a table of keys, not {type_name(doc)}")
+    _no_unknown_keys(doc, TOP_KEYS, None, fail)
+    if "name" not in doc:
+        fail("missing required key 'name'", "key 'name'")
+    name = _string(doc["name"], "key 'name'", fail)
+    family = _optional_string(doc, "family", "key 'family'", fail)
+    units = _optional_string(doc, "units", "key 'units'", fail)
+    notes = _optional_string(doc, "notes", "key 'notes'", fail)
+    naming = _optional_string(doc, "naming", "key 'naming'", fail)
+    space = _optional_string(doc, "space", "key 'space'", fail) or "planar"
+    if "joints" not in doc:
+        fail("missing [[joints]]: a chain needs at least one joint", "key 'joints'")
+    dimensioned = "lengths" in doc
+    joints = tuple(_joint(t, i, fail, dimensioned) for i, t in
+                   enumerate(_tables(doc["joints"], "joints", fail)))
+    points = tuple(_point(t, i, fail, dimensioned) for i, t in
+                   enumerate(_tables(doc.get("points", []), "points", fail)))
+    mechanism = None
+    if "mechanism" in doc:
+        mechanism = _mechanism(doc["mechanism"], fail, dimensioned="lengths" in doc)
+    meta = dict(name=name, family=family, units=units, space=space, notes=notes,
+                source=source, naming=naming)
+    if mechanism is not None and not dimensioned:
+        kinds = {j.id: j.kind for j in joints}
+        for i, item in enumerate(mechanism.inputs):
+            if item.at is not None and kinds.get(item.joint) != "P":
+                fail("'at' (the input's value in the drawn pose) is given by the drawing "
+                     "for an R input; in a file of coordinates it is only for a P input "
+                     "(the origin its slide is measured from), or add a [lengths] table",
+                     f"[mechanism] inputs #{i + 1}")
+    if "lengths" in doc:
+        return _dimensioned(doc, joints, points, mechanism, meta, fail)
+    if "assembly" in doc:
+        fail("[assembly] chooses the assembly modes of a mechanism given by [lengths]; "
+             "this file has none", "[assembly]")
+    return Document(Chain(joints=joints, points=points, mechanism=mechanism, **meta))
+
+
+def _dimensioned(doc, joints, points, mechanism, meta, fail):
+    """The document of a chain given by its dimensions: its structure and dimensions."""
+    bare = tuple(Joint(j.id, j.kind, j.links, closure=j.closure) for j in joints)
+    # the points' places are found when it is placed; (0, 0) stands in meanwhile
+    structure = Chain(joints=bare, mechanism=mechanism,
+                      points=tuple(Point(p.id, p.link, (0.0, 0.0)) for p in points), **meta)
+    point_links = [(p.id, p.link) for p in points]
+    dims = parse_dimensions(doc, bare, point_links, fail)
+    for j in joints:
+        if j.axis is not None and j.kind != "P":
+            fail("'axis' is only for P joints", f"joint {j.id!r}")
+        if j.at is not None:
+            if max(abs(v) for v in j.at) > 1e100:
+                fail("'at' is too large to assemble with (coordinates at most 1e100)",
+                     f"joint {j.id!r}")
+            dims.typed[j.id] = j.at
+        if j.axis is not None:
+            dims.axes[j.id] = j.axis
+    for p in points:
+        if p.at is not None:
+            dims.typed[p.id] = p.at
+    for kind, tables in (("joint", doc.get("joints", [])), ("point", doc.get("points", []))):
+        for t in tables:
+            if "near" in t:
+                dims.near[t["id"]] = _coordinates(t["near"], f"{kind} {t['id']!r} key 'near'",
+                                                  fail)
+    return Document(structure, dims, joints, points)
+
+
+def _no_unknown_keys(table, allowed, where, fail):
+    for key in table:
+        if key not in allowed:
+            fail(f"unknown key {key!r} (allowed: {', '.join(allowed)})",
+                 where or f"key {key!r}")
+
+
+def _string(value, where, fail):
+    if not isinstance(value, str):
+        fail(f"must be a string, got {type_name(value)}", where)
+    return value
+
+
+def _optional_string(table, key, where, fail):
+    return _string(table[key], where, fail) if key in table else None
+
+
+#: the largest number a chain file may hold (a coordinate, a length, an angle, a speed):
+#: beyond it, squares and products overflow or a float cannot hold a thousandth
+def _coordinates(value, where, fail):
+    if (not isinstance(value, list) or len(value) != 2
+            or any(isinstance(v, bool) or not isinstance(v, (int, float)) for v in value)):
+        fail(f"'at' must be two finite numbers [x, y], got {shown(value)}", where)
+    if any(isinstance(v, float) and not math.isfinite(v) for v in value):
+        fail(f"'at' must be two finite numbers [x, y], got {shown(value)}", where)
+    return (number(value[0], where + " 'at' x", fail), number(value[1], where + " 'at' y", fail))
+
+
+def _tables(value, key, fail):
+    if isinstance(value, dict):
+        fail(f"'{key}' must be an array of tables: write [[{key}]] for each entry",
+             f"key '{key}'")
+    if not isinstance(value, list) or not all(isinstance(t, dict) for t in value):
+        fail(f"'{key}' must be an array of tables ([[{key}]]), got {type_name(value)}",
+             f"key '{key}'")
+    return value
+
+
+def _joint(table, index, fail, dimensioned=False):
+    label = f"joint #{index + 1}"
+    if "id" in table and isinstance(table["id"], str) and table["id"]:
+        label = f"joint {table['id']!r}"
+    _no_unknown_keys(table, JOINT_KEYS + DIMENSION_JOINT_KEYS, None,
+                     lambda problem, where: fail(problem, label))
+    if not dimensioned:
+        for key in DIMENSION_JOINT_KEYS:
+            if key in table:
+                fail(f"'{key}' belongs to a mechanism given by its lengths: add a "
+                     "[lengths] table", label)
+    for key in ("id", "kind", "links"):
+        if key not in table:
+            fail(f"missing required key '{key}'", label)
+    joint_id = _string(table["id"], label + " key 'id'", fail)
+    if not joint_id:
+        fail("'id' must not be empty", label)
+    kind = _string(table["kind"], label + " key 'kind'", fail)
+    links = table["links"]
+    if not isinstance(links, list) or not all(isinstance(x, str) for x in links):
+        fail(f"'links' must be an array of link names, got {shown(links)}", label)
+    at = _coordinates(table["at"], label, fail) if "at" in table else None
+    axis = number(table["axis"], label + " key 'axis'", fail) if "axis" in table else None
+    closure = _optional_string(table, "closure", label + " key 'closure'", fail)
+    return Joint(id=joint_id, kind=kind, links=tuple(links), at=at, axis=axis,
+                 closure=closure)
+
+
+def _point(table, index, fail, dimensioned=False):
+    label = f"point #{index + 1}"
+    if "id" in table and isinstance(table["id"], str) and table["id"]:
+        label = f"point {table['id']!r}"
+    _no_unknown_keys(table, POINT_KEYS + ("near",), None,
+                     lambda problem, where: fail(problem, label))
+    if "near" in table and not dimensioned:
+        fail("'near' belongs to a mechanism given by its lengths: add a [lengths] table",
+             label)
+    for key in POINT_KEYS:
+        if key not in table and not (key == "at" and dimensioned):
+            fail(f"missing required key '{key}'", label)
+    point_id = _string(table["id"], label + " key 'id'", fail)
+    link = _string(table["link"], label + " key 'link'", fail)
+    at = _coordinates(table["at"], label, fail) if "at" in table else None
+    return Point(id=point_id, link=link, at=at)
+
+
+def _mechanism(table, fail, dimensioned=False):
+    where = "[mechanism]"
+    if not isinstance(table, dict):
+        fail(f"'mechanism' must be a table ([mechanism]), got {type_name(table)}", where)
+    _no_unknown_keys(table, MECHANISM_KEYS + ("at",), None,
+                     lambda problem, w: fail(problem, where))
+    if "at" in table and not dimensioned:
+        fail("'at' (the input's value in the drawn pose) belongs to a mechanism given by "
+             "its lengths: add a [lengths] table", where)
+    if "fixed" not in table:
+        fail("missing required key 'fixed' (the fixed link)", where)
+    fixed = _string(table["fixed"], where + " key 'fixed'", fail)
+    driver = _optional_string(table, "driver", where + " key 'driver'", fail)
+    output = _optional_string(table, "output", where + " key 'output'", fail)
+    omega = number(table["omega"], where + " key 'omega'", fail) if "omega" in table else 1.0
+    inputs = _inputs(table["inputs"], fail, dimensioned) if "inputs" in table else ()
+    return Mechanism(fixed=fixed, driver=driver, omega=omega, output=output, inputs=inputs)
+
+
+def _inputs(value, fail, dimensioned=False):
+    """``inputs = ["A", {joint = "E", from = 110.0, to = 50.0}, ...]``"""
+    where = "[mechanism] key 'inputs'"
+    if not isinstance(value, list) or not value:
+        fail("'inputs' must be a non-empty array of joint ids or tables "
+             f"{{joint, from, to}}, got {shown(value)}", where)
+    out = []
+    for i, item in enumerate(value):
+        here = f"[mechanism] inputs #{i + 1}"
+        if isinstance(item, str):
+            out.append(Input(_string(item, here, fail)))
+            continue
+        if not isinstance(item, dict):
+            fail(f"an input must be a joint id or a table {{joint, from, to}}, "
+                 f"got {type_name(item)}", here)
+        _no_unknown_keys(item, INPUT_KEYS + ("at",), None,
+                         lambda problem, w: fail(problem, here))
+        if "joint" not in item:
+            fail("missing required key 'joint'", here)
+        joint = _string(item["joint"], here + " key 'joint'", fail)
+        start = number(item["from"], here + " key 'from'", fail) if "from" in item else None
+        stop = number(item["to"], here + " key 'to'", fail) if "to" in item else None
+        at = number(item["at"], here + " key 'at'", fail) if "at" in item else None
+        out.append(Input(joint, start, stop, None if dimensioned else at))
+    return tuple(out)
+
+
+# -- writing ------------------------------------------------------------------------
+def _toml_string(s: str) -> str:
+    return json.dumps(s, ensure_ascii=False).replace("\x7f", "\\u007F")
+
+
+def _toml_number(x: float) -> str:
+    x = float(x)
+    if x == int(x) and abs(x) < 1e15:
+        return f"{x:.1f}"
+    return repr(x)
+
+
+def dumps(chain: Chain) -> str:
+    """The chain as TOML text in the public format; :func:`loads` reads it back.
+
+    Examples
+    --------
+    >>> from chaingraph.model.chain import Chain, Joint
+    >>> from chaingraph.model.chainfile import dumps, parse_text
+    >>> c = Chain("pair", (Joint("A", "R", ("a", "b"), at=(0.0, 1.5)),))
+    >>> print(dumps(c))
+    name = "pair"
+    <BLANKLINE>
+    [[joints]]
+    id = "A"
+    kind = "R"
+    links = ["a", "b"]
+    at = [0.0, 1.5]
+    <BLANKLINE>
+    >>> parse_text(dumps(c)).chain == c
+    True
+    """
+    lines = [f"name = {_toml_string(chain.name)}"]
+    for key in ("family", "units", "notes", "naming"):
+        value = getattr(chain, key)
+        if value is not None:
+            lines.append(f"{key} = {_toml_string(value)}")
+    if chain.space != "planar":
+        lines.append(f"space = {_toml_string(chain.space)}")
+    for j in chain.joints:
+        lines += ["", "[[joints]]", f"id = {_toml_string(j.id)}", f"kind = {_toml_string(j.kind)}",
+                  "links = [" + ", ".join(_toml_string(x) for x in j.links) + "]"]
+        if j.at is not None:
+            lines.append(f"at = [{_toml_number(j.at[0])}, {_toml_number(j.at[1])}]")
+        if j.axis is not None:
+            lines.append(f"axis = {_toml_number(j.axis)}")
+        if j.closure is not None:
+            lines.append(f"closure = {_toml_string(j.closure)}")
+    for p in chain.points:
+        lines += ["", "[[points]]", f"id = {_toml_string(p.id)}", f"link = {_toml_string(p.link)}",
+                  f"at = [{_toml_number(p.at[0])}, {_toml_number(p.at[1])}]"]
+    m = chain.mechanism
+    if m is not None:
+        lines += ["", "[mechanism]", f"fixed = {_toml_string(m.fixed)}"]
+        if m.driver is not None:
+            lines.append(f"driver = {_toml_string(m.driver)}")
+        if m.inputs:
+            lines.append("inputs = [" + ", ".join(_toml_input(i) for i in m.inputs) + "]")
+        if m.omega != 1.0:
+            lines.append(f"omega = {_toml_number(m.omega)}")
+        if m.output is not None:
+            lines.append(f"output = {_toml_string(m.output)}")
+    return "\n".join(lines) + "\n"
+
+
+def _toml_input(item) -> str:
+    if item.start is None and item.at is None:
+        return _toml_string(item.joint)
+    parts = [f"joint = {_toml_string(item.joint)}"]
+    if item.start is not None:
+        parts += [f"from = {_toml_number(item.start)}", f"to = {_toml_number(item.stop)}"]
+    if item.at is not None:
+        parts.append(f"at = {_toml_number(item.at)}")
+    return "{" + ", ".join(parts) + "}"
+
+
+def save(chain: Chain, path) -> None:
+    """Write the chain to a TOML file (see :func:`dumps`)."""
+    with open(path, "w", encoding="utf-8") as f:
+        f.write(dumps(chain))

@@ -1,0 +1,1 @@
+"""Names: the bundled catalog, inversions named from it, and identify."""

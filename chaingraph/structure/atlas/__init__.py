@@ -1,0 +1,105 @@
+"""The atlas: every kinematic chain of N links and F degrees of freedom.
+
+The chains are planar, with simple (binary) revolute joints, non-degenerate (no proper
+sub-chain with mobility <= 0), connected, and counted once up to isomorphism; non-planar
+link graphs and fractionated chains are included (each chain says whether it is
+fractionated: a link or a joint whose removal splits it). A chain is its link graph: a
+simple graph on N links with J = (3 (N - 1) - F) / 2 joints as edges.
+
+Method (structural synthesis by contracted graphs):
+
+1. Number synthesis: the link assortments (how many links of each order) with N links
+   and 2J joint ends, every link of order 2 or more (:mod:`.contracted`).
+2. For each assortment, the contracted graphs: connected multigraphs (loops allowed: a
+   loop of binary links on one link makes a fractionated chain) on the links of order 3
+   or more, with those orders as degrees, up to isomorphism (:mod:`.contracted`).
+3. For each contracted graph (a piece), the binary links distributed on its edges in
+   every way, one per orbit of the contracted graph's automorphisms, kept when no proper
+   sub-chain is rigid, each then labelled canonically with its link orbits counted
+   (:mod:`.pieces`, vectorised with numpy; nauty labels, :mod:`.labelling`).
+
+The pieces are independent: they run on local processes or a Dask cluster, in shards
+written as they finish, so that a run can be resumed (:mod:`.run`). :mod:`.estimate`
+tells the cost of a size before it starts and refuses the sizes that cannot finish;
+:mod:`.output` writes atlas.json, graph6, the HTML index and chain files.
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass
+
+from chaingraph.structure.atlas.contracted import assortments, joints_for
+from chaingraph.structure.atlas.output import atlas_dict, write_atlas
+from chaingraph.structure.atlas.run import Atlas, AtlasCounts, DaskRunner, process_runner, run_atlas
+
+__all__ = ["atlas", "atlas_graphs", "AtlasEntry", "Atlas", "AtlasCounts", "joints_for",
+           "assortments", "atlas_dict", "write_atlas", "run_atlas", "process_runner",
+           "DaskRunner"]
+
+
+@dataclass(frozen=True)
+class AtlasEntry:
+    """One chain of the atlas: its link graph in canonical labels."""
+
+    id: int
+    edges: tuple
+    links: int
+    inversion_classes: int
+    fractionated: bool = False
+
+    @property
+    def link_orders(self) -> dict:
+        from chaingraph.structure.atlas.output import _orders
+        return _orders(self.edges, self.links)
+
+    def chain(self, dof=None):
+        """The chain as a :class:`~chaingraph.model.chain.Chain` (links L1..LN, joints J1..)."""
+        from chaingraph.model.chain import Chain, Joint
+        joints = tuple(Joint(f"J{i + 1}", "R", (f"L{a + 1}", f"L{b + 1}"))
+                       for i, (a, b) in enumerate(self.edges))
+        name = f"chain {self.id} of {self.links} links" + (f", {dof} dof" if dof else "")
+        return Chain(name, joints, family="atlas")
+
+
+def atlas_graphs(links: int, dof: int = 1, *, workers: int = 1, progress=None,
+                 labelling=None) -> Atlas:
+    """Every chain of the atlas, numbered by link assortment and contracted graph.
+
+    Parameters
+    ----------
+    links, dof : int
+    workers : int
+        Local processes that run the pieces side by side.
+    progress : callable, optional
+        Called as ``progress(fraction_done, text)`` as the run goes.
+    labelling : {"nauty", "own"}, optional
+        The canonical labelling of the edges (nauty when pynauty is installed).
+
+    Returns
+    -------
+    Atlas
+        A sequence of :class:`AtlasEntry` backed by arrays.
+
+    Examples
+    --------
+    >>> [len(atlas_graphs(n, 1)) for n in (4, 6, 8)]
+    [1, 2, 16]
+    >>> sum(e.inversion_classes for e in atlas_graphs(6, 1))
+    5
+    >>> a = atlas_graphs(9, 2)
+    >>> a.count, a.count_non_fractionated
+    (40, 35)
+    """
+    return run_atlas(links, dof, workers=workers, progress=progress, backend=labelling)
+
+
+def atlas(*, links: int, dof: int = 1, workers: int = 1):
+    """Yield every chain of ``links`` links and ``dof`` degrees of freedom as a Chain.
+
+    Examples
+    --------
+    >>> [c.name for c in atlas(links=6, dof=1)]
+    ['chain 1 of 6 links, 1 dof', 'chain 2 of 6 links, 1 dof']
+    """
+    for entry in atlas_graphs(links, dof, workers=workers):
+        yield entry.chain(dof)

@@ -1,0 +1,1 @@
+"""Dimensional synthesis: quick-return drives (:mod:`.design`)."""
