@@ -22,6 +22,8 @@ from chaingraph.errors import (AssemblyError, AtlasRunError, AtlasSizeError, Cha
                      ChainGraphWarning, ChainStructureError, DesignError, DimensionError,
                      MechanismError, PoseAdjustedWarning)
 from chaingraph.graphical import instant_centres, velocity_polygon
+from chaingraph.graphical.centres import InstantCentres
+from chaingraph.graphical.polygons import Polygons
 from chaingraph.naming.identify import Identification, identify
 from chaingraph.naming.inversions import Inversion, Inversions, inversions
 from chaingraph.structure.isomorphism import automorphism_orbits, canonical_form, is_isomorphic, isomorphism
@@ -31,9 +33,12 @@ from chaingraph.structure.rigidity import rigid_subchains
 
 __version__ = "0.1.0"
 
+#: the results a notebook displays richly (:func:`chaingraph.drawing.notebook.register`)
+RESULTS = (Chain, Classification, Inversions, Motion, InstantCentres, Polygons)
+
 if "IPython" in __import__("sys").modules:        # in a notebook: its rich displays
     from chaingraph.drawing.notebook import register as _register_displays
-    _register_displays()
+    _register_displays(RESULTS)
 
 __all__ = [
     "Chain", "Joint", "Mechanism", "Point", "Input",

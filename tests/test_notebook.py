@@ -62,7 +62,7 @@ def _registered():
     class Shell:
         class display_formatter:
             formatters = {"text/html": Formatter(), "image/svg+xml": Formatter()}
-    assert register(Shell())
+    assert register(chaingraph.RESULTS, Shell())
     return Shell.display_formatter.formatters
 
 
@@ -79,7 +79,7 @@ def test_rich_displays_are_valid(watt):
 
 
 def test_without_ipython_nothing_is_registered():
-    assert register() is False or "IPython" in sys.modules
+    assert register(chaingraph.RESULTS) is False or "IPython" in sys.modules
 
 
 def test_plots_return_figures_without_a_path(watt, tmp_path):

@@ -117,29 +117,19 @@ def animate(motion, *, frames=48, seconds=4.0) -> Animation:
     return Animation(mechanism_svg(motion, frames=frames, seconds=seconds))
 
 
-def _displays():
-    """(class, MIME type, function) of every rich display."""
-    from chaingraph.model.chain import Chain
-    from chaingraph.structure.classify import Classification
-    from chaingraph.graphical.centres import InstantCentres
-    from chaingraph.graphical.polygons import Polygons
-    from chaingraph.naming.inversions import Inversions
-    from chaingraph.kinematics import Motion
-    return ((Chain, "image/svg+xml", chain_svg),
-            (Classification, "text/html", classification_html),
-            (Inversions, "text/html", inversions_html),
-            (Motion, "text/html", motion_html),
-            (InstantCentres, "text/html", centres_html),
-            (Polygons, "text/html", polygons_html))
+#: the rich display of each result, by the result's class name: (MIME type, function)
+DISPLAYS = {"Chain": ("image/svg+xml", chain_svg),
+            "Classification": ("text/html", classification_html),
+            "Inversions": ("text/html", inversions_html),
+            "Motion": ("text/html", motion_html),
+            "InstantCentres": ("text/html", centres_html),
+            "Polygons": ("text/html", polygons_html)}
 
 
-DISPLAYS = ("Chain", "Classification", "Inversions", "Motion", "InstantCentres",
-            "Polygons")
-
-
-def register(shell=None) -> bool:
-    """Register the rich displays with an IPython shell's display formatters (the
-    running one by default); returns whether there was a shell to register with.
+def register(classes, shell=None) -> bool:
+    """Register the rich displays of ``classes`` (the results named in :data:`DISPLAYS`;
+    ``chaingraph`` passes its own) with an IPython shell's display formatters (the running
+    one by default); returns whether there was a shell to register with.
 
     Examples
     --------
@@ -149,7 +139,8 @@ def register(shell=None) -> bool:
     >>> class Shell:
     ...     class display_formatter:
     ...         formatters = {"text/html": Formatter(), "image/svg+xml": Formatter()}
-    >>> register(Shell())
+    >>> import chaingraph
+    >>> register(chaingraph.RESULTS, Shell())
     True
     >>> sorted(Shell.display_formatter.formatters["text/html"].types)
     ['Classification', 'InstantCentres', 'Inversions', 'Motion', 'Polygons']
@@ -163,6 +154,7 @@ def register(shell=None) -> bool:
         if shell is None:
             return False
     formatters = shell.display_formatter.formatters
-    for cls, mime, fn in _displays():
+    for cls in classes:
+        mime, fn = DISPLAYS[cls.__name__]
         formatters[mime].for_type(cls, fn)
     return True
