@@ -90,3 +90,10 @@ def wait_for(condition, limit):
             return True
         time.sleep(0.05)
     return condition()
+
+
+def interruptible():
+    """For ``preexec_fn``: Ctrl-C as on a terminal in the child (a shell running a script
+    in the background starts its commands with SIGINT ignored, and Python keeps that)."""
+    import signal
+    signal.signal(signal.SIGINT, signal.SIG_DFL)

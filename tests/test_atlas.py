@@ -340,12 +340,13 @@ def test_ctrl_c_leaves_no_worker_and_a_resumable_folder(tmp_path):
     import subprocess
     import sys
     import time
+
+    from .conftest import children, interruptible, wait_for
     out = tmp_path / "run"
     proc = subprocess.Popen([sys.executable, "-m", "chaingraph", "atlas", "--links", "14",
                              "--workers", "2", "--out", str(out), "-q"],
                             stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True,
-                            start_new_session=True)
-    from .conftest import children, wait_for
+                            start_new_session=True, preexec_fn=interruptible)
     # interrupted while its workers are at work, with a shard written (a race else)
     assert wait_for(lambda: len(children(proc.pid)) >= 2 and
                     bool(list(out.glob("shards/*.jsonl"))), 120), "no shard written"

@@ -23,7 +23,7 @@ from chaingraph.kinematics import tracking
 from chaingraph import ChainGraphError
 from chaingraph.naming.catalog import catalog_path
 from chaingraph.cli.main import main
-from .conftest import children, wait_for
+from .conftest import children, interruptible, wait_for
 
 
 CRANK = str(catalog_path("crank-rocker-with-slider"))
@@ -325,7 +325,8 @@ def test_ctrl_c_in_report_is_one_line_and_exit_130(tmp_path):
     out = tmp_path / "report"
     proc = subprocess.Popen([sys.executable, "-m", "chaingraph", "report", "-o", str(out),
                              "--workers", "2"], stdout=subprocess.PIPE,
-                            stderr=subprocess.PIPE, text=True, start_new_session=True)
+                            stderr=subprocess.PIPE, text=True, start_new_session=True,
+                            preexec_fn=interruptible)
     # interrupted while its workers are at work (not after the last page: a race)
     assert wait_for(lambda: len(children(proc.pid)) >= 2, 120), "no workers started"
     time.sleep(1)
