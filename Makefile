@@ -25,7 +25,9 @@ $(VENV)/.installed-test: pyproject.toml $(VENV)/.installed
 report: $(VENV)/.installed
 	$(BIN)/chaingraph report catalog -o report
 
+# the layers first (import-linter, contract in pyproject.toml), then the whole suite
 test: $(VENV)/.installed-test
+	$(BIN)/lint-imports --no-cache
 	$(BIN)/python -m pytest
 
 benchmark: $(VENV)/.installed
