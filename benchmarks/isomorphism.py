@@ -13,7 +13,7 @@ import time
 import networkx as nx
 
 from chaingraph.structure.generators import random_chain
-from chaingraph.structure.isomorphism import _canonical_cached, canonical_form
+from chaingraph.structure.isomorphism import canonical_cached, canonical_form
 
 
 def main():
@@ -26,7 +26,7 @@ def main():
               for i in range(args.chains)]
     for c in chains:
         c.graph  # build the networkx graphs outside the timing
-    _canonical_cached.cache_clear()
+    canonical_cached.cache_clear()
     start = time.perf_counter()
     forms = [canonical_form(c) for c in chains]
     elapsed = time.perf_counter() - start

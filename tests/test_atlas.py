@@ -311,11 +311,11 @@ def test_sizes_that_cannot_finish_are_refused_up_front(args, words):
 
 
 def test_the_estimate_is_near_every_count():
-    from chaingraph.structure.atlas.estimate import KNOWN, _FIT, estimate
+    from chaingraph.structure.atlas.estimate import KNOWN, FIT, estimate
     for (links, dof), count in KNOWN.items():
         assert estimate(links, dof).chains == pytest.approx(count)
         loops = (links - 1 - dof) / 2
-        a, b, c, d = _FIT
+        a, b, c, d = FIT
         fitted = 10 ** (a + b * links + c * loops + d * links * loops)
         if count >= 40:
             assert count / 2 <= fitted <= 2 * count, (links, dof)
@@ -376,17 +376,17 @@ def test_the_atlas_page_draws_no_joint_at_a_crossing_and_numbers_links_as_the_fi
     import re
 
     from chaingraph.structure.atlas import atlas_graphs
-    from chaingraph.structure.atlas.output import _atlas_svg, _segment_distance, chain_text
+    from chaingraph.structure.atlas.output import atlas_svg, segment_distance, chain_text
     for entry in atlas_graphs(10, 1):
-        svg = _atlas_svg(entry)
+        svg = atlas_svg(entry)
         bars = [tuple(map(float, m)) for m in re.findall(
             r'<line x1="([-\d.]+)" y1="([-\d.]+)" x2="([-\d.]+)" y2="([-\d.]+)"', svg)]
         squares = [(float(x) + 3, float(y) + 3) for x, y in
                    re.findall(r'<rect class="joint" x="([-\d.]+)" y="([-\d.]+)"', svg)]
         assert len(bars) == len(squares) == len(entry.edges)
         for k, p in enumerate(squares):
-            assert _segment_distance(p, bars[k][:2], bars[k][2:]) < 0.2      # on its bar
-            assert min(_segment_distance(p, b[:2], b[2:])
+            assert segment_distance(p, bars[k][:2], bars[k][2:]) < 0.2      # on its bar
+            assert min(segment_distance(p, b[:2], b[2:])
                        for i, b in enumerate(bars) if i != k) >= 4.0
         labels = sorted(int(t) for t in re.findall(r">(\d+)</text>", svg))
         assert labels == list(range(1, entry.links + 1))

@@ -15,7 +15,7 @@ from chaingraph import AssemblyError, Chain, Joint, Mechanism, MechanismError
 from chaingraph.naming.catalog import catalog_files, catalog_path
 from chaingraph.cli.main import main
 from chaingraph.kinematics import solve
-from chaingraph.kinematics.sweep import _evaluate_sweep
+from chaingraph.kinematics.sweep import evaluate_sweep
 from chaingraph.kinematics.plan import build_plan
 from chaingraph.kinematics.equations import residuals
 from chaingraph.kinematics.rates import rates
@@ -245,7 +245,7 @@ def test_every_catalog_mechanism_solves_and_differentiates(path):
     theta = motion["theta"]
     assert theta.size == 181
     # loop closure at every returned pose (reached from the drawn pose as solve does)
-    ev = _evaluate_sweep(plan, theta)
+    ev = evaluate_sweep(plan, theta)
     assert residuals(plan, ev.pose).max() <= 1e-9 * plan.size
     # velocities against central differences of positions, accelerations against
     # central differences of the exact velocities (at interior points of the sweep;

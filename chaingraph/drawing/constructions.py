@@ -11,7 +11,7 @@ import math
 
 import numpy as np
 
-from chaingraph.drawing.plots import _COLOURS, _finish, _pyplot, draw_positions, plain_text
+from chaingraph.drawing.plots import COLOURS, finish, _pyplot, draw_positions, plain_text
 
 __all__ = ["draw_centres", "draw_polygons"]
 
@@ -118,7 +118,7 @@ def draw_centres(centres, path=None):
     ax.set_title(f"{state.name}\ninstantaneous centres at {state.input_text('θ', '°')}", fontsize=10)
     _circle_diagram(circle, centres, numbers)
     fig.tight_layout()
-    return _finish(plt, fig, path)
+    return finish(plt, fig, path)
 
 
 def _circle_diagram(ax, centres, numbers):
@@ -167,7 +167,7 @@ def draw_polygons(polygons, path=None):
     plt = _pyplot()
     state = polygons.state
     fig, axes = plt.subplots(1, 2, figsize=(12, 6))
-    colours = {link: _COLOURS[i % len(_COLOURS)] for i, link in enumerate(state.chain.links)}
+    colours = {link: COLOURS[i % len(COLOURS)] for i, link in enumerate(state.chain.links)}
     styles = {"centripetal": "-", "tangential": "--", "sliding": "-", "Coriolis": "-."}
     for ax, which in zip(axes, ("velocity", "acceleration")):
         spots = {name: getattr(im, which) for name, im in polygons.images.items()}
@@ -216,4 +216,4 @@ def draw_polygons(polygons, path=None):
                      f"{legend}", fontsize=9)
     fig.suptitle(state.name, fontsize=10)
     fig.tight_layout()
-    return _finish(plt, fig, path)
+    return finish(plt, fig, path)

@@ -38,7 +38,7 @@ def layout(chain):
 def draw_link_joint_graph(chain, path=None):
     """The link-joint graph of ``chain``: written as SVG (or PNG, by the file's ending)
     to ``path``, or returned as a matplotlib Figure without one."""
-    from chaingraph.drawing.plots import _finish, _pyplot
+    from chaingraph.drawing.plots import finish, _pyplot
     plt = _pyplot()
     g = chain.graph
     pos = layout(chain)
@@ -76,4 +76,4 @@ def draw_link_joint_graph(chain, path=None):
     ax.set_axis_off()
     ax.margins(0.12)
     fig.tight_layout()
-    return _finish(plt, fig, path)
+    return finish(plt, fig, path)

@@ -70,7 +70,7 @@ class _Scene:
     """What the drawing needs from a solved motion, in the motion's own coordinates."""
 
     def __init__(self, motion):
-        from chaingraph.kinematics.columns import _link_direction
+        from chaingraph.kinematics.columns import link_direction
         self.motion = motion
         self.chain = chain = motion.plan.chain
         self.fixed = motion.fixed
@@ -79,7 +79,7 @@ class _Scene:
         self.xy = {name: (np.asarray(motion[f"x:{name}"]), np.asarray(motion[f"y:{name}"]))
                    for name in names}
         turn = {link: np.radians(np.asarray(motion[f"angle:{link}"])
-                                 - _link_direction(chain, link)) for link in chain.links}
+                                 - link_direction(chain, link)) for link in chain.links}
         self.slides = [j for j in chain.joints if j.kind == "P"]
         self.angle, self.slide, self.pairs, self.ends, self.blocks = {}, {}, {}, {}, {}
         for j in self.slides:

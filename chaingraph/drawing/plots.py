@@ -87,10 +87,10 @@ def plot_motion(motion, path=None):
                plt.Line2D([], [], color="#c00000", ls="--", label="dead centre")]
     axes[0].legend(handles=handles, fontsize=8, loc="best")
     fig.tight_layout()
-    return _finish(plt, fig, path)
+    return finish(plt, fig, path)
 
 
-def _finish(plt, fig, path):
+def finish(plt, fig, path):
     """Save and close the figure, or, without a path, hand it back (closed to pyplot, so
     that it is shown once, where it is returned)."""
     if path is None:
@@ -167,10 +167,10 @@ def draw_mechanism(motion, path=None, *, pose_index=0):
                  f"{_input_unit(motion)})", fontsize=10)
     ax.grid(True, color="#eeeeee", lw=0.5)
     fig.tight_layout()
-    return _finish(plt, fig, path)
+    return finish(plt, fig, path)
 
 
-_COLOURS = ["#1f77b4", "#2ca02c", "#d62728", "#9467bd", "#8c564b", "#e377c2", "#17becf",
+COLOURS = ["#1f77b4", "#2ca02c", "#d62728", "#9467bd", "#8c564b", "#e377c2", "#17becf",
             "#bcbd22", "#ff7f0e"]
 
 
@@ -221,7 +221,7 @@ def draw_positions(ax, chain, fixed, pos, axes, size):
         pts += [pos[p.id] for p in chain.points if p.link == link]
         if len(pts) < 2:
             continue
-        colour = _COLOURS[i % len(_COLOURS)]
+        colour = COLOURS[i % len(COLOURS)]
         xs, ys = zip(*pts)
         if len(pts) >= 3:
             cx, cy = np.mean(xs), np.mean(ys)

@@ -31,8 +31,8 @@ from dataclasses import dataclass, replace
 import numpy as np
 
 from chaingraph.model.chain import Chain, Joint, Point
-from chaingraph.model.chainfile import _toml_number, _toml_string, parse_text
-from chaingraph.model.dimensions import LineSpec, MODE_WORDS, _rotate, _sub, link_features, link_shape
+from chaingraph.model.chainfile import toml_number, toml_string, parse_text
+from chaingraph.model.dimensions import LineSpec, MODE_WORDS, rotate, sub, link_features, link_shape
 from chaingraph.errors import DimensionError, PoseAdjustedWarning
 
 __all__ = ["Assembly", "Mode", "assemble", "measure", "snap_to_lines",
@@ -86,7 +86,7 @@ class _DoesNotClose(Exception):
 
 # -- small geometry --------------------------------------------------------------------
 def _rot(phi, p):
-    return _rotate(p, phi)
+    return rotate(p, phi)
 
 
 def _apply(pose, p):
@@ -656,7 +656,7 @@ class _Solver:
         cands = []
         for sign in (1.0, -1.0):
             p = (w1[0] + x * u[0] - sign * h * u[1], w1[1] + x * u[1] + sign * h * u[0])
-            side = _cross(_sub(wb, wa), _sub(p, wa))
+            side = _cross(sub(wb, wa), sub(p, wa))
             cands.append((-side, p))     # left (positive side) first
         cands.sort(key=lambda t: t[0])
         placements = [{b1: _from_two(q1, w1, s1, p), b2: _from_two(q2, w2, s2, p)}
@@ -700,7 +700,7 @@ class _Solver:
         A, B = _apply(self.pose[one[2]], f1), _apply(self.pose[two[2]], f2)
         h1 = l1[1] - _dot(_normal(l1[0]), q1)
         h2 = l2[1] - _dot(_normal(l2[0]), q2)
-        D = _sub(A, B)
+        D = sub(A, B)
         d = math.hypot(*D)
         j = c12[1]
         if d == 0:
@@ -721,7 +721,7 @@ class _Solver:
             r1, r2 = _rot(phi1, q1), _rot(phi2, q2)
             place = {b1: (phi1, A[0] - r1[0], A[1] - r1[1]),
                      b2: (phi2, B[0] - r2[0], B[1] - r2[1])}
-            pins = _sub(B, A) if guide_first else _sub(A, B)
+            pins = sub(B, A) if guide_first else sub(A, B)
             placements.append((-_dot(pins, _unit(psi)), place))
         placements.sort(key=lambda t: t[0])
         guide, block = (c1[1], c2[1]) if guide_first else (c2[1], c1[1])
@@ -1095,7 +1095,7 @@ def _check_typed(model, result):
         if j is not None and j.kind == "P":
             angle = math.radians(result.axes[name])
             at = result.joints[name]
-            d = abs(_dot(_normal(angle), _sub(typed, at)))
+            d = abs(_dot(_normal(angle), sub(typed, at)))
             where = f"off the sliding line of {name} that the lengths give"
         else:
             at = result.joints[name] if j is not None else result.points[name]
@@ -1160,7 +1160,7 @@ def _frame_of(chain, link, fixed):
         denom = math.sin(a2 - first)
         if abs(denom) > 1e-9:
             # where the second line crosses the first
-            s = _cross(_sub(other.at, origin), _unit(a2)) / denom
+            s = _cross(sub(other.at, origin), _unit(a2)) / denom
             origin = (origin[0] + s * math.cos(first), origin[1] + s * math.sin(first))
             break
     return origin, first
@@ -1194,7 +1194,7 @@ def measure(chain):
     output = "slotted lever"
     <BLANKLINE>
     """
-    num, string = _toml_number, _toml_string
+    num, string = toml_number, toml_string
     from chaingraph.kinematics.plan import _direction, chosen_inputs
 
     m = chain.mechanism
@@ -1229,7 +1229,7 @@ def measure(chain):
         for f in features[2:]:
             table[(f0, f)] = math.dist(where[f0], where[f])
             table[(f1, f)] = math.dist(where[f1], where[f])
-            if _cross(_sub(where[f1], where[f0]), _sub(where[f], where[f0])) < 0:
+            if _cross(sub(where[f1], where[f0]), sub(where[f], where[f0])) < 0:
                 sides.setdefault(link, {})[f] = "right"
         lengths[link] = table
     frames = {link: _frame_of(chain, link, fixed) for link in chain.links}
@@ -1243,7 +1243,7 @@ def measure(chain):
                 continue
             origin, x = frames[link]
             angle = math.degrees(math.remainder(psi - x, 2 * math.pi))
-            offset = _dot(_normal(psi), _sub(j.at, origin))
+            offset = _dot(_normal(psi), sub(j.at, origin))
             keys = ("angle", "offset") if role == 0 else ("block_angle", "block_offset")
             for key, value in zip(keys, (angle, offset)):
                 if abs(value) > 1e-12 * _span(where):
@@ -1267,9 +1267,9 @@ def measure(chain):
                 for link in (g, k):
                     origin = frames[link][0]
                     n = _normal(math.radians(j.axis))
-                    h = _dot(n, _sub(j.at, origin))
+                    h = _dot(n, sub(j.at, origin))
                     ref.append((origin[0] + h * n[0], origin[1] + h * n[1]))
-                values[j.id] = _dot(_sub(ref[1], ref[0]), u)
+                values[j.id] = _dot(sub(ref[1], ref[0]), u)
     else:
         pivots = sorted(j.id for j in chain.joints if j.kind == "R" and fixed in j.links
                         and driver in j.links)
@@ -1363,7 +1363,7 @@ def _bare(key):
 
 
 def _key(name):
-    return name if _bare(name) else _toml_string(name)
+    return name if _bare(name) else toml_string(name)
 
 
 # -- drawing-level rounding in a file of coordinates -------------------------------------------
@@ -1409,7 +1409,7 @@ def snap_to_lines(chain):
         names = {x.id for link in j.links for x in chain.joints_of(link) if x.kind == "R"}
         names |= {p.id for p in chain.points if p.link in j.links}
         for name in sorted(names):
-            d = abs(_dot(n, _sub(where[name], j.at)))
+            d = abs(_dot(n, sub(where[name], j.at)))
             if d <= ROUNDING * size:
                 on.append((j.id, name, d))
     if not any(d > 1e-12 * size for *_, d in on):

@@ -12,7 +12,7 @@ import math
 
 import numpy as np
 
-from chaingraph.kinematics.geometry import (_clamp_disc, _fit_two_points, _from_point, _line_of, _unit, _world,
+from chaingraph.kinematics.geometry import (clamp_disc, fit_two_points, from_point, line_of, _unit, world,
                        make_pose, rotate)
 
 
@@ -23,12 +23,12 @@ def _single(step, pose):
         return {u: _welded(pose, u, step.constraints[0])}
     c1, c2 = step.constraints[:2]
     if c1.kind == "R" and c2.kind == "R":
-        w1 = _world(pose, c1.other(u), c1.point)
-        w2 = _world(pose, c2.other(u), c2.point)
-        return {u: _fit_two_points(c1.point, w1, c2.point, w2)}
+        w1 = world(pose, c1.other(u), c1.point)
+        w2 = world(pose, c2.other(u), c2.point)
+        return {u: fit_two_points(c1.point, w1, c2.point, w2)}
     if c1.kind == "R":
-        return {u: _from_point(pose[c2.other(u)], c1.point,
-                               _world(pose, c1.other(u), c1.point))}
+        return {u: from_point(pose[c2.other(u)], c1.point,
+                               world(pose, c1.other(u), c1.point))}
     return {u: _two_lines(pose, u, c1, c2)}
 
 
@@ -39,11 +39,11 @@ def _welded(pose, u, c):
     known = pose[c.other(u)]
     delta = pose[c.drive][2]
     sign = 1.0 if u == c.b else -1.0
-    w = _world(pose, c.other(u), c.point)
+    w = world(pose, c.other(u), c.point)
     if c.kind == "R":
-        return _from_point(make_pose(0.0, 0.0, known[2] + sign * delta), c.point, w)
+        return from_point(make_pose(0.0, 0.0, known[2] + sign * delta), c.point, w)
     t = rotate(known, _unit(c.axis))
-    return _from_point(known, c.point, (w[0] + sign * delta * t[0], w[1] + sign * delta * t[1]))
+    return from_point(known, c.point, (w[0] + sign * delta * t[0], w[1] + sign * delta * t[1]))
 
 
 def _two_lines(pose, u, c1, c2):
@@ -51,7 +51,7 @@ def _two_lines(pose, u, c1, c2):
     turn = pose[c1.other(u)]
     rows, rhs = [], []
     for c in (c1, c2):
-        base, dirn, _ = _line_of(pose, c, u, c.point)
+        base, dirn, _ = line_of(pose, c, u, c.point)
         nx_, ny_ = -dirn[1], dirn[0]
         rx, ry = rotate(turn, c.point)
         rows.append((nx_, ny_))
@@ -63,7 +63,7 @@ def _two_lines(pose, u, c1, c2):
     return make_pose(x, y, turn[2], turn[3], turn[4])
 
 
-def _dyad_roots(step, pose, scale, *, double=False):
+def dyad_roots(step, pose, scale, *, double=False):
     """A dyad's assembly modes.
 
     ``double`` (a bool, or a bool per point) takes the discriminant as exactly zero:
@@ -86,27 +86,27 @@ def _dyad_roots(step, pose, scale, *, double=False):
         pattern = pattern[::-1]
     q = cj.point
     if pattern in ("RRR", "RRP"):
-        wa = _world(pose, ca.other(a), ca.point)
+        wa = world(pose, ca.other(a), ca.point)
         ra = math.dist(q, ca.point)
         if pattern == "RRR":
-            wb = _world(pose, cb.other(b), cb.point)
+            wb = world(pose, cb.other(b), cb.point)
             rb = math.dist(q, cb.point)
             dx, dy = wb[0] - wa[0], wb[1] - wa[1]
             d2 = dx * dx + dy * dy
             d = np.sqrt(d2)
             along = (ra * ra - rb * rb + d2) / (2 * d)
             raw = ra * ra - along * along
-            h2, ok = _clamp_disc(raw, scale * scale, double)
+            h2, ok = clamp_disc(raw, scale * scale, double)
             h = np.sqrt(h2)
             ux, uy = dx / d, dy / d
             mid = (wa[0] + along * ux, wa[1] + along * uy)
             off = (-h * uy, h * ux)
         else:
-            base, dirn, turn_b = _line_of(pose, cb, b, q)
+            base, dirn, turn_b = line_of(pose, cb, b, q)
             ex, ey = base[0] - wa[0], base[1] - wa[1]
             beta = dirn[0] * ex + dirn[1] * ey
             raw = beta * beta - (ex * ex + ey * ey - ra * ra)
-            disc, ok = _clamp_disc(raw, scale * scale, double)
+            disc, ok = clamp_disc(raw, scale * scale, double)
             root_disc = np.sqrt(disc)
             mid = (base[0] - beta * dirn[0], base[1] - beta * dirn[1])
             off = (root_disc * dirn[0], root_disc * dirn[1])
@@ -115,21 +115,21 @@ def _dyad_roots(step, pose, scale, *, double=False):
 
         def build(sign):
             x, y = mid[0] + sign * off[0], mid[1] + sign * off[1]
-            pa = _fit_two_points(ca.point, wa, q, (x, y))
+            pa = fit_two_points(ca.point, wa, q, (x, y))
             if pattern == "RRR":
-                return {a: pa, b: _fit_two_points(cb.point, wb, q, (x, y))}
-            return {a: pa, b: _from_point(turn_b, q, (x, y))}
+                return {a: pa, b: fit_two_points(cb.point, wb, q, (x, y))}
+            return {a: pa, b: from_point(turn_b, q, (x, y))}
         return keys, build, ok, raw / (scale * scale)
     if pattern == "RPR":
-        wa = _world(pose, ca.other(a), ca.point)
-        wb = _world(pose, cb.other(b), cb.point)
+        wa = world(pose, ca.other(a), ca.point)
+        wb = world(pose, cb.other(b), cb.point)
         nx_, ny_ = -_unit(cj.axis)[1], _unit(cj.axis)[0]
         dx, dy = wb[0] - wa[0], wb[1] - wa[1]
         dist = np.hypot(dx, dy)
         c = nx_ * (cb.point[0] - ca.point[0]) + ny_ * (cb.point[1] - ca.point[1])
         ratio = c / dist
         raw = 1.0 - ratio * ratio
-        disc, ok = _clamp_disc(raw, 1.0, double)
+        disc, ok = clamp_disc(raw, 1.0, double)
         # rotation phi = start +- spread, with cos(spread) = ratio
         cs0, sn0 = dx / dist, dy / dist            # direction of the centre line
         cn, sn = nx_, ny_                           # drawn normal: rotate back by it
@@ -144,22 +144,22 @@ def _dyad_roots(step, pose, scale, *, double=False):
         def build(sign):
             c1, s1 = turn(sign)
             e = make_pose(0.0, 0.0, np.arctan2(s1, c1), c1, s1)
-            return {a: _from_point(e, ca.point, wa), b: _from_point(e, cb.point, wb)}
+            return {a: from_point(e, ca.point, wa), b: from_point(e, cb.point, wb)}
         return keys, build, ok, raw
     if pattern == "PRP":
-        base_a, dir_a, turn_a = _line_of(pose, ca, a, q)
-        base_b, dir_b, turn_b = _line_of(pose, cb, b, q)
+        base_a, dir_a, turn_a = line_of(pose, ca, a, q)
+        base_b, dir_b, turn_b = line_of(pose, cb, b, q)
         det = dir_a[0] * -dir_b[1] + dir_b[0] * dir_a[1]
         rx, ry = base_b[0] - base_a[0], base_b[1] - base_a[1]
         s_ = (rx * -dir_b[1] + dir_b[0] * ry) / det
         x, y = base_a[0] + s_ * dir_a[0], base_a[1] + s_ * dir_a[1]
 
         def build(sign):
-            return {a: _from_point(turn_a, q, (x, y)), b: _from_point(turn_b, q, (x, y))}
+            return {a: from_point(turn_a, q, (x, y)), b: from_point(turn_b, q, (x, y))}
         return None, build, np.isfinite(x), None
     if pattern == "RPP":
-        wa = _world(pose, ca.other(a), ca.point)
-        pa = _from_point(pose[cb.other(b)], ca.point, wa)
+        wa = world(pose, ca.other(a), ca.point)
+        pa = from_point(pose[cb.other(b)], ca.point, wa)
 
         def build(sign):
             known = dict(pose)
@@ -169,7 +169,7 @@ def _dyad_roots(step, pose, scale, *, double=False):
     raise ValueError(f"no closed form for a {pattern} dyad")
 
 
-def _initial_sign(keys, drawn):
+def initial_sign(keys, drawn):
     """The mode of the drawn pose: the one whose first point is nearest the drawing."""
     kp, km = keys
     dp = np.hypot(kp[0, 0] - drawn[0], kp[0, 1] - drawn[1])

@@ -21,7 +21,7 @@ def _point_motion(pose, vel, acc, link, p):
             ax - al * ry - w * w * rx, ay + al * rx - w * w * ry)
 
 
-def _link_direction(chain, link):
+def link_direction(chain, link):
     """The drawn direction (degrees) of the line the CSV measures a link's angle by."""
     joints = chain.joints_of(link)
     if joints:
@@ -90,7 +90,7 @@ def _columns(plan, theta, pose, vel, acc):
             cols["input:" + item.joint] = np.array(np.broadcast_to(value, theta.shape), dtype=float)
     cols["theta"] = theta if plan.from_driver else np.asarray(plan.value(theta), dtype=float)
     for link in chain.links:
-        direction = math.radians(_link_direction(chain, link)) + pose[link][2]
+        direction = math.radians(link_direction(chain, link)) + pose[link][2]
         cols[f"angle:{link}"] = _continuous_degrees(direction, n)
         cols[f"omega:{link}"] = _array(vel[link][2], n)
         cols[f"alpha:{link}"] = _array(acc[link][2], n)

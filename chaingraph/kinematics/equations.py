@@ -13,7 +13,7 @@ import math
 import numpy as np
 
 from chaingraph.errors import AssemblyError
-from chaingraph.kinematics.geometry import _fit_two_points, _unit, _world, make_pose, rotate
+from chaingraph.kinematics.geometry import fit_two_points, _unit, world, make_pose, rotate
 
 __all__ = ["residuals", "check_poses"]
 
@@ -96,7 +96,7 @@ def _gammas(c, pose, vel, geom=None):
 
 def _constraint_residuals(c, pose):
     """The constraint's equations at the pose: lengths, and rotations in radians."""
-    wa, wb = _world(pose, c.a, c.point), _world(pose, c.b, c.point)
+    wa, wb = world(pose, c.a, c.point), world(pose, c.b, c.point)
     dphi = np.remainder(pose[c.b][2] - pose[c.a][2] + np.pi, 2 * np.pi) - np.pi
     if c.kind == "R":
         out = [wa[0] - wb[0], wa[1] - wb[1]]
@@ -128,7 +128,7 @@ def residuals(plan, pose):
     return worst
 
 
-def _dot3(c, v):
+def dot3(c, v):
     """c . v for three-vectors whose entries may be constant Python floats."""
     total = 0.0
     for ci, vi in zip(c, v):
@@ -144,7 +144,7 @@ def _dot3(c, v):
 
 
 
-def _mul(a, b):
+def mul(a, b):
     if isinstance(a, float) and a == 0.0 or isinstance(b, float) and b == 0.0:
         return 0.0
     if isinstance(a, float) and a == 1.0:
@@ -154,7 +154,7 @@ def _mul(a, b):
     return a * b
 
 
-def _add(a, b):
+def add(a, b):
     if isinstance(a, float) and a == 0.0:
         return b
     if isinstance(b, float) and b == 0.0:
@@ -162,13 +162,13 @@ def _add(a, b):
     return a + b
 
 
-def _sub(a, b):
+def sub(a, b):
     if isinstance(b, float) and b == 0.0:
         return a
     return a - b
 
 
-def _group_matrix(links, rows, n):
+def group_matrix(links, rows, n):
     col = {link: 3 * k for k, link in enumerate(links)}
     size = 3 * len(links)
     entries = [[0.0] * size for _ in rows]
@@ -221,7 +221,7 @@ class _GroupForm:
     def residual(self, pose):
         out = list(_group_residual_of(self.others, pose).T) if self.others else []
         for _, x, px, y, py, length in self.bars:
-            wx, wy = _world(pose, x, px), _world(pose, y, py)
+            wx, wy = world(pose, x, px), world(pose, y, py)
             d2 = (wx[0] - wy[0]) ** 2 + (wx[1] - wy[1]) ** 2
             out.append((d2 - length * length) / (2 * length))
         return np.stack(np.broadcast_arrays(*out), axis=-1)
@@ -263,7 +263,7 @@ class _GroupForm:
     def complete(self, pose):
         """Add the bars' poses (each fitted to its two pins)."""
         for bar, x, px, y, py, _ in self.bars:
-            pose[bar] = _fit_two_points(px, _world(pose, x, px), py, _world(pose, y, py))
+            pose[bar] = fit_two_points(px, world(pose, x, px), py, world(pose, y, py))
         return pose
 
     def bar_rates(self, pose, vel, acc=None):
@@ -311,23 +311,23 @@ def _group_residual_of(constraints, pose):
     return np.stack([e for c in constraints for e in _constraint_residuals(c, pose)], axis=-1)
 
 
-def _with_group(pose, step, q):
+def with_group(pose, step, q):
     return _form(step).set_bodies(pose, q)
 
 
-def _group_residual(step, pose):
+def group_residual(step, pose):
     return _form(step).residual(pose)
 
 
-def _group_jacobian(step, pose, n):
+def group_jacobian(step, pose, n):
     form = _form(step)
     rows = [({k: v for k, v in coef.items() if k in form.bodies}, 0.0)
             for coef in form.rows(pose)]
-    return _group_matrix(form.bodies, rows, n)[0]
+    return group_matrix(form.bodies, rows, n)[0]
 
 
 
-def _batched_inverse(mat):
+def batched_inverse(mat):
     """Stacked inverses; a singular matrix gets its pseudo-inverse, a matrix with
     non-finite entries (an earlier step that failed) NaN."""
     out = np.full(mat.shape[:1] + mat.shape[:0:-1], np.nan)
@@ -341,7 +341,7 @@ def _batched_inverse(mat):
     return out
 
 
-def _batched_solve(mat, rhs):
+def batched_solve(mat, rhs):
     """Solve stacked systems; a singular one (at a fold) gets its least-squares step,
     one with non-finite entries NaN."""
     out = np.full(rhs.shape, np.nan)
@@ -355,7 +355,7 @@ def _batched_solve(mat, rhs):
     return out
 
 
-def _slice(pose, idx):
+def slice(pose, idx):
     return {k: tuple(v if isinstance(v, float) else np.asarray(v)[idx] for v in p)
             for k, p in pose.items()}
 

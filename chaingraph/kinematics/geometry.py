@@ -15,13 +15,13 @@ import numpy as np
 __all__ = ["make_pose", "rotate", "tidy"]
 
 
-_DISC_TOL = 1e-13   # dimensionless discriminant: rounding is about 1e-16
+DISC_TOL = 1e-13   # dimensionless discriminant: rounding is about 1e-16
 
 
 # -- small geometry on arrays --------------------------------------------------------
 # A pose is (x, y, phi, cos phi, sin phi): the trigonometry is done once per link.
 # The fixed link's is constants, which numpy broadcasts.
-_FIXED = (0.0, 0.0, 0.0, 1.0, 0.0)
+FIXED = (0.0, 0.0, 0.0, 1.0, 0.0)
 def make_pose(x, y, phi, c=None, s=None):
     """A link's pose entry from its motion (x, y, phi)."""
     if c is None:
@@ -35,13 +35,13 @@ def rotate(entry, p):
     return c * p[0] - s * p[1], s * p[0] + c * p[1]
 
 
-def _world(pose, link, p):
+def world(pose, link, p):
     e = pose[link]
     rx, ry = rotate(e, p)
     return rx + e[0], ry + e[1]
 
 
-def _fit_two_points(p1, w1, p2, w2):
+def fit_two_points(p1, w1, p2, w2):
     """The rigid motion taking drawn points p1, p2 to w1, w2 (rotation from the chord)."""
     dpx, dpy = p2[0] - p1[0], p2[1] - p1[1]
     dwx, dwy = w2[0] - w1[0], w2[1] - w1[1]
@@ -54,7 +54,7 @@ def _fit_two_points(p1, w1, p2, w2):
     return make_pose(w1[0] - rx, w1[1] - ry, np.arctan2(s, c), c, s)
 
 
-def _from_point(entry, p, w):
+def from_point(entry, p, w):
     """The pose with the rotation of ``entry`` that puts drawn point p at w."""
     rx, ry = rotate(entry, p)
     return make_pose(w[0] - rx, w[1] - ry, entry[2], entry[3], entry[4])
@@ -64,21 +64,21 @@ def _unit(deg):
     return math.cos(math.radians(deg)), math.sin(math.radians(deg))
 
 
-def _line_of(pose, attach, unknown, through):
+def line_of(pose, attach, unknown, through):
     """The line on which the unknown link's drawn point ``through`` must stay, for a P
     attachment to a known link: (base point, direction, the unknown link's rotation)."""
     known = pose[attach.other(unknown)]
-    base = _world(pose, attach.other(unknown), attach.point)
+    base = world(pose, attach.other(unknown), attach.point)
     dx, dy = through[0] - attach.point[0], through[1] - attach.point[1]
     ox, oy = rotate(known, (dx, dy))
     u = rotate(known, _unit(attach.axis))
     return (base[0] + ox, base[1] + oy), u, known
 
 
-def _clamp_disc(disc, scale, double=False):
+def clamp_disc(disc, scale, double=False):
     """A discriminant where the modes exist (within rounding of zero: zero), NaN
     elsewhere, and where it is; zero where ``double`` (the modes' double root)."""
-    tol = _DISC_TOL * scale
+    tol = DISC_TOL * scale
     ok = (disc >= -tol) | double
     return np.where(double, 0.0, np.where(ok, np.maximum(disc, 0.0), np.nan)), ok
 

@@ -12,30 +12,30 @@ import math
 
 import numpy as np
 
-from chaingraph.kinematics.equations import (_batched_inverse, _batched_solve, _form, _group_jacobian,
-                        _group_residual, _slice, _with_group)
+from chaingraph.kinematics.equations import (batched_inverse, batched_solve, _form, group_jacobian,
+                        group_residual, slice, with_group)
 
 
 def _chord(plan, step, known, q, iterations=8):
     """Newton's method with the Jacobian inverted once at the guesses (the chord
     method): cheap for many points near their solutions. Returns (q, converged)."""
     tol = 1e-12 * plan.size
-    full = _with_group(known, step, q)
-    mat = _group_jacobian(step, full, q.shape[0])
+    full = with_group(known, step, q)
+    mat = group_jacobian(step, full, q.shape[0])
     if mat.shape[1] != mat.shape[2]:
         return q, np.zeros(q.shape[0], dtype=bool)
-    inv = _batched_inverse(mat)
+    inv = batched_inverse(mat)
     q = q.copy()
     for _ in range(iterations):
-        r = _group_residual(step, _with_group(known, step, q))
+        r = group_residual(step, with_group(known, step, q))
         q -= np.einsum("nij,nj->ni", inv, r)   # one more step after tol: to the rounding
         if np.all(np.abs(r).max(axis=1) <= tol):
             break
-    err = np.abs(_group_residual(step, _with_group(known, step, q))).max(axis=1)
+    err = np.abs(group_residual(step, with_group(known, step, q))).max(axis=1)
     return q, err <= 1e-9 * plan.size
 
 
-def _newton(plan, step, known, q, iterations=40, tol_rel=1e-12):
+def newton(plan, step, known, q, iterations=40, tol_rel=1e-12):
     """Batched Newton's method on the group's loop-closure equations; each point
     iterates until its residual is below 1e-12 of the size (linear convergence at a
     fold needs more iterations than elsewhere, so only unconverged points go on).
@@ -46,9 +46,9 @@ def _newton(plan, step, known, q, iterations=40, tol_rel=1e-12):
     active = np.arange(n)
     last = np.full(n, np.inf)
     for it in range(iterations):
-        sub = _slice(known, active) if active.size < n else known
-        full = _with_group(sub, step, q[active])
-        r = _group_residual(step, full)
+        sub = slice(known, active) if active.size < n else known
+        full = with_group(sub, step, q[active])
+        r = group_residual(step, full)
         err = np.abs(r).max(axis=1)
         # go on where not converged and still improving (a fold converges linearly)
         todo = (err > tol) & np.isfinite(err) & ((it < 4) | (err < 0.9 * last[active]))
@@ -56,21 +56,21 @@ def _newton(plan, step, known, q, iterations=40, tol_rel=1e-12):
         if not todo.any():
             break
         active, r = active[todo], r[todo]
-        full = _slice(full, np.nonzero(todo)[0])
-        mat = _group_jacobian(step, full, active.size)
+        full = slice(full, np.nonzero(todo)[0])
+        mat = group_jacobian(step, full, active.size)
         if mat.shape[1] != mat.shape[2]:
             rhs = np.einsum("nij,ni->nj", mat, -r)
             mat = np.einsum("nij,nik->njk", mat, mat)
         else:
             rhs = -r
-        q[active] += _batched_solve(mat, rhs)
-    full = _with_group(known, step, q)
-    err = np.abs(_group_residual(step, full)).max(axis=1)
+        q[active] += batched_solve(mat, rhs)
+    full = with_group(known, step, q)
+    err = np.abs(group_residual(step, full)).max(axis=1)
     return q, err <= 1e-9 * plan.size
 
 
 
-def _newton_path(plan, step, pose, theta, q0, coarse_deg=10.0, *, head):
+def newton_path(plan, step, pose, theta, q0, coarse_deg=10.0, *, head):
     """Group coordinates along the path, from q0 at its first point.
 
     A coarse trace of the group's branch by pseudo-arclength continuation (steps of
@@ -83,14 +83,14 @@ def _newton_path(plan, step, pose, theta, q0, coarse_deg=10.0, *, head):
     n = theta.size
     q0 = np.asarray(q0, dtype=float)
     if n == 1:
-        q, ok = _newton(plan, step, pose, q0[None])
+        q, ok = newton(plan, step, pose, q0[None])
         return q, ok
     span = theta[-1] - theta[0]
     direction = 1.0 if span >= 0 else -1.0
     h = min(coarse_deg, max(abs(span) / 8.0, 1e-9))
     t = float(theta[0])
     known = _known_along(plan, step, pose, theta, np.array([t]), head)
-    qi, ok = _newton(plan, step, known, q0[None])
+    qi, ok = newton(plan, step, known, q0[None])
     if not ok[0]:
         return np.zeros((n, q0.size)), np.zeros(n, dtype=bool)
     ts, qs, dqs, fold = _trace(plan, step, pose, theta, head, qi[0], t, float(theta[-1]),
@@ -111,7 +111,7 @@ def _newton_path(plan, step, pose, theta, q0, coarse_deg=10.0, *, head):
     q, ok = _chord(plan, step, pose, guess)
     if not ok.all():
         redo = np.nonzero(~ok)[0]
-        q2, ok2 = _newton(plan, step, _slice(pose, redo), guess[redo])
+        q2, ok2 = newton(plan, step, slice(pose, redo), guess[redo])
         q[redo], ok[redo] = q2, ok2
     ok &= np.linalg.norm(q - guess, axis=1) <= 0.05 * plan.size
     ok &= reached
@@ -144,21 +144,21 @@ class _Branch:
     def _full(self, z):
         known = _known_along(self.plan, self.step, self.pose, self.theta,
                              np.array([math.degrees(z[-1])]), self.head)
-        return _with_group(known, self.step, (self.scale * z[:-1])[None])
+        return with_group(known, self.step, (self.scale * z[:-1])[None])
 
     def residual(self, z):
-        return _group_residual(self.step, self._full(z))[0] / self.plan.size
+        return group_residual(self.step, self._full(z))[0] / self.plan.size
 
     def jacobian(self, z):
         """d(residual)/dz: the group's Jacobian in its unknowns, and its derivative in
         the input, which is minus the velocity equations' right-hand side at unit
         input rate."""
-        from chaingraph.kinematics.rates import _Factor, rates     # rates use groups' forms: import here
+        from chaingraph.kinematics.rates import Factor, rates     # rates use groups' forms: import here
         full = self._full(z)
         # the input's rate that moves tau by one radian per second
         vel, _, _ = rates(self.plan, full, self.plan.rate_scale * 180.0 / math.pi, 1,
                           steps=self.head_steps, measure=False, accelerations=False)
-        f = _Factor(self.step, full, 1, self.plan.size)
+        f = Factor(self.step, full, 1, self.plan.size)
         ft = -np.array([float(np.broadcast_to(v, (1,))[0])
                         for v in f.right_hand_sides(vel)])
         return np.column_stack([f.mat[0] * self.scale, ft]) / self.plan.size
@@ -305,7 +305,7 @@ def _approach(plan, step, pose, theta, head, t_from, q_from, t_to):
     q = q_from
     for t in list(ts) + [t_to]:
         known = _known_along(plan, step, pose, theta, np.array([t]), head)
-        qi, good = _newton(plan, step, known, q[None], iterations=100)
+        qi, good = newton(plan, step, known, q[None], iterations=100)
         if good[0] and np.linalg.norm(qi[0] - q) <= 0.1 * plan.size:
             q = qi[0]
         elif t == t_to:

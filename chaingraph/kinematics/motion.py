@@ -23,8 +23,8 @@ from chaingraph.kinematics.columns import _columns
 from chaingraph.kinematics.equations import check_poses
 from chaingraph.kinematics.plan import build_plan, chosen_inputs
 from chaingraph.kinematics.rates import rates
-from chaingraph.kinematics.summary import _cycle_theta, _summary
-from chaingraph.kinematics.sweep import Cycle, _evaluate_near, _evaluate_sweep, cycle
+from chaingraph.kinematics.summary import cycle_theta, _summary
+from chaingraph.kinematics.sweep import Cycle, evaluate_near, evaluate_sweep, cycle
 
 __all__ = ["Motion", "solve", "full_turns"]
 
@@ -203,7 +203,7 @@ def solve(mechanism, *, fixed=None, driver=None, inputs=None, start=None, stop=N
     for value, what in ((start, "start"), (stop, "stop")):
         if value is not None:
             check_input_value(value, f"the sweep's {what}", chain.name)
-    fixed, driver, items = chosen_inputs(chain, fixed, driver, _as_inputs(inputs, chain))
+    fixed, driver, items = chosen_inputs(chain, fixed, driver, as_inputs(inputs, chain))
     if items:
         first = items[0]
         if start is not None or stop is not None:
@@ -239,7 +239,7 @@ def solve(mechanism, *, fixed=None, driver=None, inputs=None, start=None, stop=N
     else:
         theta = np.linspace(lo, c.high, steps + 1)   # both ends exact (a rocker's limits)
     hi = float(theta[-1])
-    ev = _evaluate_sweep(plan, theta) if c is not None else _evaluate_near(plan, theta)
+    ev = evaluate_sweep(plan, theta) if c is not None else evaluate_near(plan, theta)
     check_poses(plan, ev.pose, ev.feasible)
     # rates at unit input speed, scaled to omega: the summary can then use this sweep
     # when it is the summary's own grid
@@ -264,7 +264,7 @@ def solve(mechanism, *, fixed=None, driver=None, inputs=None, start=None, stop=N
     if plan.moving_inputs > 1:                  # several inputs move: summarize the sweep
         c = Cycle(None, min(lo, hi), max(lo, hi), ends="sweep")
     reuse = None
-    if summary and c.ends == "limits" and np.array_equal(theta, _cycle_theta(plan, c)):
+    if summary and c.ends == "limits" and np.array_equal(theta, cycle_theta(plan, c)):
         reuse = (ev, measure, unit_columns)
     summary = _summary(plan, output, omega, c, sweep=reuse) if summary else {}
     return Motion(name=chain.name, fixed=plan.fixed, driver=plan.driver, omega=omega,
@@ -337,7 +337,7 @@ def _scaled(columns, omega):
     return out
 
 
-def _as_inputs(inputs, chain):
+def as_inputs(inputs, chain):
     """Inputs given to :func:`solve` as Input items (None when none are given)."""
     if inputs is None:
         return None
@@ -390,7 +390,7 @@ def full_turns(chain, fixed):
             continue
         try:
             c = cycle(plan)
-            ev = _evaluate_sweep(plan, _cycle_theta(plan, c, 720))
+            ev = evaluate_sweep(plan, cycle_theta(plan, c, 720))
         except AssemblyError:
             continue
         turning = set()

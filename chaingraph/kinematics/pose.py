@@ -20,10 +20,10 @@ from chaingraph.errors import AssemblyError, MechanismError
 from chaingraph.kinematics.equations import check_poses
 from chaingraph.kinematics.geometry import rotate
 from chaingraph.kinematics.columns import _slide, reference_link
-from chaingraph.kinematics.motion import _as_inputs, _plan, check_input_value
+from chaingraph.kinematics.motion import as_inputs, _plan, check_input_value
 from chaingraph.kinematics.plan import chosen_inputs
 from chaingraph.kinematics.rates import rates
-from chaingraph.kinematics.sweep import _evaluate_near
+from chaingraph.kinematics.sweep import evaluate_near
 
 __all__ = ["LinkMotion", "PoseMotion", "AtOneValue", "pose_motion"]
 
@@ -214,7 +214,7 @@ def pose_motion(chain, *, at=None, fixed=None, driver=None, inputs=None,
             check_input_value(v, "the input value", name)
     if omega is not None:
         check_input_value(omega, "the input speed omega", name)
-    fixed, driver, items = chosen_inputs(chain, fixed, driver, _as_inputs(inputs, chain))
+    fixed, driver, items = chosen_inputs(chain, fixed, driver, as_inputs(inputs, chain))
     if items:
         plan = _plan(chain, fixed, None, items)
         if at is None or len(values) > 1:
@@ -237,7 +237,7 @@ def pose_motion(chain, *, at=None, fixed=None, driver=None, inputs=None,
         omega = chain.mechanism.omega if chain.mechanism else 1.0
     theta = np.array([float(tau)])
     try:
-        ev = _evaluate_near(plan, theta)
+        ev = evaluate_near(plan, theta)
     except AssemblyError as e:
         rng = e.feasible_range
         if rng is None:

@@ -13,8 +13,8 @@ import math
 
 import numpy as np
 
-from chaingraph.kinematics.equations import (_add, _batched_inverse, _dot3, _form, _gammas, _geometry,
-                        _group_matrix, _mul, _rows, _sub)
+from chaingraph.kinematics.equations import (add, batched_inverse, dot3, _form, _gammas, _geometry,
+                        group_matrix, mul, _rows, sub)
 from chaingraph.kinematics.geometry import rotate
 
 __all__ = ["rates"]
@@ -72,11 +72,11 @@ class _PointDyad:
     def _known_point(self, table, link, r, second=None):
         v = table[link]
         if second is None:      # velocity of the point: v + w perp(R p)
-            return _add(v[0], _mul(-1.0, _mul(v[2], r[1]))), _add(v[1], _mul(v[2], r[0]))
+            return add(v[0], mul(-1.0, mul(v[2], r[1]))), add(v[1], mul(v[2], r[0]))
         w = second[link][2]     # acceleration: a + alpha perp(R p) - w^2 R p
-        w2 = _mul(w, w)
-        return (_add(_add(v[0], _mul(-1.0, _mul(v[2], r[1]))), _mul(-1.0, _mul(w2, r[0]))),
-                _add(_add(v[1], _mul(v[2], r[0])), _mul(-1.0, _mul(w2, r[1]))))
+        w2 = mul(w, w)
+        return (add(add(v[0], mul(-1.0, mul(v[2], r[1]))), mul(-1.0, mul(w2, r[0]))),
+                add(add(v[1], mul(v[2], r[0])), mul(-1.0, mul(w2, r[1]))))
 
     def solve_velocity(self, vel):
         dwa = self._known_point(vel, self.ka, self.ra_k)
@@ -168,7 +168,7 @@ def _sq(v):
     return v[0] * v[0] + v[1] * v[1]
 
 
-class _Factor:
+class Factor:
     """One step's constraint Jacobian, factored once for the velocity and acceleration
     solves (which differ only in their right-hand sides)."""
 
@@ -192,11 +192,11 @@ class _Factor:
         if step.kind == "single":
             u = step.links[0]
             self.null = _NullSpace(self.rows[0][0][u], self.rows[1][0][u])
-            self.extra = [_dot3(r[0][u], self.null.e) for r in self.rows[2:]]
+            self.extra = [dot3(r[0][u], self.null.e) for r in self.rows[2:]]
             den = sum(m * m for m in self.extra)
             # an input's weld always determines the link (its row and the null direction
             # are in different units, so no ratio of them means anything)
-            self.singular = (np.abs(den) <= _SINGULAR ** 2 * (_dot3(self.null.e, self.null.e))
+            self.singular = (np.abs(den) <= _SINGULAR ** 2 * (dot3(self.null.e, self.null.e))
                              if step.pattern[0] != "W" else np.zeros(n, dtype=bool))
             self.den = np.where(self.singular, 1.0, den)
         elif step.kind == "dyad":
@@ -205,8 +205,8 @@ class _Factor:
             self.null_b = _NullSpace(self.rows[2][0][b], self.rows[3][0][b])
             p = []
             for unknown, _ in self.rows[4:6]:
-                pa = _dot3(unknown[a], self.null_a.e) if a in unknown else 0.0 * n
-                pb = _dot3(unknown[b], self.null_b.e) if b in unknown else 0.0 * n
+                pa = dot3(unknown[a], self.null_a.e) if a in unknown else 0.0 * n
+                pb = dot3(unknown[b], self.null_b.e) if b in unknown else 0.0 * n
                 p.append((pa, pb))
             (p11, p12), (p21, p22) = p
             w = size if step.constraints[2].kind == "P" else 1.0  # angle row in lengths
@@ -217,12 +217,12 @@ class _Factor:
                 (w * w * p11 * p11 + p21 * p21) * (w * w * p12 * p12 + p22 * p22))
             self.p = (p11, p12, p21, p22, np.where(self.singular, 1.0, det))
         else:
-            self.mat, _ = _group_matrix(self.form.bodies, [(u, 0.0) for u, _ in self.rows], n)
+            self.mat, _ = group_matrix(self.form.bodies, [(u, 0.0) for u, _ in self.rows], n)
             m = self.mat
             self.normal = m.shape[1] != m.shape[2]
             if self.normal:
                 m = np.einsum("nij,nik->njk", self.mat, self.mat)
-            inv = _batched_inverse(m)
+            inv = batched_inverse(m)
             # 1 / (Frobenius condition number): 0 when singular, whatever the scale
             measure = 1.0 / (np.sqrt((m * m).sum(axis=(1, 2)) *
                                      (inv * inv).sum(axis=(1, 2))) + 1e-300)
@@ -258,7 +258,7 @@ class _Factor:
             q0 = self.null.particular(rhs[0], rhs[1])
             num = 0.0
             for m, (unknown, _), r in zip(self.extra, self.rows[2:], rhs[2:]):
-                num = num + m * (r - _dot3(unknown[u], q0))
+                num = num + m * (r - dot3(unknown[u], q0))
             z = np.where(self.singular, np.nan, num / self.den)
             e = self.null.e
             return {u: tuple(q0[i] + z * e[i] for i in range(3))}
@@ -269,9 +269,9 @@ class _Factor:
             r = []
             for (unknown, _), value in zip(self.rows[4:6], rhs[4:6]):
                 if a in unknown:
-                    value = value - _dot3(unknown[a], qa)
+                    value = value - dot3(unknown[a], qa)
                 if b in unknown:
-                    value = value - _dot3(unknown[b], qb)
+                    value = value - dot3(unknown[b], qb)
                 r.append(value)
             p11, p12, p21, p22, det = self.p
             za = np.where(self.singular, np.nan, (r[0] * p22 - p12 * r[1]) / det)
@@ -292,7 +292,7 @@ class _Factor:
         for i, (_, known) in enumerate(self.rows):
             value = gammas[i] if gammas is not None else 0.0
             for link, cf in known.items():
-                value = value - _dot3(cf, rates_known[link])
+                value = value - dot3(cf, rates_known[link])
             out.append(value)
         return out
 
@@ -308,9 +308,9 @@ class _NullSpace:
 
     def __init__(self, m1, m2):
         self.m1, self.m2 = m1, m2
-        self.e = (_sub(_mul(m1[1], m2[2]), _mul(m1[2], m2[1])),
-                  _sub(_mul(m1[2], m2[0]), _mul(m1[0], m2[2])),
-                  _sub(_mul(m1[0], m2[1]), _mul(m1[1], m2[0])))
+        self.e = (sub(mul(m1[1], m2[2]), mul(m1[2], m2[1])),
+                  sub(mul(m1[2], m2[0]), mul(m1[0], m2[2])),
+                  sub(mul(m1[0], m2[1]), mul(m1[1], m2[0])))
         self.drop = np.argmax(np.abs(np.array(np.broadcast_arrays(*self.e), dtype=float)),
                               axis=0)
 
@@ -363,7 +363,7 @@ def rates(plan, pose, omega, n, *, steps=None, measure=True, accelerations=True)
             f = _Weld(step, pose)
             vel.update(f.solve_velocity(vel))
         else:
-            f = _Factor(step, pose, n, plan.size)
+            f = Factor(step, pose, n, plan.size)
             vel.update(f.solve(f.right_hand_sides(vel)))
             if step.kind == "group":
                 vel.update(f.form.bar_rates(pose, vel))

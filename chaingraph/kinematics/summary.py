@@ -14,7 +14,7 @@ from chaingraph.kinematics.columns import _columns
 from chaingraph.kinematics.geometry import rotate, tidy
 from chaingraph.kinematics.rates import rates
 from chaingraph.kinematics.roots import bracketed_roots
-from chaingraph.kinematics.sweep import _evaluate_sweep, cycle
+from chaingraph.kinematics.sweep import evaluate_sweep, cycle
 from chaingraph.kinematics.tracking import evaluate_at
 
 __all__ = ["summary_rows", "path_direction", "output_signal", "OutputSignal"]
@@ -168,7 +168,7 @@ def path_direction(cols, name, *, closed=False):
     return float(d[0]), float(d[1])
 
 
-def _cycle_theta(plan, c, steps_per_turn=3600):
+def cycle_theta(plan, c, steps_per_turn=3600):
     """The summary's grid: one period of a crank from the drawn pose, or a rocker's
     whole range, limits included exactly."""
     if c.full_turn:
@@ -212,8 +212,8 @@ def _summary(plan, output, omega, c, *, sweep=None):
 
 def _raw_summary(plan, output, omega, c, *, sweep=None):
     if sweep is None:
-        theta = _cycle_theta(plan, c)
-        ev = _evaluate_sweep(plan, theta)
+        theta = cycle_theta(plan, c)
+        ev = evaluate_sweep(plan, theta)
         vel, acc, measure = rates(plan, ev.pose, 1.0, theta.size)
         cols = _columns(plan, theta, ev.pose, vel, acc)
     else:

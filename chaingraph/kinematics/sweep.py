@@ -12,7 +12,7 @@ import numpy as np
 
 from chaingraph.errors import AssemblyError
 from chaingraph.kinematics import groups
-from chaingraph.kinematics.closed_form import _dyad_roots
+from chaingraph.kinematics.closed_form import dyad_roots
 from chaingraph.kinematics.roots import bracketed_roots
 from chaingraph.kinematics.tracking import Evaluation, Reference, evaluate, evaluate_at, failing_step
 
@@ -178,7 +178,7 @@ def _fold(plan, at, good, bad, far):
             t = np.atleast_1d(np.asarray(t, dtype=float))
             pose, _, _ = evaluate_at(plan, t, _repeat(ref, t.size), upto=i)
             with np.errstate(divide="ignore", invalid="ignore"):
-                return np.asarray(_dyad_roots(step, pose, plan.size)[3], dtype=float) \
+                return np.asarray(dyad_roots(step, pose, plan.size)[3], dtype=float) \
                     * np.ones(t.size)
         d_good, d_bad = disc(good)[0], disc(bad)[0]
         if d_good > 0 and np.isfinite(d_bad) and d_bad < 0:
@@ -283,7 +283,7 @@ def _along(plan, end, targets):
     return ev.take(idx)
 
 
-def _evaluate_near(plan, theta):
+def evaluate_near(plan, theta):
     """Poses at ``theta`` continued from the anchor on each side, without working out
     the cycle first (for an explicit sweep without summary); the cycle is worked out
     only to say the range when the sweep leaves it."""
@@ -292,7 +292,7 @@ def _evaluate_near(plan, theta):
     if np.max(np.abs(theta - t0)) > 720.0:
         # far from the drawn pose: work out the cycle, so that a crank's angles are
         # taken within one turn instead of walking the whole span on the grid
-        return _evaluate_sweep(plan, theta)
+        return evaluate_sweep(plan, theta)
     parts = []
     for side, farthest in ((theta > t0, np.max), (theta <= t0, np.min)):
         if side.any():
@@ -300,12 +300,12 @@ def _evaluate_near(plan, theta):
                           _along(plan, float(farthest(theta[side])), theta[side])))
     ev = parts[0][1] if len(parts) == 1 else _merge(parts, theta.size)
     if not ev.feasible.all():
-        return _evaluate_sweep(plan, theta)      # says the range
+        return evaluate_sweep(plan, theta)      # says the range
     ev.theta = theta
     return ev
 
 
-def _evaluate_sweep(plan, theta):
+def evaluate_sweep(plan, theta):
     """Poses at the path parameters ``theta`` (a driver's angles, degrees): a crank's
     from its angle within one period of the anchor, a rocker's from the anchor
     outward, both continued on the same internal grid whatever the sweep."""

@@ -14,10 +14,10 @@ import math
 
 import numpy as np
 
-from chaingraph.kinematics.closed_form import _dyad_roots, _initial_sign, _single
+from chaingraph.kinematics.closed_form import dyad_roots, initial_sign, _single
 from chaingraph.kinematics.equations import _form
-from chaingraph.kinematics.geometry import _DISC_TOL, _FIXED
-from chaingraph.kinematics.groups import _newton, _newton_path
+from chaingraph.kinematics.geometry import DISC_TOL, FIXED
+from chaingraph.kinematics.groups import newton, newton_path
 
 __all__ = ["Evaluation", "Reference", "evaluate", "evaluate_at", "failing_step"]
 
@@ -26,7 +26,7 @@ __all__ = ["Evaluation", "Reference", "evaluate", "evaluate_at", "failing_step"]
 def _known_poses(plan, theta):
     """The fixed link, and each input's value (its delta, in the rotation's place) at
     the path parameters ``theta``: everything else is found from these."""
-    pose = {plan.fixed: _FIXED}
+    pose = {plan.fixed: FIXED}
     for item, delta in zip(plan.inputs, plan.deltas(theta)):
         pose[item.key] = (0.0, 0.0, np.broadcast_to(delta, theta.shape), 1.0, 0.0)
     return pose
@@ -84,11 +84,11 @@ def _evaluate_at(plan, theta, ref, upto, double):
                 pose.update(_single(step, pose))
                 ok = True
             elif step.kind == "dyad":
-                keys, build, ok, _ = _dyad_roots(step, pose, plan.size, double=i in double)
+                keys, build, ok, _ = dyad_roots(step, pose, plan.size, double=i in double)
                 pose.update(build(1.0 if keys is None else ref.sign(i, theta)))
             else:
                 q0 = np.broadcast_to(ref.group_q[i], (theta.size, _form(step).size))
-                q, ok = _newton(plan, step, pose, q0)
+                q, ok = newton(plan, step, pose, q0)
                 group_q[i] = q
                 pose.update(_form(step).complete(_form(step).set_bodies(pose, q)))
             if first_bad is None and not np.all(ok):
@@ -175,13 +175,13 @@ def _evaluate(plan, theta, start):
             pose.update(_single(step, pose))
             continue
         if step.kind == "dyad":
-            keys, build, ok, disc = _dyad_roots(step, pose, plan.size)
+            keys, build, ok, disc = dyad_roots(step, pose, plan.size)
             if keys is None:
                 feasible &= ok
                 pose.update(build(1.0))
                 continue
             drawn = (1.0, 0.0) if step.pattern == "RPR" else step.constraints[2].point
-            sign0 = start.signs[i] if start is not None else _initial_sign(keys, drawn)
+            sign0 = start.signs[i] if start is not None else initial_sign(keys, drawn)
             ref = Evaluation(theta, pose, feasible, signs, group_q, switches)
             chosen, ok, found = _track(plan, i, step, ref, np.where(feasible, disc, np.nan),
                                        sign0)
@@ -192,7 +192,7 @@ def _evaluate(plan, theta, start):
             continue
         q0 = start.group_q[i] if start is not None else np.zeros(_form(step).size)
         head = Evaluation(theta, pose, feasible, signs, group_q, switches)
-        q, ok = _newton_path(plan, step, pose, theta, q0, head=head)
+        q, ok = newton_path(plan, step, pose, theta, q0, head=head)
         feasible &= ok
         group_q[i] = q
         pose.update(_form(step).complete(_form(step).set_bodies(pose, q)))
@@ -224,7 +224,7 @@ def _track(plan, i, step, head, disc, sign0):
     """
     theta = head.theta
     n = theta.size
-    ok = disc >= -_DISC_TOL
+    ok = disc >= -DISC_TOL
     last = n if ok.all() else int(np.argmin(ok))
     direction = 1.0 if n < 2 or theta[-1] >= theta[0] else -1.0
     found = []
@@ -236,10 +236,10 @@ def _track(plan, i, step, head, disc, sign0):
         for k in candidates:
             lo, hi = theta[max(k - 1, 0)], theta[min(k + 1, last - 1)]
             tstar, dmin = _zoom_minimum(plan, i, step, head, int(k), lo, hi)
-            if dmin < -_DISC_TOL:          # a window where it cannot be assembled
+            if dmin < -DISC_TOL:          # a window where it cannot be assembled
                 last = min(last, int(np.argmax(direction * (theta - tstar) >= 0)))
                 break
-            if dmin <= _DISC_TOL:
+            if dmin <= DISC_TOL:
                 tstar = _touch_vertex(plan, i, step, head, int(k), tstar)
                 sign = sign0 * (-1.0) ** len(found)
                 if _switches_label(plan, i, step, head, int(k), tstar, direction, sign):
@@ -257,7 +257,7 @@ def _head_roots(plan, i, step, head, k, ts):
     ref = head.reference(np.full(ts.size, k))
     pose, feasible, _ = evaluate_at(plan, ts, ref, upto=i)
     with np.errstate(divide="ignore", invalid="ignore", over="ignore"):
-        keys, _, _, disc = _dyad_roots(step, pose, plan.size)
+        keys, _, _, disc = dyad_roots(step, pose, plan.size)
     return keys, np.where(feasible, disc, np.nan)
 
 
@@ -272,7 +272,7 @@ def _zoom_minimum(plan, i, step, head, k, lo, hi):
             break
         j = int(np.nanargmin(d))
         tstar, dmin = float(ts[j]), float(d[j])
-        if dmin < -_DISC_TOL:
+        if dmin < -DISC_TOL:
             break
         lo, hi = ts[max(j - 1, 0)], ts[min(j + 1, ts.size - 1)]
         if abs(hi - lo) < 1e-9:
@@ -299,7 +299,7 @@ def _switches_label(plan, i, step, head, k, tstar, direction, sign):
     h = _SWITCH_STEP * direction
     ts = np.array([tstar - 2 * h, tstar - h, tstar + h])
     keys, disc = _head_roots(plan, i, step, head, k, ts)
-    if not np.all(disc[1:] >= -_DISC_TOL):
+    if not np.all(disc[1:] >= -DISC_TOL):
         return False             # a fold: the path cannot pass, nothing to continue
     cur = keys[0] if sign > 0 else keys[1]
     alt = keys[1] if sign > 0 else keys[0]

@@ -305,11 +305,11 @@ def _inputs(value, fail, dimensioned=False):
 
 
 # -- writing ------------------------------------------------------------------------
-def _toml_string(s: str) -> str:
+def toml_string(s: str) -> str:
     return json.dumps(s, ensure_ascii=False).replace("\x7f", "\\u007F")
 
 
-def _toml_number(x: float) -> str:
+def toml_number(x: float) -> str:
     x = float(x)
     if x == int(x) and abs(x) < 1e15:
         return f"{x:.1f}"
@@ -336,47 +336,47 @@ def dumps(chain: Chain) -> str:
     >>> parse_text(dumps(c)).chain == c
     True
     """
-    lines = [f"name = {_toml_string(chain.name)}"]
+    lines = [f"name = {toml_string(chain.name)}"]
     for key in ("family", "units", "notes", "naming"):
         value = getattr(chain, key)
         if value is not None:
-            lines.append(f"{key} = {_toml_string(value)}")
+            lines.append(f"{key} = {toml_string(value)}")
     if chain.space != "planar":
-        lines.append(f"space = {_toml_string(chain.space)}")
+        lines.append(f"space = {toml_string(chain.space)}")
     for j in chain.joints:
-        lines += ["", "[[joints]]", f"id = {_toml_string(j.id)}", f"kind = {_toml_string(j.kind)}",
-                  "links = [" + ", ".join(_toml_string(x) for x in j.links) + "]"]
+        lines += ["", "[[joints]]", f"id = {toml_string(j.id)}", f"kind = {toml_string(j.kind)}",
+                  "links = [" + ", ".join(toml_string(x) for x in j.links) + "]"]
         if j.at is not None:
-            lines.append(f"at = [{_toml_number(j.at[0])}, {_toml_number(j.at[1])}]")
+            lines.append(f"at = [{toml_number(j.at[0])}, {toml_number(j.at[1])}]")
         if j.axis is not None:
-            lines.append(f"axis = {_toml_number(j.axis)}")
+            lines.append(f"axis = {toml_number(j.axis)}")
         if j.closure is not None:
-            lines.append(f"closure = {_toml_string(j.closure)}")
+            lines.append(f"closure = {toml_string(j.closure)}")
     for p in chain.points:
-        lines += ["", "[[points]]", f"id = {_toml_string(p.id)}", f"link = {_toml_string(p.link)}",
-                  f"at = [{_toml_number(p.at[0])}, {_toml_number(p.at[1])}]"]
+        lines += ["", "[[points]]", f"id = {toml_string(p.id)}", f"link = {toml_string(p.link)}",
+                  f"at = [{toml_number(p.at[0])}, {toml_number(p.at[1])}]"]
     m = chain.mechanism
     if m is not None:
-        lines += ["", "[mechanism]", f"fixed = {_toml_string(m.fixed)}"]
+        lines += ["", "[mechanism]", f"fixed = {toml_string(m.fixed)}"]
         if m.driver is not None:
-            lines.append(f"driver = {_toml_string(m.driver)}")
+            lines.append(f"driver = {toml_string(m.driver)}")
         if m.inputs:
             lines.append("inputs = [" + ", ".join(_toml_input(i) for i in m.inputs) + "]")
         if m.omega != 1.0:
-            lines.append(f"omega = {_toml_number(m.omega)}")
+            lines.append(f"omega = {toml_number(m.omega)}")
         if m.output is not None:
-            lines.append(f"output = {_toml_string(m.output)}")
+            lines.append(f"output = {toml_string(m.output)}")
     return "\n".join(lines) + "\n"
 
 
 def _toml_input(item) -> str:
     if item.start is None and item.at is None:
-        return _toml_string(item.joint)
-    parts = [f"joint = {_toml_string(item.joint)}"]
+        return toml_string(item.joint)
+    parts = [f"joint = {toml_string(item.joint)}"]
     if item.start is not None:
-        parts += [f"from = {_toml_number(item.start)}", f"to = {_toml_number(item.stop)}"]
+        parts += [f"from = {toml_number(item.start)}", f"to = {toml_number(item.stop)}"]
     if item.at is not None:
-        parts.append(f"at = {_toml_number(item.at)}")
+        parts.append(f"at = {toml_number(item.at)}")
     return "{" + ", ".join(parts) + "}"
 
 

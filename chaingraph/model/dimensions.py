@@ -243,12 +243,12 @@ def _values(table, fail):
 
 
 # -- one link's shape ----------------------------------------------------------------
-def _rotate(v, angle):
+def rotate(v, angle):
     c, s = math.cos(angle), math.sin(angle)
     return (c * v[0] - s * v[1], s * v[0] + c * v[1])
 
 
-def _sub(a, b):
+def sub(a, b):
     return (a[0] - b[0], a[1] - b[1])
 
 
@@ -330,7 +330,7 @@ def link_shape(link, features, entries, sides, fail):
     if math.dist(origin, toward) <= 1e-12 * scale:
         fail(f"joints {features[0]} and {features[1]} of link {link!r} are at one place")
     turn = -math.atan2(toward[1] - origin[1], toward[0] - origin[0])
-    return {f: _rotate(_sub(p, origin), turn) for f, p in pos.items()}, placed
+    return {f: rotate(sub(p, origin), turn) for f, p in pos.items()}, placed
 
 
 def _quote(name):
@@ -338,7 +338,7 @@ def _quote(name):
 
 
 def _angle_at(pos, a, m, c):
-    u, v = _sub(pos[a], pos[m]), _sub(pos[c], pos[m])
+    u, v = sub(pos[a], pos[m]), sub(pos[c], pos[m])
     return math.degrees(math.atan2(u[0] * v[1] - u[1] * v[0], u[0] * v[0] + u[1] * v[1]))
 
 
@@ -354,18 +354,18 @@ def _by_angle(f, pos, angles, d):
             x, turn = c, -math.radians(angle)
         else:
             continue
-        ray = _sub(pos[x], pos[m])
+        ray = sub(pos[x], pos[m])
         norm = math.hypot(*ray)
         if norm == 0:
             continue
-        step = _rotate((ray[0] / norm * d(m, f), ray[1] / norm * d(m, f)), turn)
+        step = rotate((ray[0] / norm * d(m, f), ray[1] / norm * d(m, f)), turn)
         return (pos[m][0] + step[0], pos[m][1] + step[1])
     return None
 
 
 def _triangle(link, f, a, b, pos, ra, rb, side, fail):
     """``f`` at distance ``ra`` from ``a`` and ``rb`` from ``b``, on ``side`` of a->b."""
-    base = _sub(pos[b], pos[a])
+    base = sub(pos[b], pos[a])
     ab = math.hypot(*base)
     if ab == 0:
         fail(f"joints {a} and {b} of link {link!r} are at one place")

@@ -105,7 +105,7 @@ class _Partition:
             self.parent[max(a, b)] = min(a, b)
 
 
-def _orbits_of(generators, n, fixing=()):
+def orbits_of(generators, n, fixing=()):
     blocks = _Partition(n)
     for g in generators:
         if all(g[p] == p for p in fixing):
@@ -162,7 +162,7 @@ def _search(labels, adj):
         explored = []
         for v in cells[target]:
             if explored:
-                orbit = _orbits_of(generators, n, fixing=path)
+                orbit = orbits_of(generators, n, fixing=path)
                 if any(orbit[v] == orbit[w] for w in explored):
                     continue
             explored.append(v)
@@ -175,7 +175,7 @@ def _search(labels, adj):
     # group order from the stabilizer chain along the first path
     size = 1
     for depth in range(len(first_path)):
-        orbit = _orbits_of(generators, n, fixing=first_path[:depth])
+        orbit = orbits_of(generators, n, fixing=first_path[:depth])
         size *= sum(1 for x in range(n) if orbit[x] == orbit[first_path[depth]])
     best_cert, best_perm = state["best"]
     order = [0] * n
@@ -200,7 +200,7 @@ def canonical(chain, *, oriented: bool = True) -> Canon:
             f"canonical labelling (for isomorphism, inversions and identify) takes chains of "
             f"at most {MAX_LINKS:,} links, which it labels in seconds; this one has "
             f"{len(chain.links):,}", chain=chain.name)
-    return _canonical_cached(chain, oriented)
+    return canonical_cached(chain, oriented)
 
 
 #: the most links a chain may have for canonical labelling: polynomial in practice,
@@ -251,7 +251,7 @@ def _search_nauty(labels, adj):
 
 
 @lru_cache(maxsize=4096)
-def _canonical_cached(chain, oriented):
+def canonical_cached(chain, oriented):
     nodes, labels, adj = _structure(chain, oriented)
     search = _search
     if len(nodes) > NAUTY_FROM:

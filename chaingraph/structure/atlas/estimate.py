@@ -24,7 +24,7 @@ __all__ = ["Estimate", "estimate", "check_size", "LOCAL_HOURS", "CLUSTER_CORE_HO
 KNOWN = {(4, 1): 1, (6, 1): 2, (8, 1): 16, (10, 1): 230, (12, 1): 6856, (14, 1): 318162,
          (16, 1): 19819281, (7, 2): 4, (9, 2): 40, (11, 2): 839, (13, 2): 29685,
          (8, 3): 7, (10, 3): 98, (12, 3): 2422}
-_FIT = (-1.31521923, 0.13475271, 0.05599872, 0.05632598)
+FIT = (-1.31521923, 0.13475271, 0.05599872, 0.05632598)
 #: CPU seconds per chain at 14 links; grows with the chain's size
 SECONDS_PER_CHAIN = 130e-6
 #: no atlas is tried beyond this many links, whatever the machine
@@ -102,7 +102,7 @@ def estimate(links: int, dof: int = 1) -> Estimate:
         log_chains, published = math.log10(KNOWN[(links, dof)]), True
     else:
         loops = (links - 1 - dof) / 2
-        a, b, c, d = _FIT
+        a, b, c, d = FIT
         log_chains, published = a + b * links + c * loops + d * links * loops, False
     log_cpu = log_chains + math.log10(SECONDS_PER_CHAIN * max(1.0, links / 14))
     return Estimate(links, dof, log_chains, log_cpu, published)

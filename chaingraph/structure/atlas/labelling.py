@@ -11,7 +11,7 @@ other through the project's own canonical form.
 
 from __future__ import annotations
 
-from chaingraph.structure.isomorphism import _orbits_of, _search
+from chaingraph.structure.isomorphism import orbits_of, _search
 
 import numpy as np
 
@@ -92,7 +92,7 @@ def graph_forms(n, edges, *, backend="nauty"):
                 adj[b].append((a, 0))
             _, order, gens, _ = _search(labels, adj)
             orders[i] = order
-            orbits[i] = len(set(_orbits_of(gens, n)))
+            orbits[i] = len(set(orbits_of(gens, n)))
     position = np.empty_like(orders)
     np.put_along_axis(position, orders, np.arange(n)[None, :].repeat(m, axis=0), axis=1)
     relabelled = np.take_along_axis(position, edges.reshape(m, -1), axis=1).reshape(m, joints, 2)

@@ -249,7 +249,7 @@ def chain_text(entry, dof=None) -> str:
     return "".join(parts)
 
 
-def _atlas_svg(entry, size=170):
+def atlas_svg(entry, size=170):
     """A small SVG of one chain's link-joint graph: links as numbered circles on a ring
     (ordered to follow the chain; L1 is link 1 of the chain file, edge 0 of atlas.json's
     ``edges``), joints as squares on the bars between them, each placed where no other
@@ -288,7 +288,7 @@ def _atlas_svg(entry, size=170):
     return "".join(parts)
 
 
-def _segment_distance(p, a, b):
+def segment_distance(p, a, b):
     """Distance from point p to the segment a-b."""
     dx, dy = b[0] - a[0], b[1] - a[1]
     t = max(0.0, min(1.0, ((p[0] - a[0]) * dx + (p[1] - a[1]) * dy) / (dx * dx + dy * dy)))
@@ -302,7 +302,7 @@ def _joint_place(bar, others, squares, clear=5.0):
     best, best_gap = None, -1.0
     for t in (0.5, 0.4, 0.6, 0.32, 0.68, 0.26, 0.74, 0.45, 0.55, 0.36, 0.64, 0.3, 0.7):
         p = (x1 + t * (x2 - x1), y1 + t * (y2 - y1))
-        gap = min([_segment_distance(p, a, b) for a, b in others]
+        gap = min([segment_distance(p, a, b) for a, b in others]
                   + [math.dist(p, q) for q in squares] + [math.inf])
         if gap >= clear:
             return p
@@ -333,7 +333,7 @@ def _atlas_page(atlas, figures, by_assortment, count, total, no_fractionated):
     cells = []
     for e in figures:
         orders = ", ".join(f"{v} {k}" for k, v in e.link_orders.items())
-        cells.append(f'<figure id="chain-{e.id}">{_atlas_svg(e)}<figcaption><b>{e.id}</b>: '
+        cells.append(f'<figure id="chain-{e.id}">{atlas_svg(e)}<figcaption><b>{e.id}</b>: '
                      f'{_html.escape(orders)}; {e.inversion_classes} distinct inversion'
                      f'{"s" if e.inversion_classes != 1 else ""}'
                      f'{"; fractionated" if e.fractionated else ""}</figcaption></figure>')
