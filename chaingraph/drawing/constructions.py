@@ -11,7 +11,7 @@ import math
 
 import numpy as np
 
-from chaingraph.drawing.plots import COLOURS, finish, _pyplot, draw_positions, plain_text
+from chaingraph.drawing.plots import COLOURS, finish, pyplot_module, draw_positions, plain_text
 
 __all__ = ["draw_centres", "draw_polygons"]
 
@@ -42,7 +42,7 @@ def draw_centres(centres, path=None):
     theorem as open ones with the two lines that met dashed; a centre at infinity as an
     arrow at the picture's edge in its direction; a centre too far to show within the
     picture as an arrow towards it, with its coordinates."""
-    plt = _pyplot()
+    plt = pyplot_module()
     state = centres.state
     plan = state.plan
     fig, (ax, circle) = plt.subplots(1, 2, figsize=(12, 6),
@@ -164,7 +164,7 @@ def draw_polygons(polygons, path=None):
     guide's point under the block's b), the relative vectors as arrows coloured by link;
     in the acceleration polygon each relative vector drawn as its components head to
     tail: centripetal then tangential, sliding then Coriolis."""
-    plt = _pyplot()
+    plt = pyplot_module()
     state = polygons.state
     fig, axes = plt.subplots(1, 2, figsize=(12, 6))
     colours = {link: COLOURS[i % len(COLOURS)] for i, link in enumerate(state.chain.links)}

@@ -38,8 +38,8 @@ def layout(chain):
 def draw_link_joint_graph(chain, path=None):
     """The link-joint graph of ``chain``: written as SVG (or PNG, by the file's ending)
     to ``path``, or returned as a matplotlib Figure without one."""
-    from chaingraph.drawing.plots import finish, _pyplot
-    plt = _pyplot()
+    from chaingraph.drawing.plots import finish, pyplot_module
+    plt = pyplot_module()
     g = chain.graph
     pos = layout(chain)
     fixed = chain.mechanism.fixed if chain.mechanism else None

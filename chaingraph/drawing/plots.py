@@ -27,7 +27,7 @@ def plain_text(draw):
     return wrapper
 
 
-def _pyplot():
+def pyplot_module():
     import sys
 
     import matplotlib
@@ -56,7 +56,7 @@ def plot_motion(motion, path=None):
 
     Writes an SVG (or PNG, by the file's ending) to ``path``; without a path, returns
     the matplotlib Figure (a notebook shows it)."""
-    plt = _pyplot()
+    plt = pyplot_module()
     label, u, v, a, unit = output_series(motion)
     theta = motion.theta
     fig, axes = plt.subplots(3, 1, sharex=True, figsize=(7.5, 7.5))
@@ -148,7 +148,7 @@ def draw_mechanism(motion, path=None, *, pose_index=0):
     >>> fig.axes[0].get_title().splitlines()[0]
     'Beam engine (crank and lever mechanism)'
     """
-    plt = _pyplot()
+    plt = pyplot_module()
     motion, drawn = _motion_and_pose(motion, pose_index)
     chain = motion.plan.chain
     fig, ax = plt.subplots(figsize=(7, 6))

@@ -924,7 +924,7 @@ def _correct_inputs(model, result):
     """An input measured toward a sliding pair's reference point is known only once
     that point is placed: compare the direction the pose gives with the one the weld
     used and turn the link by the difference. True when something was corrected."""
-    from chaingraph.kinematics.plan import _direction
+    from chaingraph.kinematics.plan import drawn_direction
 
     placed = None
     changed = False
@@ -940,7 +940,7 @@ def _correct_inputs(model, result):
                 placed = Chain(model.chain.name, tuple(
                     Joint(x.id, x.kind, x.links, at=result.joints[x.id],
                           axis=result.axes.get(x.id)) for x in model.chain.joints))
-            got = math.radians(_direction(placed, link, placed.joint(j.id)))
+            got = math.radians(drawn_direction(placed, link, placed.joint(j.id)))
             used = result.links[link][0] + model._beta(link, j)
             error = math.remainder(got - used, 2 * math.pi)
             if abs(error) > 1e-12:
@@ -1195,7 +1195,7 @@ def measure(chain):
     <BLANKLINE>
     """
     num, string = toml_number, toml_string
-    from chaingraph.kinematics.plan import _direction, chosen_inputs
+    from chaingraph.kinematics.plan import drawn_direction, chosen_inputs
 
     m = chain.mechanism
     if m is None:
@@ -1256,10 +1256,10 @@ def measure(chain):
             if j.kind == "R":
                 if fixed in j.links:
                     b = next(x for x in j.links if x != fixed)
-                    values[j.id] = _direction(chain, b, j)
+                    values[j.id] = drawn_direction(chain, b, j)
                 else:
-                    values[j.id] = math.remainder(_direction(chain, j.links[1], j)
-                                                  - _direction(chain, j.links[0], j), 360.0)
+                    values[j.id] = math.remainder(drawn_direction(chain, j.links[1], j)
+                                                  - drawn_direction(chain, j.links[0], j), 360.0)
             else:
                 g, k = j.links
                 u = _unit(math.radians(j.axis))
@@ -1277,7 +1277,7 @@ def measure(chain):
             raise DimensionError(f"the driver {driver!r} is not pinned to the fixed link "
                                  f"{fixed!r} by an R joint, so its angle cannot be measured",
                                  source=chain.source, where="[mechanism] key 'driver'")
-        values[None] = _direction(chain, driver, chain.joint(pivots[0]))
+        values[None] = drawn_direction(chain, driver, chain.joint(pivots[0]))
 
     def write(extra_at, near, modes):
         lines = [f"name = {string(chain.name)}"]

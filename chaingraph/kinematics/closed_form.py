@@ -12,12 +12,12 @@ import math
 
 import numpy as np
 
-from chaingraph.kinematics.geometry import (clamp_disc, fit_two_points, from_point, line_of, _unit, world,
+from chaingraph.kinematics.geometry import (clamp_disc, fit_two_points, from_point, line_of, unit_vector, world,
                        make_pose, rotate)
 
 
 # -- closed-form steps ---------------------------------------------------------------
-def _single(step, pose):
+def single_link(step, pose):
     u = step.links[0]
     if step.pattern[0] == "W":
         return {u: _welded(pose, u, step.constraints[0])}
@@ -42,7 +42,7 @@ def _welded(pose, u, c):
     w = world(pose, c.other(u), c.point)
     if c.kind == "R":
         return from_point(make_pose(0.0, 0.0, known[2] + sign * delta), c.point, w)
-    t = rotate(known, _unit(c.axis))
+    t = rotate(known, unit_vector(c.axis))
     return from_point(known, c.point, (w[0] + sign * delta * t[0], w[1] + sign * delta * t[1]))
 
 
@@ -123,7 +123,7 @@ def dyad_roots(step, pose, scale, *, double=False):
     if pattern == "RPR":
         wa = world(pose, ca.other(a), ca.point)
         wb = world(pose, cb.other(b), cb.point)
-        nx_, ny_ = -_unit(cj.axis)[1], _unit(cj.axis)[0]
+        nx_, ny_ = -unit_vector(cj.axis)[1], unit_vector(cj.axis)[0]
         dx, dy = wb[0] - wa[0], wb[1] - wa[1]
         dist = np.hypot(dx, dy)
         c = nx_ * (cb.point[0] - ca.point[0]) + ny_ * (cb.point[1] - ca.point[1])

@@ -43,7 +43,7 @@ def reference_link(joint, fixed):
     return fixed if fixed in joint.links else joint.links[0]
 
 
-def _slide(pose, vel, acc, joint, at):
+def slide_rates(pose, vel, acc, joint, at):
     """A P joint's slide, its rate and acceleration; ``at`` its point in the plan's frame."""
     g, b = joint.links
     pg = _point_motion(pose, vel, acc, g, at)
@@ -81,7 +81,7 @@ def _array(v, n):
     return np.full(n, float(v)) if np.ndim(v) == 0 else v
 
 
-def _columns(plan, theta, pose, vel, acc):
+def csv_columns(plan, theta, pose, vel, acc):
     chain = plan.chain
     n = theta.size
     cols = {}
@@ -107,7 +107,7 @@ def _columns(plan, theta, pose, vel, acc):
             cols[f"{key}:{name}"] = _array(v, n)
     for j in chain.joints:
         if j.kind == "P":
-            for key, v in zip(("s", "v", "a"), _slide(pose, vel, acc, j, plan.local(j.at))):
+            for key, v in zip(("s", "v", "a"), slide_rates(pose, vel, acc, j, plan.local(j.at))):
                 cols[f"{key}:{j.id}"] = _array(v, n)
     return cols
 

@@ -13,7 +13,7 @@ import math
 import numpy as np
 
 from chaingraph.errors import AssemblyError
-from chaingraph.kinematics.geometry import fit_two_points, _unit, world, make_pose, rotate
+from chaingraph.kinematics.geometry import fit_two_points, unit_vector, world, make_pose, rotate
 
 __all__ = ["residuals", "check_poses"]
 
@@ -23,7 +23,7 @@ def _perp(v):
     return -v[1], v[0]
 
 
-def _geometry(c, pose):
+def constraint_geometry(c, pose):
     """What a constraint's rows and acceleration terms share, computed once: the
     constraint point's arms on both links and, for a P joint, the guide's normal and
     the block's offset from the guide's point (and the guide's direction when the
@@ -32,7 +32,7 @@ def _geometry(c, pose):
     rb = rotate(pose[c.b], c.point)
     if c.kind == "R":
         return ra, rb, None, None
-    u = rotate(pose[c.a], _unit(c.axis))
+    u = rotate(pose[c.a], unit_vector(c.axis))
     d = (rb[0] + pose[c.b][0] - ra[0] - pose[c.a][0], rb[1] + pose[c.b][1] - ra[1] - pose[c.a][1])
     return ra, rb, (_perp(u), u), d
 
@@ -60,11 +60,11 @@ def _along_gamma(g, b, n, ra, rb, d, vel):
             + n[1] * (wb_ ** 2 * rb[1] - wg_ ** 2 * rg[1]))
 
 
-def _rows(c, pose, geom=None):
+def constraint_rows(c, pose, geom=None):
     """Rows of the constraint Jacobian, each {link: (cx, cy, cphi)} (constant entries as
     Python floats). An input joint's prescribed value is one more row, whose known
     part is the input's rate (its table entry, the rate in the rotation's place)."""
-    ra, rb, frame, d = geom or _geometry(c, pose)
+    ra, rb, frame, d = geom or constraint_geometry(c, pose)
     if c.kind == "R":
         rows = [{c.a: (1.0, 0.0, -ra[1]), c.b: (-1.0, 0.0, rb[1])},
                 {c.a: (0.0, 1.0, ra[0]), c.b: (0.0, -1.0, -rb[0])}]
@@ -79,10 +79,10 @@ def _rows(c, pose, geom=None):
     return rows
 
 
-def _gammas(c, pose, vel, geom=None):
+def constraint_gammas(c, pose, vel, geom=None):
     """Right-hand sides of the acceleration equations from the velocities alone (the
     inputs' accelerations are zero: they move at constant rates)."""
-    ra, rb, frame, d = geom or _geometry(c, pose)
+    ra, rb, frame, d = geom or constraint_geometry(c, pose)
     if c.kind == "R":
         wa2, wb2 = vel[c.a][2] ** 2, vel[c.b][2] ** 2
         return [wa2 * ra[0] - wb2 * rb[0], wa2 * ra[1] - wb2 * rb[1]] + \
@@ -103,10 +103,10 @@ def _constraint_residuals(c, pose):
         if c.drive is not None:
             out.append(np.remainder(dphi - pose[c.drive][2] + np.pi, 2 * np.pi) - np.pi)
         return out
-    n = rotate(pose[c.a], _perp(_unit(c.axis)))
+    n = rotate(pose[c.a], _perp(unit_vector(c.axis)))
     out = [dphi, n[0] * (wb[0] - wa[0]) + n[1] * (wb[1] - wa[1])]
     if c.drive is not None:
-        u = rotate(pose[c.a], _unit(c.axis))
+        u = rotate(pose[c.a], unit_vector(c.axis))
         out.append(u[0] * (wb[0] - wa[0]) + u[1] * (wb[1] - wa[1]) - pose[c.drive][2])
     return out
 
@@ -227,7 +227,7 @@ class _GroupForm:
         return np.stack(np.broadcast_arrays(*out), axis=-1)
 
     def rows(self, pose):
-        rows = [coef for c in self.others for coef in _rows(c, pose)]
+        rows = [coef for c in self.others for coef in constraint_rows(c, pose)]
         for _, x, px, y, py, length in self.bars:
             rx, ry_ = rotate(pose[x], px), rotate(pose[y], py)
             d = (rx[0] + pose[x][0] - ry_[0] - pose[y][0], rx[1] + pose[x][1] - ry_[1] - pose[y][1])
@@ -242,7 +242,7 @@ class _GroupForm:
         return rows
 
     def gammas(self, pose, vel):
-        out = [g for c in self.others for g in _gammas(c, pose, vel)]
+        out = [g for c in self.others for g in constraint_gammas(c, pose, vel)]
         for _, x, px, y, py, length in self.bars:
             rx, ry_ = rotate(pose[x], px), rotate(pose[y], py)
             d = (rx[0] + pose[x][0] - ry_[0] - pose[y][0], rx[1] + pose[x][1] - ry_[1] - pose[y][1])
@@ -299,7 +299,7 @@ def _point_accel(acc, vel, r):
 _FORMS = {}
 
 
-def _form(step):
+def group_form(step):
     form = _FORMS.get(step)
     if form is None:
         form = _FORMS[step] = _GroupForm(step)
@@ -312,15 +312,15 @@ def _group_residual_of(constraints, pose):
 
 
 def with_group(pose, step, q):
-    return _form(step).set_bodies(pose, q)
+    return group_form(step).set_bodies(pose, q)
 
 
 def group_residual(step, pose):
-    return _form(step).residual(pose)
+    return group_form(step).residual(pose)
 
 
 def group_jacobian(step, pose, n):
-    form = _form(step)
+    form = group_form(step)
     rows = [({k: v for k, v in coef.items() if k in form.bodies}, 0.0)
             for coef in form.rows(pose)]
     return group_matrix(form.bodies, rows, n)[0]

@@ -60,7 +60,7 @@ def from_point(entry, p, w):
     return make_pose(w[0] - rx, w[1] - ry, entry[2], entry[3], entry[4])
 
 
-def _unit(deg):
+def unit_vector(deg):
     return math.cos(math.radians(deg)), math.sin(math.radians(deg))
 
 
@@ -71,7 +71,7 @@ def line_of(pose, attach, unknown, through):
     base = world(pose, attach.other(unknown), attach.point)
     dx, dy = through[0] - attach.point[0], through[1] - attach.point[1]
     ox, oy = rotate(known, (dx, dy))
-    u = rotate(known, _unit(attach.axis))
+    u = rotate(known, unit_vector(attach.axis))
     return (base[0] + ox, base[1] + oy), u, known
 
 

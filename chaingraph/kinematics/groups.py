@@ -12,7 +12,7 @@ import math
 
 import numpy as np
 
-from chaingraph.kinematics.equations import (batched_inverse, batched_solve, _form, group_jacobian,
+from chaingraph.kinematics.equations import (batched_inverse, batched_solve, group_form, group_jacobian,
                         group_residual, slice, with_group)
 
 
@@ -137,7 +137,7 @@ class _Branch:
 
     def __init__(self, plan, step, pose, theta, head):
         self.plan, self.step, self.pose, self.theta, self.head = plan, step, pose, theta, head
-        m = _form(step).size
+        m = group_form(step).size
         self.scale = np.tile([plan.size, plan.size, 1.0], m // 3)
         self.head_steps = plan.steps[:plan.steps.index(step)]
 

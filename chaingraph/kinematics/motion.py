@@ -19,17 +19,17 @@ import numpy as np
 from chaingraph._util.text import short_list
 from chaingraph.model.chain import Input
 from chaingraph.errors import AssemblyError, MechanismError
-from chaingraph.kinematics.columns import _columns
+from chaingraph.kinematics.columns import csv_columns
 from chaingraph.kinematics.equations import check_poses
 from chaingraph.kinematics.plan import build_plan, chosen_inputs
 from chaingraph.kinematics.rates import rates
-from chaingraph.kinematics.summary import cycle_theta, _summary
+from chaingraph.kinematics.summary import cycle_theta, motion_summary
 from chaingraph.kinematics.sweep import Cycle, evaluate_near, evaluate_sweep, cycle
 
 __all__ = ["Motion", "solve", "full_turns"]
 
 
-def _plan(chain, fixed, driver, inputs=None):
+def plan_of(chain, fixed, driver, inputs=None):
     # the file is part of the key: chains equal but for their file share no plan, whose
     # messages name the file
     return _cached_plan(chain, chain.source, fixed, driver, inputs)
@@ -219,9 +219,9 @@ def solve(mechanism, *, fixed=None, driver=None, inputs=None, start=None, stop=N
                     "while other inputs move: give both", mechanism=chain.name)
             first = Input(first.joint)
         items = (first,) + tuple(items[1:])
-        plan = _plan(chain, fixed, None, items)
+        plan = plan_of(chain, fixed, None, items)
     else:
-        plan = _plan(chain, fixed, driver)
+        plan = plan_of(chain, fixed, driver)
     _check_memory(plan, steps)
     if omega is None:
         omega = m.omega if m else 1.0
@@ -244,7 +244,7 @@ def solve(mechanism, *, fixed=None, driver=None, inputs=None, start=None, stop=N
     # rates at unit input speed, scaled to omega: the summary can then use this sweep
     # when it is the summary's own grid
     vel, acc, measure = rates(plan, ev.pose, 1.0, theta.size, measure=summary)
-    unit_columns = _columns(plan, theta, ev.pose, vel, acc)
+    unit_columns = csv_columns(plan, theta, ev.pose, vel, acc)
     columns = _scaled(unit_columns, omega)
     if explicit and not plan.from_driver:
         # the values asked for, exactly (tau carries them to the last bit or so)
@@ -266,7 +266,7 @@ def solve(mechanism, *, fixed=None, driver=None, inputs=None, start=None, stop=N
     reuse = None
     if summary and c.ends == "limits" and np.array_equal(theta, cycle_theta(plan, c)):
         reuse = (ev, measure, unit_columns)
-    summary = _summary(plan, output, omega, c, sweep=reuse) if summary else {}
+    summary = motion_summary(plan, output, omega, c, sweep=reuse) if summary else {}
     return Motion(name=chain.name, fixed=plan.fixed, driver=plan.driver, omega=omega,
                   columns=columns, summary=summary, units=chain.units, plan=plan,
                   inputs=() if plan.from_driver else plan.inputs)
@@ -385,7 +385,7 @@ def full_turns(chain, fixed):
     fallback = None
     for driver in drivers:
         try:
-            plan = _plan(chain, fixed, driver)
+            plan = plan_of(chain, fixed, driver)
         except MechanismError:
             continue
         try:

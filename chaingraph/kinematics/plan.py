@@ -243,7 +243,7 @@ def _steps(chain, fixed, constraints, closed_form=True):
     return tuple(steps)
 
 
-def _direction(chain, link, joint):
+def drawn_direction(chain, link, joint):
     """The direction (degrees) of a link's line from ``joint`` to its first other joint
     by id order (the next one when that one is at the same place; +x when none)."""
     here = joint.at
@@ -283,10 +283,10 @@ def _input_joints(chain, fixed, driver, inputs, name):
             if j.kind == "R":
                 if fixed in j.links:
                     a, b = fixed, next(x for x in j.links if x != fixed)
-                    value0 = _direction(chain, b, j)
+                    value0 = drawn_direction(chain, b, j)
                 else:
                     a, b = j.links[0], j.links[1]
-                    value0 = math.remainder(_direction(chain, b, j) - _direction(chain, a, j),
+                    value0 = math.remainder(drawn_direction(chain, b, j) - drawn_direction(chain, a, j),
                                             360.0)
             else:
                 a, b = j.links
@@ -314,7 +314,7 @@ def _input_joints(chain, fixed, driver, inputs, name):
     if len(chain.joints_of(driver)) < 2:
         raise MechanismError(f"the driver {driver!r} has no joint besides its pivot",
                              mechanism=name)
-    return (InputJoint(pivot.id, "R", fixed, driver, _direction(chain, driver, pivot)),)
+    return (InputJoint(pivot.id, "R", fixed, driver, drawn_direction(chain, driver, pivot)),)
 
 
 def _line(inputs, size):

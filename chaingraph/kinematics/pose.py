@@ -19,8 +19,8 @@ from chaingraph.model.chain import Input
 from chaingraph.errors import AssemblyError, MechanismError
 from chaingraph.kinematics.equations import check_poses
 from chaingraph.kinematics.geometry import rotate
-from chaingraph.kinematics.columns import _slide, reference_link
-from chaingraph.kinematics.motion import as_inputs, _plan, check_input_value
+from chaingraph.kinematics.columns import slide_rates, reference_link
+from chaingraph.kinematics.motion import as_inputs, plan_of, check_input_value
 from chaingraph.kinematics.plan import chosen_inputs
 from chaingraph.kinematics.rates import rates
 from chaingraph.kinematics.sweep import evaluate_near
@@ -216,14 +216,14 @@ def pose_motion(chain, *, at=None, fixed=None, driver=None, inputs=None,
         check_input_value(omega, "the input speed omega", name)
     fixed, driver, items = chosen_inputs(chain, fixed, driver, as_inputs(inputs, chain))
     if items:
-        plan = _plan(chain, fixed, None, items)
+        plan = plan_of(chain, fixed, None, items)
         if at is None or len(values) > 1:
-            plan = _plan(chain, fixed, None, _items_at(plan, values))
+            plan = plan_of(chain, fixed, None, _items_at(plan, values))
     else:
         if not driver and not fixed:
             raise MechanismError("the chain has no mechanism: name its fixed link and its "
                                  "driver or inputs ([mechanism])", mechanism=name)
-        plan = _plan(chain, fixed, driver)
+        plan = plan_of(chain, fixed, driver)
     if values is not None and len(values) != 1 and len(values) != len(plan.inputs):
         raise MechanismError(f"{len(values)} input values given for {len(plan.inputs)} "
                              f"inputs: give one per input, or the first input's alone",
@@ -272,7 +272,7 @@ def pose_motion(chain, *, at=None, fixed=None, driver=None, inputs=None,
         if j.kind == "P":                         # the solver's slide rates (the CSV's)
             u = rotate(pose[j.guide], (math.cos(math.radians(j.axis)),
                                        math.sin(math.radians(j.axis))))
-            _, speed, acceleration = _slide(ev.pose, vel, acc, j, plan.local(j.at))
+            _, speed, acceleration = slide_rates(ev.pose, vel, acc, j, plan.local(j.at))
             slides[j.id] = Slide(j.id, j.guide, j.block, positions[j.id], u,
                                  _first(speed), _first(acceleration))
     inputs_now = {}

@@ -13,8 +13,8 @@ import math
 
 import numpy as np
 
-from chaingraph.kinematics.equations import (add, batched_inverse, dot3, _form, _gammas, _geometry,
-                        group_matrix, mul, _rows, sub)
+from chaingraph.kinematics.equations import (add, batched_inverse, dot3, group_form, constraint_gammas, constraint_geometry,
+                        group_matrix, mul, constraint_rows, sub)
 from chaingraph.kinematics.geometry import rotate
 
 __all__ = ["rates"]
@@ -177,14 +177,14 @@ class Factor:
         self.n = n
         self.rows = []                       # (unknown coefficients, known coefficients)
         if step.kind == "group":
-            self.form = _form(step)
+            self.form = group_form(step)
             unknowns = self.form.bodies
             coefs = self.form.rows(pose)
         else:
-            self.geometry = [_geometry(c, pose) for c in step.constraints]
+            self.geometry = [constraint_geometry(c, pose) for c in step.constraints]
             unknowns = step.links
             coefs = [coef for c, geom in zip(step.constraints, self.geometry)
-                     for coef in _rows(c, pose, geom)]
+                     for coef in constraint_rows(c, pose, geom)]
         for coef in coefs:
             unknown = {k: v for k, v in coef.items() if k in unknowns}
             known = {k: v for k, v in coef.items() if k not in unknowns}
@@ -382,7 +382,7 @@ def rates(plan, pose, omega, n, *, steps=None, measure=True, accelerations=True)
             acc.update(f.form.bar_rates(pose, vel, acc))
             continue
         gammas = [g for c, geom in zip(f.step.constraints, f.geometry)
-                  for g in _gammas(c, pose, vel, geom)]
+                  for g in constraint_gammas(c, pose, vel, geom)]
         acc.update(_refuse_near_singular(f, f.solve(f.right_hand_sides(acc, gammas))))
     for table in (vel, acc):
         table[plan.fixed] = (zero, zero, zero)

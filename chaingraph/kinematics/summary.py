@@ -10,7 +10,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from chaingraph.kinematics.columns import _columns
+from chaingraph.kinematics.columns import csv_columns
 from chaingraph.kinematics.geometry import rotate, tidy
 from chaingraph.kinematics.rates import rates
 from chaingraph.kinematics.roots import bracketed_roots
@@ -183,10 +183,10 @@ def _pointwise(plan, ev, k, t):
     """Columns and step measures at angles ``t``, each continued from ev's point k."""
     pose, feasible, _ = evaluate_at(plan, t, ev.reference(k))
     vel, acc, measure = rates(plan, pose, 1.0, t.size)
-    return _columns(plan, t, pose, vel, acc), measure, feasible
+    return csv_columns(plan, t, pose, vel, acc), measure, feasible
 
 
-def _summary(plan, output, omega, c, *, sweep=None):
+def motion_summary(plan, output, omega, c, *, sweep=None):
     """The summary over the cycle ``c``; ``sweep`` is (evaluation, step measures,
     columns at unit input speed) on the cycle's own grid when the caller has them.
     Figures within rounding of a round number are that number (:func:`tidy`)."""
@@ -215,7 +215,7 @@ def _raw_summary(plan, output, omega, c, *, sweep=None):
         theta = cycle_theta(plan, c)
         ev = evaluate_sweep(plan, theta)
         vel, acc, measure = rates(plan, ev.pose, 1.0, theta.size)
-        cols = _columns(plan, theta, ev.pose, vel, acc)
+        cols = csv_columns(plan, theta, ev.pose, vel, acc)
     else:
         ev, measure, cols = sweep
         theta = ev.theta

@@ -14,8 +14,8 @@ import math
 
 import numpy as np
 
-from chaingraph.kinematics.closed_form import dyad_roots, initial_sign, _single
-from chaingraph.kinematics.equations import _form
+from chaingraph.kinematics.closed_form import dyad_roots, initial_sign, single_link
+from chaingraph.kinematics.equations import group_form
 from chaingraph.kinematics.geometry import DISC_TOL, FIXED
 from chaingraph.kinematics.groups import newton, newton_path
 
@@ -81,16 +81,16 @@ def _evaluate_at(plan, theta, ref, upto, double):
         group_q = {}
         for i, step in enumerate(plan.steps[:upto]):
             if step.kind == "single":
-                pose.update(_single(step, pose))
+                pose.update(single_link(step, pose))
                 ok = True
             elif step.kind == "dyad":
                 keys, build, ok, _ = dyad_roots(step, pose, plan.size, double=i in double)
                 pose.update(build(1.0 if keys is None else ref.sign(i, theta)))
             else:
-                q0 = np.broadcast_to(ref.group_q[i], (theta.size, _form(step).size))
+                q0 = np.broadcast_to(ref.group_q[i], (theta.size, group_form(step).size))
                 q, ok = newton(plan, step, pose, q0)
                 group_q[i] = q
-                pose.update(_form(step).complete(_form(step).set_bodies(pose, q)))
+                pose.update(group_form(step).complete(group_form(step).set_bodies(pose, q)))
             if first_bad is None and not np.all(ok):
                 first_bad = i
             feasible &= ok
@@ -172,7 +172,7 @@ def _evaluate(plan, theta, start):
         if at_drawn is not None and i:
             _as_drawn(pose, plan.steps[i - 1].links, at_drawn, group_q.get(i - 1))
         if step.kind == "single":
-            pose.update(_single(step, pose))
+            pose.update(single_link(step, pose))
             continue
         if step.kind == "dyad":
             keys, build, ok, disc = dyad_roots(step, pose, plan.size)
@@ -190,12 +190,12 @@ def _evaluate(plan, theta, start):
             switches[i] = found
             pose.update(build(chosen))
             continue
-        q0 = start.group_q[i] if start is not None else np.zeros(_form(step).size)
+        q0 = start.group_q[i] if start is not None else np.zeros(group_form(step).size)
         head = Evaluation(theta, pose, feasible, signs, group_q, switches)
         q, ok = newton_path(plan, step, pose, theta, q0, head=head)
         feasible &= ok
         group_q[i] = q
-        pose.update(_form(step).complete(_form(step).set_bodies(pose, q)))
+        pose.update(group_form(step).complete(group_form(step).set_bodies(pose, q)))
     if at_drawn is not None and plan.steps:
         _as_drawn(pose, plan.steps[-1].links, at_drawn, group_q.get(len(plan.steps) - 1))
     if not feasible.all():

@@ -114,7 +114,7 @@ def orbits_of(generators, n, fixing=()):
     return [blocks.find(x) for x in range(n)]
 
 
-def _search(labels, adj):
+def refine_search(labels, adj):
     n = len(labels)
     label_rank = {lab: i for i, lab in enumerate(sorted(set(labels)))}
     root = _refine([label_rank[lab] for lab in labels], adj)
@@ -215,11 +215,11 @@ NAUTY_FROM = 160
 
 
 def _search_nauty(labels, adj):
-    """:func:`_search` by nauty. Edges of the most common label join their ends
+    """:func:`refine_search` by nauty. Edges of the most common label join their ends
     directly; an edge of another label becomes a node of its own colour between its
     ends. The colour classes are ordered by label, the graph's nodes first, so the
     canonical order of the nodes is the first ``n`` of nauty's; the certificate is the
-    sorted labelled edge list in that order, as :func:`_search` makes it."""
+    sorted labelled edge list in that order, as :func:`refine_search` makes it."""
     import pynauty
     n = len(labels)
     kinds = sorted(set(labels))
@@ -253,7 +253,7 @@ def _search_nauty(labels, adj):
 @lru_cache(maxsize=4096)
 def canonical_cached(chain, oriented):
     nodes, labels, adj = _structure(chain, oriented)
-    search = _search
+    search = refine_search
     if len(nodes) > NAUTY_FROM:
         import importlib.util
         if importlib.util.find_spec("pynauty") is not None:     # a dependency

@@ -49,8 +49,8 @@ class AtlasEntry:
 
     @property
     def link_orders(self) -> dict:
-        from chaingraph.structure.atlas.output import _orders
-        return _orders(self.edges, self.links)
+        from chaingraph.structure.atlas.output import order_counts
+        return order_counts(self.edges, self.links)
 
     def chain(self, dof=None):
         """The chain as a :class:`~chaingraph.model.chain.Chain` (links L1..LN, joints J1..)."""

@@ -11,7 +11,7 @@ other through the project's own canonical form.
 
 from __future__ import annotations
 
-from chaingraph.structure.isomorphism import orbits_of, _search
+from chaingraph.structure.isomorphism import orbits_of, refine_search
 
 import numpy as np
 
@@ -90,7 +90,7 @@ def graph_forms(n, edges, *, backend="nauty"):
             for a, b in chain:
                 adj[a].append((b, 0))
                 adj[b].append((a, 0))
-            _, order, gens, _ = _search(labels, adj)
+            _, order, gens, _ = refine_search(labels, adj)
             orders[i] = order
             orbits[i] = len(set(orbits_of(gens, n)))
     position = np.empty_like(orders)
@@ -122,7 +122,7 @@ def multigraph_key(k, edges, *, backend="nauty"):
                          vertex_coloring=[set(range(k)), set(range(k, k + len(edges)))])
         return _nauty.certificate(g)
     labels, adj = _weighted(k, edges)
-    cert, order, _, _ = _search(labels, adj)
+    cert, order, _, _ = refine_search(labels, adj)
     return (tuple(labels[v] for v in order), cert)
 
 
@@ -161,7 +161,7 @@ def multigraph_automorphisms(k, edges, *, backend="nauty"):
         generators = [tuple(p[:k]) for p in _nauty.autgrp(g)[0]]
     else:
         labels, adj = _weighted(k, edges)
-        generators = [tuple(p) for p in _search(labels, adj)[2]]
+        generators = [tuple(p) for p in refine_search(labels, adj)[2]]
     identity = tuple(range(k))
     group, frontier = {identity}, [identity]
     while frontier:

@@ -85,7 +85,7 @@ def _orders_rows(edges, links):
     return out
 
 
-def _orders(edges, links):
+def order_counts(edges, links):
     degree = np.bincount(np.asarray(edges, dtype=np.int64).ravel(), minlength=links)
     return _orders_of_degrees(degree.tolist())
 
@@ -117,9 +117,9 @@ def _records(atlas, shard_dir, no_fractionated, block=4096):
                                          atlas.fractionated[s:s + block])
                 yield from zip(text.splitlines(True), g6.splitlines(True))
             return
-        from chaingraph.structure.atlas.run import _ring
+        from chaingraph.structure.atlas.run import ring_of
         if atlas.links == atlas.dof + 3:
-            g6, text = encode_chains(atlas.links, *_ring(atlas.links, atlas.labelling))
+            g6, text = encode_chains(atlas.links, *ring_of(atlas.links, atlas.labelling))
             yield text, g6
         for path in sorted(Path(shard_dir).glob("shard-*.jsonl")):
             with open(path, encoding="utf-8") as lines, \
@@ -160,7 +160,7 @@ def atlas_dict(atlas, *, no_fractionated=False, chains=True) -> dict:
 
 
 def _chain_record(id_, edges, orbits, fractionated, links):
-    return {"id": id_, "edges": [list(e) for e in edges], "link_orders": _orders(edges, links),
+    return {"id": id_, "edges": [list(e) for e in edges], "link_orders": order_counts(edges, links),
             "inversion_classes": orbits, "fractionated": fractionated}
 
 

@@ -166,7 +166,7 @@ def _shard_task(task):
     return arrays + (encode_chains(links, *arrays) if encode else (b"", ""))
 
 
-def _ring(links, backend):
+def ring_of(links, backend):
     """The single loop of ``links`` binary links (the one chain with no contracted
     graph), as a shard result."""
     from chaingraph.structure.atlas.labelling import graph_form
@@ -319,7 +319,7 @@ def run_atlas(links, dof=1, *, workers=1, runner=None, out=None, resume=False,
     encode = shard_dir is not None
     runner(_shard_task, [(jobs[slice(*shards[s])], links, joints, backend, encode)
                          for s in todo], finished)
-    parts = ([_ring(links, backend)] if links == dof + 3 else []) + results
+    parts = ([ring_of(links, backend)] if links == dof + 3 else []) + results
     if not keep:
         return AtlasCounts(links, dof, [p if isinstance(p[0], int) else _counts(p)
                                         for p in parts], labelling=backend)
