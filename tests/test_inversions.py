@@ -338,10 +338,10 @@ def _dyadic_chain(dyads):
 
 
 def _counting_full_turns(monkeypatch):
-    import chaingraph.kinematics as kinematics
+    import chaingraph.kinematics.behaviour as behaviour
     calls = []
-    full_turns = kinematics.full_turns
-    monkeypatch.setattr(kinematics, "full_turns",
+    full_turns = behaviour.full_turns
+    monkeypatch.setattr(behaviour, "full_turns",
                         lambda chain, fixed: calls.append(fixed) or full_turns(chain, fixed))
     return calls
 

@@ -17,6 +17,27 @@ from pathlib import Path
 from chaingraph.files import load
 from chaingraph.structure.classify import classify
 from chaingraph.errors import ChainGraphError, ChainGraphWarning, OutputError
+from chaingraph.naming.inversions import inversions
+from chaingraph.naming.identify import identify
+from chaingraph.kinematics import solve, summary_rows
+from chaingraph.drawing.plots import plot_motion
+from chaingraph.drawing.mechanism import mechanism_svg
+from chaingraph.drawing.plots import draw_mechanism # PNG and the other raster formats
+from chaingraph.graphical import instant_centres
+from chaingraph.drawing.constructions import draw_centres
+from chaingraph.graphical import velocity_polygon
+from chaingraph.drawing.constructions import draw_polygons
+from chaingraph.files import dumps, read_file
+from chaingraph.kinematics.assembly import measure
+from chaingraph.naming.catalog import catalog_dir
+from chaingraph.report.build import build_report
+from chaingraph.structure.atlas import DaskRunner, atlas_dict, process_runner, run_atlas, write_atlas
+from chaingraph.structure.atlas.contracted import joints_for
+from chaingraph.structure.atlas.estimate import check_size
+from chaingraph._util.progress import ProgressBar
+from chaingraph.files import save
+from chaingraph.synthesis.design import KINDS
+from chaingraph import __version__
 
 __all__ = ["main"]
 
@@ -93,7 +114,6 @@ def _cmd_classify(args) -> int:
 
 
 def _cmd_inversions(args) -> int:
-    from chaingraph.naming.inversions import inversions
     result = inversions(load(args.file), with_input=args.with_input)
     if args.json:
         _print_json(result.to_dict())
@@ -120,7 +140,6 @@ def _cmd_inversions(args) -> int:
 
 
 def _cmd_identify(args) -> int:
-    from chaingraph.naming.identify import identify
     chain = load(args.file)
     found = identify(chain)
     if args.json:
@@ -153,7 +172,6 @@ def _fmt(value, unit=""):
 
 
 def _cmd_solve(args) -> int:
-    from chaingraph.kinematics import solve, summary_rows
     chain = load(args.file)
     if args.csv:
         output_file(args.csv, what="CSV")
@@ -167,15 +185,12 @@ def _cmd_solve(args) -> int:
         with _writing(args.csv):
             motion.to_csv(args.csv)
     if args.plot:
-        from chaingraph.drawing.plots import plot_motion
         with _writing(args.plot):
             plot_motion(motion, args.plot)
     if args.draw:
         if str(args.draw).lower().endswith(".svg"):
-            from chaingraph.drawing.mechanism import mechanism_svg
             _write(args.draw, mechanism_svg(motion))
         else:
-            from chaingraph.drawing.plots import draw_mechanism       # PNG and the other raster formats
             with _writing(args.draw):
                 draw_mechanism(motion, args.draw)
     if args.json:
@@ -226,8 +241,6 @@ def _at_one_value(args, find, draw):
 
 
 def _cmd_centres(args) -> int:
-    from chaingraph.graphical import instant_centres
-    from chaingraph.drawing.constructions import draw_centres
     centres = _at_one_value(args, instant_centres, draw_centres)
     if centres is None:
         return 0
@@ -248,8 +261,6 @@ def _cmd_centres(args) -> int:
 
 
 def _cmd_polygons(args) -> int:
-    from chaingraph.graphical import velocity_polygon
-    from chaingraph.drawing.constructions import draw_polygons
     polygons = _at_one_value(args, velocity_polygon, draw_polygons)
     if polygons is None:
         return 0
@@ -275,7 +286,6 @@ def _mode_lines(assembly) -> list[str]:
 
 
 def _cmd_assemble(args) -> int:
-    from chaingraph.files import dumps, read_file
     chain, assembly = read_file(args.file)
     if args.json:
         out = {"name": chain.name, "file": args.file,
@@ -306,7 +316,6 @@ def _cmd_assemble(args) -> int:
 
 
 def _cmd_measure(args) -> int:
-    from chaingraph.kinematics.assembly import measure
     text = measure(load(args.file))
     if args.output:
         _write(args.output, text)
@@ -393,8 +402,6 @@ def picture_file(path, *, what):
 
 
 def _cmd_report(args) -> int:
-    from chaingraph.naming.catalog import catalog_dir
-    from chaingraph.report.build import build_report
     paths = args.paths or [catalog_dir()]
     output_folder(args.output, what="report")
     workers = _workers(args.workers) if args.workers is not None else None
@@ -424,10 +431,6 @@ def _workers(value, *, flag="--workers") -> int:
 def _cmd_atlas(args) -> int:
     import time
 
-    from chaingraph.structure.atlas import DaskRunner, atlas_dict, process_runner, run_atlas, write_atlas
-    from chaingraph.structure.atlas.contracted import joints_for
-    from chaingraph.structure.atlas.estimate import check_size
-    from chaingraph._util.progress import ProgressBar
     joints_for(args.links, args.dof)   # a size with no chain: exit 2 with the reason
     if args.scheduler is None or args.scheduler == "local":
         workers = _workers(args.workers)
@@ -490,8 +493,6 @@ def _cmd_atlas(args) -> int:
 
 
 def _cmd_design(args) -> int:
-    from chaingraph.files import save
-    from chaingraph.synthesis.design import KINDS
     if args.out:
         output_file(args.out, what="mechanism file")
     design = KINDS[args.kind](time_ratio=args.time_ratio, crank=args.crank, stroke=args.stroke)
@@ -680,7 +681,6 @@ def build_parser() -> argparse.ArgumentParser:
 
 
 def _version() -> str:
-    from chaingraph import __version__
     return __version__
 
 

@@ -13,6 +13,7 @@ import networkx as nx
 import numpy as np
 
 from chaingraph.drawing.plots import plain_text
+from chaingraph.drawing.plots import finish, pyplot_module
 
 __all__ = ["draw_link_joint_graph", "layout"]
 
@@ -38,7 +39,6 @@ def layout(chain):
 def draw_link_joint_graph(chain, path=None):
     """The link-joint graph of ``chain``: written as SVG (or PNG, by the file's ending)
     to ``path``, or returned as a matplotlib Figure without one."""
-    from chaingraph.drawing.plots import finish, pyplot_module
     plt = pyplot_module()
     g = chain.graph
     pos = layout(chain)

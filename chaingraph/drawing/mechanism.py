@@ -20,6 +20,7 @@ import html
 import math
 
 import numpy as np
+from chaingraph.kinematics.columns import link_direction
 
 __all__ = ["mechanism_svg", "frame_steps", "skeleton_svg"]
 
@@ -70,7 +71,6 @@ class _Scene:
     """What the drawing needs from a solved motion, in the motion's own coordinates."""
 
     def __init__(self, motion):
-        from chaingraph.kinematics.columns import link_direction
         self.motion = motion
         self.chain = chain = motion.plan.chain
         self.fixed = motion.fixed

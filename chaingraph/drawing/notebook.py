@@ -13,6 +13,12 @@ from __future__ import annotations
 
 import html
 import io
+from chaingraph.drawing.mechanism import skeleton_svg
+from chaingraph.kinematics import summary_rows
+from chaingraph.drawing.plots import plot_motion
+from chaingraph.drawing.constructions import draw_centres
+from chaingraph.drawing.constructions import draw_polygons
+from chaingraph.drawing.mechanism import mechanism_svg
 
 __all__ = ["Animation", "animate", "figure_svg", "register", "DISPLAYS"]
 
@@ -35,7 +41,6 @@ def _table(rows, header=None) -> str:
 
 
 def chain_svg(chain) -> str:
-    from chaingraph.drawing.mechanism import skeleton_svg
     return skeleton_svg(chain)
 
 
@@ -58,15 +63,12 @@ def inversions_html(result) -> str:
 
 
 def motion_html(motion) -> str:
-    from chaingraph.kinematics import summary_rows
-    from chaingraph.drawing.plots import plot_motion
     rows = [("mechanism", motion.name), *summary_rows(motion)]
     return _table(rows) + figure_svg(plot_motion(motion))
 
 
 def centres_html(centres) -> str:
     """The centres as a table and the picture of the construction."""
-    from chaingraph.drawing.constructions import draw_centres
     return (f"<b>{html.escape(centres.name)}</b>: instantaneous centres at input "
             f"{centres.input:.6g}" + _table(centres.rows(), ["centre", "links", "x", "y",
                                                               "found from"])
@@ -75,7 +77,6 @@ def centres_html(centres) -> str:
 
 def polygons_html(polygons) -> str:
     """The images as a table and the two polygons."""
-    from chaingraph.drawing.constructions import draw_polygons
     return (f"<b>{html.escape(polygons.name)}</b>: velocity and acceleration polygons at "
             f"input {polygons.input:.6g}"
             + _table(polygons.image_rows(), ["point", "link", "vx", "vy", "|v|", "ax",
@@ -113,7 +114,6 @@ def animate(motion, *, frames=48, seconds=4.0) -> Animation:
     >>> "<svg" in a.svg and a.svg.count('class="frame"') == 12
     True
     """
-    from chaingraph.drawing.mechanism import mechanism_svg
     return Animation(mechanism_svg(motion, frames=frames, seconds=seconds))
 
 

@@ -10,6 +10,9 @@ from __future__ import annotations
 import math
 
 import numpy as np
+from chaingraph.kinematics import output_signal
+from chaingraph.model.chain import Chain
+from chaingraph.kinematics import Motion, solve
 
 __all__ = ["plot_motion", "draw_mechanism", "output_series"]
 
@@ -39,7 +42,6 @@ def pyplot_module():
 
 def output_series(motion):
     """The output's (label, displacement, velocity, acceleration, unit) along the sweep."""
-    from chaingraph.kinematics import output_signal
     output = motion.summary.get("output") if motion.summary else None
     if output is None and motion.plan.chain.mechanism is not None:
         output = motion.plan.chain.mechanism.output
@@ -177,8 +179,6 @@ COLOURS = ["#1f77b4", "#2ca02c", "#d62728", "#9467bd", "#8c564b", "#e377c2", "#1
 def _motion_and_pose(given, k):
     """(the motion whose paths are drawn, (motion, step) of the pose drawn) for a Motion
     or a chain with a mechanism (its drawn pose, where its sweep passes through it)."""
-    from chaingraph.model.chain import Chain
-    from chaingraph.kinematics import Motion, solve
     if isinstance(given, Motion):
         return given, (given, k)
     if not isinstance(given, Chain):

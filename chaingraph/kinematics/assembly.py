@@ -34,6 +34,9 @@ from chaingraph.model.chain import Chain, Joint, Point
 from chaingraph.model.chainfile import toml_number, toml_string, parse_text
 from chaingraph.model.dimensions import LineSpec, MODE_WORDS, rotate, sub, link_features, link_shape
 from chaingraph.errors import DimensionError, PoseAdjustedWarning
+from chaingraph.kinematics.plan import drawn_direction
+from chaingraph.kinematics.plan import drawn_direction, chosen_inputs
+from chaingraph.kinematics.plan import chosen_inputs
 
 __all__ = ["Assembly", "Mode", "assemble", "measure", "snap_to_lines",
            "SILENT", "ROUNDING"]
@@ -165,7 +168,6 @@ class _Model:
 
     # inputs ---------------------------------------------------------------------------
     def _inputs(self):
-        from chaingraph.kinematics.plan import chosen_inputs
         chain, dims, fail = self.chain, self.dims, self.fail
         fixed, driver, inputs = chosen_inputs(chain)
         out = []
@@ -924,7 +926,6 @@ def _correct_inputs(model, result):
     """An input measured toward a sliding pair's reference point is known only once
     that point is placed: compare the direction the pose gives with the one the weld
     used and turn the link by the difference. True when something was corrected."""
-    from chaingraph.kinematics.plan import drawn_direction
 
     placed = None
     changed = False
@@ -1195,7 +1196,6 @@ def measure(chain):
     <BLANKLINE>
     """
     num, string = toml_number, toml_string
-    from chaingraph.kinematics.plan import drawn_direction, chosen_inputs
 
     m = chain.mechanism
     if m is None:

@@ -27,6 +27,7 @@ from __future__ import annotations
 
 import math
 from functools import lru_cache
+from chaingraph.kinematics import full_turns
 
 __all__ = ["turning_links", "behaviour", "behaviour_key", "four_link_loop"]
 
@@ -190,7 +191,6 @@ def behaviour_key(chain, fixed):
 def _numeric(chain, fixed):
     if any(j.kind not in ("R", "P") for j in chain.joints) or len(chain.pieces) > 1:
         return None
-    from chaingraph.kinematics import full_turns
     found = full_turns(chain, fixed)
     if found is None:
         return None

@@ -20,6 +20,8 @@ from chaingraph.kinematics.behaviour import behaviour
 from chaingraph.naming.catalog import catalog_dir
 from chaingraph.naming.inversions import catalog_matches, naming_matches, require_connected
 from chaingraph.structure.isomorphism import canonical_form, isomorphism
+from chaingraph.naming.catalog import bundled_catalog
+from chaingraph.model.chain import Chain, Joint
 
 __all__ = ["Identification", "identify"]
 
@@ -92,7 +94,6 @@ def identify(chain, *, catalog=None) -> Identification:
     """
     require_connected(chain)
     if catalog is None:
-        from chaingraph.naming.catalog import bundled_catalog
         catalog = bundled_catalog()
     chain_name = chain_file = None
     mapping, orientation, kinds = {}, "respected", "respected"
@@ -161,5 +162,4 @@ def _shown(source):
 def _as_turning_pairs(chain):
     """The chain's structure with every joint an R joint (no pose): a sliding pair is a
     turning pair whose centre is at infinity."""
-    from chaingraph.model.chain import Chain, Joint
     return Chain(chain.name, tuple(Joint(j.id, "R", j.links) for j in chain.joints))

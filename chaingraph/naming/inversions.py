@@ -27,6 +27,7 @@ from chaingraph._util.text import short_list
 from chaingraph.kinematics.behaviour import behaviour, behaviour_key, turning_links
 from chaingraph.errors import ChainStructureError
 from chaingraph.structure.isomorphism import automorphism_orbits, canonical_form, pair_orbits
+from chaingraph.naming.catalog import bundled_catalog
 
 __all__ = ["Inversion", "InputClass", "Inversions", "Match", "inversions", "catalog_matches",
            "naming_matches",
@@ -277,7 +278,6 @@ def inversions(chain, *, with_input: bool = False, catalog=None) -> Inversions:
     """
     require_connected(chain)
     if catalog is None:
-        from chaingraph.naming.catalog import bundled_catalog
         catalog = bundled_catalog()
     orbits = automorphism_orbits(chain)
     class_of = {x: i + 1 for i, orbit in enumerate(orbits) for x in orbit}

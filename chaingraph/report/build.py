@@ -24,6 +24,22 @@ from chaingraph.files import load
 from chaingraph.structure.classify import classify
 from chaingraph.errors import ChainGraphError
 from chaingraph._util.progress import ProgressBar
+from chaingraph._util.parallel import process_runner
+from chaingraph.naming.inversions import inversions
+from chaingraph.kinematics import solve
+from chaingraph.graphical.centres import centres_of
+from chaingraph.graphical.polygons import polygons_of
+from chaingraph.kinematics.pose import pose_motion
+from chaingraph.model.chain import Input
+from chaingraph.kinematics.motion import Motion
+from chaingraph.drawing.mechanism import mechanism_svg
+from chaingraph.drawing.graph import draw_link_joint_graph
+from chaingraph.drawing.plots import plot_motion
+from chaingraph.drawing.mechanism import skeleton_svg
+from chaingraph.drawing.constructions import draw_centres, draw_polygons
+from chaingraph.kinematics import summary_rows
+from chaingraph.drawing.mechanism import frame_steps, mechanism_svg
+from chaingraph.drawing.plots import output_series
 
 __all__ = ["Report", "build_report", "chain_paths"]
 
@@ -167,7 +183,6 @@ def build_report(paths, out_dir, *, progress=sys.stderr, steps=180, frames=48,
     bar = ProgressBar(len(jobs), progress)
     bar.show(0, "")
     results = {}
-    from chaingraph._util.parallel import process_runner
 
     def finished(k, row):
         results[jobs[k][1]] = row
@@ -233,8 +248,6 @@ def _entry_job(job):
 
 
 def _analyse(entry, steps):
-    from chaingraph.naming.inversions import inversions
-    from chaingraph.kinematics import solve
     chain = load(entry.source)
     entry.chain = chain
     entry.classification = classify(chain)
@@ -248,9 +261,6 @@ def _analyse(entry, steps):
             entry.warnings.append(f"motion not solved: {e}")
         else:
             entry.grid = input_grid(chain, entry.motion)
-            from chaingraph.graphical.centres import centres_of
-            from chaingraph.graphical.polygons import polygons_of
-            from chaingraph.kinematics.pose import pose_motion
             try:
                 state = pose_motion(chain)
             except ChainGraphError as e:
@@ -265,9 +275,6 @@ def input_grid(chain, motion, *, size=13):
     through the first input for each value of the second: what lets the player's two
     sliders move independently. None when the inputs are not two moving ones, or when
     some pair of values cannot be assembled."""
-    from chaingraph.model.chain import Input
-    from chaingraph.kinematics import solve
-    from chaingraph.kinematics.motion import Motion
     if len(motion.inputs) != 2 or motion.plan.moving_inputs != 2:
         return None
     first, second = (np.asarray(motion["input:" + i.joint]) for i in motion.inputs)
@@ -290,12 +297,8 @@ def input_grid(chain, motion, *, size=13):
 
 # -- images ----------------------------------------------------------------------------
 def _write_images(entry, out, frames):
-    from chaingraph.drawing.mechanism import mechanism_svg
-    from chaingraph.drawing.graph import draw_link_joint_graph
-    from chaingraph.drawing.plots import plot_motion
     img = out / "img"
     draw_link_joint_graph(entry.chain, img / f"{entry.slug}-graph.svg")
-    from chaingraph.drawing.mechanism import skeleton_svg
     (img / f"{entry.slug}-skeleton.svg").write_text(skeleton_svg(entry.chain), encoding="utf-8")
     if entry.motion is not None:
         (img / f"{entry.slug}-pose.svg").write_text(mechanism_svg(entry.motion),
@@ -304,7 +307,6 @@ def _write_images(entry, out, frames):
         (img / f"{entry.slug}-cycle.svg").write_text(
             mechanism_svg(entry.motion, frames=frames), encoding="utf-8")
     if entry.centres is not None:
-        from chaingraph.drawing.constructions import draw_centres, draw_polygons
         draw_centres(entry.centres, img / f"{entry.slug}-centres.svg")
         draw_polygons(entry.polygons, img / f"{entry.slug}-polygons.svg")
 
@@ -418,7 +420,6 @@ def _entry_page(e):
 
 
 def _motion_section(e):
-    from chaingraph.kinematics import summary_rows
     rows = summary_rows(e.motion)
     out = ["<h2>Motion</h2><table id=\"summary\">"]
     out += [f"<tr><th>{_esc(a)}</th><td>{_esc(b)}</td></tr>" for a, b in rows]
@@ -471,8 +472,6 @@ def _player(e):
     otherwise they follow the one sweep together."""
     import json
 
-    from chaingraph.drawing.mechanism import frame_steps, mechanism_svg
-    from chaingraph.drawing.plots import output_series
 
     m = e.grid if e.grid is not None else e.motion
     grid = e.grid is not None

@@ -22,6 +22,7 @@ from __future__ import annotations
 
 from dataclasses import dataclass
 from functools import lru_cache
+from chaingraph.errors import ChainStructureError
 
 __all__ = ["Canon", "canonical", "canonical_form", "is_isomorphic", "isomorphism",
            "automorphism_orbits", "automorphism_generators", "pair_orbits"]
@@ -195,7 +196,6 @@ def canonical(chain, *, oriented: bool = True) -> Canon:
     8
     """
     if len(chain.links) > MAX_LINKS:
-        from chaingraph.errors import ChainStructureError
         raise ChainStructureError(
             f"canonical labelling (for isomorphism, inversions and identify) takes chains of "
             f"at most {MAX_LINKS:,} links, which it labels in seconds; this one has "
