@@ -10,31 +10,60 @@ solve its motion and draw it.
 'kinematic chain'
 """
 
-from chaingraph.synthesis import design
-from chaingraph.kinematics.assembly import measure
-from chaingraph.drawing.notebook import animate
-from chaingraph.structure.atlas import atlas
-from chaingraph.model.chain import Chain, Input, Joint, Mechanism, Point
+import importlib
+
+from chaingraph.errors import (
+    AssemblyError,
+    AtlasRunError,
+    AtlasSizeError,
+    ChainFileError,
+    ChainGraphError,
+    ChainGraphWarning,
+    ChainStructureError,
+    DesignError,
+    DimensionError,
+    MechanismError,
+    PoseAdjustedWarning,
+)
 from chaingraph.files import dumps, from_document, load, loads, save
-from chaingraph.structure.classify import Check, Classification, classify
-from chaingraph.errors import (AssemblyError, AtlasRunError, AtlasSizeError, ChainFileError,
-                     ChainGraphError,
-                     ChainGraphWarning, ChainStructureError, DesignError, DimensionError,
-                     MechanismError, PoseAdjustedWarning)
 from chaingraph.graphical import instant_centres, velocity_polygon
 from chaingraph.graphical.centres import InstantCentres
 from chaingraph.graphical.polygons import Polygons
+from chaingraph.kinematics import Motion, Plan, build_plan, feasible_range, solve
+from chaingraph.kinematics.assembly import measure
+from chaingraph.model.chain import Chain, Input, Joint, Mechanism, Point
 from chaingraph.naming.identify import Identification, identify
 from chaingraph.naming.inversions import Inversion, Inversions, inversions
-from chaingraph.structure.isomorphism import automorphism_orbits, canonical_form, is_isomorphic, isomorphism
-from chaingraph.kinematics import Motion, feasible_range, solve
-from chaingraph.kinematics import Plan, build_plan
+from chaingraph.structure.classify import Check, Classification, classify
+from chaingraph.structure.isomorphism import (
+    automorphism_orbits,
+    canonical_form,
+    is_isomorphic,
+    isomorphism,
+)
 from chaingraph.structure.rigidity import rigid_subchains
 
 __version__ = "0.1.0"
 
 #: the results a notebook displays richly (:func:`chaingraph.drawing.notebook.register`)
 RESULTS = (Chain, Classification, Inversions, Motion, InstantCentres, Polygons)
+
+# loaded when first used, so that `import chaingraph` loads neither the atlas (nor
+# pynauty) nor the drawing modules: name -> (module, attribute or None for the module)
+_LAZY = {"atlas": ("chaingraph.structure.atlas", "atlas"),
+         "design": ("chaingraph.synthesis.design", None),
+         "animate": ("chaingraph.drawing.notebook", "animate")}
+
+
+def __getattr__(name):
+    if name in _LAZY:
+        module, attribute = _LAZY[name]
+        value = importlib.import_module(module)
+        value = getattr(value, attribute) if attribute else value
+        globals()[name] = value
+        return value
+    raise AttributeError(f"module 'chaingraph' has no attribute {name!r}")
+
 
 if "IPython" in __import__("sys").modules:        # in a notebook: its rich displays
     from chaingraph.drawing.notebook import register as _register_displays

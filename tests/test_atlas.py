@@ -220,7 +220,7 @@ def test_graph6_lines_match_networkx():
 
     import numpy as np
 
-    from chaingraph.structure.atlas.output import graph6_lines
+    from chaingraph.structure.atlas.entry import graph6_lines
     rng = random.Random(3)
     for n in (2, 5, 13, 20):
         graphs = [nx.gnm_random_graph(n, n, seed=rng.randrange(10**6)) for _ in range(20)]

@@ -8,6 +8,13 @@ end by themselves when the main process is gone (killed with SIGKILL, say).
 
 from __future__ import annotations
 
+import ctypes
+import os
+import signal
+import threading
+import time
+from concurrent.futures import FIRST_COMPLETED, ProcessPoolExecutor, wait
+
 __all__ = ["serial", "process_runner", "ignore_interrupts", "prepare_worker"]
 
 
@@ -19,7 +26,6 @@ def serial(fn, tasks, on_result):
 
 def ignore_interrupts():
     """In a worker process: leave Ctrl-C to the main process, which stops the workers."""
-    import signal
     signal.signal(signal.SIGINT, signal.SIG_IGN)
 
 
@@ -29,13 +35,8 @@ def prepare_worker(parent):
     closed terminal), so that no worker outlives it: the kernel is asked to kill the
     worker with its parent (Linux), and a watch thread checks the parent every quarter
     second everywhere (also where the kernel's request does not apply)."""
-    import os
-    import signal
-    import threading
-    import time
     ignore_interrupts()
     try:
-        import ctypes
         libc = ctypes.CDLL(None, use_errno=True)
         libc.prctl(1, signal.SIGKILL)            # PR_SET_PDEATHSIG
     except (OSError, AttributeError):
@@ -63,8 +64,6 @@ def process_runner(workers):
     def run(fn, tasks, on_result):
         if workers <= 1 or len(tasks) <= 1:
             return serial(fn, tasks, on_result)
-        import os
-        from concurrent.futures import FIRST_COMPLETED, ProcessPoolExecutor, wait
         pool = ProcessPoolExecutor(max_workers=min(workers, len(tasks)),
                                    initializer=prepare_worker, initargs=(os.getpid(),))
         try:

@@ -11,33 +11,38 @@ import argparse
 import json
 import os
 import sys
+import time
 import warnings
 from pathlib import Path
 
-from chaingraph.files import load
-from chaingraph.structure.classify import classify
-from chaingraph.errors import ChainGraphError, ChainGraphWarning, OutputError
-from chaingraph.naming.inversions import inversions
-from chaingraph.naming.identify import identify
-from chaingraph.kinematics import solve, summary_rows
-from chaingraph.drawing.plots import plot_motion
+from chaingraph import __version__
+from chaingraph._util.progress import ProgressBar
+from chaingraph.drawing.constructions import draw_centres, draw_polygons
 from chaingraph.drawing.mechanism import mechanism_svg
-from chaingraph.drawing.plots import draw_mechanism # PNG and the other raster formats
-from chaingraph.graphical import instant_centres
-from chaingraph.drawing.constructions import draw_centres
-from chaingraph.graphical import velocity_polygon
-from chaingraph.drawing.constructions import draw_polygons
-from chaingraph.files import dumps, read_file
+from chaingraph.drawing.plots import (
+    draw_mechanism,  # PNG and the other raster formats
+    plot_motion,
+)
+from chaingraph.errors import ChainGraphError, ChainGraphWarning, OutputError
+from chaingraph.files import dumps, load, read_file, save
+from chaingraph.graphical import instant_centres, velocity_polygon
+from chaingraph.kinematics import solve, summary_rows
 from chaingraph.kinematics.assembly import measure
 from chaingraph.naming.catalog import catalog_dir
+from chaingraph.naming.identify import identify
+from chaingraph.naming.inversions import inversions
 from chaingraph.report.build import build_report
-from chaingraph.structure.atlas import DaskRunner, atlas_dict, process_runner, run_atlas, write_atlas
+from chaingraph.structure.atlas import (
+    DaskRunner,
+    atlas_dict,
+    process_runner,
+    run_atlas,
+    write_atlas,
+)
 from chaingraph.structure.atlas.contracted import joints_for
 from chaingraph.structure.atlas.estimate import check_size
-from chaingraph._util.progress import ProgressBar
-from chaingraph.files import save
+from chaingraph.structure.classify import classify
 from chaingraph.synthesis.design import KINDS
-from chaingraph import __version__
 
 __all__ = ["main"]
 
@@ -429,7 +434,6 @@ def _workers(value, *, flag="--workers") -> int:
 
 
 def _cmd_atlas(args) -> int:
-    import time
 
     joints_for(args.links, args.dof)   # a size with no chain: exit 2 with the reason
     if args.scheduler is None or args.scheduler == "local":

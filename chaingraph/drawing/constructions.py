@@ -11,7 +11,7 @@ import math
 
 import numpy as np
 
-from chaingraph.drawing.plots import COLOURS, finish, pyplot_module, draw_positions, plain_text
+from chaingraph.drawing.plots import COLOURS, draw_positions, finish, plain_text, pyplot_module
 
 __all__ = ["draw_centres", "draw_polygons"]
 

@@ -12,8 +12,7 @@ from __future__ import annotations
 import networkx as nx
 import numpy as np
 
-from chaingraph.drawing.plots import plain_text
-from chaingraph.drawing.plots import finish, pyplot_module
+from chaingraph.drawing.plots import finish, plain_text, pyplot_module
 
 __all__ = ["draw_link_joint_graph", "layout"]
 

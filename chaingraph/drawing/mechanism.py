@@ -19,7 +19,9 @@ from __future__ import annotations
 import html
 import math
 
+import networkx as nx
 import numpy as np
+
 from chaingraph.kinematics.columns import link_direction
 
 __all__ = ["mechanism_svg", "frame_steps", "skeleton_svg"]
@@ -446,7 +448,6 @@ def skeleton_svg(chain, *, width=420):
     >>> svg.count('class="plate"'), svg.count('class="bar"'), svg.count('class="pin"')
     (2, 4, 7)
     """
-    import networkx as nx
 
     drawn = all(j.at is not None for j in chain.joints)
     if drawn:

@@ -13,12 +13,11 @@ from __future__ import annotations
 
 import html
 import io
-from chaingraph.drawing.mechanism import skeleton_svg
-from chaingraph.kinematics import summary_rows
+
+from chaingraph.drawing.constructions import draw_centres, draw_polygons
+from chaingraph.drawing.mechanism import mechanism_svg, skeleton_svg
 from chaingraph.drawing.plots import plot_motion
-from chaingraph.drawing.constructions import draw_centres
-from chaingraph.drawing.constructions import draw_polygons
-from chaingraph.drawing.mechanism import mechanism_svg
+from chaingraph.kinematics import summary_rows
 
 __all__ = ["Animation", "animate", "figure_svg", "register", "DISPLAYS"]
 

@@ -7,12 +7,16 @@ draws the mechanism in its drawn pose with the paths of its joints and points.
 
 from __future__ import annotations
 
+import functools
 import math
+import sys
+import textwrap
+from pathlib import Path
 
 import numpy as np
-from chaingraph.kinematics import output_signal
+
+from chaingraph.kinematics import Motion, output_signal, solve
 from chaingraph.model.chain import Chain
-from chaingraph.kinematics import Motion, solve
 
 __all__ = ["plot_motion", "draw_mechanism", "output_series"]
 
@@ -20,7 +24,6 @@ __all__ = ["plot_motion", "draw_mechanism", "output_series"]
 def plain_text(draw):
     """Draw with mathtext off: names are text, so ``$\\frac{a}{b}$`` in a link's name is
     drawn as typed instead of being parsed (and failing) as mathematics."""
-    import functools
 
     @functools.wraps(draw)
     def wrapper(*args, **kwargs):
@@ -31,7 +34,6 @@ def plain_text(draw):
 
 
 def pyplot_module():
-    import sys
 
     import matplotlib
     if "matplotlib.pyplot" not in sys.modules:
@@ -82,7 +84,6 @@ def plot_motion(motion, path=None):
         title += f"\nstroke {s['stroke']:.4g} {s.get('stroke_unit') or ''}, " \
                  f"time ratio {s['time_ratio']:.4f}"
     elif s.get("note"):
-        import textwrap
         title += "\n" + textwrap.fill(s["note"], 80)
     axes[0].set_title(title, fontsize=10)
     handles = [plt.Line2D([], [], color="#e07b00", marker="o", ls="", label="extreme"),
@@ -98,7 +99,6 @@ def finish(plt, fig, path):
     if path is None:
         plt.close(fig)
         return fig
-    from pathlib import Path
     try:
         # before closing; PNG without an ending, written to the very path asked for
         # (matplotlib would otherwise append ".png" to it)

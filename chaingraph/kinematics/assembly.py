@@ -30,13 +30,11 @@ from dataclasses import dataclass, replace
 
 import numpy as np
 
-from chaingraph.model.chain import Chain, Joint, Point
-from chaingraph.model.chainfile import toml_number, toml_string, parse_text
-from chaingraph.model.dimensions import LineSpec, MODE_WORDS, rotate, sub, link_features, link_shape
 from chaingraph.errors import DimensionError, PoseAdjustedWarning
-from chaingraph.kinematics.plan import drawn_direction
-from chaingraph.kinematics.plan import drawn_direction, chosen_inputs
-from chaingraph.kinematics.plan import chosen_inputs
+from chaingraph.kinematics.plan import chosen_inputs, drawn_direction
+from chaingraph.model.chain import Chain, Joint, Point
+from chaingraph.model.chainfile import parse_text, toml_number, toml_string
+from chaingraph.model.dimensions import MODE_WORDS, LineSpec, link_features, link_shape, rotate, sub
 
 __all__ = ["Assembly", "Mode", "assemble", "measure", "snap_to_lines",
            "SILENT", "ROUNDING"]
@@ -1453,7 +1451,6 @@ def snap_to_lines(chain):
         joints.append(type(j)(j.id, j.kind, j.links, at=at, axis=j.axis, closure=j.closure))
     points = [type(p)(p.id, p.link, tuple(float(v) for v in x[index[p.id]:index[p.id] + 2]))
               if p.id in index else p for p in chain.points]
-    from dataclasses import replace
     snapped = replace(chain, joints=tuple(joints), points=tuple(points))
     far = max((d, p, name) for p, name, d in on)
     if moved[0][0] > SILENT * size:

@@ -27,6 +27,7 @@ from __future__ import annotations
 
 import math
 from functools import lru_cache
+
 from chaingraph.kinematics import full_turns
 
 __all__ = ["turning_links", "behaviour", "behaviour_key", "four_link_loop"]

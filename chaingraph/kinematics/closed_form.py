@@ -12,8 +12,16 @@ import math
 
 import numpy as np
 
-from chaingraph.kinematics.geometry import (clamp_disc, fit_two_points, from_point, line_of, unit_vector, world,
-                       make_pose, rotate)
+from chaingraph.kinematics.geometry import (
+    clamp_disc,
+    fit_two_points,
+    from_point,
+    line_of,
+    make_pose,
+    rotate,
+    unit_vector,
+    world,
+)
 
 
 # -- closed-form steps ---------------------------------------------------------------

@@ -13,7 +13,7 @@ import math
 import numpy as np
 
 from chaingraph.errors import AssemblyError
-from chaingraph.kinematics.geometry import fit_two_points, unit_vector, world, make_pose, rotate
+from chaingraph.kinematics.geometry import fit_two_points, make_pose, rotate, unit_vector, world
 
 __all__ = ["residuals", "check_poses"]
 

@@ -12,8 +12,16 @@ import math
 
 import numpy as np
 
-from chaingraph.kinematics.equations import (batched_inverse, batched_solve, group_form, group_jacobian,
-                        group_residual, slice, with_group)
+from chaingraph.kinematics.equations import (
+    batched_inverse,
+    batched_solve,
+    group_form,
+    group_jacobian,
+    group_residual,
+    slice,
+    with_group,
+)
+from chaingraph.kinematics.rates import Factor, rates
 
 
 def _chord(plan, step, known, q, iterations=8):
@@ -153,7 +161,6 @@ class _Branch:
         """d(residual)/dz: the group's Jacobian in its unknowns, and its derivative in
         the input, which is minus the velocity equations' right-hand side at unit
         input rate."""
-        from chaingraph.kinematics.rates import Factor, rates     # rates use groups' forms: import here
         full = self._full(z)
         # the input's rate that moves tau by one radian per second
         vel, _, _ = rates(self.plan, full, self.plan.rate_scale * 180.0 / math.pi, 1,
@@ -319,9 +326,8 @@ def _known_along(plan, step, pose, theta, at, head):
     (continued from its nearest point of ``head``, the path's evaluation so far)."""
     if np.array_equal(at, theta):
         return pose
-    from chaingraph.kinematics.tracking import evaluate_at       # tracking solves groups by this module
     k = np.abs(theta[:, None] - at[None, :]).argmin(axis=0)
-    return evaluate_at(plan, at, head.reference(k), upto=plan.steps.index(step))[0]
+    return head.poses_at(plan, at, k, upto=plan.steps.index(step))
 
 
 def _hermite(tc, qc, dqc, t):

@@ -11,20 +11,21 @@ from __future__ import annotations
 import csv
 import io
 import math
+import os
 from dataclasses import dataclass, field
 from functools import lru_cache
 
 import numpy as np
 
 from chaingraph._util.text import short_list
-from chaingraph.model.chain import Input
 from chaingraph.errors import AssemblyError, MechanismError
 from chaingraph.kinematics.columns import csv_columns
 from chaingraph.kinematics.equations import check_poses
 from chaingraph.kinematics.plan import build_plan, chosen_inputs
 from chaingraph.kinematics.rates import rates
 from chaingraph.kinematics.summary import cycle_theta, motion_summary
-from chaingraph.kinematics.sweep import Cycle, evaluate_near, evaluate_sweep, cycle
+from chaingraph.kinematics.sweep import Cycle, cycle, evaluate_near, evaluate_sweep
+from chaingraph.model.chain import Input
 
 __all__ = ["Motion", "solve", "full_turns"]
 
@@ -294,7 +295,6 @@ def check_input_value(value, what, mechanism):
 
 def memory_budget() -> int:
     """Bytes a sweep may take: half of this machine's memory, at most 8 GiB."""
-    import os
     try:
         physical = os.sysconf("SC_PAGE_SIZE") * os.sysconf("SC_PHYS_PAGES")
     except (ValueError, OSError, AttributeError):

@@ -15,15 +15,15 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from chaingraph.model.chain import Input
 from chaingraph.errors import AssemblyError, MechanismError
+from chaingraph.kinematics.columns import reference_link, slide_rates
 from chaingraph.kinematics.equations import check_poses
 from chaingraph.kinematics.geometry import rotate
-from chaingraph.kinematics.columns import slide_rates, reference_link
-from chaingraph.kinematics.motion import as_inputs, plan_of, check_input_value
+from chaingraph.kinematics.motion import as_inputs, check_input_value, plan_of
 from chaingraph.kinematics.plan import chosen_inputs
 from chaingraph.kinematics.rates import rates
 from chaingraph.kinematics.sweep import evaluate_near
+from chaingraph.model.chain import Input
 
 __all__ = ["LinkMotion", "PoseMotion", "AtOneValue", "pose_motion"]
 

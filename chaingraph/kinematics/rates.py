@@ -13,8 +13,18 @@ import math
 
 import numpy as np
 
-from chaingraph.kinematics.equations import (add, batched_inverse, dot3, group_form, constraint_gammas, constraint_geometry,
-                        group_matrix, mul, constraint_rows, sub)
+from chaingraph.kinematics.equations import (
+    add,
+    batched_inverse,
+    constraint_gammas,
+    constraint_geometry,
+    constraint_rows,
+    dot3,
+    group_form,
+    group_matrix,
+    mul,
+    sub,
+)
 from chaingraph.kinematics.geometry import rotate
 
 __all__ = ["rates"]

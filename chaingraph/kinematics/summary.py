@@ -14,7 +14,7 @@ from chaingraph.kinematics.columns import csv_columns
 from chaingraph.kinematics.geometry import rotate, tidy
 from chaingraph.kinematics.rates import rates
 from chaingraph.kinematics.roots import bracketed_roots
-from chaingraph.kinematics.sweep import evaluate_sweep, cycle
+from chaingraph.kinematics.sweep import cycle, evaluate_sweep
 from chaingraph.kinematics.tracking import evaluate_at
 
 __all__ = ["summary_rows", "path_direction", "output_signal", "OutputSignal"]

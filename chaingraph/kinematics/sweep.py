@@ -14,7 +14,13 @@ from chaingraph.errors import AssemblyError
 from chaingraph.kinematics import groups
 from chaingraph.kinematics.closed_form import dyad_roots
 from chaingraph.kinematics.roots import bracketed_roots
-from chaingraph.kinematics.tracking import Evaluation, Reference, evaluate, evaluate_at, failing_step
+from chaingraph.kinematics.tracking import (
+    Evaluation,
+    Reference,
+    evaluate,
+    evaluate_at,
+    failing_step,
+)
 
 __all__ = ["Cycle", "Anchor", "cycle", "anchor", "feasible_range"]
 

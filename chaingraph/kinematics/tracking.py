@@ -113,6 +113,11 @@ class Evaluation:
         return _Start({i: float(v[k]) for i, v in self.signs.items()},
                       {i: q[k] for i, q in self.group_q.items()})
 
+    def poses_at(self, plan, theta, k, *, upto=None):
+        """The poses at the angles ``theta``, each continued from this evaluation's
+        point ``k`` (the first ``upto`` steps of the plan): :func:`evaluate_at`."""
+        return evaluate_at(plan, theta, self.reference(k), upto=upto)[0]
+
     def reference(self, k):
         """A :class:`Reference` for pointwise evaluations near the points ``k`` (array)."""
         k = np.asarray(k)

@@ -18,10 +18,10 @@ import re
 import tomllib
 from dataclasses import dataclass
 
+from chaingraph.errors import ChainFileError
 from chaingraph.model.chain import Chain, Input, Joint, Mechanism, Point
 from chaingraph.model.dimensions import parse_dimensions
 from chaingraph.model.values import LARGEST, number, shown, type_name
-from chaingraph.errors import ChainFileError
 
 __all__ = ["Document", "parse_file", "parse_text", "parse_document", "dumps", "save"]
 

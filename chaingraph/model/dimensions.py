@@ -16,6 +16,7 @@ fixed link's frame is the drawing's.
 
 from __future__ import annotations
 
+import difflib
 import math
 from dataclasses import dataclass, field
 
@@ -122,7 +123,6 @@ def _single_joint(link, joint, joints, points):
     """Why one number cannot be the length of ``link``, which has a single joint or
     point, and the likely cause: another link of a single joint whose name looks like
     this one (a misspelling in some joint's ``links`` makes a link of its own)."""
-    import difflib
     count = {}
     for j in joints:
         for x in j.links:

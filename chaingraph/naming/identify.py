@@ -17,11 +17,10 @@ from dataclasses import dataclass, field
 from pathlib import Path
 
 from chaingraph.kinematics.behaviour import behaviour
-from chaingraph.naming.catalog import catalog_dir
+from chaingraph.model.chain import Chain, Joint
+from chaingraph.naming.catalog import bundled_catalog, catalog_dir
 from chaingraph.naming.inversions import catalog_matches, naming_matches, require_connected
 from chaingraph.structure.isomorphism import canonical_form, isomorphism
-from chaingraph.naming.catalog import bundled_catalog
-from chaingraph.model.chain import Chain, Joint
 
 __all__ = ["Identification", "identify"]
 

@@ -24,10 +24,10 @@ import networkx as nx
 from networkx.algorithms.isomorphism import GraphMatcher
 
 from chaingraph._util.text import short_list
-from chaingraph.kinematics.behaviour import behaviour, behaviour_key, turning_links
 from chaingraph.errors import ChainStructureError
-from chaingraph.structure.isomorphism import automorphism_orbits, canonical_form, pair_orbits
+from chaingraph.kinematics.behaviour import behaviour, behaviour_key, turning_links
 from chaingraph.naming.catalog import bundled_catalog
+from chaingraph.structure.isomorphism import automorphism_orbits, canonical_form, pair_orbits
 
 __all__ = ["Inversion", "InputClass", "Inversions", "Match", "inversions", "catalog_matches",
            "naming_matches",

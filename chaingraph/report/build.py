@@ -11,35 +11,33 @@ listed on the index as a failure and the rest go on.
 from __future__ import annotations
 
 import html
+import json
 import math
+import os
 import re
 import sys
+import warnings
 from dataclasses import dataclass, field
 from pathlib import Path
 
 import numpy as np
 
-
-from chaingraph.files import load
-from chaingraph.structure.classify import classify
-from chaingraph.errors import ChainGraphError
-from chaingraph._util.progress import ProgressBar
 from chaingraph._util.parallel import process_runner
-from chaingraph.naming.inversions import inversions
-from chaingraph.kinematics import solve
+from chaingraph._util.progress import ProgressBar
+from chaingraph.drawing.constructions import draw_centres, draw_polygons
+from chaingraph.drawing.graph import draw_link_joint_graph
+from chaingraph.drawing.mechanism import frame_steps, mechanism_svg, skeleton_svg
+from chaingraph.drawing.plots import output_series, plot_motion
+from chaingraph.errors import ChainGraphError
+from chaingraph.files import load
 from chaingraph.graphical.centres import centres_of
 from chaingraph.graphical.polygons import polygons_of
+from chaingraph.kinematics import solve, summary_rows
+from chaingraph.kinematics.motion import Motion
 from chaingraph.kinematics.pose import pose_motion
 from chaingraph.model.chain import Input
-from chaingraph.kinematics.motion import Motion
-from chaingraph.drawing.mechanism import mechanism_svg
-from chaingraph.drawing.graph import draw_link_joint_graph
-from chaingraph.drawing.plots import plot_motion
-from chaingraph.drawing.mechanism import skeleton_svg
-from chaingraph.drawing.constructions import draw_centres, draw_polygons
-from chaingraph.kinematics import summary_rows
-from chaingraph.drawing.mechanism import frame_steps, mechanism_svg
-from chaingraph.drawing.plots import output_series
+from chaingraph.naming.inversions import inversions
+from chaingraph.structure.classify import classify
 
 __all__ = ["Report", "build_report", "chain_paths"]
 
@@ -129,7 +127,6 @@ RESERVED = frozenset({"index", "img"})
 def _write_page(path, text):
     """Write a page under a temporary name and rename it: a page is never seen half
     written, even when the run is interrupted."""
-    import os
     tmp = path.with_name(path.name + ".tmp")
     tmp.write_text(text, encoding="utf-8")
     os.replace(tmp, path)
@@ -168,7 +165,6 @@ def build_report(paths, out_dir, *, progress=sys.stderr, steps=180, frames=48,
         ``failures`` lists (path, message) of what could not be done; ``exit_status`` is 1
         when there are any.
     """
-    import os
     out = Path(out_dir)
     (out / "img").mkdir(parents=True, exist_ok=True)
     files, problems = chain_paths(paths)
@@ -223,7 +219,6 @@ class Row:
 
 def _entry_job(job):
     """Analyse one chain file and write its page and images; returns its index row."""
-    import warnings
     source, slug, out, steps, frames = job
     entry = Entry(source=source, slug=slug)
     row = Row(source=source, slug=slug)
@@ -470,7 +465,6 @@ def _player(e):
     drives it; without script the drawing plays by SMIL. With two moving inputs the
     sliders are independent (the drawing holds a pose for every pair of values);
     otherwise they follow the one sweep together."""
-    import json
 
 
     m = e.grid if e.grid is not None else e.motion

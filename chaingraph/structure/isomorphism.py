@@ -20,8 +20,10 @@ decide: the canonical form is a complete invariant.
 
 from __future__ import annotations
 
+import importlib.util
 from dataclasses import dataclass
 from functools import lru_cache
+
 from chaingraph.errors import ChainStructureError
 
 __all__ = ["Canon", "canonical", "canonical_form", "is_isomorphic", "isomorphism",
@@ -255,7 +257,6 @@ def canonical_cached(chain, oriented):
     nodes, labels, adj = _structure(chain, oriented)
     search = refine_search
     if len(nodes) > NAUTY_FROM:
-        import importlib.util
         if importlib.util.find_spec("pynauty") is not None:     # a dependency
             search = _search_nauty
     cert, order, gens, size = search(labels, adj)

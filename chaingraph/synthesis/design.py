@@ -19,8 +19,8 @@ from __future__ import annotations
 import math
 from dataclasses import dataclass
 
-from chaingraph.model.chain import Chain, Joint, Mechanism
 from chaingraph.errors import DesignError
+from chaingraph.model.chain import Chain, Joint, Mechanism
 from chaingraph.model.values import LARGEST
 
 __all__ = ["Design", "slotted_lever", "whitworth", "KINDS"]

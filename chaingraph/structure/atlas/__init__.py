@@ -26,39 +26,14 @@ tells the cost of a size before it starts and refuses the sizes that cannot fini
 
 from __future__ import annotations
 
-from dataclasses import dataclass
-
 from chaingraph.structure.atlas.contracted import assortments, joints_for
+from chaingraph.structure.atlas.entry import AtlasEntry
 from chaingraph.structure.atlas.output import atlas_dict, write_atlas
 from chaingraph.structure.atlas.run import Atlas, AtlasCounts, DaskRunner, process_runner, run_atlas
 
 __all__ = ["atlas", "atlas_graphs", "AtlasEntry", "Atlas", "AtlasCounts", "joints_for",
            "assortments", "atlas_dict", "write_atlas", "run_atlas", "process_runner",
            "DaskRunner"]
-
-
-@dataclass(frozen=True)
-class AtlasEntry:
-    """One chain of the atlas: its link graph in canonical labels."""
-
-    id: int
-    edges: tuple
-    links: int
-    inversion_classes: int
-    fractionated: bool = False
-
-    @property
-    def link_orders(self) -> dict:
-        from chaingraph.structure.atlas.output import order_counts
-        return order_counts(self.edges, self.links)
-
-    def chain(self, dof=None):
-        """The chain as a :class:`~chaingraph.model.chain.Chain` (links L1..LN, joints J1..)."""
-        from chaingraph.model.chain import Chain, Joint
-        joints = tuple(Joint(f"J{i + 1}", "R", (f"L{a + 1}", f"L{b + 1}"))
-                       for i, (a, b) in enumerate(self.edges))
-        name = f"chain {self.id} of {self.links} links" + (f", {dof} dof" if dof else "")
-        return Chain(name, joints, family="atlas")
 
 
 def atlas_graphs(links: int, dof: int = 1, *, workers: int = 1, progress=None,

@@ -11,9 +11,9 @@ other through the project's own canonical form.
 
 from __future__ import annotations
 
-from chaingraph.structure.isomorphism import orbits_of, refine_search
-
 import numpy as np
+
+from chaingraph.structure.isomorphism import orbits_of, refine_search
 
 try:                                          # nauty: the field's canonical labelling
     import pynauty as _nauty

@@ -12,90 +12,16 @@ from pathlib import Path
 
 import numpy as np
 
-__all__ = ["atlas_dict", "write_atlas", "graph6_line", "chains_of", "CHAIN_FILES_UP_TO",
+from chaingraph.structure.atlas.entry import AtlasEntry, encode_chains, order_counts, orders_rows
+from chaingraph.structure.atlas.run import ring_of
+
+__all__ = ["atlas_dict", "write_atlas", "chains_of", "CHAIN_FILES_UP_TO",
            "FIGURES_UP_TO"]
 
 #: chain files are written by default up to this many chains (more only on request)
 CHAIN_FILES_UP_TO = 10_000
 #: the HTML index draws at most this many chains (all are in atlas.json and graph6)
 FIGURES_UP_TO = 1_000
-
-
-def graph6_line(n, edges) -> bytes:
-    """One graph6 line (with its newline) of a graph on ``n <= 62`` nodes.
-
-    Examples
-    --------
-    >>> graph6_line(4, [(0, 1), (1, 2), (2, 3), (0, 3)])
-    b'Cl\\n'
-    """
-    return graph6_lines(n, np.asarray(edges, dtype=np.int64).reshape(1, -1, 2))
-
-
-def graph6_lines(n, edges) -> bytes:
-    """The graph6 lines of many graphs on ``n <= 62`` nodes at once: ``edges`` is an
-    array (m, J, 2); one line per graph, in order."""
-    edges = np.asarray(edges, dtype=np.int64)
-    m = len(edges)
-    pairs = n * (n - 1) // 2
-    size = -(-pairs // 6) * 6
-    bits = np.zeros((m, max(size, 1)), dtype=np.uint8)
-    if m and edges.shape[1]:
-        low, high = edges.min(axis=2), edges.max(axis=2)
-        bits[np.arange(m)[:, None], high * (high - 1) // 2 + low] = 1   # column-wise
-    values = bits[:, :size].reshape(m, size // 6, 6) @ (1 << np.arange(5, -1, -1))
-    line = np.empty((m, values.shape[1] + 2), dtype=np.uint8)
-    line[:, 0] = n + 63
-    line[:, 1:-1] = values + 63
-    line[:, -1] = ord("\n")
-    return line.tobytes()
-
-
-def encode_chains(links, edges, orbits, fractionated, *, block=8192):
-    """A shard's chains as graph6 lines (bytes) and JSON lines (str), the JSON line of a
-    chain being its record in atlas.json without the id. Encoded in blocks of rows, so
-    that the working arrays stay small however many chains a shard holds."""
-    g6, lines = [], []
-    for s in range(0, len(orbits), block):
-        part = edges[s:s + block]
-        orders = _orders_rows(part, links)
-        for e, o, x, key in zip(part.tolist(), orbits[s:s + block].tolist(),
-                                fractionated[s:s + block].tolist(), orders):
-            lines.append(f'{{"edges": {json.dumps(e)}, "link_orders": {key}, '
-                         f'"inversion_classes": {o}, '
-                         f'"fractionated": {"true" if x else "false"}}}\n')
-        g6.append(graph6_lines(links, part))
-    return b"".join(g6), "".join(lines)
-
-
-def _orders_rows(edges, links):
-    """The link_orders JSON text of each chain (chains of one assortment share it)."""
-    if not len(edges):
-        return []
-    degree = np.zeros((len(edges), links), dtype=np.int64)
-    rows = np.repeat(np.arange(len(edges)), edges.shape[1] * 2)
-    np.add.at(degree, (rows, np.asarray(edges, dtype=np.int64).reshape(len(edges), -1).ravel()), 1)
-    degree.sort(axis=1)
-    cache = {}
-    out = []
-    for row in map(bytes, degree.astype(np.uint8)):
-        if row not in cache:
-            cache[row] = json.dumps(_orders_of_degrees(list(row)))
-        out.append(cache[row])
-    return out
-
-
-def order_counts(edges, links):
-    degree = np.bincount(np.asarray(edges, dtype=np.int64).ravel(), minlength=links)
-    return _orders_of_degrees(degree.tolist())
-
-
-def _orders_of_degrees(degrees):
-    from chaingraph.structure.classify import order_name
-    counts = {}
-    for d in sorted(degrees):
-        counts[order_name(d)] = counts.get(order_name(d), 0) + 1
-    return counts
 
 
 def chains_of(atlas, *, no_fractionated=False):
@@ -117,7 +43,6 @@ def _records(atlas, shard_dir, no_fractionated, block=4096):
                                          atlas.fractionated[s:s + block])
                 yield from zip(text.splitlines(True), g6.splitlines(True))
             return
-        from chaingraph.structure.atlas.run import ring_of
         if atlas.links == atlas.dof + 3:
             g6, text = encode_chains(atlas.links, *ring_of(atlas.links, atlas.labelling))
             yield text, g6
@@ -178,7 +103,6 @@ def write_atlas(atlas, out_dir, *, shard_dir=None, no_fractionated=False,
 
     The chains are streamed (from ``shard_dir`` when given), each file written under a
     temporary name and renamed when complete."""
-    from chaingraph.structure.atlas import AtlasEntry
     out = Path(out_dir)
     out.mkdir(parents=True, exist_ok=True)
     count = atlas.count_non_fractionated if no_fractionated else atlas.count

@@ -31,9 +31,11 @@ as numpy arrays:
 from __future__ import annotations
 
 import math
+
+import networkx as nx
 import numpy as np
 
-from chaingraph.structure.atlas.labelling import graph_forms
+from chaingraph.structure.atlas.labelling import graph_forms, multigraph_automorphisms
 
 __all__ = ["piece", "piece_work", "Piece"]
 
@@ -191,7 +193,6 @@ def _expand(k, edges, counts):
 
 def _fractionated(n, edges):
     """Whether a link graph has a separating link (cut vertex) or joint (bridge)."""
-    import networkx as nx
     g = nx.Graph(edges)
     g.add_nodes_from(range(n))
     return not nx.is_biconnected(g)
@@ -216,7 +217,6 @@ def piece(job, *, backend="nauty") -> Piece:
     >>> len(p), p.orbits.tolist(), p.fractionated
     (2, [2, 3], False)
     """
-    from chaingraph.structure.atlas.labelling import multigraph_automorphisms
     degrees, edges, binaries = job
     edges = [tuple(e) for e in edges]
     k = len(degrees)

@@ -19,10 +19,11 @@ from pathlib import Path
 
 import numpy as np
 
+from chaingraph._util.parallel import process_runner, serial
 from chaingraph.errors import AtlasRunError
 from chaingraph.structure.atlas.contracted import assortments, contracted_graphs, joints_for
-from chaingraph.structure.atlas.labelling import default_backend
-from chaingraph._util.parallel import process_runner, serial
+from chaingraph.structure.atlas.entry import AtlasEntry, encode_chains
+from chaingraph.structure.atlas.labelling import default_backend, graph_form
 from chaingraph.structure.atlas.pieces import piece, piece_work
 
 __all__ = ["Atlas", "plan", "run_atlas", "SHARDS"]
@@ -76,7 +77,6 @@ class Atlas:
         return int(self.inversion_classes[~self.fractionated].sum())
 
     def __getitem__(self, i):
-        from chaingraph.structure.atlas import AtlasEntry
         if isinstance(i, slice):
             return [self[j] for j in range(*i.indices(len(self)))]
         if i < 0:
@@ -152,7 +152,6 @@ def _shards(jobs, count=SHARDS):
 def _shard_task(task):
     """Stage 2 task: the chains of consecutive pieces, as arrays ``(edges, orbits,
     fractionated)``, and encoded (graph6 bytes, JSON lines) for the shard files."""
-    from chaingraph.structure.atlas.output import encode_chains
     jobs, links, joints, backend, encode = task
     edges = [np.zeros((0, joints, 2), np.uint8)]
     orbits = [np.zeros(0, np.int32)]
@@ -169,7 +168,6 @@ def _shard_task(task):
 def ring_of(links, backend):
     """The single loop of ``links`` binary links (the one chain with no contracted
     graph), as a shard result."""
-    from chaingraph.structure.atlas.labelling import graph_form
     canon, orbits = graph_form(links, [(i, (i + 1) % links) for i in range(links)],
                                backend=backend)
     return (np.array([canon], dtype=np.uint8), np.array([orbits], np.int32),
