@@ -9,7 +9,7 @@ import chaingraph
 from chaingraph import DesignError
 from chaingraph.synthesis.design import slotted_lever, whitworth
 
-from .conftest import run_cli
+from ..conftest import run_cli
 
 
 def test_textbook_worked_example_exact_figures():

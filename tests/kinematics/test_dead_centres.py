@@ -4,6 +4,7 @@ system), so poses, strokes, extremes and time ratios there carry the rounding, n
 square root; symmetric mechanisms give exactly symmetric answers."""
 
 import math
+from pathlib import Path
 
 import numpy as np
 import pytest
@@ -16,9 +17,9 @@ from chaingraph.kinematics.equations import residuals
 from chaingraph.kinematics.rates import rates
 from chaingraph.kinematics.sweep import cycle
 
-from .conftest import CATALOG
+from ..conftest import CATALOG
 
-EXAMPLES = sorted((__import__("pathlib").Path(__file__).parent.parent / "examples").glob("*.toml"))
+EXAMPLES = sorted((Path(__file__).parents[2] / "examples").glob("*.toml"))
 
 
 def _mechanisms():

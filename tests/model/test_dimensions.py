@@ -20,7 +20,7 @@ from chaingraph.model.chain import Chain, Input, Joint, Mechanism, Point
 from chaingraph.files import loads, read_text
 from chaingraph.errors import ChainFileError, DimensionError, PoseAdjustedWarning
 
-from .conftest import CATALOG, catalog_path, run_cli
+from ..conftest import CATALOG, catalog_path, run_cli
 
 
 # -- hand geometry -------------------------------------------------------------------

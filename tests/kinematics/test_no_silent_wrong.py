@@ -16,9 +16,9 @@ import chaingraph
 from chaingraph import AssemblyError, Chain, Joint, Mechanism
 from chaingraph.naming.catalog import catalog_path
 
-from .conftest import run_cli
+from ..conftest import run_cli
 
-CASES = Path(__file__).parent / "data" / "solver"
+CASES = Path(__file__).parents[1] / "data" / "solver"
 
 
 def transformed(chain, *, angle=0.0, shift=(0.0, 0.0), scale=1.0):

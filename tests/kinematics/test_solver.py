@@ -21,7 +21,7 @@ from chaingraph.kinematics.equations import residuals
 from chaingraph.kinematics.rates import rates
 from chaingraph.kinematics.tracking import evaluate
 
-from .conftest import run_cli
+from ..conftest import run_cli
 
 SOLVABLE = [p for p in catalog_files()
             if (c := chaingraph.load(p)).mechanism is not None and c.mechanism.driver]

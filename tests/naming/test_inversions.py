@@ -21,7 +21,7 @@ from chaingraph.naming.inversions import inversions
 from chaingraph.structure.isomorphism import (automorphism_orbits, canonical, canonical_form,
                                     is_isomorphic, isomorphism)
 
-from .conftest import run_cli
+from ..conftest import run_cli
 
 
 def load(stem):

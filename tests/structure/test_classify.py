@@ -11,7 +11,7 @@ from chaingraph import Chain, Joint, classify
 from chaingraph.structure.generators import random_chain
 from chaingraph.structure.rigidity import rigid_subchains, subchain_mobility
 
-from .conftest import catalog_path, run_cli
+from ..conftest import catalog_path, run_cli
 
 KEYS = ["name", "links", "pairs", "joint_equivalents", "higher_pairs", "joint_orders",
         "link_orders", "pair_kinds", "loops", "mobility", "checks", "verdict",

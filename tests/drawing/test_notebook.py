@@ -12,9 +12,9 @@ import chaingraph
 from chaingraph.drawing.notebook import register
 from chaingraph.drawing.plots import draw_mechanism, plot_motion
 
-from .conftest import catalog_path
+from ..conftest import catalog_path
 
-ROOT = Path(__file__).resolve().parent.parent
+ROOT = Path(__file__).resolve().parents[2]
 
 
 def well_formed_html(text):

@@ -23,7 +23,7 @@ from chaingraph.kinematics import tracking
 from chaingraph import ChainGraphError
 from chaingraph.naming.catalog import catalog_path
 from chaingraph.cli.main import main
-from .conftest import children, interruptible, wait_for
+from ..conftest import children, interruptible, wait_for
 
 
 CRANK = str(catalog_path("crank-rocker-with-slider"))
@@ -392,7 +392,7 @@ def test_a_far_sweep_without_summary_is_taken_within_a_turn(monkeypatch):
 
 
 # -- messages that say how to fix -------------------------------------------------------
-FOUR_BAR_LENGTHS = Path(__file__).parent.parent / "examples" / "four-bar-lengths.toml"
+FOUR_BAR_LENGTHS = Path(__file__).parents[2] / "examples" / "four-bar-lengths.toml"
 
 
 def test_a_misspelt_link_is_named_with_the_link_it_looks_like(tmp_path):
@@ -441,7 +441,7 @@ def test_steps_below_one_names_the_option():
 
 def test_a_piston_input_out_of_its_range_shows_how_to_set_its_value(tmp_path):
     path = tmp_path / "far.toml"
-    text = (Path(__file__).parent / "data" / "slider-by-lengths-piston-input.toml").read_text()
+    text = (Path(__file__).parents[1] / "data" / "slider-by-lengths-piston-input.toml").read_text()
     path.write_text(text.replace("at = 180.0", "at = 300.0"))
     code, out, err = _main("solve", path)
     assert code == 2 and "from 100 to 200" in err
@@ -463,7 +463,7 @@ def test_running_out_of_memory_is_one_line_and_exit_1(monkeypatch):
 def test_the_console_script_exits_0_2_and_1():
     """The one check that needs a process: `python -m chaingraph` and its exit statuses
     (the rest of the command line is tested in process through main)."""
-    from .conftest import children, wait_for, run_console_script
+    from ..conftest import children, wait_for, run_console_script
     assert run_console_script("classify", FOUR_BAR)[0] == 0
     code, out, err = run_console_script("classify", "no-such-file.toml")
     assert code == 2 and err.strip().startswith("chaingraph: error:")

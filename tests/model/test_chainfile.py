@@ -8,7 +8,7 @@ import chaingraph
 from chaingraph import ChainFileError
 from chaingraph.files import dumps, from_document, loads
 
-from .conftest import CATALOG, catalog_path, run_cli
+from ..conftest import CATALOG, catalog_path, run_cli
 
 FOUR_BAR = '''name = "four-bar"
 [[joints]]

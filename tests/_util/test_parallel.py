@@ -11,7 +11,7 @@ import pytest
 
 from chaingraph._util.parallel import process_runner, serial
 
-from .conftest import alive, children, wait_for
+from ..conftest import alive, children, wait_for
 
 
 def test_every_task_runs_once_on_processes_and_here():

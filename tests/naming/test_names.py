@@ -15,10 +15,10 @@ from chaingraph.naming.catalog import catalog_files, catalog_path
 from chaingraph.naming.identify import identify
 from chaingraph.naming.inversions import inversions
 
-from .conftest import run_cli
+from ..conftest import run_cli
 from .test_inversions import _four_bar
 
-EXAMPLES = Path(__file__).parent.parent / "examples"
+EXAMPLES = Path(__file__).parents[2] / "examples"
 
 # the slider crank chain written for its structure alone (no 'at', no 'axis'), ending
 # with its P joint D

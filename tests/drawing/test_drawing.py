@@ -10,7 +10,7 @@ import pytest
 import chaingraph
 from chaingraph.drawing.mechanism import mechanism_svg
 
-from .conftest import CATALOG, catalog_path, run_cli
+from ..conftest import CATALOG, catalog_path, run_cli
 
 NS = {"s": "http://www.w3.org/2000/svg"}
 MECHANISMS = [p for p in CATALOG if (c := chaingraph.load(p)).mechanism is not None

@@ -11,7 +11,7 @@ import pytest
 from chaingraph.naming.catalog import catalog_dir, catalog_files
 from chaingraph.report.build import build_report
 
-from .conftest import run_cli
+from ..conftest import run_cli
 
 
 @pytest.fixture(scope="module")
@@ -161,7 +161,7 @@ def test_two_inputs_have_two_independent_sliders(tmp_path):
     """The five-bar robot's two cranks: each slider moves its own crank and the arms,
     and leaves the other crank where it is."""
     from .browser import Browser
-    example = Path(__file__).parents[1] / "examples" / "five-bar-robot.toml"
+    example = Path(__file__).parents[2] / "examples" / "five-bar-robot.toml"
     build_report([example], tmp_path, progress=None)
     page = tmp_path / "five-bar-robot.html"
     with Browser() as browser:

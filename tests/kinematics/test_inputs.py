@@ -16,9 +16,9 @@ import chaingraph
 from chaingraph import AssemblyError, Chain, ChainFileError, Input, Joint, MechanismError
 from chaingraph.naming.catalog import catalog_files, catalog_path
 
-from .conftest import run_cli
+from ..conftest import run_cli
 
-EXAMPLES = Path(__file__).parent.parent / "examples"
+EXAMPLES = Path(__file__).parents[2] / "examples"
 
 
 def joint_at(chain, name):
@@ -368,7 +368,7 @@ def test_every_inversion_of_the_catalog_with_every_input_on_the_fixed_link():
 
 
 # -- a P input's value: one reference ------------------------------------------------------
-SLIDER_BY_LENGTHS = Path(__file__).parent / "data" / "slider-by-lengths-piston-input.toml"
+SLIDER_BY_LENGTHS = Path(__file__).parents[1] / "data" / "slider-by-lengths-piston-input.toml"
 
 
 def test_a_piston_input_given_by_lengths_is_measured_from_the_guides_origin_throughout():

@@ -21,7 +21,7 @@ from chaingraph.graphical.centres import centres_of
 from chaingraph.graphical.polygons import polygons_of
 from chaingraph.kinematics.pose import pose_motion
 
-EXAMPLES = Path(__file__).resolve().parent.parent / "examples"
+EXAMPLES = Path(__file__).resolve().parents[2] / "examples"
 
 
 def _mechanisms():
