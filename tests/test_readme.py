@@ -35,3 +35,23 @@ def test_the_quick_start_file_is_the_one_shown():
     text = (ROOT / "README.md").read_text(encoding="utf-8")
     shown = re.search(r"```toml\n(.*?)```", text, re.S).group(1)
     assert shown == (ROOT / "examples" / "quick-start.toml").read_text(encoding="utf-8")
+
+
+def test_every_public_name_the_pages_use_is_there():
+    """Each `chaingraph.NAME` and `from chaingraph... import NAME` of the README's and the
+    docs' Python blocks resolves (the public face is kept when the house is rearranged)."""
+    import importlib
+
+    import chaingraph
+    used = set()
+    for page in WITH_PYTHON:
+        code = "\n".join(re.findall(r"```python\n(.*?)```", page.read_text(encoding="utf-8"),
+                                    re.S))
+        used |= {("chaingraph", name) for name in re.findall(r"\bchaingraph\.(\w+)", code)}
+        for module, names in re.findall(r"from (chaingraph[\w.]*) import ([\w, ]+)", code):
+            used |= {(module, n.strip()) for n in names.split(",")}
+    assert ("chaingraph", "load") in used and len(used) >= 10
+    for module, name in sorted(used):
+        assert hasattr(importlib.import_module(module), name), f"{module}.{name}"
+    assert {"load", "loads", "classify", "inversions", "identify", "solve"} <= set(
+        chaingraph.__all__)
