@@ -2,7 +2,6 @@
 
 import math
 
-import numpy as np
 import xml.etree.ElementTree as ET
 
 import pytest

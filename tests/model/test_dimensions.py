@@ -15,7 +15,7 @@ import pytest
 
 import chaingraph
 from chaingraph.kinematics.assembly import measure
-from chaingraph.naming.catalog import catalog_files, catalog_path
+from chaingraph.naming.catalog import catalog_files
 from chaingraph.model.chain import Chain, Input, Joint, Mechanism, Point
 from chaingraph.files import loads, read_text
 from chaingraph.errors import ChainFileError, DimensionError, PoseAdjustedWarning

@@ -10,9 +10,8 @@ import math
 import os
 from pathlib import Path
 
-import numpy as np
 
-from chaingraph.structure.atlas.entry import AtlasEntry, encode_chains, order_counts, orders_rows
+from chaingraph.structure.atlas.entry import AtlasEntry, encode_chains, order_counts
 from chaingraph.structure.atlas.run import ring_of
 
 __all__ = ["atlas_dict", "write_atlas", "chains_of", "CHAIN_FILES_UP_TO",
