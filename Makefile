@@ -12,7 +12,7 @@ $(BIN)/python:
 # a regular (not editable) install: setuptools warns on every editable install of a
 # flat layout; the install is redone whenever a source or catalog file changes, and the
 # tests import the source tree itself (pytest puts the checkout first on the path)
-SOURCES := $(shell find chaingraph catalog -name '*.py' -o -name '*.toml')
+SOURCES := $(shell find chaingraph catalog -name '*.py' -o -name '*.toml' -o -name '*.css' -o -name '*.js')
 
 $(VENV)/.installed: pyproject.toml $(SOURCES) | $(BIN)/python
 	$(BIN)/python -m pip install --quiet .

@@ -12,6 +12,7 @@ from __future__ import annotations
 
 import html
 import json
+from importlib import resources
 import math
 import os
 import re
@@ -41,33 +42,17 @@ from chaingraph.structure.classify import classify
 
 __all__ = ["Report", "build_report", "chain_paths"]
 
-_STYLE = """
-body { font-family: Georgia, 'Times New Roman', serif; margin: 2em auto; max-width: 70em;
-       color: #1b1b1b; line-height: 1.45; padding: 0 1em; }
-h1, h2, h3 { font-family: 'Helvetica Neue', Arial, sans-serif; color: #1f4e79; }
-table { border-collapse: collapse; margin: 0.8em 0 1.4em; font-size: 0.95em; }
-th, td { border: 1px solid #c8d3de; padding: 0.3em 0.6em; text-align: left; vertical-align: top; }
-th { background: #eaf0f6; }
-td.num { text-align: right; font-variant-numeric: tabular-nums; }
-.notes { background: #f7f7f2; border-left: 4px solid #1f4e79; padding: 0.6em 1em; }
-.figures { display: flex; flex-wrap: wrap; gap: 1.2em; }
-.figures figure { margin: 0; }
-figcaption { font-size: 0.85em; color: #555; }
-img { max-width: 100%; border: 1px solid #e3e3e3; background: white; }
-.fail { color: #a00000; }
-nav a { margin-right: 1em; }
-"""
 
-_SCRIPT = """
-<script>
-window.addEventListener('load', function () {
-  var images = Array.prototype.slice.call(document.images);
-  var loaded = images.filter(function (i) { return i.complete && i.naturalWidth > 0; });
-  document.body.setAttribute('data-images', images.length);
-  document.body.setAttribute('data-images-loaded', loaded.length);
-});
-</script>
-"""
+def _asset(name):
+    """A file of the report's own (its style sheet, its scripts), as text."""
+    return resources.files("chaingraph.report").joinpath(name).read_text(encoding="utf-8")
+
+
+_STYLE = _asset("report.css")
+_SCRIPT = "\n<script>\n" + _asset("images.js") + "</script>\n"
+_PLAYER_SCRIPT = _asset("player.js")
+
+
 
 
 @dataclass
@@ -528,47 +513,3 @@ def _player(e):
     return out
 
 
-_PLAYER_SCRIPT = """
-(function () {
-  var player = document.getElementById('player');
-  var svg = document.querySelector('#stage svg');
-  var groups = Array.prototype.slice.call(svg.querySelectorAll('g.frame'));
-  groups.forEach(function (g) {       // the script drives the frames: SMIL off
-    Array.prototype.slice.call(g.querySelectorAll('animate')).forEach(function (a) { a.remove(); });
-  });
-  var sliders = Array.prototype.slice.call(player.querySelectorAll('input.input-slider'));
-  var marker = document.getElementById('marker');
-  var button = document.getElementById('play');
-  var n = groups.length, frame = 0, timer = null, grid = PLAYER.grid || 0;
-  function show(i) {
-    frame = i;
-    groups.forEach(function (g, k) { g.setAttribute('visibility', k === i ? 'visible' : 'hidden'); });
-    sliders.forEach(function (s) {
-      var n = +s.dataset.index;         // on a grid: the first input along a row
-      var at = grid ? (n === 0 ? i % grid : Math.floor(i / grid)) : i;
-      s.value = at;
-      s.nextElementSibling.textContent = Number(PLAYER.inputs[n][at]).toPrecision(4);
-    });
-    if (marker && PLAYER.px && PLAYER.px[i] !== null) {
-      marker.setAttribute('cx', PLAYER.px[i].toFixed(2));
-      marker.setAttribute('cy', PLAYER.py[i].toFixed(2));
-    }
-    player.setAttribute('data-frame', i);
-  }
-  function pause() { if (timer) { clearInterval(timer); timer = null; } button.textContent = 'play'; }
-  function play() {
-    pause();
-    timer = setInterval(function () { show((frame + 1) % n); }, 4000 / n);
-    button.textContent = 'pause';
-  }
-  button.addEventListener('click', function () { if (timer) { pause(); } else { play(); } });
-  sliders.forEach(function (s) {
-    s.addEventListener('input', function () {
-      pause();
-      show(grid ? +sliders[0].value + grid * +sliders[1].value : +s.value);
-    });
-  });
-  var asked = /frame=(\\d+)/.exec(window.location.hash);
-  if (asked) { pause(); show(Math.min(+asked[1], n - 1)); } else { show(0); play(); }
-})();
-"""
