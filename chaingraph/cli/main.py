@@ -57,37 +57,8 @@ def _table(rows, header) -> str:
     return "\n".join([fmt(header), fmt(["-" * w for w in widths]), *map(fmt, rows)])
 
 
-def _counts(d: dict) -> str:
-    return ", ".join(f"{k} {v}" for k, v in d.items() if v) or "none"
-
-
-def _check_sides(check) -> str:
-    if not check.applicable:
-        return "n/a"
-    sign = "=" if check.lhs == check.rhs else (">" if check.lhs > check.rhs else "<")
-    return f"{check.lhs} {sign} {check.rhs}"
-
-
-def _check_text(check) -> str:
-    return check.verdict if check.applicable else f"not applicable: {check.note}"
-
-
 def _classification_text(result, source) -> str:
-    rows = [
-        ["links L", result.links, _counts(result.link_orders)],
-        ["pairs P", result.pairs, _counts(result.pair_kinds)],
-        ["joint equivalents J", result.joint_equivalents,
-         "joints: " + _counts(result.joint_orders)],
-        ["higher pairs H", result.higher_pairs, ""],
-        ["loops", result.loops, "independent closed loops"],
-        ["mobility F", result.mobility,
-         "Kutzbach, " + ("3(L - 1) - 2J - H" if result.space == "planar"
-                         else "6(L - 1) - sum(6 - f)")],
-    ]
-    rows += [[c.rule, _check_sides(c), _check_text(c)] for c in result.checks]
-    rows.append(["verdict", result.verdict, ""])
-    rows.append(["degenerate", "yes" if result.degenerate else "no",
-                 "; ".join("{" + ", ".join(s) + "}" for s in result.rigid_subchains)])
+    rows = [list(row) for row in result.rows()]
     head = f"{result.name}  ({source})"
     body = _table(rows, ["", "", ""]).split("\n", 2)[2]
     lines = [head, body]
@@ -126,16 +97,8 @@ def _cmd_inversions(args) -> int:
     plural = "class" if result.classes == 1 else "classes"
     print(f"{result.name}: {result.links} links, {len(result.inversions)} inversions "
           f"in {result.classes} {plural} by structure")
-    header = ["fixed", "class", "behaviour", "names"]
-    rows = []
-    for inv in result.inversions:
-        row = [inv.fixed, inv.class_, inv.behaviour or "-", "; ".join(inv.names) or "-"]
-        if args.with_input:
-            row.insert(2, ", ".join(f"{i.driver} ({i.class_})" for i in inv.inputs) or "-")
-        rows.append(row)
-    if args.with_input:
-        header.insert(2, "inputs (class)")
-    print(_table(rows, header))
+    header, *rows = result.rows()
+    print(_table([list(r) for r in rows], list(header)))
     if args.with_input:
         print(f"classes with a designated input: {result.classes_with_input}")
     for inv in result.inversions:

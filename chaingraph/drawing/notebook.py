@@ -44,21 +44,13 @@ def chain_svg(chain) -> str:
 
 
 def classification_html(result) -> str:
-    rows = [("links L", result.links), ("pairs P", result.pairs),
-            ("joint equivalents J", result.joint_equivalents),
-            ("higher pairs H", result.higher_pairs), ("loops", result.loops),
-            ("mobility F", result.mobility)]
-    rows += [(c.rule, f"{c.lhs} vs {c.rhs}: {c.verdict}" if c.applicable
-              else f"not applicable: {c.note}") for c in result.checks]
-    rows += [("verdict", result.verdict), ("degenerate", "yes" if result.degenerate else "no")]
-    return f"<b>{html.escape(result.name)}</b>" + _table(rows)
+    return f"<b>{html.escape(result.name)}</b>" + _table(result.rows())
 
 
 def inversions_html(result) -> str:
-    rows = [(i.fixed, i.class_, "; ".join(i.names) or "-", i.behaviour or "-")
-            for i in result.inversions]
+    header, *rows = result.rows()
     return (f"<b>{html.escape(result.name)}</b>: {result.links} links, {result.classes} "
-            "distinct inversions" + _table(rows, ["fixed", "class", "names", "behaviour"]))
+            "distinct inversions" + _table(rows, header))
 
 
 def motion_html(motion) -> str:

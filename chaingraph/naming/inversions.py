@@ -82,6 +82,30 @@ class Inversions:
                 f"fixed={short_list(i.fixed for i in self.inversions)})")
 
 
+    def rows(self) -> list[tuple]:
+        """The inversions as table rows, the first the header: fixed link, class, (the
+        inputs and their classes, where designated), behaviour, names ("-" for none), as
+        the command line, the report and a notebook show them.
+
+        Examples
+        --------
+        >>> import chaingraph
+        >>> from chaingraph.naming.catalog import catalog_path
+        >>> chain = chaingraph.load(catalog_path("four-bar-chain"))
+        >>> chaingraph.inversions(chain).rows()[:2]
+        [('fixed', 'class', 'behaviour', 'names'), ('frame', 1, 'crank-rocker', 'Beam engine (crank and lever mechanism)')]
+        """
+        designated = self.classes_with_input is not None
+        header = ("fixed", "class") + (("inputs (class)",) if designated else ()) + (
+            "behaviour", "names")
+        rows = [header]
+        for i in self.inversions:
+            inputs = ((", ".join(f"{x.driver} ({x.class_})" for x in i.inputs) or "-",)
+                      if designated else ())
+            rows.append((i.fixed, i.class_) + inputs
+                        + (i.behaviour or "-", "; ".join(i.names) or "-"))
+        return rows
+
     def inversion(self, fixed: str) -> Inversion:
         """The inversion with ``fixed`` fixed."""
         return next(i for i in self.inversions if i.fixed == fixed)

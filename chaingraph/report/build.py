@@ -358,14 +358,7 @@ def _entry_page(e):
                 "the link carrying the guide; higher pairs dashed); the fixed link is drawn "
                 "dark.</figcaption></figure></div>")
     body.append("<h2>Classification</h2><table id=\"classification\">")
-    facts = [("links L", c.links, ", ".join(f"{k} {v}" for k, v in c.link_orders.items() if v)),
-             ("pairs P", c.pairs, ", ".join(f"{k} {v}" for k, v in c.pair_kinds.items())),
-             ("joint equivalents J", c.joint_equivalents,
-              ", ".join(f"{k} {v}" for k, v in c.joint_orders.items() if v) + " joints"),
-             ("higher pairs H", c.higher_pairs, ""), ("independent loops", c.loops, ""),
-             ("mobility (Kutzbach)", c.mobility, c.verdict),
-             ("degenerate", "yes" if c.degenerate else "no",
-              "; ".join("{" + ", ".join(s) + "}" for s in c.rigid_subchains))]
+    facts = [row for row in c.rows() if row[0] not in {ch.rule for ch in c.checks}]
     body += [f"<tr><th>{_esc(a)}</th><td class=\"num\">{_esc(b)}</td><td>{_esc(d)}</td></tr>"
              for a, b, d in facts]
     body.append("</table><table id=\"checks\"><tr><th>check</th><th>LHS</th><th>RHS</th>"
@@ -384,10 +377,9 @@ def _entry_page(e):
                     f"{inv.classes} {'class' if inv.classes == 1 else 'classes'} by "
                     "structure.</p><table id=\"inversions\"><tr><th>fixed link</th>"
                     "<th>class</th><th>behaviour</th><th>names</th></tr>")
-        for i in inv.inversions:
-            body.append(f"<tr><td>{_esc(i.fixed)}</td><td class=\"num\">{i.class_}</td>"
-                        f"<td>{_esc(i.behaviour or '–')}</td>"
-                        f"<td>{_esc('; '.join(i.names) or '–')}"
+        for i, (fixed, class_, how, names) in zip(inv.inversions, inv.rows()[1:]):
+            body.append(f"<tr><td>{_esc(fixed)}</td><td class=\"num\">{class_}</td>"
+                        f"<td>{_esc(how)}</td><td>{_esc(names)}"
                         + (f"<br><small>{_esc(i.note)}</small>" if i.note else "")
                         + "</td></tr>")
         body.append("</table>")

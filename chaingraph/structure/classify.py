@@ -99,6 +99,44 @@ class Classification:
                 f"mobility={self.mobility}, verdict={self.verdict!r}, "
                 f"degenerate={self.degenerate})")
 
+    def rows(self) -> list[tuple]:
+        """The facts as (what, value, detail) rows in the textbook's words, as the
+        command line, the report and a notebook show them.
+
+        Examples
+        --------
+        >>> import chaingraph
+        >>> from chaingraph.naming.catalog import catalog_path
+        >>> rows = chaingraph.classify(chaingraph.load(catalog_path("four-bar-chain"))).rows()
+        >>> rows[0], rows[-2]
+        (('links L', 4, 'binary 4'), ('verdict', 'kinematic chain', ''))
+        """
+        def counts(d):
+            return ", ".join(f"{k} {v}" for k, v in d.items() if v) or "none"
+
+        def sides(check):
+            if not check.applicable:
+                return "n/a"
+            sign = "=" if check.lhs == check.rhs else (">" if check.lhs > check.rhs else "<")
+            return f"{check.lhs} {sign} {check.rhs}"
+        rows = [
+            ("links L", self.links, counts(self.link_orders)),
+            ("pairs P", self.pairs, counts(self.pair_kinds)),
+            ("joint equivalents J", self.joint_equivalents,
+             "joints: " + counts(self.joint_orders)),
+            ("higher pairs H", self.higher_pairs, ""),
+            ("loops", self.loops, "independent closed loops"),
+            ("mobility F", self.mobility,
+             "Kutzbach, " + ("3(L - 1) - 2J - H" if self.space == "planar"
+                             else "6(L - 1) - sum(6 - f)")),
+        ]
+        rows += [(c.rule, sides(c), c.verdict if c.applicable else f"not applicable: {c.note}")
+                 for c in self.checks]
+        rows.append(("verdict", self.verdict, ""))
+        rows.append(("degenerate", "yes" if self.degenerate else "no",
+                     "; ".join("{" + ", ".join(s) + "}" for s in self.rigid_subchains)))
+        return rows
+
     def check(self, rule: str) -> Check:
         """The check whose rule is ``rule`` (``"L = 2P - 4"`` or ``"J + H/2 = 3L/2 - 2"``)."""
         return next(c for c in self.checks if c.rule == rule)
