@@ -91,6 +91,36 @@ class Motion:
     def steps(self) -> int:
         return self.theta.size - 1
 
+    def link(self, name) -> "LinkMotion":
+        """A link's direction (degrees), angular velocity and acceleration over the sweep.
+
+        Examples
+        --------
+        >>> import chaingraph
+        >>> from chaingraph.naming.catalog import catalog_path
+        >>> m = chaingraph.solve(chaingraph.load(catalog_path("beam-engine")), steps=4)
+        >>> m.link("crank").omega.tolist() == m["omega:crank"].tolist()
+        True
+        """
+        self._known(name, "angle", "link")
+        return LinkMotion(name, *(self.columns[f"{k}:{name}"] for k in ("angle", "omega", "alpha")))
+
+    def point(self, name) -> "PointMotion":
+        """A joint's or point's position, velocity and acceleration over the sweep."""
+        self._known(name, "x", "joint or point")
+        c = self.columns
+        return PointMotion(name, c[f"x:{name}"], c[f"y:{name}"], c[f"vx:{name}"],
+                           c[f"vy:{name}"], c[f"ax:{name}"], c[f"ay:{name}"])
+
+    def slide(self, joint) -> "SlideMotion":
+        """A P joint's slide from the drawn pose, its rate and acceleration."""
+        self._known(joint, "s", "P joint")
+        return SlideMotion(joint, *(self.columns[f"{k}:{joint}"] for k in ("s", "v", "a")))
+
+    def _known(self, name, key, what):
+        if f"{key}:{name}" not in self.columns:
+            raise KeyError(f"{name!r} is no {what} of {self.name!r}")
+
     def to_csv(self, path=None) -> str | None:
         """Write the CSV (one row per step); returns the text when ``path`` is None.
 
@@ -405,3 +435,35 @@ def full_turns(chain, fixed):
         fallback = fallback or (frozenset(turning), driver)
     return fallback
 
+
+@dataclass(frozen=True, eq=False)
+class LinkMotion:
+    """A link over a sweep: ``angle`` (degrees), ``omega`` (rad/s), ``alpha`` (rad/s^2)."""
+
+    name: str
+    angle: np.ndarray
+    omega: np.ndarray
+    alpha: np.ndarray
+
+
+@dataclass(frozen=True, eq=False)
+class PointMotion:
+    """A joint or point over a sweep: position, velocity, acceleration components."""
+
+    name: str
+    x: np.ndarray
+    y: np.ndarray
+    vx: np.ndarray
+    vy: np.ndarray
+    ax: np.ndarray
+    ay: np.ndarray
+
+
+@dataclass(frozen=True, eq=False)
+class SlideMotion:
+    """A P joint over a sweep: ``s`` the slide from the drawn pose, ``v``, ``a``."""
+
+    name: str
+    s: np.ndarray
+    v: np.ndarray
+    a: np.ndarray

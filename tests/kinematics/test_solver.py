@@ -580,3 +580,13 @@ def test_rounding_noise_is_not_printed_as_a_figure():
         assert main(["solve", str(catalog_path("reciprocating-engine")), "--input", "S"]) == 0
     assert "transmission angle  0 to 180 degrees" in out.getvalue()
     assert "e-1" not in out.getvalue()
+
+
+def test_a_motion_has_typed_accessors_over_its_columns():
+    engine = chaingraph.solve(chaingraph.load(catalog_path("reciprocating-engine")), steps=8)
+    crank, pin, slide = engine.link("crank"), engine.point("A"), engine.slide("S")
+    assert crank.angle is engine["angle:crank"] and crank.omega is engine["omega:crank"]
+    assert pin.x is engine["x:A"] and pin.ay is engine["ay:A"]
+    assert slide.s is engine["s:S"] and slide.a is engine["a:S"]
+    with pytest.raises(KeyError, match="'rod' is no link"):
+        engine.link("rod")
