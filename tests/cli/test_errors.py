@@ -23,7 +23,7 @@ from chaingraph.kinematics import tracking
 from chaingraph import ChainGraphError
 from chaingraph.naming.catalog import catalog_path
 from chaingraph.cli.main import main
-from ..conftest import children, interruptible, wait_for
+from ..conftest import children, interruptible, run_console_script, wait_for
 
 
 CRANK = str(catalog_path("crank-rocker-with-slider"))
@@ -463,7 +463,6 @@ def test_running_out_of_memory_is_one_line_and_exit_1(monkeypatch):
 def test_the_console_script_exits_0_2_and_1():
     """The one check that needs a process: `python -m chaingraph` and its exit statuses
     (the rest of the command line is tested in process through main)."""
-    from ..conftest import run_console_script
     assert run_console_script("classify", FOUR_BAR)[0] == 0
     code, out, err = run_console_script("classify", "no-such-file.toml")
     assert code == 2 and err.strip().startswith("chaingraph: error:")

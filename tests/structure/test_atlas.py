@@ -10,7 +10,7 @@ import chaingraph
 from chaingraph import AtlasSizeError
 from chaingraph.structure.atlas import assortments, atlas_graphs, joints_for
 
-from ..conftest import run_cli
+from ..conftest import children, interruptible, run_cli, wait_for
 
 # the brute force buckets graphs by networkx's WL hash within one run; the hash values'
 # change in networkx 3.5 (its warning) does not matter here
@@ -341,7 +341,6 @@ def test_ctrl_c_leaves_no_worker_and_a_resumable_folder(tmp_path):
     import sys
     import time
 
-    from ..conftest import children, interruptible, wait_for
     out = tmp_path / "run"
     proc = subprocess.Popen([sys.executable, "-m", "chaingraph", "atlas", "--links", "14",
                              "--workers", "2", "--out", str(out), "-q"],
