@@ -168,9 +168,11 @@ def _fold(plan, at, good, bad, far):
     exactly, as a fold of the step that fails there: a dyad's at its discriminant's root,
     where it takes its double root; a group's by Newton's method on the extended system
     (:func:`groups.fold_point`). Found by bisection alone, a limit's pose would carry
-    the square root of the bisection's tolerance. ``far`` is where the path first failed (a group's Newton's
-    method near its fold depends on where it starts: ``bad`` may assemble from ``good``,
-    where the path found it did not). Returns (angle, the evaluation there)."""
+    the square root of the bisection's tolerance. ``far`` is where the path first
+    failed (a group's Newton's method near its fold depends on where it starts: ``bad``
+    may assemble from ``good`` where the path found it did not). A dyad that
+    degenerates there (no sign change of its discriminant) is no fold: the limit stays
+    at ``good``. Returns (angle, the evaluation there)."""
     ref = at.reference(np.array([0]))
     i = failing_step(plan, np.array([bad]), ref)
     if i is None:
