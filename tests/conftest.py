@@ -34,17 +34,12 @@ def run_cli(*args, cwd=None):
     """Run `chaingraph ARGS` in this process through ``main`` (from ``cwd`` when given);
     return (exit status, stdout, stderr)."""
     out, err = io.StringIO(), io.StringIO()
-    here = os.getcwd()
-    try:
-        if cwd is not None:
-            os.chdir(cwd)
-        with contextlib.redirect_stdout(out), contextlib.redirect_stderr(err):
-            try:
-                code = main([str(a) for a in args])
-            except SystemExit as e:          # argparse's usage errors and --help
-                code = e.code
-    finally:
-        os.chdir(here)
+    with contextlib.chdir(cwd or os.getcwd()), contextlib.redirect_stdout(out), \
+            contextlib.redirect_stderr(err):
+        try:
+            code = main([str(a) for a in args])
+        except SystemExit as e:              # argparse's usage errors and --help
+            code = e.code
     return code, out.getvalue(), err.getvalue()
 
 

@@ -74,7 +74,7 @@ def _run(command, cwd):
         out = io.StringIO()
         err_out = out if target is None else io.StringIO()   # one stream, as on a terminal
         with contextlib.redirect_stdout(out), contextlib.redirect_stderr(err_out), \
-                _inside(cwd):
+                contextlib.chdir(cwd):
             try:
                 main(words[1:])
             except SystemExit:                    # argparse's usage errors
@@ -87,17 +87,6 @@ def _run(command, cwd):
         text = subprocess.run(shlex.split(f), input=text, cwd=cwd, capture_output=True,
                               text=True).stdout
     return text
-
-
-@contextlib.contextmanager
-def _inside(folder):
-    import os
-    here = os.getcwd()
-    os.chdir(folder)
-    try:
-        yield
-    finally:
-        os.chdir(here)
 
 
 def test_the_pages_have_console_blocks():

@@ -161,8 +161,8 @@ def path_direction(cols, name, *, closed=False):
     along = centred[reach >= (1 - 1e-9) * reach.max()] @ vt[0]
     if along.max() > 0 > along.min():
         # farthest both ways (an ellipse's two ends): +x, else +y, decides
-        d = vt[0] if (vt[0][0], vt[0][1]) > (1e-12, 0.0) or (
-            abs(vt[0][0]) <= 1e-12 and vt[0][1] > 0) else -vt[0]
+        ux, uy = vt[0]
+        d = vt[0] if ux > 1e-12 or (abs(ux) <= 1e-12 and uy > 0) else -vt[0]
     else:
         d = vt[0] if along[np.argmax(np.abs(along))] >= 0 else -vt[0]
     return float(d[0]), float(d[1])

@@ -153,7 +153,7 @@ def _shown(source):
     try:
         if path.resolve().parent == catalog_dir().resolve():
             return f"catalog/{path.name}"
-    except (OSError, FileNotFoundError):
+    except OSError:
         pass
     return str(source)
 
