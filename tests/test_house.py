@@ -1,6 +1,7 @@
 """The house's rules, checked on the code itself (docs/developers.md states them)."""
 
 import ast
+import re
 import subprocess
 import sys
 from pathlib import Path
@@ -63,3 +64,58 @@ def test_import_chaingraph_loads_no_heavy_part():
     done = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True,
                           cwd=PACKAGE.parent)
     assert done.stdout.strip() == "[]", done.stdout + done.stderr
+
+
+#: the 2-D helpers: geometry.py is their one home
+TWO_D = {"rotate", "rot", "unit", "normal", "perp", "dot", "cross", "sub", "dist", "distance",
+         "norm", "normalised", "unit_vector", "unit_deg", "direction", "direction_deg", "apply",
+         "compose", "inverse", "hull", "convex_hull", "area", "polygon_area", "fit", "from_two",
+         "line_in", "make_pose", "world", "fit_two_points", "from_point", "turn_by"}
+
+
+def test_the_two_d_helpers_live_in_geometry_only():
+    found = [f"{path}:{node.lineno} {node.name}" for path, tree in _trees()
+             if path.name != "geometry.py" for node in tree.body
+             if isinstance(node, ast.FunctionDef) and node.name.lstrip("_") in TWO_D]
+    assert found == []
+
+
+def test_a_link_s_reference_direction_is_defined_once():
+    """The line a link's angle is measured by: Chain.reference_direction, nowhere else."""
+    found = [f"{path}:{node.lineno} {node.name}" for path, tree in _trees()
+             for node in ast.walk(tree) if isinstance(node, ast.FunctionDef)
+             and "direction" in node.name and ("link" in node.name or "drawn" in node.name
+                                               or node.name == "reference_direction")]
+    assert found == ["chaingraph/model/chain.py:197 reference_direction"] or \
+        [f.split(" ")[1] for f in found] == ["reference_direction"]
+
+
+def test_one_toml_writer():
+    """Only the chain file's writer writes TOML: no other module writes an array of
+    tables or formats TOML values itself (measure builds a document and hands it over)."""
+    found = [str(path) for path, tree in _trees() if path.name != "chainfile.py"
+             and any((isinstance(n, ast.Constant) and n.value in ("[[joints]]", "[[points]]"))
+                     or (isinstance(n, ast.Name) and n.id.startswith("toml_")
+                         and n.id != "toml_text")
+                     for n in ast.walk(tree))]
+    assert found == []
+
+
+def test_library_errors_name_parameters_not_flags():
+    """Flags and exit statuses are the command line's: no message outside cli/ names a
+    flag, and no error carries an exit status."""
+    found = []
+    for path, tree in _trees():
+        if path.parts[1] == "cli":
+            continue
+        for node in ast.walk(tree):
+            if isinstance(node, ast.Raise) or (isinstance(node, ast.Call) and getattr(
+                    node.func, "id", "").endswith(("Error", "Warning"))):
+                for c in ast.walk(node):
+                    if isinstance(c, ast.Constant) and isinstance(c.value, str) and \
+                            re.search(r"(^|\s|\()--[a-z]", c.value):
+                        found.append(f"{path}:{c.lineno} {c.value[:50]!r}")
+            if isinstance(node, (ast.Attribute, ast.Name)) and "exit_status" in (
+                    getattr(node, "attr", None), getattr(node, "id", None)):
+                found.append(f"{path}:{node.lineno} exit_status")
+    assert found == []

@@ -29,7 +29,8 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from chaingraph.kinematics.pose import AtOneValue, PoseMotion, perp, pose_motion
+from chaingraph.geometry import normalised, perp
+from chaingraph.kinematics.pose import AtOneValue, PoseMotion, pose_motion
 
 __all__ = ["Centre", "InstantCentres", "instant_centres"]
 
@@ -218,10 +219,6 @@ def link_numbers(chain, fixed, inputs=()) -> dict:
     return dict(sorted(numbers.items(), key=lambda item: item[1]))
 
 
-def _unit(h):
-    h = np.asarray(h, dtype=float)
-    n = float(np.linalg.norm(h))
-    return h / n if n > 0 and math.isfinite(n) else None
 
 
 def _finish(h, state):
@@ -261,7 +258,7 @@ def _from_velocities(state, a, b):
     scale = max(abs(wa), abs(wb), float(np.abs(ca).max()), float(np.abs(cb).max()))
     if not np.isfinite(h).all() or np.linalg.norm(h) <= 1e-12 * scale:
         return None                               # no relative motion (or a dead centre)
-    return _unit(h)
+    return normalised(h)
 
 
 def _primary(state):
@@ -269,7 +266,7 @@ def _primary(state):
     known = {}
     for j in state.chain.joints:
         if j.kind == "R":
-            h = _unit((*_scaled(state, state.positions[j.id]), 1.0))
+            h = normalised((*_scaled(state, state.positions[j.id]), 1.0))
         else:
             u = state.slides[j.id].axis
             h = np.array([-u[1], u[0], 0.0])

@@ -25,13 +25,12 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from chaingraph.kinematics.pose import AtOneValue, PoseMotion, perp, pose_motion
+from chaingraph.geometry import direction_deg, perp
+from chaingraph.kinematics.pose import AtOneValue, PoseMotion, pose_motion
 
 __all__ = ["Component", "Relative", "Image", "Polygons", "velocity_polygon"]
 
 
-def _direction(v):
-    return math.degrees(math.atan2(v[1], v[0])) % 360.0 if (v[0] or v[1]) else None
 
 
 def _vector(x, y):
@@ -54,7 +53,7 @@ class Component:
     @property
     def direction(self) -> float | None:
         """Degrees CCW from +x in [0, 360) (None for a zero vector)."""
-        return _direction(self.vector)
+        return direction_deg(self.vector)
 
     def to_dict(self) -> dict:
         return {"kind": self.kind, "vector": list(self.vector),
@@ -88,7 +87,7 @@ class Relative:
         out = {"from": self.start, "to": self.to}
         out.update({"link": self.link} if self.joint is None else {"joint": self.joint})
         out.update(vector=list(total), magnitude=math.hypot(*total),
-                   direction=_direction(total),
+                   direction=direction_deg(total),
                    components=[c.to_dict() for c in components])
         return out
 

@@ -31,10 +31,29 @@ from dataclasses import dataclass, replace
 import numpy as np
 
 from chaingraph.errors import DimensionError, PoseAdjustedWarning
-from chaingraph.kinematics.plan import chosen_inputs, drawn_direction
-from chaingraph.model.chain import Chain, Joint, Point
-from chaingraph.model.chainfile import parse_text, toml_number, toml_string
-from chaingraph.model.dimensions import MODE_WORDS, LineSpec, link_features, link_shape, rotate, sub
+from chaingraph.kinematics.equations import newton_step
+from chaingraph.kinematics.plan import build_plan
+from chaingraph.kinematics.sweep import feasible_range
+from chaingraph.model.chain import Chain, Joint, Point, chosen_inputs, line_direction
+from chaingraph.model.chainfile import parse_document, toml_text
+from chaingraph.geometry import (
+    apply,
+    circle_circle,
+    circle_line,
+    line_by_two_distances,
+    compose,
+    cross,
+    dot,
+    fit_frame,
+    frame_from_two,
+    inverse,
+    line_in,
+    normal,
+    rotate,
+    sub,
+    unit,
+)
+from chaingraph.model.dimensions import MODE_WORDS, LineSpec, link_features, link_shape
 
 __all__ = ["Assembly", "Mode", "assemble", "measure", "snap_to_lines",
            "SILENT", "ROUNDING"]
@@ -83,57 +102,6 @@ class _DoesNotClose(Exception):
         self.part = part
         self.problem = problem
         super().__init__(problem)
-
-
-# -- small geometry --------------------------------------------------------------------
-def _rot(phi, p):
-    return rotate(p, phi)
-
-
-def _apply(pose, p):
-    q = _rot(pose[0], p)
-    return (q[0] + pose[1], q[1] + pose[2])
-
-
-def _compose(a, b):
-    """The transform ``a`` after ``b``."""
-    t = _apply(a, (b[1], b[2]))
-    return (a[0] + b[0], t[0], t[1])
-
-
-def _inverse(a):
-    t = _rot(-a[0], (-a[1], -a[2]))
-    return (-a[0], t[0], t[1])
-
-
-def _normal(angle):
-    return (-math.sin(angle), math.cos(angle))
-
-
-def _unit(angle):
-    return (math.cos(angle), math.sin(angle))
-
-
-def _dot(a, b):
-    return a[0] * b[0] + a[1] * b[1]
-
-
-def _cross(a, b):
-    return a[0] * b[1] - a[1] * b[0]
-
-
-def _line_in(pose, line):
-    """A line (angle, offset) of a body frame, in the frame ``pose`` maps to."""
-    angle = line[0] + pose[0]
-    return (angle, line[1] + _dot(_normal(angle), (pose[1], pose[2])))
-
-
-def _from_two(q1, w1, q2, w2):
-    """The pose that takes body points q1, q2 to w1, w2 (their distances agree)."""
-    phi = (math.atan2(w2[1] - w1[1], w2[0] - w1[0])
-           - math.atan2(q2[1] - q1[1], q2[0] - q1[0]))
-    r = _rot(phi, q1)
-    return (phi, w1[0] - r[0], w1[1] - r[1])
 
 
 def _fmt(x):
@@ -274,7 +242,7 @@ class _Model:
                 fail(f"the sliding line on the fixed link {link!r} needs 'at' (a point of "
                      "it) and 'axis' (its direction, degrees)", f"joint {j.id!r}")
             angle = math.radians(dims.axes[j.id])
-            lines[j.id] = (angle, _dot(_normal(angle), dims.typed[j.id]))
+            lines[j.id] = (angle, dot(normal(angle), dims.typed[j.id]))
         return shape, lines
 
     def _place_fixed_shape(self, link, features, shape, lines, slides):
@@ -282,35 +250,30 @@ class _Model:
         origin), its reference line in the direction given (else +x)."""
         origin = self.dims.typed.get(features[0], (0.0, 0.0)) if features else (0.0, 0.0)
         pose = (math.radians(self.dims.directions.get(link, 0.0)), origin[0], origin[1])
-        shape = {f: _apply(pose, p) for f, p in shape.items()}
+        shape = {f: apply(pose, p) for f, p in shape.items()}
         out = {}
         for j in slides:
             if (j.id, link) in self.dims.lines or j.id not in self.dims.axes:
-                out[j.id] = _line_in(pose, lines[j.id])
+                out[j.id] = line_in(pose, lines[j.id])
             else:
                 angle = math.radians(self.dims.axes[j.id])
-                out[j.id] = (angle, _dot(_normal(angle), self.dims.typed[j.id]))
+                out[j.id] = (angle, dot(normal(angle), self.dims.typed[j.id]))
         return shape, out
 
     # directions that inputs are measured by -------------------------------------------------
     def _beta(self, link, joint):
-        """The direction, in ``link``'s frame, from ``joint`` to the link's first other
-        joint by id order (the input's angle is measured by it); 0 on the fixed link."""
+        """The direction, in ``link``'s own frame, of the line an input at ``joint``
+        is measured by (the rule of :meth:`Chain.reference_direction`); 0 on the
+        fixed link. A sliding pair's point is not placed yet: it is first taken along
+        its line, and the assembly corrects this once it is placed (see ``assemble``)."""
         if link == self.fixed:
             return 0.0
-        shape = self.frames[link][0]
-        here = shape[joint.id]
-        for j in sorted(self.chain.joints_of(link), key=lambda j: j.id):
-            if j.id == joint.id:
-                continue
-            if j.kind != "R":
-                # toward a sliding pair's reference point: first along its line; the
-                # assembly corrects this once the point is placed (see ``assemble``)
-                return self.frames[link][1][j.id][0] + self.corrections.get(link, 0.0)
-            p = shape[j.id]
-            if math.dist(p, here) > 1e-12 * self.scale:
-                return math.atan2(p[1] - here[1], p[0] - here[0])
-        return 0.0
+        shape, lines = self.frames[link]
+        features = [(j.id, shape[j.id] if j.kind == "R" else None)
+                    for j in self.chain.joints_of(link)]
+        turn = line_direction(features, joint.id, tol=1e-12 * self.scale,
+                              unplaced=lambda j: lines[j][0] + self.corrections.get(link, 0.0))
+        return 0.0 if turn is None else turn
 
 
 # -- the assembly at given input values ---------------------------------------------------
@@ -347,13 +310,13 @@ class _Solver:
                     y = b if x == a else a
                     rel = self._weld(j, a, b, value)     # b in a's frame
                     if x == b:
-                        rel = _inverse(rel)
+                        rel = inverse(rel)
                     if y in body:
                         if j.id not in tree:       # a weld that closes a loop of welds
                             self.loops.append((j, x, y, rel))
                         continue
                     tree.add(j.id)
-                    body[y] = (body[x][0], _compose(body[x][1], rel))
+                    body[y] = (body[x][0], compose(body[x][1], rel))
                     stack.append(y)
         self.body = body
         self.pose = {model.fixed: (0.0, 0.0, 0.0)}
@@ -364,13 +327,13 @@ class _Solver:
         (pa, la), (pb, lb) = model.frames[a], model.frames[b]
         if joint.kind == "R":
             phi = math.radians(value) - model._beta(b, joint) + model._beta(a, joint)
-            r = _rot(phi, pb[joint.id])
+            r = rotate(pb[joint.id], phi)
             return (phi, pa[joint.id][0] - r[0], pa[joint.id][1] - r[1])
         (ag, eg), (ak, ek) = la[joint.id], lb[joint.id]
         phi = ag - ak
-        ref_g = tuple(eg * v for v in _normal(ag))
-        ref_k = _rot(phi, tuple(ek * v for v in _normal(ak)))
-        u = _unit(ag)
+        ref_g = tuple(eg * v for v in normal(ag))
+        ref_k = rotate(tuple(ek * v for v in normal(ak)), phi)
+        u = unit(ag)
         return (phi, ref_g[0] + value * u[0] - ref_k[0], ref_g[1] + value * u[1] - ref_k[1])
 
     def _constraints(self):
@@ -390,19 +353,19 @@ class _Solver:
     # features in body frames and in the world
     def point(self, link, name):
         body, t = self.body[link]
-        return body, _apply(t, self.model.frames[link][0][name])
+        return body, apply(t, self.model.frames[link][0][name])
 
     def line(self, link, name):
         body, t = self.body[link]
-        return body, _line_in(t, self.model.frames[link][1][name])
+        return body, line_in(t, self.model.frames[link][1][name])
 
     def world_point(self, link, name):
         body, q = self.point(link, name)
-        return _apply(self.pose[body], q)
+        return apply(self.pose[body], q)
 
     def world_line(self, link, name):
         body, l = self.line(link, name)
-        return _line_in(self.pose[body], l)
+        return line_in(self.pose[body], l)
 
     def ends(self, c):
         """The constraint's two bodies and their features in body frames."""
@@ -450,7 +413,7 @@ class _Solver:
             if any(x not in bodies and x not in self.pose for x in (ba, bb)):
                 continue
             if c[0] == "R":
-                wa, wb = _rot(self.angle[ba], fa), _rot(self.angle[bb], fb)
+                wa, wb = rotate(fa, self.angle[ba]), rotate(fb, self.angle[bb])
                 for k in (0, 1):
                     coef, rhs = {}, wb[k] - wa[k]
                     for x, sign in ((ba, 1.0), (bb, -1.0)):
@@ -461,7 +424,7 @@ class _Solver:
                     rows.append((coef, rhs))
             else:
                 angle = fa[0] + self.angle[ba]
-                n = _normal(angle)
+                n = normal(angle)
                 coef, rhs = {}, fb[1] - fa[1]
                 for x, sign in ((ba, 1.0), (bb, -1.0)):
                     for k in (0, 1):
@@ -504,7 +467,7 @@ class _Solver:
                 (ba, fa), (bb, fb) = self.ends(c)
                 for x, fx, y, fy in ((ba, fa, bb, fb), (bb, fb, ba, fa)):
                     if x == b and y in self.pose and y != b:
-                        anchors.append((fx, _apply(self.pose[y], fy), c[1]))
+                        anchors.append((fx, apply(self.pose[y], fy), c[1]))
             far = [(q, w, j) for q, w, j in anchors
                    if math.dist(q, anchors[0][0]) > 1e-9 * self.model.scale]
             if anchors and far:
@@ -514,7 +477,7 @@ class _Solver:
                     raise _DoesNotClose(j2, f"joints {j1} and {j2} are {_fmt(apart)} apart, "
                                             f"but the link {self._name(b)} holds them "
                                             f"{_fmt(held)} apart")
-                self.pose[b] = _from_two(q1, w1, q2, w2)
+                self.pose[b] = frame_from_two(q1, w1, q2, w2)
                 self.angle[b] = self.pose[b][0]
                 done = True
         return done
@@ -622,7 +585,7 @@ class _Solver:
             pts, lines = self.model.frames[link]
             for name, p in pts.items():
                 if name in sketch:
-                    total += math.dist(_apply(placement[body], _apply(t, p)), sketch[name]) ** 2
+                    total += math.dist(apply(placement[body], apply(t, p)), sketch[name]) ** 2
                     seen = True
             for name, line in lines.items():
                 axis = self.model.dims.axes.get(name)
@@ -635,7 +598,7 @@ class _Solver:
 
     def _rrr(self, b1, b2, one, link, two):
         (c1, q1, _, f1), (c12, s1, s2), (c2, q2, _, f2) = one, link, two
-        w1, w2 = _apply(self.pose[one[2]], f1), _apply(self.pose[two[2]], f2)
+        w1, w2 = apply(self.pose[one[2]], f1), apply(self.pose[two[2]], f2)
         r1, r2 = math.dist(q1, s1), math.dist(q2, s2)
         j = c12[1]
         d = math.dist(w1, w2)
@@ -643,23 +606,21 @@ class _Solver:
         if d == 0:
             raise _DoesNotClose(j, f"the dyad at joint {j}: its joints {c1[1]} and {c2[1]} "
                                    "are at one place")
-        x = (d * d + r1 * r1 - r2 * r2) / (2 * d)
-        h2 = r1 * r1 - x * x
+        mid, across, h2 = circle_circle(w1, r1, w2, r2)
         if h2 < -1e-12 * max(r1, r2, d) * max(r1, r2, d):
             raise _DoesNotClose(j, f"the dyad of links {self._name(b1)} and {self._name(b2)} "
                                    f"at joint {j} does not close: {c1[1]} and {c2[1]} are "
                                    f"{_fmt(d)} apart, and the links reach from "
                                    f"{_fmt(abs(r1 - r2))} to {_fmt(r1 + r2)}")
         h = math.sqrt(max(h2, 0.0))
-        u = ((w2[0] - w1[0]) / d, (w2[1] - w1[1]) / d)
         (ka, wa), (kb, wb) = known
         cands = []
         for sign in (1.0, -1.0):
-            p = (w1[0] + x * u[0] - sign * h * u[1], w1[1] + x * u[1] + sign * h * u[0])
-            side = _cross(sub(wb, wa), sub(p, wa))
+            p = (mid[0] + sign * h * across[0], mid[1] + sign * h * across[1])
+            side = cross(sub(wb, wa), sub(p, wa))
             cands.append((-side, p))     # left (positive side) first
         cands.sort(key=lambda t: t[0])
-        placements = [{b1: _from_two(q1, w1, s1, p), b2: _from_two(q2, w2, s2, p)}
+        placements = [{b1: frame_from_two(q1, w1, s1, p), b2: frame_from_two(q2, w2, s2, p)}
                       for _, p in cands]
         self._choose(j, f"of the line {ka}\u2192{kb}", placements, ("left", "right"))
 
@@ -667,17 +628,17 @@ class _Solver:
         """b1 turns about a placed joint; b2 (direction known) slides on a placed line;
         they share an R joint."""
         (c1, q1, _, f1), (c12, s1, s2), (c2, l2, o2, lo) = one, link, two
-        w1 = _apply(self.pose[one[2]], f1)
+        w1 = apply(self.pose[one[2]], f1)
         angle2 = self.angle[b2]
-        world = _line_in(self.pose[o2], lo)
+        world = line_in(self.pose[o2], lo)
         psi = world[0]
-        n, u = _normal(psi), _unit(psi)
+        n, u = normal(psi), unit(psi)
         # n . t2 = c - e2, where b2's line in its body frame is l2
-        s2w = _rot(angle2, s2)
-        c_line = _dot(n, s2w) + world[1] - l2[1]
+        s2w = rotate(s2, angle2)
+        c_line = dot(n, s2w) + world[1] - l2[1]
         r = math.dist(q1, s1)
-        h = c_line - _dot(n, w1)
-        a2 = r * r - h * h
+        h = c_line - dot(n, w1)
+        foot, _, a2 = circle_line(w1, r, (c_line * n[0], c_line * n[1]), u)
         j = c12[1]
         if a2 < -1e-12 * max(r, abs(h)) * max(r, abs(h)):
             raise _DoesNotClose(j, f"the dyad of links {self._name(b1)} and {self._name(b2)} "
@@ -685,11 +646,10 @@ class _Solver:
                                    f"from the line that {j} slides on, farther than "
                                    f"{_fmt(r)}")
         along = math.sqrt(max(a2, 0.0))
-        foot = (w1[0] + h * n[0], w1[1] + h * n[1])
         placements = []
         for sign in (1.0, -1.0):
             p = (foot[0] + sign * along * u[0], foot[1] + sign * along * u[1])
-            placements.append({b1: _from_two(q1, w1, s1, p),
+            placements.append({b1: frame_from_two(q1, w1, s1, p),
                                b2: (angle2, p[0] - s2w[0], p[1] - s2w[1])})
         self._choose(j, f"of the foot of {c1[1]} along the sliding line of {c2[1]}",
                      placements, ("ahead", "behind"))
@@ -697,32 +657,32 @@ class _Solver:
     def _rpr(self, b1, b2, one, link, two):
         """Two bodies joined by a sliding pair, each turning about a placed joint."""
         (c1, q1, _, f1), (c12, l1, l2), (c2, q2, _, f2) = one, link, two
-        A, B = _apply(self.pose[one[2]], f1), _apply(self.pose[two[2]], f2)
-        h1 = l1[1] - _dot(_normal(l1[0]), q1)
-        h2 = l2[1] - _dot(_normal(l2[0]), q2)
-        D = sub(A, B)
-        d = math.hypot(*D)
+        A, B = apply(self.pose[one[2]], f1), apply(self.pose[two[2]], f2)
+        h1 = l1[1] - dot(normal(l1[0]), q1)
+        h2 = l2[1] - dot(normal(l2[0]), q2)
+        d = math.dist(A, B)
         j = c12[1]
         if d == 0:
             raise _DoesNotClose(j, f"the sliding pair {j}: joints {c1[1]} and {c2[1]} are at "
                                    "one place")
-        q = (h2 - h1) / d
-        if abs(q) > 1 + 1e-12:
+        u, ratio, raw = line_by_two_distances(B, A, h2 - h1)
+        if raw < -2e-12:
             raise _DoesNotClose(j, f"the sliding pair {j} does not close: the line must pass "
                                    f"{_fmt(abs(h1))} from {c1[1]} and {_fmt(abs(h2))} from "
                                    f"{c2[1]}, which are only {_fmt(d)} apart")
-        delta = math.atan2(D[1], D[0])
-        base = math.asin(max(-1.0, min(1.0, q)))
+        # the line's normal is the centre line B->A turned by +-spread
+        delta = math.atan2(u[1], u[0])
+        spread = math.atan2(math.sqrt(max(raw, 0.0)), ratio)
         guide_first = self.chain.joint(j).links[0] in [x for x, (b, _) in self.body.items()
                                                         if b == b1]
         placements = []
-        for psi in (delta - base, delta - (math.pi - base)):
+        for psi in (delta + spread - math.pi / 2, delta - spread - math.pi / 2):
             phi1, phi2 = psi - l1[0], psi - l2[0]
-            r1, r2 = _rot(phi1, q1), _rot(phi2, q2)
+            r1, r2 = rotate(q1, phi1), rotate(q2, phi2)
             place = {b1: (phi1, A[0] - r1[0], A[1] - r1[1]),
                      b2: (phi2, B[0] - r2[0], B[1] - r2[1])}
             pins = sub(B, A) if guide_first else sub(A, B)
-            placements.append((-_dot(pins, _unit(psi)), place))
+            placements.append((-dot(pins, unit(psi)), place))
         placements.sort(key=lambda t: t[0])
         guide, block = (c1[1], c2[1]) if guide_first else (c2[1], c1[1])
         self._choose(j, f"of {guide} along the sliding line, for the pin {block}",
@@ -741,16 +701,16 @@ class _Solver:
                     continue
                 for name, p in model.frames[link][0].items():
                     if name in model.sketch:
-                        pairs.append((_apply(t, p), model.sketch[name]))
+                        pairs.append((apply(t, p), model.sketch[name]))
             for c, fb, other, fo in self._to_placed(b):
                 if c[0] == "R":
-                    pairs.append((fb, _apply(self.pose[other], fo)))
+                    pairs.append((fb, apply(self.pose[other], fo)))
             distinct = [pr for pr in pairs if math.dist(pr[0], pairs[0][0]) > 1e-9 * model.scale]
             if b in self.angle and pairs:
-                r = _rot(self.angle[b], pairs[0][0])
+                r = rotate(pairs[0][0], self.angle[b])
                 guess[b] = (self.angle[b], pairs[0][1][0] - r[0], pairs[0][1][1] - r[1])
             elif pairs and distinct:
-                guess[b] = _fit(pairs)
+                guess[b] = fit_frame(pairs)
             else:
                 lacking.append(b)
         if lacking:
@@ -763,33 +723,37 @@ class _Solver:
                 f"positions of its joints ({', '.join(joints)}) with near = [x, y] to "
                 "choose its assembly", source=self.chain.source, part=free[0])
         x = np.array([v for b in free for v in guess[b]])
+        column = {b: 3 * i for i, b in enumerate(free)}
 
-        def residual(x):
+        def residual(x, jacobian=False):
+            """The residuals of the constraints on the group, and their Jacobian in
+            the bodies' (phi, x, y)."""
             for i, b in enumerate(free):
                 self.pose[b] = tuple(x[3 * i:3 * i + 3])
-            res = []
+            res, rows = [], []
             for c in self.constraints:
                 (ba, fa), (bb, fb) = self.ends(c)
                 if ba == bb or (ba not in free and bb not in free):
                     continue
                 if ba not in self.pose or bb not in self.pose:
                     continue
-                res += _residual(c[0], self.pose[ba], fa, self.pose[bb], fb, model.scale)
-            return np.array(res)
+                r, da, db = _residual(c[0], self.pose[ba], fa, self.pose[bb], fb,
+                                      model.scale)
+                res += r
+                if jacobian:
+                    block = np.zeros((2, x.size))
+                    for body, d in ((ba, da), (bb, db)):
+                        if body in column:
+                            block[:, column[body]:column[body] + 3] += d
+                    rows.append(block)
+            return np.array(res), (np.vstack(rows) if jacobian else None)
 
         for _ in range(60):
-            r = residual(x)
+            r, jac = residual(x, jacobian=True)
             if np.abs(r).max() <= 1e-13 * model.scale:
                 break
-            J = np.empty((len(r), len(x)))
-            for k in range(len(x)):
-                h = 1e-7 * (model.scale if k % 3 else 1.0)
-                dx = x.copy()
-                dx[k] += h
-                J[:, k] = (residual(dx) - r) / h
-            step, *_ = np.linalg.lstsq(J, -r, rcond=None)
-            x = x + step
-        r = residual(x)
+            x = x + newton_step(jac[None], r[None])[0]
+        r, _ = residual(x)
         if not np.all(np.isfinite(r)) or np.abs(r).max() > 1e-9 * model.scale:
             for b in free:
                 self.pose.pop(b, None)
@@ -805,12 +769,13 @@ class _Solver:
     def _check(self):
         for c in self.constraints:
             (ba, fa), (bb, fb) = self.ends(c)
-            res = _residual(c[0], self.pose[ba], fa, self.pose[bb], fb, self.model.scale)
+            res, _, _ = _residual(c[0], self.pose[ba], fa, self.pose[bb], fb,
+                                  self.model.scale)
             if max(abs(v) for v in res) > 1e-9 * self.model.scale:
                 raise _DoesNotClose(c[1], f"joint {c[1]} does not close (off by "
                                           f"{_fmt(max(abs(v) for v in res))})")
         for j, x, y, rel in self.loops:
-            a = _compose(self.body[x][1], rel)
+            a = compose(self.body[x][1], rel)
             b = self.body[y][1]
             if (abs(math.remainder(a[0] - b[0], 2 * math.pi)) > 1e-9
                     or math.hypot(a[1] - b[1], a[2] - b[2]) > 1e-9 * self.model.scale):
@@ -819,23 +784,23 @@ class _Solver:
 
 
 def _residual(kind, pa, fa, pb, fb, scale):
+    """A constraint's two residuals between bodies at frames ``pa``, ``pb`` (``fa``,
+    ``fb`` the joint's point, or the sliding line, in each body), and their derivatives
+    in each body's (phi, x, y): ``(residuals, d/d pa, d/d pb)``. An R joint: the
+    points' difference; a P joint: the lines' turn (times the size) and offset."""
     if kind == "R":
-        wa, wb = _apply(pa, fa), _apply(pb, fb)
-        return [wa[0] - wb[0], wa[1] - wb[1]]
-    la, lb = _line_in(pa, fa), _line_in(pb, fb)
-    return [math.remainder(la[0] - lb[0], 2 * math.pi) * scale, la[1] - lb[1]]
+        ra, rb = rotate(fa, pa[0]), rotate(fb, pb[0])
+        res = [ra[0] + pa[1] - rb[0] - pb[1], ra[1] + pa[2] - rb[1] - pb[2]]
+        da = np.array([[-ra[1], 1.0, 0.0], [ra[0], 0.0, 1.0]])
+        db = -np.array([[-rb[1], 1.0, 0.0], [rb[0], 0.0, 1.0]])
+        return res, da, db
+    la, lb = line_in(pa, fa), line_in(pb, fb)
+    res = [math.remainder(la[0] - lb[0], 2 * math.pi) * scale, la[1] - lb[1]]
 
-
-def _fit(pairs):
-    """The rigid motion that best takes body points to their sketched positions."""
-    q = np.array([p for p, _ in pairs])
-    w = np.array([s for _, s in pairs])
-    qc, wc = q - q.mean(0), w - w.mean(0)
-    phi = math.atan2(np.sum(qc[:, 0] * wc[:, 1] - qc[:, 1] * wc[:, 0]),
-                     np.sum(qc[:, 0] * wc[:, 0] + qc[:, 1] * wc[:, 1]))
-    r = _rot(phi, tuple(q.mean(0)))
-    m = w.mean(0)
-    return (phi, float(m[0] - r[0]), float(m[1] - r[1]))
+    def slope(frame, line):
+        n, u = normal(line[0]), unit(line[0])
+        return np.array([[scale, 0.0, 0.0], [-dot(u, (frame[1], frame[2])), n[0], n[1]]])
+    return res, slope(pa, la), -slope(pb, lb)
 
 
 # -- the public functions ----------------------------------------------------------------
@@ -908,16 +873,42 @@ def assemble(chain, points, dims):
 
     model = _Model(chain, points, dims, fail)
     values = [v for *_, v in model.inputs]
+    try:
+        solver, result = _assembled(model, values)
+    except _DoesNotClose as e:
+        raise _unassemblable(model, values, e) from None
+    _check_modes(model, solver)
+    return _check_typed(model, result)
+
+
+def _assembled(model, values):
+    """(solver, Assembly) at the inputs' ``values``; _DoesNotClose where it fails."""
     for _ in range(6):
-        try:
-            solver = _Solver(model, values).run()
-        except _DoesNotClose as e:
-            raise _unassemblable(model, values, e) from None
+        solver = _Solver(model, values).run()
         result = _pose(model, solver)
         if not _correct_inputs(model, result):
             break
-    _check_modes(model, solver)
-    return _check_typed(model, result)
+    return solver, result
+
+
+def _solver_range(model, values):
+    """The range of the first input's values that the solver reaches from the pose
+    assembled at ``values`` (the others held): its exact limits, or None for a full
+    turn."""
+    _, result = _assembled(model, values)
+    chain = model.chain
+    joints = tuple(Joint(j.id, j.kind, j.links, at=result.joints[j.id],
+                         axis=result.axes.get(j.id), closure=j.closure) for j in chain.joints)
+    points = tuple(Point(pid, link, result.points[pid]) for pid, link in model.points)
+    m = chain.mechanism
+    kinds = {j.id: j.kind for j in chain.joints}
+    values_of = {j.id: v for (j, *_), v in zip(model.inputs, values)}
+    mechanism = replace(m, inputs=tuple(
+        replace(item, start=None, stop=None,
+                at=values_of.get(item.joint) if kinds.get(item.joint) == "P" else item.at)
+        for item in m.inputs))
+    plan = build_plan(replace(chain, joints=joints, points=points, mechanism=mechanism))
+    return feasible_range(plan)
 
 
 def _correct_inputs(model, result):
@@ -939,7 +930,7 @@ def _correct_inputs(model, result):
                 placed = Chain(model.chain.name, tuple(
                     Joint(x.id, x.kind, x.links, at=result.joints[x.id],
                           axis=result.axes.get(x.id)) for x in model.chain.joints))
-            got = math.radians(drawn_direction(placed, link, placed.joint(j.id)))
+            got = math.radians(placed.reference_direction(link, joint=j.id))
             used = result.links[link][0] + model._beta(link, j)
             error = math.remainder(got - used, 2 * math.pi)
             if abs(error) > 1e-12:
@@ -980,13 +971,19 @@ def _unassemblable(model, values, error):
         if not g and start is not None:
             runs.append((start, k - 1))
             start = None
+    # each run of the grid where it assembles: the solver's range from a pose in it
     ranges = []
     for s, e in runs:
-        lo = grid[s] if s == 0 else _edge(ok, grid[s - 1], grid[s])
-        hi = grid[e] if e == len(grid) - 1 else _edge(ok, grid[e + 1], grid[e])
-        ranges.append((float(lo), float(hi)))
-    if r_input and len(ranges) == 2 and runs[0][0] == 0 and runs[-1][1] == len(grid) - 1:
-        ranges = [(ranges[1][0], ranges[0][1] + 360.0)]
+        v = float(grid[(s + e) // 2])
+        found = _solver_range(model, [v] + values[1:])
+        lo, hi = found if found is not None else (float(grid[s]), float(grid[e]))
+        same = [k for k, (a, b) in enumerate(ranges) if r_input
+                and abs(math.remainder(a - lo, 360.0)) <= 1e-9
+                and abs(math.remainder(b - hi, 360.0)) <= 1e-9]
+        if same:               # the run at the grid's end that wraps round to its start
+            ranges[same[0]] = max(ranges[same[0]], (lo, hi))
+        elif (lo, hi) not in ranges:
+            ranges.append((lo, hi))
     unit = " degrees" if r_input else ""
     if not ranges:
         where = "at any value of the input"
@@ -1001,17 +998,6 @@ def _unassemblable(model, values, error):
     return DimensionError(f"cannot be assembled with {what}: {error.problem}{tail}",
                           source=model.chain.source, part=error.part,
                           feasible_range=ranges[0] if len(ranges) == 1 else ranges or None)
-
-
-def _edge(ok, bad, good):
-    """The boundary between an input value that fails and one that assembles."""
-    for _ in range(50):
-        mid = 0.5 * (bad + good)
-        if ok(mid):
-            good = mid
-        else:
-            bad = mid
-    return good
 
 
 def _check_modes(model, solver):
@@ -1038,26 +1024,26 @@ def _pose(model, solver):
         guide, block = j.links
         angle, offset = solver.world_line(guide, j.id)
         axes[j.id] = math.degrees(math.remainder(angle, 2 * math.pi))
-        n = _normal(angle)
+        n = normal(angle)
         # a sliding line on the fixed link is given by 'at' and 'axis'; its block's
         # reference point is that 'at', unless the (moving) block's pin is on the line
         ref = model.dims.typed.get(j.id)
         if ref is not None and model.fixed in j.links and block != model.fixed:
             pins = [x for x in model.chain.joints_of(block) if x.kind == "R"
                     and model.fixed not in x.links
-                    and abs(_dot(n, joints[x.id]) - offset) <= 1e-9 * model.scale]
+                    and abs(dot(n, joints[x.id]) - offset) <= 1e-9 * model.scale]
             if pins:
                 ref = joints[sorted(x.id for x in pins)[0]]
         if ref is None:
             ref = _reference(model, solver, j, joints)
-        h = offset - _dot(n, ref)
+        h = offset - dot(n, ref)
         # a pin on the line is the reference point itself, to the last digit
         joints[j.id] = (tuple(ref) if abs(h) <= 1e-12 * model.scale
                         else (ref[0] + h * n[0], ref[1] + h * n[1]))
     pts = {pid: solver.world_point(link, pid) for pid, link in model.points}
     size = _span({**joints, **pts})
     modes = tuple(model.shape_modes) + tuple(solver.modes)
-    frames = {link: _compose(solver.pose[body], t) for link, (body, t) in solver.body.items()}
+    frames = {link: compose(solver.pose[body], t) for link, (body, t) in solver.body.items()}
     return Assembly(joints, axes, pts, modes, tuple(solver.groups), size, frames)
 
 
@@ -1067,15 +1053,15 @@ def _reference(model, solver, joint, placed):
     else the block's origin."""
     guide, block = joint.links
     angle, offset = solver.world_line(guide, joint.id)
-    n = _normal(angle)
+    n = normal(angle)
     for link in (block, guide):
-        candidates = sorted((abs(_dot(n, placed[j.id]) - offset), j.id)
+        candidates = sorted((abs(dot(n, placed[j.id]) - offset), j.id)
                             for j in model.chain.joints_of(link)
                             if j.kind == "R" and model.fixed not in j.links)
         if candidates:
             return placed[candidates[0][1]]
     body, t = solver.body[block]
-    return _apply(solver.pose[body], (t[1], t[2]))
+    return apply(solver.pose[body], (t[1], t[2]))
 
 
 def _check_typed(model, result):
@@ -1094,7 +1080,7 @@ def _check_typed(model, result):
         if j is not None and j.kind == "P":
             angle = math.radians(result.axes[name])
             at = result.joints[name]
-            d = abs(_dot(_normal(angle), sub(typed, at)))
+            d = abs(dot(normal(angle), sub(typed, at)))
             where = f"off the sliding line of {name} that the lengths give"
         else:
             at = result.joints[name] if j is not None else result.points[name]
@@ -1159,7 +1145,7 @@ def _frame_of(chain, link, fixed):
         denom = math.sin(a2 - first)
         if abs(denom) > 1e-9:
             # where the second line crosses the first
-            s = _cross(sub(other.at, origin), _unit(a2)) / denom
+            s = cross(sub(other.at, origin), unit(a2)) / denom
             origin = (origin[0] + s * math.cos(first), origin[1] + s * math.sin(first))
             break
     return origin, first
@@ -1193,8 +1179,6 @@ def measure(chain):
     output = "slotted lever"
     <BLANKLINE>
     """
-    num, string = toml_number, toml_string
-
     m = chain.mechanism
     if m is None:
         raise DimensionError("measuring needs [mechanism] (the fixed link and the input)",
@@ -1227,7 +1211,7 @@ def measure(chain):
         for f in features[2:]:
             table[(f0, f)] = math.dist(where[f0], where[f])
             table[(f1, f)] = math.dist(where[f1], where[f])
-            if _cross(sub(where[f1], where[f0]), sub(where[f], where[f0])) < 0:
+            if cross(sub(where[f1], where[f0]), sub(where[f], where[f0])) < 0:
                 sides.setdefault(link, {})[f] = "right"
         lengths[link] = table
     frames = {link: _frame_of(chain, link, fixed) for link in chain.links}
@@ -1241,7 +1225,7 @@ def measure(chain):
                 continue
             origin, x = frames[link]
             angle = math.degrees(math.remainder(psi - x, 2 * math.pi))
-            offset = _dot(_normal(psi), sub(j.at, origin))
+            offset = dot(normal(psi), sub(j.at, origin))
             keys = ("angle", "offset") if role == 0 else ("block_angle", "block_offset")
             for key, value in zip(keys, (angle, offset)):
                 if abs(value) > 1e-12 * _span(where):
@@ -1254,20 +1238,21 @@ def measure(chain):
             if j.kind == "R":
                 if fixed in j.links:
                     b = next(x for x in j.links if x != fixed)
-                    values[j.id] = drawn_direction(chain, b, j)
+                    values[j.id] = chain.reference_direction(b, joint=j.id)
                 else:
-                    values[j.id] = math.remainder(drawn_direction(chain, j.links[1], j)
-                                                  - drawn_direction(chain, j.links[0], j), 360.0)
+                    values[j.id] = math.remainder(
+                        chain.reference_direction(j.links[1], joint=j.id)
+                        - chain.reference_direction(j.links[0], joint=j.id), 360.0)
             else:
                 g, k = j.links
-                u = _unit(math.radians(j.axis))
+                u = unit(math.radians(j.axis))
                 ref = []
                 for link in (g, k):
                     origin = frames[link][0]
-                    n = _normal(math.radians(j.axis))
-                    h = _dot(n, sub(j.at, origin))
+                    n = normal(math.radians(j.axis))
+                    h = dot(n, sub(j.at, origin))
                     ref.append((origin[0] + h * n[0], origin[1] + h * n[1]))
-                values[j.id] = _dot(sub(ref[1], ref[0]), u)
+                values[j.id] = dot(sub(ref[1], ref[0]), u)
     else:
         pivots = sorted(j.id for j in chain.joints if j.kind == "R" and fixed in j.links
                         and driver in j.links)
@@ -1275,61 +1260,57 @@ def measure(chain):
             raise DimensionError(f"the driver {driver!r} is not pinned to the fixed link "
                                  f"{fixed!r} by an R joint, so its angle cannot be measured",
                                  source=chain.source, where="[mechanism] key 'driver'")
-        values[None] = drawn_direction(chain, driver, chain.joint(pivots[0]))
+        values[None] = chain.reference_direction(driver, joint=pivots[0])
 
-    def write(extra_at, near, modes):
-        lines = [f"name = {string(chain.name)}"]
+    def document(extra_at, near, modes):
+        doc = {"name": chain.name}
         for key in ("family", "units", "notes", "naming"):
             if getattr(chain, key) is not None:
-                lines.append(f"{key} = {string(getattr(chain, key))}")
+                doc[key] = getattr(chain, key)
+        joints = []
         for j in chain.joints:
-            lines += ["", "[[joints]]", f"id = {string(j.id)}", f"kind = {string(j.kind)}",
-                      "links = [" + ", ".join(string(x) for x in j.links) + "]"]
+            item = {"id": j.id, "kind": j.kind, "links": list(j.links)}
             if fixed in j.links or j.id in extra_at:
-                lines.append(f"at = [{num(j.at[0])}, {num(j.at[1])}]")
+                item["at"] = list(j.at)
             if j.kind == "P" and (fixed in j.links or j.id in near):
-                lines.append(f"axis = {num(j.axis)}")
-            for key, value in line_keys.get(j.id, {}).items():
-                lines.append(f"{key} = {num(value)}")
+                item["axis"] = j.axis
+            item.update(line_keys.get(j.id, {}))
             if j.id in near and j.kind == "R":
-                lines.append(f"near = [{num(j.at[0])}, {num(j.at[1])}]")
+                item["near"] = list(j.at)
+            joints.append(item)
+        doc["joints"] = joints
+        points_out = []
         for p in chain.points:
-            lines += ["", "[[points]]", f"id = {string(p.id)}", f"link = {string(p.link)}"]
+            item = {"id": p.id, "link": p.link}
             if p.link == fixed:
-                lines.append(f"at = [{num(p.at[0])}, {num(p.at[1])}]")
+                item["at"] = list(p.at)
             if p.id in near:
-                lines.append(f"near = [{num(p.at[0])}, {num(p.at[1])}]")
-        lines += ["", "[lengths]"]
-        for link, value in lengths.items():
-            if isinstance(value, dict):
-                body = ", ".join(f"{string('-'.join(k)) if not _bare('-'.join(k)) else '-'.join(k)}"
-                                 f" = {num(v)}" for k, v in value.items())
-                lines.append(f"{_key(link)} = {{{body}}}")
-            else:
-                lines.append(f"{_key(link)} = {num(value)}")
+                item["near"] = list(p.at)
+            points_out.append(item)
+        if points_out:
+            doc["points"] = points_out
+        doc["lengths"] = {link: ({"-".join(k): v for k, v in value.items()}
+                                 if isinstance(value, dict) else value)
+                          for link, value in lengths.items()}
         if modes or sides:
-            lines += ["", "[assembly]"]
-            for part, word in modes.items():
-                lines.append(f"{_key(part)} = {string(word)}")
-            for link, table in sides.items():
-                body = ", ".join(f"{_key(f)} = {string(w)}" for f, w in table.items())
-                lines.append(f"{_key(link)} = {{{body}}}")
-        lines += ["", "[mechanism]", f"fixed = {string(fixed)}"]
+            doc["assembly"] = {**modes, **sides}
+        mech = {"fixed": fixed}
         if inputs:
             items = []
             for item in inputs:
-                text = f"joint = {string(item.joint)}, at = {num(values[item.joint])}"
+                entry = {"joint": item.joint, "at": values[item.joint]}
                 if item.start is not None:
-                    text += f", from = {num(item.start)}, to = {num(item.stop)}"
-                items.append("{" + text + "}")
-            lines.append("inputs = [" + ", ".join(items) + "]")
+                    entry.update({"from": item.start, "to": item.stop})
+                items.append(entry)
+            mech["inputs"] = items
         else:
-            lines += [f"driver = {string(driver)}", f"at = {num(values[None])}"]
+            mech.update(driver=driver, at=values[None])
         if m.omega != 1.0:
-            lines.append(f"omega = {num(m.omega)}")
+            mech["omega"] = m.omega
         if m.output is not None:
-            lines.append(f"output = {string(m.output)}")
-        return "\n".join(lines) + "\n"
+            mech["output"] = m.output
+        doc["mechanism"] = mech
+        return doc
 
     # assemble once with every moving joint as a rough position: that finds the modes,
     # the groups (which keep their rough positions) and the reference points to type
@@ -1337,15 +1318,15 @@ def measure(chain):
     moving |= {p.id for p in chain.points if p.link != fixed}
     with warnings.catch_warnings():
         warnings.simplefilter("ignore")
-        trial, pose = place(parse_text(write(set(), moving, {}),
-                                       source=chain.source or "<measure>"))
+        trial, pose = place(parse_document(document(set(), moving, {}),
+                                           source=chain.source or "<measure>"))
     near = {n for group in pose.groups for link in group
             for n in link_features(chain.joints, points, link)} & moving
     modes = {mode.part: mode.word for mode in pose.modes
              if ":" not in mode.part and not mode.part.startswith("group ")}
     extra = {j.id for j in chain.joints if j.kind == "P" and fixed not in j.links
              and math.dist(trial.joint(j.id).at, j.at) > 1e-9 * pose.size}
-    return write(extra, near, modes)
+    return toml_text(document(extra, near, modes))
 
 
 def _span(where):
@@ -1355,13 +1336,6 @@ def _span(where):
     ys = [p[1] for p in where.values()]
     return max(max(xs) - min(xs), max(ys) - min(ys), 1e-300)
 
-
-def _bare(key):
-    return bool(key) and all(ch.isalnum() or ch in "_-" for ch in key) and key.isascii()
-
-
-def _key(name):
-    return name if _bare(name) else toml_string(name)
 
 
 # -- drawing-level rounding in a file of coordinates -------------------------------------------
@@ -1403,11 +1377,11 @@ def snap_to_lines(chain):
     for j in chain.joints:
         if j.kind != "P":
             continue
-        n = _normal(math.radians(j.axis))
+        n = normal(math.radians(j.axis))
         names = {x.id for link in j.links for x in chain.joints_of(link) if x.kind == "R"}
         names |= {p.id for p in chain.points if p.link in j.links}
         for name in sorted(names):
-            d = abs(_dot(n, sub(where[name], j.at)))
+            d = abs(dot(n, sub(where[name], j.at)))
             if d <= ROUNDING * size:
                 on.append((j.id, name, d))
     if not any(d > 1e-12 * size for *_, d in on):
@@ -1431,7 +1405,7 @@ def snap_to_lines(chain):
     # stay), so one minimum-norm step lands on the nearest consistent pose
     rows, res = [], []
     for p, name, _ in on:
-        n = np.array(_normal(math.radians(chain.joint(p).axis)))
+        n = np.array(normal(math.radians(chain.joint(p).axis)))
         row = np.zeros(len(x))
         for f, sign in ((name, 1.0), (p, -1.0)):
             if f in index:
@@ -1440,7 +1414,7 @@ def snap_to_lines(chain):
         res.append(float(n @ (position(name) - position(p))))
     J, r = np.array(rows), np.array(res)
     x = x - J.T @ np.linalg.lstsq(J @ J.T, r, rcond=None)[0]
-    if max(abs(_dot(_normal(math.radians(chain.joint(p).axis)), position(name) - position(p)))
+    if max(abs(dot(normal(math.radians(chain.joint(p).axis)), position(name) - position(p)))
            for p, name, _ in on) > 1e-12 * size:
         return chain      # the fixed link's joints themselves disagree: leave it as drawn
     moved = sorted(((math.dist(x[index[f]:index[f] + 2], x0[index[f]:index[f] + 2]), f)

@@ -28,6 +28,7 @@ from __future__ import annotations
 import math
 from functools import lru_cache
 
+from chaingraph.geometry import distance
 from chaingraph.kinematics import full_turns
 
 __all__ = ["turning_links", "behaviour", "behaviour_key", "four_link_loop"]
@@ -63,12 +64,10 @@ def four_link_loop(chain):
     return tuple(links), tuple(joints)
 
 
-def _dist(p, q):
-    return math.hypot(p[0] - q[0], p[1] - q[1])
 
 
 def _four_bar(links, joints, fixed):
-    length = {links[i]: _dist(joints[i - 1].at, joints[i].at) for i in range(4)}
+    length = {links[i]: distance(joints[i - 1].at, joints[i].at) for i in range(4)}
     values = sorted(length.values())
     s, p, q, l = values
     scale = max(values)
@@ -112,8 +111,8 @@ def _single_slider(links, joints, fixed):
     joints = joints[k + 1:] + joints[:k + 1]
     guide_side, a, b, block_side = links
     pivot, pin, block_pin, slide = joints
-    r = _dist(pivot.at, pin.at)
-    l_ = _dist(pin.at, block_pin.at)
+    r = distance(pivot.at, pin.at)
+    l_ = distance(pin.at, block_pin.at)
     e = _line_offset(pivot.at, block_pin.at, slide.axis)
     scale = max(r, l_, e, 1e-300)
     tol = _TOL * scale

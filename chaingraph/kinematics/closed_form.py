@@ -12,16 +12,29 @@ import math
 
 import numpy as np
 
-from chaingraph.kinematics.geometry import (
+from chaingraph.geometry import (
+    circle_circle,
+    circle_line,
     clamp_disc,
+    line_by_two_distances,
     fit_two_points,
     from_point,
-    line_of,
     make_pose,
-    rotate,
-    unit_vector,
+    turn_by,
+    unit_deg,
     world,
 )
+
+
+def line_of(pose, attach, unknown, through):
+    """The line on which the unknown link's drawn point ``through`` must stay, for a P
+    attachment to a known link: (base point, direction, the unknown link's rotation)."""
+    known = pose[attach.other(unknown)]
+    base = world(pose, attach.other(unknown), attach.point)
+    dx, dy = through[0] - attach.point[0], through[1] - attach.point[1]
+    ox, oy = turn_by(known, (dx, dy))
+    u = turn_by(known, unit_deg(attach.axis))
+    return (base[0] + ox, base[1] + oy), u, known
 
 
 # -- closed-form steps ---------------------------------------------------------------
@@ -50,7 +63,7 @@ def _welded(pose, u, c):
     w = world(pose, c.other(u), c.point)
     if c.kind == "R":
         return from_point(make_pose(0.0, 0.0, known[2] + sign * delta), c.point, w)
-    t = rotate(known, unit_vector(c.axis))
+    t = turn_by(known, unit_deg(c.axis))
     return from_point(known, c.point, (w[0] + sign * delta * t[0], w[1] + sign * delta * t[1]))
 
 
@@ -61,7 +74,7 @@ def _two_lines(pose, u, c1, c2):
     for c in (c1, c2):
         base, dirn, _ = line_of(pose, c, u, c.point)
         nx_, ny_ = -dirn[1], dirn[0]
-        rx, ry = rotate(turn, c.point)
+        rx, ry = turn_by(turn, c.point)
         rows.append((nx_, ny_))
         rhs.append(nx_ * (base[0] - rx) + ny_ * (base[1] - ry))
     (a, b), (c, d) = rows
@@ -98,26 +111,13 @@ def dyad_roots(step, pose, scale, *, double=False):
         ra = math.dist(q, ca.point)
         if pattern == "RRR":
             wb = world(pose, cb.other(b), cb.point)
-            rb = math.dist(q, cb.point)
-            dx, dy = wb[0] - wa[0], wb[1] - wa[1]
-            d2 = dx * dx + dy * dy
-            d = np.sqrt(d2)
-            along = (ra * ra - rb * rb + d2) / (2 * d)
-            raw = ra * ra - along * along
-            h2, ok = clamp_disc(raw, scale * scale, double)
-            h = np.sqrt(h2)
-            ux, uy = dx / d, dy / d
-            mid = (wa[0] + along * ux, wa[1] + along * uy)
-            off = (-h * uy, h * ux)
+            mid, across, raw = circle_circle(wa, ra, wb, math.dist(q, cb.point))
         else:
             base, dirn, turn_b = line_of(pose, cb, b, q)
-            ex, ey = base[0] - wa[0], base[1] - wa[1]
-            beta = dirn[0] * ex + dirn[1] * ey
-            raw = beta * beta - (ex * ex + ey * ey - ra * ra)
-            disc, ok = clamp_disc(raw, scale * scale, double)
-            root_disc = np.sqrt(disc)
-            mid = (base[0] - beta * dirn[0], base[1] - beta * dirn[1])
-            off = (root_disc * dirn[0], root_disc * dirn[1])
+            mid, across, raw = circle_line(wa, ra, base, dirn)
+        disc, ok = clamp_disc(raw, scale * scale, double)
+        h = np.sqrt(disc)
+        off = (h * across[0], h * across[1])
         keys = (np.stack((mid[0] + off[0], mid[1] + off[1]), axis=-1),
                 np.stack((mid[0] - off[0], mid[1] - off[1]), axis=-1))
 
@@ -131,16 +131,13 @@ def dyad_roots(step, pose, scale, *, double=False):
     if pattern == "RPR":
         wa = world(pose, ca.other(a), ca.point)
         wb = world(pose, cb.other(b), cb.point)
-        nx_, ny_ = -unit_vector(cj.axis)[1], unit_vector(cj.axis)[0]
-        dx, dy = wb[0] - wa[0], wb[1] - wa[1]
-        dist = np.hypot(dx, dy)
+        nx_, ny_ = -unit_deg(cj.axis)[1], unit_deg(cj.axis)[0]
         c = nx_ * (cb.point[0] - ca.point[0]) + ny_ * (cb.point[1] - ca.point[1])
-        ratio = c / dist
-        raw = 1.0 - ratio * ratio
+        (cs0, sn0), ratio, raw = line_by_two_distances(wa, wb, c)
         disc, ok = clamp_disc(raw, 1.0, double)
-        # rotation phi = start +- spread, with cos(spread) = ratio
-        cs0, sn0 = dx / dist, dy / dist            # direction of the centre line
-        cn, sn = nx_, ny_                           # drawn normal: rotate back by it
+        # rotation phi = start +- spread, with cos(spread) = ratio: the centre line's
+        # direction turned back by the drawn normal
+        cn, sn = nx_, ny_
         cst, snt = cs0 * cn + sn0 * sn, sn0 * cn - cs0 * sn   # start = delta - nu
         root = np.sqrt(disc)
 

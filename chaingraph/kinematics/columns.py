@@ -8,7 +8,7 @@ import math
 
 import numpy as np
 
-from chaingraph.kinematics.geometry import rotate
+from chaingraph.geometry import turn_by
 
 
 # -- columns -------------------------------------------------------------------------
@@ -16,23 +16,9 @@ def _point_motion(pose, vel, acc, link, p):
     x, y = pose[link][:2]
     vx, vy, w = vel[link]
     ax, ay, al = acc[link]
-    rx, ry = rotate(pose[link], p)
+    rx, ry = turn_by(pose[link], p)
     return (rx + x, ry + y, vx - w * ry, vy + w * rx,
             ax - al * ry - w * w * rx, ay + al * rx - w * w * ry)
-
-
-def link_direction(chain, link):
-    """The drawn direction (degrees) of the line the CSV measures a link's angle by."""
-    joints = chain.joints_of(link)
-    if joints:
-        first = joints[0].at
-        for j in joints[1:]:
-            if math.dist(j.at, first) > 0:
-                return math.degrees(math.atan2(j.at[1] - first[1], j.at[0] - first[0]))
-        for j in joints:
-            if j.kind == "P":
-                return j.axis
-    return 0.0
 
 
 def reference_link(joint, fixed):
@@ -52,7 +38,7 @@ def slide_rates(pose, vel, acc, joint, at):
     dd = (pb[2] - pg[2], pb[3] - pg[3])
     ddd = (pb[4] - pg[4], pb[5] - pg[5])
     w, al = vel[g][2], acc[g][2]
-    u = rotate(pose[g], (math.cos(math.radians(joint.axis)), math.sin(math.radians(joint.axis))))
+    u = turn_by(pose[g], (math.cos(math.radians(joint.axis)), math.sin(math.radians(joint.axis))))
     pu = (-u[1], u[0])
     du = (w * pu[0], w * pu[1])
     ddu = (al * pu[0] - w * w * u[0], al * pu[1] - w * w * u[1])
@@ -90,7 +76,7 @@ def csv_columns(plan, theta, pose, vel, acc):
             cols["input:" + item.joint] = np.array(np.broadcast_to(value, theta.shape), dtype=float)
     cols["theta"] = theta if plan.from_driver else np.asarray(plan.value(theta), dtype=float)
     for link in chain.links:
-        direction = math.radians(link_direction(chain, link)) + pose[link][2]
+        direction = math.radians(chain.reference_direction(link)) + pose[link][2]
         cols[f"angle:{link}"] = _continuous_degrees(direction, n)
         cols[f"omega:{link}"] = _array(vel[link][2], n)
         cols[f"alpha:{link}"] = _array(acc[link][2], n)

@@ -13,36 +13,32 @@ import math
 import numpy as np
 
 from chaingraph.errors import AssemblyError
-from chaingraph.kinematics.geometry import fit_two_points, make_pose, rotate, unit_vector, world
+from chaingraph.geometry import fit_two_points, make_pose, perp, turn_by, unit_deg, world
 
-__all__ = ["residuals", "check_poses"]
+__all__ = ["residuals", "check_poses", "newton_step"]
 
 
 # -- constraint rows (Jacobian and quadratic velocity terms) ------------------------
-def _perp(v):
-    return -v[1], v[0]
-
-
 def constraint_geometry(c, pose):
     """What a constraint's rows and acceleration terms share, computed once: the
     constraint point's arms on both links and, for a P joint, the guide's normal and
     the block's offset from the guide's point (and the guide's direction when the
     joint is an input)."""
-    ra = rotate(pose[c.a], c.point)
-    rb = rotate(pose[c.b], c.point)
+    ra = turn_by(pose[c.a], c.point)
+    rb = turn_by(pose[c.b], c.point)
     if c.kind == "R":
         return ra, rb, None, None
-    u = rotate(pose[c.a], unit_vector(c.axis))
+    u = turn_by(pose[c.a], unit_deg(c.axis))
     d = (rb[0] + pose[c.b][0] - ra[0] - pose[c.a][0], rb[1] + pose[c.b][1] - ra[1] - pose[c.a][1])
-    return ra, rb, (_perp(u), u), d
+    return ra, rb, (perp(u), u), d
 
 
 def _along_row(g, b, n, ra, rb, d):
     """The row of n . d (d the block's offset from the guide's point, n turning with the
     guide): the guide's normal keeps the block on its line; its direction, for a P
     input, measures the slide."""
-    pn = _perp(n)
-    prb, prg = _perp(rb), _perp(ra)
+    pn = perp(n)
+    prb, prg = perp(rb), perp(ra)
     return {b: (n[0], n[1], n[0] * prb[0] + n[1] * prb[1]),
             g: (-n[0], -n[1], pn[0] * d[0] + pn[1] * d[1] - (n[0] * prg[0] + n[1] * prg[1]))}
 
@@ -50,8 +46,8 @@ def _along_row(g, b, n, ra, rb, d):
 def _along_gamma(g, b, n, ra, rb, d, vel):
     """The acceleration equation's velocity terms for the row of n . d."""
     rg = ra
-    pn = _perp(n)
-    prb, prg = _perp(rb), _perp(rg)
+    pn = perp(n)
+    prb, prg = perp(rb), perp(rg)
     (vbx, vby, wb_), (vgx, vgy, wg_) = vel[b], vel[g]
     dd = (vbx + wb_ * prb[0] - vgx - wg_ * prg[0], vby + wb_ * prb[1] - vgy - wg_ * prg[1])
     return (-2 * wg_ * (pn[0] * dd[0] + pn[1] * dd[1])
@@ -103,10 +99,10 @@ def _constraint_residuals(c, pose):
         if c.drive is not None:
             out.append(np.remainder(dphi - pose[c.drive][2] + np.pi, 2 * np.pi) - np.pi)
         return out
-    n = rotate(pose[c.a], _perp(unit_vector(c.axis)))
+    n = turn_by(pose[c.a], perp(unit_deg(c.axis)))
     out = [dphi, n[0] * (wb[0] - wa[0]) + n[1] * (wb[1] - wa[1])]
     if c.drive is not None:
-        u = rotate(pose[c.a], unit_vector(c.axis))
+        u = turn_by(pose[c.a], unit_deg(c.axis))
         out.append(u[0] * (wb[0] - wa[0]) + u[1] * (wb[1] - wa[1]) - pose[c.drive][2])
     return out
 
@@ -144,7 +140,7 @@ def dot3(c, v):
 
 
 
-def mul(a, b):
+def times(a, b):
     if isinstance(a, float) and a == 0.0 or isinstance(b, float) and b == 0.0:
         return 0.0
     if isinstance(a, float) and a == 1.0:
@@ -154,7 +150,7 @@ def mul(a, b):
     return a * b
 
 
-def add(a, b):
+def plus(a, b):
     if isinstance(a, float) and a == 0.0:
         return b
     if isinstance(b, float) and b == 0.0:
@@ -162,7 +158,7 @@ def add(a, b):
     return a + b
 
 
-def sub(a, b):
+def minus(a, b):
     if isinstance(b, float) and b == 0.0:
         return a
     return a - b
@@ -229,9 +225,9 @@ class _GroupForm:
     def rows(self, pose):
         rows = [coef for c in self.others for coef in constraint_rows(c, pose)]
         for _, x, px, y, py, length in self.bars:
-            rx, ry_ = rotate(pose[x], px), rotate(pose[y], py)
+            rx, ry_ = turn_by(pose[x], px), turn_by(pose[y], py)
             d = (rx[0] + pose[x][0] - ry_[0] - pose[y][0], rx[1] + pose[x][1] - ry_[1] - pose[y][1])
-            px_, py_ = _perp(rx), _perp(ry_)
+            px_, py_ = perp(rx), perp(ry_)
             row = {x: (d[0] / length, d[1] / length, (d[0] * px_[0] + d[1] * px_[1]) / length)}
             other = (-d[0] / length, -d[1] / length, -(d[0] * py_[0] + d[1] * py_[1]) / length)
             if y in row:
@@ -244,7 +240,7 @@ class _GroupForm:
     def gammas(self, pose, vel):
         out = [g for c in self.others for g in constraint_gammas(c, pose, vel)]
         for _, x, px, y, py, length in self.bars:
-            rx, ry_ = rotate(pose[x], px), rotate(pose[y], py)
+            rx, ry_ = turn_by(pose[x], px), turn_by(pose[y], py)
             d = (rx[0] + pose[x][0] - ry_[0] - pose[y][0], rx[1] + pose[x][1] - ry_[1] - pose[y][1])
             vx_, vy_ = _point_rate(vel[x], rx), _point_rate(vel[y], ry_)
             dd = (vx_[0] - vy_[0], vx_[1] - vy_[1])
@@ -270,17 +266,17 @@ class _GroupForm:
         """The bars' velocities (or, with ``acc``, accelerations) from their pins'."""
         out = {}
         for bar, x, px, y, py, _ in self.bars:
-            r1, r2 = rotate(pose[bar], px), rotate(pose[bar], py)
+            r1, r2 = turn_by(pose[bar], px), turn_by(pose[bar], py)
             d = (r2[0] - r1[0], r2[1] - r1[1])
             d2 = d[0] * d[0] + d[1] * d[1]
             if acc is None:
-                v1 = _point_rate(vel[x], rotate(pose[x], px))
-                v2 = _point_rate(vel[y], rotate(pose[y], py))
+                v1 = _point_rate(vel[x], turn_by(pose[x], px))
+                v2 = _point_rate(vel[y], turn_by(pose[y], py))
                 w = (d[0] * (v2[1] - v1[1]) - d[1] * (v2[0] - v1[0])) / d2
                 out[bar] = (v1[0] + w * r1[1], v1[1] - w * r1[0], w)
             else:
-                a1 = _point_accel(acc[x], vel[x], rotate(pose[x], px))
-                a2 = _point_accel(acc[y], vel[y], rotate(pose[y], py))
+                a1 = _point_accel(acc[x], vel[x], turn_by(pose[x], px))
+                a2 = _point_accel(acc[y], vel[y], turn_by(pose[y], py))
                 al = (d[0] * (a2[1] - a1[1]) - d[1] * (a2[0] - a1[0])) / d2
                 w = vel[bar][2]
                 out[bar] = (a1[0] + al * r1[1] + w * w * r1[0], a1[1] - al * r1[0] + w * w * r1[1], al)
@@ -339,6 +335,21 @@ def batched_inverse(mat):
         except np.linalg.LinAlgError:
             out[good] = np.linalg.pinv(m)
     return out
+
+
+def newton_step(mat, r):
+    """Newton's step ``dx`` for stacked systems ``J dx = -r``: a square ``J`` solved
+    (at a fold, the least-squares step), more equations than unknowns by the normal
+    equations. The one Newton step: the solver's groups and the assembly use it.
+
+    >>> mat = np.array([[[2.0, 0.0], [0.0, 4.0], [0.0, 0.0]]])
+    >>> [float(v) for v in newton_step(mat, np.array([[2.0, -4.0, 0.0]]))[0]]
+    [-1.0, 1.0]
+    """
+    if mat.shape[1] != mat.shape[2]:
+        return batched_solve(np.einsum("nij,nik->njk", mat, mat),
+                             np.einsum("nij,ni->nj", mat, -r))
+    return batched_solve(mat, -r)
 
 
 def batched_solve(mat, rhs):

@@ -14,10 +14,10 @@ import numpy as np
 
 from chaingraph.kinematics.equations import (
     batched_inverse,
-    batched_solve,
     group_form,
     group_jacobian,
     group_residual,
+    newton_step,
     slice,
     with_group,
 )
@@ -65,13 +65,7 @@ def newton(plan, step, known, q, iterations=40, tol_rel=1e-12):
             break
         active, r = active[todo], r[todo]
         full = slice(full, np.nonzero(todo)[0])
-        mat = group_jacobian(step, full, active.size)
-        if mat.shape[1] != mat.shape[2]:
-            rhs = np.einsum("nij,ni->nj", mat, -r)
-            mat = np.einsum("nij,nik->njk", mat, mat)
-        else:
-            rhs = -r
-        q[active] += batched_solve(mat, rhs)
+        q[active] += newton_step(group_jacobian(step, full, active.size), r)
     full = with_group(known, step, q)
     err = np.abs(group_residual(step, full)).max(axis=1)
     return q, err <= 1e-9 * plan.size
@@ -193,7 +187,7 @@ class _Branch:
             a = np.vstack([self.jacobian(x), tau])
             if not np.isfinite(a).all():
                 return None
-            x = x + np.linalg.lstsq(a, -r, rcond=None)[0]
+            x = x + newton_step(a[None], r[None])[0]
         return None
 
     def dq(self, tau):
@@ -293,9 +287,8 @@ def fold_point(plan, step, head, q, t, iterations=25):
         big[m:2 * m, :m + 1] = d
         big[m:2 * m, m + 1:] = a
         big[2 * m, m + 1:] = c
-        try:
-            dx = np.linalg.solve(big, -g)
-        except np.linalg.LinAlgError:
+        dx = newton_step(big[None], g[None])[0]
+        if not np.isfinite(dx).all():
             return None
         z, v = z + dx[:m + 1], v + dx[m + 1:]
         if np.abs(dx[:m + 1]).max() <= 1e-15:

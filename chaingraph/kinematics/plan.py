@@ -35,9 +35,9 @@ from dataclasses import dataclass, replace
 import numpy as np
 
 from chaingraph.errors import MechanismError
-from chaingraph.kinematics.geometry import tidy
+from chaingraph.model.chain import chosen_inputs
 
-__all__ = ["Constraint", "Step", "InputJoint", "Plan", "build_plan", "chosen_inputs"]
+__all__ = ["Constraint", "Step", "InputJoint", "Plan", "build_plan"]
 
 
 @dataclass(frozen=True)
@@ -86,7 +86,6 @@ class InputJoint:
     def key(self):
         """The input's entry in pose and rate tables (never a link's name)."""
         return "@input:" + self.joint
-
 
 
 @dataclass(frozen=True)
@@ -243,19 +242,6 @@ def _steps(chain, fixed, constraints, closed_form=True):
     return tuple(steps)
 
 
-def drawn_direction(chain, link, joint):
-    """The direction (degrees) of a link's line from ``joint`` to its first other joint
-    by id order (the next one when that one is at the same place; +x when none)."""
-    here = joint.at
-    others = [j for j in sorted(chain.joints_of(link), key=lambda j: j.id) if j.id != joint.id]
-    far = [j for j in others if math.dist(j.at, here) > 0]
-    if not far:
-        return 0.0
-    ref = far[0].at
-    # a drawing's 1.4e-14 degrees is its 0 (the drawn pose is kept exactly either way)
-    return tidy(math.degrees(math.atan2(ref[1] - here[1], ref[0] - here[0])), 360.0)
-
-
 def _slide_origin(chain, item):
     """A P input's value in the drawn pose: 0 (slides measured from the drawn pose), or
     its ``at`` where the file gives one (a file by lengths: from the guide's origin),
@@ -283,10 +269,11 @@ def _input_joints(chain, fixed, driver, inputs, name):
             if j.kind == "R":
                 if fixed in j.links:
                     a, b = fixed, next(x for x in j.links if x != fixed)
-                    value0 = drawn_direction(chain, b, j)
+                    value0 = chain.reference_direction(b, joint=j.id)
                 else:
                     a, b = j.links[0], j.links[1]
-                    value0 = math.remainder(drawn_direction(chain, b, j) - drawn_direction(chain, a, j),
+                    value0 = math.remainder(chain.reference_direction(b, joint=j.id)
+                                            - chain.reference_direction(a, joint=j.id),
                                             360.0)
             else:
                 a, b = j.links
@@ -314,7 +301,8 @@ def _input_joints(chain, fixed, driver, inputs, name):
     if len(chain.joints_of(driver)) < 2:
         raise MechanismError(f"the driver {driver!r} has no joint besides its pivot",
                              mechanism=name)
-    return (InputJoint(pivot.id, "R", fixed, driver, drawn_direction(chain, driver, pivot)),)
+    return (InputJoint(pivot.id, "R", fixed, driver,
+                       chain.reference_direction(driver, joint=pivot.id)),)
 
 
 def _line(inputs, size):
@@ -347,18 +335,6 @@ def _line(inputs, size):
     through = all(abs(c + k * tau0) <= 1e-12 * s for (c, k), s in zip(line, scale))
     return lead, tuple(line), (tau0 if through else None)
 
-
-def chosen_inputs(chain, fixed=None, driver=None, inputs=None):
-    """(fixed, driver, inputs) that a solve uses: those given, else the file's
-    ``[mechanism]``: its inputs when it fixes the same link and no driver is asked for,
-    else its driver."""
-    m = chain.mechanism
-    fixed = fixed or (m.fixed if m else None)
-    if not inputs and driver is None and m is not None and m.inputs and fixed == m.fixed:
-        inputs = m.inputs
-    if not inputs:
-        driver = driver or (m.driver if m else None)
-    return fixed, driver, inputs
 
 
 def build_plan(chain, fixed=None, driver=None, *, inputs=None, closed_form=True) -> Plan:

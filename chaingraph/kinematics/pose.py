@@ -18,19 +18,13 @@ import numpy as np
 from chaingraph.errors import AssemblyError, MechanismError
 from chaingraph.kinematics.columns import reference_link, slide_rates
 from chaingraph.kinematics.equations import check_poses
-from chaingraph.kinematics.geometry import rotate
+from chaingraph.geometry import turn_by
 from chaingraph.kinematics.motion import as_inputs, check_input_value, plan_of
-from chaingraph.kinematics.plan import chosen_inputs
 from chaingraph.kinematics.rates import rates
 from chaingraph.kinematics.sweep import evaluate_near
-from chaingraph.model.chain import Input
+from chaingraph.model.chain import Input, chosen_inputs
 
 __all__ = ["LinkMotion", "PoseMotion", "AtOneValue", "pose_motion"]
-
-
-def perp(v):
-    """The vector turned a quarter turn counter-clockwise (k x v)."""
-    return (-v[1], v[0])
 
 
 @dataclass(frozen=True)
@@ -68,7 +62,8 @@ class LinkMotion:
 class Slide:
     """A P joint at the instant: ``at`` the block's reference point, ``axis`` the unit
     vector of the sliding line (turned with the guide), ``speed`` and ``acceleration``
-    the block's slide along it relative to the guide (the CSV's ``v:S`` and ``a:S``)."""
+    the block's slide along it relative to the guide (the CSV's ``v:S`` and ``a:S``),
+    ``slide`` its slide from the drawn pose (``s:S``)."""
 
     joint: str
     guide: str
@@ -77,6 +72,7 @@ class Slide:
     axis: tuple
     speed: float
     acceleration: float
+    slide: float = 0.0
 
 
 @dataclass(frozen=True, eq=False)
@@ -263,18 +259,18 @@ def pose_motion(chain, *, at=None, fixed=None, driver=None, inputs=None,
     def world(link, p):
         if link == plan.fixed:                    # as drawn, to the last digit
             return (float(p[0]), float(p[1]))
-        r = rotate(pose[link], plan.local(p))
+        r = turn_by(pose[link], plan.local(p))
         return (r[0] + pose[link][0] + ox, r[1] + pose[link][1] + oy)
     positions = {j.id: world(reference_link(j, plan.fixed), j.at) for j in chain.joints}
     positions.update((p.id, world(p.link, p.at)) for p in chain.points)
     slides = {}
     for j in chain.joints:
         if j.kind == "P":                         # the solver's slide rates (the CSV's)
-            u = rotate(pose[j.guide], (math.cos(math.radians(j.axis)),
+            u = turn_by(pose[j.guide], (math.cos(math.radians(j.axis)),
                                        math.sin(math.radians(j.axis))))
-            _, speed, acceleration = slide_rates(ev.pose, vel, acc, j, plan.local(j.at))
+            slide, speed, acceleration = slide_rates(ev.pose, vel, acc, j, plan.local(j.at))
             slides[j.id] = Slide(j.id, j.guide, j.block, positions[j.id], u,
-                                 _first(speed), _first(acceleration))
+                                 _first(speed), _first(acceleration), _first(slide))
     inputs_now = {}
     if not plan.from_driver:
         for item, value in zip(plan.inputs, plan.values(theta)):

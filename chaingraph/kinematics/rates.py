@@ -14,7 +14,7 @@ import math
 import numpy as np
 
 from chaingraph.kinematics.equations import (
-    add,
+    plus,
     batched_inverse,
     constraint_gammas,
     constraint_geometry,
@@ -22,10 +22,10 @@ from chaingraph.kinematics.equations import (
     dot3,
     group_form,
     group_matrix,
-    mul,
-    sub,
+    times,
+    minus,
 )
-from chaingraph.kinematics.geometry import rotate
+from chaingraph.geometry import turn_by
 
 __all__ = ["rates"]
 
@@ -60,11 +60,11 @@ class _PointDyad:
         ca, cb, cj = step.constraints
         self.ka, self.kb = ca.other(a), cb.other(b)
         self.pa, self.pb, self.q = ca.point, cb.point, cj.point
-        self.ra_k = rotate(pose[self.ka], self.pa)
-        self.rb_k = rotate(pose[self.kb], self.pb)
+        self.ra_k = turn_by(pose[self.ka], self.pa)
+        self.rb_k = turn_by(pose[self.kb], self.pb)
         wa = (self.ra_k[0] + pose[self.ka][0], self.ra_k[1] + pose[self.ka][1])
         wb = (self.rb_k[0] + pose[self.kb][0], self.rb_k[1] + pose[self.kb][1])
-        self.rq = {a: rotate(pose[a], self.q), b: rotate(pose[b], self.q)}
+        self.rq = {a: turn_by(pose[a], self.q), b: turn_by(pose[b], self.q)}
         x = (self.rq[a][0] + pose[a][0], self.rq[a][1] + pose[a][1])
         self.ua = (x[0] - wa[0], x[1] - wa[1])
         self.ub = (x[0] - wb[0], x[1] - wb[1])
@@ -82,11 +82,11 @@ class _PointDyad:
     def _known_point(self, table, link, r, second=None):
         v = table[link]
         if second is None:      # velocity of the point: v + w perp(R p)
-            return add(v[0], mul(-1.0, mul(v[2], r[1]))), add(v[1], mul(v[2], r[0]))
+            return plus(v[0], times(-1.0, times(v[2], r[1]))), plus(v[1], times(v[2], r[0]))
         w = second[link][2]     # acceleration: a + alpha perp(R p) - w^2 R p
-        w2 = mul(w, w)
-        return (add(add(v[0], mul(-1.0, mul(v[2], r[1]))), mul(-1.0, mul(w2, r[0]))),
-                add(add(v[1], mul(v[2], r[0])), mul(-1.0, mul(w2, r[1]))))
+        w2 = times(w, w)
+        return (plus(plus(v[0], times(-1.0, times(v[2], r[1]))), times(-1.0, times(w2, r[0]))),
+                plus(plus(v[1], times(v[2], r[0])), times(-1.0, times(w2, r[1]))))
 
     def solve_velocity(self, vel):
         dwa = self._known_point(vel, self.ka, self.ra_k)
@@ -135,11 +135,11 @@ class _Weld:
         self.c = c = step.constraints[0]
         self.k = c.other(self.u)
         self.sign = 1.0 if self.u == c.b else -1.0
-        self.rk = rotate(pose[self.k], c.point)       # the joint's point from each link
-        self.ru = rotate(pose[self.u], c.point)
+        self.rk = turn_by(pose[self.k], c.point)       # the joint's point from each link
+        self.ru = turn_by(pose[self.u], c.point)
         if c.kind == "P":
             self.delta = pose[c.drive][2]
-            self.t = rotate(pose[self.k], (math.cos(math.radians(c.axis)),
+            self.t = turn_by(pose[self.k], (math.cos(math.radians(c.axis)),
                                            math.sin(math.radians(c.axis))))
 
     def solve_velocity(self, vel):
@@ -318,9 +318,9 @@ class _NullSpace:
 
     def __init__(self, m1, m2):
         self.m1, self.m2 = m1, m2
-        self.e = (sub(mul(m1[1], m2[2]), mul(m1[2], m2[1])),
-                  sub(mul(m1[2], m2[0]), mul(m1[0], m2[2])),
-                  sub(mul(m1[0], m2[1]), mul(m1[1], m2[0])))
+        self.e = (minus(times(m1[1], m2[2]), times(m1[2], m2[1])),
+                  minus(times(m1[2], m2[0]), times(m1[0], m2[2])),
+                  minus(times(m1[0], m2[1]), times(m1[1], m2[0])))
         self.drop = np.argmax(np.abs(np.array(np.broadcast_arrays(*self.e), dtype=float)),
                               axis=0)
 

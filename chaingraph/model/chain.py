@@ -18,10 +18,12 @@ from functools import cached_property
 
 import networkx as nx
 
+from chaingraph._util.numbers import tidy
 from chaingraph.errors import ChainFileError
 from chaingraph.model.pairs import PAIR_KINDS
 
-__all__ = ["Joint", "Point", "Input", "Mechanism", "Chain", "link_node", "joint_node"]
+__all__ = ["Joint", "Point", "Input", "Mechanism", "Chain", "link_node", "joint_node",
+           "chosen_inputs", "line_direction"]
 
 SPACES = ("planar", "spatial")
 CLOSURES = ("form", "force")
@@ -192,6 +194,34 @@ class Chain:
     def joints_of(self, link: str) -> tuple[Joint, ...]:
         """The joints on a link, in id order."""
         return tuple(sorted((j for j in self.joints if link in j.links), key=lambda j: j.id))
+
+    def reference_direction(self, link: str, *, joint: str | None = None) -> float:
+        """The drawn direction (degrees) of the line a link's angle is measured by.
+
+        The line runs from ``joint`` (by default the link's first joint by id order) to
+        the link's first other joint by id order that is drawn at another place; when
+        every joint of the link is at one place, along the link's first sliding pair;
+        0 (the +x axis) when the link has no such pair. The CSV's ``angle:LINK`` and an
+        input's angle are both measured by it. A figure within rounding of a round
+        number is that number (1.4e-14 degrees is a drawing's 0).
+
+        Examples
+        --------
+        >>> from chaingraph.model.chain import Chain, Joint
+        >>> chain = Chain("bar", (Joint("A", "R", ("frame", "bar"), at=(0.0, 0.0)),
+        ...                       Joint("B", "R", ("bar", "frame"), at=(0.0, 2.0))))
+        >>> chain.reference_direction("bar"), chain.reference_direction("bar", joint="B")
+        (90.0, -90.0)
+        """
+        joints = self.joints_of(link)
+        start = self.joint(joint) if joint is not None else (joints[0] if joints else None)
+        if start is None or start.at is None:
+            return 0.0
+        turn = line_direction([(j.id, j.at) for j in joints], start.id)
+        if turn is not None:
+            return tidy(math.degrees(turn), 360.0)
+        slides = [j for j in joints if j.kind == "P" and j.axis is not None]
+        return float(slides[0].axis) if slides else 0.0
 
     @property
     def has_pose(self) -> bool:
@@ -447,3 +477,37 @@ def _validate(chain: Chain) -> None:
         if (isinstance(m.omega, bool) or not isinstance(m.omega, (int, float))
                 or not math.isfinite(m.omega) or m.omega == 0):
             fail("'omega' must be a finite non-zero number (rad/s)", "[mechanism]")
+
+def chosen_inputs(chain, fixed=None, driver=None, inputs=None):
+    """Which inputs a mechanism uses: ``(fixed, driver, inputs)``, those given, else
+    the file's ``[mechanism]``: its inputs when it fixes the same link and no driver is
+    asked for, else its driver."""
+    m = chain.mechanism
+    fixed = fixed or (m.fixed if m else None)
+    if not inputs and driver is None and m is not None and m.inputs and fixed == m.fixed:
+        inputs = m.inputs
+    if not inputs:
+        driver = driver or (m.driver if m else None)
+    return fixed, driver, inputs
+
+
+def line_direction(features, start, *, tol=0.0, unplaced=None):
+    """The rule a link's reference direction follows, over given positions: the
+    direction (radians) from ``start`` to the first other of ``features`` (``(id,
+    position)`` in id order) that is farther than ``tol`` from it; a feature without a
+    position yet (None: a sliding pair's point before it is placed) gives
+    ``unplaced(id)``. None when there is none. :meth:`Chain.reference_direction`
+    applies it to the drawn pose, the assembly to a link's own frame.
+
+    >>> line_direction([("A", (0.0, 0.0)), ("B", (0.0, 0.0)), ("C", (0.0, 3.0))], "A")
+    1.5707963267948966
+    """
+    here = dict(features)[start]
+    for name, at in features:
+        if name == start:
+            continue
+        if at is None:
+            return unplaced(name) if unplaced is not None else None
+        if math.dist(at, here) > tol:
+            return math.atan2(at[1] - here[1], at[0] - here[0])
+    return None

@@ -23,7 +23,8 @@ from chaingraph.model.chain import Chain, Input, Joint, Mechanism, Point
 from chaingraph.model.dimensions import parse_dimensions
 from chaingraph.model.values import LARGEST, number, shown, type_name
 
-__all__ = ["Document", "parse_file", "parse_text", "parse_document", "dumps", "save"]
+__all__ = ["Document", "parse_file", "parse_text", "parse_document", "dumps", "save",
+           "toml_text", "chain_document"]
 
 TOP_KEYS = ("name", "family", "units", "space", "notes", "naming", "joints", "points",
             "mechanism", "lengths", "assembly")
@@ -316,6 +317,101 @@ def toml_number(x: float) -> str:
     return repr(x)
 
 
+def toml_key(name: str) -> str:
+    """A key as TOML writes it: bare when it can be, else quoted."""
+    bare = bool(name) and name.isascii() and all(ch.isalnum() or ch in "_-" for ch in name)
+    return name if bare else toml_string(name)
+
+
+def _toml_value(value) -> str:
+    if isinstance(value, str):
+        return toml_string(value)
+    if isinstance(value, bool):
+        return "true" if value else "false"
+    if isinstance(value, (int, float)):
+        return toml_number(value)
+    if isinstance(value, dict):
+        return "{" + ", ".join(f"{toml_key(k)} = {_toml_value(v)}"
+                               for k, v in value.items()) + "}"
+    return "[" + ", ".join(_toml_value(v) for v in value) + "]"
+
+
+def toml_text(document: dict) -> str:
+    """The one TOML writer: a chain file's document (a dict as :mod:`tomllib` reads
+    one) as text, keys in the document's order. A dict value is a table (``[name]``), a
+    list of dicts an array of tables (``[[name]]``), anything else a value; inside
+    them, dicts and lists are written inline. Numbers are written as floats.
+
+    Examples
+    --------
+    >>> print(toml_text({"name": "x", "lengths": {"crank": 40, "slotted lever": 2.5},
+    ...                  "joints": [{"id": "A", "at": [0, 1]}]}))
+    name = "x"
+    <BLANKLINE>
+    [lengths]
+    crank = 40.0
+    "slotted lever" = 2.5
+    <BLANKLINE>
+    [[joints]]
+    id = "A"
+    at = [0.0, 1.0]
+    <BLANKLINE>
+    """
+    def table(d):
+        return [f"{toml_key(k)} = {_toml_value(v)}" for k, v in d.items()]
+    top = {k: v for k, v in document.items() if not _is_table(v)}
+    lines = table(top)
+    for key, value in document.items():
+        if isinstance(value, dict):
+            lines += ["", f"[{toml_key(key)}]", *table(value)]
+        elif _is_table(value):
+            for item in value:
+                lines += ["", f"[[{toml_key(key)}]]", *table(item)]
+    return "\n".join(lines) + "\n"
+
+
+def _is_table(value):
+    return isinstance(value, dict) or (isinstance(value, (list, tuple)) and bool(value)
+                                       and all(isinstance(v, dict) for v in value))
+
+
+def chain_document(chain: Chain) -> dict:
+    """The chain as a chain file's document (the dict :func:`toml_text` writes)."""
+    doc = {"name": chain.name}
+    for key in ("family", "units", "notes", "naming"):
+        if getattr(chain, key) is not None:
+            doc[key] = getattr(chain, key)
+    if chain.space != "planar":
+        doc["space"] = chain.space
+    joints = []
+    for j in chain.joints:
+        item = {"id": j.id, "kind": j.kind, "links": list(j.links)}
+        if j.at is not None:
+            item["at"] = list(j.at)
+        if j.axis is not None:
+            item["axis"] = j.axis
+        if j.closure is not None:
+            item["closure"] = j.closure
+        joints.append(item)
+    if joints:
+        doc["joints"] = joints
+    if chain.points:
+        doc["points"] = [{"id": p.id, "link": p.link, "at": list(p.at)} for p in chain.points]
+    m = chain.mechanism
+    if m is not None:
+        mech = {"fixed": m.fixed}
+        if m.driver is not None:
+            mech["driver"] = m.driver
+        if m.inputs:
+            mech["inputs"] = [_input_entry(i) for i in m.inputs]
+        if m.omega != 1.0:
+            mech["omega"] = m.omega
+        if m.output is not None:
+            mech["output"] = m.output
+        doc["mechanism"] = mech
+    return doc
+
+
 def dumps(chain: Chain) -> str:
     """The chain as TOML text in the public format; :func:`loads` reads it back.
 
@@ -336,48 +432,18 @@ def dumps(chain: Chain) -> str:
     >>> parse_text(dumps(c)).chain == c
     True
     """
-    lines = [f"name = {toml_string(chain.name)}"]
-    for key in ("family", "units", "notes", "naming"):
-        value = getattr(chain, key)
-        if value is not None:
-            lines.append(f"{key} = {toml_string(value)}")
-    if chain.space != "planar":
-        lines.append(f"space = {toml_string(chain.space)}")
-    for j in chain.joints:
-        lines += ["", "[[joints]]", f"id = {toml_string(j.id)}", f"kind = {toml_string(j.kind)}",
-                  "links = [" + ", ".join(toml_string(x) for x in j.links) + "]"]
-        if j.at is not None:
-            lines.append(f"at = [{toml_number(j.at[0])}, {toml_number(j.at[1])}]")
-        if j.axis is not None:
-            lines.append(f"axis = {toml_number(j.axis)}")
-        if j.closure is not None:
-            lines.append(f"closure = {toml_string(j.closure)}")
-    for p in chain.points:
-        lines += ["", "[[points]]", f"id = {toml_string(p.id)}", f"link = {toml_string(p.link)}",
-                  f"at = [{toml_number(p.at[0])}, {toml_number(p.at[1])}]"]
-    m = chain.mechanism
-    if m is not None:
-        lines += ["", "[mechanism]", f"fixed = {toml_string(m.fixed)}"]
-        if m.driver is not None:
-            lines.append(f"driver = {toml_string(m.driver)}")
-        if m.inputs:
-            lines.append("inputs = [" + ", ".join(_toml_input(i) for i in m.inputs) + "]")
-        if m.omega != 1.0:
-            lines.append(f"omega = {toml_number(m.omega)}")
-        if m.output is not None:
-            lines.append(f"output = {toml_string(m.output)}")
-    return "\n".join(lines) + "\n"
+    return toml_text(chain_document(chain))
 
 
-def _toml_input(item) -> str:
+def _input_entry(item):
     if item.start is None and item.at is None:
-        return toml_string(item.joint)
-    parts = [f"joint = {toml_string(item.joint)}"]
+        return item.joint
+    entry = {"joint": item.joint}
     if item.start is not None:
-        parts += [f"from = {toml_number(item.start)}", f"to = {toml_number(item.stop)}"]
+        entry.update({"from": item.start, "to": item.stop})
     if item.at is not None:
-        parts.append(f"at = {toml_number(item.at)}")
-    return "{" + ", ".join(parts) + "}"
+        entry["at"] = item.at
+    return entry
 
 
 def save(chain: Chain, path) -> None:

@@ -20,6 +20,7 @@ import difflib
 import math
 from dataclasses import dataclass, field
 
+from chaingraph.geometry import rotate, sub
 from chaingraph.model.values import number
 
 __all__ = ["Dimensions", "LineSpec", "link_features", "link_shape", "parse_dimensions",
@@ -243,15 +244,6 @@ def _values(table, fail):
 
 
 # -- one link's shape ----------------------------------------------------------------
-def rotate(v, angle):
-    c, s = math.cos(angle), math.sin(angle)
-    return (c * v[0] - s * v[1], s * v[0] + c * v[1])
-
-
-def sub(a, b):
-    return (a[0] - b[0], a[1] - b[1])
-
-
 def _side_word(side):
     return "left" if side > 0 else "right"
 

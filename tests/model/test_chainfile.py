@@ -276,3 +276,34 @@ def _to_toml(doc) -> str:
         lines.append("[mechanism]")
         lines += [f"{k} = {value(v)}" for k, v in doc["mechanism"].items()]
     return "\n".join(lines) + "\n"
+
+
+def test_the_one_toml_writer_writes_what_tomllib_reads():
+    """Every catalog chain, and a document with tables, inline tables, quoted keys and
+    arrays of tables, read back as written."""
+    import tomllib
+
+    from chaingraph.model.chainfile import chain_document, toml_text
+
+    for path in CATALOG:
+        chain = chaingraph.load(path)
+        doc = chain_document(chain)
+        back = tomllib.loads(toml_text(doc))
+        assert back == json_like(doc), path.name
+    doc = {"name": 'a "quoted" name', "lengths": {"slotted lever": 1.5, "crank": 40,
+                                                  "plate": {"A-B": 1.0, "A-C": 2.0}},
+           "assembly": {"C": "left", "plate": {"E": "right"}},
+           "joints": [{"id": "A", "links": ["x", "y z"], "at": [0, -1e-17]}],
+           "mechanism": {"inputs": [{"joint": "A", "at": 90.0}, "B"]}}
+    assert tomllib.loads(toml_text(doc)) == json_like(doc)
+
+
+def json_like(value):
+    """Numbers as floats (the writer writes every number as one), tuples as lists."""
+    if isinstance(value, dict):
+        return {k: json_like(v) for k, v in value.items()}
+    if isinstance(value, (list, tuple)):
+        return [json_like(v) for v in value]
+    if isinstance(value, (int, float)) and not isinstance(value, bool):
+        return float(value)
+    return value
