@@ -29,7 +29,7 @@ from chaingraph.files import dumps, from_document, load, loads, save
 from chaingraph.graphical import instant_centres, velocity_polygon
 from chaingraph.graphical.centres import InstantCentres
 from chaingraph.graphical.polygons import Polygons
-from chaingraph.kinematics import Motion, Plan, build_plan, feasible_range, solve
+from chaingraph.kinematics import Motion, Plan, Summary, build_plan, feasible_range, solve
 from chaingraph.kinematics.assembly import measure
 from chaingraph.model.chain import Chain, Input, Joint, Mechanism, Point
 from chaingraph.naming.identify import Identification, identify
@@ -75,7 +75,7 @@ __all__ = [
     "classify", "Classification", "Check", "rigid_subchains",
     "inversions", "Inversions", "Inversion", "identify", "Identification",
     "canonical_form", "is_isomorphic", "isomorphism", "automorphism_orbits",
-    "atlas", "design", "solve", "instant_centres", "velocity_polygon", "measure", "animate", "Motion", "feasible_range", "build_plan", "Plan",
+    "atlas", "design", "solve", "instant_centres", "velocity_polygon", "measure", "animate", "Motion", "Summary", "feasible_range", "build_plan", "Plan",
     "ChainGraphError", "ChainFileError", "ChainStructureError", "MechanismError",
     "AssemblyError", "AtlasRunError", "AtlasSizeError", "DesignError", "DimensionError",
     "ChainGraphWarning", "PoseAdjustedWarning",

@@ -13,9 +13,16 @@
 
 from chaingraph.kinematics.motion import Motion, full_turns, solve
 from chaingraph.kinematics.plan import Plan, build_plan
-from chaingraph.kinematics.summary import OutputSignal, output_signal, path_direction, summary_rows
+from chaingraph.kinematics.summary import (
+    ExtremePosition,
+    OutputSignal,
+    Summary,
+    output_signal,
+    path_direction,
+    summary_rows,
+)
 from chaingraph.kinematics.sweep import Cycle, cycle, feasible_range
 
 __all__ = ["Motion", "Plan", "Cycle", "solve", "build_plan", "cycle", "feasible_range",
-           "full_turns", "summary_rows", "path_direction", "output_signal",
-           "OutputSignal"]
+           "full_turns", "Summary", "ExtremePosition", "summary_rows", "path_direction",
+           "output_signal", "OutputSignal"]

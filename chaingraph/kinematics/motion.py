@@ -21,11 +21,11 @@ from chaingraph._util.text import short_list
 from chaingraph.errors import AssemblyError, MechanismError
 from chaingraph.kinematics.columns import csv_columns
 from chaingraph.kinematics.equations import check_poses
-from chaingraph.kinematics.plan import build_plan, chosen_inputs
+from chaingraph.kinematics.plan import build_plan
 from chaingraph.kinematics.rates import rates
-from chaingraph.kinematics.summary import cycle_theta, motion_summary
+from chaingraph.kinematics.summary import Summary, cycle_theta, motion_summary
 from chaingraph.kinematics.sweep import Cycle, cycle, evaluate_near, evaluate_sweep
-from chaingraph.model.chain import Input
+from chaingraph.model.chain import Input, chosen_inputs
 
 __all__ = ["Motion", "solve", "full_turns"]
 
@@ -59,7 +59,7 @@ class Motion:
     driver: str | None
     omega: float
     columns: dict
-    summary: dict
+    summary: Summary | None
     units: str | None = None
     plan: object = field(default=None, repr=False)
     inputs: tuple = ()            # the input joints, when not given as a driver
@@ -160,7 +160,7 @@ class Motion:
                 {"joint": i.joint, "kind": i.kind,
                  "from": float(self.columns["input:" + i.joint][0]),
                  "to": float(self.columns["input:" + i.joint][-1])} for i in self.inputs]
-        out.update(steps=self.steps, summary=self.summary)
+        out.update(steps=self.steps, summary=self.summary.to_dict() if self.summary else {})
         return out
 
 
@@ -194,7 +194,7 @@ def solve(mechanism, *, fixed=None, driver=None, inputs=None, start=None, stop=N
         (default: the file's, else 1).
     summary : bool
         Also work out the summary (stroke, time ratio, extremes, dead centres...) over
-        the whole cycle; without it ``Motion.summary`` is empty.
+        the whole cycle (a :class:`Summary`); without it ``Motion.summary`` is None.
 
     Returns
     -------
@@ -297,7 +297,7 @@ def solve(mechanism, *, fixed=None, driver=None, inputs=None, start=None, stop=N
     reuse = None
     if summary and c.ends == "limits" and np.array_equal(theta, cycle_theta(plan, c)):
         reuse = (ev, measure, unit_columns)
-    summary = motion_summary(plan, output, omega, c, sweep=reuse) if summary else {}
+    summary = motion_summary(plan, output, omega, c, sweep=reuse) if summary else None
     return Motion(name=chain.name, fixed=plan.fixed, driver=plan.driver, omega=omega,
                   columns=columns, summary=summary, units=chain.units, plan=plan,
                   inputs=() if plan.from_driver else plan.inputs)

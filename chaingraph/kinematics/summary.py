@@ -11,17 +11,134 @@ from dataclasses import dataclass
 import numpy as np
 
 from chaingraph.kinematics.columns import csv_columns
-from chaingraph.kinematics.geometry import rotate, tidy
+from chaingraph._util.numbers import tidy
+from chaingraph.geometry import turn_by
 from chaingraph.kinematics.rates import rates
 from chaingraph.kinematics.roots import bracketed_roots
 from chaingraph.kinematics.sweep import cycle, evaluate_sweep
 from chaingraph.kinematics.tracking import evaluate_at
 
-__all__ = ["summary_rows", "path_direction", "output_signal", "OutputSignal"]
+__all__ = ["Summary", "ExtremePosition", "summary_rows", "path_direction", "output_signal",
+           "OutputSignal"]
+
+
+@dataclass(frozen=True)
+class ExtremePosition:
+    """One extreme of the output: the lead input's ``input`` value where it is, the
+    output's ``value`` there (degrees for an angle, else a length), and its ``kind``,
+    "max" or "min"."""
+
+    input: float
+    value: float
+    kind: str
+
+    def to_dict(self) -> dict:
+        return {"input": self.input, "value": self.value, "kind": self.kind}
+
+
+@dataclass(frozen=True)
+class Summary:
+    """The summary of a motion over the mechanism's whole cycle.
+
+    ``output`` is what the stroke is of (None when the file names none); ``stroke`` in
+    ``stroke_unit`` ("deg", the file's length unit, or None); ``time_ratio`` the forward
+    stroke's input turn over the return's (``forward_deg``, ``return_deg``), for a
+    crank with one maximum and one minimum; ``extremes`` the lead input's values at the
+    lowest and highest output, ``extreme_positions`` every extreme in input order;
+    ``transmission_angle`` ``(min, max)`` in degrees over the cycle, for a four-bar
+    loop at the output; ``dead_centres`` the input values where the mechanism driven
+    by its input is singular; ``input_range`` the values swept; ``full_turn`` whether
+    the lead input turns fully; ``mobility`` Kutzbach's count and ``numeric_mobility``
+    the rank count at the drawn pose; ``omega`` the input speed; ``note`` why a figure
+    is missing; ``output_turns_fully`` when the output is a crank too.
+
+    :meth:`to_dict` is the ``"summary"`` of ``solve --json``; ``summary["key"]`` reads
+    the same keys.
+    """
+
+    output: str | None
+    stroke: float | None
+    stroke_unit: str | None
+    time_ratio: float | None
+    forward_deg: float | None
+    return_deg: float | None
+    extremes: tuple | None
+    extreme_positions: tuple | None
+    transmission_angle: tuple | None
+    dead_centres: tuple
+    input_range: tuple
+    full_turn: bool
+    mobility: int
+    numeric_mobility: int
+    omega: float
+    note: str | None = None
+    output_turns_fully: bool = False
+    input_unit: str = "deg"
+
+    def to_dict(self) -> dict:
+        """The summary as JSON: the keys of ``solve --json``'s ``"summary"``."""
+        ta = self.transmission_angle
+        out = {"output": self.output, "stroke": self.stroke, "stroke_unit": self.stroke_unit,
+               "time_ratio": self.time_ratio, "forward_deg": self.forward_deg,
+               "return_deg": self.return_deg,
+               "extremes": None if self.extremes is None else list(self.extremes),
+               "extreme_positions": (None if self.extreme_positions is None else
+                                     [e.to_dict() for e in self.extreme_positions]),
+               "transmission_angle": None if ta is None else {"min": ta[0], "max": ta[1]},
+               "dead_centres": None if self.dead_centres is None else list(self.dead_centres),
+               "input_range": list(self.input_range),
+               "full_turn": self.full_turn, "mobility": self.mobility,
+               "numeric_mobility": self.numeric_mobility, "omega": self.omega,
+               "note": self.note}
+        if self.output_turns_fully:
+            out["output_turns_fully"] = True
+        return out
+
+    def __getitem__(self, key):
+        """The JSON's figure ``key`` (``summary["time_ratio"]``), as :meth:`to_dict` has it."""
+        return self.to_dict()[key]
+
+    def rows(self) -> list:
+        """The summary as (label, text) rows in the textbook's words.
+
+        Examples
+        --------
+        >>> import chaingraph
+        >>> from chaingraph.naming.catalog import catalog_path
+        >>> m = chaingraph.solve(chaingraph.load(catalog_path("beam-engine")), steps=12)
+        >>> dict(m.summary.rows())["time ratio"]
+        '1.0466'
+        """
+        def num(value, unit=""):
+            if value is None or (isinstance(value, float) and not math.isfinite(value)):
+                return "-"
+            return f"{value:.6g}{unit}"
+        unit = f" {self.stroke_unit}" if self.stroke_unit else ""
+        ta = self.transmission_angle
+        rows = [
+            ("input range", " to ".join(f"{t:.6g}" for t in self.input_range)
+             + f" {self.input_unit}"),
+            ("output", self.output or "-"),
+            ("stroke", num(self.stroke, unit)),
+            ("time ratio", num(self.time_ratio)),
+            ("forward / return", f"{num(self.forward_deg)} / {num(self.return_deg)} degrees"),
+            ("extremes at", ", ".join(f"{t:.6g}" for t in self.extremes or ()) or "-"),
+            ("every extreme", ", ".join(f"{e.kind} {e.value:.6g} at {e.input:.6g}"
+                                        for e in self.extreme_positions or ()) or "-"),
+            ("transmission angle", "-" if ta is None else
+             f"{ta[0]:.6g} to {ta[1]:.6g} degrees"),
+            ("dead centres", ", ".join(f"{t:.6g}" for t in self.dead_centres or ()) or "none"),
+            ("mobility", f"{self.numeric_mobility} at the drawn pose "
+                         f"(Kutzbach: {self.mobility})"),
+        ]
+        if self.note:
+            rows.append(("note", self.note))
+        return rows
 
 
 def summary_rows(motion):
-    """The summary as (label, text) rows, for the command line and the report.
+    """A motion's summary as (label, text) rows, for the command line, the report and
+    the notebook: the fixed link and the inputs, then :meth:`Summary.rows`.
 
     Examples
     --------
@@ -32,15 +149,8 @@ def summary_rows(motion):
     '1.0466'
     """
     s = motion.summary
-
-    def num(value, unit=""):
-        if value is None or (isinstance(value, float) and not math.isfinite(value)):
-            return "-"
-        return f"{value:.6g}{unit}"
-    unit = f" {s['stroke_unit']}" if s["stroke_unit"] else ""
-    ta = s["transmission_angle"]
     plan = motion.plan
-    how = "  (turns fully)" if s["full_turn"] else "  (rocks)"
+    how = "  (turns fully)" if s.full_turn else "  (rocks)"
     if motion.inputs and plan.moving_inputs > 1:
         how = "  (moving together)"
     if motion.inputs:
@@ -50,26 +160,7 @@ def summary_rows(motion):
                 + (f"; {lead.joint} leads" if len(motion.inputs) > 1 else "") + how)
     else:
         said = ("driver", motion.driver + how)
-    rows = [
-        ("fixed link", motion.fixed),
-        said,
-        ("input range", " to ".join(f"{t:.6g}" for t in s["input_range"])
-         + f" {plan.lead_unit}"),
-        ("output", s["output"] or "-"),
-        ("stroke", num(s["stroke"], unit)),
-        ("time ratio", num(s["time_ratio"])),
-        ("forward / return", f"{num(s['forward_deg'])} / {num(s['return_deg'])} degrees"),
-        ("extremes at", ", ".join(f"{t:.6g}" for t in s["extremes"] or []) or "-"),
-        ("every extreme", ", ".join(f"{e['kind']} {e['value']:.6g} at {e['input']:.6g}"
-                                    for e in s.get("extreme_positions") or []) or "-"),
-        ("transmission angle", "-" if ta is None else
-         f"{ta['min']:.6g} to {ta['max']:.6g} degrees"),
-        ("dead centres", ", ".join(f"{t:.6g}" for t in s["dead_centres"]) or "none"),
-        ("mobility", f"{s['numeric_mobility']} at the drawn pose (Kutzbach: {s['mobility']})"),
-    ]
-    if s.get("note"):
-        rows.append(("note", s["note"]))
-    return rows
+    return [("fixed link", motion.fixed), said, *s.rows()]
 
 
 
@@ -186,28 +277,33 @@ def _pointwise(plan, ev, k, t):
     return csv_columns(plan, t, pose, vel, acc), measure, feasible
 
 
-def motion_summary(plan, output, omega, c, *, sweep=None):
-    """The summary over the cycle ``c``; ``sweep`` is (evaluation, step measures,
-    columns at unit input speed) on the cycle's own grid when the caller has them.
-    Figures within rounding of a round number are that number (:func:`tidy`)."""
+def motion_summary(plan, output, omega, c, *, sweep=None) -> Summary:
+    """The :class:`Summary` over the cycle ``c``; ``sweep`` is (evaluation, step
+    measures, columns at unit input speed) on the cycle's own grid when the caller has
+    them. Figures within rounding of a round number are that number (:func:`tidy`)."""
     s = _raw_summary(plan, output, omega, c, sweep=sweep)
     length = plan.size
     angle = 360.0
     lead = angle if plan.inputs[plan.lead].kind == "R" else length
     out = angle if s["stroke_unit"] == "deg" else length
-    for key, scale in (("stroke", out), ("forward_deg", angle), ("return_deg", angle),
-                       ("time_ratio", 1.0)):
-        s[key] = tidy(s[key], scale)
-    for key in ("extremes", "input_range", "dead_centres"):
-        if s[key] is not None:
-            s[key] = [tidy(t, lead) for t in s[key]]
-    if s["extreme_positions"] is not None:
-        s["extreme_positions"] = [dict(e, input=tidy(e["input"], lead),
-                                       value=tidy(e["value"], out))
-                                  for e in s["extreme_positions"]]
-    if s["transmission_angle"] is not None:
-        s["transmission_angle"] = {k: tidy(v, angle) for k, v in s["transmission_angle"].items()}
-    return s
+
+    def tidied(values, scale):
+        return None if values is None else tuple(tidy(v, scale) for v in values)
+    positions = s["extreme_positions"]
+    ta = s["transmission_angle"]
+    return Summary(
+        output=s["output"], stroke=tidy(s["stroke"], out), stroke_unit=s["stroke_unit"],
+        time_ratio=tidy(s["time_ratio"], 1.0), forward_deg=tidy(s["forward_deg"], angle),
+        return_deg=tidy(s["return_deg"], angle), extremes=tidied(s["extremes"], lead),
+        extreme_positions=None if positions is None else tuple(
+            ExtremePosition(tidy(e["input"], lead), tidy(e["value"], out), e["kind"])
+            for e in positions),
+        transmission_angle=None if ta is None else (tidy(ta["min"], angle),
+                                                    tidy(ta["max"], angle)),
+        dead_centres=tidied(s["dead_centres"], lead), input_range=tidied(s["input_range"], lead),
+        full_turn=bool(s["full_turn"]), mobility=s["mobility"],
+        numeric_mobility=s["numeric_mobility"], omega=s["omega"], note=s["note"],
+        output_turns_fully=bool(s.get("output_turns_fully")), input_unit=plan.lead_unit)
 
 
 def _raw_summary(plan, output, omega, c, *, sweep=None):
@@ -394,7 +490,7 @@ def _transmission(plan, ev, theta):
     pose = ev.pose
 
     def world(link, p):
-        rx, ry = rotate(pose[link], p)
+        rx, ry = turn_by(pose[link], p)
         return rx + pose[link][0], ry + pose[link][1]
     x = world(a, cj.point)
     pa = world(a, ca.point)
