@@ -3,8 +3,9 @@
 Every error is a :class:`ChainGraphError`. Each specific error also subclasses the
 builtin it behaves like, so ``except ValueError`` keeps working for callers who do
 not know chaingraph. Errors carry their details as fields, and ``str(error)`` is one
-clear message naming what is wrong and where. ``exit_status`` is what the command
-line exits with: 2 for bad input, 1 for a failure of the analysis.
+clear message naming what is wrong and where, in the words of the library (a
+parameter by its name, ``time_ratio``); the command line maps parameters to its flags
+and errors to its exit statuses.
 """
 
 from __future__ import annotations
@@ -27,8 +28,6 @@ __all__ = [
 
 class ChainGraphError(Exception):
     """Base class of every error chaingraph raises on purpose."""
-
-    exit_status = 2
 
 
 class ChainFileError(ChainGraphError, ValueError):
@@ -103,9 +102,7 @@ class MechanismError(ChainGraphError, ValueError):
 
 
 class AssemblyError(ChainGraphError, RuntimeError):
-    """A pose that cannot be assembled; the analysis failed (exit status 1)."""
-
-    exit_status = 1
+    """A pose that cannot be assembled: the analysis failed (not the input)."""
 
     def __init__(self, problem, *, mechanism=None, angle=None, feasible_range=None):
         self.problem = problem
@@ -133,22 +130,26 @@ class OutputError(ChainGraphError, OSError):
 class AtlasRunError(ChainGraphError, RuntimeError):
     """An atlas run that cannot go on: a Dask scheduler that cannot be reached, Dask not
     installed, or an output folder that holds no run to resume or a different one.
-    Bad input: exit status 2. ``reason`` is ``"unreachable"``, ``"missing"`` or
-    ``"resume"``."""
+    ``reason`` is ``"unreachable"``, ``"missing"`` or ``"resume"``; ``parameter`` the
+    parameter of the call at fault (``"scheduler"``, ``"out"``, ``"resume"``)."""
 
-    def __init__(self, problem, *, reason=None):
+    def __init__(self, problem, *, reason=None, parameter=None):
         self.problem = problem
         self.reason = reason
+        self.parameter = parameter
         super().__init__(problem)
 
 
 class AtlasSizeError(ChainGraphError, ValueError):
-    """A number of links and degrees of freedom that admits no chain."""
+    """A number of links and degrees of freedom that admits no chain, or an atlas too
+    big to run here; ``parameter`` the parameter at fault (``"links"``, ``"dof"``), or
+    the one that would help (``"scheduler"``)."""
 
-    def __init__(self, problem, *, links=None, dof=None):
+    def __init__(self, problem, *, links=None, dof=None, parameter=None):
         self.problem = problem
         self.links = links
         self.dof = dof
+        self.parameter = parameter
         super().__init__(problem)
 
 

@@ -23,7 +23,7 @@ from chaingraph.drawing.plots import (
     draw_mechanism,  # PNG and the other raster formats
     plot_motion,
 )
-from chaingraph.errors import ChainGraphError, ChainGraphWarning, OutputError
+from chaingraph.errors import AssemblyError, ChainGraphError, ChainGraphWarning, OutputError
 from chaingraph.files import dumps, load, read_file, save
 from chaingraph.graphical import instant_centres, velocity_polygon
 from chaingraph.kinematics import solve, summary_rows
@@ -72,8 +72,8 @@ def _cmd_classify(args) -> int:
         try:
             results.append((path, classify(load(path))))
         except ChainGraphError as e:
-            print(f"chaingraph: error: {e}", file=sys.stderr)
-            failed = e.exit_status if not failed else failed
+            print(f"chaingraph: error: {error_text(e)}", file=sys.stderr)
+            failed = exit_status(e) if not failed else failed
     if args.json and results:
         objs = [r.to_dict() for _, r in results]
         _print_json(objs[0] if len(args.files) == 1 else objs)
@@ -382,7 +382,7 @@ def _cmd_report(args) -> int:
     print(f"report of {done} entries written to {report.index}"
           + (f"; {len(report.failures)} could not be included (listed on the index)"
              if report.failures else ""))
-    return report.exit_status
+    return 0 if report.complete else 1
 
 
 def _workers(value, *, flag="--workers") -> int:
@@ -654,7 +654,22 @@ def _version() -> str:
 # the library's parameters as the command line's options, for its messages
 _FLAGS = {"fixed": "--fixed LINK", "driver": "--driver LINK", "inputs": "--input JOINT",
           "steps": "--steps N", "start": "--from", "stop": "--to", "at": "--at",
-          "omega": "--omega"}
+          "omega": "--omega", "time_ratio": "--time-ratio", "crank": "--crank",
+          "stroke": "--stroke", "links": "--links N", "dof": "--dof F",
+          "scheduler": "--scheduler ADDRESS", "workers": "--workers K", "out": "--out DIR",
+          "resume": "--resume"}
+
+
+def exit_status(error) -> int:
+    """The exit status of an error: 1 for an analysis that failed (a pose that cannot
+    be assembled), 2 for bad input."""
+    return 1 if isinstance(error, AssemblyError) else 2
+
+
+def error_text(error) -> str:
+    """The error's message, with the flag of the parameter at fault."""
+    flag = _FLAGS.get(getattr(error, "parameter", None))
+    return f"{error}" if flag is None else f"{error}; on the command line: {flag}"
 
 
 def _whole_number(text):
@@ -684,10 +699,8 @@ def main(argv=None) -> int:
     try:
         return args.run(args)
     except ChainGraphError as e:
-        flag = _FLAGS.get(getattr(e, "parameter", None))
-        text = f"{e}" if flag is None else f"{e}; on the command line: {flag}"
-        print(f"chaingraph: error: {text}", file=sys.stderr)
-        return e.exit_status
+        print(f"chaingraph: error: {error_text(e)}", file=sys.stderr)
+        return exit_status(e)
     except BrokenPipeError:
         return 0
     except MemoryError:

@@ -82,8 +82,9 @@ class Report:
     failures: list       # (path, problem)
 
     @property
-    def exit_status(self) -> int:
-        return 1 if self.failures else 0
+    def complete(self) -> bool:
+        """True when every chain file made its entry."""
+        return not self.failures
 
 
 def chain_paths(paths):
@@ -147,8 +148,8 @@ def build_report(paths, out_dir, *, progress=sys.stderr, steps=180, frames=48,
     Returns
     -------
     Report
-        ``failures`` lists (path, message) of what could not be done; ``exit_status`` is 1
-        when there are any.
+        ``failures`` lists (path, message) of what could not be done; ``complete`` is
+        True when there are none.
     """
     out = Path(out_dir)
     (out / "img").mkdir(parents=True, exist_ok=True)
@@ -223,7 +224,7 @@ def _entry_job(job):
     row.mobility, row.verdict = c.mobility, c.verdict
     row.classes = entry.inversions.classes if entry.inversions is not None else None
     if entry.motion is not None:
-        row.time_ratio = entry.motion.summary.get("time_ratio")
+        row.time_ratio = entry.motion.summary.time_ratio
     return row
 
 
@@ -271,7 +272,7 @@ def input_grid(chain, motion, *, size=13):
     columns = {key: np.concatenate([np.broadcast_to(r[key], (size,)) for r in rows])
                for key in rows[0].columns}
     return Motion(name=motion.name, fixed=motion.fixed, driver=None, omega=motion.omega,
-                  columns=columns, summary={}, units=motion.units, plan=rows[0].plan,
+                  columns=columns, summary=None, units=motion.units, plan=rows[0].plan,
                   inputs=motion.inputs)
 
 

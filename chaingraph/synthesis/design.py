@@ -54,7 +54,7 @@ class Design:
 
 
 def _check(kind, time_ratio, crank, stroke):
-    for name, value in (("--time-ratio", time_ratio), ("--crank", crank), ("--stroke", stroke)):
+    for name, value in (("time_ratio", time_ratio), ("crank", crank), ("stroke", stroke)):
         if isinstance(value, bool) or not isinstance(value, (int, float)) or not math.isfinite(value):
             raise DesignError(f"{name} must be a finite number, got {value!r}", kind=kind,
                               parameter=name)
@@ -63,8 +63,8 @@ def _check(kind, time_ratio, crank, stroke):
                               "values overflow)", kind=kind, parameter=name)
     if time_ratio <= 1:
         raise DesignError(f"the time ratio must be above 1 (the forward stroke is the slower "
-                          f"one), got {time_ratio:g}", kind=kind, parameter="--time-ratio")
-    for name, value in (("--crank", crank), ("--stroke", stroke)):
+                          f"one), got {time_ratio:g}", kind=kind, parameter="time_ratio")
+    for name, value in (("crank", crank), ("stroke", stroke)):
         if value <= 0:
             raise DesignError(f"{name} must be a positive length, got {value:g}", kind=kind,
                               parameter=name)
@@ -143,7 +143,7 @@ def slotted_lever(*, time_ratio: float, crank: float, stroke: float, units="mm")
             f"block on the crank pin reaches {reach:.6g} from the lever's pivot (centre "
             f"distance {centres:.6g} plus the crank), so it would run off the lever's end; "
             f"ask for a stroke above {2 * reach * math.cos(half):.6g}", kind=kind,
-            parameter="--stroke")
+            parameter="stroke")
     # the drawing: lever pivot A at the origin, crank centre C above it, crank along +x
     A, C = (0.0, 0.0), (0.0, centres)
     B = (crank, centres)

@@ -48,8 +48,8 @@ def test_round_trip_through_solve(kind, ratio, stroke, tmp_path):
 @pytest.mark.parametrize("args, words", [
     ({"time_ratio": 1.0, "crank": 30, "stroke": 120}, "above 1"),
     ({"time_ratio": 0.5, "crank": 30, "stroke": 120}, "above 1"),
-    ({"time_ratio": 2.0, "crank": 0, "stroke": 120}, "--crank must be a positive"),
-    ({"time_ratio": 2.0, "crank": 30, "stroke": -5}, "--stroke must be a positive"),
+    ({"time_ratio": 2.0, "crank": 0, "stroke": 120}, "crank must be a positive"),
+    ({"time_ratio": 2.0, "crank": 30, "stroke": -5}, "stroke must be a positive"),
     ({"time_ratio": math.nan, "crank": 30, "stroke": 120}, "finite"),
 ])
 def test_bad_requests(args, words):

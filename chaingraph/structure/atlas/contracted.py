@@ -22,10 +22,10 @@ def joints_for(links: int, dof: int) -> int:
     >>> joints_for(8, 1)
     10
     """
-    for name, value in (("--links", links), ("--dof", dof)):
+    for name, value in (("links", links), ("dof", dof)):
         if isinstance(value, bool) or not isinstance(value, int) or value < 1:
             raise AtlasSizeError(f"{name} must be a positive whole number, got {value!r}",
-                                 links=links, dof=dof)
+                                 links=links, dof=dof, parameter=name)
     twice = 3 * (links - 1) - dof
     if twice % 2:
         raise AtlasSizeError(

@@ -130,6 +130,6 @@ def check_size(links: int, dof: int, *, cores: int, cluster: bool) -> Estimate:
         raise AtlasSizeError(
             f"an atlas of {links} links and {dof} dof is refused on this machine: "
             f"{e.describe(cores)}, more than {LOCAL_HOURS:g} hour; run it on a Dask "
-            f"cluster (--scheduler ADDRESS, see docs/atlas.md) or with more --workers",
-            links=links, dof=dof)
+            f"cluster (see docs/atlas.md) or with more workers",
+            links=links, dof=dof, parameter="scheduler")
     return e

@@ -185,8 +185,8 @@ class DaskRunner:
             from distributed import Client, LocalCluster
         except ImportError as error:
             raise AtlasRunError(
-                "--scheduler needs Dask distributed: pip install 'chaingraph[cluster]'",
-                reason="missing") from error
+                "a Dask scheduler needs Dask distributed: pip install 'chaingraph[cluster]'",
+                reason="missing", parameter="scheduler") from error
         self.cluster = None
         try:
             if address == "local":
@@ -266,8 +266,8 @@ def run_atlas(links, dof=1, *, workers=1, runner=None, out=None, resume=False,
     state_path = Path(out) / "run.json" if out is not None else None
     stored = _read_state(state_path, links, dof, backend) if resume else None
     if resume and out is None:
-        raise AtlasRunError("resuming needs the output folder of the run (--out DIR)",
-                            reason="resume")
+        raise AtlasRunError("resuming needs the output folder of the run (out)",
+                            reason="resume", parameter="out")
     say(0.0, "plan: contracted graphs")
     if stored:
         jobs = [(tuple(d), tuple(tuple(e) for e in edges), b) for d, edges, b in stored["jobs"]]
@@ -277,7 +277,7 @@ def run_atlas(links, dof=1, *, workers=1, runner=None, out=None, resume=False,
     digest = _digest(links, dof, backend, jobs, shards)
     if stored and stored["digest"] != digest:
         raise AtlasRunError(f"{state_path}: the run there was cut differently; start it "
-                            "again without --resume", reason="resume")
+                            "again without resuming", reason="resume", parameter="resume")
     if shard_dir is not None:
         shard_dir.mkdir(parents=True, exist_ok=True)
         if not stored:
