@@ -11,7 +11,8 @@ import math
 
 import numpy as np
 
-from chaingraph.drawing.plots import COLOURS, draw_positions, finish, plain_text, pyplot_module
+from chaingraph.drawing.plots import finish, plain_text, pyplot_module
+from chaingraph.drawing.scene import COLOURS, Scene, draw_shapes, frame_shapes
 
 __all__ = ["draw_centres", "draw_polygons"]
 
@@ -26,15 +27,6 @@ def _unit_word(state, per):
     return f"{unit}/{per}"
 
 
-def _positions_and_axes(state):
-    axes = {}
-    for j in state.chain.joints:
-        if j.kind == "P":
-            u = state.slides[j.id].axis
-            axes[j.id] = math.degrees(math.atan2(u[1], u[0]))
-    return dict(state.positions), axes
-
-
 @plain_text
 def draw_centres(centres, path=None):
     """The mechanism with its instantaneous centres (left) and the circle diagram
@@ -47,9 +39,8 @@ def draw_centres(centres, path=None):
     plan = state.plan
     fig, (ax, circle) = plt.subplots(1, 2, figsize=(12, 6),
                                      gridspec_kw={"width_ratios": [3, 2]})
-    pos, axes = _positions_and_axes(state)
-    draw_positions(ax, state.chain, state.fixed, pos, axes, plan.size)
-    points = np.array(list(pos.values()))
+    scene = Scene.of_pose(state)
+    points = np.array(list(state.positions.values()))
     middle = (points.min(axis=0) + points.max(axis=0)) / 2
     reach = max(float(np.ptp(points, axis=0).max()) / 2, 1e-9 * plan.size) * 1.6
     # the view: the mechanism and the centres within 2.5 times its reach
@@ -118,6 +109,8 @@ def draw_centres(centres, path=None):
     ax.set_title(f"{state.name}\ninstantaneous centres at {state.input_text('θ', '°')}", fontsize=10)
     _circle_diagram(circle, centres, numbers)
     fig.tight_layout()
+    # the mechanism under the construction, as every drawing of it looks
+    draw_shapes(ax, scene, frame_shapes(scene, 0), view=(lo, hi), zorder=0.5)
     return finish(plt, fig, path)
 
 

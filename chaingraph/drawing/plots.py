@@ -8,13 +8,12 @@ draws the mechanism in its drawn pose with the paths of its joints and points.
 from __future__ import annotations
 
 import functools
-import math
 import sys
 import textwrap
 from pathlib import Path
 
-import numpy as np
 
+from chaingraph.drawing.scene import Scene, draw_shapes, frame_shapes, path_shapes
 from chaingraph.kinematics import Motion, output_signal, solve
 from chaingraph.model.chain import Chain
 
@@ -44,7 +43,7 @@ def pyplot_module():
 
 def output_series(motion):
     """The output's (label, displacement, velocity, acceleration, unit) along the sweep."""
-    output = motion.summary.get("output") if motion.summary else None
+    output = motion.summary.output if motion.summary else None
     if output is None and motion.plan.chain.mechanism is not None:
         output = motion.plan.chain.mechanism.output
     if output is None:
@@ -70,21 +69,21 @@ def plot_motion(motion, path=None):
         ax.plot(theta, y, color="#1f4e79", lw=1.6)
         ax.set_ylabel(name)
         ax.grid(True, color="#dddddd", lw=0.6)
-    s = motion.summary or {}
-    for t in s.get("dead_centres") or []:
+    s = motion.summary
+    for t in (s.dead_centres if s else None) or ():
         for ax in axes:
             for tt in _in_sweep(t, theta):
                 ax.axvline(tt, color="#c00000", lw=1.0, ls="--")
-    for e in s.get("extreme_positions") or []:     # every extreme, where it was refined
-        for tt in _in_sweep(e["input"], theta):
-            axes[0].plot([tt], [e["value"]], "o", color="#e07b00", ms=6)
+    for e in (s.extreme_positions if s else None) or ():   # every extreme, as refined
+        for tt in _in_sweep(e.input, theta):
+            axes[0].plot([tt], [e.value], "o", color="#e07b00", ms=6)
     axes[-1].set_xlabel(_input_label(motion))
     title = f"{motion.name}: {label}"
-    if s.get("time_ratio"):
-        title += f"\nstroke {s['stroke']:.4g} {s.get('stroke_unit') or ''}, " \
-                 f"time ratio {s['time_ratio']:.4f}"
-    elif s.get("note"):
-        title += "\n" + textwrap.fill(s["note"], 80)
+    if s and s.time_ratio:
+        title += f"\nstroke {s.stroke:.4g} {s.stroke_unit or ''}, " \
+                 f"time ratio {s.time_ratio:.4f}"
+    elif s and s.note:
+        title += "\n" + textwrap.fill(s.note, 80)
     axes[0].set_title(title, fontsize=10)
     handles = [plt.Line2D([], [], color="#e07b00", marker="o", ls="", label="extreme"),
                plt.Line2D([], [], color="#c00000", ls="--", label="dead centre")]
@@ -151,29 +150,23 @@ def draw_mechanism(motion, path=None, *, pose_index=0):
     'Beam engine (crank and lever mechanism)'
     """
     plt = pyplot_module()
-    motion, drawn = _motion_and_pose(motion, pose_index)
-    chain = motion.plan.chain
+    motion, (pose, k) = _motion_and_pose(motion, pose_index)
     fig, ax = plt.subplots(figsize=(7, 6))
-    _draw_pose(ax, *drawn)
-    names = [j.id for j in chain.joints] + [p.id for p in chain.points]
-    for name in names:
-        x, y = motion[f"x:{name}"], motion[f"y:{name}"]
-        if np.ptp(x) + np.ptp(y) > 1e-9:
-            ax.plot(x, y, lw=0.8, color="#7f7f7f", alpha=0.8)
-    ax.set_aspect("equal")
+    if pose is motion:
+        scene, k = Scene.of_motion(motion), k
+    else:                                # the drawn pose, after the sweep's steps
+        scene, k = Scene.of_motion(motion, also=pose), motion.theta.size + k
     driving = (f"{motion.driver} driving" if not motion.inputs else
                "input" + ("s " if len(motion.inputs) > 1 else " ")
                + ", ".join(i.joint for i in motion.inputs))
     ax.set_title(f"{motion.name}\n({motion.fixed} fixed, {driving}; paths over "
                  f"{_input_symbol(motion)} = {motion.theta[0]:.4g}..{motion.theta[-1]:.4g}"
                  f"{_input_unit(motion)})", fontsize=10)
-    ax.grid(True, color="#eeeeee", lw=0.5)
+    ax.set_axis_off()
     fig.tight_layout()
+    draw_shapes(ax, scene, path_shapes(scene, steps=motion.theta.size)
+                + frame_shapes(scene, k))
     return finish(plt, fig, path)
-
-
-COLOURS = ["#1f77b4", "#2ca02c", "#d62728", "#9467bd", "#8c564b", "#e377c2", "#17becf",
-            "#bcbd22", "#ff7f0e"]
 
 
 def _motion_and_pose(given, k):
@@ -190,62 +183,3 @@ def _motion_and_pose(given, k):
         return motion, (motion, 0)
     value = float(plan.value(plan.theta0))
     return motion, (solve(given, start=value, stop=value, steps=1, summary=False), 0)
-
-
-def _draw_pose(ax, motion, k):
-    """The mechanism in the sweep's pose ``k`` (see :func:`draw_positions`)."""
-    chain = motion.plan.chain
-    pos = {}
-    for j in chain.joints:
-        pos[j.id] = (motion[f"x:{j.id}"][k], motion[f"y:{j.id}"][k])
-    for p in chain.points:
-        pos[p.id] = (motion[f"x:{p.id}"][k], motion[f"y:{p.id}"][k])
-    axes = {j.id: j.axis + motion[f"angle:{j.guide}"][k] - motion[f"angle:{j.guide}"][0]
-            for j in chain.joints if j.kind == "P"}
-    draw_positions(ax, chain, motion.fixed, pos, axes, motion.plan.size)
-
-
-def draw_positions(ax, chain, fixed, pos, axes, size):
-    """Links as bars or polygons through their joints, R joints as circles, P joints as
-    squares on their sliding line (``axes``: each P joint's direction now, degrees), the
-    fixed link as hatched ground marks; ``pos`` every joint's and point's position."""
-    for j in chain.joints_of(fixed):          # ground marks at the fixed link's joints
-        x, y = pos[j.id]
-        w = 0.035 * size
-        ax.fill([x, x - w, x + w], [y, y - 1.6 * w, y - 1.6 * w], facecolor="#dddddd",
-                edgecolor="#555555", hatch="///", lw=0.8, zorder=1)
-    for i, link in enumerate(chain.links):
-        if link == fixed:
-            continue
-        pts = [pos[j.id] for j in chain.joints_of(link)]
-        pts += [pos[p.id] for p in chain.points if p.link == link]
-        if len(pts) < 2:
-            continue
-        colour = COLOURS[i % len(COLOURS)]
-        xs, ys = zip(*pts)
-        if len(pts) >= 3:
-            cx, cy = np.mean(xs), np.mean(ys)
-            order = np.argsort([math.atan2(y - cy, x - cx) for x, y in pts])
-            poly = [pts[o] for o in order]
-            ax.fill(*zip(*poly), color=colour, alpha=0.18)
-            ax.plot(*zip(*(poly + poly[:1])), color=colour, lw=2.2)
-        else:
-            ax.plot(xs, ys, color=colour, lw=3)
-        ax.annotate(link, (np.mean(xs), np.mean(ys)), fontsize=8, color=colour,
-                    xytext=(4, 4), textcoords="offset points")
-    for j in chain.joints:
-        x, y = pos[j.id]
-        if j.kind == "P":
-            angle = math.radians(axes[j.id])
-            span = 0.15 * size
-            ax.plot([x - span * math.cos(angle), x + span * math.cos(angle)],
-                    [y - span * math.sin(angle), y + span * math.sin(angle)],
-                    color="#333333", lw=1.0, ls=":")
-            ax.plot([x], [y], "s", ms=9, mfc="white", mec="#333333")
-        else:
-            ax.plot([x], [y], "o", ms=7, mfc="white", mec="#000000", mew=1.5)
-        ax.annotate(j.id, (x, y), fontsize=8, xytext=(-10, -12), textcoords="offset points")
-    for p in chain.points:
-        x, y = pos[p.id]
-        ax.plot([x], [y], "*", ms=9, color="#e07b00")
-        ax.annotate(p.id, (x, y), fontsize=8, xytext=(4, -10), textcoords="offset points")

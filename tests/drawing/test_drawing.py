@@ -166,9 +166,45 @@ def test_draw_mechanism_takes_a_chain_in_its_drawn_pose():
     from chaingraph.drawing.plots import draw_mechanism
     chain = chaingraph.load(catalog_path("non-grashof-four-bar"))
     fig = draw_mechanism(chain)
-    pins = [line.get_xydata()[0] for line in fig.axes[0].lines if line.get_marker() == "o"]
+    from matplotlib.patches import Circle
+    pins = [p.center for p in fig.axes[0].patches if isinstance(p, Circle)]
     assert len(pins) == len(chain.joints)
     for j in chain.joints:
         assert min(math.dist(j.at, p) for p in pins) <= 1e-9 * 100, j.id
     with pytest.raises(TypeError, match="takes a solved motion"):
         draw_mechanism("beam-engine.toml")
+
+
+# -- one scene, two emitters ----------------------------------------------------------------
+@pytest.mark.parametrize("name", ["whitworth-quick-return-with-ram", "oscillating-cylinder-engine",
+                                  "stephenson-iii-mechanism", "elliptical-trammels"])
+def test_the_svg_and_the_matplotlib_picture_are_one_scene(name):
+    """The same shapes reach both formats: as many plates, bars, blocks, pins and labels
+    in the SVG as matplotlib draws, each pin where the solver puts its joint."""
+    from matplotlib.patches import Circle, Polygon
+
+    from chaingraph.drawing.mechanism import mechanism_svg
+    from chaingraph.drawing.plots import draw_mechanism
+    from chaingraph.drawing.scene import Scene, frame_shapes
+
+    motion = chaingraph.solve(chaingraph.load(catalog_path(name)), steps=24)
+    shapes = frame_shapes(Scene.of_motion(motion), 0)
+    svg = mechanism_svg(motion)
+    kinds = {}
+    for s in shapes:
+        kinds[s.cls] = kinds.get(s.cls, 0) + 1
+    for cls, count in kinds.items():
+        assert svg.count(f'class="{cls}"') == count, cls
+    fig = draw_mechanism(motion)
+    ax = fig.axes[0]
+    circles = [p for p in ax.patches if isinstance(p, Circle)]
+    polygons = [p for p in ax.patches if isinstance(p, Polygon)]
+    assert len(circles) == kinds.get("pin", 0) + kinds.get("point", 0)
+    assert len(polygons) == sum(kinds.get(c, 0) for c in ("plate", "block", "ground"))
+    assert len(ax.texts) == kinds["label"]
+    pins = [s for s in shapes if s.cls == "pin"]
+    for s in pins:
+        joint = dict(s.data)["joint"]
+        at = (motion[f"x:{joint}"][0], motion[f"y:{joint}"][0])
+        assert math.dist(s.points[0], at) <= 1e-9 * motion.plan.size
+        assert any(math.dist(c.center, at) <= 1e-9 * motion.plan.size for c in circles)

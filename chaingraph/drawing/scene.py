@@ -1,0 +1,483 @@
+"""A mechanism's picture, computed once as a scene and emitted twice: as SVG elements
+(the report, ``solve --draw FILE.svg``, the notebook) and through matplotlib (PNG, the
+constructions of the graphical method), so that a mechanism has one look in every
+format.
+
+A :class:`Scene` holds what the picture needs over a motion (or at one pose): every
+joint's and point's position, each sliding line's direction and slide, and how each
+sliding pair is drawn (a hatched way on the fixed link, a slot in a moving link, the
+barrel of a cylinder). :func:`frame_shapes` turns one pose of it into :class:`Shape`
+items in the mechanism's own coordinates: plates and bars, guides and blocks, ground
+and pins, points and labels; :func:`svg_elements` and :func:`draw_shapes` emit them.
+"""
+
+from __future__ import annotations
+
+import html
+import math
+from dataclasses import dataclass
+
+import numpy as np
+
+from chaingraph.geometry import convex_hull, polygon_area
+
+__all__ = ["Scene", "Shape", "frame_shapes", "path_shapes", "svg_elements", "draw_shapes",
+           "COLOURS"]
+
+#: the links' colours, in the order of the chain's links
+COLOURS = ["#1f77b4", "#2ca02c", "#d62728", "#9467bd", "#8c564b", "#e377c2", "#17becf",
+           "#bcbd22", "#ff7f0e"]
+
+
+@dataclass(frozen=True)
+class Shape:
+    """One item of a picture, in the mechanism's coordinates (lengths in its units).
+
+    ``kind`` is "polygon", "polyline", "line", "circle" or "text"; ``points`` its
+    vertices (a circle's centre, a text's anchor); ``cls`` what it draws (plate, bar,
+    guide, slot, barrel, hatch, block, ground, pin, point, label, path); ``data`` the
+    joint, link or point it belongs to, as ``(("joint", id), ...)``; the style:
+    ``fill`` (None: none), ``fill_opacity``, ``stroke`` and its ``width``, ``dash``
+    lengths, line ``join`` and ``cap``; a circle's ``radius``; a text's ``text``,
+    font ``size`` and white ``halo`` width.
+    """
+
+    kind: str
+    cls: str
+    points: tuple
+    data: tuple = ()
+    fill: str | None = None
+    fill_opacity: float | None = None
+    stroke: str | None = None
+    width: float | None = None
+    dash: tuple = ()
+    join: str | None = None
+    cap: str | None = None
+    radius: float | None = None
+    text: str | None = None
+    size: float | None = None
+    halo: float | None = None
+
+
+class _Pair:
+    """How one sliding pair is drawn: the link that carries the guide and the guide's
+    style (a hatched ``way`` on the fixed link, a ``slot`` in a moving link, the barrel
+    of a ``cylinder``), the guide's extent in line coordinates on that link (slides from
+    the joint's reference point in the drawn pose), and where the block sits on the
+    other link: on a pin (``pin``), else at line coordinate ``at``."""
+
+    def __init__(self, carrier, block_link, style, extent, *, pin=None, at=0.0, cap=None):
+        self.carrier, self.block_link, self.style = carrier, block_link, style
+        self.lo, self.hi = extent
+        self.pin, self.at = pin, at
+        self.cap = cap                     # a barrel's closed end: "lo" or "hi"
+
+
+class Scene:
+    """What a picture of a mechanism needs over a motion's steps, in its coordinates.
+
+    ``xy`` maps every joint and point to its (x, y) arrays over the steps; ``angle``
+    every P joint to its sliding line's direction (radians) and ``slide`` to its slide
+    from the drawn pose. Build one with :meth:`of_motion` or :meth:`of_pose`.
+    """
+
+    def __init__(self, chain, fixed, xy, angle, slide):
+        self.chain, self.fixed = chain, fixed
+        self.xy = {name: (np.asarray(x, dtype=float), np.asarray(y, dtype=float))
+                   for name, (x, y) in xy.items()}
+        self.n = next(iter(self.xy.values()))[0].size if self.xy else 0
+        self.slides = [j for j in chain.joints if j.kind == "P"]
+        self.angle, self.slide, self.pairs, self.ends, self.blocks = {}, {}, {}, {}, {}
+        for j in self.slides:
+            a = np.asarray(angle[j.id], dtype=float)
+            self.angle[j.id] = np.where(np.isfinite(a), a, math.radians(j.axis))
+            s = np.asarray(slide[j.id], dtype=float)
+            self.slide[j.id] = np.where(np.isfinite(s), s, 0.0)
+            pair = self.pairs[j.id] = self._pair(j, s[np.isfinite(s)])
+            side = j.links.index(pair.carrier)
+            self.ends[j.id] = (self.on_line(j, side, pair.lo), self.on_line(j, side, pair.hi))
+            self.blocks[j.id] = (self.xy[pair.pin] if pair.pin else
+                                 self.on_line(j, j.links.index(pair.block_link), pair.at))
+        xs = [v[0] for v in self.xy.values()] + [e[0] for p in self.ends.values() for e in p]
+        ys = [v[1] for v in self.xy.values()] + [e[1] for p in self.ends.values() for e in p]
+        xs, ys = np.concatenate(xs), np.concatenate(ys)
+        xs, ys = xs[np.isfinite(xs)], ys[np.isfinite(ys)]
+        self.lo = (float(xs.min()), float(ys.min()))
+        self.hi = (float(xs.max()), float(ys.max()))
+        self.span = max(self.hi[0] - self.lo[0], self.hi[1] - self.lo[1], 1e-9)
+        self.pad = 0.12 * self.span
+        self.w = 0.035 * self.span           # a block's half length, a slot's width
+
+    @classmethod
+    def of_motion(cls, motion, *, also=None):
+        """The scene over a solved :class:`~chaingraph.kinematics.Motion`; ``also``, a
+        motion of the same mechanism whose steps are added after the first's (a pose
+        to draw that is not one of the sweep's steps)."""
+        chain = motion.plan.chain
+        names = [j.id for j in chain.joints] + [p.id for p in chain.points]
+        motions = [motion] if also is None else [motion, also]
+
+        def column(key):
+            return np.concatenate([np.asarray(m[key], dtype=float).reshape(-1)
+                                   for m in motions])
+        xy = {name: (column(f"x:{name}"), column(f"y:{name}")) for name in names}
+        angle, slide = {}, {}
+        for j in chain.joints:
+            if j.kind == "P":
+                guide = j.links[0]
+                turn = np.radians(column(f"angle:{guide}") - chain.reference_direction(guide))
+                angle[j.id] = math.radians(j.axis) + turn
+                slide[j.id] = column(f"s:{j.id}")
+        return cls(chain, motion.fixed, xy, angle, slide)
+
+    @classmethod
+    def of_pose(cls, state):
+        """The scene of one pose: a mechanism solved at one input value (the result
+        of :func:`chaingraph.kinematics.pose.pose_motion`)."""
+        xy = {name: ([p[0]], [p[1]]) for name, p in state.positions.items()}
+        angle = {j: [math.atan2(s.axis[1], s.axis[0])] for j, s in state.slides.items()}
+        slide = {j: [s.slide] for j, s in state.slides.items()}
+        return cls(state.chain, state.fixed, xy, angle, slide)
+
+    def on_line(self, joint, side, along):
+        """Over the motion, the point at line coordinate ``along`` on the pair's link
+        ``joint.links[side]`` (the joint's reference point moves with the second link;
+        the first sees it slide by ``s``)."""
+        x, y = self.xy[joint.id]
+        a = self.angle[joint.id]
+        c = along - self.slide[joint.id] if side == 0 else along
+        return x + c * np.cos(a), y + c * np.sin(a)
+
+    def _pair(self, joint, s):
+        """Which link carries the guide, in what style, over what extent.
+
+        A way on the fixed link. Between moving links: a slot in the link that reaches
+        past a block on a pin (the textbook numbers the crank and slotted lever so that
+        the small block carries the pair's guide; the slot still goes on the lever); but
+        a block on a pin to the frame is a trunnion, drawn as an oscillating cylinder
+        with the other link's rod and piston in it; a pair whose two links both reach
+        away from it, the second from one side only, is a cylinder and its rod."""
+        chain, fixed = self.chain, self.fixed
+        s = s if s.size else np.zeros(1)
+        pts = [x.at for x in chain.joints] + [p.at for p in chain.points]
+        extent = max(max(p[0] for p in pts) - min(p[0] for p in pts),
+                     max(p[1] for p in pts) - min(p[1] for p in pts), 1e-9)
+        tol = 0.035 * extent
+        u = (math.cos(math.radians(joint.axis)), math.sin(math.radians(joint.axis)))
+
+        def coord(p):
+            return (p[0] - joint.at[0]) * u[0] + (p[1] - joint.at[1]) * u[1]
+
+        def pins(link):
+            return [x for x in chain.joints_of(link) if x.kind == "R"]
+
+        def on_pin(link):
+            p = pins(link)
+            if link != fixed and p and all(math.dist(x.at, joint.at) <= tol for x in p):
+                return p[0]
+            return None
+
+        def across(c, side):
+            """Line coordinate ``c`` on link ``side``, seen from the other link."""
+            return c + s if side == 1 else c - s
+
+        def padded(values, extra):
+            values = np.concatenate([np.atleast_1d(np.asarray(v, dtype=float)) for v in values])
+            lo, hi = float(values.min()), float(values.max())
+            margin = 0.06 * (hi - lo) + extra
+            return lo - margin, hi + margin
+
+        links = joint.links
+        if fixed in links:
+            side = 1 - links.index(fixed)
+            pin = on_pin(links[side])
+            at = coord(pin.at) if pin else 0.0
+            return _Pair(fixed, links[side], "way", padded([across(at, side)], 0.04 * extent),
+                         pin=pin.id if pin else None, at=at)
+        held = [side for side in (0, 1) if on_pin(links[side])]
+        if len(held) == 1:
+            side = held[0]
+            pin, other = on_pin(links[side]), 1 - side
+            at = coord(pin.at)
+            if fixed in pin.links and pins(links[other]):
+                # a trunnion: the block's link is the cylinder, the other link its rod,
+                # with the piston at the rod's end beyond the trunnion's whole travel
+                travel = across(at, side)
+                rod = [coord(x.at) for x in pins(links[other])]
+                gap = 0.1 * float(np.ptp(travel)) + 2 * tol
+                ahead = np.mean(rod) <= 0.5 * (travel.min() + travel.max())
+                end = float(travel.max() + gap if ahead else travel.min() - gap)
+                piston = across(end, other)
+                entry = np.mean([across(c, other).mean() for c in rod])
+                return _Pair(links[side], links[other], "cylinder",
+                             padded([piston, at], 1.2 * tol), at=end,
+                             cap="hi" if entry < piston.mean() else "lo")
+            return _Pair(links[other], links[side], "slot",
+                         padded([across(at, side)] + [coord(x.at) for x in pins(links[other])],
+                                0.04 * extent), pin=pin.id, at=at)
+        travel = across(0.0, 1)                      # the second link's reference point
+        rod = [coord(x.at) for x in pins(links[1])]
+        reach = [coord(x.at) for x in pins(links[0])]
+        if rod and (all(c > tol for c in rod) or all(c < -tol for c in rod)):
+            return _Pair(links[0], links[1], "cylinder", padded([travel] + reach, 1.2 * tol),
+                         cap="lo" if rod[0] > 0 else "hi")
+        return _Pair(links[0], links[1], "slot", padded([travel] + reach, 0.04 * extent))
+
+    # model -> picture coordinates (y up -> y down)
+    def X(self, x):
+        return x - self.lo[0] + self.pad
+
+    def Y(self, y):
+        return self.hi[1] - y + self.pad
+
+    def pt(self, x, y):
+        return f"{self.X(x):.4g},{self.Y(y):.4g}"
+
+    @property
+    def size(self):
+        return (self.hi[0] - self.lo[0] + 2 * self.pad, self.hi[1] - self.lo[1] + 2 * self.pad)
+
+
+def _finite(*points):
+    return all(math.isfinite(v) for p in points for v in p)
+
+
+def _line(cls, p, q, colour, width, data=(), dash=()):
+    return Shape("line", cls, (p, q), data=data, stroke=colour, width=width, dash=dash)
+
+
+def frame_shapes(scene, k):
+    """The shapes of the pose at step ``k``: links (plates and bars), sliding pairs
+    (guides and blocks), joints (fixed pivots on hatched ground, pins), points, labels."""
+    chain, w = scene.chain, scene.w
+    stroke = 0.012 * scene.span
+    out = []
+    at = {name: (v[0][k], v[1][k]) for name, v in scene.xy.items()}
+    ends = {j: ((e1[0][k], e1[1][k]), (e2[0][k], e2[1][k])) for j, (e1, e2) in scene.ends.items()}
+    blocks = {j: (b[0][k], b[1][k]) for j, b in scene.blocks.items()}
+    # what a link's body joins besides its pins and points: a rod reaches its piston;
+    # a link with fewer than two pins and points (a yoke, Oldham's disc) joins its
+    # blocks and the middles of its slots
+    rods, spare = {}, {}
+    for jid, pair in scene.pairs.items():
+        if pair.style == "cylinder":
+            rods.setdefault(pair.block_link, []).append(blocks[jid])
+        elif pair.pin is None:
+            spare.setdefault(pair.block_link, []).append(blocks[jid])
+        if pair.style == "slot":
+            (x1, y1), (x2, y2) = ends[jid]
+            spare.setdefault(pair.carrier, []).append((0.5 * (x1 + x2), 0.5 * (y1 + y2)))
+    # links: plates and bars (between their R joints and points)
+    for c, link in enumerate(chain.links):
+        if link == scene.fixed:
+            continue
+        members = [at[j.id] for j in chain.joints_of(link) if j.kind == "R"]
+        members += [at[p.id] for p in chain.points if p.link == link]
+        members += rods.get(link, [])
+        if len(members) < 2:
+            members += spare.get(link, [])
+        pts = [p for p in members if _finite(p)]
+        colour = COLOURS[c % len(COLOURS)]
+        hull = convex_hull([(round(x, 12), round(y, 12)) for x, y in pts])
+        if len(hull) >= 3 and polygon_area(hull) <= 1e-6 * scene.span ** 2:
+            # points in one line (a rod through its pin and point to its piston): a bar
+            hull = max(((p, q) for p in hull for q in hull), key=lambda e: math.dist(*e))
+        if len(hull) >= 3:
+            out.append(Shape("polygon", "plate", tuple(hull), data=(("link", link),),
+                             fill=colour, fill_opacity=0.25, stroke=colour, width=stroke,
+                             join="round"))
+        elif len(hull) == 2:
+            out.append(Shape("polyline", "bar", tuple(hull), data=(("link", link),),
+                             stroke=colour, width=2 * stroke, cap="round"))
+    # sliding pairs: the guide on its link, the block on it
+    for j in scene.slides:
+        pair = scene.pairs[j.id]
+        p1, p2 = ends[j.id]
+        centre = blocks[j.id]
+        if not _finite(p1, p2, centre):
+            continue
+        a = float(scene.angle[j.id][k])
+        u, nrm = (math.cos(a), math.sin(a)), (-math.sin(a), math.cos(a))
+        tag = (("joint", j.id), ("link", pair.carrier))
+
+        def off(p, d):
+            return (p[0] + d * nrm[0], p[1] + d * nrm[1])
+
+        if pair.style == "way":
+            # a way on the fixed link: hatched on one side
+            out.append(_line("guide", p1, p2, "#444444", stroke, tag))
+            for i in range(13):
+                t = i / 12
+                b = off((p1[0] + t * (p2[0] - p1[0]), p1[1] + t * (p2[1] - p1[1])), -0.9 * w)
+                e = (b[0] - 0.5 * w * (u[0] + nrm[0]), b[1] - 0.5 * w * (u[1] + nrm[1]))
+                out.append(_line("hatch", b, e, "#777777", 0.5 * stroke))
+        elif pair.style == "slot":
+            # a slot in a moving link: two sides about its centre line
+            out.append(_line("guide", p1, p2, "#444444", 0.5 * stroke, tag))
+            for side in (-1, 1):
+                out.append(_line("slot", off(p1, side * 0.8 * w), off(p2, side * 0.8 * w),
+                                 "#444444", stroke, (("joint", j.id),)))
+        else:
+            # a cylinder: the barrel, closed at one end, about a dash-dot centre line
+            out.append(_line("guide", p1, p2, "#888888", 0.4 * stroke, tag,
+                             dash=(2 * stroke, stroke, 0.5 * stroke, stroke)))
+            shut, open_ = (p1, p2) if pair.cap == "lo" else (p2, p1)
+            wall = (off(open_, -0.9 * w), off(shut, -0.9 * w), off(shut, 0.9 * w),
+                    off(open_, 0.9 * w))
+            out.append(Shape("polyline", "barrel", wall, data=tag, stroke="#333333",
+                             width=stroke, join="round"))
+        half = (0.6 * w, 0.85 * w) if pair.style == "cylinder" else (w, 0.7 * w)
+        corners = tuple((centre[0] + du * half[0] * u[0] + dn * half[1] * nrm[0],
+                         centre[1] + du * half[0] * u[1] + dn * half[1] * nrm[1])
+                        for du, dn in ((-1, -1), (1, -1), (1, 1), (-1, 1)))
+        out.append(Shape("polygon", "block", corners, data=(("joint", j.id),),
+                         fill="#f2f2f2", stroke="#222222", width=stroke))
+    # joints: fixed pivots on hatched ground, pins as circles
+    for j in chain.joints:
+        if j.kind != "R" or not all(math.isfinite(v) for v in at[j.id]):
+            continue
+        x, y = at[j.id]
+        if scene.fixed in j.links:
+            tri = ((x, y), (x - 1.1 * w, y - 1.6 * w), (x + 1.1 * w, y - 1.6 * w))
+            out.append(Shape("polygon", "ground", tri, fill="#dddddd", stroke="#222222",
+                             width=stroke * 0.7))
+            for i in range(5):
+                bx = x - 1.5 * w + i * 0.75 * w
+                out.append(_line("hatch", (bx, y - 1.6 * w), (bx - 0.5 * w, y - 2.1 * w),
+                                 "#777777", stroke * 0.5))
+        out.append(Shape("circle", "pin", ((x, y),), data=(("joint", j.id),),
+                         radius=0.45 * w, fill="#555555" if scene.fixed in j.links else "white",
+                         stroke="#111111", width=stroke * 0.8))
+    for p in chain.points:
+        x, y = at[p.id]
+        if math.isfinite(x) and math.isfinite(y):
+            out.append(Shape("circle", "point", ((x, y),), data=(("point", p.id),),
+                             radius=0.3 * w, fill="#c00000"))
+    # labels, legible at any size: a share of the drawing, with a white halo
+    # (names at one place, such as a pen on a pin, are stacked, not overprinted)
+    font = 0.045 * scene.span
+    placed = []
+    for name, (x, y) in at.items():
+        if math.isfinite(x) and math.isfinite(y):
+            lift = 1.1 * font * sum(math.dist((x, y), p) < 0.5 * w for p in placed)
+            placed.append((x, y))
+            out.append(Shape("text", "label", ((x + 0.6 * w, y + 0.6 * w + lift),),
+                             text=name, size=font, halo=0.25 * font))
+    return out
+
+
+def path_shapes(scene, *, steps=None):
+    """The paths of the joints and points that move over the scene's steps (the first
+    ``steps`` of them), faint (points orange, pins grey), to be drawn under everything."""
+    out = []
+    for name, (xs, ys) in scene.xy.items():
+        xs, ys = xs[:steps], ys[:steps]
+        ok = np.isfinite(xs) & np.isfinite(ys)
+        if ok.sum() > 1 and np.ptp(xs[ok]) + np.ptp(ys[ok]) > 1e-9 * scene.span:
+            is_point = any(p.id == name for p in scene.chain.points)
+            out.append(Shape("polyline", "path", tuple(zip(xs[ok], ys[ok])),
+                             stroke="#e07b00" if is_point else "#bbbbbb",
+                             width=0.004 * scene.span))
+    return out
+
+
+# -- the SVG emitter -------------------------------------------------------------------
+def svg_elements(scene, shapes):
+    """The shapes as SVG elements, in the scene's picture coordinates (y down)."""
+    return [_svg(scene, s) for s in shapes]
+
+
+def _svg(scene, s):
+    attrs = [f'class="{s.cls}"']
+    attrs += [f'data-{key}="{html.escape(value, quote=True)}"' for key, value in s.data]
+    if s.dash:
+        attrs.append('stroke-dasharray="' + " ".join(f"{d:.3g}" for d in s.dash) + '"')
+    if s.kind == "line":
+        (x1, y1), (x2, y2) = s.points
+        attrs.append(f'x1="{scene.X(x1):.4g}" y1="{scene.Y(y1):.4g}" '
+                     f'x2="{scene.X(x2):.4g}" y2="{scene.Y(y2):.4g}"')
+    elif s.kind in ("polygon", "polyline"):
+        attrs.append('points="' + " ".join(scene.pt(*p) for p in s.points) + '"')
+        attrs.append(f'fill="{s.fill or "none"}"')
+    elif s.kind == "circle":
+        (x, y), = s.points
+        attrs.append(f'cx="{scene.X(x):.4g}" cy="{scene.Y(y):.4g}" r="{s.radius:.3g}"')
+        attrs.append(f'fill="{s.fill or "none"}"')
+    elif s.kind == "text":
+        (x, y), = s.points
+        attrs.append(f'x="{scene.X(x):.4g}" y="{scene.Y(y):.4g}" font-size="{s.size:.3g}" '
+                     'font-family="sans-serif"')
+        if s.halo:
+            attrs.append(f'paint-order="stroke" stroke="white" stroke-width="{s.halo:.3g}"')
+        return f"<text {' '.join(attrs)}>{html.escape(s.text)}</text>"
+    if s.fill_opacity is not None:
+        attrs.append(f'fill-opacity="{s.fill_opacity:g}"')
+    if s.stroke is not None:
+        attrs.append(f'stroke="{s.stroke}" stroke-width="{s.width:.3g}"')
+    if s.join:
+        attrs.append(f'stroke-linejoin="{s.join}"')
+    if s.cap:
+        attrs.append(f'stroke-linecap="{s.cap}"')
+    tag = {"polygon": "polygon", "polyline": "polyline", "line": "line",
+           "circle": "circle"}[s.kind]
+    return f"<{tag} {' '.join(attrs)}/>"
+
+
+# -- the matplotlib emitter ------------------------------------------------------------
+def draw_shapes(ax, scene, shapes, *, view=None, zorder=1.0):
+    """Draw the shapes on matplotlib axes in the mechanism's coordinates, with the same
+    look as the SVG. The view is ``view`` ((xmin, ymin), (xmax, ymax)), else the
+    scene's with its padding, at equal scale; line widths and fonts, given in the
+    mechanism's units, are converted to points for the axes as they are laid out now
+    (lay the figure out first). The shapes go at ``zorder`` and just above, in order."""
+    from matplotlib import patches, patheffects
+
+    if view is None:
+        view = ((scene.lo[0] - scene.pad, scene.lo[1] - scene.pad),
+                (scene.hi[0] + scene.pad, scene.hi[1] + scene.pad))
+    (x0, y0), (x1, y1) = view
+    ax.set_xlim(x0, x1)
+    ax.set_ylim(y0, y1)
+    ax.set_aspect("equal")
+    ax.apply_aspect()
+    a, b = ax.transData.transform([(0.0, 0.0), (1.0, 0.0)])
+    points = (b[0] - a[0]) * 72.0 / ax.figure.dpi            # points per unit length
+
+    def lw(width):
+        return (width or 0.0) * points
+
+    for z, s in enumerate(shapes):
+        style = {"zorder": zorder + 0.9 * z / max(len(shapes), 1)}
+        if s.kind in ("polygon", "polyline") and (s.kind == "polygon" or s.fill):
+            face = "none" if not s.fill else s.fill
+            alpha_face = s.fill_opacity if s.fill_opacity is not None else 1.0
+            patch = patches.Polygon(np.asarray(s.points, dtype=float), closed=True,
+                                    facecolor=face if face == "none" else
+                                    _rgba(face, alpha_face),
+                                    edgecolor=s.stroke or "none", linewidth=lw(s.width),
+                                    joinstyle=s.join or "miter", **style)
+            ax.add_patch(patch)
+        elif s.kind in ("polyline", "line"):
+            xs, ys = zip(*s.points)
+            line, = ax.plot(xs, ys, color=s.stroke, linewidth=lw(s.width),
+                            solid_capstyle=s.cap or "butt",
+                            solid_joinstyle=s.join or "miter", **style)
+            if s.dash:
+                line.set_dashes([d * points / max(lw(s.width), 1e-9) for d in s.dash])
+        elif s.kind == "circle":
+            ax.add_patch(patches.Circle(s.points[0], s.radius,
+                                        facecolor=s.fill or "none",
+                                        edgecolor=s.stroke or "none",
+                                        linewidth=lw(s.width), **style))
+        elif s.kind == "text":
+            effects = ([patheffects.withStroke(linewidth=lw(s.halo), foreground="white")]
+                       if s.halo else None)
+            ax.text(s.points[0][0], s.points[0][1], s.text, fontsize=s.size * points,
+                    family="sans-serif", va="baseline", ha="left", path_effects=effects,
+                    **style)
+
+
+def _rgba(colour, alpha):
+    from matplotlib.colors import to_rgba
+
+    return to_rgba(colour, alpha)
