@@ -1,17 +1,26 @@
 """Chain files in and out: read (:mod:`chaingraph.model.chainfile` parses and checks), then
 placed (a file given by lengths assembled into its drawn pose, a file of coordinates
-with its drawing-level rounding mended: :func:`chaingraph.kinematics.assembly.place`); written
+with its drawing-level rounding mended: :func:`place`); written
 back by :func:`dumps` and :func:`save`.
 """
 
 from __future__ import annotations
 
-from chaingraph.kinematics.assembly import place
-from chaingraph.model.chain import Chain
-from chaingraph.model.chainfile import dumps, parse_document, parse_file, parse_text, save
+from dataclasses import replace
+
+from chaingraph.kinematics.assembly import assemble
+from chaingraph.model.chain import Chain, Joint, Point
+from chaingraph.model.chainfile import (
+    dumps,
+    parse_document,
+    parse_file,
+    parse_text,
+    save,
+)
+from chaingraph.model.snap import snap_to_lines
 
 __all__ = ["load", "loads", "from_document", "dumps", "save", "read_file", "read_text",
-           "read_document"]
+           "read_document", "place"]
 
 
 def load(path) -> Chain:
@@ -78,3 +87,28 @@ def read_text(text: str, *, source: str = "<string>"):
 def read_document(doc, *, source: str = "<document>"):
     """``(chain, assembly)`` of a parsed document; see :func:`read_file`."""
     return place(parse_document(doc, source=source))
+
+
+def place(document):
+    """A read chain file in its drawn pose: ``(chain, assembly)``. A file given by
+    lengths is assembled (``assembly`` is its :class:`~chaingraph.kinematics.assembly.Assembly`: modes and groups); a
+    file of coordinates has its drawing-level rounding mended (:func:`snap_to_lines`,
+    ``assembly`` None)."""
+    if document.dimensions is None:
+        return snap_to_lines(document.chain), None
+    structure, dims = document.chain, document.dimensions
+    point_links = [(p.id, p.link) for p in document.points]
+    pose = assemble(structure, point_links, dims)
+    placed = tuple(Joint(j.id, j.kind, j.links, at=pose.joints[j.id],
+                         axis=pose.axes.get(j.id), closure=j.closure)
+                   for j in document.joints)
+    placed_points = tuple(Point(p.id, p.link, pose.points[p.id]) for p in document.points)
+    mechanism = structure.mechanism
+    if mechanism is not None and mechanism.inputs:
+        # a P input's values are measured from its guide's origin, as its 'at' is
+        kinds = {j.id: j.kind for j in document.joints}
+        single = dims.values.get(None) if len(mechanism.inputs) == 1 else None
+        mechanism = replace(mechanism, inputs=tuple(
+            replace(item, at=dims.values.get(item.joint, single))
+            if kinds.get(item.joint) == "P" else item for item in mechanism.inputs))
+    return replace(structure, joints=placed, points=placed_points, mechanism=mechanism), pose

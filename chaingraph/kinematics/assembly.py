@@ -18,7 +18,7 @@ solution does with compass and ruler:
   solved by Newton's method from the rough positions of its joints.
 
 :func:`measure` is the inverse: the dimensions of a drawn mechanism, written as a chain
-file. :func:`snap_to_lines` moves the joints of a coordinate file that lie within
+file. :func:`chaingraph.model.snap.snap_to_lines` moves the joints of a coordinate file that lie within
 drawing-level rounding of a sliding line onto it.
 """
 
@@ -31,38 +31,32 @@ from dataclasses import dataclass, replace
 import numpy as np
 
 from chaingraph.errors import DimensionError, PoseAdjustedWarning
-from chaingraph.kinematics.equations import newton_step
-from chaingraph.kinematics.plan import build_plan
-from chaingraph.kinematics.sweep import feasible_range
-from chaingraph.model.chain import Chain, Joint, Point, chosen_inputs, line_direction
-from chaingraph.model.chainfile import parse_document, toml_text
 from chaingraph.geometry import (
     apply,
     circle_circle,
     circle_line,
-    line_by_two_distances,
     compose,
     cross,
     dot,
     fit_frame,
     frame_from_two,
     inverse,
+    line_by_two_distances,
     line_in,
     normal,
     rotate,
     sub,
     unit,
 )
+from chaingraph.kinematics.equations import newton_step
+from chaingraph.kinematics.plan import build_plan
+from chaingraph.kinematics.sweep import feasible_range
+from chaingraph.model.chain import Chain, Joint, Point, chosen_inputs, line_direction
+from chaingraph.model.chainfile import parse_document, toml_text
 from chaingraph.model.dimensions import MODE_WORDS, LineSpec, link_features, link_shape
+from chaingraph.model.snap import ROUNDING, SILENT, feature_label, size_of
 
-__all__ = ["Assembly", "Mode", "assemble", "measure", "snap_to_lines",
-           "SILENT", "ROUNDING"]
-
-#: typed positions within this fraction of the mechanism's size are taken as exact
-SILENT = 1e-6
-#: up to this fraction of the size a typed position is drawing-level rounding: moved to
-#: the consistent pose with a warning; beyond it, refused
-ROUNDING = 1e-3
+__all__ = ["Assembly", "Mode", "assemble", "measure"]
 
 
 @dataclass(frozen=True)
@@ -1041,7 +1035,7 @@ def _pose(model, solver):
         joints[j.id] = (tuple(ref) if abs(h) <= 1e-12 * model.scale
                         else (ref[0] + h * n[0], ref[1] + h * n[1]))
     pts = {pid: solver.world_point(link, pid) for pid, link in model.points}
-    size = _span({**joints, **pts})
+    size = size_of({**joints, **pts})
     modes = tuple(model.shape_modes) + tuple(solver.modes)
     frames = {link: compose(solver.pose[body], t) for link, (body, t) in solver.body.items()}
     return Assembly(joints, axes, pts, modes, tuple(solver.groups), size, frames)
@@ -1104,22 +1098,17 @@ def _check_typed(model, result):
         raise DimensionError(
             f"typed at {_fmt(d)}{units} {where}: more than drawing-level rounding (1e-3 of "
             f"the mechanism's size {_fmt(size)}); correct its coordinates or the lengths, "
-            "or leave out its 'at'", source=chain.source, where=_label(chain, name),
+            "or leave out its 'at'", source=chain.source, where=feature_label(chain, name),
             part=name)
     if d > SILENT * size:
         others = sum(1 for x, *_ in worst if x > SILENT * size) - 1
         more = f" (and {others} other{'s' if others > 1 else ''} less)" if others > 0 else ""
         warnings.warn(PoseAdjustedWarning(
-            f"{chain.source or chain.name}: {_label(chain, name)} was typed "
+            f"{chain.source or chain.name}: {feature_label(chain, name)} was typed "
             f"{_fmt(d)}{units} {where}{more}: assembled to the consistent pose "
             f"(drawing-level rounding, {d / size:.1e} of the size)",
             joint=name, distance=d, size=size), stacklevel=4)
     return result
-
-
-def _label(chain, name):
-    return (f"joint {name!r}" if any(j.id == name for j in chain.joints)
-            else f"point {name!r}")
 
 
 # -- the inverse: the dimensions of a drawn mechanism ---------------------------------------
@@ -1228,7 +1217,7 @@ def measure(chain):
             offset = dot(normal(psi), sub(j.at, origin))
             keys = ("angle", "offset") if role == 0 else ("block_angle", "block_offset")
             for key, value in zip(keys, (angle, offset)):
-                if abs(value) > 1e-12 * _span(where):
+                if abs(value) > 1e-12 * size_of(where):
                     line_keys.setdefault(j.id, {})[key] = value
     _, driver, inputs = chosen_inputs(chain)
     values = {}
@@ -1318,150 +1307,14 @@ def measure(chain):
     moving |= {p.id for p in chain.points if p.link != fixed}
     with warnings.catch_warnings():
         warnings.simplefilter("ignore")
-        trial, pose = place(parse_document(document(set(), moving, {}),
-                                           source=chain.source or "<measure>"))
+        written = parse_document(document(set(), moving, {}),
+                                 source=chain.source or "<measure>")
+        pose = assemble(written.chain, [(p.id, p.link) for p in written.points],
+                        written.dimensions)
     near = {n for group in pose.groups for link in group
             for n in link_features(chain.joints, points, link)} & moving
     modes = {mode.part: mode.word for mode in pose.modes
              if ":" not in mode.part and not mode.part.startswith("group ")}
     extra = {j.id for j in chain.joints if j.kind == "P" and fixed not in j.links
-             and math.dist(trial.joint(j.id).at, j.at) > 1e-9 * pose.size}
+             and math.dist(pose.joints[j.id], j.at) > 1e-9 * pose.size}
     return toml_text(document(extra, near, modes))
-
-
-def _span(where):
-    """The mechanism's size, as the solver takes it: the longer side of the box round
-    its joints and points."""
-    xs = [p[0] for p in where.values()]
-    ys = [p[1] for p in where.values()]
-    return max(max(xs) - min(xs), max(ys) - min(ys), 1e-300)
-
-
-
-# -- drawing-level rounding in a file of coordinates -------------------------------------------
-def snap_to_lines(chain):
-    """The chain with every joint or point that lies within drawing-level rounding of a
-    sliding line it moves on (an R joint or point of the pair's guide or block, up to
-    1e-3 of the mechanism's size off) put on it exactly: the nearest such pose (least
-    movement of the typed coordinates, lines included). A joint farther off is an
-    offset slider, as drawn.
-
-    Warns with :class:`~chaingraph.errors.PoseAdjustedWarning` when something moved by
-    more than 1e-6 of the size; returns the chain itself when nothing moved.
-
-    Examples
-    --------
-    >>> import warnings
-    >>> from chaingraph.model.chain import Chain, Joint
-    >>> from chaingraph.model.chain import Mechanism
-    >>> engine = Chain("engine", (
-    ...     Joint("O", "R", ("frame", "crank"), at=(0.0, 0.0)),
-    ...     Joint("A", "R", ("crank", "rod"), at=(20.0, 34.64)),
-    ...     Joint("B", "R", ("rod", "piston"), at=(176.2, 0.01)),
-    ...     Joint("S", "P", ("frame", "piston"), at=(150.0, 0.0), axis=0.0)),
-    ...     mechanism=Mechanism("frame", "crank"))
-    >>> with warnings.catch_warnings(record=True) as said:
-    ...     warnings.simplefilter("always")
-    ...     snapped = snap_to_lines(engine)
-    >>> snapped.joint("B").at
-    (176.2, 0.0)
-    >>> print(said[0].message)  # doctest: +ELLIPSIS
-    engine: joint 'B' was 0.01 off the sliding line of S: moved onto it (taken as drawing-level rounding: ...)
-    """
-    if not chain.has_pose:
-        return chain
-    where = {j.id: j.at for j in chain.joints}
-    where.update({p.id: p.at for p in chain.points})
-    size = _span(where)
-    on = []          # (P joint, feature, distance)
-    for j in chain.joints:
-        if j.kind != "P":
-            continue
-        n = normal(math.radians(j.axis))
-        names = {x.id for link in j.links for x in chain.joints_of(link) if x.kind == "R"}
-        names |= {p.id for p in chain.points if p.link in j.links}
-        for name in sorted(names):
-            d = abs(dot(n, sub(where[name], j.at)))
-            if d <= ROUNDING * size:
-                on.append((j.id, name, d))
-    if not any(d > 1e-12 * size for *_, d in on):
-        return chain
-    # the nearest pose: the typed axes and the fixed link's joints stay as drawn; the
-    # other joints and points and the lines' points move as little as they can
-    fixed = chain.mechanism.fixed if chain.mechanism else None
-    anchored = {x.id for x in chain.joints if fixed in x.links}
-    anchored |= {p.id for p in chain.points if p.link == fixed}
-    features = sorted(({name for _, name, _ in on} | {p for p, _, _ in on}) - anchored)
-    if not features:
-        return chain
-    index = {name: 2 * i for i, name in enumerate(features)}
-    x = np.array([v for name in features for v in where[name]])
-    x0 = x.copy()
-
-    def position(name):
-        return x[index[name]:index[name] + 2] if name in index else np.array(where[name])
-
-    # each constraint n . (feature - line point) = 0 is linear in the positions (the axes
-    # stay), so one minimum-norm step lands on the nearest consistent pose
-    rows, res = [], []
-    for p, name, _ in on:
-        n = np.array(normal(math.radians(chain.joint(p).axis)))
-        row = np.zeros(len(x))
-        for f, sign in ((name, 1.0), (p, -1.0)):
-            if f in index:
-                row[index[f]:index[f] + 2] += sign * n
-        rows.append(row)
-        res.append(float(n @ (position(name) - position(p))))
-    J, r = np.array(rows), np.array(res)
-    x = x - J.T @ np.linalg.lstsq(J @ J.T, r, rcond=None)[0]
-    if max(abs(dot(normal(math.radians(chain.joint(p).axis)), position(name) - position(p)))
-           for p, name, _ in on) > 1e-12 * size:
-        return chain      # the fixed link's joints themselves disagree: leave it as drawn
-    moved = sorted(((math.dist(x[index[f]:index[f] + 2], x0[index[f]:index[f] + 2]), f)
-                    for f in features), reverse=True)
-    joints = []
-    for j in chain.joints:
-        at = tuple(float(v) for v in x[index[j.id]:index[j.id] + 2]) if j.id in index else j.at
-        joints.append(type(j)(j.id, j.kind, j.links, at=at, axis=j.axis, closure=j.closure))
-    points = [type(p)(p.id, p.link, tuple(float(v) for v in x[index[p.id]:index[p.id] + 2]))
-              if p.id in index else p for p in chain.points]
-    snapped = replace(chain, joints=tuple(joints), points=tuple(points))
-    far = max((d, p, name) for p, name, d in on)
-    if moved[0][0] > SILENT * size:
-        others = sum(1 for d, _ in moved[1:] if d > SILENT * size)
-        more = f" (and {others} other{'s' if others > 1 else ''} less)" if others else ""
-        units = f" {chain.units}" if chain.units else ""
-        d, p, name = far
-        how = ("moved onto it" if moved[0][1] == name else
-               f"{_label(chain, moved[0][1])} moved {_fmt(moved[0][0])}{units} to put it on it")
-        warnings.warn(PoseAdjustedWarning(
-            f"{chain.source or chain.name}: {_label(chain, name)} was {_fmt(d)}{units} off "
-            f"the sliding line of {p}: {how}{more} (taken as drawing-level rounding: up to "
-            f"1e-3 of the size {_fmt(size)}; an offset slider is drawn farther off)",
-            joint=moved[0][1], distance=moved[0][0], size=size), stacklevel=3)
-    return snapped
-
-
-def place(document):
-    """A read chain file in its drawn pose: ``(chain, assembly)``. A file given by
-    lengths is assembled (``assembly`` is its :class:`Assembly`: modes and groups); a
-    file of coordinates has its drawing-level rounding mended (:func:`snap_to_lines`,
-    ``assembly`` None)."""
-    if document.dimensions is None:
-        return snap_to_lines(document.chain), None
-    structure, dims = document.chain, document.dimensions
-    point_links = [(p.id, p.link) for p in document.points]
-    pose = assemble(structure, point_links, dims)
-    placed = tuple(Joint(j.id, j.kind, j.links, at=pose.joints[j.id],
-                         axis=pose.axes.get(j.id), closure=j.closure)
-                   for j in document.joints)
-    placed_points = tuple(Point(p.id, p.link, pose.points[p.id]) for p in document.points)
-    mechanism = structure.mechanism
-    if mechanism is not None and mechanism.inputs:
-        # a P input's values are measured from its guide's origin, as its 'at' is
-        kinds = {j.id: j.kind for j in document.joints}
-        single = dims.values.get(None) if len(mechanism.inputs) == 1 else None
-        mechanism = replace(mechanism, inputs=tuple(
-            replace(item, at=dims.values.get(item.joint, single))
-            if kinds.get(item.joint) == "P" else item for item in mechanism.inputs))
-    return replace(structure, joints=placed, points=placed_points, mechanism=mechanism), pose

@@ -1,0 +1,357 @@
+"""The command line's commands: each reads its arguments, calls the library and prints."""
+
+from __future__ import annotations
+
+import os
+import sys
+import time
+from pathlib import Path
+
+from chaingraph._util.progress import ProgressBar
+from chaingraph.cli.outputs import (
+    Writing,
+    output_file,
+    output_folder,
+    picture_file,
+    write_text,
+)
+from chaingraph.cli.text import (
+    classification_text,
+    error_text,
+    exit_status,
+    figure,
+    instant_heading,
+    mode_lines,
+    print_json,
+    table,
+)
+from chaingraph.drawing.constructions import draw_centres, draw_polygons
+from chaingraph.drawing.mechanism import mechanism_svg
+from chaingraph.drawing.plots import (
+    draw_mechanism,  # PNG and the other raster formats
+    plot_motion,
+)
+from chaingraph.errors import ChainGraphError
+from chaingraph.files import dumps, load, read_file, save
+from chaingraph.graphical import instant_centres, velocity_polygon
+from chaingraph.kinematics import solve, summary_rows
+from chaingraph.kinematics.assembly import measure
+from chaingraph.naming.catalog import catalog_dir
+from chaingraph.naming.identify import identify
+from chaingraph.naming.inversions import inversions
+from chaingraph.report.build import build_report
+from chaingraph.structure.atlas import (
+    DaskRunner,
+    atlas_dict,
+    process_runner,
+    run_atlas,
+    write_atlas,
+)
+from chaingraph.structure.atlas.contracted import joints_for
+from chaingraph.structure.atlas.estimate import check_size
+from chaingraph.structure.classify import classify
+from chaingraph.synthesis.design import KINDS
+
+__all__ = ['cmd_classify', 'cmd_inversions', 'cmd_identify', 'cmd_solve', 'cmd_centres', 'cmd_polygons', 'cmd_assemble', 'cmd_measure', 'cmd_report', 'cmd_atlas', 'cmd_design']
+
+
+def cmd_classify(args) -> int:
+    results, failed = [], 0
+    for path in args.files:
+        try:
+            results.append((path, classify(load(path))))
+        except ChainGraphError as e:
+            print(f"chaingraph: error: {error_text(e)}", file=sys.stderr)
+            failed = exit_status(e) if not failed else failed
+    if args.json and results:
+        objs = [r.to_dict() for _, r in results]
+        print_json(objs[0] if len(args.files) == 1 else objs)
+    elif len(results) == 1 and len(args.files) == 1:
+        print(classification_text(results[0][1], results[0][0]))
+    elif results:
+        rows = [[r.name, r.links, r.pairs, r.joint_equivalents, r.higher_pairs, r.loops,
+                 r.mobility, c2.verdict or "n/a", r.check("J + H/2 = 3L/2 - 2").verdict,
+                 r.verdict, "yes" if r.degenerate else "no"]
+                for _, r in results for c2 in [r.check("L = 2P - 4")]]
+        print(table(rows, ["chain", "L", "P", "J", "H", "loops", "F", "L = 2P - 4",
+                            "J + H/2 = 3L/2 - 2", "verdict", "degenerate"]))
+    return failed
+
+def cmd_inversions(args) -> int:
+    result = inversions(load(args.file), with_input=args.with_input)
+    if args.json:
+        print_json(result.to_dict())
+        return 0
+    plural = "class" if result.classes == 1 else "classes"
+    print(f"{result.name}: {result.links} links, {len(result.inversions)} inversions "
+          f"in {result.classes} {plural} by structure")
+    header, *rows = result.rows()
+    print(table([list(r) for r in rows], list(header)))
+    if args.with_input:
+        print(f"classes with a designated input: {result.classes_with_input}")
+    for inv in result.inversions:
+        if inv.note:
+            print(f"{inv.fixed} fixed: {inv.note}")
+    return 0
+
+def cmd_identify(args) -> int:
+    chain = load(args.file)
+    found = identify(chain)
+    if args.json:
+        print_json(found.to_dict())
+        return 0
+    where = lambda path: f"  ({path})" if path else ""  # noqa: E731
+    print(f"chain:     {found.chain or 'not in the catalog'}{where(found.chain_file)}")
+    if chain.mechanism is not None:
+        print(f"inversion: {found.inversion or 'not in the catalog'}"
+              f"{where(found.inversion_file)}")
+    if found.mapping:
+        onto = found.inversion or found.chain
+        print("mapping:   " + ", ".join(f"{a} -> {b}" for a, b in found.mapping.items())
+              + f"  (onto {onto})")
+    if found.joint_kinds == "ignored":
+        print("joints:    matched with every joint taken as a turning pair")
+    if found.orientation == "ignored":
+        print("sliding:   matched with P orientation forgotten (which link carries a guide)")
+    if found.note:
+        print(f"note:      {found.note}")
+    return 0
+
+def cmd_solve(args) -> int:
+    chain = load(args.file)
+    if args.csv:
+        output_file(args.csv, what="CSV")
+    if args.plot:
+        picture_file(args.plot, what="plot")
+    if args.draw:
+        picture_file(args.draw, what="drawing")
+    motion = solve(chain, fixed=args.fixed, driver=args.driver, inputs=args.inputs,
+                   start=args.start, stop=args.stop, steps=args.steps)
+    if args.csv:
+        with Writing(args.csv):
+            motion.to_csv(args.csv)
+    if args.plot:
+        with Writing(args.plot):
+            plot_motion(motion, args.plot)
+    if args.draw:
+        if str(args.draw).lower().endswith(".svg"):
+            write_text(args.draw, mechanism_svg(motion))
+        else:
+            with Writing(args.draw):
+                draw_mechanism(motion, args.draw)
+    if args.json:
+        print_json(motion.to_dict())
+        return 0
+    rows = [("mechanism", motion.name), *summary_rows(motion)]
+    if motion.inputs:
+        sweep = "; ".join(f"{i.joint} {motion['input:' + i.joint][0]:.6g} to "
+                          f"{motion['input:' + i.joint][-1]:.6g}" for i in motion.inputs)
+        unit = "" if len(motion.inputs) > 1 else " " + motion.plan.lead_unit
+    else:
+        sweep, unit = f"{motion.theta[0]:.6g} to {motion.theta[-1]:.6g}", " degrees"
+    rows.insert(3, ("sweep", f"{sweep}{unit}, {motion.steps} steps"))   # after the input
+    print(table(rows, ["", ""]).split("\n", 2)[2])
+    return 0
+
+def _instant_arguments(args):
+    """The keyword arguments of instant_centres and velocity_polygon from the flags."""
+    at = args.at
+    return {"at": None if not at else at[0] if len(at) == 1 else at, "fixed": args.fixed,
+            "driver": args.driver, "inputs": args.inputs, "omega": args.omega}
+
+def _at_one_value(args, find, draw):
+    """The result of ``find`` at the flags' input value, drawn to --draw; None when
+    printed as JSON (--json), else the result for the text."""
+    chain = load(args.file)
+    if args.draw:
+        picture_file(args.draw, what="drawing")
+    result = find(chain, **_instant_arguments(args))
+    if args.draw:
+        with Writing(args.draw):
+            draw(result, args.draw)
+    if args.json:
+        print_json(result.to_dict())
+        return None
+    return result
+
+def cmd_centres(args) -> int:
+    centres = _at_one_value(args, instant_centres, draw_centres)
+    if centres is None:
+        return 0
+    state = centres.state
+    print("\n".join(instant_heading("Instantaneous centres", state)))
+    print("links: " + ", ".join(f"{n} {link}" for link, n in centres.numbers.items()))
+    print()
+    rows = centres.rows()
+    print(table(rows, ["centre", "links", "x", "y", "found from"]))
+    omegas = centres.angular_velocities
+    if any(v is None for v in omegas.values()):
+        print("\nangular velocities: not determined at this pose (a dead centre)")
+    else:
+        print("\nangular velocities through the centres (rad/s): " + ", ".join(
+            f"{link} {figure(float(omegas[link]))}" for link in centres.numbers
+            if link != state.fixed))
+    return 0
+
+def cmd_polygons(args) -> int:
+    polygons = _at_one_value(args, velocity_polygon, draw_polygons)
+    if polygons is None:
+        return 0
+    state = polygons.state
+    unit = state.units or "length units"
+    print("\n".join(instant_heading("Velocity and acceleration polygons", state)))
+    print()
+    rows = polygons.image_rows()
+    print(f"images (velocity in {unit}/s, acceleration in {unit}/s^2, from the pole o)")
+    print(table(rows, ["point", "link", "vx", "vy", "|v|", "ax", "ay", "|a|"]))
+    print()
+    rows = polygons.vector_rows()
+    print("relative vectors (direction in degrees CCW from +x)")
+    print(table(rows, ["vector", "on", "component", "magnitude", "direction"]))
+    closure = polygons.closure
+    print(f"\nloops: {len(polygons.loops)}, closing to {closure['velocity']:.3g} "
+          f"{unit}/s and {closure['acceleration']:.3g} {unit}/s^2")
+    return 0
+
+def cmd_assemble(args) -> int:
+    chain, assembly = read_file(args.file)
+    if args.json:
+        out = {"name": chain.name, "file": args.file,
+               "joints": {j.id: list(j.at) for j in chain.joints},
+               "axes": {j.id: j.axis for j in chain.joints if j.kind == "P"},
+               "points": {p.id: list(p.at) for p in chain.points},
+               "modes": [{"part": m.part, "mode": m.word, "reference": m.reference,
+                          "source": m.source} for m in assembly.modes] if assembly else [],
+               "groups": [list(g) for g in assembly.groups] if assembly else []}
+    text = dumps(chain)
+    if assembly is not None:
+        head = [f"# assembled by chaingraph from the lengths in {args.file}"]
+        if assembly.modes:
+            head.append("# assembly modes (change them under [assembly] in the lengths file):")
+            head += [f"#   {line}" for line in mode_lines(assembly)]
+        text = "\n".join(head) + "\n" + text
+    if args.output:
+        write_text(args.output, text)
+    if args.json:
+        print_json(out)
+    elif args.output:
+        print(f"{chain.name}: drawn pose written to {args.output}")
+        for line in (mode_lines(assembly) if assembly else []):
+            print(f"  {line}")
+    else:
+        sys.stdout.write(text)
+    return 0
+
+def cmd_measure(args) -> int:
+    text = measure(load(args.file))
+    if args.output:
+        write_text(args.output, text)
+        print(f"dimensions written to {args.output} (chaingraph assemble {args.output} "
+              "gives back the drawn pose)")
+    else:
+        sys.stdout.write(text)
+    return 0
+
+def cmd_report(args) -> int:
+    paths = args.paths or [catalog_dir()]
+    output_folder(args.output, what="report")
+    workers = workers_asked(args.workers) if args.workers is not None else None
+    report = build_report(paths, args.output, progress=None if args.quiet else sys.stderr,
+                          workers=workers)
+    for path, problem in report.failures:
+        where = "" if problem.startswith(str(path)) else f"{path}: "
+        print(f"chaingraph: error: {where}{problem}", file=sys.stderr)
+    done = sum(1 for e in report.entries if not e.error)
+    print(f"report of {done} entries written to {report.index}"
+          + (f"; {len(report.failures)} could not be included (listed on the index)"
+             if report.failures else ""))
+    return 0 if report.complete else 1
+
+def workers_asked(value, *, flag="--workers") -> int:
+    """The number of processes asked for, refused below 1 and capped at the CPUs."""
+    cpus = os.cpu_count() or 1
+    if value < 1:
+        raise ChainGraphError(f"{flag} must be 1 or more, got {value}")
+    if value > cpus:
+        print(f"chaingraph: note: {flag} {value} capped at the {cpus} CPUs of this machine",
+              file=sys.stderr)
+    return min(value, cpus)
+
+def cmd_atlas(args) -> int:
+
+    joints_for(args.links, args.dof)   # a size with no chain: exit 2 with the reason
+    if args.scheduler is None or args.scheduler == "local":
+        workers = workers_asked(args.workers)
+    else:                        # a remote cluster's cores are its own; refused below 1
+        workers = args.workers if args.workers >= 1 else workers_asked(args.workers)
+    check_size(args.links, args.dof, cores=workers, cluster=args.scheduler is not None)
+    if args.resume and not args.out:
+        raise ChainGraphError("--resume continues a run in its output folder: give --out DIR")
+    if args.out:
+        output_folder(args.out, what="atlas")
+    start = time.perf_counter()
+    bar = ProgressBar(1000, None if args.quiet else sys.stderr, percent=True, start=start)
+
+    def progress(fraction, text):
+        bar.show(int(round(1000 * fraction)), text)
+    listing = (args.json and not args.summary) or (not args.out and not args.summary)
+    try:
+        if args.scheduler is not None:
+            with DaskRunner(args.scheduler, workers=workers) as runner:
+                result = run_atlas(args.links, args.dof, runner=runner, out=args.out,
+                                   resume=args.resume, progress=progress, keep=listing)
+        else:
+            result = run_atlas(args.links, args.dof, runner=process_runner(workers),
+                               out=args.out, resume=args.resume, progress=progress,
+                               keep=listing)
+    finally:
+        bar.close()
+    elapsed = time.perf_counter() - start
+    paths = None
+    if args.out:
+        paths = write_atlas(result, args.out, shard_dir=Path(args.out) / "shards",
+                            no_fractionated=args.no_fractionated,
+                            chain_files=args.chain_files)
+    if listing and args.no_fractionated:
+        result = result.without_fractionated()
+    if args.json or args.summary:
+        print_json(atlas_dict(result, no_fractionated=args.no_fractionated,
+                               chains=args.json and not args.summary))
+        return 0
+    count = result.count_non_fractionated if args.no_fractionated else result.count
+    inversions = (result.distinct_inversions_non_fractionated if args.no_fractionated
+                  else result.distinct_inversions)
+    which = ("non-fractionated " if args.no_fractionated else "")
+    also = ("" if args.no_fractionated else
+            f" ({result.count_non_fractionated} non-fractionated)")
+    print(f"{count} {which}chains of {args.links} links and {args.dof} degree(s) of "
+          f"freedom{also}, {inversions} distinct inversions ({elapsed:.2f} s)")
+    if listing and count <= 60:
+        rows = [[e.id, ", ".join(f"{v} {k}" for k, v in e.link_orders.items()),
+                 e.inversion_classes, "yes" if e.fractionated else "no",
+                 " ".join(f"{a + 1}-{b + 1}" for a, b in e.edges)] for e in result]
+        print(table(rows, ["id", "link assortment", "inversions", "fractionated",
+                            "joints (link pairs)"]))
+    if paths:
+        chains = (f", {len(paths['chains'])} chain files in {paths['chain_dir']}"
+                  if paths["chain_dir"] else "")
+        print(f"written: {paths['json']}, {paths['graph6']}, {paths['html']}{chains}; "
+              f"shards in {Path(args.out) / 'shards'}")
+    return 0
+
+def cmd_design(args) -> int:
+    if args.out:
+        output_file(args.out, what="mechanism file")
+    design = KINDS[args.kind](time_ratio=args.time_ratio, crank=args.crank, stroke=args.stroke)
+    if args.out:
+        with Writing(args.out):
+            save(design.mechanism, args.out)
+    if args.json:
+        print_json(design.to_dict())
+        return 0
+    rows = [[k.replace("_", " "), figure(v)] for k, v in design.to_dict().items() if k != "kind"]
+    print(f"{args.kind} quick return drive")
+    print(table(rows, ["", ""]).split("\n", 2)[2])
+    if args.out:
+        print(f"mechanism written to {args.out} (chaingraph solve {args.out} reproduces it)")
+    return 0

@@ -1,0 +1,204 @@
+"""The command line's arguments: one parser, its commands and their flags."""
+
+from __future__ import annotations
+
+import argparse
+
+from chaingraph import __version__
+from chaingraph.cli.commands import (
+    cmd_assemble,
+    cmd_atlas,
+    cmd_centres,
+    cmd_classify,
+    cmd_design,
+    cmd_identify,
+    cmd_inversions,
+    cmd_measure,
+    cmd_polygons,
+    cmd_report,
+    cmd_solve,
+)
+
+__all__ = ['build_parser', 'whole_number']
+
+
+class _Parser(argparse.ArgumentParser):
+    """argparse, with a usage error as one line (``chaingraph COMMAND: error: ...``)."""
+
+    def error(self, message):
+        usage = " ".join(self.format_usage().split())
+        self.exit(2, f"{self.prog}: error: {message} ({usage})\n")
+
+def build_parser() -> argparse.ArgumentParser:
+    parser = _Parser(
+        prog="chaingraph",
+        description="Analyse planar kinematic chains as link-joint graphs.")
+    parser.add_argument("--version", action="version", version=f"%(prog)s {_version()}")
+    sub = parser.add_subparsers(dest="command", required=True, metavar="COMMAND")
+    p = sub.add_parser("classify", help="structural classification of chain files",
+                       description="Counts, orders, loops, Kutzbach mobility, the textbook "
+                                   "checks and degeneracy of each chain file.")
+    p.add_argument("files", nargs="+", metavar="FILE", help="chain files (TOML)")
+    p.add_argument("--json", action="store_true", help="print JSON (a list for several files)")
+    p.set_defaults(run=cmd_classify)
+
+    p = sub.add_parser("inversions", help="inversions: fix each link in turn",
+                       description="One inversion per link, grouped into classes by the "
+                                   "chain's automorphisms, named from the catalog, with "
+                                   "their behaviour where the file has dimensions.")
+    p.add_argument("file", metavar="FILE", help="a chain file (TOML)")
+    p.add_argument("--json", action="store_true", help="print JSON")
+    p.add_argument("--with-input", action="store_true",
+                   help="also designate the input link (joined to the fixed link by an R joint)")
+    p.set_defaults(run=cmd_inversions)
+
+    p = sub.add_parser("identify", help="which catalog chain (and inversion) a file is",
+                       description="Find the file's chain in the catalog by structure and, "
+                                   "for a mechanism, which catalog inversion it is.")
+    p.add_argument("file", metavar="FILE", help="a chain file (TOML)")
+    p.add_argument("--json", action="store_true", help="print JSON")
+    p.set_defaults(run=cmd_identify)
+
+    p = sub.add_parser("solve", help="position, velocity and acceleration over an input sweep",
+                       description="Solve the mechanism (the file's [mechanism], or the "
+                                   "inversion --fixed and --driver or --input choose) over the "
+                                   "input sweep, in the assembly mode of the drawn pose.")
+    p.add_argument("file", metavar="FILE", help="a mechanism file (TOML) with a drawn pose")
+    p.add_argument("--fixed", metavar="LINK", help="the fixed link")
+    given = p.add_mutually_exclusive_group()
+    given.add_argument("--driver", metavar="LINK",
+                       help="the input link, pinned to the fixed link by an R joint")
+    given.add_argument("--input", dest="inputs", action="append", metavar="JOINT",
+                       help="an input joint (R or P, between any two links); repeat it, "
+                            "one per degree of freedom")
+    p.add_argument("--from", dest="start", type=float, metavar="X",
+                   help="the first input's first value (degrees, or slide for a P input)")
+    p.add_argument("--to", dest="stop", type=float, metavar="X",
+                   help="the first input's last value")
+    p.add_argument("--steps", type=whole_number, default=360, metavar="N",
+                   help="equal intervals of the sweep (N + 1 rows; default 360)")
+    p.add_argument("--json", action="store_true", help="print the JSON summary")
+    p.add_argument("--csv", metavar="PATH", help="write every column of every step")
+    p.add_argument("--plot", metavar="PATH.svg",
+                   help="plot the output's displacement, velocity and acceleration")
+    p.add_argument("--draw", metavar="PATH.svg",
+                   help="draw the mechanism in its drawn pose with the paths of its points")
+    p.set_defaults(run=cmd_solve)
+
+    for name, run, helptext, description in (
+            ("centres", cmd_centres, "instantaneous centres (Kennedy's theorem)",
+             "Every instantaneous centre of the mechanism at one input value: the primary "
+             "ones from the joints, the others by Kennedy's theorem (the three centres of "
+             "three links lie on one line), each with its position (or direction at "
+             "infinity) and how it was found; the angular velocities through them."),
+            ("polygons", cmd_polygons, "velocity and acceleration polygons",
+             "The velocity and acceleration polygons of the mechanism at one input value: "
+             "every point's image and the relative vectors, with their centripetal, "
+             "tangential, sliding and Coriolis components.")):
+        p = sub.add_parser(name, help=helptext, description=description)
+        p.add_argument("file", metavar="FILE", help="a mechanism file (TOML) with dimensions")
+        p.add_argument("--at", action="append", type=float, metavar="X",
+                       help="the input value (degrees, or slide for a P input; default: "
+                            "the drawn pose); with several inputs the first's value, or "
+                            "repeat it, one per input")
+        p.add_argument("--fixed", metavar="LINK", help="the fixed link")
+        given = p.add_mutually_exclusive_group()
+        given.add_argument("--driver", metavar="LINK",
+                           help="the input link, pinned to the fixed link by an R joint")
+        given.add_argument("--input", dest="inputs", action="append", metavar="JOINT",
+                           help="an input joint; repeat it, one per degree of freedom")
+        p.add_argument("--omega", type=float, metavar="W",
+                       help="the (first) input's speed (default: the file's, else 1)")
+        p.add_argument("--json", action="store_true", help="print JSON")
+        p.add_argument("--draw", metavar="PATH.svg", help="draw the construction")
+        p.set_defaults(run=run)
+
+    p = sub.add_parser("assemble", help="the drawn pose of a mechanism given by its lengths",
+                       description="Find every joint's position from the file's lengths, the "
+                                   "input's value and the assembly modes, and write the "
+                                   "mechanism with coordinates (to standard output, or OUT). "
+                                   "The modes used are listed, with where each came from.")
+    p.add_argument("file", metavar="FILE", help="a mechanism file (TOML) with [lengths]")
+    p.add_argument("-o", "--output", metavar="OUT", help="write the assembled file here")
+    p.add_argument("--json", action="store_true",
+                   help="print the positions and the assembly modes as JSON")
+    p.set_defaults(run=cmd_assemble)
+
+    p = sub.add_parser("measure", help="the lengths of a drawn mechanism",
+                       description="Write a drawn mechanism as its dimensions: the lengths "
+                                   "of its links, its sliding lines, the input's value and "
+                                   "every assembly mode (the inverse of assemble).")
+    p.add_argument("file", metavar="FILE", help="a mechanism file (TOML) with a drawn pose")
+    p.add_argument("-o", "--output", metavar="OUT", help="write the file with lengths here")
+    p.set_defaults(run=cmd_measure)
+
+    p = sub.add_parser("report", help="the browsable HTML catalog",
+                       description="Write DIR/index.html and a page per entry for the given "
+                                   "chain files or folders (by default the bundled catalog). "
+                                   "Files that fail are listed and the rest go on (exit 1).")
+    p.add_argument("paths", nargs="*", metavar="PATH", help="chain files or folders")
+    p.add_argument("-o", "--output", default="report", metavar="DIR",
+                   help="output folder (default: report)")
+    p.add_argument("-q", "--quiet", action="store_true", help="no progress bar")
+    p.add_argument("--workers", type=int, metavar="K",
+                   help="processes that analyse entries side by side (default and at most: "
+                        "the CPUs)")
+    p.set_defaults(run=cmd_report)
+
+    p = sub.add_parser("atlas", help="every chain of N links and F degrees of freedom",
+                       description="Every non-isomorphic, non-degenerate planar chain with "
+                                   "simple revolute joints (non-planar link graphs and "
+                                   "fractionated chains included). Sizes estimated to take "
+                                   "over an hour here are refused with the estimate.")
+    p.add_argument("--links", type=int, required=True, metavar="N")
+    p.add_argument("--dof", type=int, default=1, metavar="F")
+    p.add_argument("--json", action="store_true", help="print JSON")
+    p.add_argument("--summary", action="store_true",
+                   help="print the counts alone (JSON without the chains)")
+    p.add_argument("--no-fractionated", action="store_true",
+                   help="keep only the non-fractionated chains")
+    p.add_argument("--out", metavar="DIR",
+                   help="write atlas.json, a graph6 file, index.html and (up to 10,000 "
+                        "chains) chain files, with the run's shards under DIR/shards")
+    files = p.add_mutually_exclusive_group()
+    files.add_argument("--chain-files", dest="chain_files", action="store_true",
+                       default=None, help="write one chain file per chain whatever the size")
+    files.add_argument("--no-chain-files", dest="chain_files", action="store_false",
+                       help="write no chain files")
+    p.add_argument("--workers", type=int, default=1, metavar="K",
+                   help="local processes that run the pieces side by side (at most the "
+                        "CPUs); with --scheduler local, the embedded cluster's workers")
+    p.add_argument("--scheduler", metavar="ADDRESS",
+                   help="run the pieces on a Dask cluster (tcp://host:8786), or 'local' "
+                        "for an embedded one (pip install 'chaingraph[cluster]')")
+    p.add_argument("--resume", action="store_true",
+                   help="continue an interrupted run in its --out folder")
+    p.add_argument("-q", "--quiet", action="store_true", help="no progress bar")
+    p.set_defaults(run=cmd_atlas)
+
+    p = sub.add_parser("design", help="dimensional synthesis of quick return drives",
+                       description="From a time ratio, crank and stroke to the centre "
+                                   "distance and lever (slotted-lever: the ram's line through "
+                                   "the lever end's extremes; whitworth: through the lever's "
+                                   "pivot).")
+    p.add_argument("kind", choices=["slotted-lever", "whitworth"])
+    p.add_argument("--time-ratio", type=float, required=True, metavar="R")
+    p.add_argument("--crank", type=float, required=True, metavar="C")
+    p.add_argument("--stroke", type=float, required=True, metavar="S")
+    p.add_argument("--json", action="store_true", help="print JSON")
+    p.add_argument("--out", metavar="FILE", help="write the designed mechanism (TOML)")
+    p.set_defaults(run=cmd_design)
+    return parser
+
+def _version() -> str:
+    return __version__
+
+def whole_number(text):
+    """An option's whole number of 1 or more (a number of steps)."""
+    try:
+        value = int(text)
+    except ValueError:
+        raise argparse.ArgumentTypeError(f"invalid int value: {text!r}") from None
+    if value < 1:
+        raise argparse.ArgumentTypeError(f"must be 1 or more, got {value}")
+    return value

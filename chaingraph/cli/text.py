@@ -1,0 +1,63 @@
+"""What the command line prints: JSON, tables, figures, and an error's message with the
+flag of the parameter at fault and the exit status it gives."""
+
+from __future__ import annotations
+
+import json
+
+from chaingraph.errors import AssemblyError
+
+__all__ = ['print_json', 'table', 'classification_text', 'figure', 'instant_heading', 'mode_lines', 'FLAGS', 'exit_status', 'error_text']
+
+
+def print_json(obj) -> None:
+    print(json.dumps(obj, indent=2, ensure_ascii=False))
+
+def table(rows, header) -> str:
+    widths = [max(len(str(r[i])) for r in [header, *rows]) for i in range(len(header))]
+    fmt = lambda r: "  ".join(str(c).ljust(w) for c, w in zip(r, widths)).rstrip()  # noqa: E731
+    return "\n".join([fmt(header), fmt(["-" * w for w in widths]), *map(fmt, rows)])
+
+def classification_text(result, source) -> str:
+    rows = [list(row) for row in result.rows()]
+    head = f"{result.name}  ({source})"
+    body = table(rows, ["", "", ""]).split("\n", 2)[2]
+    lines = [head, body]
+    lines += [f"note: {o}" for o in result.oddities if not o.startswith("degenerate")]
+    return "\n".join(lines)
+
+def figure(value, unit=""):
+    if value is None:
+        return "-"
+    if isinstance(value, float):
+        return f"{value:.6g}{unit}"
+    return f"{value}{unit}"
+
+def instant_heading(what, state) -> list[str]:
+    lines = [f"{what} of {state.name}",
+             f"{state.fixed} fixed, {state.input_text()} ({state.speed_text})"]
+    if len(state.plan.inputs) > 1:
+        lines.append("the inputs move together at their sweeps' rates (a polygon per "
+                     "input, by superposition, is not drawn yet)")
+    return lines
+
+def mode_lines(assembly) -> list[str]:
+    return [f"{m.part}: {m.word} {m.reference} ({m.source})" for m in assembly.modes]
+
+# the library's parameters as the command line's options, for its messages
+FLAGS = {"fixed": "--fixed LINK", "driver": "--driver LINK", "inputs": "--input JOINT",
+          "steps": "--steps N", "start": "--from", "stop": "--to", "at": "--at",
+          "omega": "--omega", "time_ratio": "--time-ratio", "crank": "--crank",
+          "stroke": "--stroke", "links": "--links N", "dof": "--dof F",
+          "scheduler": "--scheduler ADDRESS", "workers": "--workers K", "out": "--out DIR",
+          "resume": "--resume"}
+
+def exit_status(error) -> int:
+    """The exit status of an error: 1 for an analysis that failed (a pose that cannot
+    be assembled), 2 for bad input."""
+    return 1 if isinstance(error, AssemblyError) else 2
+
+def error_text(error) -> str:
+    """The error's message, with the flag of the parameter at fault."""
+    flag = FLAGS.get(getattr(error, "parameter", None))
+    return f"{error}" if flag is None else f"{error}; on the command line: {flag}"

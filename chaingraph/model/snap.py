@@ -1,0 +1,145 @@
+"""Drawing-level rounding in a file of coordinates: joints typed a hair off the sliding
+line they move on are put on it, with a warning; the thresholds that tell rounding from
+an offset drawn on purpose.
+"""
+
+from __future__ import annotations
+
+import math
+import warnings
+from dataclasses import replace
+
+import numpy as np
+
+from chaingraph.errors import PoseAdjustedWarning
+from chaingraph.geometry import dot, normal, sub
+
+__all__ = ["snap_to_lines", "size_of", "feature_label", "SILENT", "ROUNDING"]
+
+#: typed positions within this fraction of the mechanism's size are taken as exact
+SILENT = 1e-6
+#: up to this fraction of the size a typed position is drawing-level rounding: moved to
+#: the consistent pose with a warning; beyond it, refused
+ROUNDING = 1e-3
+
+
+def size_of(where):
+    """The mechanism's size, as the solver takes it: the longer side of the box round
+    its joints and points."""
+    xs = [p[0] for p in where.values()]
+    ys = [p[1] for p in where.values()]
+    return max(max(xs) - min(xs), max(ys) - min(ys), 1e-300)
+
+
+def feature_label(chain, name):
+    """How a message names a joint or point of the chain."""
+    return (f"joint {name!r}" if any(j.id == name for j in chain.joints)
+            else f"point {name!r}")
+
+
+def _figure(x):
+    return f"{x:.6g}"
+
+
+# -- drawing-level rounding in a file of coordinates -------------------------------------------
+def snap_to_lines(chain):
+    """The chain with every joint or point that lies within drawing-level rounding of a
+    sliding line it moves on (an R joint or point of the pair's guide or block, up to
+    1e-3 of the mechanism's size off) put on it exactly: the nearest such pose (least
+    movement of the typed coordinates, lines included). A joint farther off is an
+    offset slider, as drawn.
+
+    Warns with :class:`~chaingraph.errors.PoseAdjustedWarning` when something moved by
+    more than 1e-6 of the size; returns the chain itself when nothing moved.
+
+    Examples
+    --------
+    >>> import warnings
+    >>> from chaingraph.model.chain import Chain, Joint
+    >>> from chaingraph.model.chain import Mechanism
+    >>> engine = Chain("engine", (
+    ...     Joint("O", "R", ("frame", "crank"), at=(0.0, 0.0)),
+    ...     Joint("A", "R", ("crank", "rod"), at=(20.0, 34.64)),
+    ...     Joint("B", "R", ("rod", "piston"), at=(176.2, 0.01)),
+    ...     Joint("S", "P", ("frame", "piston"), at=(150.0, 0.0), axis=0.0)),
+    ...     mechanism=Mechanism("frame", "crank"))
+    >>> with warnings.catch_warnings(record=True) as said:
+    ...     warnings.simplefilter("always")
+    ...     snapped = snap_to_lines(engine)
+    >>> snapped.joint("B").at
+    (176.2, 0.0)
+    >>> print(said[0].message)  # doctest: +ELLIPSIS
+    engine: joint 'B' was 0.01 off the sliding line of S: moved onto it (taken as drawing-level rounding: ...)
+    """
+    if not chain.has_pose:
+        return chain
+    where = {j.id: j.at for j in chain.joints}
+    where.update({p.id: p.at for p in chain.points})
+    size = size_of(where)
+    on = []          # (P joint, feature, distance)
+    for j in chain.joints:
+        if j.kind != "P":
+            continue
+        n = normal(math.radians(j.axis))
+        names = {x.id for link in j.links for x in chain.joints_of(link) if x.kind == "R"}
+        names |= {p.id for p in chain.points if p.link in j.links}
+        for name in sorted(names):
+            d = abs(dot(n, sub(where[name], j.at)))
+            if d <= ROUNDING * size:
+                on.append((j.id, name, d))
+    if not any(d > 1e-12 * size for *_, d in on):
+        return chain
+    # the nearest pose: the typed axes and the fixed link's joints stay as drawn; the
+    # other joints and points and the lines' points move as little as they can
+    fixed = chain.mechanism.fixed if chain.mechanism else None
+    anchored = {x.id for x in chain.joints if fixed in x.links}
+    anchored |= {p.id for p in chain.points if p.link == fixed}
+    features = sorted(({name for _, name, _ in on} | {p for p, _, _ in on}) - anchored)
+    if not features:
+        return chain
+    index = {name: 2 * i for i, name in enumerate(features)}
+    x = np.array([v for name in features for v in where[name]])
+    x0 = x.copy()
+
+    def position(name):
+        return x[index[name]:index[name] + 2] if name in index else np.array(where[name])
+
+    # each constraint n . (feature - line point) = 0 is linear in the positions (the axes
+    # stay), so one minimum-norm step lands on the nearest consistent pose
+    rows, res = [], []
+    for p, name, _ in on:
+        n = np.array(normal(math.radians(chain.joint(p).axis)))
+        row = np.zeros(len(x))
+        for f, sign in ((name, 1.0), (p, -1.0)):
+            if f in index:
+                row[index[f]:index[f] + 2] += sign * n
+        rows.append(row)
+        res.append(float(n @ (position(name) - position(p))))
+    J, r = np.array(rows), np.array(res)
+    x = x - J.T @ np.linalg.lstsq(J @ J.T, r, rcond=None)[0]
+    if max(abs(dot(normal(math.radians(chain.joint(p).axis)), position(name) - position(p)))
+           for p, name, _ in on) > 1e-12 * size:
+        return chain      # the fixed link's joints themselves disagree: leave it as drawn
+    moved = sorted(((math.dist(x[index[f]:index[f] + 2], x0[index[f]:index[f] + 2]), f)
+                    for f in features), reverse=True)
+    joints = []
+    for j in chain.joints:
+        at = tuple(float(v) for v in x[index[j.id]:index[j.id] + 2]) if j.id in index else j.at
+        joints.append(type(j)(j.id, j.kind, j.links, at=at, axis=j.axis, closure=j.closure))
+    points = [type(p)(p.id, p.link, tuple(float(v) for v in x[index[p.id]:index[p.id] + 2]))
+              if p.id in index else p for p in chain.points]
+    snapped = replace(chain, joints=tuple(joints), points=tuple(points))
+    far = max((d, p, name) for p, name, d in on)
+    if moved[0][0] > SILENT * size:
+        others = sum(1 for d, _ in moved[1:] if d > SILENT * size)
+        more = f" (and {others} other{'s' if others > 1 else ''} less)" if others else ""
+        units = f" {chain.units}" if chain.units else ""
+        d, p, name = far
+        how = ("moved onto it" if moved[0][1] == name else
+               f"{feature_label(chain, moved[0][1])} moved {_figure(moved[0][0])}{units} to put it on it")
+        warnings.warn(PoseAdjustedWarning(
+            f"{chain.source or chain.name}: {feature_label(chain, name)} was {_figure(d)}{units} off "
+            f"the sliding line of {p}: {how}{more} (taken as drawing-level rounding: up to "
+            f"1e-3 of the size {_figure(size)}; an offset slider is drawn farther off)",
+            joint=moved[0][1], distance=moved[0][0], size=size), stacklevel=3)
+    return snapped
