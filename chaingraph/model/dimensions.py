@@ -148,6 +148,7 @@ def parse_dimensions(doc, joints, points, fail):
     ``[lengths]`` table). ``joints`` are the parsed joints (without coordinates),
     ``points`` ``(id, link)`` pairs; ``fail(problem, where)`` raises the file's error."""
     links = sorted({x for j in joints for x in j.links})
+    point_ids = {pid for pid, _ in points}
     lengths, directions = {}, {}
     table = doc["lengths"]
     if not isinstance(table, dict):
@@ -173,8 +174,14 @@ def parse_dimensions(doc, joints, points, fail):
                     fail(f"{key!r} names no pair of its joints 'A-B' (a distance) or "
                          f"triple 'A-B-C' (the angle at B, degrees) "
                          f"(its joints and points: {', '.join(features)})", where)
+                # a tracer point may sit on a joint (a pen on its pin): its distance
+                # may be zero; a distance between two joints is a length
+                on_point = any(n in point_ids for n in names)
                 entries[names] = number(x, f"{where} key {key!r}", fail,
-                                         positive=len(names) == 2)
+                                         positive=len(names) == 2 and not on_point)
+                if len(names) == 2 and on_point and entries[names] < 0:
+                    fail(f"a distance must not be negative, got {entries[names]:g}",
+                         f"{where} key {key!r}")
             lengths[link] = entries
         else:
             if len(features) == 1:

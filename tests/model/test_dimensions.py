@@ -531,3 +531,20 @@ def test_measure_names_a_link_with_a_single_joint():
         'links = ["frame", "crank"]', 'links = ["frame", "dangle"]', 1)
     with pytest.raises(chaingraph.DimensionError, match="'dangle' has a single joint"):
         measure(loads(text))
+
+
+def test_a_point_on_a_joint_is_measured_and_read_back():
+    """The five-bar robot's pen sits on the pin C: its distance from C is 0, which the
+    reader takes for a point (measure wrote it, then refused its own file); a joint-to-
+    joint length of 0, or a negative distance, is still refused."""
+    robot = chaingraph.load("examples/five-bar-robot.toml")
+    text = measure(robot)
+    assert "C-pen = 0.0" in text
+    again = loads(text)
+    for j in robot.joints:
+        assert math.dist(j.at, again.joint(j.id).at) <= 1e-9 * 200
+    assert math.dist(robot.point("pen").at, again.point("pen").at) <= 1e-9 * 200
+    with pytest.raises(ChainFileError, match="must not be negative"):
+        loads(text.replace("C-pen = 0.0", "C-pen = -1.0"))
+    with pytest.raises(ChainFileError, match="a length must be positive"):
+        loads(text.replace("B-C = 100.0", "B-C = 0.0"))
