@@ -22,7 +22,13 @@ import math
 import networkx as nx
 import numpy as np
 
-from chaingraph.drawing.scene import COLOURS, Scene, frame_shapes, path_shapes, svg_elements
+from chaingraph.drawing.scene import (
+    COLOURS,
+    Scene,
+    frame_shapes,
+    path_shapes,
+    svg_elements,
+)
 from chaingraph.geometry import convex_hull
 
 __all__ = ["mechanism_svg", "frame_steps", "skeleton_svg"]

@@ -12,7 +12,6 @@ import sys
 import textwrap
 from pathlib import Path
 
-
 from chaingraph.drawing.scene import Scene, draw_shapes, frame_shapes, path_shapes
 from chaingraph.kinematics import Motion, output_signal, solve
 from chaingraph.model.chain import Chain

@@ -8,7 +8,13 @@ and velocity and acceleration polygons at one input value.
 """
 
 from chaingraph.graphical.centres import Centre, InstantCentres, instant_centres
-from chaingraph.graphical.polygons import Component, Image, Polygons, Relative, velocity_polygon
+from chaingraph.graphical.polygons import (
+           Component,
+           Image,
+           Polygons,
+           Relative,
+           velocity_polygon,
+)
 from chaingraph.kinematics.pose import LinkMotion, PoseMotion, pose_motion
 
 __all__ = ["instant_centres", "InstantCentres", "Centre", "velocity_polygon", "Polygons",

@@ -13,7 +13,14 @@ import math
 import numpy as np
 
 from chaingraph.errors import AssemblyError
-from chaingraph.geometry import fit_two_points, make_pose, perp, turn_by, unit_deg, world
+from chaingraph.geometry import (
+    fit_two_points,
+    make_pose,
+    perp,
+    turn_by,
+    unit_deg,
+    world,
+)
 
 __all__ = ["residuals", "check_poses", "newton_step"]
 

@@ -16,9 +16,9 @@ from dataclasses import dataclass
 import numpy as np
 
 from chaingraph.errors import AssemblyError, MechanismError
+from chaingraph.geometry import turn_by
 from chaingraph.kinematics.columns import reference_link, slide_rates
 from chaingraph.kinematics.equations import check_poses
-from chaingraph.geometry import turn_by
 from chaingraph.kinematics.motion import as_inputs, check_input_value, plan_of
 from chaingraph.kinematics.rates import rates
 from chaingraph.kinematics.sweep import evaluate_near

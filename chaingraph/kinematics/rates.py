@@ -13,8 +13,8 @@ import math
 
 import numpy as np
 
+from chaingraph.geometry import turn_by
 from chaingraph.kinematics.equations import (
-    plus,
     batched_inverse,
     constraint_gammas,
     constraint_geometry,
@@ -22,10 +22,10 @@ from chaingraph.kinematics.equations import (
     dot3,
     group_form,
     group_matrix,
-    times,
     minus,
+    plus,
+    times,
 )
-from chaingraph.geometry import turn_by
 
 __all__ = ["rates"]
 

@@ -10,9 +10,9 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from chaingraph.kinematics.columns import csv_columns
 from chaingraph._util.numbers import tidy
 from chaingraph.geometry import turn_by
+from chaingraph.kinematics.columns import csv_columns
 from chaingraph.kinematics.rates import rates
 from chaingraph.kinematics.roots import bracketed_roots
 from chaingraph.kinematics.sweep import cycle, evaluate_sweep

@@ -14,9 +14,9 @@ import math
 
 import numpy as np
 
+from chaingraph.geometry import DISC_TOL, FIXED
 from chaingraph.kinematics.closed_form import dyad_roots, initial_sign, single_link
 from chaingraph.kinematics.equations import group_form
-from chaingraph.geometry import DISC_TOL, FIXED
 from chaingraph.kinematics.groups import newton, newton_path
 
 __all__ = ["Evaluation", "Reference", "evaluate", "evaluate_at", "failing_step"]
