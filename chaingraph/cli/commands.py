@@ -49,6 +49,13 @@ from chaingraph.structure.atlas import (
 )
 from chaingraph.structure.atlas.contracted import joints_for
 from chaingraph.structure.atlas.estimate import check_size
+from chaingraph.structure.atlas.sliding import (
+    REASONS,
+    prismatic_counts,
+    sliding_atlas,
+    sliding_dict,
+    write_sliding,
+)
 from chaingraph.structure.classify import classify
 from chaingraph.synthesis.design import KINDS
 
@@ -279,7 +286,10 @@ def workers_asked(value, *, flag="--workers") -> int:
 
 def cmd_atlas(args) -> int:
 
-    joints_for(args.links, args.dof)   # a size with no chain: exit 2 with the reason
+    joints = joints_for(args.links, args.dof)   # a size with no chain: exit 2 with the reason
+    wanted = prismatic_counts(args.links, args.dof, joints, args.prismatic, args.oriented)
+    if wanted is not None:
+        return _sliding(args, wanted)
     if args.scheduler is None or args.scheduler == "local":
         workers = workers_asked(args.workers)
     else:                        # a remote cluster's cores are its own; refused below 1
@@ -354,4 +364,47 @@ def cmd_design(args) -> int:
     print(table(rows, ["", ""]).split("\n", 2)[2])
     if args.out:
         print(f"mechanism written to {args.out} (chaingraph solve {args.out} reproduces it)")
+    return 0
+
+
+def _sliding(args, wanted) -> int:
+    """atlas --prismatic: the chains with sliding pairs, from the turning-pair atlas."""
+    if args.scheduler is not None or args.resume:
+        raise ChainGraphError("--prismatic runs here, from the turning-pair atlas in memory: "
+                              "leave out --scheduler and --resume")
+    check_size(args.links, args.dof, cores=workers_asked(args.workers), cluster=False)
+    if args.out:
+        output_folder(args.out, what="atlas")
+    start = time.perf_counter()
+    base = run_atlas(args.links, args.dof, runner=process_runner(workers_asked(args.workers)))
+    result = sliding_atlas(base, prismatic=wanted, oriented=args.oriented)
+    if args.no_fractionated:
+        result = result.without_fractionated()
+    record = sliding_dict(result, prismatic=args.prismatic, chains=not args.summary)
+    elapsed = time.perf_counter() - start
+    if args.out:
+        paths = write_sliding(result, args.out, record=sliding_dict(result,
+                                                                   prismatic=args.prismatic))
+    if args.json or args.summary:
+        print_json(record)
+        return 0
+    kinds = ("any number of sliding pairs" if args.prismatic == "all" else
+             f"{args.prismatic} sliding pair{'s' if args.prismatic != 1 else ''}")
+    print(f"{len(result)} chains of {args.links} links and {args.dof} degree(s) of freedom with "
+          f"{kinds}{' (oriented)' if args.oriented else ''}, "
+          f"{result.distinct_inversions} distinct inversions ({elapsed:.2f} s)")
+    for reason, n in result.rejected.items():
+        if n:
+            print(f"rejected: {n} with {REASONS[reason]}")
+    if len(result) <= 60:
+        rows = [[e.id, ", ".join(f"{v} {k}" for k, v in e.link_orders.items()),
+                 e.inversion_classes,
+                 " ".join(f"{a + 1}{'-' if k == 'R' else '>' if args.oriented else '='}{b + 1}"
+                          for (a, b), k in zip(e.edges, e.kinds))] for e in result]
+        print(table(rows, ["id", "link assortment", "inversions",
+                           "joints (R a-b, P a=b" + (", guide on a: a>b" if args.oriented
+                                                     else "") + ")"]))
+    if args.out:
+        print(f"written: {paths['json']} and {len(paths['chains'])} chain files in "
+              f"{paths['chain_dir']}")
     return 0

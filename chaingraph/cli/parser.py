@@ -173,6 +173,12 @@ def build_parser() -> argparse.ArgumentParser:
                         "for an embedded one (pip install 'chaingraph[cluster]')")
     p.add_argument("--resume", action="store_true",
                    help="continue an interrupted run in its --out folder")
+    p.add_argument("--prismatic", type=prismatic_count, metavar="K",
+                   help="chains whose joints are K sliding pairs and the rest turning pairs "
+                        "('all': every K together)")
+    p.add_argument("--oriented", action="store_true",
+                   help="with --prismatic: which link of a sliding pair carries its guide "
+                        "tells chains apart")
     p.add_argument("-q", "--quiet", action="store_true", help="no progress bar")
     p.set_defaults(run=cmd_atlas)
 
@@ -192,6 +198,20 @@ def build_parser() -> argparse.ArgumentParser:
 
 def _version() -> str:
     return __version__
+
+def prismatic_count(text):
+    """--prismatic: a whole number of sliding pairs, 0 or more, or 'all'."""
+    if text == "all":
+        return text
+    try:
+        value = int(text)
+    except ValueError:
+        raise argparse.ArgumentTypeError(f"a number of sliding pairs or 'all', got {text!r}") \
+            from None
+    if value < 0:
+        raise argparse.ArgumentTypeError(f"a number of sliding pairs is 0 or more, got {value}")
+    return value
+
 
 def whole_number(text):
     """An option's whole number of 1 or more (a number of steps)."""

@@ -30,10 +30,16 @@ from chaingraph.structure.atlas.contracted import assortments, joints_for
 from chaingraph.structure.atlas.entry import AtlasEntry
 from chaingraph.structure.atlas.output import atlas_dict, write_atlas
 from chaingraph.structure.atlas.run import Atlas, AtlasCounts, DaskRunner, process_runner, run_atlas
+from chaingraph.structure.atlas.sliding import (
+    SlidingAtlas,
+    SlidingEntry,
+    prismatic_counts,
+    sliding_atlas,
+)
 
 __all__ = ["atlas", "atlas_graphs", "AtlasEntry", "Atlas", "AtlasCounts", "joints_for",
            "assortments", "atlas_dict", "write_atlas", "run_atlas", "process_runner",
-           "DaskRunner"]
+           "DaskRunner", "sliding_atlas", "SlidingAtlas", "SlidingEntry"]
 
 
 def atlas_graphs(links: int, dof: int = 1, *, workers: int = 1, progress=None,
@@ -68,13 +74,27 @@ def atlas_graphs(links: int, dof: int = 1, *, workers: int = 1, progress=None,
     return run_atlas(links, dof, workers=workers, progress=progress, backend=labelling)
 
 
-def atlas(*, links: int, dof: int = 1, workers: int = 1):
+def atlas(*, links: int, dof: int = 1, workers: int = 1, prismatic=None,
+          oriented: bool = False):
     """Yield every chain of ``links`` links and ``dof`` degrees of freedom as a Chain.
+
+    ``prismatic`` (a number, or "all") gives the chains whose joints are that many
+    sliding pairs and the rest turning pairs (see
+    :func:`~chaingraph.structure.atlas.sliding.sliding_atlas`); ``oriented`` tells them
+    apart by which link carries each guide.
 
     Examples
     --------
     >>> [c.name for c in atlas(links=6, dof=1)]
     ['chain 1 of 6 links, 1 dof', 'chain 2 of 6 links, 1 dof']
+    >>> [[j.kind for j in c.joints] for c in atlas(links=4, prismatic=2)]
+    [['P', 'P', 'R', 'R'], ['R', 'P', 'P', 'R']]
     """
-    for entry in atlas_graphs(links, dof, workers=workers):
+    wanted = prismatic_counts(links, dof, joints_for(links, dof), prismatic, oriented)
+    base = atlas_graphs(links, dof, workers=workers)
+    if wanted is None:
+        for entry in base:
+            yield entry.chain(dof)
+        return
+    for entry in sliding_atlas(base, prismatic=wanted, oriented=oriented):
         yield entry.chain(dof)

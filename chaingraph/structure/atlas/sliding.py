@@ -1,0 +1,520 @@
+"""The atlas with sliding pairs: every chain of N links and F degrees of freedom whose
+simple joints are K sliding (P) pairs and the rest turning (R) pairs.
+
+A chain with sliding pairs is a chain of the (turning-pair) atlas with K of its joints
+made P. Such an assignment is admissible when the chain keeps F degrees of freedom and
+no joint is locked (moves in no motion of the chain; a rigid sub-chain locks the joints
+inside it). Two causes are seen in the structure of the P joints alone:
+
+* the links' rotations are tied only by P joints (the two links of a P joint turn
+  together), so a *loop of P joints only* leaves its loop's rotation equation empty:
+  the chain gets one freedom more than its joints allow (rejected: ``"mobility"``);
+* an R joint whose two links are joined by a path of P joints cannot turn (the path
+  keeps them parallel): it is *locked* (rejected: ``"locked"``).
+
+The rest is decided by the rank of the chain's velocity equations at a generic pose
+(:func:`generic_verdicts`): exact integer arithmetic modulo the prime 2**31 - 1 at
+pseudo-random pins and sliding directions, two independent draws, the larger rank
+taken. A rank is exact arithmetic, not a float's judgement; it falls below the generic
+rank only where the draw hits the zeros of a polynomial of degree at most twice the
+joints, which for two draws happens with probability below 1e-15. It finds what the
+structure of the P joints alone does not: two binary links between two links that a
+path of P joints keeps parallel (Stephenson's chain with the path P-P-P between its
+ternary links) make a rigid sub-chain that locks their four R joints.
+``tests/structure/test_sliding.py`` checks the verdicts against an independent rank
+(Python integers, another prime, other draws) for every assignment of every chain up
+to 8 links.
+
+Two chains are the same when an isomorphism of their link graphs maps P joints to P
+joints; with ``oriented``, also the link that carries each guide to the link that
+carries the guide. The assignments are taken one per orbit of the chain's
+automorphisms, so each chain is counted once without a canonical form per candidate.
+"""
+
+from __future__ import annotations
+
+import json
+import random
+from dataclasses import dataclass
+from pathlib import Path
+
+import numpy as np
+
+from chaingraph.errors import AtlasSizeError
+from chaingraph.model.chain import Chain, Joint
+from chaingraph.model.chainfile import dumps
+from chaingraph.structure.atlas.entry import order_counts
+from chaingraph.structure.isomorphism import automorphism_generators, automorphism_orbits
+
+__all__ = ["SlidingEntry", "SlidingAtlas", "sliding_atlas", "admissible", "REASONS",
+           "prismatic_counts",
+           "generic_verdicts",
+           "sliding_dict", "write_sliding"]
+
+#: why an assignment of sliding pairs is rejected, in the order they are tested
+REASONS = {"mobility": "a generic mobility other than asked (a loop of sliding pairs only "
+                       "has one freedom more than its joints allow)",
+           "locked": "a locked joint (a turning pair whose two links are joined by sliding "
+                     "pairs only cannot turn; a rigid sub-chain locks its joints)"}
+
+
+@dataclass(frozen=True)
+class SlidingEntry:
+    """One chain with sliding pairs: its link graph ``edges`` (0-based link pairs; with
+    ``oriented``, a P joint's first link carries its guide), each joint's ``kind``
+    ("R" or "P", in the order of ``edges``), the number of ``links``, its inversion
+    classes (orbits of its links under its automorphisms), whether it is
+    fractionated, and ``base``, the id of the turning-pair chain it comes from."""
+
+    id: int
+    edges: tuple
+    kinds: tuple
+    links: int
+    inversion_classes: int
+    fractionated: bool
+    base: int
+    oriented: bool = False
+
+    @property
+    def prismatic(self) -> int:
+        """How many of its joints are sliding pairs."""
+        return self.kinds.count("P")
+
+    @property
+    def link_orders(self) -> dict:
+        return order_counts(self.edges, self.links)
+
+    def chain(self, dof=None) -> Chain:
+        """The chain (links L1..LN, joints J1..; a P joint's first link carries its
+        guide)."""
+        joints = tuple(Joint(f"J{i + 1}", k, (f"L{a + 1}", f"L{b + 1}"))
+                       for i, ((a, b), k) in enumerate(zip(self.edges, self.kinds)))
+        name = (f"chain {self.id} of {self.links} links" + (f", {dof} dof" if dof else "")
+                + f", {self.prismatic} sliding pair{'s' if self.prismatic != 1 else ''}")
+        return Chain(name, joints, family="atlas")
+
+    def to_dict(self) -> dict:
+        return {"id": self.id, "edges": [list(e) for e in self.edges],
+                "kinds": list(self.kinds), "link_orders": self.link_orders,
+                "inversion_classes": self.inversion_classes,
+                "fractionated": self.fractionated}
+
+
+@dataclass(frozen=True)
+class SlidingAtlas:
+    """The chains with sliding pairs of one size: ``entries`` in order (by the
+    turning-pair chain they come from, then by their P joints), ``rejected``
+    ``{reason: assignments}`` (one per orbit), and what was asked."""
+
+    links: int
+    dof: int
+    prismatic: tuple
+    oriented: bool
+    entries: tuple
+    rejected: dict
+
+    def __len__(self):
+        return len(self.entries)
+
+    def __iter__(self):
+        return iter(self.entries)
+
+    @property
+    def count_by_prismatic(self) -> dict:
+        out = {k: 0 for k in self.prismatic}
+        for e in self.entries:
+            out[e.prismatic] += 1
+        return out
+
+    @property
+    def distinct_inversions(self) -> int:
+        return sum(e.inversion_classes for e in self.entries)
+
+    def without_fractionated(self):
+        return SlidingAtlas(self.links, self.dof, self.prismatic, self.oriented,
+                            tuple(e for e in self.entries if not e.fractionated),
+                            dict(self.rejected))
+
+
+def prismatic_counts(links, dof, joints, prismatic, oriented=False):
+    """The numbers of sliding pairs asked for (``prismatic``: a number, a sequence of
+    them, or "all") as a tuple, for chains of ``joints`` joints; AtlasSizeError naming
+    the parameter for a number that is not one.
+
+    >>> prismatic_counts(4, 1, 4, "all")
+    (0, 1, 2, 3, 4)
+    >>> prismatic_counts(4, 1, 4, 5)
+    Traceback (most recent call last):
+    ...
+    chaingraph.errors.AtlasSizeError: prismatic 5: a chain of 4 links and 1 dof has 4 joints, so at most 4 of them can be sliding pairs
+    """
+    if prismatic is None:
+        if oriented:
+            raise AtlasSizeError("oriented tells chains apart by which link carries each "
+                                 "sliding pair's guide: give prismatic too", links=links,
+                                 dof=dof, parameter="oriented")
+        return None
+    if prismatic == "all":
+        return tuple(range(joints + 1))
+    asked = (prismatic,) if not isinstance(prismatic, (list, tuple, range)) else prismatic
+    for k in asked:
+        if isinstance(k, bool) or not isinstance(k, int) or k < 0:
+            raise AtlasSizeError(f"prismatic must be a whole number of sliding pairs, 0 or "
+                                 f"more, or 'all', got {k!r}", links=links, dof=dof,
+                                 parameter="prismatic")
+        if k > joints:
+            raise AtlasSizeError(f"prismatic {k}: a chain of {links} links and {dof} dof has "
+                                 f"{joints} joints, so at most {joints} of them can be "
+                                 "sliding pairs", links=links, dof=dof, parameter="prismatic")
+    return tuple(sorted(set(asked)))
+
+
+def admissible(links, edges, kinds):
+    """What the structure of the P joints alone says of an assignment of ``kinds``
+    ("R"/"P") to the joints ``edges``: ``"mobility"`` for a loop of P joints only,
+    ``"locked"`` for an R joint whose links are joined by P joints, else None (then the
+    rank decides: :func:`generic_verdicts`).
+
+    Examples
+    --------
+    >>> ring = [(0, 1), (1, 2), (2, 3), (3, 0)]
+    >>> [admissible(4, ring, k) for k in ("RRRR", "RRRP", "RRPP", "RPRP", "RPPP", "PPPP")]
+    [None, None, None, None, 'locked', 'mobility']
+    """
+    parent = list(range(links))
+
+    def root(x):
+        while parent[x] != x:
+            parent[x] = parent[parent[x]]
+            x = parent[x]
+        return x
+    for (a, b), k in zip(edges, kinds):
+        if k == "P":
+            ra, rb = root(a), root(b)
+            if ra == rb:
+                return "mobility"
+            parent[ra] = rb
+    for (a, b), k in zip(edges, kinds):
+        if k == "R" and root(a) == root(b):
+            return "locked"
+    return None
+
+
+PRIME = (1 << 31) - 1          # products of two residues fit in int64
+
+
+def _modular_inverse(v):
+    """Inverses modulo PRIME of an int64 array (Fermat: v ** (PRIME - 2))."""
+    out = np.ones_like(v)
+    base, e = v % PRIME, PRIME - 2
+    while e:
+        if e & 1:
+            out = out * base % PRIME
+        base = base * base % PRIME
+        e >>= 1
+    return out
+
+
+def _reduce(mats):
+    """Each stacked matrix (int64, entries modulo PRIME) in reduced row echelon form, and
+    its rank."""
+    m = mats % PRIME
+    count, rows, cols = m.shape
+    rank = np.zeros(count, dtype=np.int64)
+    order = np.arange(rows)[None, :]
+    for c in range(cols):
+        candidate = (m[:, :, c] != 0) & (order >= rank[:, None])
+        has = np.nonzero(candidate.any(axis=1))[0]
+        if not has.size:
+            continue
+        pivot = np.argmax(candidate[has], axis=1)
+        top = rank[has]
+        sub = m[has]
+        k = np.arange(has.size)
+        sub[k, pivot], sub[k, top] = sub[k, top], sub[k, pivot].copy()
+        sub[k, top] = sub[k, top] * _modular_inverse(sub[k, top, c])[:, None] % PRIME
+        factor = sub[:, :, c].copy()
+        factor[k, top] = 0
+        sub = (sub - factor[:, :, None] * sub[k, top][:, None, :]) % PRIME
+        m[has] = sub
+        rank[has] += 1
+    return m, rank
+
+
+def _in_row_space(reduced, rank, vectors):
+    """Whether each of ``vectors`` (count, k, cols) lies in the row space of its
+    matrix, given in reduced row echelon form with its rank."""
+    v = vectors % PRIME
+    count, rows, cols = reduced.shape
+    everything = np.arange(count)
+    for r in range(rows):
+        live = everything[rank > r]
+        if not live.size:
+            break
+        row = reduced[live, r]                                  # (n, cols)
+        pivot = np.argmax(row != 0, axis=1)                     # its leading 1
+        here = v[live]                                          # (n, k, cols)
+        coefficient = here[np.arange(live.size), :, pivot]      # (n, k)
+        v[live] = (here - coefficient[:, :, None] * row[:, None, :]) % PRIME
+    return ~v.any(axis=2)
+
+
+def generic_verdicts(links, edges, masks, *, seed=0):
+    """For each assignment (a bit mask over ``edges``: P where set), the generic
+    mobility of the chain (the first link fixed) and whether a joint is locked, by the
+    rank of its velocity equations at generic pins and sliding directions (exact,
+    modulo PRIME; the larger rank of two independent draws).
+
+    A link's velocity is its twist (omega, vx, vy) at the origin. An R joint at (x, y)
+    gives the pin one velocity on both links (2 rows); a P joint with normal n turns its
+    links together and lets no point slip across its line (2 rows). A joint is locked
+    when its rate (an R joint's relative turn, a P joint's slide) is zero in every
+    motion: its row lies in the equations' row space.
+
+    Examples
+    --------
+    >>> ring = [(0, 1), (1, 2), (2, 3), (3, 0)]
+    >>> mobility, locked = generic_verdicts(4, ring, [0b0000, 0b0011, 0b1111, 0b0111])
+    >>> mobility.tolist(), locked.tolist()
+    ([1, 1, 2, 1], [False, False, False, True])
+    """
+    masks = np.asarray(masks, dtype=np.int64)
+    m, cols = len(edges), 3 * (links - 1)
+    best_rank = best_locked = None
+    for draw in range(2):
+        rnd = random.Random(f"{seed}:{draw}:{links}:{edges}")
+        values = [[rnd.randrange(1, PRIME) for _ in range(4)] for _ in edges]
+        count = masks.size
+        rows = np.zeros((count, 2 * m, cols), dtype=np.int64)
+        rates = np.zeros((count, m, cols), dtype=np.int64)
+
+        def put(target, index, row, link, coefficients, sign):
+            if link:
+                for k, v in enumerate(coefficients):
+                    target[index, row, 3 * (link - 1) + k] += sign * v
+        everything = np.arange(count)
+        for i, ((a, b), (x, y, nx, ny)) in enumerate(zip(edges, values)):
+            sliding = (masks >> i & 1).astype(bool)
+            r, s = everything[~sliding], everything[sliding]
+            for link, sign in ((a, 1), (b, -1)):
+                # R: the pin's velocity v + omega k x (x, y), both components
+                put(rows, r, 2 * i, link, (-y, 1, 0), sign)
+                put(rows, r, 2 * i + 1, link, (x, 0, 1), sign)
+                put(rates, r, i, link, (1, 0, 0), -sign)
+                # P: the same turn; no slip across the line at (x, y) (normal n)
+                put(rows, s, 2 * i, link, (1, 0, 0), sign)
+                put(rows, s, 2 * i + 1, link, ((-nx * y + ny * x) % PRIME, nx, ny), sign)
+                put(rates, s, i, link, ((ny * y + nx * x) % PRIME, -ny, nx), -sign)
+        reduced, rank = _reduce(rows)
+        locked = _in_row_space(reduced, rank, rates).any(axis=1)
+        if best_rank is None:
+            best_rank, best_locked = rank, locked
+        else:
+            better = rank > best_rank
+            best_rank = np.where(better, rank, best_rank)
+            best_locked = np.where(better, locked, best_locked)
+    return cols - best_rank, best_locked
+
+
+def _edge_maps(chain, gens):
+    """Each automorphism (link-joint graph node map) as (link permutation, edge
+    permutation) over indices."""
+    links = {name: int(name[1:]) - 1 for name in chain.links}      # L1.. are links 0..
+    joints = {j.id: i for i, j in enumerate(chain.joints)}
+    out = []
+    for g in gens:
+        perm = [0] * len(links)
+        for name, i in links.items():
+            perm[i] = links[g[("link", name)][1]]
+        eperm = [0] * len(joints)
+        for jid, i in joints.items():
+            eperm[i] = joints[g[("joint", jid)][1]]
+        out.append((tuple(perm), tuple(eperm)))
+    return out
+
+
+def _group(generators, n, m):
+    """Every element of the group the (link, edge) permutations generate."""
+    identity = (tuple(range(n)), tuple(range(m)))
+    seen, todo = {identity}, [identity]
+    while todo:
+        p, e = todo.pop()
+        for gp, ge in generators:
+            q = (tuple(gp[x] for x in p), tuple(ge[x] for x in e))
+            if q not in seen:
+                seen.add(q)
+                todo.append(q)
+    return list(seen)
+
+
+def _orbit_representatives(states, act):
+    """The least state of each orbit of ``states`` (ints) under the maps in ``act``."""
+    parent = {s: s for s in states}
+
+    def root(x):
+        while parent[x] != x:
+            parent[x] = parent[parent[x]]
+            x = parent[x]
+        return x
+    for f in act:
+        for s in states:
+            a, b = root(s), root(f(s))
+            if a != b:
+                parent[max(a, b)] = min(a, b)
+    return sorted({root(s) for s in states})
+
+
+def _permute_mask(mask, eperm):
+    out = 0
+    for i, j in enumerate(eperm):
+        if mask >> i & 1:
+            out |= 1 << j
+    return out
+
+
+def _link_orbits(n, elements):
+    """How many orbits the links fall into under ``elements``."""
+    parent = list(range(n))
+
+    def root(x):
+        while parent[x] != x:
+            x = parent[x]
+        return x
+    for perm, _ in elements:
+        for x in range(n):
+            a, b = root(x), root(perm[x])
+            if a != b:
+                parent[max(a, b)] = min(a, b)
+    return len({root(x) for x in range(n)})
+
+
+def sliding_atlas(base, *, prismatic, oriented=False) -> SlidingAtlas:
+    """The chains with sliding pairs made from the turning-pair chains of ``base`` (an
+    :class:`~chaingraph.structure.atlas.run.Atlas`), with ``prismatic`` sliding pairs
+    (an int, or a sequence of them).
+
+    Each turning-pair chain's automorphism group is listed once; the assignments are
+    taken one per orbit of it, and a chain's own automorphisms (for its inversion
+    classes, and the orbits of its guides' orientations) are the elements that keep
+    its sliding pairs (and their guides) in place.
+
+    Examples
+    --------
+    >>> from chaingraph.structure.atlas import atlas_graphs
+    >>> four = sliding_atlas(atlas_graphs(4, 1), prismatic=range(5))
+    >>> four.count_by_prismatic, four.rejected
+    ({0: 1, 1: 1, 2: 2, 3: 0, 4: 0}, {'mobility': 1, 'locked': 1})
+    >>> sliding_atlas(atlas_graphs(4, 1), prismatic=2, oriented=True).count_by_prismatic
+    {2: 5}
+    """
+    wanted = (prismatic,) if isinstance(prismatic, int) else tuple(sorted(set(prismatic)))
+    entries, rejected = [], {reason: 0 for reason in REASONS}
+    for base_id, entry in enumerate(base, start=1):
+        edges = [tuple(e) for e in entry.edges]
+        n, m = entry.links, len(edges)
+        chain = entry.chain()
+        gens = _edge_maps(chain, automorphism_generators(chain, oriented=False))
+        group = _group(gens, n, m)
+        masks = [s for s in range(1 << m) if bin(s).count("1") in wanted]
+        acts = [lambda s, e=eperm: _permute_mask(s, e) for _, eperm in gens]
+        reps, left = _orbit_representatives(masks, acts), []
+        for mask in reps:
+            reason = admissible(n, edges, _kinds(mask, m))
+            if reason is not None:
+                rejected[reason] += 1
+            else:
+                left.append(mask)
+        if left:
+            mobility, locked = generic_verdicts(n, edges, left)
+        for mask, free, stuck in zip(left, mobility if left else (), locked if left else ()):
+            if free != base.dof or stuck:
+                rejected["mobility" if free != base.dof else "locked"] += 1
+                continue
+            kinds = _kinds(mask, m)
+            own = [g for g in group if _permute_mask(mask, g[1]) == mask]
+            for oriented_edges, keep in _orientations(edges, kinds, own, oriented):
+                entries.append(SlidingEntry(len(entries) + 1, oriented_edges, kinds, n,
+                                            _link_orbits(n, keep), bool(entry.fractionated),
+                                            base_id, oriented))
+    return SlidingAtlas(base.links, base.dof, wanted, oriented, tuple(entries), rejected)
+
+
+def _kinds(mask, m):
+    return tuple("P" if mask >> i & 1 else "R" for i in range(m))
+
+
+def _orientations(edges, kinds, own, oriented):
+    """``(edges, automorphisms)`` of the chain as listed (unoriented), or of one chain
+    per orbit of the orientations of its P joints (a P edge's first link carries the
+    guide) under the chain's automorphisms ``own``, with the automorphisms that keep
+    each guide on its link."""
+    sliding = [i for i, k in enumerate(kinds) if k == "P"]
+    if not oriented or not sliding:
+        return [(tuple(edges), own)]
+    position = {i: k for k, i in enumerate(sliding)}
+
+    def image(bits, perm, eperm):
+        out = 0
+        for k, i in enumerate(sliding):
+            guide = edges[i][1] if bits >> k & 1 else edges[i][0]
+            j = eperm[i]
+            if perm[guide] == edges[j][1]:
+                out |= 1 << position[j]
+        return out
+    states = range(1 << len(sliding))
+    reps = _orbit_representatives(states, [lambda b, p=p, e=e: image(b, p, e) for p, e in own])
+    out = []
+    for bits in reps:
+        flipped = list(edges)
+        for k, i in enumerate(sliding):
+            if bits >> k & 1:
+                flipped[i] = edges[i][::-1]
+        keep = [(p, e) for p, e in own if image(bits, p, e) == bits]
+        out.append((tuple(flipped), keep))
+    return out
+
+
+def sliding_dict(result, *, prismatic=None, chains=True) -> dict:
+    """The JSON object of ``chaingraph atlas --prismatic K`` (``chains=False``:
+    ``--summary``): the counts, the rejected assignments by reason, the count by K
+    when every K was asked for (``prismatic="all"``), and each chain with ``"kinds"``.
+
+    Examples
+    --------
+    >>> from chaingraph.structure.atlas import atlas_graphs
+    >>> d = sliding_dict(sliding_atlas(atlas_graphs(4, 1), prismatic=1))
+    >>> d["count"], d["rejected"], d["chains"][0]["kinds"]
+    (1, {'mobility': 0, 'locked': 0}, ['P', 'R', 'R', 'R'])
+    """
+    out = {"links": result.links, "dof": result.dof,
+           "prismatic": prismatic if prismatic is not None else (
+               result.prismatic[0] if len(result.prismatic) == 1 else list(result.prismatic)),
+           "oriented": result.oriented, "count": len(result),
+           "count_non_fractionated": sum(1 for e in result if not e.fractionated),
+           "distinct_inversions": result.distinct_inversions,
+           "rejected": dict(result.rejected)}
+    if prismatic == "all" or len(result.prismatic) > 1:
+        out["count_by_prismatic"] = {str(k): v for k, v in result.count_by_prismatic.items()}
+    if chains:
+        out["chains"] = [e.to_dict() for e in result]
+    return out
+
+
+def write_sliding(result, out_dir, *, record=None, chain_files_up_to=10_000) -> dict:
+    """Write ``atlas.json`` (``record``, else :func:`sliding_dict`) and, up to
+    ``chain_files_up_to`` chains, one chain file per chain under ``chains/``."""
+    out = Path(out_dir)
+    out.mkdir(parents=True, exist_ok=True)
+    path = out / "atlas.json"
+    path.write_text(json.dumps(record or sliding_dict(result), indent=1) + "\n",
+                    encoding="utf-8")
+    chain_dir = out / "chains"
+    written = []
+    if len(result) <= chain_files_up_to:
+        chain_dir.mkdir(exist_ok=True)
+        width = len(str(len(result)))
+        for e in result:
+            file = chain_dir / f"chain-{e.id:0{width}d}.toml"
+            file.write_text(dumps(e.chain(result.dof)), encoding="utf-8")
+            written.append(file)
+    return {"json": path, "chain_dir": chain_dir, "chains": written}
