@@ -37,6 +37,7 @@ from chaingraph.graphical import instant_centres, velocity_polygon
 from chaingraph.kinematics import solve, summary_rows
 from chaingraph.kinematics.assembly import measure
 from chaingraph.naming.catalog import catalog_dir
+from chaingraph.naming.atlas import atlas_names
 from chaingraph.naming.identify import identify
 from chaingraph.naming.inversions import inversions
 from chaingraph.report.build import build_report
@@ -380,11 +381,15 @@ def _sliding(args, wanted) -> int:
     result = sliding_atlas(base, prismatic=wanted, oriented=args.oriented)
     if args.no_fractionated:
         result = result.without_fractionated()
-    record = sliding_dict(result, prismatic=args.prismatic, chains=not args.summary)
+    def names(chain):
+        return atlas_names(chain, oriented=args.oriented)
+    record = sliding_dict(result, prismatic=args.prismatic, chains=not args.summary,
+                          names=names)
     elapsed = time.perf_counter() - start
     if args.out:
-        paths = write_sliding(result, args.out, record=sliding_dict(result,
-                                                                   prismatic=args.prismatic))
+        whole = record if not args.summary else sliding_dict(
+            result, prismatic=args.prismatic, names=names)
+        paths = write_sliding(result, args.out, record=whole)
     if args.json or args.summary:
         print_json(record)
         return 0
@@ -400,10 +405,11 @@ def _sliding(args, wanted) -> int:
         rows = [[e.id, ", ".join(f"{v} {k}" for k, v in e.link_orders.items()),
                  e.inversion_classes,
                  " ".join(f"{a + 1}{'-' if k == 'R' else '>' if args.oriented else '='}{b + 1}"
-                          for (a, b), k in zip(e.edges, e.kinds))] for e in result]
+                          for (a, b), k in zip(e.edges, e.kinds)),
+                 ", ".join(names(e.chain(args.dof))["chain"]) or "-"] for e in result]
         print(table(rows, ["id", "link assortment", "inversions",
                            "joints (R a-b, P a=b" + (", guide on a: a>b" if args.oriented
-                                                     else "") + ")"]))
+                                                     else "") + ")", "catalog name"]))
     if args.out:
         print(f"written: {paths['json']} and {len(paths['chains'])} chain files in "
               f"{paths['chain_dir']}")

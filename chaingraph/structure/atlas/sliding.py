@@ -474,10 +474,11 @@ def _orientations(edges, kinds, own, oriented):
     return out
 
 
-def sliding_dict(result, *, prismatic=None, chains=True) -> dict:
+def sliding_dict(result, *, prismatic=None, chains=True, names=None) -> dict:
     """The JSON object of ``chaingraph atlas --prismatic K`` (``chains=False``:
     ``--summary``): the counts, the rejected assignments by reason, the count by K
-    when every K was asked for (``prismatic="all"``), and each chain with ``"kinds"``.
+    when every K was asked for (``prismatic="all"``), and each chain with ``"kinds"``
+    and, given ``names`` (a function of a chain), its ``"names"``.
 
     Examples
     --------
@@ -497,6 +498,9 @@ def sliding_dict(result, *, prismatic=None, chains=True) -> dict:
         out["count_by_prismatic"] = {str(k): v for k, v in result.count_by_prismatic.items()}
     if chains:
         out["chains"] = [e.to_dict() for e in result]
+        if names is not None:
+            for record, e in zip(out["chains"], result):
+                record["names"] = names(e.chain(result.dof))
     return out
 
 
