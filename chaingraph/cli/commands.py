@@ -36,8 +36,8 @@ from chaingraph.files import dumps, load, read_file, save
 from chaingraph.graphical import instant_centres, velocity_polygon
 from chaingraph.kinematics import solve, summary_rows
 from chaingraph.kinematics.assembly import measure
-from chaingraph.naming.catalog import catalog_dir
 from chaingraph.naming.atlas import atlas_names
+from chaingraph.naming.catalog import catalog_dir
 from chaingraph.naming.identify import identify
 from chaingraph.naming.inversions import inversions
 from chaingraph.report.build import build_report
@@ -50,6 +50,7 @@ from chaingraph.structure.atlas import (
 )
 from chaingraph.structure.atlas.contracted import joints_for
 from chaingraph.structure.atlas.estimate import check_size
+from chaingraph.structure.atlas.multiple import multiple_atlas
 from chaingraph.structure.atlas.sliding import (
     REASONS,
     prismatic_counts,
@@ -289,8 +290,8 @@ def cmd_atlas(args) -> int:
 
     joints = joints_for(args.links, args.dof)   # a size with no chain: exit 2 with the reason
     wanted = prismatic_counts(args.links, args.dof, joints, args.prismatic, args.oriented)
-    if wanted is not None:
-        return _sliding(args, wanted)
+    if wanted is not None or args.multiple:
+        return _sliding(args, wanted or (0,))
     if args.scheduler is None or args.scheduler == "local":
         workers = workers_asked(args.workers)
     else:                        # a remote cluster's cores are its own; refused below 1
@@ -378,6 +379,8 @@ def _sliding(args, wanted) -> int:
         output_folder(args.out, what="atlas")
     start = time.perf_counter()
     base = run_atlas(args.links, args.dof, runner=process_runner(workers_asked(args.workers)))
+    if args.multiple:
+        base = multiple_atlas(base)
     result = sliding_atlas(base, prismatic=wanted, oriented=args.oriented)
     if args.no_fractionated:
         result = result.without_fractionated()
@@ -394,7 +397,10 @@ def _sliding(args, wanted) -> int:
         print_json(record)
         return 0
     kinds = ("any number of sliding pairs" if args.prismatic == "all" else
+             "turning pairs only" if args.prismatic is None else
              f"{args.prismatic} sliding pair{'s' if args.prismatic != 1 else ''}")
+    if args.multiple:
+        kinds += ", multiple joints allowed"
     print(f"{len(result)} chains of {args.links} links and {args.dof} degree(s) of freedom with "
           f"{kinds}{' (oriented)' if args.oriented else ''}, "
           f"{result.distinct_inversions} distinct inversions ({elapsed:.2f} s)")
@@ -404,8 +410,8 @@ def _sliding(args, wanted) -> int:
     if len(result) <= 60:
         rows = [[e.id, ", ".join(f"{v} {k}" for k, v in e.link_orders.items()),
                  e.inversion_classes,
-                 " ".join(f"{a + 1}{'-' if k == 'R' else '>' if args.oriented else '='}{b + 1}"
-                          for (a, b), k in zip(e.edges, e.kinds)),
+                 " ".join(("-" if k == "R" else ">" if args.oriented else "=").join(
+                     str(x + 1) for x in j) for j, k in zip(e.edges, e.kinds)),
                  ", ".join(names(e.chain(args.dof))["chain"]) or "-"] for e in result]
         print(table(rows, ["id", "link assortment", "inversions",
                            "joints (R a-b, P a=b" + (", guide on a: a>b" if args.oriented

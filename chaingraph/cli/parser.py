@@ -179,6 +179,9 @@ def build_parser() -> argparse.ArgumentParser:
     p.add_argument("--oriented", action="store_true",
                    help="with --prismatic: which link of a sliding pair carries its guide "
                         "tells chains apart")
+    p.add_argument("--multiple", action="store_true",
+                   help="turning pairs may join three links or more (a joint of d links "
+                        "counts as d - 1); with --prismatic, only simple joints slide")
     p.add_argument("-q", "--quiet", action="store_true", help="no progress bar")
     p.set_defaults(run=cmd_atlas)
 

@@ -29,7 +29,13 @@ from __future__ import annotations
 from chaingraph.structure.atlas.contracted import assortments, joints_for
 from chaingraph.structure.atlas.entry import AtlasEntry
 from chaingraph.structure.atlas.output import atlas_dict, write_atlas
-from chaingraph.structure.atlas.run import Atlas, AtlasCounts, DaskRunner, process_runner, run_atlas
+from chaingraph.structure.atlas.run import (
+    Atlas,
+    AtlasCounts,
+    DaskRunner,
+    process_runner,
+    run_atlas,
+)
 from chaingraph.structure.atlas.sliding import (
     SlidingAtlas,
     SlidingEntry,

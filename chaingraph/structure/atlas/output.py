@@ -10,7 +10,6 @@ import math
 import os
 from pathlib import Path
 
-
 from chaingraph.structure.atlas.entry import AtlasEntry, encode_chains, order_counts
 from chaingraph.structure.atlas.run import ring_of
 

@@ -21,7 +21,11 @@ import numpy as np
 
 from chaingraph._util.parallel import process_runner, serial
 from chaingraph.errors import AtlasRunError
-from chaingraph.structure.atlas.contracted import assortments, contracted_graphs, joints_for
+from chaingraph.structure.atlas.contracted import (
+    assortments,
+    contracted_graphs,
+    joints_for,
+)
 from chaingraph.structure.atlas.entry import AtlasEntry, encode_chains
 from chaingraph.structure.atlas.labelling import default_backend, graph_form
 from chaingraph.structure.atlas.pieces import piece, piece_work

@@ -13,7 +13,7 @@ inside it). Two causes are seen in the structure of the P joints alone:
   keeps them parallel): it is *locked* (rejected: ``"locked"``).
 
 The rest is decided by the rank of the chain's velocity equations at a generic pose
-(:func:`generic_verdicts`): exact integer arithmetic modulo the prime 2**31 - 1 at
+(:func:`~chaingraph.structure.atlas.generic.generic_verdicts`): exact integer arithmetic modulo the prime 2**31 - 1 at
 pseudo-random pins and sliding directions, two independent draws, the larger rank
 taken. A rank is exact arithmetic, not a float's judgement; it falls below the generic
 rank only where the draw hits the zeros of a polynomial of degree at most twice the
@@ -34,21 +34,21 @@ automorphisms, so each chain is counted once without a canonical form per candid
 from __future__ import annotations
 
 import json
-import random
 from dataclasses import dataclass
 from pathlib import Path
-
-import numpy as np
 
 from chaingraph.errors import AtlasSizeError
 from chaingraph.model.chain import Chain, Joint
 from chaingraph.model.chainfile import dumps
 from chaingraph.structure.atlas.entry import order_counts
-from chaingraph.structure.isomorphism import automorphism_generators, automorphism_orbits
+from chaingraph.structure.atlas.generic import generic_verdicts, joint_verdicts
+from chaingraph.structure.classify import order_name
+from chaingraph.structure.isomorphism import (
+    automorphism_generators,
+)
 
 __all__ = ["SlidingEntry", "SlidingAtlas", "sliding_atlas", "admissible", "REASONS",
            "prismatic_counts",
-           "generic_verdicts",
            "sliding_dict", "write_sliding"]
 
 #: why an assignment of sliding pairs is rejected, in the order they are tested
@@ -74,6 +74,7 @@ class SlidingEntry:
     fractionated: bool
     base: int
     oriented: bool = False
+    multiple: bool = False      # from the atlas with multiple joints: "joints", not "edges"
 
     @property
     def prismatic(self) -> int:
@@ -82,19 +83,22 @@ class SlidingEntry:
 
     @property
     def link_orders(self) -> dict:
+        if self.multiple:
+            return _orders([sum(x in j for j in self.edges) for x in range(self.links)])
         return order_counts(self.edges, self.links)
 
     def chain(self, dof=None) -> Chain:
         """The chain (links L1..LN, joints J1..; a P joint's first link carries its
         guide)."""
-        joints = tuple(Joint(f"J{i + 1}", k, (f"L{a + 1}", f"L{b + 1}"))
-                       for i, ((a, b), k) in enumerate(zip(self.edges, self.kinds)))
+        joints = tuple(Joint(f"J{i + 1}", k, tuple(f"L{x + 1}" for x in links))
+                       for i, (links, k) in enumerate(zip(self.edges, self.kinds)))
         name = (f"chain {self.id} of {self.links} links" + (f", {dof} dof" if dof else "")
                 + f", {self.prismatic} sliding pair{'s' if self.prismatic != 1 else ''}")
         return Chain(name, joints, family="atlas")
 
     def to_dict(self) -> dict:
-        return {"id": self.id, "edges": [list(e) for e in self.edges],
+        return {"id": self.id, ("joints" if self.multiple else "edges"):
+                [list(e) for e in self.edges],
                 "kinds": list(self.kinds), "link_orders": self.link_orders,
                 "inversion_classes": self.inversion_classes,
                 "fractionated": self.fractionated}
@@ -173,7 +177,7 @@ def admissible(links, edges, kinds):
     """What the structure of the P joints alone says of an assignment of ``kinds``
     ("R"/"P") to the joints ``edges``: ``"mobility"`` for a loop of P joints only,
     ``"locked"`` for an R joint whose links are joined by P joints, else None (then the
-    rank decides: :func:`generic_verdicts`).
+    rank decides: :func:`~chaingraph.structure.atlas.generic.generic_verdicts`).
 
     Examples
     --------
@@ -188,132 +192,17 @@ def admissible(links, edges, kinds):
             parent[x] = parent[parent[x]]
             x = parent[x]
         return x
-    for (a, b), k in zip(edges, kinds):
+    for j, k in zip(edges, kinds):
         if k == "P":
+            a, b = j
             ra, rb = root(a), root(b)
             if ra == rb:
                 return "mobility"
             parent[ra] = rb
-    for (a, b), k in zip(edges, kinds):
-        if k == "R" and root(a) == root(b):
+    for j, k in zip(edges, kinds):
+        if k == "R" and len({root(x) for x in j}) < len(j):
             return "locked"
     return None
-
-
-PRIME = (1 << 31) - 1          # products of two residues fit in int64
-
-
-def _modular_inverse(v):
-    """Inverses modulo PRIME of an int64 array (Fermat: v ** (PRIME - 2))."""
-    out = np.ones_like(v)
-    base, e = v % PRIME, PRIME - 2
-    while e:
-        if e & 1:
-            out = out * base % PRIME
-        base = base * base % PRIME
-        e >>= 1
-    return out
-
-
-def _reduce(mats):
-    """Each stacked matrix (int64, entries modulo PRIME) in reduced row echelon form, and
-    its rank."""
-    m = mats % PRIME
-    count, rows, cols = m.shape
-    rank = np.zeros(count, dtype=np.int64)
-    order = np.arange(rows)[None, :]
-    for c in range(cols):
-        candidate = (m[:, :, c] != 0) & (order >= rank[:, None])
-        has = np.nonzero(candidate.any(axis=1))[0]
-        if not has.size:
-            continue
-        pivot = np.argmax(candidate[has], axis=1)
-        top = rank[has]
-        sub = m[has]
-        k = np.arange(has.size)
-        sub[k, pivot], sub[k, top] = sub[k, top], sub[k, pivot].copy()
-        sub[k, top] = sub[k, top] * _modular_inverse(sub[k, top, c])[:, None] % PRIME
-        factor = sub[:, :, c].copy()
-        factor[k, top] = 0
-        sub = (sub - factor[:, :, None] * sub[k, top][:, None, :]) % PRIME
-        m[has] = sub
-        rank[has] += 1
-    return m, rank
-
-
-def _in_row_space(reduced, rank, vectors):
-    """Whether each of ``vectors`` (count, k, cols) lies in the row space of its
-    matrix, given in reduced row echelon form with its rank."""
-    v = vectors % PRIME
-    count, rows, cols = reduced.shape
-    everything = np.arange(count)
-    for r in range(rows):
-        live = everything[rank > r]
-        if not live.size:
-            break
-        row = reduced[live, r]                                  # (n, cols)
-        pivot = np.argmax(row != 0, axis=1)                     # its leading 1
-        here = v[live]                                          # (n, k, cols)
-        coefficient = here[np.arange(live.size), :, pivot]      # (n, k)
-        v[live] = (here - coefficient[:, :, None] * row[:, None, :]) % PRIME
-    return ~v.any(axis=2)
-
-
-def generic_verdicts(links, edges, masks, *, seed=0):
-    """For each assignment (a bit mask over ``edges``: P where set), the generic
-    mobility of the chain (the first link fixed) and whether a joint is locked, by the
-    rank of its velocity equations at generic pins and sliding directions (exact,
-    modulo PRIME; the larger rank of two independent draws).
-
-    A link's velocity is its twist (omega, vx, vy) at the origin. An R joint at (x, y)
-    gives the pin one velocity on both links (2 rows); a P joint with normal n turns its
-    links together and lets no point slip across its line (2 rows). A joint is locked
-    when its rate (an R joint's relative turn, a P joint's slide) is zero in every
-    motion: its row lies in the equations' row space.
-
-    Examples
-    --------
-    >>> ring = [(0, 1), (1, 2), (2, 3), (3, 0)]
-    >>> mobility, locked = generic_verdicts(4, ring, [0b0000, 0b0011, 0b1111, 0b0111])
-    >>> mobility.tolist(), locked.tolist()
-    ([1, 1, 2, 1], [False, False, False, True])
-    """
-    masks = np.asarray(masks, dtype=np.int64)
-    m, cols = len(edges), 3 * (links - 1)
-    best_rank = best_locked = None
-    for draw in range(2):
-        rnd = random.Random(f"{seed}:{draw}:{links}:{edges}")
-        values = [[rnd.randrange(1, PRIME) for _ in range(4)] for _ in edges]
-        count = masks.size
-        rows = np.zeros((count, 2 * m, cols), dtype=np.int64)
-        rates = np.zeros((count, m, cols), dtype=np.int64)
-
-        def put(target, index, row, link, coefficients, sign):
-            if link:
-                for k, v in enumerate(coefficients):
-                    target[index, row, 3 * (link - 1) + k] += sign * v
-        everything = np.arange(count)
-        for i, ((a, b), (x, y, nx, ny)) in enumerate(zip(edges, values)):
-            sliding = (masks >> i & 1).astype(bool)
-            r, s = everything[~sliding], everything[sliding]
-            for link, sign in ((a, 1), (b, -1)):
-                # R: the pin's velocity v + omega k x (x, y), both components
-                put(rows, r, 2 * i, link, (-y, 1, 0), sign)
-                put(rows, r, 2 * i + 1, link, (x, 0, 1), sign)
-                put(rates, r, i, link, (1, 0, 0), -sign)
-                # P: the same turn; no slip across the line at (x, y) (normal n)
-                put(rows, s, 2 * i, link, (1, 0, 0), sign)
-                put(rows, s, 2 * i + 1, link, ((-nx * y + ny * x) % PRIME, nx, ny), sign)
-                put(rates, s, i, link, ((ny * y + nx * x) % PRIME, -ny, nx), -sign)
-        reduced, rank = _reduce(rows)
-        locked = _in_row_space(reduced, rank, rates).any(axis=1)
-        if best_rank is None:
-            best_rank, best_locked = rank, locked
-        else:
-            better = rank > best_rank
-            best_rank = np.where(better, rank, best_rank)
-            best_locked = np.where(better, locked, best_locked)
-    return cols - best_rank, best_locked
 
 
 def _edge_maps(chain, gens):
@@ -409,13 +298,17 @@ def sliding_atlas(base, *, prismatic, oriented=False) -> SlidingAtlas:
     """
     wanted = (prismatic,) if isinstance(prismatic, int) else tuple(sorted(set(prismatic)))
     entries, rejected = [], {reason: 0 for reason in REASONS}
+    for reason, n in getattr(base, "rejected", {}).items():    # merges of multiple joints
+        rejected[reason] += n
     for base_id, entry in enumerate(base, start=1):
-        edges = [tuple(e) for e in entry.edges]
+        multiple = hasattr(entry, "joints")
+        edges = [tuple(e) for e in (entry.joints if multiple else entry.edges)]
         n, m = entry.links, len(edges)
+        simple = sum(1 << i for i, e in enumerate(edges) if len(e) == 2)
         chain = entry.chain()
         gens = _edge_maps(chain, automorphism_generators(chain, oriented=False))
         group = _group(gens, n, m)
-        masks = [s for s in range(1 << m) if bin(s).count("1") in wanted]
+        masks = [s for s in range(1 << m) if bin(s).count("1") in wanted and s & ~simple == 0]
         acts = [lambda s, e=eperm: _permute_mask(s, e) for _, eperm in gens]
         reps, left = _orbit_representatives(masks, acts), []
         for mask in reps:
@@ -424,7 +317,10 @@ def sliding_atlas(base, *, prismatic, oriented=False) -> SlidingAtlas:
                 rejected[reason] += 1
             else:
                 left.append(mask)
-        if left:
+        if left and multiple:
+            mobility, locked = joint_verdicts(n, [tuple(edges)] * len(left),
+                                              kinds=[_kinds(s, m) for s in left])
+        elif left:
             mobility, locked = generic_verdicts(n, edges, left)
         for mask, free, stuck in zip(left, mobility if left else (), locked if left else ()):
             if free != base.dof or stuck:
@@ -434,9 +330,28 @@ def sliding_atlas(base, *, prismatic, oriented=False) -> SlidingAtlas:
             own = [g for g in group if _permute_mask(mask, g[1]) == mask]
             for oriented_edges, keep in _orientations(edges, kinds, own, oriented):
                 entries.append(SlidingEntry(len(entries) + 1, oriented_edges, kinds, n,
-                                            _link_orbits(n, keep), bool(entry.fractionated),
-                                            base_id, oriented))
+                                            _link_orbits(n, keep),
+                                            bool(getattr(entry, "fractionated", False)),
+                                            base_id, oriented, multiple))
     return SlidingAtlas(base.links, base.dof, wanted, oriented, tuple(entries), rejected)
+
+
+def _by_multiple(result):
+    """Chains by how many of their joints join three links or more."""
+    out = {}
+    for e in result:
+        k = sum(len(j) > 2 for j in e.edges)
+        out[str(k)] = out.get(str(k), 0) + 1
+    return dict(sorted(out.items(), key=lambda kv: int(kv[0])))
+
+
+def _orders(degree):
+    """The link orders' counts (as the atlas words them) of links with these numbers of
+    joints."""
+    counts = {}
+    for d in sorted(degree):
+        counts[order_name(d)] = counts.get(order_name(d), 0) + 1
+    return counts
 
 
 def _kinds(mask, m):
@@ -491,6 +406,8 @@ def sliding_dict(result, *, prismatic=None, chains=True, names=None) -> dict:
            "prismatic": prismatic if prismatic is not None else (
                result.prismatic[0] if len(result.prismatic) == 1 else list(result.prismatic)),
            "oriented": result.oriented, "count": len(result),
+           **({"multiple": True, "count_by_multiple": _by_multiple(result)}
+              if any(e.multiple for e in result) else {}),
            "count_non_fractionated": sum(1 for e in result if not e.fractionated),
            "distinct_inversions": result.distinct_inversions,
            "rejected": dict(result.rejected)}

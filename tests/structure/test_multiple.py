@@ -1,0 +1,111 @@
+"""The atlas with multiple joints against a direct enumeration: every set of joints (each
+joint a set of two links or more, no two joints on the same two links) on N links, kept
+by the rank of the velocity equations at random poses (floating point, two draws), told
+apart by canonical forms."""
+
+import itertools
+import json
+
+import numpy as np
+import pytest
+
+from chaingraph.cli.main import main
+from chaingraph.model.chain import Chain, Joint
+from chaingraph.naming.atlas import atlas_names
+from chaingraph.structure.atlas import atlas_graphs
+from chaingraph.structure.atlas.multiple import multiple_atlas
+from chaingraph.structure.isomorphism import automorphism_orbits, canonical_form
+
+
+def _verdict(links, joints, seed):
+    """(mobility, any locked joint) at a random pose, the first link fixed."""
+    rnd = np.random.default_rng(seed)
+    cols = 3 * (links - 1)
+    rows, rates = [], []
+
+    def block(link, values):
+        row = np.zeros(cols)
+        if link:
+            row[3 * (link - 1):3 * link] = values
+        return row
+    for j in joints:
+        x, y = rnd.normal(size=2)
+        for other in j[1:]:
+            for comp in ((-y, 1, 0), (x, 0, 1)):
+                rows.append(block(j[0], comp) - block(other, comp))
+        for a, b in itertools.combinations(j, 2):
+            rates.append(block(b, (1, 0, 0)) - block(a, (1, 0, 0)))
+    _, s, vt = np.linalg.svd(np.array(rows))
+    rank = int((s > 1e-9 * s[0]).sum())
+    kernel = vt[rank:]
+    locked = any(np.abs(kernel @ r).max(initial=0) < 1e-9 for r in rates)
+    return cols - rank, locked
+
+
+def _direct(links, dof):
+    """Every chain with multiple joints of this size, by brute force."""
+    total = (3 * (links - 1) - dof) // 2            # simple joints' worth
+    subsets = [s for k in range(2, links + 1) for s in itertools.combinations(range(links), k)]
+    found = {}
+
+    def grow(start, chosen, used):
+        if used == total:
+            degree = [sum(x in j for j in chosen) for x in range(links)]
+            if min(degree) < 2:
+                return
+            first = _verdict(links, chosen, 1)
+            if first != _verdict(links, chosen, 2):
+                raise AssertionError(chosen)           # two random draws must agree
+            if first == (dof, False):
+                chain = Chain("x", tuple(Joint(f"J{i}", "R", tuple(f"L{x}" for x in j))
+                                         for i, j in enumerate(chosen)))
+                form = canonical_form(chain, oriented=False)
+                if form not in found:
+                    found[form] = len(automorphism_orbits(chain, oriented=False))
+            return
+        for i in range(start, len(subsets)):
+            s = subsets[i]
+            if used + len(s) - 1 > total:
+                continue
+            if any(len(set(s) & set(j)) > 1 for j in chosen):
+                continue
+            grow(i + 1, chosen + [s], used + len(s) - 1)
+    grow(0, [], 0)
+    return found
+
+
+@pytest.mark.parametrize("links, dof", [(4, 1), (5, 2), (6, 1), (6, 3),
+                                        pytest.param(7, 2, marks=pytest.mark.slow)])
+def test_the_atlas_with_multiple_joints_is_the_direct_enumeration(links, dof):
+    """Seven links and two freedoms hold the case that merging only vertex-disjoint trees
+    missed: two ternary joints that share a link."""
+    direct = _direct(links, dof)
+    got = multiple_atlas(atlas_graphs(links, dof))
+    assert len(got) == len(direct)
+    forms = {canonical_form(e.chain(), oriented=False) for e in got}
+    assert forms == set(direct)
+    assert got.distinct_inversions == sum(direct.values())
+
+
+def test_the_six_link_chains_with_multiple_joints_are_named():
+    """Six links: Watt's and Stephenson's chains, the chain of one ternary joint (with a
+    sliding pair on the rocker's rod: the toggle press's) and the catalog's six links on
+    two ternary joints."""
+    six = multiple_atlas(atlas_graphs(6, 1))
+    assert six.count_by_multiple == {0: 2, 1: 1, 2: 1}
+    names = sorted(n for e in six for n in atlas_names(e.chain())["chain"])
+    assert names == ["Six links on two ternary joints", "Stephenson six-bar chain",
+                     "Watt six-bar chain"]
+
+
+def test_atlas_multiple_on_the_command_line(capsys):
+    assert main(["atlas", "--links", "6", "--multiple", "--prismatic", "1", "--json"]) == 0
+    out = json.loads(capsys.readouterr().out)
+    assert out["count"] == 10 and out["multiple"] is True
+    assert out["count_by_multiple"] == {"0": 6, "1": 3, "2": 1}
+    toggle = [c for c in out["chains"] if c["names"]["chain"] == ["Crank-rocker with slider chain"]]
+    assert len(toggle) == 1
+    assert "edges" not in toggle[0] and any(len(j) == 3 for j in toggle[0]["joints"])
+    assert toggle[0]["kinds"].count("P") == 1
+    for c in out["chains"]:                  # only simple joints slide
+        assert all(len(j) == 2 for j, k in zip(c["joints"], c["kinds"]) if k == "P")
