@@ -29,7 +29,14 @@ from chaingraph.files import dumps, from_document, load, loads, save
 from chaingraph.graphical import instant_centres, velocity_polygon
 from chaingraph.graphical.centres import InstantCentres
 from chaingraph.graphical.polygons import Polygons
-from chaingraph.kinematics import Motion, Plan, Summary, build_plan, feasible_range, solve
+from chaingraph.kinematics import (
+    Motion,
+    Plan,
+    Summary,
+    build_plan,
+    feasible_range,
+    solve,
+)
 from chaingraph.kinematics.assembly import measure
 from chaingraph.model.chain import Chain, Input, Joint, Mechanism, Point
 from chaingraph.naming.identify import Identification, identify

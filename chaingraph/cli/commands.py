@@ -40,6 +40,7 @@ from chaingraph.naming.atlas import atlas_names
 from chaingraph.naming.catalog import catalog_dir
 from chaingraph.naming.identify import identify
 from chaingraph.naming.inversions import inversions
+from chaingraph.report.atlas import write_illustrated
 from chaingraph.report.build import build_report
 from chaingraph.structure.atlas import (
     DaskRunner,
@@ -393,6 +394,11 @@ def _sliding(args, wanted) -> int:
         whole = record if not args.summary else sliding_dict(
             result, prismatic=args.prismatic, names=names)
         paths = write_sliding(result, args.out, record=whole)
+        if args.links <= 8 or args.illustrate:
+            pages = write_illustrated(result, args.out, names=names,
+                                      animate_upto=args.links if args.illustrate else 6,
+                                      workers=workers_asked(args.workers))
+            paths["pages"] = pages
     if args.json or args.summary:
         print_json(record)
         return 0
@@ -419,4 +425,12 @@ def _sliding(args, wanted) -> int:
     if args.out:
         print(f"written: {paths['json']} and {len(paths['chains'])} chain files in "
               f"{paths['chain_dir']}")
+        if paths.get("pages") is not None:
+            pages = paths["pages"]
+            failed = sum(len(p.failed) for p in pages)
+            print(f"illustrated: {Path(args.out) / 'index.html'}, {len(pages)} chain pages, "
+                  f"{sum(len(p.chain_files) for p in pages)} inversion chain files, "
+                  f"{sum(p.animated for p in pages)} animations"
+                  + (f" ({failed} inversions did not solve: listed on their pages)"
+                     if failed else ""))
     return 0

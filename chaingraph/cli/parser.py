@@ -182,6 +182,10 @@ def build_parser() -> argparse.ArgumentParser:
     p.add_argument("--multiple", action="store_true",
                    help="turning pairs may join three links or more (a joint of d links "
                         "counts as d - 1); with --prismatic, only simple joints slide")
+    p.add_argument("--illustrate", action="store_true",
+                   help="with --out and --prismatic or --multiple: draw and animate every "
+                        "chain whatever the size (by default drawn up to 8 links, animated "
+                        "up to 6)")
     p.add_argument("-q", "--quiet", action="store_true", help="no progress bar")
     p.set_defaults(run=cmd_atlas)
 

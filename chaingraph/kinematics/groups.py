@@ -196,6 +196,10 @@ class _Branch:
             return self.scale * tau[:-1] / tau[-1]
 
 
+#: arc-length steps a trace may take (a full turn takes a few hundred at most)
+MAX_ARC_STEPS = 2000
+
+
 def _trace(plan, step, pose, theta, head, q, t, end, direction, h_deg):
     """Points (input degrees, q, dq/dinput) along the group's branch from (t, q)
     towards ``end``, by pseudo-arclength continuation; stops at ``end`` or a fold."""
@@ -208,7 +212,13 @@ def _trace(plan, step, pose, theta, head, q, t, end, direction, h_deg):
     fold = None
     h = math.radians(h_deg)
     ds = h
+    taken = 0
     while direction * (math.degrees(z[-1]) - end) < -1e-12 and ds > 1e-6 * h:
+        taken += 1
+        if taken > MAX_ARC_STEPS:
+            # the branch goes on while the input hardly moves (the group has a freedom
+            # of its own here): end the trace, as at a limit, rather than walk forever
+            break
         # no further along the arc than reaching the end needs (far, near a fold)
         remaining = math.radians(abs(end - math.degrees(z[-1])))
         reach = 1.05 * remaining / max(abs(tau[-1]), 1e-300)

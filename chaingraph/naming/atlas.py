@@ -13,7 +13,11 @@ from __future__ import annotations
 from functools import lru_cache
 
 from chaingraph.naming.catalog import bundled_catalog
-from chaingraph.structure.isomorphism import automorphism_orbits, canonical_form, isomorphism
+from chaingraph.structure.isomorphism import (
+    automorphism_orbits,
+    canonical_form,
+    isomorphism,
+)
 
 __all__ = ["atlas_names", "chain_names"]
 

@@ -19,7 +19,11 @@ from pathlib import Path
 from chaingraph.kinematics.behaviour import behaviour
 from chaingraph.model.chain import Chain, Joint
 from chaingraph.naming.catalog import bundled_catalog, catalog_dir
-from chaingraph.naming.inversions import catalog_matches, naming_matches, require_connected
+from chaingraph.naming.inversions import (
+    catalog_matches,
+    naming_matches,
+    require_connected,
+)
 from chaingraph.structure.isomorphism import canonical_form, isomorphism
 
 __all__ = ["Identification", "identify"]

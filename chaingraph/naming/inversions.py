@@ -27,7 +27,11 @@ from chaingraph._util.text import short_list
 from chaingraph.errors import ChainStructureError
 from chaingraph.kinematics.behaviour import behaviour, behaviour_key, turning_links
 from chaingraph.naming.catalog import bundled_catalog
-from chaingraph.structure.isomorphism import automorphism_orbits, canonical_form, pair_orbits
+from chaingraph.structure.isomorphism import (
+    automorphism_orbits,
+    canonical_form,
+    pair_orbits,
+)
 
 __all__ = ["Inversion", "InputClass", "Inversions", "Match", "inversions", "catalog_matches",
            "naming_matches",

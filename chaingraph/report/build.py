@@ -12,13 +12,13 @@ from __future__ import annotations
 
 import html
 import json
-from importlib import resources
 import math
 import os
 import re
 import sys
 import warnings
 from dataclasses import dataclass, field
+from importlib import resources
 from pathlib import Path
 
 import numpy as np

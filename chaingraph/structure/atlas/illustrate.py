@@ -1,0 +1,114 @@
+"""A generic drawn pose for an atlas chain, with readable proportions, and its
+inversions as mechanisms with a natural input.
+
+The pose comes from a layout of the link graph (planar where the graph is planar, so
+that no two bars cross, evened out by a spring layout where that keeps it planar; else
+a spring layout): each joint sits at the middle of the links
+it joins, moved a little off by a fixed pseudo-random amount so that no three joints
+line up by accident and no pose is a dead centre by construction; a sliding pair's line
+runs from its guide's link towards its block's. The size is about 100 units.
+
+An inversion's natural input is a link turning about the fixed link (a turning pair of
+two links on it), else a slide on it (a sliding pair on it).
+"""
+
+from __future__ import annotations
+
+import math
+import random
+
+import networkx as nx
+import numpy as np
+
+from chaingraph.model.chain import Chain, Input, Joint, Mechanism
+
+__all__ = ["generic_pose", "natural_input", "inversion_mechanism", "link_layout"]
+
+
+def link_layout(chain):
+    """Positions of the chain's links (a dict), about 100 units across."""
+    g = nx.Graph()
+    g.add_nodes_from(chain.links)
+    for j in chain.joints:
+        for i, a in enumerate(j.links):
+            for b in j.links[i + 1:]:
+                g.add_edge(a, b)
+    planar, _ = nx.check_planarity(g)
+    if planar:
+        # a planar drawing, evened out by a spring layout from it when that keeps it
+        # planar (no two bars cross)
+        pos = nx.planar_layout(g)
+        spread = nx.spring_layout(g, pos=pos, iterations=60, seed=1)
+        if not _crossings(g, spread):
+            pos = spread
+    else:
+        pos = nx.spring_layout(g, seed=1, iterations=200)
+    xy = np.array([pos[x] for x in chain.links], dtype=float)
+    span = max(float(np.ptp(xy[:, 0])), float(np.ptp(xy[:, 1])), 1e-9)
+    xy = (xy - xy.mean(axis=0)) * (100.0 / span)
+    return {x: (float(p[0]), float(p[1])) for x, p in zip(chain.links, xy)}
+
+
+def _crossings(g, pos):
+    """How many pairs of the graph's edges cross in the layout ``pos``."""
+    edges = list(g.edges)
+    count = 0
+    for i, (a, b) in enumerate(edges):
+        for c, d in edges[i + 1:]:
+            if len({a, b, c, d}) == 4 and _segments_cross(pos[a], pos[b], pos[c], pos[d]):
+                count += 1
+    return count
+
+
+def _segments_cross(p, q, r, s):
+    def side(a, b, c):
+        return (b[0] - a[0]) * (c[1] - a[1]) - (b[1] - a[1]) * (c[0] - a[0])
+    return side(p, q, r) * side(p, q, s) < 0 and side(r, s, p) * side(r, s, q) < 0
+
+
+def generic_pose(chain, *, seed=0) -> Chain:
+    """The chain with a drawn pose: every joint at the middle of its links' places in
+    :func:`link_layout`, moved off by up to 6 units (a fixed pseudo-random amount), P
+    joints along the line from the guide's link to the block's.
+
+    Examples
+    --------
+    >>> from chaingraph.structure.atlas import atlas
+    >>> posed = generic_pose(next(atlas(links=4, prismatic=1)))
+    >>> all(j.at is not None for j in posed.joints), posed.has_pose
+    (True, True)
+    """
+    places = link_layout(chain)
+    rnd = random.Random(f"{seed}:{[j.links for j in chain.joints]}")
+    joints = []
+    for j in chain.joints:
+        pts = np.array([places[x] for x in j.links])
+        at = pts.mean(axis=0) + np.array([rnd.uniform(-6, 6), rnd.uniform(-6, 6)])
+        axis = None
+        if j.kind == "P":
+            d = np.subtract(places[j.links[1]], places[j.links[0]])
+            axis = round(math.degrees(math.atan2(d[1], d[0])) + rnd.uniform(-25, 25), 6)
+        joints.append(Joint(j.id, j.kind, j.links, at=(round(float(at[0]), 6),
+                                                       round(float(at[1]), 6)), axis=axis))
+    return Chain(chain.name, tuple(joints), family=chain.family, units="mm",
+                 notes=chain.notes)
+
+
+def natural_input(chain, fixed):
+    """The joint a mechanism with ``fixed`` fixed is naturally driven by: a turning pair
+    of two links on the fixed link, else a sliding pair on it; None when it has neither.
+    """
+    on = [j for j in chain.joints if fixed in j.links and len(j.links) == 2]
+    turning = [j for j in on if j.kind == "R"]
+    return (turning or [j for j in on if j.kind == "P"] or [None])[0]
+
+
+def inversion_mechanism(chain, fixed, *, name=None):
+    """The posed chain as a mechanism with ``fixed`` fixed, driven by its natural input
+    (None when it has none)."""
+    joint = natural_input(chain, fixed)
+    if joint is None:
+        return None
+    return Chain(name or f"{chain.name}, {fixed} fixed", chain.joints, family=chain.family,
+                 units=chain.units, notes=chain.notes,
+                 mechanism=Mechanism(fixed, inputs=(Input(joint.id),)))
