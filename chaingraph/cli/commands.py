@@ -395,7 +395,7 @@ def _sliding(args, wanted) -> int:
             result, prismatic=args.prismatic, names=names)
         paths = write_sliding(result, args.out, record=whole)
         if args.links <= 8 or args.illustrate:
-            pages = write_illustrated(result, args.out, names=names,
+            pages = write_illustrated(result, args.out,
                                       animate_upto=args.links if args.illustrate else 6,
                                       workers=workers_asked(args.workers))
             paths["pages"] = pages
@@ -418,7 +418,8 @@ def _sliding(args, wanted) -> int:
                  e.inversion_classes,
                  " ".join(("-" if k == "R" else ">" if args.oriented else "=").join(
                      str(x + 1) for x in j) for j, k in zip(e.edges, e.kinds)),
-                 ", ".join(names(e.chain(args.dof))["chain"]) or "-"] for e in result]
+                 ", ".join(c["names"]["chain"]) or "-"]
+                for e, c in zip(result, record["chains"])]
         print(table(rows, ["id", "link assortment", "inversions",
                            "joints (R a-b, P a=b" + (", guide on a: a>b" if args.oriented
                                                      else "") + ")", "catalog name"]))

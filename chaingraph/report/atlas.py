@@ -17,7 +17,11 @@ from chaingraph.errors import ChainGraphError
 from chaingraph.files import dumps
 from chaingraph.kinematics import solve
 from chaingraph.naming.atlas import atlas_names
-from chaingraph.structure.atlas.illustrate import generic_pose, inversion_mechanism, link_layout
+from chaingraph.structure.atlas.illustrate import (
+    generic_pose,
+    inversion_mechanism,
+    link_layout,
+)
 from chaingraph.structure.classify import classify
 from chaingraph.structure.isomorphism import automorphism_orbits
 
@@ -140,8 +144,7 @@ def _page_job(task):
     return page, files, animated, tuple(failed), names["chain"]
 
 
-def write_illustrated(result, out_dir, *, animate_upto=6, frames=24, workers=1,
-                      names=None) -> list:
+def write_illustrated(result, out_dir, *, animate_upto=6, frames=24, workers=1) -> list:
     """Write ``DIR/index.html`` (the chains by links, sliding pairs and multiple joints,
     with their names) and ``DIR/chain-N.html`` per chain, with a chain file per
     inversion under ``DIR/chains/``; inversions are animated for chains of at most

@@ -28,6 +28,7 @@ from __future__ import annotations
 
 from chaingraph.structure.atlas.contracted import assortments, joints_for
 from chaingraph.structure.atlas.entry import AtlasEntry
+from chaingraph.structure.atlas.multiple import multiple_atlas
 from chaingraph.structure.atlas.output import atlas_dict, write_atlas
 from chaingraph.structure.atlas.run import (
     Atlas,
@@ -81,13 +82,14 @@ def atlas_graphs(links: int, dof: int = 1, *, workers: int = 1, progress=None,
 
 
 def atlas(*, links: int, dof: int = 1, workers: int = 1, prismatic=None,
-          oriented: bool = False):
+          oriented: bool = False, multiple: bool = False):
     """Yield every chain of ``links`` links and ``dof`` degrees of freedom as a Chain.
 
     ``prismatic`` (a number, or "all") gives the chains whose joints are that many
     sliding pairs and the rest turning pairs (see
     :func:`~chaingraph.structure.atlas.sliding.sliding_atlas`); ``oriented`` tells them
-    apart by which link carries each guide.
+    apart by which link carries each guide; ``multiple`` lets a turning pair join three
+    links or more (:func:`~chaingraph.structure.atlas.multiple.multiple_atlas`).
 
     Examples
     --------
@@ -95,9 +97,13 @@ def atlas(*, links: int, dof: int = 1, workers: int = 1, prismatic=None,
     ['chain 1 of 6 links, 1 dof', 'chain 2 of 6 links, 1 dof']
     >>> [[j.kind for j in c.joints] for c in atlas(links=4, prismatic=2)]
     [['P', 'P', 'R', 'R'], ['R', 'P', 'P', 'R']]
+    >>> [max(len(j.links) for j in c.joints) for c in atlas(links=6, multiple=True)]
+    [2, 3, 3, 2]
     """
     wanted = prismatic_counts(links, dof, joints_for(links, dof), prismatic, oriented)
     base = atlas_graphs(links, dof, workers=workers)
+    if multiple:
+        base, wanted = multiple_atlas(base), wanted or (0,)
     if wanted is None:
         for entry in base:
             yield entry.chain(dof)

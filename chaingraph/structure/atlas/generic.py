@@ -77,6 +77,24 @@ def in_row_space(reduced, rank, vectors):
     return ~v.any(axis=2)
 
 
+def _verdicts(rows, rates, valid=None):
+    """(rank, any joint locked) of each stacked system of velocity equations ``rows``,
+    a joint's rate being locked when it lies in their row space (``valid`` marks the
+    rates that are joints', where candidates have different numbers of them)."""
+    reduced, rank = reduce_mod(rows)
+    found = in_row_space(reduced, rank, rates)
+    return rank, (found if valid is None else found & valid).any(axis=1)
+
+
+def _keep_larger(best, rank, locked):
+    """The draw with the larger rank, candidate by candidate (a rank is generic or
+    lower, never higher)."""
+    if best is None:
+        return rank, locked
+    better = rank > best[0]
+    return np.where(better, rank, best[0]), np.where(better, locked, best[1])
+
+
 def generic_verdicts(links, edges, masks, *, seed=0):
     """For each assignment (a bit mask over ``edges``: P where set), the generic
     mobility of the chain (the first link fixed) and whether a joint is locked, by the
@@ -98,7 +116,7 @@ def generic_verdicts(links, edges, masks, *, seed=0):
     """
     masks = np.asarray(masks, dtype=np.int64)
     m, cols = len(edges), 3 * (links - 1)
-    best_rank = best_locked = None
+    best = None
     for draw in range(2):
         rnd = random.Random(f"{seed}:{draw}:{links}:{edges}")
         values = [[rnd.randrange(1, PRIME) for _ in range(4)] for _ in edges]
@@ -123,15 +141,8 @@ def generic_verdicts(links, edges, masks, *, seed=0):
                 put(rows, s, 2 * i, link, (1, 0, 0), sign)
                 put(rows, s, 2 * i + 1, link, ((-nx * y + ny * x) % PRIME, nx, ny), sign)
                 put(rates, s, i, link, ((ny * y + nx * x) % PRIME, -ny, nx), -sign)
-        reduced, rank = reduce_mod(rows)
-        locked = in_row_space(reduced, rank, rates).any(axis=1)
-        if best_rank is None:
-            best_rank, best_locked = rank, locked
-        else:
-            better = rank > best_rank
-            best_rank = np.where(better, rank, best_rank)
-            best_locked = np.where(better, locked, best_locked)
-    return cols - best_rank, best_locked
+        best = _keep_larger(best, *_verdicts(rows, rates))
+    return cols - best[0], best[1]
 
 
 def joint_verdicts(links, candidates, *, kinds=None, seed=0):
@@ -155,7 +166,7 @@ def joint_verdicts(links, candidates, *, kinds=None, seed=0):
     kinds = [k or "R" * len(c) for k, c in zip(kinds or [None] * count, candidates)]
     rows_needed = max(2 * sum(len(j) - 1 for j in c) for c in candidates)
     pairs_needed = max(sum(len(j) * (len(j) - 1) // 2 for j in c) for c in candidates)
-    best_rank = best_locked = None
+    best = None
 
     def put(target, n, r, link, values, sign):
         if link:
@@ -190,12 +201,5 @@ def joint_verdicts(links, candidates, *, kinds=None, seed=0):
                         put(rates, n, p, b, (1, 0, 0), 1)
                         valid[n, p] = True
                         p += 1
-        reduced, rank = reduce_mod(rows)
-        locked = (in_row_space(reduced, rank, rates) & valid).any(axis=1)
-        if best_rank is None:
-            best_rank, best_locked = rank, locked
-        else:
-            better = rank > best_rank
-            best_rank = np.where(better, rank, best_rank)
-            best_locked = np.where(better, locked, best_locked)
-    return cols - best_rank, best_locked
+        best = _keep_larger(best, *_verdicts(rows, rates, valid))
+    return cols - best[0], best[1]

@@ -26,6 +26,7 @@ from dataclasses import dataclass
 
 from chaingraph.model.chain import Chain, Joint
 from chaingraph.structure.atlas.generic import joint_verdicts
+from chaingraph.structure.atlas.sliding import Entries
 from chaingraph.structure.isomorphism import automorphism_orbits, canonical_form
 
 __all__ = ["MultipleEntry", "MultipleAtlas", "multiple_atlas"]
@@ -64,7 +65,7 @@ class MultipleEntry:
 
 
 @dataclass(frozen=True)
-class MultipleAtlas:
+class MultipleAtlas(Entries):
     """The chains with multiple joints of one size (those with only simple joints
     included), and the merged candidates rejected by reason."""
 
@@ -73,12 +74,6 @@ class MultipleAtlas:
     entries: tuple
     rejected: dict
 
-    def __len__(self):
-        return len(self.entries)
-
-    def __iter__(self):
-        return iter(self.entries)
-
     @property
     def count_by_multiple(self) -> dict:
         out = {}
@@ -86,9 +81,6 @@ class MultipleAtlas:
             out[e.multiple] = out.get(e.multiple, 0) + 1
         return dict(sorted(out.items()))
 
-    @property
-    def distinct_inversions(self) -> int:
-        return sum(e.inversion_classes for e in self.entries)
 
 
 def _partitions(items):

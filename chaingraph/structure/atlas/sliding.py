@@ -104,8 +104,23 @@ class SlidingEntry:
                 "fractionated": self.fractionated}
 
 
+class Entries:
+    """What the atlases' result classes share: their ``entries`` in order, counted and
+    iterated, and the sum of their inversion classes."""
+
+    def __len__(self):
+        return len(self.entries)
+
+    def __iter__(self):
+        return iter(self.entries)
+
+    @property
+    def distinct_inversions(self) -> int:
+        return sum(e.inversion_classes for e in self.entries)
+
+
 @dataclass(frozen=True)
-class SlidingAtlas:
+class SlidingAtlas(Entries):
     """The chains with sliding pairs of one size: ``entries`` in order (by the
     turning-pair chain they come from, then by their P joints), ``rejected``
     ``{reason: assignments}`` (one per orbit), and what was asked."""
@@ -117,22 +132,12 @@ class SlidingAtlas:
     entries: tuple
     rejected: dict
 
-    def __len__(self):
-        return len(self.entries)
-
-    def __iter__(self):
-        return iter(self.entries)
-
     @property
     def count_by_prismatic(self) -> dict:
         out = {k: 0 for k in self.prismatic}
         for e in self.entries:
             out[e.prismatic] += 1
         return out
-
-    @property
-    def distinct_inversions(self) -> int:
-        return sum(e.inversion_classes for e in self.entries)
 
     def without_fractionated(self):
         return SlidingAtlas(self.links, self.dof, self.prismatic, self.oriented,
