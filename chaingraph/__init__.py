@@ -24,6 +24,7 @@ from chaingraph.errors import (
     DimensionError,
     MechanismError,
     PoseAdjustedWarning,
+    UnboundedRangeError,
 )
 from chaingraph.files import dumps, from_document, load, loads, save
 from chaingraph.graphical import instant_centres, velocity_polygon
@@ -85,5 +86,5 @@ __all__ = [
     "atlas", "design", "solve", "instant_centres", "velocity_polygon", "measure", "animate", "Motion", "Summary", "feasible_range", "build_plan", "Plan",
     "ChainGraphError", "ChainFileError", "ChainStructureError", "MechanismError",
     "AssemblyError", "AtlasRunError", "AtlasSizeError", "DesignError", "DimensionError",
-    "ChainGraphWarning", "PoseAdjustedWarning",
+    "UnboundedRangeError", "ChainGraphWarning", "PoseAdjustedWarning",
 ]

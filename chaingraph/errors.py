@@ -17,6 +17,7 @@ __all__ = [
     "ChainStructureError",
     "MechanismError",
     "AssemblyError",
+    "UnboundedRangeError",
     "AtlasSizeError",
     "AtlasRunError",
     "OutputError",
@@ -110,6 +111,12 @@ class AssemblyError(ChainGraphError, RuntimeError):
         self.angle = angle
         self.feasible_range = feasible_range
         super().__init__(f"{mechanism}: {problem}" if mechanism else problem)
+
+
+class UnboundedRangeError(AssemblyError):
+    """An input that runs on without a limit and without coming back to the drawn pose
+    (a slide whose guides never stop it): it has no whole cycle to sweep by default,
+    only a sweep given with its ends."""
 
 
 class OutputError(ChainGraphError, OSError):

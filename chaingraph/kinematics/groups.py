@@ -199,6 +199,12 @@ class _Branch:
 #: arc-length steps a trace may take (a full turn takes a few hundred at most)
 MAX_ARC_STEPS = 2000
 
+#: how far (in sizes of the mechanism) from the drawing's centre a group's link may
+#: move before a trace ends there: the input is then near a value where a slide runs off
+#: to infinity (its guides turn parallel), a limit of the range with no fold before it
+#: (the same on every path, as the plan's coordinates are about the drawing's centre)
+RUNAWAY_SIZES = 25.0
+
 
 def _trace(plan, step, pose, theta, head, q, t, end, direction, h_deg):
     """Points (input degrees, q, dq/dinput) along the group's branch from (t, q)
@@ -213,6 +219,7 @@ def _trace(plan, step, pose, theta, head, q, t, end, direction, h_deg):
     h = math.radians(h_deg)
     ds = h
     taken = 0
+    lengths = branch.scale != 1.0           # the coordinates that are positions
     while direction * (math.degrees(z[-1]) - end) < -1e-12 and ds > 1e-6 * h:
         taken += 1
         if taken > MAX_ARC_STEPS:
@@ -223,10 +230,16 @@ def _trace(plan, step, pose, theta, head, q, t, end, direction, h_deg):
         remaining = math.radians(abs(end - math.degrees(z[-1])))
         reach = 1.05 * remaining / max(abs(tau[-1]), 1e-300)
         ds = min(ds, reach) if reach > 1e-6 * h else ds
-        h_here = max(h, min(reach, math.radians(10.0)))
+        # far out (running off along a slide), steps grow with the distance, so that
+        # reaching RUNAWAY_SIZES takes tens of steps, not thousands
+        away = float(np.abs(z[:-1][lengths]).max(initial=0.0))
+        h_here = max(h, min(reach, math.radians(10.0)), 0.2 * away)
         zp = z + ds * tau
         x = branch.correct(zp, tau)
-        if x is None or np.linalg.norm(x - zp) > 0.25 * ds:
+        if x is None or np.linalg.norm(x - zp) > 0.25 * ds or \
+                np.abs(x[:-1][lengths]).max(initial=0.0) > RUNAWAY_SIZES:
+            # (past RUNAWAY_SIZES: halving the step ends the trace where it is reached,
+            # on any path, within the smallest step)
             ds /= 2
             continue
         tau_new = branch.tangent(x, like=tau)

@@ -18,7 +18,7 @@ from functools import lru_cache
 import numpy as np
 
 from chaingraph._util.text import short_list
-from chaingraph.errors import AssemblyError, MechanismError
+from chaingraph.errors import AssemblyError, MechanismError, UnboundedRangeError
 from chaingraph.kinematics.columns import csv_columns
 from chaingraph.kinematics.equations import check_poses
 from chaingraph.kinematics.plan import build_plan
@@ -261,7 +261,14 @@ def solve(mechanism, *, fixed=None, driver=None, inputs=None, start=None, stop=N
     if lead.sweep is not None:
         start, stop = lead.sweep
     explicit = start is not None and stop is not None
-    c = cycle(plan) if summary or not explicit else None
+    c = None
+    if summary or not explicit:
+        try:
+            c = cycle(plan)
+        except UnboundedRangeError:
+            if not explicit:
+                raise
+            # no whole cycle: the summary is of the sweep asked for
     lo = c.low if start is None else plan.tau(start)
     if stop is not None:
         theta = np.linspace(lo, plan.tau(stop), steps + 1)
@@ -292,7 +299,7 @@ def solve(mechanism, *, fixed=None, driver=None, inputs=None, start=None, stop=N
                 if key.split(":")[0] in _RATE_COLUMNS and np.any(values != 0):
                     # (what is fixed keeps its zeros)
                     columns[key] = np.where(at_limit, np.nan, values)
-    if plan.moving_inputs > 1:                  # several inputs move: summarize the sweep
+    if plan.moving_inputs > 1 or (summary and c is None):   # summarize the sweep
         c = Cycle(None, min(lo, hi), max(lo, hi), ends="sweep")
     reuse = None
     if summary and c.ends == "limits" and np.array_equal(theta, cycle_theta(plan, c)):

@@ -11,11 +11,12 @@ from dataclasses import dataclass
 import numpy as np
 
 from chaingraph._util.numbers import tidy
+from chaingraph.errors import UnboundedRangeError
 from chaingraph.geometry import turn_by
 from chaingraph.kinematics.columns import csv_columns
 from chaingraph.kinematics.rates import rates
 from chaingraph.kinematics.roots import bracketed_roots
-from chaingraph.kinematics.sweep import cycle, evaluate_sweep
+from chaingraph.kinematics.sweep import cycle, evaluate_near, evaluate_sweep
 from chaingraph.kinematics.tracking import evaluate_at
 
 __all__ = ["Summary", "ExtremePosition", "summary_rows", "path_direction", "output_signal",
@@ -116,8 +117,8 @@ class Summary:
         unit = f" {self.stroke_unit}" if self.stroke_unit else ""
         ta = self.transmission_angle
         rows = [
-            ("input range", " to ".join(f"{t:.6g}" for t in self.input_range)
-             + f" {self.input_unit}"),
+            ("input range", "without limits" if None in self.input_range else
+             " to ".join(f"{t:.6g}" for t in self.input_range) + f" {self.input_unit}"),
             ("output", self.output or "-"),
             ("stroke", num(self.stroke, unit)),
             ("time ratio", num(self.time_ratio)),
@@ -309,7 +310,10 @@ def motion_summary(plan, output, omega, c, *, sweep=None) -> Summary:
 def _raw_summary(plan, output, omega, c, *, sweep=None):
     if sweep is None:
         theta = cycle_theta(plan, c)
-        ev = evaluate_sweep(plan, theta)
+        try:
+            ev = evaluate_sweep(plan, theta)
+        except UnboundedRangeError:            # a sweep of a slide without limits
+            ev = evaluate_near(plan, theta)
         vel, acc, measure = rates(plan, ev.pose, 1.0, theta.size)
         cols = csv_columns(plan, theta, ev.pose, vel, acc)
     else:
@@ -375,7 +379,10 @@ def _input_range(plan, theta, c):
     """The lead input's values that can be assembled: the summary's own range, or, for
     a sweep of several inputs, the range along their line."""
     if c.ends == "sweep":
-        whole = cycle(plan)
+        try:
+            whole = cycle(plan)
+        except UnboundedRangeError:
+            return [None, None]                  # no limit either way
         ends = (whole.low, whole.low + whole.period) if whole.full_turn else (whole.low, whole.high)
         return [float(plan.value(t)) for t in ends]
     return [float(plan.value(theta[0])), float(plan.value(theta[-1]))]

@@ -10,7 +10,7 @@ from functools import lru_cache
 
 import numpy as np
 
-from chaingraph.errors import AssemblyError
+from chaingraph.errors import AssemblyError, UnboundedRangeError
 from chaingraph.kinematics import groups
 from chaingraph.kinematics.closed_form import dyad_roots
 from chaingraph.kinematics.roots import bracketed_roots
@@ -243,9 +243,9 @@ def _cycle(plan):
         lead = plan.inputs[plan.lead]
         how = (f"turns {_MAX_TURNS} times" if lead.kind == "R" else
                f"slides {_MAX_TURNS * 2 * math.pi:.4g} times the mechanism's size")
-        raise AssemblyError(
+        raise UnboundedRangeError(
             f"{plan.describe()} {how} without returning to the drawn pose or reaching a "
-            "limit", mechanism=plan.chain.source or plan.chain.name)
+            "limit (give its sweep's ends)", mechanism=plan.chain.source or plan.chain.name)
     # the poses at the limits as found there (at a fold the last digits depend on the
     # path, so the sweep takes them from here)
     return Cycle(None, low[0], high[0], (low[1], high[1]))

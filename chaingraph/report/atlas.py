@@ -13,7 +13,7 @@ from pathlib import Path
 
 from chaingraph._util.parallel import process_runner
 from chaingraph.drawing.mechanism import mechanism_svg, skeleton_svg
-from chaingraph.errors import ChainGraphError
+from chaingraph.errors import AssemblyError, ChainGraphError
 from chaingraph.files import dumps
 from chaingraph.kinematics import solve
 from chaingraph.naming.atlas import atlas_names
@@ -86,6 +86,13 @@ def _graph_svg(chain, size=260):
     return "".join(out)
 
 
+def _extent(chain):
+    """The drawn chain's extent (the larger side of its joints' bounding box)."""
+    xs = [j.at[0] for j in chain.joints]
+    ys = [j.at[1] for j in chain.joints]
+    return max(max(xs) - min(xs), max(ys) - min(ys))
+
+
 def _page_job(task):
     """Everything of one chain's page, computed in a worker: (html, chain files, how many
     inversions were animated, those that failed, the chain's catalog names)."""
@@ -104,17 +111,27 @@ def _page_job(task):
             figures.append((i, links, label, None, "no turning or sliding pair on the fixed "
                                                    "link to drive it by"))
             continue
-        files.append((f"chain-{entry.id}-inversion-{i}.toml", dumps(mechanism)))
-        svg = None
+        svg, why = None, None
         if animate:
             try:
-                motion = solve(mechanism, steps=2 * frames, summary=False)
+                try:
+                    motion = solve(mechanism, steps=2 * frames, summary=False)
+                except AssemblyError:
+                    # a slide that runs on without a limit: shown over half its size each way
+                    sliding = inversion_mechanism(chain, fixed, name=mechanism.name,
+                                                  slide=_extent(chain) / 2)
+                    if sliding.mechanism == mechanism.mechanism:
+                        raise
+                    motion = solve(sliding, steps=2 * frames, summary=False)
+                    mechanism = sliding
+                    why = "its input slides without a limit: shown over half its size each way"
                 svg = mechanism_svg(motion, frames=frames, width=300).split("?>", 1)[-1]
                 animated += 1
             except ChainGraphError as e:
                 failed.append((fixed, str(e)))
                 svg = None
-        figures.append((i, links, label, svg, None))
+        files.append((f"chain-{entry.id}-inversion-{i}.toml", dumps(mechanism)))
+        figures.append((i, links, label, svg, why))
     body = [f"<p><a href=\"index.html\">atlas</a></p><h1>{_esc(chain.name)}</h1>"]
     if names["chain"]:
         body.append(f"<p>The catalog's <b>{_esc(', '.join(names['chain']))}</b>.</p>")
@@ -128,13 +145,15 @@ def _page_job(task):
     for i, links, label, svg, why in figures:
         body.append(f"<h3>{i}. {_esc(label)} <small>(fixed: {_esc(', '.join(links))})</small>"
                     "</h3>")
-        if why:
+        if why and svg is None:
             body.append(f"<p>{_esc(why)}</p>")
             continue
         body.append(f"<p><a href=\"chains/chain-{entry.id}-inversion-{i}.toml\">chain file</a>"
                     f" (driven by its natural input; <code>chaingraph solve</code> runs it)</p>")
         if svg:
             body.append(svg)
+            if why:
+                body.append(f"<p>{_esc(why)}</p>")
         elif animate:
             message = next(m for f, m in failed if f == links[0])
             body.append(f"<p>not solved: {_esc(message)}</p>")

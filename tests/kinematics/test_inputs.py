@@ -395,3 +395,27 @@ def test_at_on_an_r_input_of_a_file_of_coordinates_is_refused():
                         'inputs = [{joint = "O", at = 30.0}]')
     with pytest.raises(chaingraph.ChainFileError, match="only for a P input"):
         chaingraph.loads(text)
+
+
+UNBOUNDED = Path(__file__).parent.parent / "data" / "rprp-unbounded-slide.toml"
+
+
+def test_a_slide_without_limits_is_solved_over_the_sweep_given_and_its_range_is_unbounded():
+    chain = chaingraph.load(UNBOUNDED)
+    with pytest.raises(chaingraph.UnboundedRangeError, match="give its sweep's ends"):
+        chaingraph.solve(chain)
+    motion = chaingraph.solve(chain, inputs=[("J1", -150.0, 150.0)], steps=30)
+    assert motion.summary.input_range == (None, None)
+    assert motion.summary.to_dict()["input_range"] == [None, None]
+    # the arm's line passes through its pivot (0, 40) and the block's pin (50 + s, 0)
+    s = motion["input:J1"]
+    expected = np.degrees(np.arctan2(-40.0, 50.0 + s)) % 180.0
+    assert np.allclose(motion["angle:arm"] % 180.0, expected, atol=1e-9)
+
+
+def test_a_slide_without_limits_on_the_command_line(tmp_path):
+    status, out, err = run_cli("solve", UNBOUNDED)
+    assert status == 1 and "without returning to the drawn pose or reaching a limit" in err
+    status, out, err = run_cli("solve", UNBOUNDED, "--from", "-150", "--to", "150",
+                                "--steps", "6")
+    assert status == 0 and "without limits" in out

@@ -6,6 +6,7 @@ import csv
 import io
 import json
 import math
+from pathlib import Path
 
 import numpy as np
 import pytest
@@ -590,3 +591,21 @@ def test_a_motion_has_typed_accessors_over_its_columns():
     assert slide.s is engine["s:S"] and slide.a is engine["a:S"]
     with pytest.raises(KeyError, match="'rod' is no link"):
         engine.link("rod")
+
+
+def test_where_a_slide_runs_off_to_infinity_the_range_ends_on_every_path_alike():
+    """An atlas chain (6 links, 4 sliding pairs) whose input turns towards an angle at
+    which two guides turn parallel and a slide runs off to infinity: the range ends
+    where a link is RUNAWAY_SIZES sizes out, the same from the drawn pose and from the
+    limit search, so the summary's grid assembles to both ends; before, the trace walked thousands of
+    steps towards that angle."""
+    from chaingraph.kinematics.groups import RUNAWAY_SIZES
+    chain = chaingraph.load(Path(__file__).parent.parent / "data" / "atlas-slides-run-off.toml")
+    motion = chaingraph.solve(chain, steps=48)
+    low, high = motion.summary.input_range
+    assert -54.0 < high < -53.8 and -233.0 < low < -232.0
+    plan = motion.plan
+    out = max(float(np.abs(motion[c] - plan.origin[c[0] == "y"]).max())
+              for c in motion.columns if c[:2] in ("x:", "y:"))
+    # (the trace measures a link's reference point, the columns its joints: within a size)
+    assert abs(out - RUNAWAY_SIZES * plan.size) < plan.size

@@ -103,12 +103,16 @@ def natural_input(chain, fixed):
     return (turning or [j for j in on if j.kind == "P"] or [None])[0]
 
 
-def inversion_mechanism(chain, fixed, *, name=None):
+def inversion_mechanism(chain, fixed, *, name=None, slide=None):
     """The posed chain as a mechanism with ``fixed`` fixed, driven by its natural input
-    (None when it has none)."""
+    (None when it has none). ``slide``: a sliding input's sweep, from ``-slide`` to
+    ``slide`` about the drawn pose (for a slide without limits, whose whole range
+    cannot be swept); by default the input's whole range."""
     joint = natural_input(chain, fixed)
     if joint is None:
         return None
+    item = Input(joint.id) if slide is None or joint.kind != "P" else \
+        Input(joint.id, -float(slide), float(slide))
     return Chain(name or f"{chain.name}, {fixed} fixed", chain.joints, family=chain.family,
                  units=chain.units, notes=chain.notes,
-                 mechanism=Mechanism(fixed, inputs=(Input(joint.id),)))
+                 mechanism=Mechanism(fixed, inputs=(item,)))
