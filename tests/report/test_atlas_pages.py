@@ -1,9 +1,20 @@
 """The illustrated atlas: a page per chain, a chain file per inversion that solve runs."""
 
+import itertools
+import math
+import random
 import warnings
+
+import numpy as np
+import pytest
 
 import chaingraph
 from chaingraph.cli.main import main
+from chaingraph.naming.atlas import atlas_names
+from chaingraph.structure.atlas import atlas_graphs
+from chaingraph.structure.atlas.illustrate import generic_pose, inversion_mechanism
+from chaingraph.structure.atlas.sliding import sliding_atlas
+from chaingraph.structure.isomorphism import automorphism_orbits
 
 
 def test_the_four_link_atlas_is_drawn_named_and_animated(tmp_path, capsys):
@@ -20,3 +31,75 @@ def test_the_four_link_atlas_is_drawn_named_and_animated(tmp_path, capsys):
             warnings.simplefilter("ignore")
             motion = chaingraph.solve(chaingraph.load(path), steps=12, summary=False)
         assert motion["theta"].size == 13
+
+
+def _rigid(motion, chain, size):
+    """Closure checked apart from the solver's equations: on every link the distances
+    between its turning pairs stay as drawn, and links joined by a sliding pair keep
+    their relative angle; returns the worst deviation over the size."""
+    worst = 0.0
+    for link in chain.links:
+        on = [j for j in chain.joints if link in j.links and j.kind == "R"]
+        for a, b in itertools.combinations(on, 2):
+            d = np.hypot(motion[f"x:{a.id}"] - motion[f"x:{b.id}"],
+                         motion[f"y:{a.id}"] - motion[f"y:{b.id}"])
+            worst = max(worst, float(np.abs(d - math.dist(a.at, b.at)).max()) / size)
+    for j in chain.joints:
+        if j.kind == "P":
+            a, b = j.links
+            turn = np.radians(motion[f"angle:{a}"] - motion[f"angle:{b}"])
+            worst = max(worst, float(np.abs(np.sin(turn - turn[0])).max()))
+    return worst
+
+
+@pytest.mark.slow
+def test_six_link_chain_files_classify_to_the_atlas_and_their_inversions_solve_closed():
+    result = sliding_atlas(atlas_graphs(6, 1), prismatic=range(8))
+    solved = 0
+    for entry in result:
+        chain = generic_pose(entry.chain(1))
+        back = chaingraph.loads(chaingraph.dumps(chain))
+        c = chaingraph.classify(back)
+        assert (c.links, c.mobility, c.pair_kinds.get("P", 0)) == (6, 1, entry.prismatic)
+        assert len(automorphism_orbits(back, oriented=False)) == entry.inversion_classes
+        if entry.id % 8:                      # a sample of the inversions: every 8th chain
+            continue
+        for links in automorphism_orbits(back, oriented=False):
+            mechanism = inversion_mechanism(back, links[0])
+            if mechanism is None:
+                continue
+            try:
+                motion = chaingraph.solve(mechanism, steps=24, summary=False)
+            except chaingraph.UnboundedRangeError:
+                continue
+            size = max(max(j.at[0] for j in back.joints) - min(j.at[0] for j in back.joints),
+                       max(j.at[1] for j in back.joints) - min(j.at[1] for j in back.joints))
+            assert _rigid(motion, back, size) <= 1e-9, (entry.id, links)
+            solved += 1
+    assert solved >= 20
+
+
+def test_names_survive_relabelling_the_links_and_joints():
+    rng = random.Random(7)
+    named = 0
+    for entry in sliding_atlas(atlas_graphs(6, 1), prismatic=range(3)):
+        chain = entry.chain(1)
+        names = atlas_names(chain)
+        if not names["chain"]:
+            continue
+        named += 1
+        order = list(chain.links)
+        shuffled = order[:]
+        rng.shuffle(shuffled)
+        rename = dict(zip(order, (f"X{k}" for k in range(len(order)))))
+        rename = {a: rename[b] for a, b in zip(order, shuffled)}
+        joints = [chaingraph.Joint(f"K{n}", j.kind, tuple(rename[x] for x in j.links),
+                                   at=j.at, axis=j.axis)
+                  for n, j in enumerate(reversed(chain.joints))]
+        other = atlas_names(chaingraph.Chain("relabelled", tuple(joints)))
+        assert other["chain"] == names["chain"]
+        assert sorted(sorted(c["names"]) for c in other["inversions"]) == \
+            sorted(sorted(c["names"]) for c in names["inversions"])
+        assert {rename[x] for c in names["inversions"] for x in c["links"]} == \
+            {x for c in other["inversions"] for x in c["links"]}
+    assert named == 3            # Watt's, Stephenson's, the quick return with its ram
