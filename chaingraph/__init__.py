@@ -26,6 +26,7 @@ from chaingraph.errors import (
     PoseAdjustedWarning,
     UnboundedRangeError,
 )
+from chaingraph.dynamics import PoseForces, SweepForces, forces
 from chaingraph.files import dumps, from_document, load, loads, save
 from chaingraph.graphical import instant_centres, velocity_polygon
 from chaingraph.graphical.centres import InstantCentres
@@ -39,7 +40,7 @@ from chaingraph.kinematics import (
     solve,
 )
 from chaingraph.kinematics.assembly import measure
-from chaingraph.model.chain import Chain, Input, Joint, Mechanism, Point
+from chaingraph.model.chain import Chain, Input, Joint, LinkMass, Load, Mechanism, Point
 from chaingraph.naming.identify import Identification, identify
 from chaingraph.naming.inversions import Inversion, Inversions, inversions
 from chaingraph.structure.classify import Check, Classification, classify
@@ -78,12 +79,12 @@ if "IPython" in __import__("sys").modules:        # in a notebook: its rich disp
     _register_displays(RESULTS)
 
 __all__ = [
-    "Chain", "Joint", "Mechanism", "Point", "Input",
+    "Chain", "Joint", "Mechanism", "Point", "Input", "LinkMass", "Load",
     "load", "loads", "from_document", "dumps", "save",
     "classify", "Classification", "Check", "rigid_subchains",
     "inversions", "Inversions", "Inversion", "identify", "Identification",
     "canonical_form", "is_isomorphic", "isomorphism", "automorphism_orbits",
-    "atlas", "design", "solve", "instant_centres", "velocity_polygon", "measure", "animate", "Motion", "Summary", "feasible_range", "build_plan", "Plan",
+    "atlas", "design", "solve", "forces", "PoseForces", "SweepForces", "instant_centres", "velocity_polygon", "measure", "animate", "Motion", "Summary", "feasible_range", "build_plan", "Plan",
     "ChainGraphError", "ChainFileError", "ChainStructureError", "MechanismError",
     "AssemblyError", "AtlasRunError", "AtlasSizeError", "DesignError", "DimensionError",
     "UnboundedRangeError", "ChainGraphWarning", "PoseAdjustedWarning",

@@ -100,7 +100,7 @@ def place(document):
     point_links = [(p.id, p.link) for p in document.points]
     pose = assemble(structure, point_links, dims)
     placed = tuple(Joint(j.id, j.kind, j.links, at=pose.joints[j.id],
-                         axis=pose.axes.get(j.id), closure=j.closure)
+                         axis=pose.axes.get(j.id), closure=j.closure, friction=j.friction)
                    for j in document.joints)
     placed_points = tuple(Point(p.id, p.link, pose.points[p.id]) for p in document.points)
     mechanism = structure.mechanism

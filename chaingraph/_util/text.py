@@ -2,7 +2,12 @@
 
 from __future__ import annotations
 
-__all__ = ["short_list"]
+import csv
+import io
+
+import numpy as np
+
+__all__ = ["short_list", "write_columns"]
 
 
 def short_list(items, keep=6) -> str:
@@ -17,3 +22,25 @@ def short_list(items, keep=6) -> str:
     if len(items) <= keep:
         return repr(items)
     return "[" + ", ".join(repr(x) for x in items[:keep]) + f", ... ({len(items)})]"
+
+
+def write_columns(out, columns, rows, *, block=20_000):
+    """Named columns (arrays of ``rows`` values) to ``out`` as CSV: a header, then one
+    line per row; numbers as Python writes them (the shortest text that reads back to
+    the same float), ``nan`` where there is no value; in blocks of rows, so memory does
+    not grow with the length."""
+    names = list(columns)
+    header = io.StringIO()
+    csv.writer(header, lineterminator="\n").writerow(names)
+    out.write(header.getvalue())
+    arrays = [np.broadcast_to(np.asarray(columns[n], dtype=float), (rows,)) for n in names]
+    for s in range(0, rows, block):
+        texts = []
+        for column in arrays:
+            part = column[s:s + block]
+            text = list(map(repr, part.tolist()))
+            if not np.isfinite(part).all():
+                for i in np.flatnonzero(~np.isfinite(part)):
+                    text[i] = "nan"
+            texts.append(text)
+        out.write("".join(",".join(row) + "\n" for row in zip(*texts)))

@@ -31,6 +31,7 @@ from chaingraph.drawing.plots import (
     draw_mechanism,  # PNG and the other raster formats
     plot_motion,
 )
+from chaingraph.dynamics import forces
 from chaingraph.errors import ChainGraphError
 from chaingraph.files import dumps, load, read_file, save
 from chaingraph.graphical import instant_centres, velocity_polygon
@@ -161,6 +162,51 @@ def cmd_solve(args) -> int:
         sweep, unit = f"{motion.theta[0]:.6g} to {motion.theta[-1]:.6g}", " degrees"
     rows.insert(3, ("sweep", f"{sweep}{unit}, {motion.steps} steps"))   # after the input
     print(table(rows, ["", ""]).split("\n", 2)[2])
+    return 0
+
+def cmd_forces(args) -> int:
+    chain = load(args.file)
+    if args.csv:
+        output_file(args.csv, what="CSV")
+    at = args.at
+    common = dict(static=args.static, fixed=args.fixed, driver=args.driver,
+                  inputs=args.inputs, omega=args.omega)
+    if at:
+        if args.csv or args.start is not None or args.stop is not None or \
+                args.speed_fluctuation is not None:
+            flag = ("--csv" if args.csv else "--from/--to" if args.start is not None
+                    or args.stop is not None else "--speed-fluctuation")
+            print(f"chaingraph forces: error: {flag} is for a sweep; --at gives one pose",
+                  file=sys.stderr)
+            return 2
+        result = forces(chain, at=at[0] if len(at) == 1 else at, **common)
+    else:
+        result = forces(chain, start=args.start, stop=args.stop, steps=args.steps,
+                        speed_fluctuation=args.speed_fluctuation, **common)
+        if args.csv:
+            with Writing(args.csv):
+                result.to_csv(args.csv)
+    if args.json:
+        print_json(result.to_dict())
+        return 0
+    kind = "static" if args.static else "kinetostatic"
+    if at:
+        values = ", ".join(f"{j} = {v:.6g}" for j, v in zip(result.inputs, result.at))
+        print(f"Forces ({kind}) of {result.name}, {result.fixed} fixed, {values}")
+        print()
+        print(table(result.rows(), ["joint", "on", "by", "Fx N", "Fy N", "|F| N",
+                                    "normal N", "couple N m"]))
+        print()
+        for e in result.efforts:
+            print(f"effort {e.joint}: " + ("unbounded or not determined" if e.value is None
+                                           else f"{e.value:.6g} {e.unit}"))
+        if result.power_balance is not None:
+            print(f"power balance: {result.power_balance:.3g} W")
+    else:
+        print(f"Forces ({kind}) of {result.name}, {result.fixed} fixed, {result.steps} steps")
+        print(table(result.rows(), ["", ""]).split("\n", 2)[2])
+    for note in result.notes:
+        print(f"note: {note}")
     return 0
 
 def _instant_arguments(args):

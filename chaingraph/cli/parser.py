@@ -11,6 +11,7 @@ from chaingraph.cli.commands import (
     cmd_centres,
     cmd_classify,
     cmd_design,
+    cmd_forces,
     cmd_identify,
     cmd_inversions,
     cmd_measure,
@@ -84,6 +85,41 @@ def build_parser() -> argparse.ArgumentParser:
     p.add_argument("--draw", metavar="PATH.svg",
                    help="draw the mechanism in its drawn pose with the paths of its points")
     p.set_defaults(run=cmd_solve)
+
+    p = sub.add_parser("forces", help="joint reactions and input efforts, static or "
+                                      "kinetostatic",
+                       description="The force that each joint carries and the effort each "
+                                   "input needs, from the file's masses ([[links]]), "
+                                   "gravity ([forces]), loads ([[loads]]) and friction, at "
+                                   "one pose (--at) or over the sweep of solve; kinetostatic "
+                                   "(with the links' inertia at the input speed) unless "
+                                   "--static.")
+    p.add_argument("file", metavar="FILE", help="a mechanism file (TOML) with units and masses "
+                                               "or loads")
+    p.add_argument("--fixed", metavar="LINK", help="the fixed link")
+    given = p.add_mutually_exclusive_group()
+    given.add_argument("--driver", metavar="LINK",
+                       help="the input link, pinned to the fixed link by an R joint")
+    given.add_argument("--input", dest="inputs", action="append", metavar="JOINT",
+                       help="an input joint; repeat it, one per degree of freedom")
+    p.add_argument("--at", action="append", type=float, metavar="X",
+                   help="one pose: the input value (degrees, or slide for a P input); with "
+                        "several inputs the first's value, or repeat it, one per input")
+    p.add_argument("--from", dest="start", type=float, metavar="X",
+                   help="the first input's first value of the sweep")
+    p.add_argument("--to", dest="stop", type=float, metavar="X",
+                   help="the first input's last value of the sweep")
+    p.add_argument("--steps", type=whole_number, default=360, metavar="N",
+                   help="equal intervals of the sweep (N + 1 rows; default 360)")
+    p.add_argument("--omega", type=float, metavar="W",
+                   help="the (first) input's speed (default: the file's, else 1)")
+    p.add_argument("--static", action="store_true", help="leave out the links' inertia")
+    p.add_argument("--speed-fluctuation", dest="speed_fluctuation", type=float, metavar="CS",
+                   help="for a crank turning fully: the flywheel inertia that holds the "
+                        "speed within this coefficient of fluctuation")
+    p.add_argument("--json", action="store_true", help="print JSON")
+    p.add_argument("--csv", metavar="PATH", help="write every column of every step")
+    p.set_defaults(run=cmd_forces)
 
     for name, run, helptext, description in (
             ("centres", cmd_centres, "instantaneous centres (Kennedy's theorem)",

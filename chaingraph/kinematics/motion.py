@@ -8,7 +8,6 @@ driver's whole feasible range.
 
 from __future__ import annotations
 
-import csv
 import io
 import math
 import os
@@ -17,7 +16,7 @@ from functools import lru_cache
 
 import numpy as np
 
-from chaingraph._util.text import short_list
+from chaingraph._util.text import short_list, write_columns
 from chaingraph.errors import AssemblyError, MechanismError, UnboundedRangeError
 from chaingraph.kinematics.columns import csv_columns
 from chaingraph.kinematics.equations import check_poses
@@ -135,22 +134,8 @@ class Motion:
             self._write_csv(f)
         return None
 
-    def _write_csv(self, out, block=20_000):
-        names = list(self.columns)
-        header = io.StringIO()
-        csv.writer(header, lineterminator="\n").writerow(names)
-        out.write(header.getvalue())
-        columns = [np.asarray(self.columns[n], dtype=float) for n in names]
-        for s in range(0, self.steps + 1, block):
-            texts = []
-            for column in columns:
-                part = column[s:s + block]
-                text = list(map(repr, part.tolist()))
-                if not np.isfinite(part).all():
-                    for i in np.flatnonzero(~np.isfinite(part)):
-                        text[i] = "nan"
-                texts.append(text)
-            out.write("".join(",".join(row) + "\n" for row in zip(*texts)))
+    def _write_csv(self, out):
+        write_columns(out, self.columns, self.steps + 1)
 
     def to_dict(self) -> dict:
         """The JSON of ``chaingraph solve --json``."""

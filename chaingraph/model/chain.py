@@ -22,7 +22,8 @@ from chaingraph._util.numbers import tidy
 from chaingraph.errors import ChainFileError
 from chaingraph.model.pairs import PAIR_KINDS
 
-__all__ = ["Joint", "Point", "Input", "Mechanism", "Chain", "link_node", "joint_node",
+__all__ = ["Joint", "Point", "Input", "Mechanism", "Chain", "LinkMass", "Load", "link_node",
+           "joint_node",
            "chosen_inputs", "line_direction"]
 
 SPACES = ("planar", "spatial")
@@ -59,6 +60,9 @@ class Joint:
         For a P joint, the direction of sliding in the drawn pose, degrees CCW from +x.
     closure : str, optional
         For a higher pair, ``"form"`` (closed pair) or ``"force"`` (unclosed pair).
+    friction : float, optional
+        For a P joint, the coefficient of Coulomb friction between block and guide (the
+        friction force opposes the sliding velocity; ``chaingraph forces``).
     """
 
     id: str
@@ -67,6 +71,7 @@ class Joint:
     at: tuple[float, float] | None = None
     axis: float | None = None
     closure: str | None = None
+    friction: float | None = None
 
     @property
     def order(self) -> int:
@@ -101,6 +106,30 @@ class Point:
     id: str
     link: str
     at: tuple[float, float]
+
+
+@dataclass(frozen=True)
+class LinkMass:
+    """A link's mass properties (``[[links]]`` of a chain file): ``mass`` (kg),
+    ``centre`` (the centre of mass in the drawn pose, in the file's units; None: the
+    mean of the link's joints and points) and ``inertia`` (kg m^2 about the centre)."""
+
+    link: str
+    mass: float
+    centre: tuple[float, float] | None = None
+    inertia: float = 0.0
+
+
+@dataclass(frozen=True)
+class Load:
+    """An external load on one link (``[[loads]]``), constant in the fixed frame: a
+    ``force`` (N) whose line passes through the joint or point ``at`` of the link, and
+    a ``torque`` (N m, counter-clockwise positive)."""
+
+    on: str
+    at: str | None = None
+    force: tuple[float, float] | None = None
+    torque: float = 0.0
 
 
 @dataclass(frozen=True)
@@ -167,10 +196,15 @@ class Chain:
     mechanism: Mechanism | None = None
     source: str | None = field(default=None, compare=False)
     naming: str | None = None   # a catalog mechanism's name: "structure", "behaviour", "example"
+    masses: tuple[LinkMass, ...] = ()           # [[links]]: the links that have mass
+    gravity: tuple[float, float] | None = None  # [forces] gravity, m/s^2
+    loads: tuple[Load, ...] = ()                # [[loads]]
 
     def __post_init__(self):
         object.__setattr__(self, "joints", tuple(self.joints))
         object.__setattr__(self, "points", tuple(self.points))
+        object.__setattr__(self, "masses", tuple(self.masses))
+        object.__setattr__(self, "loads", tuple(self.loads))
         _validate(self)
 
     # -- identity -------------------------------------------------------------------
@@ -368,6 +402,64 @@ def _is_finite_pair(value) -> bool:
                     and math.isfinite(v) for v in value))
 
 
+def _finite(value) -> bool:
+    return (isinstance(value, (int, float)) and not isinstance(value, bool)
+            and math.isfinite(value))
+
+
+def _validate_forces(chain, fail, links, point_ids):
+    """Masses, gravity, loads and friction: what ``chaingraph forces`` reads."""
+    for j in chain.joints:
+        if j.friction is None:
+            continue
+        if j.kind != "P":
+            fail(f"'friction' is only for P joints (a {j.kind} joint here has no sliding "
+                 "velocity to oppose)", f"joint {j.id!r}")
+        if not _finite(j.friction) or j.friction < 0:
+            fail(f"'friction' must be a finite coefficient >= 0, got {j.friction!r}",
+                 f"joint {j.id!r}")
+    named = set()
+    for i, m in enumerate(chain.masses):
+        where = f"[[links]] #{i + 1}"
+        if m.link not in links:
+            fail(f"'name' names no link of the chain: {m.link!r} "
+                 f"(links: {', '.join(chain.links)})", where)
+        where = f"[[links]] {m.link!r}"
+        if m.link in named:
+            fail("the link's mass is given twice", where)
+        named.add(m.link)
+        if not _finite(m.mass) or m.mass < 0:
+            fail(f"'mass' must be a finite number of kg >= 0, got {m.mass!r}", where)
+        if not _finite(m.inertia) or m.inertia < 0:
+            fail(f"'inertia' must be a finite number of kg m^2 >= 0, got {m.inertia!r}",
+                 where)
+        if m.centre is not None and not _is_finite_pair(m.centre):
+            fail("'centre' must be two finite numbers [x, y]", where)
+    if chain.gravity is not None and not _is_finite_pair(chain.gravity):
+        fail("'gravity' must be two finite numbers [gx, gy] (m/s^2)", "[forces]")
+    for i, load in enumerate(chain.loads):
+        where = f"[[loads]] #{i + 1}"
+        if load.on not in links:
+            fail(f"'on' names no link of the chain: {load.on!r} "
+                 f"(links: {', '.join(chain.links)})", where)
+        if load.force is not None and not _is_finite_pair(load.force):
+            fail("'force' must be two finite numbers [Fx, Fy] (N)", where)
+        if not _finite(load.torque):
+            fail("'torque' must be a finite number (N m)", where)
+        if load.force is not None and load.at is None:
+            fail("a load with a 'force' needs 'at': a joint or point of its link that the "
+                 "force's line passes through", where)
+        if load.at is not None:
+            on_link = ({j.id for j in chain.joints if load.on in j.links}
+                       | {p.id for p in chain.points if p.link == load.on})
+            if load.at not in on_link:
+                what = ("is not on link " + repr(load.on) if load.at in point_ids
+                        or any(j.id == load.at for j in chain.joints)
+                        else "names no joint or point of the chain")
+                fail(f"'at' {what}: {load.at!r} (on {load.on!r}: "
+                     f"{', '.join(sorted(on_link)) or 'none'})", where)
+
+
 def _validate(chain: Chain) -> None:
     """Check a chain's semantics; raise ChainFileError naming what is wrong and where."""
     def fail(problem, where=None):
@@ -445,6 +537,7 @@ def _validate(chain: Chain) -> None:
              f"\"behaviour\" (it needs the catalog's behaviour) or \"example\" (a worked "
              f"example: as behaviour, and a general name is preferred to it), "
              f"got {chain.naming!r}", "key 'naming'")
+    _validate_forces(chain, fail, links, point_ids)
     m = chain.mechanism
     if m is not None:
         if m.fixed not in links:

@@ -19,7 +19,7 @@ import tomllib
 from dataclasses import dataclass
 
 from chaingraph.errors import ChainFileError
-from chaingraph.model.chain import Chain, Input, Joint, Mechanism, Point
+from chaingraph.model.chain import Chain, Input, Joint, LinkMass, Load, Mechanism, Point
 from chaingraph.model.dimensions import parse_dimensions
 from chaingraph.model.values import LARGEST, number, shown, type_name
 
@@ -27,8 +27,11 @@ __all__ = ["Document", "parse_file", "parse_text", "parse_document", "dumps", "s
            "toml_text", "chain_document"]
 
 TOP_KEYS = ("name", "family", "units", "space", "notes", "naming", "joints", "points",
-            "mechanism", "lengths", "assembly")
-JOINT_KEYS = ("id", "kind", "links", "at", "axis", "closure")
+            "mechanism", "lengths", "assembly", "links", "forces", "loads")
+JOINT_KEYS = ("id", "kind", "links", "at", "axis", "closure", "friction")
+LINK_KEYS = ("name", "mass", "centre", "inertia")
+FORCES_KEYS = ("gravity",)
+LOAD_KEYS = ("on", "at", "force", "torque")
 POINT_KEYS = ("id", "link", "at")
 MECHANISM_KEYS = ("fixed", "driver", "inputs", "omega", "output")
 INPUT_KEYS = ("joint", "from", "to")
@@ -129,7 +132,7 @@ def parse_document(doc, *, source: str = "<document>") -> Document:
     if "mechanism" in doc:
         mechanism = _mechanism(doc["mechanism"], fail, dimensioned="lengths" in doc)
     meta = dict(name=name, family=family, units=units, space=space, notes=notes,
-                source=source, naming=naming)
+                source=source, naming=naming, **_masses_and_loads(doc, fail))
     if mechanism is not None and not dimensioned:
         kinds = {j.id: j.kind for j in joints}
         for i, item in enumerate(mechanism.inputs):
@@ -148,7 +151,8 @@ def parse_document(doc, *, source: str = "<document>") -> Document:
 
 def _dimensioned(doc, joints, points, mechanism, meta, fail):
     """The document of a chain given by its dimensions: its structure and dimensions."""
-    bare = tuple(Joint(j.id, j.kind, j.links, closure=j.closure) for j in joints)
+    bare = tuple(Joint(j.id, j.kind, j.links, closure=j.closure, friction=j.friction)
+                 for j in joints)
     # the points' places are found when it is placed; (0, 0) stands in meanwhile
     structure = Chain(joints=bare, mechanism=mechanism,
                       points=tuple(Point(p.id, p.link, (0.0, 0.0)) for p in points), **meta)
@@ -237,8 +241,59 @@ def _joint(table, index, fail, dimensioned=False):
     at = _coordinates(table["at"], label, fail) if "at" in table else None
     axis = number(table["axis"], label + " key 'axis'", fail) if "axis" in table else None
     closure = _optional_string(table, "closure", label + " key 'closure'", fail)
+    friction = (number(table["friction"], label + " key 'friction'", fail)
+                if "friction" in table else None)
     return Joint(id=joint_id, kind=kind, links=tuple(links), at=at, axis=axis,
-                 closure=closure)
+                 closure=closure, friction=friction)
+
+
+def _pair(value, key, where, fail, unit):
+    if (not isinstance(value, list) or len(value) != 2
+            or any(isinstance(v, bool) or not isinstance(v, (int, float)) for v in value)
+            or any(isinstance(v, float) and not math.isfinite(v) for v in value)):
+        fail(f"'{key}' must be two finite numbers ({unit}), got {shown(value)}", where)
+    return (number(value[0], f"{where} '{key}' x", fail),
+            number(value[1], f"{where} '{key}' y", fail))
+
+
+def _masses_and_loads(doc, fail):
+    """``[[links]]``, ``[forces]`` and ``[[loads]]``: the Chain's masses, gravity, loads
+    (their meaning, such as a link that exists, is checked by the Chain)."""
+    masses = []
+    for i, t in enumerate(_tables(doc.get("links", []), "links", fail)):
+        where = f"[[links]] #{i + 1}"
+        _no_unknown_keys(t, LINK_KEYS, None, lambda problem, w: fail(problem, where))
+        for key in ("name", "mass"):
+            if key not in t:
+                fail(f"missing required key '{key}'", where)
+        link = _string(t["name"], where + " key 'name'", fail)
+        where = f"[[links]] {link!r}"
+        mass = number(t["mass"], where + " key 'mass'", fail)
+        centre = _pair(t["centre"], "centre", where, fail, "[x, y]") if "centre" in t else None
+        inertia = number(t["inertia"], where + " key 'inertia'", fail) if "inertia" in t else 0.0
+        masses.append(LinkMass(link, mass, centre, inertia))
+    gravity = None
+    if "forces" in doc:
+        table = doc["forces"]
+        if not isinstance(table, dict):
+            fail(f"'forces' must be a table ([forces]), got {type_name(table)}", "[forces]")
+        _no_unknown_keys(table, FORCES_KEYS, None, lambda problem, w: fail(problem, "[forces]"))
+        if "gravity" in table:
+            gravity = _pair(table["gravity"], "gravity", "[forces]", fail, "m/s^2")
+    loads = []
+    for i, t in enumerate(_tables(doc.get("loads", []), "loads", fail)):
+        where = f"[[loads]] #{i + 1}"
+        _no_unknown_keys(t, LOAD_KEYS, None, lambda problem, w: fail(problem, where))
+        if "on" not in t:
+            fail("missing required key 'on' (the link it acts on)", where)
+        if "force" not in t and "torque" not in t:
+            fail("a load needs a 'force' [Fx, Fy] (N), a 'torque' (N m) or both", where)
+        on = _string(t["on"], where + " key 'on'", fail)
+        at = _string(t["at"], where + " key 'at'", fail) if "at" in t else None
+        force = _pair(t["force"], "force", where, fail, "[Fx, Fy] in N") if "force" in t else None
+        torque = number(t["torque"], where + " key 'torque'", fail) if "torque" in t else 0.0
+        loads.append(Load(on, at, force, torque))
+    return {"masses": tuple(masses), "gravity": gravity, "loads": tuple(loads)}
 
 
 def _point(table, index, fail, dimensioned=False):
@@ -392,6 +447,8 @@ def chain_document(chain: Chain) -> dict:
             item["axis"] = j.axis
         if j.closure is not None:
             item["closure"] = j.closure
+        if j.friction is not None:
+            item["friction"] = j.friction
         joints.append(item)
     if joints:
         doc["joints"] = joints
@@ -409,6 +466,17 @@ def chain_document(chain: Chain) -> dict:
         if m.output is not None:
             mech["output"] = m.output
         doc["mechanism"] = mech
+    if chain.masses:
+        doc["links"] = [{"name": x.link, "mass": x.mass,
+                         **({"centre": list(x.centre)} if x.centre is not None else {}),
+                         **({"inertia": x.inertia} if x.inertia else {})}
+                        for x in chain.masses]
+    if chain.gravity is not None:
+        doc["forces"] = {"gravity": list(chain.gravity)}
+    if chain.loads:
+        doc["loads"] = [{"on": x.on, **({"at": x.at} if x.at is not None else {}),
+                         **({"force": list(x.force)} if x.force is not None else {}),
+                         **({"torque": x.torque} if x.torque else {})} for x in chain.loads]
     return doc
 
 

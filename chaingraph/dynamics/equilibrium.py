@@ -1,0 +1,352 @@
+"""The force solve: every moving link's equilibrium (with its inertia force and couple
+in kinetostatics, d'Alembert's principle), batched over the steps of a sweep.
+
+The unknowns are the joints' reactions (two components for a turning pair of two
+links; the forces on all but the last link for a multiple joint; the normal force and
+the couple for a sliding pair, with Coulomb friction along its guide in proportion to
+the normal force) and one effort per input (a couple between the input's two links for
+an R input, a force along the guide for a P input). Three equations per moving link,
+the forces and the moment about the drawing's origin, in SI units: one linear solve per
+step, all steps at once. Friction's sign follows the normal force's sign, found by
+iterating the signs per step until they agree (every combination tried where they do
+not settle).
+"""
+
+from __future__ import annotations
+
+import itertools
+import math
+from dataclasses import dataclass
+
+import numpy as np
+
+from chaingraph.errors import MechanismError
+
+__all__ = ["UNIT_METRES", "KinematicState", "Solution", "solve_equilibrium"]
+
+#: metres per length unit of a chain file
+UNIT_METRES = {"mm": 1e-3, "cm": 1e-2, "m": 1.0, "in": 0.0254}
+
+#: a step's matrix (scaled) with a smallest singular value below this over its largest
+#: is singular: a dead centre, where the effort is unbounded
+_SINGULAR = 1e-10
+
+
+@dataclass(frozen=True)
+class KinematicState:
+    """What the force solve needs of the motion, in SI units, at n steps: per link its
+    frame origin ``origin[link]`` (x, y arrays, m), its rotation from the drawn pose
+    ``turn[link]`` (rad), the origin's velocity and acceleration, and the angular
+    velocity and acceleration; the input rates ``rates[joint]`` (rad/s or m/s)."""
+
+    n: int
+    origin: dict
+    turn: dict
+    velocity: dict
+    omega: dict
+    acceleration: dict
+    alpha: dict
+    rates: dict
+
+    def point(self, link, p):
+        """World position (m) of the link's point drawn at ``p`` (m, the drawn frame
+        about the same origin as the state's)."""
+        c, s = np.cos(self.turn[link]), np.sin(self.turn[link])
+        x0, y0 = self.origin[link]
+        return x0 + c * p[0] - s * p[1], y0 + s * p[0] + c * p[1]
+
+    def velocity_at(self, link, q):
+        """Velocity of the link's point now at ``q`` (world, m)."""
+        x0, y0 = self.origin[link]
+        w = self.omega[link]
+        return (self.velocity[link][0] - w * (q[1] - y0),
+                self.velocity[link][1] + w * (q[0] - x0))
+
+    def acceleration_at(self, link, q):
+        """Acceleration of the link's point now at ``q`` (world, m)."""
+        x0, y0 = self.origin[link]
+        rx, ry = q[0] - x0, q[1] - y0
+        w, al = self.omega[link], self.alpha[link]
+        return (self.acceleration[link][0] - al * ry - w * w * rx,
+                self.acceleration[link][1] + al * rx - w * w * ry)
+
+    def direction(self, link, degrees):
+        """The unit vector drawn at ``degrees`` on the link, turned with it."""
+        a = math.radians(degrees)
+        c, s = np.cos(self.turn[link]), np.sin(self.turn[link])
+        return c * math.cos(a) - s * math.sin(a), s * math.cos(a) + c * math.sin(a)
+
+
+@dataclass(frozen=True)
+class Solution:
+    """The solve's numbers at n steps (NaN where not determined): ``forces[(joint,
+    link)]`` the (Fx, Fy) on ``link`` at the joint (for a two-link joint its first link,
+    by the second), ``normal[joint]``, ``couple[joint]`` for P joints, ``efforts[joint]``
+    per input, ``power`` the power balance (W), ``singular`` the dead-centre steps,
+    ``at_rest`` per friction joint the steps where its slide is at rest (the friction
+    is indeterminate within its cone), ``jammed`` the steps where no sign of the
+    friction forces is consistent (the friction locks the mechanism)."""
+
+    forces: dict
+    normal: dict
+    couple: dict
+    efforts: dict
+    power: np.ndarray
+    singular: np.ndarray
+    at_rest: dict
+    jammed: np.ndarray
+
+
+def _cross(p, f):
+    return p[0] * f[1] - p[1] * f[0]
+
+
+def solve_equilibrium(chain, plan, state, *, static=False, metres=1.0):
+    """The reactions and efforts of ``chain`` (its masses, gravity, loads, friction) at
+    the ``state``'s steps; ``plan`` gives the fixed link and the inputs; ``metres`` is
+    the length unit in metres; drawn coordinates are taken about ``plan.origin``."""
+    n = state.n
+    fixed = plan.fixed
+    moving = [x for x in chain.links if x != fixed]
+    row = {link: 3 * i for i, link in enumerate(moving)}
+    ox, oy = plan.origin
+
+    def drawn(p):                               # drawn point -> metres about the origin
+        return ((p[0] - ox) * metres, (p[1] - oy) * metres)
+
+    size = max(plan.size * metres, 1e-300)
+
+    # ---- unknowns
+    cols = []                                 # (kind, joint, extra)
+    for j in chain.joints:
+        if j.kind == "R":
+            for k in range(len(j.links) - 1):
+                cols += [("Fx", j, k), ("Fy", j, k)]
+        elif j.kind == "P":
+            cols += [("N", j, None), ("M", j, None)]
+        else:
+            raise MechanismError(f"forces are solved for R and P joints; joint {j.id!r} is "
+                                 f"{j.kind}", mechanism=chain.source or chain.name)
+    for item in plan.inputs:
+        cols.append(("effort", item, None))
+    m_rows, m_cols = 3 * len(moving), len(cols)
+    if m_rows != m_cols:
+        raise MechanismError(
+            f"the reactions are statically indeterminate: {m_cols} unknown reactions and "
+            f"efforts for {m_rows} equations of equilibrium (a redundant constraint, or "
+            "inputs that do not match the mobility)", mechanism=chain.source or chain.name)
+
+    # world points of the joints (a P joint: its block's reference point)
+    where = {}
+    for j in chain.joints:
+        link = j.links[1] if j.kind == "P" else (fixed if fixed in j.links else j.links[0])
+        where[j.id] = state.point(link, drawn(j.at))
+    friction = [j for j in chain.joints if j.kind == "P" and j.friction]
+    slide_speed, axis = {}, {}
+    for j in chain.joints:
+        if j.kind == "P":
+            t = state.direction(j.links[0], j.axis)
+            axis[j.id] = t
+            q = where[j.id]
+            vb = state.velocity_at(j.links[1], q)
+            vg = state.velocity_at(j.links[0], q)
+            slide_speed[j.id] = (vb[0] - vg[0]) * t[0] + (vb[1] - vg[1]) * t[1]
+
+    def put(a, link, col, f, q, sign=1.0):
+        """Add the force f (Fx, Fy arrays) at q on ``link`` to column ``col``."""
+        if link == fixed:
+            return
+        r = row[link]
+        a[:, r, col] += sign * f[0]
+        a[:, r + 1, col] += sign * f[1]
+        a[:, r + 2, col] += sign * _cross(q, f) / size    # moments over the size
+
+    def put_couple(a, link, col, c, sign=1.0):
+        if link == fixed:
+            return
+        a[:, row[link] + 2, col] += sign * c / size
+
+    one, zero = np.ones(n), np.zeros(n)
+
+    def matrix(sigma):
+        """The equilibrium matrix for the friction signs ``sigma`` (per friction joint,
+        arrays of +-1)."""
+        a = np.zeros((n, m_rows, m_cols))
+        for c, (kind, j, k) in enumerate(cols):
+            if kind in ("Fx", "Fy"):
+                f = (one, zero) if kind == "Fx" else (zero, one)
+                q = where[j.id]
+                put(a, j.links[k], c, f, q)
+                put(a, j.links[-1], c, f, q, -1.0)
+            elif kind == "N":
+                t = axis[j.id]
+                d = (-t[1], t[0])
+                if j.friction:
+                    s = sigma[j.id] * np.sign(slide_speed[j.id]) * j.friction
+                    # on the guide, friction pulls along the block's sliding velocity
+                    d = (d[0] + s * t[0], d[1] + s * t[1])
+                put(a, j.links[0], c, d, where[j.id])
+                put(a, j.links[1], c, d, where[j.id], -1.0)
+            elif kind == "M":
+                put_couple(a, j.links[0], c, one * size)
+                put_couple(a, j.links[1], c, one * size, -1.0)
+            else:                                # an input's effort
+                if j.kind == "R":
+                    put_couple(a, j.b, c, one)
+                    put_couple(a, j.a, c, one, -1.0)
+                else:
+                    t = axis[j.joint]
+                    put(a, j.b, c, t, where[j.joint])
+                    put(a, j.a, c, t, where[j.joint], -1.0)
+        return a
+
+    # ---- the known forces: gravity, loads, inertia (d'Alembert)
+    rhs = np.zeros((n, m_rows))
+    power = np.zeros(n)                       # of gravity, loads and inertia
+    g = chain.gravity or (0.0, 0.0)
+    for mass in chain.masses:
+        link = mass.link
+        if link == fixed:
+            continue
+        if mass.centre is not None:
+            c0 = drawn(mass.centre)
+        else:
+            pts = [j.at for j in chain.joints if link in j.links] + \
+                  [p.at for p in chain.points if p.link == link]
+            c0 = drawn((sum(p[0] for p in pts) / len(pts), sum(p[1] for p in pts) / len(pts)))
+        q = state.point(link, c0)
+        v = state.velocity_at(link, q)
+        f = (mass.mass * g[0] * one, mass.mass * g[1] * one)
+        couple = zero
+        if not static:
+            acc = state.acceleration_at(link, q)
+            f = (f[0] - mass.mass * acc[0], f[1] - mass.mass * acc[1])
+            couple = -mass.inertia * state.alpha[link]
+        put(rhs[:, :, None], link, 0, f, q)
+        put_couple(rhs[:, :, None], link, 0, couple)
+        power += f[0] * v[0] + f[1] * v[1] + couple * state.omega[link]
+    for load in chain.loads:
+        link = load.on
+        if link == fixed:
+            continue
+        if load.force is not None:
+            if load.at in where:
+                q = where[load.at]
+            else:
+                q = state.point(link, drawn(chain.point(load.at).at))
+            f = (load.force[0] * one, load.force[1] * one)
+            put(rhs[:, :, None], link, 0, f, q)
+            v = state.velocity_at(link, q)
+            power += f[0] * v[0] + f[1] * v[1]
+        if load.torque:
+            put_couple(rhs[:, :, None], link, 0, load.torque * one)
+            power += load.torque * state.omega[link]
+
+    # ---- solve, iterating the friction signs
+    at_rest = {j.id: ~(np.abs(slide_speed[j.id]) > 1e-12 * max(size, 1e-12) *
+                       _speed_scale(state)) for j in friction}
+    sigma = {j.id: one.copy() for j in friction}
+    x, singular = _solve(matrix(sigma), -rhs)
+    normal_cols = {j.id: next(c for c, (kind, jj, _) in enumerate(cols)
+                              if kind == "N" and jj.id == j.id) for j in friction}
+    settled = np.ones(n, dtype=bool)
+    if friction:
+        for _ in range(8):
+            new = {k: np.where(x[:, normal_cols[k]] < 0, -1.0, 1.0) for k in sigma}
+            changed = np.zeros(n, dtype=bool)
+            for k in sigma:
+                changed |= new[k] != sigma[k]
+            if not changed.any():
+                break
+            sigma = new
+            x, singular = _solve(matrix(sigma), -rhs)
+        settled = np.ones(n, dtype=bool)
+        for k in sigma:
+            settled &= (np.where(x[:, normal_cols[k]] < 0, -1.0, 1.0) == sigma[k]) | \
+                (x[:, normal_cols[k]] == 0)
+        if not settled.all():
+            # every combination of signs at the steps that did not settle
+            bad = np.nonzero(~settled)[0]
+            for combo in itertools.product((1.0, -1.0), repeat=len(sigma)):
+                trial = {k: np.full(bad.size, s) for k, s in zip(sigma, combo)}
+                sub = _sub_matrix(matrix, sigma, trial, bad)
+                xs, sing = _solve(sub, -rhs[bad])
+                ok = np.ones(bad.size, dtype=bool)
+                for k, s in zip(sigma, combo):
+                    ok &= np.where(xs[:, normal_cols[k]] < 0, -1.0, 1.0) == s
+                done = bad[ok]
+                x[done], singular[done], settled[done] = xs[ok], sing[ok], True
+                if settled.all():
+                    break
+    jammed = ~settled & ~singular
+    undetermined = singular | jammed
+    for k in at_rest:
+        undetermined = undetermined | at_rest[k]
+    x[undetermined] = np.nan
+
+    # ---- results
+    forces, normal, couple, efforts = {}, {}, {}, {}
+    for c, (kind, j, k) in enumerate(cols):
+        if kind == "Fx":
+            fx, fy = x[:, c], x[:, c + 1]
+            forces[(j.id, j.links[k])] = (fx, fy)
+        elif kind == "N":
+            t = axis[j.id]
+            d = (-t[1], t[0])
+            nn = x[:, c]
+            f = (nn * d[0], nn * d[1])
+            if j.friction:
+                s = sigma[j.id] * np.sign(slide_speed[j.id]) * j.friction
+                f = (f[0] + s * nn * t[0], f[1] + s * nn * t[1])
+            forces[(j.id, j.links[0])] = f
+            normal[j.id] = nn
+            couple[j.id] = x[:, c + 1] * size
+        elif kind == "effort":                  # a couple (N m) or a force (N)
+            efforts[j.joint] = x[:, c]
+    for j in chain.joints:
+        if j.kind == "R" and len(j.links) > 2:
+            parts = [forces[(j.id, link)] for link in j.links[:-1]]
+            forces[(j.id, j.links[-1])] = (-sum(p[0] for p in parts), -sum(p[1] for p in parts))
+    # the power balance: the efforts' power plus that of gravity, loads, inertia and
+    # friction (friction's power: minus |friction| |slide speed|)
+    total = power.copy()
+    for item in plan.inputs:
+        total = total + efforts[item.joint] * state.rates[item.joint]
+    for j in friction:
+        fr = j.friction * np.abs(normal[j.id])
+        total = total - fr * np.abs(slide_speed[j.id])
+    return Solution(forces, normal, couple, efforts, total, singular,
+                    {k: v & ~singular for k, v in at_rest.items()}, jammed)
+
+
+def _speed_scale(state):
+    """A typical angular speed of the state (for what counts as a slide at rest)."""
+    w = [np.abs(np.asarray(v)) for v in state.omega.values()]
+    r = [abs(np.asarray(v)) for v in state.rates.values()]
+    vals = [float(np.nanmax(a)) for a in w + r if np.size(a)]
+    return max([v for v in vals if math.isfinite(v)] + [1e-300])
+
+
+def _sub_matrix(matrix, sigma, trial, rows):
+    """The matrix at ``rows`` with the friction signs ``trial`` there."""
+    full = {k: sigma[k].copy() for k in sigma}
+    for k in full:
+        full[k][rows] = trial[k]
+    return matrix(full)[rows]
+
+
+def _solve(a, b):
+    """x with a x = b per step, and which steps are singular (x NaN there)."""
+    n = a.shape[0]
+    x = np.full((n, a.shape[2]), np.nan)
+    good = np.isfinite(a).all(axis=(1, 2)) & np.isfinite(b).all(axis=1)
+    singular = ~good
+    if good.any():
+        ag, bg = a[good], b[good]
+        s = np.linalg.svd(ag, compute_uv=False)
+        ok = s[:, -1] > _SINGULAR * s[:, 0]
+        idx = np.nonzero(good)[0]
+        singular[idx[~ok]] = True
+        if ok.any():
+            x[idx[ok]] = np.linalg.solve(ag[ok], bg[ok][:, :, None])[:, :, 0]
+    return x, singular

@@ -1,0 +1,463 @@
+"""Forces of a mechanism: every joint's reaction and the effort each input needs, at
+one pose or over a sweep, kinetostatic (inertia at the input speed, gravity, loads,
+friction) or static.
+
+:func:`forces` solves; :class:`PoseForces` and :class:`SweepForces` hold the results,
+with ``to_dict`` (the JSON of ``chaingraph forces --json``), ``rows`` and, for a sweep,
+``to_csv`` and ``to_frame``.
+"""
+
+from __future__ import annotations
+
+import io
+import math
+from dataclasses import dataclass, field
+
+import numpy as np
+
+from chaingraph._util.text import short_list, write_columns
+from chaingraph.dynamics.equilibrium import UNIT_METRES, KinematicState, solve_equilibrium
+from chaingraph.errors import MechanismError
+from chaingraph.kinematics import solve
+from chaingraph.kinematics.pose import pose_motion
+from chaingraph.kinematics.rates import rates
+from chaingraph.kinematics.sweep import evaluate_near
+
+__all__ = ["Reaction", "Effort", "PoseForces", "EffortStats", "ForcesSummary",
+           "SweepForces", "forces"]
+
+
+@dataclass(frozen=True)
+class Reaction:
+    """A joint's reaction on one of its links: ``force`` (Fx, Fy) in N, the force that
+    ``by`` (the joint's other link; for a multiple joint, the others) exerts on ``on``;
+    for a P joint also ``normal`` (N, the force across the guide) and ``couple`` (N m,
+    the couple the guide carries), else None. None values where not determined."""
+
+    joint: str
+    on: str
+    by: tuple[str, ...]
+    force: tuple[float | None, float | None]
+    normal: float | None = None
+    couple: float | None = None
+
+    def to_dict(self) -> dict:
+        return {"joint": self.joint, "on": self.on,
+                "by": self.by[0] if len(self.by) == 1 else list(self.by),
+                "force": list(self.force), "normal": self.normal, "couple": self.couple}
+
+
+@dataclass(frozen=True)
+class Effort:
+    """What input ``joint`` needs, in its positive sense: a torque (``unit`` "N m")
+    for an R input, a force ("N") for a P input; None where it is unbounded (a dead
+    centre) or not determined."""
+
+    joint: str
+    value: float | None
+    unit: str
+
+    def to_dict(self) -> dict:
+        return {"joint": self.joint, "value": self.value, "unit": self.unit}
+
+
+def _num(v):
+    v = float(v)
+    return v if math.isfinite(v) else None
+
+
+@dataclass(frozen=True)
+class PoseForces:
+    """The forces at one pose (``chaingraph forces --at``)."""
+
+    name: str
+    fixed: str
+    inputs: tuple[str, ...]
+    at: tuple[float, ...]
+    static: bool
+    reactions: tuple[Reaction, ...]
+    efforts: tuple[Effort, ...]
+    power_balance: float | None
+    notes: tuple[str, ...] = ()
+
+    def effort(self, joint=None) -> float | None:
+        """The effort of input ``joint`` (default: the first input)."""
+        joint = joint or self.inputs[0]
+        return next(e.value for e in self.efforts if e.joint == joint)
+
+    def reaction(self, joint, on=None) -> Reaction:
+        """The reaction of ``joint`` on link ``on`` (default: its first link)."""
+        return next(r for r in self.reactions if r.joint == joint and (on is None or r.on == on))
+
+    def to_dict(self) -> dict:
+        """The JSON of ``chaingraph forces --at ... --json``."""
+        return {"name": self.name, "fixed": self.fixed, "inputs": list(self.inputs),
+                "at": list(self.at), "static": self.static,
+                "joints": [r.to_dict() for r in self.reactions],
+                "efforts": [e.to_dict() for e in self.efforts],
+                "power_balance": self.power_balance, "notes": list(self.notes)}
+
+    def rows(self) -> list[tuple]:
+        """(joint, on, by, Fx, Fy, |F|, normal, couple) per reaction."""
+        def f(v):
+            return "-" if v is None else f"{v:.6g}"
+        out = []
+        for r in self.reactions:
+            fx, fy = r.force
+            mag = None if fx is None or fy is None else math.hypot(fx, fy)
+            out.append((r.joint, r.on, ", ".join(r.by), f(fx), f(fy), f(mag), f(r.normal),
+                        f(r.couple)))
+        return out
+
+
+@dataclass(frozen=True)
+class EffortStats:
+    """An input's effort over the sweep: min, max, mean and RMS (None when it is not
+    determined at some step)."""
+
+    min: float | None
+    max: float | None
+    mean: float | None
+    rms: float | None
+
+    def to_dict(self) -> dict:
+        return {"min": self.min, "max": self.max, "mean": self.mean, "rms": self.rms}
+
+
+@dataclass(frozen=True)
+class ForcesSummary:
+    """Over the sweep: ``efforts`` per input (:class:`EffortStats`), ``reactions`` the
+    largest reaction per joint (N), and for a crank turning fully the
+    ``energy_fluctuation`` (J: the largest swing of the work of its effort about the
+    mean over a turn) and, given a ``speed_fluctuation``, the ``flywheel`` inertia
+    (kg m^2) that holds the speed within it."""
+
+    efforts: dict
+    reactions: dict
+    energy_fluctuation: float | None = None
+    speed_fluctuation: float | None = None
+    flywheel: float | None = None
+    mean_speed: float | None = None
+
+    def to_dict(self) -> dict:
+        out = {"efforts": {k: v.to_dict() for k, v in self.efforts.items()},
+               "reactions": {k: {"max": v} for k, v in self.reactions.items()}}
+        if self.energy_fluctuation is not None:
+            out["energy_fluctuation"] = self.energy_fluctuation
+        if self.flywheel is not None:
+            out["flywheel"] = {"speed_fluctuation": self.speed_fluctuation,
+                               "inertia": self.flywheel, "omega": self.mean_speed}
+        return out
+
+
+@dataclass(frozen=True)
+class SweepForces:
+    """The forces over a sweep (``chaingraph forces``): ``columns`` by CSV name (the
+    input columns of ``solve``, then ``Fx:J``, ``Fy:J`` per joint, ``Fx:J:LINK`` per
+    link of a multiple joint, ``N:J``, ``M:J`` per P joint, ``effort:J`` per input),
+    and the ``summary``."""
+
+    name: str
+    fixed: str
+    inputs: tuple[str, ...]
+    static: bool
+    steps: int
+    columns: dict = field(repr=False)
+    summary: ForcesSummary = field(repr=False)
+    notes: tuple[str, ...] = ()
+    motion: object = field(default=None, repr=False, compare=False)
+
+    def __repr__(self):
+        return (f"SweepForces({self.name!r}, inputs={list(self.inputs)!r}, "
+                f"steps={self.steps}, columns={short_list(self.columns)})")
+
+    def __getitem__(self, name) -> np.ndarray:
+        return self.columns[name]
+
+    def to_dict(self) -> dict:
+        """The JSON of ``chaingraph forces --json`` over a sweep."""
+        return {"name": self.name, "fixed": self.fixed, "inputs": list(self.inputs),
+                "static": self.static, "steps": self.steps,
+                "summary": self.summary.to_dict(), "notes": list(self.notes)}
+
+    def to_csv(self, path=None) -> str | None:
+        """Write the CSV (one row per step); returns the text when ``path`` is None."""
+        if path is None:
+            buf = io.StringIO()
+            write_columns(buf, self.columns, self.steps + 1)
+            return buf.getvalue()
+        with open(path, "w", encoding="utf-8", newline="") as f:
+            write_columns(f, self.columns, self.steps + 1)
+        return None
+
+    def to_frame(self):
+        """The CSV's columns as a pandas DataFrame (needs the notebook extra)."""
+        try:
+            import pandas
+        except ImportError:
+            raise ImportError("SweepForces.to_frame needs pandas: pip install "
+                              "'chaingraph[notebook]' (or pandas)") from None
+        return pandas.DataFrame({k: np.asarray(v) for k, v in self.columns.items()})
+
+    def rows(self) -> list[tuple]:
+        """The summary as (what, value) rows."""
+        out = []
+        for joint, s in self.summary.efforts.items():
+            unit = "N m" if self.motion is None or _kind(self.motion.plan, joint) == "R" else "N"
+            def f(v):
+                return "unbounded or not determined" if v is None else f"{v:.6g} {unit}"
+            out.append((f"effort {joint}", f"min {f(s.min)}, max {f(s.max)}, mean {f(s.mean)}, "
+                                           f"RMS {f(s.rms)}"))
+        for joint, v in self.summary.reactions.items():
+            out.append((f"largest reaction {joint}", "-" if v is None else f"{v:.6g} N"))
+        if self.summary.energy_fluctuation is not None:
+            out.append(("energy fluctuation", f"{self.summary.energy_fluctuation:.6g} J"))
+        if self.summary.flywheel is not None:
+            out.append(("flywheel", f"{self.summary.flywheel:.6g} kg m^2 for a speed "
+                                    f"fluctuation of {self.summary.speed_fluctuation:g}"))
+        return out
+
+
+def _kind(plan, joint):
+    return next(i.kind for i in plan.inputs if i.joint == joint)
+
+
+def _metres(chain):
+    name = chain.source or chain.name
+    if not chain.units:
+        raise MechanismError("forces need the file's length 'units' (mm, cm, m or in) to "
+                             "work in newtons and metres", mechanism=name)
+    if chain.units not in UNIT_METRES:
+        raise MechanismError(f"forces know the length units {', '.join(UNIT_METRES)}; the "
+                             f"file's units are {chain.units!r}", mechanism=name)
+    return UNIT_METRES[chain.units]
+
+
+def _state(plan, tau, omega, metres):
+    """The :class:`KinematicState` at the path parameters ``tau`` (SI units)."""
+    tau = np.asarray(tau, dtype=float)
+    n = tau.size
+    ev = evaluate_near(plan, tau)
+    vel, acc, _ = rates(plan, ev.pose, float(omega), n, measure=False)
+
+    def arr(v, scale=1.0):
+        return np.broadcast_to(np.asarray(v, dtype=float) * scale, (n,)).copy()
+    origin, turn, velocity, om, acceleration, alpha = {}, {}, {}, {}, {}, {}
+    for link in plan.chain.links:
+        p = ev.pose[link]
+        origin[link] = (arr(p[0], metres), arr(p[1], metres))
+        turn[link] = arr(p[2])
+        velocity[link] = (arr(vel[link][0], metres), arr(vel[link][1], metres))
+        om[link] = arr(vel[link][2])
+        acceleration[link] = (arr(acc[link][0], metres), arr(acc[link][1], metres))
+        alpha[link] = arr(acc[link][2])
+    input_rates = {item.joint: arr(vel[item.key][2], 1.0 if item.kind == "R" else metres)
+                   for item in plan.inputs}
+    return KinematicState(n, origin, turn, velocity, om, acceleration, alpha, input_rates)
+
+
+def _notes(chain, solution, k=None):
+    """What is not determined (at step k, or at which steps of the sweep)."""
+    def hit(mask):
+        return bool(mask[k]) if k is not None else bool(np.any(mask))
+
+    def where(mask):
+        if k is not None:
+            return ""
+        n = int(np.sum(mask))
+        return f" (at {n} step{'s' if n != 1 else ''}, NaN in the CSV)"
+    out = []
+    if hit(solution.singular):
+        out.append("a dead centre: the inputs do not hold the mechanism there, so the "
+                   f"effort is unbounded{where(solution.singular)}")
+    for joint, mask in solution.at_rest.items():
+        if hit(mask):
+            out.append(f"the slide of {joint} is at rest: its friction is indeterminate "
+                       "within its cone, so the reactions and efforts are not determined"
+                       + where(mask))
+    if hit(solution.jammed):
+        out.append("no direction of the friction forces is consistent: the friction "
+                   f"locks the mechanism{where(solution.jammed)}")
+    return tuple(out)
+
+
+def _check_masses(chain, plan):
+    name = chain.source or chain.name
+    if chain.masses or chain.loads or chain.gravity:
+        return
+    raise MechanismError("the mechanism has no masses, loads or gravity: add [[links]] "
+                         "with masses, [[loads]] or [forces] gravity", mechanism=name)
+
+
+def forces(mechanism, *, at=None, static=False, fixed=None, driver=None, inputs=None,
+           start=None, stop=None, steps=360, omega=None, speed_fluctuation=None):
+    """The joints' reactions and the inputs' efforts of a mechanism.
+
+    Parameters
+    ----------
+    mechanism : Chain
+        A mechanism with a drawn pose, ``units``, and masses (``[[links]]``), loads
+        (``[[loads]]``), gravity (``[forces]``) and friction on its P joints.
+    at : float or sequence of float, optional
+        One pose: the input value (as for :func:`chaingraph.instant_centres`); gives a
+        :class:`PoseForces`. By default the sweep of :func:`chaingraph.solve`
+        (``start``, ``stop``, ``steps``), a :class:`SweepForces`.
+    static : bool
+        Leave out the links' inertia (gravity, loads and friction only).
+    fixed, driver, inputs, omega
+        As for :func:`chaingraph.solve`; ``omega`` is the input speed the inertia forces
+        are worked out at (rad/s, or length units/s for a P input).
+    speed_fluctuation : float, optional
+        For a crank turning fully, the coefficient of fluctuation of speed
+        (omega_max - omega_min) / omega the flywheel must hold: the summary then gives
+        the flywheel's inertia I = dE / (omega^2 CS).
+
+    Returns
+    -------
+    PoseForces or SweepForces
+
+    Examples
+    --------
+    A slider crank held by a 1 kN load on its piston, crank at 90 degrees: the crank
+    needs the load times the crank radius (50 mm), and the guide takes F tan(phi).
+
+    >>> import chaingraph
+    >>> from chaingraph.model.chain import Chain, Joint, Load, Mechanism
+    >>> engine = Chain("engine", (
+    ...     Joint("O", "R", ("frame", "crank"), at=(0.0, 0.0)),
+    ...     Joint("A", "R", ("crank", "rod"), at=(0.0, 50.0)),
+    ...     Joint("B", "R", ("rod", "piston"), at=(193.6492, 0.0)),
+    ...     Joint("S", "P", ("frame", "piston"), at=(193.6492, 0.0), axis=0.0)),
+    ...     units="mm", mechanism=Mechanism("frame", driver="crank"),
+    ...     loads=(Load("piston", "B", (-1000.0, 0.0)),))
+    >>> f = chaingraph.forces(engine, at=90.0, static=True)
+    >>> round(f.effort(), 6)                                  # N m: 1000 N x 0.05 m
+    50.0
+    >>> round(f.reaction("S").normal, 3)                      # 1000 tan(phi), phi = 14.48
+    -258.199
+    """
+    metres = _metres(mechanism)
+    if speed_fluctuation is not None and not (isinstance(speed_fluctuation, (int, float))
+                                              and 0 < speed_fluctuation < 2):
+        raise MechanismError(f"the speed fluctuation must be a number between 0 and 2 "
+                             f"(such as 0.02), got {speed_fluctuation!r}",
+                             mechanism=mechanism.source or mechanism.name,
+                             parameter="speed_fluctuation")
+    if at is not None:
+        state = pose_motion(mechanism, at=at, fixed=fixed, driver=driver, inputs=inputs,
+                            omega=omega)
+        plan = state.plan
+        _check_masses(mechanism, plan)
+        lead = plan.inputs[plan.lead]
+        tau = np.array([state.input if lead.kind == "R" else plan.tau(state.input)])
+        kin = _state(plan, tau, state.omega, metres)
+        sol = solve_equilibrium(mechanism, plan, kin, static=static, metres=metres)
+        values = tuple(state.inputs.values()) if state.inputs else (state.input,)
+        return PoseForces(
+            name=mechanism.name, fixed=plan.fixed,
+            inputs=tuple(i.joint for i in plan.inputs), at=tuple(float(v) for v in values),
+            static=static, reactions=_reactions(mechanism, sol, 0),
+            efforts=tuple(Effort(i.joint, _num(sol.efforts[i.joint][0]),
+                                 "N m" if i.kind == "R" else "N") for i in plan.inputs),
+            power_balance=_num(sol.power[0]), notes=_notes(mechanism, sol, 0))
+    motion = solve(mechanism, fixed=fixed, driver=driver, inputs=inputs, start=start,
+                   stop=stop, steps=steps, omega=omega, summary=True)
+    plan = motion.plan
+    _check_masses(mechanism, plan)
+    lead = plan.inputs[plan.lead]
+    values = np.asarray(motion["theta"], dtype=float)
+    tau = values if lead.kind == "R" else plan.tau(values)
+    kin = _state(plan, tau, motion.omega, metres)
+    sol = solve_equilibrium(mechanism, plan, kin, static=static, metres=metres)
+    columns = {k: v for k, v in motion.columns.items()
+               if k == "theta" or k.startswith("input:")}
+    for j in mechanism.joints:
+        if j.kind == "R" and len(j.links) > 2:
+            for link in j.links:
+                fx, fy = sol.forces[(j.id, link)]
+                columns[f"Fx:{j.id}:{link}"], columns[f"Fy:{j.id}:{link}"] = fx, fy
+        else:
+            fx, fy = sol.forces[(j.id, j.links[0])]
+            columns[f"Fx:{j.id}"], columns[f"Fy:{j.id}"] = fx, fy
+    for j in mechanism.joints:
+        if j.kind == "P":
+            columns[f"N:{j.id}"], columns[f"M:{j.id}"] = sol.normal[j.id], sol.couple[j.id]
+    for item in plan.inputs:
+        columns[f"effort:{item.joint}"] = sol.efforts[item.joint]
+    summary = _summary(mechanism, plan, motion, sol, speed_fluctuation)
+    return SweepForces(name=mechanism.name, fixed=plan.fixed,
+                       inputs=tuple(i.joint for i in plan.inputs), static=static,
+                       steps=motion.steps, columns=columns, summary=summary,
+                       notes=_notes(mechanism, sol), motion=motion)
+
+
+def _reactions(chain, sol, k):
+    out = []
+    for j in chain.joints:
+        on_links = j.links if (j.kind == "R" and len(j.links) > 2) else j.links[:1]
+        for link in on_links:
+            fx, fy = sol.forces[(j.id, link)]
+            by = tuple(x for x in j.links if x != link)
+            normal = _num(sol.normal[j.id][k]) if j.kind == "P" else None
+            couple = _num(sol.couple[j.id][k]) if j.kind == "P" else None
+            out.append(Reaction(j.id, link, by, (_num(fx[k]), _num(fy[k])), normal, couple))
+    return tuple(out)
+
+
+def _stats(v, unbounded):
+    """Over the steps where ``v`` is determined; None throughout when it is unbounded
+    somewhere (a dead centre) or nowhere determined."""
+    v = np.asarray(v, dtype=float)
+    v = v[np.isfinite(v)]
+    if v.size == 0 or unbounded.any():
+        return EffortStats(None, None, None, None)
+    return EffortStats(float(v.min()), float(v.max()), float(v.mean()),
+                       float(np.sqrt(np.mean(v * v))))
+
+
+def _filled(v):
+    """``v`` with its undetermined steps (a slide at rest, a few steps) filled in
+    linearly from their neighbours, for the work over a turn."""
+    good = np.isfinite(v)
+    if good.all() or good.sum() < 2:
+        return v
+    k = np.arange(v.size)
+    return np.interp(k, k[good], v[good])
+
+
+def _summary(chain, plan, motion, sol, speed_fluctuation):
+    unbounded = sol.singular
+    efforts = {i.joint: _stats(sol.efforts[i.joint], unbounded) for i in plan.inputs}
+    reactions = {}
+    for j in chain.joints:
+        links = j.links if (j.kind == "R" and len(j.links) > 2) else j.links[:1]
+        mags = [np.hypot(*sol.forces[(j.id, link)]) for link in links]
+        worst = np.max(np.vstack(mags), axis=0)
+        finite = worst[np.isfinite(worst)]
+        reactions[j.id] = (float(finite.max()) if finite.size and not unbounded.any()
+                           else None)
+    energy = flywheel = None
+    s = motion.summary
+    lead = plan.inputs[plan.lead]
+    theta = np.asarray(motion["theta"], dtype=float)
+    if (len(plan.inputs) == 1 and lead.kind == "R" and s is not None and s.full_turn
+            and abs(abs(theta[-1] - theta[0]) - 360.0) < 1e-9):
+        e = _filled(sol.efforts[lead.joint])
+        if np.isfinite(e).all() and not unbounded.any():
+            u = np.radians(theta)
+            # over the turn, mean and RMS are integrals (the sweep's ends are one pose)
+            span = u[-1] - u[0]
+            mean_e = float(np.sum(0.5 * (e[1:] + e[:-1]) * np.diff(u)) / span)
+            rms_e = math.sqrt(float(np.sum(0.5 * (e[1:] ** 2 + e[:-1] ** 2) * np.diff(u))
+                                    / span))
+            old = efforts[lead.joint]
+            efforts[lead.joint] = EffortStats(old.min, old.max, mean_e, rms_e)
+            # the work of the effort about its mean over the turn (trapezoid rule)
+            work = np.concatenate([[0.0], np.cumsum(0.5 * (e[1:] + e[:-1]) * np.diff(u))])
+            mean = work[-1] / (u[-1] - u[0])
+            swing = work - mean * (u - u[0])
+            energy = float(swing.max() - swing.min())
+            if speed_fluctuation is not None:
+                flywheel = energy / (motion.omega ** 2 * speed_fluctuation)
+    return ForcesSummary(efforts, reactions, energy, speed_fluctuation if flywheel is not None
+                         else None, flywheel, abs(motion.omega) if flywheel is not None else None)
