@@ -21,6 +21,7 @@ from dataclasses import dataclass
 import numpy as np
 
 from chaingraph.errors import MechanismError
+from chaingraph.geometry import cross
 
 __all__ = ["UNIT_METRES", "KinematicState", "Solution", "solve_equilibrium"]
 
@@ -85,7 +86,9 @@ class Solution:
     per input, ``power`` the power balance (W), ``singular`` the dead-centre steps,
     ``at_rest`` per friction joint the steps where its slide is at rest (the friction
     is indeterminate within its cone), ``jammed`` the steps where no sign of the
-    friction forces is consistent (the friction locks the mechanism)."""
+    friction forces is consistent (the friction locks the mechanism);
+    ``indeterminate`` when a redundant constraint leaves the reactions statically
+    indeterminate (the least-norm reactions are given; the efforts are determined)."""
 
     forces: dict
     normal: dict
@@ -95,10 +98,7 @@ class Solution:
     singular: np.ndarray
     at_rest: dict
     jammed: np.ndarray
-
-
-def _cross(p, f):
-    return p[0] * f[1] - p[1] * f[0]
+    indeterminate: bool = False
 
 
 def solve_equilibrium(chain, plan, state, *, static=False, metres=1.0):
@@ -130,11 +130,14 @@ def solve_equilibrium(chain, plan, state, *, static=False, metres=1.0):
     for item in plan.inputs:
         cols.append(("effort", item, None))
     m_rows, m_cols = 3 * len(moving), len(cols)
-    if m_rows != m_cols:
+    if m_rows > m_cols:
         raise MechanismError(
-            f"the reactions are statically indeterminate: {m_cols} unknown reactions and "
-            f"efforts for {m_rows} equations of equilibrium (a redundant constraint, or "
-            "inputs that do not match the mobility)", mechanism=chain.source or chain.name)
+            f"the inputs do not hold the mechanism: {m_cols} unknown reactions and efforts "
+            f"for {m_rows} equations of equilibrium (give one input per degree of "
+            "freedom)", mechanism=chain.source or chain.name)
+    # more unknowns than equations: a redundant constraint (the locomotive's third
+    # wheel), statically indeterminate; the least-norm reactions are given
+    indeterminate = m_cols > m_rows
 
     # world points of the joints (a P joint: its block's reference point)
     where = {}
@@ -159,7 +162,7 @@ def solve_equilibrium(chain, plan, state, *, static=False, metres=1.0):
         r = row[link]
         a[:, r, col] += sign * f[0]
         a[:, r + 1, col] += sign * f[1]
-        a[:, r + 2, col] += sign * _cross(q, f) / size    # moments over the size
+        a[:, r + 2, col] += sign * cross(q, f) / size    # moments over the size
 
     def put_couple(a, link, col, c, sign=1.0):
         if link == fixed:
@@ -316,7 +319,7 @@ def solve_equilibrium(chain, plan, state, *, static=False, metres=1.0):
         fr = j.friction * np.abs(normal[j.id])
         total = total - fr * np.abs(slide_speed[j.id])
     return Solution(forces, normal, couple, efforts, total, singular,
-                    {k: v & ~singular for k, v in at_rest.items()}, jammed)
+                    {k: v & ~singular for k, v in at_rest.items()}, jammed, indeterminate)
 
 
 def _speed_scale(state):
@@ -336,7 +339,8 @@ def _sub_matrix(matrix, sigma, trial, rows):
 
 
 def _solve(a, b):
-    """x with a x = b per step, and which steps are singular (x NaN there)."""
+    """x with a x = b per step (with more unknowns than equations, the least-norm x),
+    and which steps are singular (x NaN there)."""
     n = a.shape[0]
     x = np.full((n, a.shape[2]), np.nan)
     good = np.isfinite(a).all(axis=(1, 2)) & np.isfinite(b).all(axis=1)
@@ -348,5 +352,8 @@ def _solve(a, b):
         idx = np.nonzero(good)[0]
         singular[idx[~ok]] = True
         if ok.any():
-            x[idx[ok]] = np.linalg.solve(ag[ok], bg[ok][:, :, None])[:, :, 0]
+            if ag.shape[1] == ag.shape[2]:
+                x[idx[ok]] = np.linalg.solve(ag[ok], bg[ok][:, :, None])[:, :, 0]
+            else:
+                x[idx[ok]] = (np.linalg.pinv(ag[ok]) @ bg[ok][:, :, None])[:, :, 0]
     return x, singular

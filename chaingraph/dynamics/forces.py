@@ -202,12 +202,12 @@ class SweepForces:
     def rows(self) -> list[tuple]:
         """The summary as (what, value) rows."""
         out = []
+        def f(v, unit):
+            return "unbounded or not determined" if v is None else f"{v:.6g} {unit}"
         for joint, s in self.summary.efforts.items():
-            unit = "N m" if self.motion is None or _kind(self.motion.plan, joint) == "R" else "N"
-            def f(v):
-                return "unbounded or not determined" if v is None else f"{v:.6g} {unit}"
-            out.append((f"effort {joint}", f"min {f(s.min)}, max {f(s.max)}, mean {f(s.mean)}, "
-                                           f"RMS {f(s.rms)}"))
+            u = "N m" if self.motion is None or _kind(self.motion.plan, joint) == "R" else "N"
+            out.append((f"effort {joint}", f"min {f(s.min, u)}, max {f(s.max, u)}, "
+                                           f"mean {f(s.mean, u)}, RMS {f(s.rms, u)}"))
         for joint, v in self.summary.reactions.items():
             out.append((f"largest reaction {joint}", "-" if v is None else f"{v:.6g} N"))
         if self.summary.energy_fluctuation is not None:
@@ -267,6 +267,10 @@ def _notes(chain, solution, k=None):
         n = int(np.sum(mask))
         return f" (at {n} step{'s' if n != 1 else ''}, NaN in the CSV)"
     out = []
+    if solution.indeterminate:
+        out.append("a redundant constraint leaves the reactions statically indeterminate: "
+                   "they are the least-norm share that balances the links (the efforts "
+                   "are determined)")
     if hit(solution.singular):
         out.append("a dead centre: the inputs do not hold the mechanism there, so the "
                    f"effort is unbounded{where(solution.singular)}")
