@@ -55,7 +55,8 @@ from chaingraph.structure.rigidity import rigid_subchains
 __version__ = "0.1.0"
 
 #: the results a notebook displays richly (:func:`chaingraph.drawing.notebook.register`)
-RESULTS = (Chain, Classification, Inversions, Motion, InstantCentres, Polygons)
+RESULTS = (Chain, Classification, Inversions, Motion, InstantCentres, Polygons, PoseForces,
+           SweepForces)
 
 # loaded when first used, so that `import chaingraph` loads neither the atlas (nor
 # pynauty) nor the drawing modules: name -> (module, attribute or None for the module)

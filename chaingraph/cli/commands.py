@@ -26,13 +26,14 @@ from chaingraph.cli.text import (
     table,
 )
 from chaingraph.drawing.constructions import draw_centres, draw_polygons
+from chaingraph.drawing.forces import free_body_svg, plot_turning_moment
 from chaingraph.drawing.mechanism import mechanism_svg
 from chaingraph.drawing.plots import (
     draw_mechanism,  # PNG and the other raster formats
     plot_motion,
 )
 from chaingraph.dynamics import forces
-from chaingraph.errors import ChainGraphError
+from chaingraph.errors import ChainGraphError, OutputError
 from chaingraph.files import dumps, load, read_file, save
 from chaingraph.graphical import instant_centres, velocity_polygon
 from chaingraph.kinematics import solve, summary_rows
@@ -168,14 +169,21 @@ def cmd_forces(args) -> int:
     chain = load(args.file)
     if args.csv:
         output_file(args.csv, what="CSV")
+    if args.draw:
+        if not str(args.draw).lower().endswith(".svg"):
+            raise OutputError(args.draw, "the free bodies are drawn as SVG: give a .svg file")
+        output_file(args.draw, what="drawing")
+    if args.plot:
+        picture_file(args.plot, what="plot")
     at = args.at
     common = dict(static=args.static, fixed=args.fixed, driver=args.driver,
                   inputs=args.inputs, omega=args.omega)
     if at:
         if args.csv or args.start is not None or args.stop is not None or \
-                args.speed_fluctuation is not None:
+                args.speed_fluctuation is not None or args.plot:
             flag = ("--csv" if args.csv else "--from/--to" if args.start is not None
-                    or args.stop is not None else "--speed-fluctuation")
+                    or args.stop is not None else "--plot" if args.plot
+                    else "--speed-fluctuation")
             print(f"chaingraph forces: error: {flag} is for a sweep; --at gives one pose",
                   file=sys.stderr)
             return 2
@@ -186,6 +194,18 @@ def cmd_forces(args) -> int:
         if args.csv:
             with Writing(args.csv):
                 result.to_csv(args.csv)
+        if args.plot:
+            with Writing(args.plot):
+                plot_turning_moment(result, args.plot)
+    if args.draw:
+        if at:
+            pose = result
+        else:                                   # the sweep's first pose
+            first = [float(result["input:" + j][0]) for j in result.inputs] \
+                if any(k.startswith("input:") for k in result.columns) \
+                else float(result["theta"][0])
+            pose = forces(chain, at=first, **common)
+        write_text(args.draw, free_body_svg(pose))
     if args.json:
         print_json(result.to_dict())
         return 0

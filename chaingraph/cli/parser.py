@@ -119,6 +119,10 @@ def build_parser() -> argparse.ArgumentParser:
                         "speed within this coefficient of fluctuation")
     p.add_argument("--json", action="store_true", help="print JSON")
     p.add_argument("--csv", metavar="PATH", help="write every column of every step")
+    p.add_argument("--draw", metavar="PATH.svg",
+                   help="draw the free bodies at the pose (--at; else the sweep's first)")
+    p.add_argument("--plot", metavar="PATH.svg",
+                   help="plot the turning-moment diagram of the sweep (one input)")
     p.set_defaults(run=cmd_forces)
 
     for name, run, helptext, description in (

@@ -15,6 +15,7 @@ import html
 import io
 
 from chaingraph.drawing.constructions import draw_centres, draw_polygons
+from chaingraph.drawing.forces import free_body_svg, plot_turning_moment
 from chaingraph.drawing.mechanism import mechanism_svg, skeleton_svg
 from chaingraph.drawing.plots import plot_motion
 from chaingraph.kinematics import summary_rows
@@ -75,6 +76,28 @@ def polygons_html(polygons) -> str:
             + figure_svg(draw_polygons(polygons)))
 
 
+def pose_forces_html(result) -> str:
+    """The reactions and efforts as tables and the free bodies."""
+    efforts = [(e.joint, "-" if e.value is None else f"{e.value:.6g} {e.unit}")
+               for e in result.efforts]
+    return (f"<b>{html.escape(result.name)}</b>: forces at "
+            + ", ".join(f"{j} = {v:.6g}" for j, v in zip(result.inputs, result.at))
+            + _table(result.rows(), ["joint", "on", "by", "Fx N", "Fy N", "|F| N",
+                                     "normal N", "couple N m"])
+            + _table(efforts, ["input", "effort"])
+            + "".join(f"<p>{html.escape(n)}</p>" for n in result.notes)
+            + free_body_svg(result).split("?>", 1)[-1])
+
+
+def sweep_forces_html(result) -> str:
+    """The summary and the turning-moment diagram."""
+    out = (f"<b>{html.escape(result.name)}</b>: forces over {result.steps} steps"
+           + _table(result.rows()) + "".join(f"<p>{html.escape(n)}</p>" for n in result.notes))
+    if len(result.inputs) == 1:
+        out += figure_svg(plot_turning_moment(result))
+    return out
+
+
 class Animation:
     """One cycle of a solved motion as an animated SVG (SMIL: no script, no network).
     A notebook shows it inline; :meth:`save` writes it."""
@@ -114,7 +137,9 @@ DISPLAYS = {"Chain": ("image/svg+xml", chain_svg),
             "Inversions": ("text/html", inversions_html),
             "Motion": ("text/html", motion_html),
             "InstantCentres": ("text/html", centres_html),
-            "Polygons": ("text/html", polygons_html)}
+            "Polygons": ("text/html", polygons_html),
+            "PoseForces": ("text/html", pose_forces_html),
+            "SweepForces": ("text/html", sweep_forces_html)}
 
 
 def register(classes, shell=None) -> bool:
@@ -134,7 +159,7 @@ def register(classes, shell=None) -> bool:
     >>> register(chaingraph.RESULTS, Shell())
     True
     >>> sorted(Shell.display_formatter.formatters["text/html"].types)
-    ['Classification', 'InstantCentres', 'Inversions', 'Motion', 'Polygons']
+    ['Classification', 'InstantCentres', 'Inversions', 'Motion', 'Polygons', 'PoseForces', 'SweepForces']
     """
     if shell is None:
         try:

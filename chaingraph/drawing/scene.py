@@ -21,7 +21,7 @@ import numpy as np
 
 from chaingraph.geometry import convex_hull, polygon_area
 
-__all__ = ["Scene", "Shape", "frame_shapes", "path_shapes", "svg_elements", "draw_shapes",
+__all__ = ["View", "Scene", "Shape", "frame_shapes", "path_shapes", "svg_elements", "draw_shapes",
            "COLOURS"]
 
 #: the links' colours, in the order of the chain's links
@@ -73,7 +73,29 @@ class _Pair:
         self.cap = cap                     # a barrel's closed end: "lo" or "hi"
 
 
-class Scene:
+class View:
+    """A picture's window on the mechanism's plane: the box ``lo``-``hi`` (its units)
+    with ``pad`` around it, mapped to picture coordinates (y down) for SVG."""
+
+    def __init__(self, lo, hi, pad):
+        self.lo, self.hi, self.pad = lo, hi, pad
+
+    # model -> picture coordinates (y up -> y down)
+    def X(self, x):
+        return x - self.lo[0] + self.pad
+
+    def Y(self, y):
+        return self.hi[1] - y + self.pad
+
+    def pt(self, x, y):
+        return f"{self.X(x):.4g},{self.Y(y):.4g}"
+
+    @property
+    def size(self):
+        return (self.hi[0] - self.lo[0] + 2 * self.pad, self.hi[1] - self.lo[1] + 2 * self.pad)
+
+
+class Scene(View):
     """What a picture of a mechanism needs over a motion's steps, in its coordinates.
 
     ``xy`` maps every joint and point to its (x, y) arrays over the steps; ``angle``
@@ -222,20 +244,6 @@ class Scene:
             return _Pair(links[0], links[1], "cylinder", padded([travel] + reach, 1.2 * tol),
                          cap="lo" if rod[0] > 0 else "hi")
         return _Pair(links[0], links[1], "slot", padded([travel] + reach, 0.04 * extent))
-
-    # model -> picture coordinates (y up -> y down)
-    def X(self, x):
-        return x - self.lo[0] + self.pad
-
-    def Y(self, y):
-        return self.hi[1] - y + self.pad
-
-    def pt(self, x, y):
-        return f"{self.X(x):.4g},{self.Y(y):.4g}"
-
-    @property
-    def size(self):
-        return (self.hi[0] - self.lo[0] + 2 * self.pad, self.hi[1] - self.lo[1] + 2 * self.pad)
 
 
 def _finite(*points):

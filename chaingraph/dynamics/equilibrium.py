@@ -22,14 +22,16 @@ import numpy as np
 
 from chaingraph.errors import MechanismError
 from chaingraph.geometry import cross
+from chaingraph.model.chain import mass_centre
 
 __all__ = ["UNIT_METRES", "KinematicState", "Solution", "solve_equilibrium"]
 
 #: metres per length unit of a chain file
 UNIT_METRES = {"mm": 1e-3, "cm": 1e-2, "m": 1.0, "in": 0.0254}
 
-#: a step's matrix (scaled) with a smallest singular value below this over its largest
-#: is singular: a dead centre, where the effort is unbounded
+#: a step's matrix (scaled) whose determinant over the product of its columns' lengths
+#: (or, with more unknowns than equations, whose smallest singular value over its
+#: largest) is below this is singular: a dead centre, where the effort is unbounded
 _SINGULAR = 1e-10
 
 
@@ -88,7 +90,11 @@ class Solution:
     is indeterminate within its cone), ``jammed`` the steps where no sign of the
     friction forces is consistent (the friction locks the mechanism);
     ``indeterminate`` when a redundant constraint leaves the reactions statically
-    indeterminate (the least-norm reactions are given; the efforts are determined)."""
+    indeterminate (the least-norm reactions are given; the efforts are determined);
+    ``applied`` the forces other than the reactions, as (link, what, point, force) in
+    metres about the plan's origin and newtons (weights, inertia forces, loads, a P
+    input's effort), ``couples`` as (link, what, N m) (inertia couples, loads' torques,
+    an R input's effort), ``points`` every joint's point (m about the origin)."""
 
     forces: dict
     normal: dict
@@ -99,6 +105,9 @@ class Solution:
     at_rest: dict
     jammed: np.ndarray
     indeterminate: bool = False
+    applied: tuple = ()
+    couples: tuple = ()
+    points: dict = None
 
 
 def solve_equilibrium(chain, plan, state, *, static=False, metres=1.0):
@@ -206,25 +215,26 @@ def solve_equilibrium(chain, plan, state, *, static=False, metres=1.0):
     # ---- the known forces: gravity, loads, inertia (d'Alembert)
     rhs = np.zeros((n, m_rows))
     power = np.zeros(n)                       # of gravity, loads and inertia
+    applied, couples = [], []                 # (link, what, point, force), (link, what, value)
     g = chain.gravity or (0.0, 0.0)
     for mass in chain.masses:
         link = mass.link
         if link == fixed:
             continue
-        if mass.centre is not None:
-            c0 = drawn(mass.centre)
-        else:
-            pts = [j.at for j in chain.joints if link in j.links] + \
-                  [p.at for p in chain.points if p.link == link]
-            c0 = drawn((sum(p[0] for p in pts) / len(pts), sum(p[1] for p in pts) / len(pts)))
-        q = state.point(link, c0)
+        q = state.point(link, drawn(mass_centre(chain, mass)))
         v = state.velocity_at(link, q)
         f = (mass.mass * g[0] * one, mass.mass * g[1] * one)
+        if chain.gravity is not None and mass.mass:
+            applied.append((link, "weight", q, f))
         couple = zero
         if not static:
             acc = state.acceleration_at(link, q)
-            f = (f[0] - mass.mass * acc[0], f[1] - mass.mass * acc[1])
+            inertia = (-mass.mass * acc[0], -mass.mass * acc[1])
+            applied.append((link, "inertia force", q, inertia))
+            f = (f[0] + inertia[0], f[1] + inertia[1])
             couple = -mass.inertia * state.alpha[link]
+            if mass.inertia:
+                couples.append((link, "inertia couple", couple))
         put(rhs[:, :, None], link, 0, f, q)
         put_couple(rhs[:, :, None], link, 0, couple)
         power += f[0] * v[0] + f[1] * v[1] + couple * state.omega[link]
@@ -238,10 +248,12 @@ def solve_equilibrium(chain, plan, state, *, static=False, metres=1.0):
             else:
                 q = state.point(link, drawn(chain.point(load.at).at))
             f = (load.force[0] * one, load.force[1] * one)
+            applied.append((link, "load", q, f))
             put(rhs[:, :, None], link, 0, f, q)
             v = state.velocity_at(link, q)
             power += f[0] * v[0] + f[1] * v[1]
         if load.torque:
+            couples.append((link, "load", load.torque * one))
             put_couple(rhs[:, :, None], link, 0, load.torque * one)
             power += load.torque * state.omega[link]
 
@@ -318,8 +330,17 @@ def solve_equilibrium(chain, plan, state, *, static=False, metres=1.0):
     for j in friction:
         fr = j.friction * np.abs(normal[j.id])
         total = total - fr * np.abs(slide_speed[j.id])
+    for item in plan.inputs:                  # the efforts, as applied to the input's link
+        if item.kind == "R":
+            couples.append((item.b, f"effort {item.joint}", efforts[item.joint]))
+        else:
+            t = axis[item.joint]
+            e = efforts[item.joint]
+            applied.append((item.b, f"effort {item.joint}", where[item.joint],
+                            (e * t[0], e * t[1])))
     return Solution(forces, normal, couple, efforts, total, singular,
-                    {k: v & ~singular for k, v in at_rest.items()}, jammed, indeterminate)
+                    {k: v & ~singular for k, v in at_rest.items()}, jammed, indeterminate,
+                    tuple(applied), tuple(couples), where)
 
 
 def _speed_scale(state):
@@ -347,8 +368,15 @@ def _solve(a, b):
     singular = ~good
     if good.any():
         ag, bg = a[good], b[good]
-        s = np.linalg.svd(ag, compute_uv=False)
-        ok = s[:, -1] > _SINGULAR * s[:, 0]
+        if ag.shape[1] == ag.shape[2]:
+            # the determinant over the product of the columns' lengths (Hadamard's
+            # ratio, 1 for orthogonal columns, 0 when singular): one LU per step
+            ratio = np.abs(np.linalg.det(ag)) / (np.prod(np.linalg.norm(ag, axis=1), axis=1)
+                                                 + 1e-300)
+            ok = ratio > _SINGULAR
+        else:
+            s = np.linalg.svd(ag, compute_uv=False)
+            ok = s[:, -1] > _SINGULAR * s[:, 0]
         idx = np.nonzero(good)[0]
         singular[idx[~ok]] = True
         if ok.any():

@@ -15,6 +15,7 @@ from dataclasses import dataclass, field
 
 import numpy as np
 
+from chaingraph._util.numbers import tidy
 from chaingraph._util.text import short_list, write_columns
 from chaingraph.dynamics.equilibrium import UNIT_METRES, KinematicState, solve_equilibrium
 from chaingraph.errors import MechanismError
@@ -23,8 +24,8 @@ from chaingraph.kinematics.pose import pose_motion
 from chaingraph.kinematics.rates import rates
 from chaingraph.kinematics.sweep import evaluate_near
 
-__all__ = ["Reaction", "Effort", "PoseForces", "EffortStats", "ForcesSummary",
-           "SweepForces", "forces"]
+__all__ = ["Reaction", "Effort", "AppliedForce", "AppliedCouple", "PoseForces",
+           "EffortStats", "ForcesSummary", "SweepForces", "forces"]
 
 
 @dataclass(frozen=True)
@@ -67,8 +68,33 @@ def _num(v):
 
 
 @dataclass(frozen=True)
+class AppliedForce:
+    """A force on a link other than a joint's reaction: a ``what`` ("weight", "inertia
+    force", "load", "effort J") of ``force`` (N) through ``at`` (the drawing's
+    coordinates, file units)."""
+
+    link: str
+    what: str
+    at: tuple[float, float]
+    force: tuple[float, float]
+
+
+@dataclass(frozen=True)
+class AppliedCouple:
+    """A couple on a link (N m, counter-clockwise): an inertia couple, a load's torque,
+    an R input's effort."""
+
+    link: str
+    what: str
+    value: float | None
+
+
+@dataclass(frozen=True)
 class PoseForces:
-    """The forces at one pose (``chaingraph forces --at``)."""
+    """The forces at one pose (``chaingraph forces --at``). ``points`` gives each
+    joint's point at the pose (file units; a P joint's block reference point), and
+    ``applied`` and ``couples`` the other forces and couples on the links: with the
+    reactions, every link's free body."""
 
     name: str
     fixed: str
@@ -79,6 +105,11 @@ class PoseForces:
     efforts: tuple[Effort, ...]
     power_balance: float | None
     notes: tuple[str, ...] = ()
+    units: str | None = None
+    points: dict = field(default_factory=dict, repr=False, compare=False)
+    applied: tuple[AppliedForce, ...] = field(default=(), repr=False)
+    couples: tuple[AppliedCouple, ...] = field(default=(), repr=False)
+    chain: object = field(default=None, repr=False, compare=False)
 
     def effort(self, joint=None) -> float | None:
         """The effort of input ``joint`` (default: the first input)."""
@@ -322,8 +353,10 @@ def forces(mechanism, *, at=None, static=False, fixed=None, driver=None, inputs=
 
     Examples
     --------
-    A slider crank held by a 1 kN load on its piston, crank at 90 degrees: the crank
-    needs the load times the crank radius (50 mm), and the guide takes F tan(phi).
+    A slider crank held by a 1 kN load on its piston towards the crank, crank at 90
+    degrees: the load would turn the crank on (counter-clockwise) with the load times the
+    crank radius (50 mm), so the crank holds it with -50 N m; the guide takes F tan(phi)
+    (the piston presses down on it).
 
     >>> import chaingraph
     >>> from chaingraph.model.chain import Chain, Joint, Load, Mechanism
@@ -336,7 +369,7 @@ def forces(mechanism, *, at=None, static=False, fixed=None, driver=None, inputs=
     ...     loads=(Load("piston", "B", (-1000.0, 0.0)),))
     >>> f = chaingraph.forces(engine, at=90.0, static=True)
     >>> round(f.effort(), 6)                                  # N m: 1000 N x 0.05 m
-    50.0
+    -50.0
     >>> round(f.reaction("S").normal, 3)                      # 1000 tan(phi), phi = 14.48
     -258.199
     """
@@ -357,13 +390,23 @@ def forces(mechanism, *, at=None, static=False, fixed=None, driver=None, inputs=
         kin = _state(plan, tau, state.omega, metres)
         sol = solve_equilibrium(mechanism, plan, kin, static=static, metres=metres)
         values = tuple(state.inputs.values()) if state.inputs else (state.input,)
+        ox, oy = plan.origin
+
+        def back(q):
+            return (float(q[0][0]) / metres + ox, float(q[1][0]) / metres + oy)
         return PoseForces(
             name=mechanism.name, fixed=plan.fixed,
             inputs=tuple(i.joint for i in plan.inputs), at=tuple(float(v) for v in values),
             static=static, reactions=_reactions(mechanism, sol, 0),
             efforts=tuple(Effort(i.joint, _num(sol.efforts[i.joint][0]),
                                  "N m" if i.kind == "R" else "N") for i in plan.inputs),
-            power_balance=_num(sol.power[0]), notes=_notes(mechanism, sol, 0))
+            power_balance=_num(sol.power[0]), notes=_notes(mechanism, sol, 0),
+            units=mechanism.units, points={k: back(q) for k, q in sol.points.items()},
+            applied=tuple(AppliedForce(link, what, back(q), (_num(f[0][0]), _num(f[1][0])))
+                          for link, what, q, f in sol.applied),
+            couples=tuple(AppliedCouple(link, what, _num(np.asarray(v).reshape(-1)[0]))
+                          for link, what, v in sol.couples),
+            chain=mechanism)
     motion = solve(mechanism, fixed=fixed, driver=driver, inputs=inputs, start=start,
                    stop=stop, steps=steps, omega=omega, summary=True)
     plan = motion.plan
@@ -415,7 +458,8 @@ def _stats(v, unbounded):
     v = v[np.isfinite(v)]
     if v.size == 0 or unbounded.any():
         return EffortStats(None, None, None, None)
-    return EffortStats(float(v.min()), float(v.max()), float(v.mean()),
+    scale = float(np.abs(v).max())
+    return EffortStats(float(v.min()), float(v.max()), tidy(float(v.mean()), scale),
                        float(np.sqrt(np.mean(v * v))))
 
 
@@ -455,7 +499,8 @@ def _summary(chain, plan, motion, sol, speed_fluctuation):
             rms_e = math.sqrt(float(np.sum(0.5 * (e[1:] ** 2 + e[:-1] ** 2) * np.diff(u))
                                     / span))
             old = efforts[lead.joint]
-            efforts[lead.joint] = EffortStats(old.min, old.max, mean_e, rms_e)
+            efforts[lead.joint] = EffortStats(old.min, old.max,
+                                              tidy(mean_e, float(np.abs(e).max())), rms_e)
             # the work of the effort about its mean over the turn (trapezoid rule)
             work = np.concatenate([[0.0], np.cumsum(0.5 * (e[1:] + e[:-1]) * np.diff(u))])
             mean = work[-1] / (u[-1] - u[0])

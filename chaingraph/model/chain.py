@@ -23,7 +23,7 @@ from chaingraph.errors import ChainFileError
 from chaingraph.model.pairs import PAIR_KINDS
 
 __all__ = ["Joint", "Point", "Input", "Mechanism", "Chain", "LinkMass", "Load", "link_node",
-           "joint_node",
+           "joint_node", "mass_centre",
            "chosen_inputs", "line_direction"]
 
 SPACES = ("planar", "spatial")
@@ -365,7 +365,13 @@ class Chain:
                            output=out,
                            inputs=tuple(replace(i, joint=ren(jt, i.joint))
                                         for i in mech.inputs))
-        return replace(self, joints=new_joints, points=new_points, mechanism=mech)
+        masses = tuple(replace(m, link=ren(lk, m.link)) for m in self.masses)
+        loads = tuple(replace(x, on=ren(lk, x.on),
+                              at=None if x.at is None else
+                              ren(jt, x.at) if x.at in self._joint_index else ren(pt, x.at))
+                      for x in self.loads)
+        return replace(self, joints=new_joints, points=new_points, mechanism=mech,
+                       masses=masses, loads=loads)
 
     def with_mechanism(self, fixed: str, driver: str | None = None, *,
                        omega: float | None = None, output: str | None = None) -> "Chain":
@@ -400,6 +406,16 @@ def _is_finite_pair(value) -> bool:
     return (isinstance(value, tuple) and len(value) == 2
             and all(isinstance(v, (int, float)) and not isinstance(v, bool)
                     and math.isfinite(v) for v in value))
+
+
+def mass_centre(chain, mass) -> tuple[float, float]:
+    """A link's centre of mass in the drawn pose: its ``centre``, else the mean of the
+    link's joints and points (a :class:`LinkMass` of ``chain``)."""
+    if mass.centre is not None:
+        return mass.centre
+    pts = [j.at for j in chain.joints if mass.link in j.links] + \
+          [p.at for p in chain.points if p.link == mass.link]
+    return (sum(p[0] for p in pts) / len(pts), sum(p[1] for p in pts) / len(pts))
 
 
 def _finite(value) -> bool:

@@ -26,9 +26,11 @@ import numpy as np
 from chaingraph._util.parallel import process_runner
 from chaingraph._util.progress import ProgressBar
 from chaingraph.drawing.constructions import draw_centres, draw_polygons
+from chaingraph.drawing.forces import free_body_svg, plot_turning_moment
 from chaingraph.drawing.graph import draw_link_joint_graph
 from chaingraph.drawing.mechanism import frame_steps, mechanism_svg, skeleton_svg
 from chaingraph.drawing.plots import output_series, plot_motion
+from chaingraph.dynamics import forces
 from chaingraph.errors import ChainGraphError
 from chaingraph.files import load
 from chaingraph.graphical.centres import centres_of
@@ -71,6 +73,8 @@ class Entry:
     grid: object = None           # two moving inputs: the poses over both, row by row
     centres: object = None        # instantaneous centres at the drawn pose
     polygons: object = None       # velocity and acceleration polygons at the drawn pose
+    forces: object = None         # with masses or loads: the forces over the sweep
+    pose_forces: object = None    # and at the sweep's first pose (the free bodies)
 
 
 @dataclass
@@ -248,6 +252,15 @@ def _analyse(entry, steps):
                 entry.warnings.append(f"centres and polygons not found: {e}")
             else:
                 entry.centres, entry.polygons = centres_of(state), polygons_of(state)
+            if chain.masses or chain.loads or chain.gravity:
+                try:
+                    entry.forces = forces(chain, steps=steps)
+                    first = ([float(entry.motion["input:" + i.joint][0])
+                              for i in entry.motion.inputs] if entry.motion.inputs
+                             else float(entry.motion["theta"][0]))
+                    entry.pose_forces = forces(chain, at=first)
+                except ChainGraphError as e:
+                    entry.warnings.append(f"forces not found: {e}")
 
 
 def input_grid(chain, motion, *, size=13):
@@ -287,6 +300,11 @@ def _write_images(entry, out, frames):
         plot_motion(entry.motion, img / f"{entry.slug}-motion.svg")
         (img / f"{entry.slug}-cycle.svg").write_text(
             mechanism_svg(entry.motion, frames=frames), encoding="utf-8")
+    if entry.pose_forces is not None:
+        (img / f"{entry.slug}-free-bodies.svg").write_text(free_body_svg(entry.pose_forces),
+                                                            encoding="utf-8")
+        if len(entry.forces.inputs) == 1:
+            plot_turning_moment(entry.forces, img / f"{entry.slug}-turning-moment.svg")
     if entry.centres is not None:
         draw_centres(entry.centres, img / f"{entry.slug}-centres.svg")
         draw_polygons(entry.polygons, img / f"{entry.slug}-polygons.svg")
@@ -407,7 +425,43 @@ def _motion_section(e):
                "acceleration against the input angle.</figcaption></figure></div>")
     if e.centres is not None:
         out += _graphical_section(e)
+    if e.pose_forces is not None:
+        out += _forces_section(e)
     return out
+
+
+def _forces_section(e):
+    """The forces: the summary over the sweep, the free bodies at its first pose and
+    the turning-moment diagram."""
+    f, pose = e.forces, e.pose_forces
+    kind = "static" if f.static else f"kinetostatic, {pose_speed(e)}"
+    out = [f"<h2>Forces</h2><p>From the file's masses, gravity and loads ({_esc(kind)}); "
+           "<code>chaingraph forces</code> gives them at any pose and speed.</p>"
+           "<table id=\"forces\">"]
+    out += [f"<tr><th>{_esc(a)}</th><td>{_esc(b)}</td></tr>" for a, b in f.rows()]
+    out.append("</table>")
+    out += [f"<p>{_esc(n)}</p>" for n in f.notes]
+    out.append("<div class=\"figures\">")
+    at = ", ".join(f"{j} = {v:.6g}" for j, v in zip(pose.inputs, pose.at))
+    out.append(f"<figure><img src=\"img/{e.slug}-free-bodies.svg\" alt=\"free bodies\" "
+               f"width=\"720\"><figcaption>The free bodies at {_esc(at)}: every moving link "
+               "with the forces on it, to one scale (red the joints' reactions, blue the "
+               "loads, green the weights, grey dashed the inertia forces, black an "
+               "input's effort).</figcaption></figure>")
+    if len(f.inputs) == 1:
+        out.append(f"<figure><img src=\"img/{e.slug}-turning-moment.svg\" alt=\""
+                   "turning-moment diagram\" width=\"640\"><figcaption>The effort the input "
+                   "needs over the sweep, its mean and the swing of energy about it."
+                   "</figcaption></figure>")
+    out.append("</div>")
+    return out
+
+
+def pose_speed(e):
+    """The input speed the inertia forces are worked out at, in words."""
+    lead = e.motion.plan.inputs[e.motion.plan.lead]
+    unit = "rad/s" if lead.kind == "R" else f"{e.chain.units}/s"
+    return f"input at {e.motion.omega:g} {unit}"
 
 
 def _graphical_section(e):

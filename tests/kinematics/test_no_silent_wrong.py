@@ -33,7 +33,8 @@ def transformed(chain, *, angle=0.0, shift=(0.0, 0.0), scale=1.0):
                                        axis=None if j.axis is None else j.axis + angle)
                    for j in chain.joints)
     points = tuple(dataclasses.replace(p, at=move(p.at)) for p in chain.points)
-    return dataclasses.replace(chain, joints=joints, points=points)
+    masses = tuple(dataclasses.replace(m, centre=move(m.centre)) for m in chain.masses)
+    return dataclasses.replace(chain, joints=joints, points=points, masses=masses)
 
 
 def same_angle(a, b, tol):

@@ -1,0 +1,193 @@
+"""Pictures of forces: the free-body diagrams at one pose (every moving link on its own,
+with its forces as arrows to one scale, as the textbook draws them) and the
+turning-moment diagram of a sweep (the effort against the input over a turn, its mean,
+the energy swing shaded).
+
+The free bodies are computed once as :class:`~chaingraph.drawing.scene.Shape` items
+(:func:`free_body_shapes`) and emitted as SVG (:func:`free_body_svg`); the
+turning-moment diagram is a matplotlib plot (:func:`plot_turning_moment`).
+"""
+
+from __future__ import annotations
+
+import html
+import math
+
+import numpy as np
+
+from chaingraph.drawing.plots import finish, pyplot_module
+from chaingraph.drawing.scene import COLOURS, Shape, View, svg_elements
+from chaingraph.geometry import convex_hull
+
+__all__ = ["free_body_shapes", "free_body_svg", "plot_turning_moment"]
+
+#: arrow colours by what the force is
+ARROWS = {"reaction": "#b2182b", "load": "#2166ac", "weight": "#1b7837",
+          "inertia force": "#777777", "effort": "#000000"}
+
+
+def _newtons(f):
+    m = math.hypot(*f)
+    return f"{m / 1000:.3g} kN" if m >= 1000 else f"{m:.3g} N"
+
+
+def _forces_on(result, link):
+    """(what, colour key, point, force) of every force on ``link``."""
+    chain = result.chain
+    out = []
+    for r in result.reactions:
+        if None in r.force:
+            continue
+        j = chain.joint(r.joint)
+        if r.on == link:
+            out.append((f"{r.joint}", "reaction", result.points[r.joint], r.force))
+        elif len(j.links) == 2 and link in j.links:
+            out.append((f"{r.joint}", "reaction", result.points[r.joint],
+                        (-r.force[0], -r.force[1])))
+    for a in result.applied:
+        if a.link == link and None not in a.force:
+            key = "effort" if a.what.startswith("effort") else a.what
+            out.append((a.what, key, a.at, a.force))
+    return out
+
+
+def free_body_shapes(result):
+    """The free bodies of a :class:`~chaingraph.dynamics.PoseForces` as shapes: each
+    moving link in a panel of its own (the panels in rows of three), its joints and
+    forces drawn to one scale. Returns (shapes, view)."""
+    chain = result.chain
+    links = [x for x in chain.links if x != result.fixed]
+    colour = {link: COLOURS[i % len(COLOURS)] for i, link in enumerate(chain.links)}
+    bodies = {}
+    for link in links:
+        pts = [result.points[j.id] for j in chain.joints if link in j.links]
+        bodies[link] = pts
+    allpts = [p for pts in bodies.values() for p in pts] + \
+        [a.at for a in result.applied]
+    xs, ys = [p[0] for p in allpts], [p[1] for p in allpts]
+    span = max(max(xs) - min(xs), max(ys) - min(ys), 1e-9)
+    extent = max(max(max(p[0] for p in pts) - min(p[0] for p in pts),
+                     max(p[1] for p in pts) - min(p[1] for p in pts)) for pts in bodies.values())
+    extent = max(extent, 0.2 * span)
+    forces = {link: _forces_on(result, link) for link in links}
+    biggest = max([math.hypot(*f) for fs in forces.values() for _, _, _, f in fs] + [1e-300])
+    arrow = 0.45 * extent                      # the largest force's length
+    scale = arrow / biggest
+    cell = extent + 2.4 * arrow
+    size = 0.012 * cell                        # a pin's radius, the text's scale
+    shapes = []
+    cols = min(3, len(links))
+    for i, link in enumerate(links):
+        pts = bodies[link]
+        cx = 0.5 * (max(p[0] for p in pts) + min(p[0] for p in pts))
+        cy = 0.5 * (max(p[1] for p in pts) + min(p[1] for p in pts))
+        ox = (i % cols) * cell + 0.5 * cell - cx
+        oy = -(i // cols) * cell - 0.5 * cell - cy
+
+        def at(p):
+            return (p[0] + ox, p[1] + oy)
+        shapes.append(Shape("text", "label", (at((cx - 0.45 * cell, cy + 0.42 * cell)),),
+                            text=link, size=3.2 * size))
+        body = [at(p) for p in pts]
+        if len(body) >= 3 and len({(round(p[0], 9), round(p[1], 9)) for p in body}) >= 3:
+            hull = convex_hull(body)
+            shapes.append(Shape("polygon", "plate", tuple(hull), (("link", link),),
+                                fill=colour[link], fill_opacity=0.25, stroke=colour[link],
+                                width=size, join="round"))
+        elif len(body) >= 2:
+            shapes.append(Shape("polyline", "bar", tuple(body), (("link", link),),
+                                stroke=colour[link], width=1.6 * size, cap="round"))
+        for p in body:
+            shapes.append(Shape("circle", "pin", (p,), radius=size, fill="white",
+                                stroke="#222222", width=0.4 * size))
+        for what, key, q, f in forces[link]:
+            length = math.hypot(*f) * scale
+            if length < 0.5 * size:
+                continue
+            head = at(q)
+            tail = (head[0] - f[0] * scale, head[1] - f[1] * scale)
+            ux, uy = f[0] * scale / length, f[1] * scale / length
+            w = 1.6 * size
+            tip = [head, (head[0] - 2.5 * w * ux - w * uy, head[1] - 2.5 * w * uy + w * ux),
+                   (head[0] - 2.5 * w * ux + w * uy, head[1] - 2.5 * w * uy - w * ux)]
+            c = ARROWS[key]
+            dash = (2 * size, size) if key == "inertia force" else ()
+            shapes.append(Shape("line", "force", (tail, (head[0] - 2 * w * ux,
+                                                         head[1] - 2 * w * uy)),
+                                (("force", what),), stroke=c, width=0.6 * size, dash=dash))
+            shapes.append(Shape("polygon", "arrowhead", tuple(tip), fill=c, stroke=c,
+                                width=0.1 * size))
+            shapes.append(Shape("text", "force-label", ((tail[0] + 0.6 * size,
+                                                          tail[1] + 0.6 * size),),
+                                text=f"{what} {_newtons(f)}", size=2.2 * size, halo=0.6 * size))
+        line = 0
+        for c in result.couples:
+            if c.link == link and c.value is not None and abs(c.value) > 1e-12:
+                turn = "\u21ba" if c.value > 0 else "\u21bb"
+                shapes.append(Shape("text", "couple", (at((cx - 0.45 * cell,
+                                                           cy - 0.42 * cell + line * 3 * size)),),
+                                    text=f"{c.what} {abs(c.value):.3g} N m {turn}",
+                                    size=2.4 * size, halo=0.6 * size))
+                line += 1
+    rows = math.ceil(len(links) / cols)
+    view = View((0.0, -rows * cell), (cols * cell, 0.0), 0.02 * cell)
+    return shapes, view
+
+
+def free_body_svg(result, *, width=900) -> str:
+    """The free-body diagrams of a :class:`~chaingraph.dynamics.PoseForces` as SVG.
+
+    Examples
+    --------
+    >>> import chaingraph
+    >>> from chaingraph.naming.catalog import catalog_path
+    >>> f = chaingraph.forces(chaingraph.load(catalog_path("reciprocating-engine")), at=60.0)
+    >>> svg = free_body_svg(f)
+    >>> svg.count('class="force"') >= 7, 'data-force="load"' in svg
+    (True, True)
+    """
+    shapes, view = free_body_shapes(result)
+    w, h = view.size
+    height = int(round(width * h / w))
+    kind = "static" if result.static else "kinetostatic"
+    at = ", ".join(f"{j} = {v:.6g}" for j, v in zip(result.inputs, result.at))
+    title = f"{result.name}: free bodies ({kind}) at {at}"
+    return "\n".join(
+        ['<?xml version="1.0"?>',
+         f'<svg xmlns="http://www.w3.org/2000/svg" width="{width}" height="{height}" '
+         f'viewBox="0 0 {w:.6g} {h:.6g}">', f"<title>{html.escape(title)}</title>",
+         '<rect class="background" width="100%" height="100%" fill="white"/>',
+         *svg_elements(view, shapes), "</svg>"]) + "\n"
+
+
+def plot_turning_moment(result, path=None):
+    """The turning-moment diagram of a :class:`~chaingraph.dynamics.SweepForces` (one
+    input): the effort against the input, its mean, and the largest swing of the
+    energy about the mean shaded between its two extremes. Written to ``path`` (SVG,
+    PNG...) or returned as a matplotlib figure."""
+    plt = pyplot_module()
+    joint = result.inputs[0]
+    x = np.asarray(result["theta"], dtype=float)
+    e = np.asarray(result[f"effort:{joint}"], dtype=float)
+    kind = result.motion.plan.inputs[0].kind if result.motion is not None else "R"
+    unit = "N m" if kind == "R" else "N"
+    fig, ax = plt.subplots(figsize=(7.5, 3.8))
+    ax.plot(x, e, color="#b2182b", linewidth=1.4, label=f"effort at {joint}")
+    mean = result.summary.efforts[joint].mean
+    if mean is not None:
+        ax.axhline(mean, color="#444444", linewidth=0.9, linestyle="--",
+                   label=f"mean {mean:.4g} {unit}")
+        ax.fill_between(x, e, mean, where=np.isfinite(e) & (e >= mean), color="#b2182b",
+                        alpha=0.15, linewidth=0)
+        ax.fill_between(x, e, mean, where=np.isfinite(e) & (e < mean), color="#2166ac",
+                        alpha=0.15, linewidth=0)
+    swing = result.summary.energy_fluctuation
+    title = f"{result.name}: turning-moment diagram"
+    if swing is not None:
+        title += f" (energy fluctuation {swing:.4g} J)"
+    ax.set_title(title, fontsize=10)
+    ax.set_xlabel("theta, degrees" if kind == "R" else f"{joint} slide")
+    ax.set_ylabel(f"effort, {unit}")
+    ax.grid(True, linewidth=0.3)
+    ax.legend(fontsize=8, loc="best")
+    return finish(plt, fig, path)
