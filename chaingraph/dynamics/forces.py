@@ -397,7 +397,7 @@ def forces(mechanism, *, at=None, static=False, fixed=None, driver=None, inputs=
         return PoseForces(
             name=mechanism.name, fixed=plan.fixed,
             inputs=tuple(i.joint for i in plan.inputs), at=tuple(float(v) for v in values),
-            static=static, reactions=_reactions(mechanism, sol, 0),
+            static=static, reactions=_reactions(mechanism, sol, 0, plan.size * metres),
             efforts=tuple(Effort(i.joint, _num(sol.efforts[i.joint][0]),
                                  "N m" if i.kind == "R" else "N") for i in plan.inputs),
             power_balance=_num(sol.power[0]), notes=_notes(mechanism, sol, 0),
@@ -438,16 +438,24 @@ def forces(mechanism, *, at=None, static=False, fixed=None, driver=None, inputs=
                        notes=_notes(mechanism, sol), motion=motion)
 
 
-def _reactions(chain, sol, k):
+def _reactions(chain, sol, k, size):
+    """The reactions at step k, each figure tidied at the scale of the largest (so
+    that rounding shows as 0, not 5.6e-15); ``size`` the mechanism's size in m."""
+    mags = [abs(float(c[k])) for f in sol.forces.values() for c in f if np.isfinite(c[k])]
+    scale = max(mags + [0.0])
+
+    def num(v, unit=1.0):
+        v = _num(v)
+        return None if v is None else tidy(v, scale * unit)
     out = []
     for j in chain.joints:
         on_links = j.links if (j.kind == "R" and len(j.links) > 2) else j.links[:1]
         for link in on_links:
             fx, fy = sol.forces[(j.id, link)]
             by = tuple(x for x in j.links if x != link)
-            normal = _num(sol.normal[j.id][k]) if j.kind == "P" else None
-            couple = _num(sol.couple[j.id][k]) if j.kind == "P" else None
-            out.append(Reaction(j.id, link, by, (_num(fx[k]), _num(fy[k])), normal, couple))
+            normal = num(sol.normal[j.id][k]) if j.kind == "P" else None
+            couple = num(sol.couple[j.id][k], size) if j.kind == "P" else None
+            out.append(Reaction(j.id, link, by, (num(fx[k]), num(fy[k])), normal, couple))
     return tuple(out)
 
 

@@ -478,3 +478,65 @@ def test_forces_on_the_command_line_json_and_csv(tmp_path):
                       "N:S", "M:S", "effort:O"]
     status, out, err = run_cli("forces", path, "--at", "60")
     assert status == 0 and "effort O" in out and "power balance" in out
+
+
+def test_the_free_bodies_and_the_turning_moment_diagram(tmp_path):
+    import xml.etree.ElementTree as ET
+    path = catalog_path("shaper-crank-and-slotted-lever")
+    status, out, err = run_cli("forces", path, "--omega", "5", "--draw", tmp_path / "fb.svg",
+                               "--plot", tmp_path / "tm.svg", "--steps", "72")
+    assert status == 0, err
+    root = ET.fromstring((tmp_path / "fb.svg").read_text())
+    ns = {"s": "http://www.w3.org/2000/svg"}
+    # five moving links, each with its name; every force an arrow with its head
+    labels = [t.text for t in root.findall(".//s:text[@class='label']", ns)]
+    assert labels == ["crank", "block", "slotted lever", "link", "ram"]
+    arrows = root.findall(".//s:line[@class='force']", ns)
+    assert len(arrows) == len(root.findall(".//s:polygon[@class='arrowhead']", ns)) >= 14
+    assert any(a.get("data-force") == "load" for a in arrows)
+    assert "<svg" in (tmp_path / "tm.svg").read_text()
+    status, out, err = run_cli("forces", path, "--draw", tmp_path / "fb.png")
+    assert status == 2 and "give a .svg file" in err
+
+
+def test_the_arrows_are_the_forces_to_one_scale():
+    from chaingraph.drawing.forces import _forces_on, free_body_shapes
+    f = chaingraph.forces(engine(masses=(LinkMass("rod", 40.0),), gravity=(0.0, -9.81)),
+                          at=60.0, static=True)
+    shapes, _ = free_body_shapes(f)
+    pin = next(s.radius for s in shapes if s.cls == "pin")
+    lines = [s for s in shapes if s.cls == "force"]
+    forces = [x for link in ("crank", "rod", "piston") for x in _forces_on(f, link)]
+    assert len(lines) == len(forces) >= 8           # the weight too: nothing too small here
+    ratios = []
+    for s, (_, _, _, force) in zip(lines, forces):
+        (x0, y0), (x1, y1) = s.points
+        # the shaft stops at the arrowhead's base, 2 x 1.6 pin radii short of the point
+        ratios.append((math.hypot(x1 - x0, y1 - y0) + 3.2 * pin) / math.hypot(*force))
+        # and points the force's way
+        assert (x1 - x0) * force[0] + (y1 - y0) * force[1] > 0
+    assert max(ratios) == pytest.approx(min(ratios), rel=1e-9)
+
+
+def test_the_report_has_a_forces_section_for_the_engines(tmp_path):
+    from chaingraph.report.build import build_report
+    build_report([catalog_path("reciprocating-engine")], tmp_path, progress=None, steps=36,
+                 frames=6)
+    page = (tmp_path / "reciprocating-engine.html").read_text()
+    assert "<h2>Forces</h2>" in page and "energy fluctuation" in page
+    assert (tmp_path / "img" / "reciprocating-engine-free-bodies.svg").exists()
+    assert (tmp_path / "img" / "reciprocating-engine-turning-moment.svg").exists()
+
+
+def test_notebook_displays_and_renaming_carries_masses_and_loads():
+    from chaingraph.drawing.notebook import DISPLAYS
+    f = chaingraph.forces(engine(masses=(LinkMass("rod", 1.0),)), at=45.0)
+    assert "<svg" in DISPLAYS["PoseForces"][1](f)
+    s = chaingraph.forces(engine(), steps=24)
+    assert "<svg" in DISPLAYS["SweepForces"][1](s)
+    renamed = engine(masses=(LinkMass("rod", 1.0),)).relabelled(
+        links={"rod": "connecting rod", "piston": "crosshead"}, joints={"B": "gudgeon"})
+    assert renamed.masses[0].link == "connecting rod"
+    assert (renamed.loads[0].on, renamed.loads[0].at) == ("crosshead", "gudgeon")
+    assert chaingraph.forces(renamed, at=45.0).effort() == pytest.approx(
+        chaingraph.forces(engine(masses=(LinkMass("rod", 1.0),)), at=45.0).effort(), rel=1e-12)
