@@ -26,7 +26,7 @@ from chaingraph.cli.text import (
     table,
 )
 from chaingraph.drawing.constructions import draw_centres, draw_polygons
-from chaingraph.drawing.forces import free_body_svg, plot_turning_moment
+from chaingraph.drawing.forces import force_polygon_svg, free_body_svg, plot_turning_moment
 from chaingraph.drawing.mechanism import mechanism_svg
 from chaingraph.drawing.plots import (
     draw_mechanism,  # PNG and the other raster formats
@@ -169,10 +169,11 @@ def cmd_forces(args) -> int:
     chain = load(args.file)
     if args.csv:
         output_file(args.csv, what="CSV")
-    if args.draw:
-        if not str(args.draw).lower().endswith(".svg"):
-            raise OutputError(args.draw, "the free bodies are drawn as SVG: give a .svg file")
-        output_file(args.draw, what="drawing")
+    for path, what in ((args.draw, "free bodies"), (args.polygon, "force polygons")):
+        if path:
+            if not str(path).lower().endswith(".svg"):
+                raise OutputError(path, f"the {what} are drawn as SVG: give a .svg file")
+            output_file(path, what="drawing")
     if args.plot:
         picture_file(args.plot, what="plot")
     at = args.at
@@ -197,7 +198,7 @@ def cmd_forces(args) -> int:
         if args.plot:
             with Writing(args.plot):
                 plot_turning_moment(result, args.plot)
-    if args.draw:
+    if args.draw or args.polygon:
         if at:
             pose = result
         else:                                   # the sweep's first pose
@@ -205,7 +206,14 @@ def cmd_forces(args) -> int:
                 if any(k.startswith("input:") for k in result.columns) \
                 else float(result["theta"][0])
             pose = forces(chain, at=first, **common)
-        write_text(args.draw, free_body_svg(pose))
+        if args.draw:
+            write_text(args.draw, free_body_svg(pose))
+        if args.polygon:
+            svg = force_polygon_svg(pose)
+            if svg is None:
+                raise OutputError(args.polygon, "the mechanism has no dyad with forces on "
+                                                "both its links to draw a polygon of")
+            write_text(args.polygon, svg)
     if args.json:
         print_json(result.to_dict())
         return 0

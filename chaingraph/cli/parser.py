@@ -123,6 +123,8 @@ def build_parser() -> argparse.ArgumentParser:
                    help="draw the free bodies at the pose (--at; else the sweep's first)")
     p.add_argument("--plot", metavar="PATH.svg",
                    help="plot the turning-moment diagram of the sweep (one input)")
+    p.add_argument("--polygon", metavar="PATH.svg",
+                   help="draw the force polygon of each dyad at the pose of --draw")
     p.set_defaults(run=cmd_forces)
 
     for name, run, helptext, description in (

@@ -19,7 +19,8 @@ from chaingraph.drawing.plots import finish, pyplot_module
 from chaingraph.drawing.scene import COLOURS, Shape, View, svg_elements
 from chaingraph.geometry import convex_hull
 
-__all__ = ["free_body_shapes", "free_body_svg", "plot_turning_moment"]
+__all__ = ["free_body_shapes", "free_body_svg", "force_polygon_shapes", "force_polygon_svg",
+           "plot_turning_moment"]
 
 #: arrow colours by what the force is
 ARROWS = {"reaction": "#b2182b", "load": "#2166ac", "weight": "#1b7837",
@@ -134,6 +135,93 @@ def free_body_shapes(result):
     return shapes, view
 
 
+def force_polygon_shapes(result):
+    """The force polygon of each dyad of the solver's plan, as the graphical method
+    draws it: the forces on the dyad's first link head to tail, then those on its
+    second, closing where they began (the dyad is in equilibrium); the reaction at the
+    joint between the two links, dashed, closes the first link's polygon. Panels side
+    by side, each to its own scale. Returns (shapes, view), or None without dyads."""
+    chain = result.chain
+    panels = []
+    for a, b in result.dyads:
+        middle = [j.id for j in chain.joints if a in j.links and b in j.links]
+        on_a = [x for x in _forces_on(result, a) if x[0] not in middle]
+        on_b = [x for x in _forces_on(result, b) if x[0] not in middle]
+        if middle and on_a and on_b:
+            panels.append((a, b, middle[0], on_a, on_b))
+    if not panels:
+        return None
+    shapes = []
+    cell = 1.0
+    size = 0.012 * cell
+    for i, (a, b, mid, on_a, on_b) in enumerate(panels):
+        tips = [(0.0, 0.0)]
+        for _, _, _, f in on_a + on_b:
+            tips.append((tips[-1][0] + f[0], tips[-1][1] + f[1]))
+        xs, ys = [p[0] for p in tips], [p[1] for p in tips]
+        span = max(max(xs) - min(xs), max(ys) - min(ys), 1e-300)
+        scale = 0.7 * cell / span
+        ox = i * cell + 0.5 * cell - 0.5 * (max(xs) + min(xs)) * scale
+        oy = -0.5 * cell - 0.5 * (max(ys) + min(ys)) * scale
+
+        def at(p):
+            return (ox + p[0] * scale, oy + p[1] * scale)
+        shapes.append(Shape("text", "label", ((i * cell + 0.03 * cell, -0.05 * cell),),
+                            text=f"dyad {a}, {b}", size=3.2 * size))
+        for k, (what, key, _, f) in enumerate(on_a + on_b):
+            p, q = at(tips[k]), at(tips[k + 1])
+            c = ARROWS[key]
+            shapes += _arrow(p, q, c, size, what, f, dash=(2 * size, size)
+                             if key == "inertia force" else ())
+        # the middle joint's reaction on the first link closes its polygon
+        p, q = at(tips[len(on_a)]), at(tips[0])
+        f = (tips[0][0] - tips[len(on_a)][0], tips[0][1] - tips[len(on_a)][1])
+        shapes += _arrow(p, q, "#b2182b", size, f"{mid} on {a}", f, dash=(size, size))
+    view = View((0.0, -cell), (len(panels) * cell, 0.0), 0.02 * cell)
+    return shapes, view
+
+
+def _arrow(p, q, colour, size, what, f, dash=()):
+    """An arrow from p to q labelled with ``what`` and the force's size."""
+    length = math.dist(p, q)
+    if length < 1e-12:
+        return []
+    ux, uy = (q[0] - p[0]) / length, (q[1] - p[1]) / length
+    w = min(1.6 * size, 0.2 * length)
+    tip = [q, (q[0] - 2.5 * w * ux - w * uy, q[1] - 2.5 * w * uy + w * ux),
+           (q[0] - 2.5 * w * ux + w * uy, q[1] - 2.5 * w * uy - w * ux)]
+    mid = (0.5 * (p[0] + q[0]) + 0.8 * size, 0.5 * (p[1] + q[1]) + 0.8 * size)
+    return [Shape("line", "force", (p, (q[0] - 2 * w * ux, q[1] - 2 * w * uy)),
+                  (("force", what),), stroke=colour, width=0.6 * size, dash=dash),
+            Shape("polygon", "arrowhead", tuple(tip), fill=colour, stroke=colour,
+                  width=0.1 * size),
+            Shape("text", "force-label", (mid,), text=f"{what} {_newtons(f)}",
+                  size=2.2 * size, halo=0.6 * size)]
+
+
+def force_polygon_svg(result, *, width=None) -> str | None:
+    """The dyads' force polygons (:func:`force_polygon_shapes`) as SVG (``width``:
+    420 pixels a dyad by default); None when the mechanism has no dyad with forces on
+    both links."""
+    made = force_polygon_shapes(result)
+    if made is None:
+        return None
+    shapes, view = made
+    width = width or int(420 * view.hi[0])
+    return _svg_text(shapes, view, width, f"{result.name}: force polygons of the dyads")
+
+
+def _svg_text(shapes, view, width, title):
+    w, h = view.size
+    height = int(round(width * h / w))
+    return "\n".join(
+        ['<?xml version="1.0"?>',
+         f'<svg xmlns="http://www.w3.org/2000/svg" width="{width}" height="{height}" '
+         f'viewBox="0 0 {w:.6g} {h:.6g}">', f"<title>{html.escape(title)}</title>",
+         '<rect class="background" width="100%" height="100%" fill="white"/>',
+         *svg_elements(view, shapes), "</svg>"]) + "\n"
+
+
 def free_body_svg(result, *, width=900) -> str:
     """The free-body diagrams of a :class:`~chaingraph.dynamics.PoseForces` as SVG.
 
@@ -147,17 +235,9 @@ def free_body_svg(result, *, width=900) -> str:
     (True, True)
     """
     shapes, view = free_body_shapes(result)
-    w, h = view.size
-    height = int(round(width * h / w))
     kind = "static" if result.static else "kinetostatic"
     at = ", ".join(f"{j} = {v:.6g}" for j, v in zip(result.inputs, result.at))
-    title = f"{result.name}: free bodies ({kind}) at {at}"
-    return "\n".join(
-        ['<?xml version="1.0"?>',
-         f'<svg xmlns="http://www.w3.org/2000/svg" width="{width}" height="{height}" '
-         f'viewBox="0 0 {w:.6g} {h:.6g}">', f"<title>{html.escape(title)}</title>",
-         '<rect class="background" width="100%" height="100%" fill="white"/>',
-         *svg_elements(view, shapes), "</svg>"]) + "\n"
+    return _svg_text(shapes, view, width, f"{result.name}: free bodies ({kind}) at {at}")
 
 
 def plot_turning_moment(result, path=None):

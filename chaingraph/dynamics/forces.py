@@ -106,6 +106,7 @@ class PoseForces:
     power_balance: float | None
     notes: tuple[str, ...] = ()
     units: str | None = None
+    dyads: tuple[tuple[str, str], ...] = ()   # the solver's dyads, for the force polygons
     points: dict = field(default_factory=dict, repr=False, compare=False)
     applied: tuple[AppliedForce, ...] = field(default=(), repr=False)
     couples: tuple[AppliedCouple, ...] = field(default=(), repr=False)
@@ -402,6 +403,7 @@ def forces(mechanism, *, at=None, static=False, fixed=None, driver=None, inputs=
                                  "N m" if i.kind == "R" else "N") for i in plan.inputs),
             power_balance=_num(sol.power[0]), notes=_notes(mechanism, sol, 0),
             units=mechanism.units, points={k: back(q) for k, q in sol.points.items()},
+            dyads=tuple(tuple(step.links) for step in plan.steps if step.kind == "dyad"),
             applied=tuple(AppliedForce(link, what, back(q), (_num(f[0][0]), _num(f[1][0])))
                           for link, what, q, f in sol.applied),
             couples=tuple(AppliedCouple(link, what, _num(np.asarray(v).reshape(-1)[0]))

@@ -26,7 +26,7 @@ import numpy as np
 from chaingraph._util.parallel import process_runner
 from chaingraph._util.progress import ProgressBar
 from chaingraph.drawing.constructions import draw_centres, draw_polygons
-from chaingraph.drawing.forces import free_body_svg, plot_turning_moment
+from chaingraph.drawing.forces import force_polygon_svg, free_body_svg, plot_turning_moment
 from chaingraph.drawing.graph import draw_link_joint_graph
 from chaingraph.drawing.mechanism import frame_steps, mechanism_svg, skeleton_svg
 from chaingraph.drawing.plots import output_series, plot_motion
@@ -303,6 +303,9 @@ def _write_images(entry, out, frames):
     if entry.pose_forces is not None:
         (img / f"{entry.slug}-free-bodies.svg").write_text(free_body_svg(entry.pose_forces),
                                                             encoding="utf-8")
+        polygons = force_polygon_svg(entry.pose_forces)
+        if polygons is not None:
+            (img / f"{entry.slug}-force-polygons.svg").write_text(polygons, encoding="utf-8")
         if len(entry.forces.inputs) == 1:
             plot_turning_moment(entry.forces, img / f"{entry.slug}-turning-moment.svg")
     if entry.centres is not None:
@@ -448,6 +451,12 @@ def _forces_section(e):
                "with the forces on it, to one scale (red the joints' reactions, blue the "
                "loads, green the weights, grey dashed the inertia forces, black an "
                "input's effort).</figcaption></figure>")
+    if force_polygon_svg(pose) is not None:
+        out.append(f"<figure><img src=\"img/{e.slug}-force-polygons.svg\" alt=\"force "
+                   "polygons\" width=\"420\"><figcaption>The force polygon of each dyad, "
+                   "as the graphical method draws it: the forces on its links head to "
+                   "tail, closing; dashed, the reaction between its two links."
+                   "</figcaption></figure>")
     if len(f.inputs) == 1:
         out.append(f"<figure><img src=\"img/{e.slug}-turning-moment.svg\" alt=\""
                    "turning-moment diagram\" width=\"640\"><figcaption>The effort the input "

@@ -540,3 +540,30 @@ def test_notebook_displays_and_renaming_carries_masses_and_loads():
     assert (renamed.loads[0].on, renamed.loads[0].at) == ("crosshead", "gudgeon")
     assert chaingraph.forces(renamed, at=45.0).effort() == pytest.approx(
         chaingraph.forces(engine(masses=(LinkMass("rod", 1.0),)), at=45.0).effort(), rel=1e-12)
+
+
+def test_the_force_polygon_of_each_dyad_closes(tmp_path):
+    from chaingraph.drawing.forces import force_polygon_shapes
+    chain = chaingraph.load(catalog_path("whitworth-quick-return-with-ram"))
+    f = chaingraph.forces(chain, at=60.0, omega=8.0)
+    shapes, _ = force_polygon_shapes(f)
+    labels = [s.text for s in shapes if s.cls == "label"]
+    assert labels and all(t.startswith("dyad ") for t in labels)
+    # each panel's arrows run head to tail and come back to where they began: the
+    # dyad's last force ends at its first's start, and so does the dashed reaction
+    panels = []
+    for s in shapes:
+        if s.cls == "label":
+            panels.append({"start": None, "tips": []})
+        elif s.cls == "force" and panels[-1]["start"] is None:
+            panels[-1]["start"] = s.points[0]
+        elif s.cls == "arrowhead":
+            panels[-1]["tips"].append(s.points[0])
+    assert panels
+    for p in panels:
+        assert len(p["tips"]) >= 4
+        assert math.dist(p["tips"][-2], p["start"]) <= 1e-9
+        assert math.dist(p["tips"][-1], p["start"]) <= 1e-9
+    status, out, err = run_cli("forces", catalog_path("reciprocating-engine"), "--at", "60",
+                               "--polygon", tmp_path / "p.svg")
+    assert status == 0 and 'class="arrowhead"' in (tmp_path / "p.svg").read_text()
