@@ -50,6 +50,7 @@ class KinematicState:
     acceleration: dict
     alpha: dict
     rates: dict
+    rates_known: bool = False     # the rates are the solver's, NaN at its dead centres
 
     def point(self, link, p):
         """World position (m) of the link's point drawn at ``p`` (m, the drawn frame
@@ -261,7 +262,11 @@ def solve_equilibrium(chain, plan, state, *, static=False, metres=1.0):
     at_rest = {j.id: ~(np.abs(slide_speed[j.id]) > 1e-12 * max(size, 1e-12) *
                        _speed_scale(state)) for j in friction}
     sigma = {j.id: one.copy() for j in friction}
-    x, singular = _solve(matrix(sigma), -rhs)
+    known = np.zeros(n, dtype=bool)
+    for link in moving:
+        known |= ~np.isfinite(state.omega[link]) | ~np.isfinite(state.velocity[link][0])
+    known = known if state.rates_known else None
+    x, singular = _solve(matrix(sigma), -rhs, known)
     normal_cols = {j.id: next(c for c, (kind, jj, _) in enumerate(cols)
                               if kind == "N" and jj.id == j.id) for j in friction}
     settled = np.ones(n, dtype=bool)
@@ -274,7 +279,7 @@ def solve_equilibrium(chain, plan, state, *, static=False, metres=1.0):
             if not changed.any():
                 break
             sigma = new
-            x, singular = _solve(matrix(sigma), -rhs)
+            x, singular = _solve(matrix(sigma), -rhs, known)
         settled = np.ones(n, dtype=bool)
         for k in sigma:
             settled &= (np.where(x[:, normal_cols[k]] < 0, -1.0, 1.0) == sigma[k]) | \
@@ -285,7 +290,7 @@ def solve_equilibrium(chain, plan, state, *, static=False, metres=1.0):
             for combo in itertools.product((1.0, -1.0), repeat=len(sigma)):
                 trial = {k: np.full(bad.size, s) for k, s in zip(sigma, combo)}
                 sub = _sub_matrix(matrix, sigma, trial, bad)
-                xs, sing = _solve(sub, -rhs[bad])
+                xs, sing = _solve(sub, -rhs[bad], None if known is None else known[bad])
                 ok = np.ones(bad.size, dtype=bool)
                 for k, s in zip(sigma, combo):
                     ok &= np.where(xs[:, normal_cols[k]] < 0, -1.0, 1.0) == s
@@ -359,13 +364,29 @@ def _sub_matrix(matrix, sigma, trial, rows):
     return matrix(full)[rows]
 
 
-def _solve(a, b):
+def _solve(a, b, known=None):
     """x with a x = b per step (with more unknowns than equations, the least-norm x),
-    and which steps are singular (x NaN there)."""
+    and which steps are singular (x NaN there). ``known``: the steps already known to
+    be singular (the motion's dead centres, where its rates are not finite), so that
+    the others need no test of their own."""
     n = a.shape[0]
     x = np.full((n, a.shape[2]), np.nan)
     good = np.isfinite(a).all(axis=(1, 2)) & np.isfinite(b).all(axis=1)
     singular = ~good
+    if known is not None and a.shape[1] == a.shape[2]:
+        use = good & ~known
+        singular |= known
+        if use.any():
+            try:
+                if use.all():
+                    x = np.linalg.solve(a, b[:, :, None])[:, :, 0]
+                else:
+                    x[use] = np.linalg.solve(a[use], b[use][:, :, None])[:, :, 0]
+                return x, singular
+            except np.linalg.LinAlgError:     # a singular step the motion did not flag
+                pass
+        else:
+            return x, singular
     if good.any():
         ag, bg = a[good], b[good]
         if ag.shape[1] == ag.shape[2]:

@@ -265,18 +265,27 @@ def _metres(chain):
     return UNIT_METRES[chain.units]
 
 
-def _state(plan, tau, omega, metres):
-    """The :class:`KinematicState` at the path parameters ``tau`` (SI units)."""
+def _state(plan, tau, omega, metres, *, solved=None):
+    """The :class:`KinematicState` at the path parameters ``tau`` (SI units); from the
+    solver's own :class:`~chaingraph.kinematics.motion.LinkStates` when ``solved``."""
     tau = np.asarray(tau, dtype=float)
     n = tau.size
-    ev = evaluate_near(plan, tau)
-    vel, acc, _ = rates(plan, ev.pose, float(omega), n, measure=False)
+    if solved is not None:
+        w = float(omega)
+        pose = solved.pose
+        vel = {k: tuple(np.asarray(c) * w for c in v) for k, v in solved.velocity.items()}
+        acc = {k: tuple(np.asarray(c) * w * w for c in v)
+               for k, v in solved.acceleration.items()}
+    else:
+        ev = evaluate_near(plan, tau)
+        pose = ev.pose
+        vel, acc, _ = rates(plan, pose, float(omega), n, measure=False)
 
     def arr(v, scale=1.0):
         return np.broadcast_to(np.asarray(v, dtype=float) * scale, (n,)).copy()
     origin, turn, velocity, om, acceleration, alpha = {}, {}, {}, {}, {}, {}
     for link in plan.chain.links:
-        p = ev.pose[link]
+        p = pose[link]
         origin[link] = (arr(p[0], metres), arr(p[1], metres))
         turn[link] = arr(p[2])
         velocity[link] = (arr(vel[link][0], metres), arr(vel[link][1], metres))
@@ -285,7 +294,8 @@ def _state(plan, tau, omega, metres):
         alpha[link] = arr(acc[link][2])
     input_rates = {item.joint: arr(vel[item.key][2], 1.0 if item.kind == "R" else metres)
                    for item in plan.inputs}
-    return KinematicState(n, origin, turn, velocity, om, acceleration, alpha, input_rates)
+    return KinematicState(n, origin, turn, velocity, om, acceleration, alpha, input_rates,
+                          rates_known=solved is not None)
 
 
 def _notes(chain, solution, k=None):
@@ -416,7 +426,7 @@ def forces(mechanism, *, at=None, static=False, fixed=None, driver=None, inputs=
     lead = plan.inputs[plan.lead]
     values = np.asarray(motion["theta"], dtype=float)
     tau = values if lead.kind == "R" else plan.tau(values)
-    kin = _state(plan, tau, motion.omega, metres)
+    kin = _state(plan, tau, motion.omega, metres, solved=motion.links)
     sol = solve_equilibrium(mechanism, plan, kin, static=static, metres=metres)
     columns = {k: v for k, v in motion.columns.items()
                if k == "theta" or k.startswith("input:")}

@@ -40,6 +40,20 @@ def _cached_plan(chain, source, fixed, driver, inputs):
     return build_plan(chain, fixed, driver, inputs=inputs)
 
 
+@dataclass(frozen=True)
+class LinkStates:
+    """Every link's pose and rates along a solved sweep, as the solver holds them: the
+    path parameters ``tau``, ``pose`` (link -> (x, y, phi, cos, sin) about the plan's
+    origin), and ``velocity`` and ``acceleration`` (link -> (vx, vy, omega), (ax, ay,
+    alpha) of its frame's origin; each input's rate under its key) at unit input
+    speed, which scale with omega and omega squared."""
+
+    tau: np.ndarray
+    pose: dict
+    velocity: dict
+    acceleration: dict
+
+
 @dataclass(frozen=True, eq=False)
 class Motion:
     """A solved sweep: numpy arrays looked up by CSV column name, and the summary.
@@ -62,6 +76,7 @@ class Motion:
     units: str | None = None
     plan: object = field(default=None, repr=False)
     inputs: tuple = ()            # the input joints, when not given as a driver
+    links: object = field(default=None, repr=False, compare=False)   # LinkStates
 
     def __repr__(self):
         given = (f"inputs={[i.joint for i in self.inputs]!r}" if self.inputs
@@ -292,7 +307,8 @@ def solve(mechanism, *, fixed=None, driver=None, inputs=None, start=None, stop=N
     summary = motion_summary(plan, output, omega, c, sweep=reuse) if summary else None
     return Motion(name=chain.name, fixed=plan.fixed, driver=plan.driver, omega=omega,
                   columns=columns, summary=summary, units=chain.units, plan=plan,
-                  inputs=() if plan.from_driver else plan.inputs)
+                  inputs=() if plan.from_driver else plan.inputs,
+                  links=LinkStates(theta, ev.pose, vel, acc))
 
 
 #: the largest input value a sweep may start or stop at
