@@ -51,6 +51,7 @@ from chaingraph.structure.isomorphism import (
     isomorphism,
 )
 from chaingraph.structure.rigidity import rigid_subchains
+from chaingraph.variation import Variation, vary
 
 __version__ = "0.1.0"
 
@@ -85,7 +86,7 @@ __all__ = [
     "classify", "Classification", "Check", "rigid_subchains",
     "inversions", "Inversions", "Inversion", "identify", "Identification",
     "canonical_form", "is_isomorphic", "isomorphism", "automorphism_orbits",
-    "atlas", "design", "solve", "forces", "PoseForces", "SweepForces", "instant_centres", "velocity_polygon", "measure", "animate", "Motion", "Summary", "feasible_range", "build_plan", "Plan",
+    "atlas", "design", "solve", "forces", "PoseForces", "SweepForces", "vary", "Variation", "instant_centres", "velocity_polygon", "measure", "animate", "Motion", "Summary", "feasible_range", "build_plan", "Plan",
     "ChainGraphError", "ChainFileError", "ChainStructureError", "MechanismError",
     "AssemblyError", "AtlasRunError", "AtlasSizeError", "DesignError", "DimensionError",
     "UnboundedRangeError", "ChainGraphWarning", "PoseAdjustedWarning",

@@ -31,9 +31,11 @@ from chaingraph.drawing.mechanism import mechanism_svg
 from chaingraph.drawing.plots import (
     draw_mechanism,  # PNG and the other raster formats
     plot_motion,
+    plot_variation,
 )
 from chaingraph.dynamics import forces
 from chaingraph.errors import ChainGraphError, OutputError
+from chaingraph.variation import length_values, vary
 from chaingraph.files import dumps, load, read_file, save
 from chaingraph.graphical import instant_centres, velocity_polygon
 from chaingraph.kinematics import solve, summary_rows
@@ -138,7 +140,7 @@ def cmd_solve(args) -> int:
     if args.draw:
         picture_file(args.draw, what="drawing")
     motion = solve(chain, fixed=args.fixed, driver=args.driver, inputs=args.inputs,
-                   start=args.start, stop=args.stop, steps=args.steps)
+                   start=args.start, stop=args.stop, steps=args.steps, output=args.output)
     if args.csv:
         with Writing(args.csv):
             motion.to_csv(args.csv)
@@ -163,6 +165,36 @@ def cmd_solve(args) -> int:
         sweep, unit = f"{motion.theta[0]:.6g} to {motion.theta[-1]:.6g}", " degrees"
     rows.insert(3, ("sweep", f"{sweep}{unit}, {motion.steps} steps"))   # after the input
     print(table(rows, ["", ""]).split("\n", 2)[2])
+    return 0
+
+def cmd_vary(args) -> int:
+    chain = load(args.file)
+    if args.plot:
+        picture_file(args.plot, what="plot")
+    link, sep, span = args.length.rpartition("=")
+    parts = span.split(":")
+    if not sep or not link or len(parts) != 3:
+        print(f"chaingraph vary: error: --length {args.length!r}: write LINK=FROM:TO:STEP, "
+              "such as crank=30:120:30", file=sys.stderr)
+        return 2
+    try:
+        start, stop, step = (float(x) for x in parts)
+    except ValueError:
+        print(f"chaingraph vary: error: --length {args.length!r}: FROM, TO and STEP must be "
+              "numbers", file=sys.stderr)
+        return 2
+    result = vary(chain, link, length_values(start, stop, step), steps=args.steps,
+                  output=args.output)
+    if args.plot:
+        with Writing(args.plot):
+            plot_variation(result, args.plot)
+    if args.json:
+        print_json(result.to_dict())
+        return 0
+    unit = f", {chain.units}" if chain.units else ""
+    print(f"{result.name}: over the length of {link}")
+    print(table(result.table(), [f"{link}{unit}", "time ratio", "stroke",
+                                 "transmission angle", "input range (or why not)"]))
     return 0
 
 def cmd_forces(args) -> int:

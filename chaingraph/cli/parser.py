@@ -18,6 +18,7 @@ from chaingraph.cli.commands import (
     cmd_polygons,
     cmd_report,
     cmd_solve,
+    cmd_vary,
 )
 
 __all__ = ['build_parser', 'whole_number']
@@ -78,6 +79,9 @@ def build_parser() -> argparse.ArgumentParser:
                    help="the first input's last value")
     p.add_argument("--steps", type=whole_number, default=360, metavar="N",
                    help="equal intervals of the sweep (N + 1 rows; default 360)")
+    p.add_argument("--output", metavar="NAME",
+                   help="the summary's output instead of the file's: a link, a point or "
+                        "a joint")
     p.add_argument("--json", action="store_true", help="print the JSON summary")
     p.add_argument("--csv", metavar="PATH", help="write every column of every step")
     p.add_argument("--plot", metavar="PATH.svg",
@@ -85,6 +89,22 @@ def build_parser() -> argparse.ArgumentParser:
     p.add_argument("--draw", metavar="PATH.svg",
                    help="draw the mechanism in its drawn pose with the paths of its points")
     p.set_defaults(run=cmd_solve)
+
+    p = sub.add_parser("vary", help="the summary over the values of one link's length",
+                       description="Solve the mechanism once per value of one link's length "
+                                   "(the rest of its dimensions and its assembly modes kept) "
+                                   "and tabulate the summary: time ratio, stroke, "
+                                   "transmission angle, range. A value where it cannot be "
+                                   "assembled is a row that says so.")
+    p.add_argument("file", metavar="FILE", help="a mechanism file (TOML) with dimensions")
+    p.add_argument("--length", required=True, metavar="LINK=FROM:TO:STEP",
+                   help="the link and its lengths: FROM, FROM + STEP, ... up to TO")
+    p.add_argument("--steps", type=whole_number, default=360, metavar="N",
+                   help="the sweep's intervals for each value (default 360)")
+    p.add_argument("--output", metavar="NAME", help="the summary's output instead of the file's")
+    p.add_argument("--json", action="store_true", help="print JSON")
+    p.add_argument("--plot", metavar="PATH", help="plot the time ratio and stroke")
+    p.set_defaults(run=cmd_vary)
 
     p = sub.add_parser("forces", help="joint reactions and input efforts, static or "
                                       "kinetostatic",

@@ -182,3 +182,32 @@ def _motion_and_pose(given, k):
         return motion, (motion, 0)
     value = float(plan.value(plan.theta0))
     return motion, (solve(given, start=value, stop=value, steps=1, summary=False), 0)
+
+
+@plain_text
+def plot_variation(variation, path=None):
+    """A :class:`~chaingraph.variation.Variation` plotted: the time ratio and the stroke
+    against the length (the values with no motion left out). Written to ``path`` or
+    returned as a figure."""
+    plt = pyplot_module()
+    good = [r for r in variation.rows if r.summary is not None]
+    x = [r.value for r in good]
+    fig, ax = plt.subplots(figsize=(7.0, 3.8))
+    ratio = [r.summary.time_ratio for r in good]
+    if any(v is not None for v in ratio):
+        ax.plot(x, [float("nan") if v is None else v for v in ratio], "o-", color="#b2182b",
+                label="time ratio")
+        ax.set_ylabel("time ratio")
+    stroke = [r.summary.stroke for r in good]
+    if any(v is not None for v in stroke):
+        other = ax.twinx()
+        unit = next((r.summary.stroke_unit for r in good if r.summary.stroke_unit), "")
+        other.plot(x, [float("nan") if v is None else v for v in stroke], "s--",
+                   color="#2166ac", label="stroke")
+        other.set_ylabel(f"stroke, {unit}")
+        fig.legend(loc="upper right", fontsize=8)
+    units = variation.units or "length units"
+    ax.set_xlabel(f"{variation.link}, {units}")
+    ax.set_title(f"{variation.name}: over the length of {variation.link}", fontsize=10)
+    ax.grid(True, linewidth=0.3)
+    return finish(plt, fig, path)

@@ -11,7 +11,7 @@ from __future__ import annotations
 import io
 import math
 import os
-from dataclasses import dataclass, field
+from dataclasses import dataclass, field, replace
 from functools import lru_cache
 
 import numpy as np
@@ -22,7 +22,7 @@ from chaingraph.kinematics.columns import csv_columns
 from chaingraph.kinematics.equations import check_poses
 from chaingraph.kinematics.plan import build_plan
 from chaingraph.kinematics.rates import rates
-from chaingraph.kinematics.summary import Summary, cycle_theta, motion_summary
+from chaingraph.kinematics.summary import Summary, cycle_theta, motion_summary, straightness
 from chaingraph.kinematics.sweep import Cycle, cycle, evaluate_near, evaluate_sweep
 from chaingraph.model.chain import Input, chosen_inputs
 
@@ -166,7 +166,7 @@ class Motion:
 
 
 def solve(mechanism, *, fixed=None, driver=None, inputs=None, start=None, stop=None,
-          steps=360, omega=None, summary=True) -> Motion:
+          steps=360, omega=None, summary=True, output=None) -> Motion:
     """Solve a mechanism's motion over an input sweep.
 
     Parameters
@@ -195,6 +195,10 @@ def solve(mechanism, *, fixed=None, driver=None, inputs=None, start=None, stop=N
     summary : bool
         Also work out the summary (stroke, time ratio, extremes, dead centres...) over
         the whole cycle (a :class:`Summary`); without it ``Motion.summary`` is None.
+    output : str, optional
+        What the summary is of, in place of the file's ``output``: a link (its slide on
+        the fixed link, else its angle), a point or a joint (its travel along its path;
+        the summary then adds how straight the path is over the sweep).
 
     Returns
     -------
@@ -256,7 +260,14 @@ def solve(mechanism, *, fixed=None, driver=None, inputs=None, start=None, stop=N
     _check_memory(plan, steps)
     if omega is None:
         omega = m.omega if m else 1.0
-    output = m.output if m else None
+    if output is not None:
+        names = set(chain.links) | {j.id for j in chain.joints} | {p.id for p in chain.points}
+        if output not in names:
+            raise MechanismError(f"the output {output!r} is no link, joint or point of the "
+                                 "chain", mechanism=chain.source or chain.name,
+                                 parameter="output")
+    else:
+        output = m.output if m else None
     lead = plan.inputs[plan.lead]
     if lead.sweep is not None:
         start, stop = lead.sweep
@@ -305,6 +316,10 @@ def solve(mechanism, *, fixed=None, driver=None, inputs=None, start=None, stop=N
     if summary and c.ends == "limits" and np.array_equal(theta, cycle_theta(plan, c)):
         reuse = (ev, measure, unit_columns)
     summary = motion_summary(plan, output, omega, c, sweep=reuse) if summary else None
+    if summary is not None and output is not None and output not in chain.links:
+        # a point's path: how straight it is over the sweep asked for
+        summary = replace(summary, straightness=straightness(
+            columns[f"x:{output}"], columns[f"y:{output}"]))
     return Motion(name=chain.name, fixed=plan.fixed, driver=plan.driver, omega=omega,
                   columns=columns, summary=summary, units=chain.units, plan=plan,
                   inputs=() if plan.from_driver else plan.inputs,

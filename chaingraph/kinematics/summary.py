@@ -19,7 +19,7 @@ from chaingraph.kinematics.roots import bracketed_roots
 from chaingraph.kinematics.sweep import cycle, evaluate_near, evaluate_sweep
 from chaingraph.kinematics.tracking import evaluate_at
 
-__all__ = ["Summary", "ExtremePosition", "summary_rows", "path_direction", "output_signal",
+__all__ = ["Summary", "ExtremePosition", "Straightness", "straightness", "summary_rows", "path_direction", "output_signal",
            "OutputSignal"]
 
 
@@ -75,6 +75,7 @@ class Summary:
     note: str | None = None
     output_turns_fully: bool = False
     input_unit: str = "deg"
+    straightness: Straightness | None = None     # a point's (or joint's) output
 
     def to_dict(self) -> dict:
         """The summary as JSON: the keys of ``solve --json``'s ``"summary"``."""
@@ -93,6 +94,8 @@ class Summary:
                "note": self.note}
         if self.output_turns_fully:
             out["output_turns_fully"] = True
+        if self.straightness is not None:
+            out["straightness"] = self.straightness.to_dict()
         return out
 
     def __getitem__(self, key):
@@ -132,6 +135,10 @@ class Summary:
             ("mobility", f"{self.numeric_mobility} at the drawn pose "
                          f"(Kutzbach: {self.mobility})"),
         ]
+        if self.straightness is not None:
+            st = self.straightness
+            rows.insert(-2, ("straightness", f"within {st.deviation:.6g}{unit} of a line over "
+                                             f"{st.length:.6g}{unit}"))
         if self.note:
             rows.append(("note", self.note))
         return rows
@@ -166,6 +173,39 @@ def summary_rows(motion):
 
 
 # -- the summary -----------------------------------------------------------------------
+@dataclass(frozen=True)
+class Straightness:
+    """How straight a point's path is over the sweep: ``deviation``, the largest
+    distance of the path from its least-squares line (the line through the path's
+    mean along its principal direction, which minimises the squared distances), and
+    ``length``, the length of the path's projection on that line (file units)."""
+
+    deviation: float
+    length: float
+
+    def to_dict(self) -> dict:
+        return {"deviation": self.deviation, "length": self.length}
+
+
+def straightness(x, y) -> Straightness | None:
+    """The :class:`Straightness` of the path through the points (x, y) (the finite
+    ones); None for fewer than two.
+
+    Examples
+    --------
+    >>> straightness([0.0, 1.0, 2.0, 3.0], [0.0, 0.1, 0.1, 0.0])   # doctest: +ELLIPSIS
+    Straightness(deviation=0.05..., length=3.00...)
+    """
+    xy = np.column_stack([np.asarray(x, dtype=float), np.asarray(y, dtype=float)])
+    xy = xy[np.isfinite(xy).all(axis=1)]
+    if xy.shape[0] < 2:
+        return None
+    centred = xy - xy.mean(axis=0)
+    _, _, vt = np.linalg.svd(centred, full_matrices=False)
+    along, across = centred @ vt[0], centred @ vt[1]
+    return Straightness(float(np.abs(across).max()), float(along.max() - along.min()))
+
+
 @dataclass(frozen=True)
 class OutputSignal:
     """How an output's position is measured along a sweep: a link's slide on the fixed
@@ -322,7 +362,7 @@ def _raw_summary(plan, output, omega, c, *, sweep=None):
     summary = {"output": output, "stroke": None, "stroke_unit": None, "time_ratio": None,
                "forward_deg": None, "return_deg": None, "extremes": None,
                "extreme_positions": None,
-               "transmission_angle": _transmission(plan, ev, theta),
+               "transmission_angle": _transmission(plan, ev, theta, output),
                "dead_centres": _dead_centres(plan, ev, measure, c),
                "input_range": _input_range(plan, theta, c),
                "full_turn": c.full_turn,
@@ -485,12 +525,12 @@ def _rate_and_slope(plan, ev, k, t, signal):
     return d1, d2 * plan.rate_scale        # d2 per unit of input squared, t in tau
 
 
-def _transmission(plan, ev, theta):
-    """Transmission angle range of the four-bar loop (RRR dyad) at the output, if any."""
+def _transmission(plan, ev, theta, out):
+    """Transmission angle range of the four-bar loop (RRR dyad) at the output ``out``
+    (else the first such loop), if any."""
     dyads = [s for s in plan.steps if s.kind == "dyad" and s.pattern == "RRR"]
     if not dyads:
         return None
-    out = plan.chain.mechanism.output if plan.chain.mechanism else None
     step = next((s for s in dyads if out in s.links), dyads[0])
     a, b = step.links
     ca, cb, cj = step.constraints

@@ -581,8 +581,10 @@ def _validate(chain: Chain) -> None:
             if (item.start is None) != (item.stop is None):
                 fail("give both 'from' and 'to', or neither (the input then stays at "
                      "its drawn value)", where)
-        if m.output is not None and m.output not in links and m.output not in point_ids:
-            fail(f"'output' names no link or point of the chain: {m.output!r}", "[mechanism]")
+        if m.output is not None and m.output not in links and m.output not in point_ids \
+                and m.output not in joint_ids:
+            fail(f"'output' names no link, joint or point of the chain: {m.output!r}",
+                 "[mechanism]")
         if (isinstance(m.omega, bool) or not isinstance(m.omega, (int, float))
                 or not math.isfinite(m.omega) or m.omega == 0):
             fail("'omega' must be a finite non-zero number (rad/s)", "[mechanism]")
