@@ -3,6 +3,7 @@ keys, its rows the command line's and the report's."""
 
 import dataclasses
 import json
+import math
 
 import pytest
 
@@ -10,6 +11,8 @@ import chaingraph
 from chaingraph.cli.main import main
 from chaingraph.kinematics import ExtremePosition, Summary, summary_rows
 from chaingraph.naming.catalog import catalog_path
+
+from ..conftest import run_cli
 
 CONTRACT = {"stroke", "time_ratio", "forward_deg", "return_deg", "extremes",
             "transmission_angle", "dead_centres", "input_range"}
@@ -56,3 +59,72 @@ def test_without_a_summary_there_is_none():
     m = chaingraph.solve(chaingraph.load(catalog_path("reciprocating-engine")), steps=4,
                          summary=False)
     assert m.summary is None and m.to_dict()["summary"] == {}
+
+
+# -- any output, and how straight a point's path is ------------------------------------
+def test_output_names_a_link_a_point_or_a_joint_without_editing_the_file():
+    import numpy as np
+    engine = chaingraph.load(catalog_path("reciprocating-engine"))
+    by_file = chaingraph.solve(engine, steps=72).summary
+    by_link = chaingraph.solve(engine, steps=72, output="crosshead").summary
+    by_joint = chaingraph.solve(engine, steps=72, output="B").summary
+    assert by_link.stroke == pytest.approx(by_file.stroke, rel=1e-12) == pytest.approx(80.0)
+    # the crosshead's pin B travels the same stroke along the line of stroke
+    assert by_joint.stroke == pytest.approx(80.0, rel=1e-9)
+    assert by_joint.time_ratio == pytest.approx(by_file.time_ratio, rel=1e-9)
+    assert by_joint.straightness.deviation == pytest.approx(0.0, abs=1e-9)
+    # the crank pin A: a circle of 40 mm, its projection 80 long, 40 off its line
+    a = chaingraph.solve(engine, steps=360, output="A")
+    assert a.summary.straightness.length == pytest.approx(80.0, rel=1e-6)
+    assert a.summary.straightness.deviation == pytest.approx(40.0, rel=1e-3)
+    rocker = chaingraph.solve(engine, steps=72, output="connecting rod").summary
+    assert rocker.stroke_unit == "deg" and rocker.straightness is None
+    with pytest.raises(chaingraph.MechanismError, match="no link, joint or point"):
+        chaingraph.solve(engine, output="piston")
+
+
+def test_a_file_s_output_may_name_a_joint():
+    text = catalog_path("reciprocating-engine").read_text().replace(
+        'output = "crosshead"', 'output = "B"')
+    m = chaingraph.solve(chaingraph.loads(text), steps=36)
+    assert m.summary.output == "B" and m.summary.stroke == pytest.approx(80.0, rel=1e-9)
+    bad = text.replace('output = "B"', 'output = "Q"')
+    with pytest.raises(chaingraph.ChainFileError, match="names no link, joint or point"):
+        chaingraph.loads(bad)
+
+
+def test_watt_s_straight_line_against_a_least_squares_fit_in_the_test():
+    """Watt's indicator: over a small swing of the piston lever about the drawn pose the
+    tracing point E draws 'approximately a straight line' (the notes)."""
+    import numpy as np
+    watt = chaingraph.load(catalog_path("watts-indicator-mechanism"))
+    f, d = watt.joint("F").at, watt.joint("D").at
+    drawn = math.degrees(math.atan2(d[1] - f[1], d[0] - f[0]))   # the lever FD as drawn
+    m = chaingraph.solve(watt, start=drawn, stop=drawn + 10, steps=96)
+    x, y = m["x:E"], m["y:E"]
+    # the test's own fit: the line minimising the squared distances is through the
+    # mean along the covariance's larger eigenvector
+    c = np.cov(np.vstack([x, y]))
+    w, v = np.linalg.eigh(c)
+    d = v[:, 1]
+    n = np.array([-d[1], d[0]])
+    px, py = x - x.mean(), y - y.mean()
+    deviation = np.abs(px * n[0] + py * n[1]).max()
+    along = px * d[0] + py * d[1]
+    s = m.summary.straightness
+    assert s.deviation == pytest.approx(deviation, rel=1e-9)
+    assert s.length == pytest.approx(along.max() - along.min(), rel=1e-9)
+    assert s.deviation < 0.02 * s.length          # straight to 2 per cent over the swing
+    status, out, err = run_cli("solve", catalog_path("watts-indicator-mechanism"), "--from",
+                               repr(drawn), "--to", repr(drawn + 10), "--steps", "96",
+                               "--json")
+    assert json.loads(out)["summary"]["straightness"]["deviation"] == pytest.approx(
+        deviation, rel=1e-9)
+
+
+def test_output_on_the_command_line():
+    status, out, err = run_cli("solve", catalog_path("reciprocating-engine"), "--output", "B",
+                               "--steps", "36")
+    assert status == 0 and "straightness" in out
+    status, out, err = run_cli("solve", catalog_path("reciprocating-engine"), "--output", "Z")
+    assert status == 2 and "no link, joint or point" in err and "--output NAME" in err
