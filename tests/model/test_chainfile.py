@@ -145,7 +145,7 @@ BAD_DOCUMENTS = {
     "driver is fixed": (_doc(mechanism={"fixed": "a", "driver": "a"}), "[mechanism]",
                         "'driver' is the fixed link"),
     "output names nothing": (_doc(mechanism={"fixed": "a", "output": "tool"}), "[mechanism]",
-                             "'output' names no link or point"),
+                             "'output' names no link, joint or point"),
     "fixed missing": (_doc(mechanism={"driver": "a"}), "[mechanism]", "missing required key 'fixed'"),
     "at one number": (_doc([_joint_doc(at=[1.0])]), "joint 'A'", "two finite numbers"),
     "at three numbers": (_doc([_joint_doc(at=[1, 2, 3])]), "joint 'A'", "two finite numbers"),

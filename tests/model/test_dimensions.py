@@ -548,3 +548,14 @@ def test_a_point_on_a_joint_is_measured_and_read_back():
         loads(text.replace("C-pen = 0.0", "C-pen = -1.0"))
     with pytest.raises(ChainFileError, match="a length must be positive"):
         loads(text.replace("B-C = 100.0", "B-C = 0.0"))
+
+
+def test_the_whitworth_worked_example_gives_the_text_s_ratio_and_stroke():
+    """Worked example 4: centres 50, crank 75, rod 135; the text measures a stroke of
+    87.5 mm, which with the ram's line through the lever's pivot is twice the arm the
+    file takes (43.75 mm; the text's 150 mm is the whole slotted lever)."""
+    chain = chaingraph.load(catalog_path("whitworth-quick-return-with-ram"))
+    s = chaingraph.solve(chain).summary
+    assert round(s["time_ratio"], 3) == 2.735
+    assert s["stroke"] == pytest.approx(87.5, rel=1e-9)
+    assert "43.75" in chain.notes and "87.5" in chain.notes and "not give" in chain.notes
