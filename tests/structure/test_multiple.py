@@ -43,34 +43,43 @@ def _verdict(links, joints, seed):
 
 
 def _direct(links, dof):
-    """Every chain with multiple joints of this size, by brute force."""
+    """Every chain with multiple joints of this size, by brute force (each joint's pairs
+    of links as a bit mask: no two joints may share a pair)."""
     total = (3 * (links - 1) - dof) // 2            # simple joints' worth
     subsets = [s for k in range(2, links + 1) for s in itertools.combinations(range(links), k)]
+    bit = {p: 1 << i for i, p in enumerate(itertools.combinations(range(links), 2))}
+    masks = [sum(bit[p] for p in itertools.combinations(s, 2)) for s in subsets]
+    cost = [len(s) - 1 for s in subsets]
     found = {}
 
-    def grow(start, chosen, used):
+    def leaf(chosen):
+        degree = [0] * links
+        for j in chosen:
+            for x in subsets[j]:
+                degree[x] += 1
+        if min(degree) < 2:
+            return
+        joints = [subsets[j] for j in chosen]
+        first = _verdict(links, joints, 1)
+        if first != _verdict(links, joints, 2):
+            raise AssertionError(joints)            # two random draws must agree
+        if first == (dof, False):
+            chain = Chain("x", tuple(Joint(f"J{i}", "R", tuple(f"L{x}" for x in j))
+                                     for i, j in enumerate(joints)))
+            form = canonical_form(chain, oriented=False)
+            if form not in found:
+                found[form] = len(automorphism_orbits(chain, oriented=False))
+
+    def grow(start, chosen, used, pairs):
         if used == total:
-            degree = [sum(x in j for j in chosen) for x in range(links)]
-            if min(degree) < 2:
-                return
-            first = _verdict(links, chosen, 1)
-            if first != _verdict(links, chosen, 2):
-                raise AssertionError(chosen)           # two random draws must agree
-            if first == (dof, False):
-                chain = Chain("x", tuple(Joint(f"J{i}", "R", tuple(f"L{x}" for x in j))
-                                         for i, j in enumerate(chosen)))
-                form = canonical_form(chain, oriented=False)
-                if form not in found:
-                    found[form] = len(automorphism_orbits(chain, oriented=False))
+            leaf(chosen)
             return
         for i in range(start, len(subsets)):
-            s = subsets[i]
-            if used + len(s) - 1 > total:
-                continue
-            if any(len(set(s) & set(j)) > 1 for j in chosen):
-                continue
-            grow(i + 1, chosen + [s], used + len(s) - 1)
-    grow(0, [], 0)
+            if used + cost[i] <= total and not masks[i] & pairs:
+                chosen.append(i)
+                grow(i + 1, chosen, used + cost[i], pairs | masks[i])
+                chosen.pop()
+    grow(0, [], 0, 0)
     return found
 
 
