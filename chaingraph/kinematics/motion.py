@@ -197,8 +197,9 @@ def solve(mechanism, *, fixed=None, driver=None, inputs=None, start=None, stop=N
         the whole cycle (a :class:`Summary`); without it ``Motion.summary`` is None.
     output : str, optional
         What the summary is of, in place of the file's ``output``: a link (its slide on
-        the fixed link, else its angle), a point or a joint (its travel along its path;
-        the summary then adds how straight the path is over the sweep).
+        the fixed link, else its angle), a P joint (its slide: the block's travel along
+        its guide), a point or an R joint (its travel along its path; the summary then
+        adds how straight the path is over the sweep).
 
     Returns
     -------
@@ -316,7 +317,8 @@ def solve(mechanism, *, fixed=None, driver=None, inputs=None, start=None, stop=N
     if summary and c.ends == "limits" and np.array_equal(theta, cycle_theta(plan, c)):
         reuse = (ev, measure, unit_columns)
     summary = motion_summary(plan, output, omega, c, sweep=reuse) if summary else None
-    if summary is not None and output is not None and output not in chain.links:
+    if summary is not None and output is not None and output not in chain.links and not (
+            output in chain._joint_index and chain.joint(output).kind == "P"):
         # a point's path: how straight it is over the sweep asked for
         summary = replace(summary, straightness=straightness(
             columns[f"x:{output}"], columns[f"y:{output}"]))

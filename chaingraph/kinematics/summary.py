@@ -248,8 +248,9 @@ class OutputSignal:
 
 
 def output_signal(plan, output, columns, *, closed=False) -> OutputSignal | None:
-    """How ``output`` (a link or point, or None) moves along the sweep whose ``columns``
-    are given: the one definition the summary and the plots share. ``closed``: the
+    """How ``output`` (a link, point or joint, or None) moves along the sweep whose
+    ``columns`` are given: the one definition the summary and the plots share (a P
+    joint's is its slide, the block's travel along its guide; an R joint's its path). ``closed``: the
     columns are a whole cycle whose last row repeats the first (see
     :func:`path_direction`).
 
@@ -274,6 +275,9 @@ def output_signal(plan, output, columns, *, closed=False) -> OutputSignal | None
         if np.ptp(angle) > 1e-9:
             return OutputSignal(output, "angle", output, "deg")
         name = chain.joints_of(output)[0].id
+    elif output in chain._joint_index and chain.joint(output).kind == "P":
+        # a sliding pair: its slide, the block's travel along its guide
+        return OutputSignal(output, "slide", output, units)
     else:
         name = output
     return OutputSignal(output, "point", name, units,

@@ -160,12 +160,16 @@ def link_isomorphisms(a, b, *, oriented=True, marks_a=None, marks_b=None):
 
 
 def _output_maps(chain, output, entry, mapping) -> bool:
-    out_entry = entry.mechanism.output
-    if output in chain.links:
-        return out_entry in entry.links and mapping[output] == out_entry
-    if out_entry in entry.links:
-        return False
-    return mapping[chain.point(output).link] == entry.point(out_entry).link
+    """Whether ``mapping`` takes the chain's output onto the entry's: a link onto its
+    link, a point onto a point of the same link, a joint onto a joint of the same links."""
+    def kind(c, name):
+        if name in c.links:
+            return "link", frozenset((name,))
+        if name in c._joint_index:
+            return "joint", frozenset(c.joint(name).links)
+        return "point", frozenset((c.point(name).link,))
+    mine, theirs = kind(chain, output), kind(entry, entry.mechanism.output)
+    return mine[0] == theirs[0] and frozenset(mapping[x] for x in mine[1]) == theirs[1]
 
 
 def _alike(key, entry_key, mapping) -> bool:
