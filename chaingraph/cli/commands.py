@@ -26,6 +26,7 @@ from chaingraph.cli.text import (
     table,
 )
 from chaingraph.drawing.constructions import draw_centres, draw_polygons
+from chaingraph.drawing.limits import limits_svg
 from chaingraph.drawing.forces import force_polygon_svg, free_body_svg, plot_turning_moment
 from chaingraph.drawing.mechanism import mechanism_svg
 from chaingraph.drawing.plots import (
@@ -139,6 +140,11 @@ def cmd_solve(args) -> int:
         picture_file(args.plot, what="plot")
     if args.draw:
         picture_file(args.draw, what="drawing")
+    if args.limits:
+        if not str(args.limits).lower().endswith(".svg"):
+            raise OutputError(args.limits, "the limit positions are drawn as SVG: give a "
+                                           ".svg file")
+        output_file(args.limits, what="drawing")
     motion = solve(chain, fixed=args.fixed, driver=args.driver, inputs=args.inputs,
                    start=args.start, stop=args.stop, steps=args.steps, output=args.output)
     if args.csv:
@@ -153,6 +159,8 @@ def cmd_solve(args) -> int:
         else:
             with Writing(args.draw):
                 draw_mechanism(motion, args.draw)
+    if args.limits:
+        write_text(args.limits, limits_svg(motion))
     if args.json:
         print_json(motion.to_dict())
         return 0

@@ -88,6 +88,9 @@ def build_parser() -> argparse.ArgumentParser:
                    help="plot the output's displacement, velocity and acceleration")
     p.add_argument("--draw", metavar="PATH.svg",
                    help="draw the mechanism in its drawn pose with the paths of its points")
+    p.add_argument("--limits", metavar="PATH.svg",
+                   help="draw the limit positions: the two extreme poses of the output, the "
+                        "input's arcs between them with their angles, the stroke")
     p.set_defaults(run=cmd_solve)
 
     p = sub.add_parser("vary", help="the summary over the values of one link's length",

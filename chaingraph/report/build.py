@@ -28,6 +28,7 @@ from chaingraph._util.progress import ProgressBar
 from chaingraph.drawing.constructions import draw_centres, draw_polygons
 from chaingraph.drawing.forces import force_polygon_svg, free_body_svg, plot_turning_moment
 from chaingraph.drawing.graph import draw_link_joint_graph
+from chaingraph.drawing.limits import limits_svg
 from chaingraph.drawing.mechanism import frame_steps, mechanism_svg, skeleton_svg
 from chaingraph.drawing.plots import output_series, plot_motion
 from chaingraph.dynamics import forces
@@ -73,6 +74,7 @@ class Entry:
     grid: object = None           # two moving inputs: the poses over both, row by row
     centres: object = None        # instantaneous centres at the drawn pose
     polygons: object = None       # velocity and acceleration polygons at the drawn pose
+    limits: bool = False          # a time ratio: its limit positions drawn
     forces: object = None         # with masses or loads: the forces over the sweep
     pose_forces: object = None    # and at the sweep's first pose (the free bodies)
 
@@ -300,6 +302,13 @@ def _write_images(entry, out, frames):
         plot_motion(entry.motion, img / f"{entry.slug}-motion.svg")
         (img / f"{entry.slug}-cycle.svg").write_text(
             mechanism_svg(entry.motion, frames=frames), encoding="utf-8")
+    if entry.motion is not None and entry.motion.summary.time_ratio is not None:
+        try:
+            (img / f"{entry.slug}-limits.svg").write_text(limits_svg(entry.motion),
+                                                          encoding="utf-8")
+            entry.limits = True
+        except ChainGraphError as e:
+            entry.warnings.append(f"limit positions not drawn: {e}")
     if entry.pose_forces is not None:
         (img / f"{entry.slug}-free-bodies.svg").write_text(free_body_svg(entry.pose_forces),
                                                             encoding="utf-8")
@@ -426,6 +435,15 @@ def _motion_section(e):
     out.append(f"<figure><img src=\"img/{e.slug}-motion.svg\" alt=\"output motion\" "
                "width=\"560\"><figcaption>The output's displacement, velocity and "
                "acceleration against the input angle.</figcaption></figure></div>")
+    if e.limits:
+        s = e.motion.summary
+        out.append(f"<h2>Limit positions</h2><div class=\"figures\"><figure><img "
+                   f"src=\"img/{e.slug}-limits.svg\" alt=\"limit positions\" width=\"560\">"
+                   f"<figcaption>The output at the two ends of its stroke ({_esc(_fmt(s.stroke))}"
+                   f" {_esc(s.stroke_unit or '')}): the two poses overlaid, the second dashed; "
+                   f"the input's arcs between them, forward {_esc(_fmt(s.forward_deg))}° and "
+                   f"return {_esc(_fmt(s.return_deg))}°, so the time ratio "
+                   f"{_esc(_fmt(s.time_ratio))}.</figcaption></figure></div>")
     if e.centres is not None:
         out += _graphical_section(e)
     if e.pose_forces is not None:

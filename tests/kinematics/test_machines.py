@@ -79,3 +79,12 @@ def test_the_beam_engine_s_piston_stroke_from_the_lever_s_rocking():
     # the same time ratio as the lever's (the piston follows the lever monotonically)
     lever_summary = chaingraph.solve(beam, output="lever").summary
     assert s.time_ratio == pytest.approx(lever_summary.time_ratio, rel=1e-9)
+
+
+def test_the_four_bar_notes_correct_the_notes_type_2_error():
+    """The notes say every inversion of a chain with s + l > p + q is a double crank;
+    every one is a triple rocker, and the catalog's notes say so."""
+    notes = chaingraph.load(catalog_path("four-bar-chain")).notes
+    assert "s + l > p + q" in notes and "triple rockers" in notes and "double crank" in notes
+    found = chaingraph.inversions(chaingraph.load(catalog_path("non-grashof-four-bar")))
+    assert {row[2] for row in found.rows()[1:]} == {"triple rocker"}
