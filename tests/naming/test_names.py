@@ -41,7 +41,7 @@ def test_topology_only_single_slider_crank_chain_classifies_and_names_its_four_i
     assert names["1"] == {"Reciprocating engine"}
     assert names["2"] == {"Rotary (Gnome) engine", "Whitworth quick return mechanism"}
     assert names["3"] == {"Oscillating cylinder engine", "Crank and slotted lever quick return mechanism"}
-    assert names["4"] == {"Pendulum pump (bull engine)"}
+    assert names["4"] == {"Duplex pump", "Pendulum pump (bull engine)"}
     assert all(i.behaviour is None for i in result.inversions)
     found = identify(chaingraph.load(path))
     assert found.chain == "Single slider crank chain" and found.joint_kinds == "respected"
