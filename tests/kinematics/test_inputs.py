@@ -343,7 +343,8 @@ def test_every_inversion_of_the_catalog_with_every_input_on_the_fixed_link():
     solved = between = 0
     for path in catalog_files():
         chain = chaingraph.load(path)
-        if not chain.has_pose or any(j.kind not in ("R", "P") for j in chain.joints):
+        if not chain.has_pose or any(j.kind not in ("R", "P") for j in chain.joints) \
+                or len(chain.links) > 8:          # the 16-link rotary engine: test_machines
             continue
         for fixed in chain.links:
             for j in chain.joints:
