@@ -57,7 +57,7 @@ def atlas_names(chain, *, oriented=False, catalog=None) -> dict:
     >>> names["chain"]
     ['Single slider crank chain']
     >>> sorted(n for c in names["inversions"] for n in c["names"])[:3]
-    ['Crank and slotted lever quick return mechanism', 'Oscillating cylinder engine', 'Pendulum pump (bull engine)']
+    ['Crank and slotted lever quick return mechanism', 'Duplex pump', 'Oscillating cylinder engine']
     >>> atlas_names(next(atlas(links=8, prismatic=0)))
     {'chain': [], 'inversions': []}
     """

@@ -18,6 +18,7 @@ motion is the same whichever link carries the guide), the full turns deciding.
 
 from __future__ import annotations
 
+import itertools
 from dataclasses import dataclass
 
 import networkx as nx
@@ -236,9 +237,15 @@ def catalog_matches(chain, fixed, catalog, *, driver=None, output=None):
             if m is None or len(entry.links) != len(chain.links) or id(entry) in seen:
                 continue
             best = None
-            for mapping in link_isomorphisms(chain, entry, oriented=oriented,
-                                             marks_a={fixed: "fixed"},
-                                             marks_b={m.fixed: "fixed"}):
+            # first the mappings that also take driver and output onto the entry's (a
+            # symmetric chain, the seven cylinders, has thousands of others), then any
+            marked = (_marks(chain, fixed, driver, output), _marks(entry, m.fixed, m.driver, m.output))
+            first = next(link_isomorphisms(chain, entry, oriented=oriented, marks_a=marked[0],
+                                           marks_b=marked[1]), None)
+            candidates = itertools.chain([] if first is None else [first], link_isomorphisms(
+                chain, entry, oriented=oriented, marks_a={fixed: "fixed"},
+                marks_b={m.fixed: "fixed"}))
+            for mapping in candidates:
                 entry_key = behaviour_key(entry, m.fixed)
                 compare = entry_key is not None and file_key() is not None
                 alike = _alike(file_key(), entry_key, mapping) if compare else None
@@ -250,10 +257,31 @@ def catalog_matches(chain, fixed, catalog, *, driver=None, output=None):
                 rank = (alike is not False, score)
                 if best is None or rank > best[0]:
                     best = (rank, Match(score, entry, mapping, oriented, alike))
+                top = 2 * bool(driver and m.driver) + bool(output and m.output)
+                if rank == (True, top):
+                    # none better: a symmetric chain (seven cylinders) has thousands
+                    break
             if best is not None:
                 found.append(best[1])
                 seen.add(id(entry))
     return found
+
+
+def _marks(chain, fixed, driver, output):
+    """Tags of the fixed link, the driver and the output's links, for matching."""
+    marks = {fixed: "fixed"}
+    if driver and driver != fixed:
+        marks[driver] = "driver"
+    if output:
+        if output in chain.links:
+            links = (output,)
+        elif output in chain._joint_index:
+            links = chain.joint(output).links
+        else:
+            links = (chain.point(output).link,)
+        for link in links:
+            marks.setdefault(link, "output")
+    return marks
 
 
 def naming_matches(matches):
@@ -306,7 +334,7 @@ def inversions(chain, *, with_input: bool = False, catalog=None) -> Inversions:
     frame 1 Reciprocating engine
     crank 2 Rotary (Gnome) engine; Whitworth quick return mechanism
     rod 3 Crank and slotted lever quick return mechanism; Oscillating cylinder engine
-    crosshead 4 Pendulum pump (bull engine)
+    crosshead 4 Duplex pump; Pendulum pump (bull engine)
     """
     require_connected(chain)
     if catalog is None:

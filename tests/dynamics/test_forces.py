@@ -567,3 +567,24 @@ def test_the_force_polygon_of_each_dyad_closes(tmp_path):
     status, out, err = run_cli("forces", catalog_path("reciprocating-engine"), "--at", "60",
                                "--polygon", tmp_path / "p.svg")
     assert status == 0 and 'class="arrowhead"' in (tmp_path / "p.svg").read_text()
+
+
+def test_forces_of_a_chain_the_solver_refuses_and_the_frame_of_a_sweep(tmp_path):
+    chain = replace(chaingraph.load(catalog_path("four-bar-chain")),
+                    masses=(LinkMass("coupler", 1.0),))
+    with pytest.raises(chaingraph.MechanismError):
+        chaingraph.forces(chain)                       # no mechanism: refused, exit 2
+    path = tmp_path / "chain.toml"
+    path.write_text(chaingraph.dumps(chain))
+    status, out, err = run_cli("forces", path)
+    assert status == 2 and err.count("\n") == 1
+    # beyond its range: the analysis fails, exit 1 with the range
+    watt = replace(chaingraph.load(catalog_path("watts-indicator-mechanism")),
+                   masses=(LinkMass("lever", 0.2),), gravity=(0.0, -9.81))
+    path = tmp_path / "watt.toml"
+    path.write_text(chaingraph.dumps(watt))
+    status, out, err = run_cli("forces", path, "--at", "10")
+    assert status == 1 and "can turn only from" in err and "Traceback" not in err
+    pandas = pytest.importorskip("pandas")
+    frame = chaingraph.forces(engine(), steps=8).to_frame()
+    assert isinstance(frame, pandas.DataFrame) and list(frame.columns)[-1] == "effort:O"

@@ -102,4 +102,4 @@ def test_names_survive_relabelling_the_links_and_joints():
             sorted(sorted(c["names"]) for c in names["inversions"])
         assert {rename[x] for c in names["inversions"] for x in c["links"]} == \
             {x for c in other["inversions"] for x in c["links"]}
-    assert named == 3            # Watt's, Stephenson's, the quick return with its ram
+    assert named == 4            # Watt's, Stephenson's, the quick return with its ram, the beam engine's
