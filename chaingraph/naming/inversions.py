@@ -208,6 +208,12 @@ class Match:
 BEHAVIOUR_LINKS = 40
 
 
+#: the isomorphisms tried per catalog entry, looking for one whose behaviour is alike
+#: (after the one that keeps driver and output): a chain with a symmetric group of
+#: links, seven cylinders on one crank pin, has 7! = 5,040, alike or not alike together
+MAX_MAPPINGS = 720
+
+
 def catalog_matches(chain, fixed, catalog, *, driver=None, output=None):
     """The catalog mechanisms that are this chain with ``fixed`` fixed, by structure.
 
@@ -245,7 +251,7 @@ def catalog_matches(chain, fixed, catalog, *, driver=None, output=None):
             candidates = itertools.chain([] if first is None else [first], link_isomorphisms(
                 chain, entry, oriented=oriented, marks_a={fixed: "fixed"},
                 marks_b={m.fixed: "fixed"}))
-            for mapping in candidates:
+            for mapping in itertools.islice(candidates, MAX_MAPPINGS):
                 entry_key = behaviour_key(entry, m.fixed)
                 compare = entry_key is not None and file_key() is not None
                 alike = _alike(file_key(), entry_key, mapping) if compare else None
