@@ -287,8 +287,10 @@ def test_a_local_dask_cluster_gives_the_local_run():
     assert json.loads(out)["count"] == 230
 
 
-def test_an_unreachable_scheduler_is_one_line():
+def test_an_unreachable_scheduler_is_one_line(monkeypatch):
     pytest.importorskip("distributed")
+    from chaingraph.structure.atlas import run
+    monkeypatch.setattr(run, "CONNECT_TIMEOUT", 1.0)     # nothing listens there anyway
     code, out, err = run_cli("atlas", "--links", "8", "--scheduler", "tcp://127.0.0.1:9",
                              "-q")
     assert code == 2 and "Traceback" not in err

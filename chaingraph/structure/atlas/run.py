@@ -179,12 +179,19 @@ def ring_of(links, backend):
 
 
 # -- runners: where the tasks run --------------------------------------------------------
+#: seconds to wait for a Dask scheduler to answer
+CONNECT_TIMEOUT = 10.0
+
+
 class DaskRunner:
     """A runner on a Dask distributed cluster: ``address`` of a running scheduler
     (``tcp://host:8786``), or ``"local"`` for an embedded LocalCluster of ``workers``
-    single-threaded processes. Use as a context manager (it closes what it opened)."""
+    single-threaded processes, waiting ``timeout`` seconds (default
+    :data:`CONNECT_TIMEOUT`) for it to answer. Use as a context manager (it closes what
+    it opened)."""
 
-    def __init__(self, address, *, workers=1, timeout=10):
+    def __init__(self, address, *, workers=1, timeout=None):
+        timeout = CONNECT_TIMEOUT if timeout is None else timeout
         try:
             from distributed import Client, LocalCluster
         except ImportError as error:
