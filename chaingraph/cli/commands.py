@@ -13,6 +13,7 @@ from chaingraph.cli.outputs import (
     output_file,
     output_folder,
     picture_file,
+    svg_file,
     write_text,
 )
 from chaingraph.cli.text import (
@@ -141,10 +142,7 @@ def cmd_solve(args) -> int:
     if args.draw:
         picture_file(args.draw, what="drawing")
     if args.limits:
-        if not str(args.limits).lower().endswith(".svg"):
-            raise OutputError(args.limits, "the limit positions are drawn as SVG: give a "
-                                           ".svg file")
-        output_file(args.limits, what="drawing")
+        svg_file(args.limits, what="limit positions")
     motion = solve(chain, fixed=args.fixed, driver=args.driver, inputs=args.inputs,
                    start=args.start, stop=args.stop, steps=args.steps, output=args.output)
     if args.csv:
@@ -211,9 +209,7 @@ def cmd_forces(args) -> int:
         output_file(args.csv, what="CSV")
     for path, what in ((args.draw, "free bodies"), (args.polygon, "force polygons")):
         if path:
-            if not str(path).lower().endswith(".svg"):
-                raise OutputError(path, f"the {what} are drawn as SVG: give a .svg file")
-            output_file(path, what="drawing")
+            svg_file(path, what=what)
     if args.plot:
         picture_file(args.plot, what="plot")
     at = args.at

@@ -9,7 +9,7 @@ from pathlib import Path
 
 from chaingraph.errors import ChainGraphError, OutputError
 
-__all__ = ['write_text', 'Writing', 'output_file', 'output_folder', 'picture_file']
+__all__ = ['write_text', 'Writing', 'output_file', 'output_folder', 'picture_file', 'svg_file']
 
 
 def write_text(path, text) -> None:
@@ -80,3 +80,10 @@ def picture_file(path, *, what):
             raise OutputError(path, f"unknown picture format '.{suffix}' for the {what}; "
                                     f"one of {', '.join('.' + f for f in sorted(formats))}")
     return output_file(path, what=what)
+
+
+def svg_file(path, *, what):
+    """An output drawn as SVG only: a ``.svg`` file, then as :func:`output_file`."""
+    if not str(path).lower().endswith(".svg"):
+        raise OutputError(path, f"the {what} are drawn as SVG: give a .svg file")
+    return output_file(path, what="drawing")

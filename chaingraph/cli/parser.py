@@ -31,6 +31,26 @@ class _Parser(argparse.ArgumentParser):
         usage = " ".join(self.format_usage().split())
         self.exit(2, f"{self.prog}: error: {message} ({usage})\n")
 
+
+def _inversion_arguments(p, *, input_help="an input joint; repeat it, one per degree of "
+                                            "freedom"):
+    """--fixed, and --driver or --input: the inversion and its inputs, as solve takes them."""
+    p.add_argument("--fixed", metavar="LINK", help="the fixed link")
+    given = p.add_mutually_exclusive_group()
+    given.add_argument("--driver", metavar="LINK",
+                       help="the input link, pinned to the fixed link by an R joint")
+    given.add_argument("--input", dest="inputs", action="append", metavar="JOINT",
+                       help=input_help)
+
+
+def _sweep_arguments(p, *, first="the first input's first value (degrees, or slide for a "
+                                 "P input)", last="the first input's last value"):
+    """--from, --to and --steps: the sweep, as solve takes it."""
+    p.add_argument("--from", dest="start", type=float, metavar="X", help=first)
+    p.add_argument("--to", dest="stop", type=float, metavar="X", help=last)
+    p.add_argument("--steps", type=whole_number, default=360, metavar="N",
+                   help="equal intervals of the sweep (N + 1 rows; default 360)")
+
 def build_parser() -> argparse.ArgumentParser:
     parser = _Parser(
         prog="chaingraph",
@@ -66,19 +86,9 @@ def build_parser() -> argparse.ArgumentParser:
                                    "inversion --fixed and --driver or --input choose) over the "
                                    "input sweep, in the assembly mode of the drawn pose.")
     p.add_argument("file", metavar="FILE", help="a mechanism file (TOML) with a drawn pose")
-    p.add_argument("--fixed", metavar="LINK", help="the fixed link")
-    given = p.add_mutually_exclusive_group()
-    given.add_argument("--driver", metavar="LINK",
-                       help="the input link, pinned to the fixed link by an R joint")
-    given.add_argument("--input", dest="inputs", action="append", metavar="JOINT",
-                       help="an input joint (R or P, between any two links); repeat it, "
-                            "one per degree of freedom")
-    p.add_argument("--from", dest="start", type=float, metavar="X",
-                   help="the first input's first value (degrees, or slide for a P input)")
-    p.add_argument("--to", dest="stop", type=float, metavar="X",
-                   help="the first input's last value")
-    p.add_argument("--steps", type=whole_number, default=360, metavar="N",
-                   help="equal intervals of the sweep (N + 1 rows; default 360)")
+    _inversion_arguments(p, input_help="an input joint (R or P, between any two links); "
+                                       "repeat it, one per degree of freedom")
+    _sweep_arguments(p)
     p.add_argument("--output", metavar="NAME",
                    help="the summary's output instead of the file's: a link, a point or "
                         "a joint")
@@ -119,21 +129,12 @@ def build_parser() -> argparse.ArgumentParser:
                                    "--static.")
     p.add_argument("file", metavar="FILE", help="a mechanism file (TOML) with units and masses "
                                                "or loads")
-    p.add_argument("--fixed", metavar="LINK", help="the fixed link")
-    given = p.add_mutually_exclusive_group()
-    given.add_argument("--driver", metavar="LINK",
-                       help="the input link, pinned to the fixed link by an R joint")
-    given.add_argument("--input", dest="inputs", action="append", metavar="JOINT",
-                       help="an input joint; repeat it, one per degree of freedom")
+    _inversion_arguments(p)
     p.add_argument("--at", action="append", type=float, metavar="X",
                    help="one pose: the input value (degrees, or slide for a P input); with "
                         "several inputs the first's value, or repeat it, one per input")
-    p.add_argument("--from", dest="start", type=float, metavar="X",
-                   help="the first input's first value of the sweep")
-    p.add_argument("--to", dest="stop", type=float, metavar="X",
-                   help="the first input's last value of the sweep")
-    p.add_argument("--steps", type=whole_number, default=360, metavar="N",
-                   help="equal intervals of the sweep (N + 1 rows; default 360)")
+    _sweep_arguments(p, first="the first input's first value of the sweep",
+                     last="the first input's last value of the sweep")
     p.add_argument("--omega", type=float, metavar="W",
                    help="the (first) input's speed (default: the file's, else 1)")
     p.add_argument("--static", action="store_true", help="leave out the links' inertia")
@@ -166,12 +167,7 @@ def build_parser() -> argparse.ArgumentParser:
                        help="the input value (degrees, or slide for a P input; default: "
                             "the drawn pose); with several inputs the first's value, or "
                             "repeat it, one per input")
-        p.add_argument("--fixed", metavar="LINK", help="the fixed link")
-        given = p.add_mutually_exclusive_group()
-        given.add_argument("--driver", metavar="LINK",
-                           help="the input link, pinned to the fixed link by an R joint")
-        given.add_argument("--input", dest="inputs", action="append", metavar="JOINT",
-                           help="an input joint; repeat it, one per degree of freedom")
+        _inversion_arguments(p)
         p.add_argument("--omega", type=float, metavar="W",
                        help="the (first) input's speed (default: the file's, else 1)")
         p.add_argument("--json", action="store_true", help="print JSON")
