@@ -30,6 +30,7 @@ from dataclasses import dataclass, replace
 
 import numpy as np
 
+from chaingraph._util.disjoint import DisjointSets
 from chaingraph.errors import DimensionError, PoseAdjustedWarning
 from chaingraph.geometry import (
     apply,
@@ -481,21 +482,13 @@ class _Solver:
         if len(free) < 2:
             return False
         # components of free bodies joined by constraints
-        parent = {b: b for b in free}
-
-        def root(x):
-            while parent[x] != x:
-                x = parent[x]
-            return x
-
+        bodies = DisjointSets(free)
         for c in self.constraints:
             (ba, _), (bb, _) = self.ends(c)
-            if ba in parent and bb in parent:
-                parent[root(ba)] = root(bb)
-        groups = {}
-        for b in free:
-            groups.setdefault(root(b), []).append(b)
-        return any(self._solve_linear(sorted(g)) for g in groups.values() if len(g) > 1)
+            if ba in bodies.parent and bb in bodies.parent:
+                bodies.join(ba, bb)
+        return any(self._solve_linear(sorted(g)) for g in bodies.blocks().values()
+                   if len(g) > 1)
 
     def _name(self, body):
         links = [x for x, (b, _) in self.body.items() if b == body]

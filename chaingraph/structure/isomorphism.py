@@ -24,6 +24,7 @@ import importlib.util
 from dataclasses import dataclass
 from functools import lru_cache
 
+from chaingraph._util.disjoint import DisjointSets
 from chaingraph.errors import ChainStructureError
 
 __all__ = ["Canon", "canonical", "canonical_form", "is_isomorphic", "isomorphism",
@@ -89,27 +90,8 @@ def _individualize(colors, v):
     return [ranks[k] for k in keyed]
 
 
-class _Partition:
-    """Union-find over 0..n-1: blocks merged by ``join``, named by their smallest member."""
-
-    def __init__(self, n):
-        self.parent = list(range(n))
-
-    def find(self, x):
-        parent = self.parent
-        while parent[x] != x:
-            parent[x] = parent[parent[x]]
-            x = parent[x]
-        return x
-
-    def join(self, x, y):
-        a, b = self.find(x), self.find(y)
-        if a != b:
-            self.parent[max(a, b)] = min(a, b)
-
-
 def orbits_of(generators, n, fixing=()):
-    blocks = _Partition(n)
+    blocks = DisjointSets(n)
     for g in generators:
         if all(g[p] == p for p in fixing):
             for x in range(n):
@@ -344,7 +326,7 @@ def pair_orbits(chain, pairs, *, oriented: bool = True) -> list[tuple[tuple[str,
 def _group(items, generators, *, key, act=None):
     act = act or (lambda g, x: g[x])
     index = {x: i for i, x in enumerate(items)}
-    blocks = _Partition(len(items))
+    blocks = DisjointSets(len(items))
     for g in generators:
         for x, i in index.items():
             j = index.get(act(g, x))

@@ -16,6 +16,8 @@ from chaingraph.structure.atlas import atlas_graphs
 from chaingraph.structure.atlas.multiple import multiple_atlas
 from chaingraph.structure.isomorphism import automorphism_orbits, canonical_form
 
+from .generic_rank import mobility_and_locked, twist
+
 
 def _verdict(links, joints, seed):
     """(mobility, any locked joint) at a random pose, the first link fixed."""
@@ -24,10 +26,7 @@ def _verdict(links, joints, seed):
     rows, rates = [], []
 
     def block(link, values):
-        row = np.zeros(cols)
-        if link:
-            row[3 * (link - 1):3 * link] = values
-        return row
+        return twist(cols, link, values)
     for j in joints:
         x, y = rnd.normal(size=2)
         for other in j[1:]:
@@ -35,11 +34,8 @@ def _verdict(links, joints, seed):
                 rows.append(block(j[0], comp) - block(other, comp))
         for a, b in itertools.combinations(j, 2):
             rates.append(block(b, (1, 0, 0)) - block(a, (1, 0, 0)))
-    _, s, vt = np.linalg.svd(np.array(rows))
-    rank = int((s > 1e-9 * s[0]).sum())
-    kernel = vt[rank:]
-    locked = any(np.abs(kernel @ r).max(initial=0) < 1e-9 for r in rates)
-    return cols - rank, locked
+    mobility, locked = mobility_and_locked(rows, rates, cols)
+    return mobility, bool(locked)
 
 
 def _direct(links, dof):

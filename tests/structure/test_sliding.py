@@ -14,6 +14,9 @@ from chaingraph.structure.atlas import atlas_graphs
 from chaingraph.structure.atlas.sliding import admissible, generic_verdicts, sliding_atlas
 from chaingraph.structure.isomorphism import automorphism_orbits, canonical_form
 
+from .generic_rank import mobility_and_locked, twist
+
+
 def generic_verdict(links, edges, kinds, dof, seed):
     """(mobility, locked joints) of the chain at a random pose (random pins, random
     sliding directions), the first link fixed: twists (omega, vx, vy) of the others;
@@ -24,10 +27,7 @@ def generic_verdict(links, edges, kinds, dof, seed):
     rows, rates = [], []
 
     def block(link, values):
-        row = np.zeros(cols)
-        if link:
-            row[3 * (link - 1):3 * link] = values
-        return row
+        return twist(cols, link, values)
     for (a, b), k in zip(edges, kinds):
         x, y = rnd.normal(size=2)
         if k == "R":             # the pin's velocity is one point's on both links
@@ -42,12 +42,7 @@ def generic_verdict(links, edges, kinds, dof, seed):
             rows.append(block(a, across) - block(b, across))
             along = (ny * y + nx * x, -ny, nx)
             rates.append(block(b, along) - block(a, along))
-    matrix = np.array(rows)
-    _, s, vt = np.linalg.svd(matrix)
-    rank = int((s > 1e-9 * s[0]).sum())
-    kernel = vt[rank:]
-    locked = [i for i, r in enumerate(rates) if np.abs(kernel @ r).max(initial=0) < 1e-9]
-    return cols - rank, locked
+    return mobility_and_locked(rows, rates, cols)
 
 
 def admissible_by_rank(links, edges, kinds, dof):

@@ -24,6 +24,7 @@ from __future__ import annotations
 import itertools
 from dataclasses import dataclass
 
+from chaingraph._util.disjoint import DisjointSets
 from chaingraph.model.chain import Chain, Joint
 from chaingraph.structure.atlas.generic import joint_verdicts
 from chaingraph.structure.atlas.sliding import Entries
@@ -117,25 +118,12 @@ def _merges(links, edges):
         chosen = [edges[i] for i in range(m) if mask >> i & 1]
         if len(chosen) == 1:
             continue
-        parent = list(range(links))
-
-        def root(x):
-            while parent[x] != x:
-                parent[x] = parent[parent[x]]
-                x = parent[x]
-            return x
-        forest = True
-        for a, b in chosen:
-            ra, rb = root(a), root(b)
-            if ra == rb:
-                forest = False
-                break
-            parent[ra] = rb
-        if not forest:
-            continue
+        trees = DisjointSets(links)
+        if not all(trees.join(a, b) for a, b in chosen):
+            continue                                   # a loop: not a forest
         components = {}
         for e in chosen:
-            components.setdefault(root(e[0]), []).append(e)
+            components.setdefault(trees.find(e[0]), []).append(e)
         options = []
         for part in components.values():
             ways = [[tuple(sorted({x for e in block for x in e})) for block in blocks]

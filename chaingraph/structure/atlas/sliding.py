@@ -37,6 +37,7 @@ import json
 from dataclasses import dataclass
 from pathlib import Path
 
+from chaingraph._util.disjoint import DisjointSets
 from chaingraph.errors import AtlasSizeError
 from chaingraph.model.chain import Chain, Joint
 from chaingraph.model.chainfile import dumps
@@ -190,22 +191,12 @@ def admissible(links, edges, kinds):
     >>> [admissible(4, ring, k) for k in ("RRRR", "RRRP", "RRPP", "RPRP", "RPPP", "PPPP")]
     [None, None, None, None, 'locked', 'mobility']
     """
-    parent = list(range(links))
-
-    def root(x):
-        while parent[x] != x:
-            parent[x] = parent[parent[x]]
-            x = parent[x]
-        return x
+    slides = DisjointSets(links)
     for j, k in zip(edges, kinds):
-        if k == "P":
-            a, b = j
-            ra, rb = root(a), root(b)
-            if ra == rb:
-                return "mobility"
-            parent[ra] = rb
+        if k == "P" and not slides.join(*j):
+            return "mobility"
     for j, k in zip(edges, kinds):
-        if k == "R" and len({root(x) for x in j}) < len(j):
+        if k == "R" and len({slides.find(x) for x in j}) < len(j):
             return "locked"
     return None
 
@@ -243,19 +234,11 @@ def _group(generators, n, m):
 
 def _orbit_representatives(states, act):
     """The least state of each orbit of ``states`` (ints) under the maps in ``act``."""
-    parent = {s: s for s in states}
-
-    def root(x):
-        while parent[x] != x:
-            parent[x] = parent[parent[x]]
-            x = parent[x]
-        return x
+    orbits = DisjointSets(states)
     for f in act:
         for s in states:
-            a, b = root(s), root(f(s))
-            if a != b:
-                parent[max(a, b)] = min(a, b)
-    return sorted({root(s) for s in states})
+            orbits.join(s, f(s))
+    return sorted(orbits.blocks())
 
 
 def _permute_mask(mask, eperm):
@@ -268,18 +251,11 @@ def _permute_mask(mask, eperm):
 
 def _link_orbits(n, elements):
     """How many orbits the links fall into under ``elements``."""
-    parent = list(range(n))
-
-    def root(x):
-        while parent[x] != x:
-            x = parent[x]
-        return x
+    orbits = DisjointSets(n)
     for perm, _ in elements:
         for x in range(n):
-            a, b = root(x), root(perm[x])
-            if a != b:
-                parent[max(a, b)] = min(a, b)
-    return len({root(x) for x in range(n)})
+            orbits.join(x, perm[x])
+    return orbits.count
 
 
 def sliding_atlas(base, *, prismatic, oriented=False) -> SlidingAtlas:
