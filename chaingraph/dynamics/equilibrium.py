@@ -21,7 +21,7 @@ from dataclasses import dataclass
 import numpy as np
 
 from chaingraph.errors import MechanismError
-from chaingraph.geometry import cross
+from chaingraph.geometry import cross, rotate, unit_deg
 from chaingraph.model.chain import mass_centre
 
 __all__ = ["UNIT_METRES", "KinematicState", "Solution", "solve_equilibrium"]
@@ -37,48 +37,20 @@ _SINGULAR = 1e-10
 
 @dataclass(frozen=True)
 class KinematicState:
-    """What the force solve needs of the motion, in SI units, at n steps: per link its
-    frame origin ``origin[link]`` (x, y arrays, m), its rotation from the drawn pose
-    ``turn[link]`` (rad), the origin's velocity and acceleration, and the angular
-    velocity and acceleration; the input rates ``rates[joint]`` (rad/s or m/s)."""
+    """What the force solve needs of the motion at n steps, in SI units: each link's
+    :class:`~chaingraph.kinematics.pose.LinkMotion` with arrays for fields (its frame
+    origin about the plan's origin in m, its rotation from the drawn pose, their
+    rates), and each input's rate ``rates[joint]`` (rad/s or m/s); ``rates_known``
+    when the rates are the solver's own, NaN at its dead centres."""
 
     n: int
-    origin: dict
-    turn: dict
-    velocity: dict
-    omega: dict
-    acceleration: dict
-    alpha: dict
+    links: dict
     rates: dict
-    rates_known: bool = False     # the rates are the solver's, NaN at its dead centres
-
-    def point(self, link, p):
-        """World position (m) of the link's point drawn at ``p`` (m, the drawn frame
-        about the same origin as the state's)."""
-        c, s = np.cos(self.turn[link]), np.sin(self.turn[link])
-        x0, y0 = self.origin[link]
-        return x0 + c * p[0] - s * p[1], y0 + s * p[0] + c * p[1]
-
-    def velocity_at(self, link, q):
-        """Velocity of the link's point now at ``q`` (world, m)."""
-        x0, y0 = self.origin[link]
-        w = self.omega[link]
-        return (self.velocity[link][0] - w * (q[1] - y0),
-                self.velocity[link][1] + w * (q[0] - x0))
-
-    def acceleration_at(self, link, q):
-        """Acceleration of the link's point now at ``q`` (world, m)."""
-        x0, y0 = self.origin[link]
-        rx, ry = q[0] - x0, q[1] - y0
-        w, al = self.omega[link], self.alpha[link]
-        return (self.acceleration[link][0] - al * ry - w * w * rx,
-                self.acceleration[link][1] + al * rx - w * w * ry)
+    rates_known: bool = False
 
     def direction(self, link, degrees):
         """The unit vector drawn at ``degrees`` on the link, turned with it."""
-        a = math.radians(degrees)
-        c, s = np.cos(self.turn[link]), np.sin(self.turn[link])
-        return c * math.cos(a) - s * math.sin(a), s * math.cos(a) + c * math.sin(a)
+        return rotate(unit_deg(degrees), self.links[link].angle)
 
 
 @dataclass(frozen=True)
@@ -153,7 +125,7 @@ def solve_equilibrium(chain, plan, state, *, static=False, metres=1.0):
     where = {}
     for j in chain.joints:
         link = j.links[1] if j.kind == "P" else (fixed if fixed in j.links else j.links[0])
-        where[j.id] = state.point(link, drawn(j.at))
+        where[j.id] = state.links[link].moved(drawn(j.at))
     friction = [j for j in chain.joints if j.kind == "P" and j.friction]
     slide_speed, axis = {}, {}
     for j in chain.joints:
@@ -161,8 +133,8 @@ def solve_equilibrium(chain, plan, state, *, static=False, metres=1.0):
             t = state.direction(j.links[0], j.axis)
             axis[j.id] = t
             q = where[j.id]
-            vb = state.velocity_at(j.links[1], q)
-            vg = state.velocity_at(j.links[0], q)
+            vb = state.links[j.links[1]].velocity_at(q)
+            vg = state.links[j.links[0]].velocity_at(q)
             slide_speed[j.id] = (vb[0] - vg[0]) * t[0] + (vb[1] - vg[1]) * t[1]
 
     def put(a, link, col, f, q, sign=1.0):
@@ -181,9 +153,8 @@ def solve_equilibrium(chain, plan, state, *, static=False, metres=1.0):
 
     one, zero = np.ones(n), np.zeros(n)
 
-    def matrix(sigma):
-        """The equilibrium matrix for the friction signs ``sigma`` (per friction joint,
-        arrays of +-1)."""
+    def matrix():
+        """The equilibrium matrix without friction: one column per unknown."""
         a = np.zeros((n, m_rows, m_cols))
         for c, (kind, j, k) in enumerate(cols):
             if kind in ("Fx", "Fy"):
@@ -193,13 +164,8 @@ def solve_equilibrium(chain, plan, state, *, static=False, metres=1.0):
                 put(a, j.links[-1], c, f, q, -1.0)
             elif kind == "N":
                 t = axis[j.id]
-                d = (-t[1], t[0])
-                if j.friction:
-                    s = sigma[j.id] * np.sign(slide_speed[j.id]) * j.friction
-                    # on the guide, friction pulls along the block's sliding velocity
-                    d = (d[0] + s * t[0], d[1] + s * t[1])
-                put(a, j.links[0], c, d, where[j.id])
-                put(a, j.links[1], c, d, where[j.id], -1.0)
+                put(a, j.links[0], c, (-t[1], t[0]), where[j.id])
+                put(a, j.links[1], c, (-t[1], t[0]), where[j.id], -1.0)
             elif kind == "M":
                 put_couple(a, j.links[0], c, one * size)
                 put_couple(a, j.links[1], c, one * size, -1.0)
@@ -213,8 +179,33 @@ def solve_equilibrium(chain, plan, state, *, static=False, metres=1.0):
                     put(a, j.a, c, t, where[j.joint], -1.0)
         return a
 
+    base = matrix()
+    normal_cols = {j.id: next(c for c, (kind, jj, _) in enumerate(cols)
+                              if kind == "N" and jj.id == j.id) for j in friction}
+
+    def sliding_friction(j, sigma, steps=slice(None)):
+        """Friction's share of the guide's force per unit normal force, at ``steps``: on
+        the guide it pulls along the block's sliding velocity, mu |N| sign(v) with
+        |N| = sigma N (``sigma`` over those steps)."""
+        return sigma[j.id] * np.sign(slide_speed[j.id][steps]) * j.friction
+
+    def with_friction(sigma, steps=slice(None)):
+        """The matrix at ``steps`` with the friction forces for the signs ``sigma`` of
+        the normal forces (per friction joint, arrays over those steps)."""
+        if not friction:
+            return base[steps]
+        a = base[steps].copy()
+        for j in friction:
+            t, c = axis[j.id], normal_cols[j.id]
+            s = sliding_friction(j, sigma, steps)
+            f = (s * t[0][steps], s * t[1][steps])
+            q = (where[j.id][0][steps], where[j.id][1][steps])
+            put(a, j.links[0], c, f, q)
+            put(a, j.links[1], c, f, q, -1.0)
+        return a
+
     # ---- the known forces: gravity, loads, inertia (d'Alembert)
-    rhs = np.zeros((n, m_rows))
+    rhs = np.zeros((n, m_rows, 1))           # the known forces, as one more column
     power = np.zeros(n)                       # of gravity, loads and inertia
     applied, couples = [], []                 # (link, what, point, force), (link, what, value)
     g = chain.gravity or (0.0, 0.0)
@@ -222,23 +213,24 @@ def solve_equilibrium(chain, plan, state, *, static=False, metres=1.0):
         link = mass.link
         if link == fixed:
             continue
-        q = state.point(link, drawn(mass_centre(chain, mass)))
-        v = state.velocity_at(link, q)
+        motion = state.links[link]
+        q = motion.moved(drawn(mass_centre(chain, mass)))
+        v = motion.velocity_at(q)
         f = (mass.mass * g[0] * one, mass.mass * g[1] * one)
         if chain.gravity is not None and mass.mass:
             applied.append((link, "weight", q, f))
         couple = zero
         if not static:
-            acc = state.acceleration_at(link, q)
+            acc = motion.acceleration_at(q)
             inertia = (-mass.mass * acc[0], -mass.mass * acc[1])
             applied.append((link, "inertia force", q, inertia))
             f = (f[0] + inertia[0], f[1] + inertia[1])
-            couple = -mass.inertia * state.alpha[link]
+            couple = -mass.inertia * motion.alpha
             if mass.inertia:
                 couples.append((link, "inertia couple", couple))
-        put(rhs[:, :, None], link, 0, f, q)
-        put_couple(rhs[:, :, None], link, 0, couple)
-        power += f[0] * v[0] + f[1] * v[1] + couple * state.omega[link]
+        put(rhs, link, 0, f, q)
+        put_couple(rhs, link, 0, couple)
+        power += f[0] * v[0] + f[1] * v[1] + couple * motion.omega
     for load in chain.loads:
         link = load.on
         if link == fixed:
@@ -247,16 +239,16 @@ def solve_equilibrium(chain, plan, state, *, static=False, metres=1.0):
             if load.at in where:
                 q = where[load.at]
             else:
-                q = state.point(link, drawn(chain.point(load.at).at))
+                q = state.links[link].moved(drawn(chain.point(load.at).at))
             f = (load.force[0] * one, load.force[1] * one)
             applied.append((link, "load", q, f))
-            put(rhs[:, :, None], link, 0, f, q)
-            v = state.velocity_at(link, q)
+            put(rhs, link, 0, f, q)
+            v = state.links[link].velocity_at(q)
             power += f[0] * v[0] + f[1] * v[1]
         if load.torque:
             couples.append((link, "load", load.torque * one))
-            put_couple(rhs[:, :, None], link, 0, load.torque * one)
-            power += load.torque * state.omega[link]
+            put_couple(rhs, link, 0, load.torque * one)
+            power += load.torque * state.links[link].omega
 
     # ---- solve, iterating the friction signs
     at_rest = {j.id: ~(np.abs(slide_speed[j.id]) > 1e-12 * max(size, 1e-12) *
@@ -264,23 +256,18 @@ def solve_equilibrium(chain, plan, state, *, static=False, metres=1.0):
     sigma = {j.id: one.copy() for j in friction}
     known = np.zeros(n, dtype=bool)
     for link in moving:
-        known |= ~np.isfinite(state.omega[link]) | ~np.isfinite(state.velocity[link][0])
+        known |= ~np.isfinite(state.links[link].omega) | ~np.isfinite(state.links[link].velocity[0])
     known = known if state.rates_known else None
-    x, singular = _solve(matrix(sigma), -rhs, known)
-    normal_cols = {j.id: next(c for c, (kind, jj, _) in enumerate(cols)
-                              if kind == "N" and jj.id == j.id) for j in friction}
+    rhs = rhs[:, :, 0]
+    x, singular = _solve(with_friction(sigma), -rhs, known)
     settled = np.ones(n, dtype=bool)
     if friction:
         for _ in range(8):
             new = {k: np.where(x[:, normal_cols[k]] < 0, -1.0, 1.0) for k in sigma}
-            changed = np.zeros(n, dtype=bool)
-            for k in sigma:
-                changed |= new[k] != sigma[k]
-            if not changed.any():
+            if all((new[k] == sigma[k]).all() for k in sigma):
                 break
             sigma = new
-            x, singular = _solve(matrix(sigma), -rhs, known)
-        settled = np.ones(n, dtype=bool)
+            x, singular = _solve(with_friction(sigma), -rhs, known)
         for k in sigma:
             settled &= (np.where(x[:, normal_cols[k]] < 0, -1.0, 1.0) == sigma[k]) | \
                 (x[:, normal_cols[k]] == 0)
@@ -289,13 +276,15 @@ def solve_equilibrium(chain, plan, state, *, static=False, metres=1.0):
             bad = np.nonzero(~settled)[0]
             for combo in itertools.product((1.0, -1.0), repeat=len(sigma)):
                 trial = {k: np.full(bad.size, s) for k, s in zip(sigma, combo)}
-                sub = _sub_matrix(matrix, sigma, trial, bad)
-                xs, sing = _solve(sub, -rhs[bad], None if known is None else known[bad])
+                xs, sing = _solve(with_friction(trial, bad), -rhs[bad],
+                                  None if known is None else known[bad])
                 ok = np.ones(bad.size, dtype=bool)
                 for k, s in zip(sigma, combo):
                     ok &= np.where(xs[:, normal_cols[k]] < 0, -1.0, 1.0) == s
                 done = bad[ok]
                 x[done], singular[done], settled[done] = xs[ok], sing[ok], True
+                for k, s in zip(sigma, combo):
+                    sigma[k][done] = s
                 if settled.all():
                     break
     jammed = ~settled & ~singular
@@ -316,7 +305,7 @@ def solve_equilibrium(chain, plan, state, *, static=False, metres=1.0):
             nn = x[:, c]
             f = (nn * d[0], nn * d[1])
             if j.friction:
-                s = sigma[j.id] * np.sign(slide_speed[j.id]) * j.friction
+                s = sliding_friction(j, sigma)
                 f = (f[0] + s * nn * t[0], f[1] + s * nn * t[1])
             forces[(j.id, j.links[0])] = f
             normal[j.id] = nn
@@ -350,18 +339,10 @@ def solve_equilibrium(chain, plan, state, *, static=False, metres=1.0):
 
 def _speed_scale(state):
     """A typical angular speed of the state (for what counts as a slide at rest)."""
-    w = [np.abs(np.asarray(v)) for v in state.omega.values()]
+    w = [np.abs(np.asarray(m.omega)) for m in state.links.values()]
     r = [abs(np.asarray(v)) for v in state.rates.values()]
     vals = [float(np.nanmax(a)) for a in w + r if np.size(a)]
     return max([v for v in vals if math.isfinite(v)] + [1e-300])
-
-
-def _sub_matrix(matrix, sigma, trial, rows):
-    """The matrix at ``rows`` with the friction signs ``trial`` there."""
-    full = {k: sigma[k].copy() for k in sigma}
-    for k in full:
-        full[k][rows] = trial[k]
-    return matrix(full)[rows]
 
 
 def _solve(a, b, known=None):

@@ -20,7 +20,7 @@ from chaingraph._util.text import short_list, write_columns
 from chaingraph.dynamics.equilibrium import UNIT_METRES, KinematicState, solve_equilibrium
 from chaingraph.errors import MechanismError
 from chaingraph.kinematics import solve
-from chaingraph.kinematics.pose import pose_motion
+from chaingraph.kinematics.pose import LinkMotion, pose_motion
 from chaingraph.kinematics.rates import rates
 from chaingraph.kinematics.sweep import evaluate_near
 
@@ -283,22 +283,18 @@ def _state(plan, tau, omega, metres, *, solved=None):
 
     def arr(v, scale=1.0):
         return np.broadcast_to(np.asarray(v, dtype=float) * scale, (n,)).copy()
-    origin, turn, velocity, om, acceleration, alpha = {}, {}, {}, {}, {}, {}
+    links = {}
     for link in plan.chain.links:
-        p = pose[link]
-        origin[link] = (arr(p[0], metres), arr(p[1], metres))
-        turn[link] = arr(p[2])
-        velocity[link] = (arr(vel[link][0], metres), arr(vel[link][1], metres))
-        om[link] = arr(vel[link][2])
-        acceleration[link] = (arr(acc[link][0], metres), arr(acc[link][1], metres))
-        alpha[link] = arr(acc[link][2])
+        p, v, a = pose[link], vel[link], acc[link]
+        links[link] = LinkMotion(link, (arr(p[0], metres), arr(p[1], metres)), arr(p[2]),
+                                 (arr(v[0], metres), arr(v[1], metres)), arr(v[2]),
+                                 (arr(a[0], metres), arr(a[1], metres)), arr(a[2]))
     input_rates = {item.joint: arr(vel[item.key][2], 1.0 if item.kind == "R" else metres)
                    for item in plan.inputs}
-    return KinematicState(n, origin, turn, velocity, om, acceleration, alpha, input_rates,
-                          rates_known=solved is not None)
+    return KinematicState(n, links, input_rates, rates_known=solved is not None)
 
 
-def _notes(chain, solution, k=None):
+def _notes(solution, k=None):
     """What is not determined (at step k, or at which steps of the sweep)."""
     def hit(mask):
         return bool(mask[k]) if k is not None else bool(np.any(mask))
@@ -327,7 +323,7 @@ def _notes(chain, solution, k=None):
     return tuple(out)
 
 
-def _check_masses(chain, plan):
+def _check_masses(chain):
     name = chain.source or chain.name
     if chain.masses or chain.loads or chain.gravity:
         return
@@ -395,7 +391,7 @@ def forces(mechanism, *, at=None, static=False, fixed=None, driver=None, inputs=
         state = pose_motion(mechanism, at=at, fixed=fixed, driver=driver, inputs=inputs,
                             omega=omega)
         plan = state.plan
-        _check_masses(mechanism, plan)
+        _check_masses(mechanism)
         lead = plan.inputs[plan.lead]
         tau = np.array([state.input if lead.kind == "R" else plan.tau(state.input)])
         kin = _state(plan, tau, state.omega, metres)
@@ -411,7 +407,7 @@ def forces(mechanism, *, at=None, static=False, fixed=None, driver=None, inputs=
             static=static, reactions=_reactions(mechanism, sol, 0, plan.size * metres),
             efforts=tuple(Effort(i.joint, _num(sol.efforts[i.joint][0]),
                                  "N m" if i.kind == "R" else "N") for i in plan.inputs),
-            power_balance=_num(sol.power[0]), notes=_notes(mechanism, sol, 0),
+            power_balance=_num(sol.power[0]), notes=_notes(sol, 0),
             units=mechanism.units, points={k: back(q) for k, q in sol.points.items()},
             dyads=tuple(tuple(step.links) for step in plan.steps if step.kind == "dyad"),
             applied=tuple(AppliedForce(link, what, back(q), (_num(f[0][0]), _num(f[1][0])))
@@ -422,11 +418,8 @@ def forces(mechanism, *, at=None, static=False, fixed=None, driver=None, inputs=
     motion = solve(mechanism, fixed=fixed, driver=driver, inputs=inputs, start=start,
                    stop=stop, steps=steps, omega=omega, summary=True)
     plan = motion.plan
-    _check_masses(mechanism, plan)
-    lead = plan.inputs[plan.lead]
-    values = np.asarray(motion["theta"], dtype=float)
-    tau = values if lead.kind == "R" else plan.tau(values)
-    kin = _state(plan, tau, motion.omega, metres, solved=motion.links)
+    _check_masses(mechanism)
+    kin = _state(plan, motion.links.tau, motion.omega, metres, solved=motion.links)
     sol = solve_equilibrium(mechanism, plan, kin, static=static, metres=metres)
     columns = {k: v for k, v in motion.columns.items()
                if k == "theta" or k.startswith("input:")}
@@ -447,7 +440,7 @@ def forces(mechanism, *, at=None, static=False, fixed=None, driver=None, inputs=
     return SweepForces(name=mechanism.name, fixed=plan.fixed,
                        inputs=tuple(i.joint for i in plan.inputs), static=static,
                        steps=motion.steps, columns=columns, summary=summary,
-                       notes=_notes(mechanism, sol), motion=motion)
+                       notes=_notes(sol), motion=motion)
 
 
 def _reactions(chain, sol, k, size):

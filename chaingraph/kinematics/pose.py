@@ -16,7 +16,7 @@ from dataclasses import dataclass
 import numpy as np
 
 from chaingraph.errors import AssemblyError, MechanismError
-from chaingraph.geometry import turn_by
+from chaingraph.geometry import rotate, turn_by
 from chaingraph.kinematics.columns import reference_link, slide_rates
 from chaingraph.kinematics.equations import check_poses
 from chaingraph.kinematics.motion import as_inputs, check_input_value, plan_of
@@ -34,7 +34,8 @@ class LinkMotion:
     ``point`` is a reference point of the link (any: the link's frame origin), with
     its ``velocity`` and ``acceleration``; ``omega`` and ``alpha`` the link's angular
     velocity and acceleration (rad/s, rad/s^2, counter-clockwise positive); ``angle``
-    the rotation of the link from its drawn pose (radians)."""
+    the rotation of the link from its drawn pose (radians). The fields may as well be
+    arrays, one value per step of a sweep (``chaingraph.dynamics`` holds them so)."""
 
     link: str
     point: tuple
@@ -43,6 +44,12 @@ class LinkMotion:
     omega: float
     acceleration: tuple
     alpha: float
+
+    def moved(self, offset):
+        """Where the link's point is now that was drawn at ``offset`` from where
+        ``point`` was drawn: point + R(angle) offset."""
+        r = rotate(offset, self.angle)
+        return (self.point[0] + r[0], self.point[1] + r[1])
 
     def velocity_at(self, p):
         """Velocity of the link's point now at ``p``: v_O + omega k x (p - O)."""
