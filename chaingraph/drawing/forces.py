@@ -10,13 +10,12 @@ turning-moment diagram is a matplotlib plot (:func:`plot_turning_moment`).
 
 from __future__ import annotations
 
-import html
 import math
 
 import numpy as np
 
 from chaingraph.drawing.plots import finish, pyplot_module
-from chaingraph.drawing.scene import COLOURS, Shape, View, svg_elements
+from chaingraph.drawing.scene import COLOURS, Shape, View, svg_document, svg_elements
 from chaingraph.geometry import convex_hull
 
 __all__ = ["free_body_shapes", "free_body_svg", "force_polygon_shapes", "force_polygon_svg",
@@ -32,7 +31,7 @@ def _newtons(f):
     return f"{m / 1000:.3g} kN" if m >= 1000 else f"{m:.3g} N"
 
 
-def _forces_on(result, link):
+def forces_on(result, link):
     """(what, colour key, point, force) of every force on ``link``."""
     chain = result.chain
     out = []
@@ -70,7 +69,7 @@ def free_body_shapes(result):
     extent = max(max(max(p[0] for p in pts) - min(p[0] for p in pts),
                      max(p[1] for p in pts) - min(p[1] for p in pts)) for pts in bodies.values())
     extent = max(extent, 0.2 * span)
-    forces = {link: _forces_on(result, link) for link in links}
+    forces = {link: forces_on(result, link) for link in links}
     biggest = max([math.hypot(*f) for fs in forces.values() for _, _, _, f in fs] + [1e-300])
     arrow = 0.45 * extent                      # the largest force's length
     scale = arrow / biggest
@@ -102,25 +101,12 @@ def free_body_shapes(result):
             shapes.append(Shape("circle", "pin", (p,), radius=size, fill="white",
                                 stroke="#222222", width=0.4 * size))
         for what, key, q, f in forces[link]:
-            length = math.hypot(*f) * scale
-            if length < 0.5 * size:
+            if math.hypot(*f) * scale < 0.5 * size:
                 continue
             head = at(q)
             tail = (head[0] - f[0] * scale, head[1] - f[1] * scale)
-            ux, uy = f[0] * scale / length, f[1] * scale / length
-            w = 1.6 * size
-            tip = [head, (head[0] - 2.5 * w * ux - w * uy, head[1] - 2.5 * w * uy + w * ux),
-                   (head[0] - 2.5 * w * ux + w * uy, head[1] - 2.5 * w * uy - w * ux)]
-            c = ARROWS[key]
-            dash = (2 * size, size) if key == "inertia force" else ()
-            shapes.append(Shape("line", "force", (tail, (head[0] - 2 * w * ux,
-                                                         head[1] - 2 * w * uy)),
-                                (("force", what),), stroke=c, width=0.6 * size, dash=dash))
-            shapes.append(Shape("polygon", "arrowhead", tuple(tip), fill=c, stroke=c,
-                                width=0.1 * size))
-            shapes.append(Shape("text", "force-label", ((tail[0] + 0.6 * size,
-                                                          tail[1] + 0.6 * size),),
-                                text=f"{what} {_newtons(f)}", size=2.2 * size, halo=0.6 * size))
+            shapes += _arrow(tail, head, ARROWS[key], size, what, f, label="tail",
+                             dash=(2 * size, size) if key == "inertia force" else ())
         line = 0
         for c in result.couples:
             if c.link == link and c.value is not None and abs(c.value) > 1e-12:
@@ -145,8 +131,8 @@ def force_polygon_shapes(result):
     panels = []
     for a, b in result.dyads:
         middle = [j.id for j in chain.joints if a in j.links and b in j.links]
-        on_a = [x for x in _forces_on(result, a) if x[0] not in middle]
-        on_b = [x for x in _forces_on(result, b) if x[0] not in middle]
+        on_a = [x for x in forces_on(result, a) if x[0] not in middle]
+        on_b = [x for x in forces_on(result, b) if x[0] not in middle]
         if middle and on_a and on_b:
             panels.append((a, b, middle[0], on_a, on_b))
     if not panels:
@@ -170,32 +156,36 @@ def force_polygon_shapes(result):
                             text=f"dyad {a}, {b}", size=3.2 * size))
         for k, (what, key, _, f) in enumerate(on_a + on_b):
             p, q = at(tips[k]), at(tips[k + 1])
-            c = ARROWS[key]
-            shapes += _arrow(p, q, c, size, what, f, dash=(2 * size, size)
-                             if key == "inertia force" else ())
+            shapes += _arrow(p, q, ARROWS[key], size, what, f,
+                             head=min(1.6 * size, 0.2 * math.dist(p, q)),
+                             dash=(2 * size, size) if key == "inertia force" else ())
         # the middle joint's reaction on the first link closes its polygon
         p, q = at(tips[len(on_a)]), at(tips[0])
         f = (tips[0][0] - tips[len(on_a)][0], tips[0][1] - tips[len(on_a)][1])
-        shapes += _arrow(p, q, "#b2182b", size, f"{mid} on {a}", f, dash=(size, size))
+        shapes += _arrow(p, q, "#b2182b", size, f"{mid} on {a}", f, dash=(size, size),
+                         head=min(1.6 * size, 0.2 * math.dist(p, q)))
     view = View((0.0, -cell), (len(panels) * cell, 0.0), 0.02 * cell)
     return shapes, view
 
 
-def _arrow(p, q, colour, size, what, f, dash=()):
-    """An arrow from p to q labelled with ``what`` and the force's size."""
+def _arrow(p, q, colour, size, what, f, *, dash=(), head=None, label="mid"):
+    """An arrow from p to q for the force ``f``, labelled with ``what`` and its size
+    (at the arrow's middle, or by its ``tail``): a shaft, and a head ``head`` wide (1.6
+    pin radii ``size`` unless given)."""
     length = math.dist(p, q)
     if length < 1e-12:
         return []
     ux, uy = (q[0] - p[0]) / length, (q[1] - p[1]) / length
-    w = min(1.6 * size, 0.2 * length)
+    w = 1.6 * size if head is None else head
     tip = [q, (q[0] - 2.5 * w * ux - w * uy, q[1] - 2.5 * w * uy + w * ux),
            (q[0] - 2.5 * w * ux + w * uy, q[1] - 2.5 * w * uy - w * ux)]
-    mid = (0.5 * (p[0] + q[0]) + 0.8 * size, 0.5 * (p[1] + q[1]) + 0.8 * size)
+    at = ((p[0] + 0.6 * size, p[1] + 0.6 * size) if label == "tail" else
+          (0.5 * (p[0] + q[0]) + 0.8 * size, 0.5 * (p[1] + q[1]) + 0.8 * size))
     return [Shape("line", "force", (p, (q[0] - 2 * w * ux, q[1] - 2 * w * uy)),
                   (("force", what),), stroke=colour, width=0.6 * size, dash=dash),
             Shape("polygon", "arrowhead", tuple(tip), fill=colour, stroke=colour,
                   width=0.1 * size),
-            Shape("text", "force-label", (mid,), text=f"{what} {_newtons(f)}",
+            Shape("text", "force-label", (at,), text=f"{what} {_newtons(f)}",
                   size=2.2 * size, halo=0.6 * size)]
 
 
@@ -208,18 +198,8 @@ def force_polygon_svg(result, *, width=None) -> str | None:
         return None
     shapes, view = made
     width = width or int(420 * view.hi[0])
-    return _svg_text(shapes, view, width, f"{result.name}: force polygons of the dyads")
-
-
-def _svg_text(shapes, view, width, title):
-    w, h = view.size
-    height = int(round(width * h / w))
-    return "\n".join(
-        ['<?xml version="1.0"?>',
-         f'<svg xmlns="http://www.w3.org/2000/svg" width="{width}" height="{height}" '
-         f'viewBox="0 0 {w:.6g} {h:.6g}">', f"<title>{html.escape(title)}</title>",
-         '<rect class="background" width="100%" height="100%" fill="white"/>',
-         *svg_elements(view, shapes), "</svg>"]) + "\n"
+    return svg_document(view, svg_elements(view, shapes), width=width,
+                        title=f"{result.name}: force polygons of the dyads")
 
 
 def free_body_svg(result, *, width=900) -> str:
@@ -237,7 +217,8 @@ def free_body_svg(result, *, width=900) -> str:
     shapes, view = free_body_shapes(result)
     kind = "static" if result.static else "kinetostatic"
     at = ", ".join(f"{j} = {v:.6g}" for j, v in zip(result.inputs, result.at))
-    return _svg_text(shapes, view, width, f"{result.name}: free bodies ({kind}) at {at}")
+    return svg_document(view, svg_elements(view, shapes), width=width,
+                        title=f"{result.name}: free bodies ({kind}) at {at}")
 
 
 def plot_turning_moment(result, path=None):

@@ -17,7 +17,7 @@ from dataclasses import replace
 
 import numpy as np
 
-from chaingraph.drawing.scene import Scene, Shape, frame_shapes, svg_elements
+from chaingraph.drawing.scene import Scene, Shape, frame_shapes, svg_document, svg_elements
 from chaingraph.errors import MechanismError
 from chaingraph.kinematics import solve
 from chaingraph.kinematics.summary import output_signal
@@ -166,18 +166,12 @@ def limits_svg(motion, *, width=640) -> str:
     (2, True, True)
     """
     scene, shapes = limit_shapes(motion)
-    w, h = scene.size
-    height = int(round(width * h / w))
     s = motion.summary
     title = f"{motion.name}: limit positions"
     if s.time_ratio is not None:
         title += f" (time ratio {s.time_ratio:.4g})"
-    return "\n".join(
-        ['<?xml version="1.0"?>',
-         f'<svg xmlns="http://www.w3.org/2000/svg" width="{width}" height="{height}" '
-         f'viewBox="0 0 {w:.6g} {h:.6g}">', f"<title>{html.escape(title)}</title>",
-         '<rect class="background" width="100%" height="100%" fill="white"/>',
-         *svg_elements(scene, shapes),
-         f'<text x="{0.03 * w:.4g}" y="{0.05 * scene.span:.4g}" '
-         f'font-size="{0.03 * scene.span:.3g}" font-family="sans-serif">'
-         f'{html.escape(title)}</text>', "</svg>"]) + "\n"
+    heading = (f'<text x="{0.03 * scene.size[0]:.4g}" y="{0.05 * scene.span:.4g}" '
+               f'font-size="{0.03 * scene.span:.3g}" font-family="sans-serif">'
+               f'{html.escape(title)}</text>')
+    return svg_document(scene, [*svg_elements(scene, shapes), heading], width=width,
+                        title=title)

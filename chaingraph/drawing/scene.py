@@ -21,7 +21,7 @@ import numpy as np
 
 from chaingraph.geometry import convex_hull, polygon_area
 
-__all__ = ["View", "Scene", "Shape", "frame_shapes", "path_shapes", "svg_elements", "draw_shapes",
+__all__ = ["View", "Scene", "Shape", "svg_document", "frame_shapes", "path_shapes", "svg_elements", "draw_shapes",
            "COLOURS"]
 
 #: the links' colours, in the order of the chain's links
@@ -390,6 +390,20 @@ def path_shapes(scene, *, steps=None):
 
 
 # -- the SVG emitter -------------------------------------------------------------------
+def svg_document(view, elements, *, width, title) -> str:
+    """A standalone SVG picture of ``view`` (a :class:`View`) at ``width`` pixels: a
+    white ground, the ``elements`` (SVG text) and the ``title``."""
+    w, h = view.size
+    height = int(round(width * h / w))
+    return "\n".join(
+        ['<?xml version="1.0"?>',
+         f'<svg xmlns="http://www.w3.org/2000/svg" width="{width}" height="{height}" '
+         f'viewBox="0 0 {w:.6g} {h:.6g}">', f"<title>{html.escape(title)}</title>",
+         '<rect class="background" width="100%" height="100%" fill="white"/>',
+         *elements, "</svg>"]) + "\n"
+
+
+
 def svg_elements(scene, shapes):
     """The shapes as SVG elements, in the scene's picture coordinates (y down)."""
     return [_svg(scene, s) for s in shapes]

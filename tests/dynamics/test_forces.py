@@ -500,13 +500,13 @@ def test_the_free_bodies_and_the_turning_moment_diagram(tmp_path):
 
 
 def test_the_arrows_are_the_forces_to_one_scale():
-    from chaingraph.drawing.forces import _forces_on, free_body_shapes
+    from chaingraph.drawing.forces import forces_on, free_body_shapes
     f = chaingraph.forces(engine(masses=(LinkMass("rod", 40.0),), gravity=(0.0, -9.81)),
                           at=60.0, static=True)
     shapes, _ = free_body_shapes(f)
     pin = next(s.radius for s in shapes if s.cls == "pin")
     lines = [s for s in shapes if s.cls == "force"]
-    forces = [x for link in ("crank", "rod", "piston") for x in _forces_on(f, link)]
+    forces = [x for link in ("crank", "rod", "piston") for x in forces_on(f, link)]
     assert len(lines) == len(forces) >= 8           # the weight too: nothing too small here
     ratios = []
     for s, (_, _, _, force) in zip(lines, forces):
