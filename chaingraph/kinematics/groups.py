@@ -196,7 +196,9 @@ class _Branch:
             return self.scale * tau[:-1] / tau[-1]
 
 
-#: arc-length steps a trace may take (a full turn takes a few hundred at most)
+#: arc-length steps a trace may take (a full turn takes a few hundred at most): a
+#: backstop; a slide running off to infinity, what walked thousands of steps, ends at
+#: RUNAWAY_SIZES instead
 MAX_ARC_STEPS = 2000
 
 #: how far (in sizes of the mechanism) from the drawing's centre a group's link may
@@ -223,8 +225,8 @@ def _trace(plan, step, pose, theta, head, q, t, end, direction, h_deg):
     while direction * (math.degrees(z[-1]) - end) < -1e-12 and ds > 1e-6 * h:
         taken += 1
         if taken > MAX_ARC_STEPS:
-            # the branch goes on while the input hardly moves (the group has a freedom
-            # of its own here): end the trace, as at a limit, rather than walk forever
+            # the branch goes on while the input hardly moves: end the trace, as at a
+            # limit, rather than walk forever (no catalog or atlas case reaches it now)
             break
         # no further along the arc than reaching the end needs (far, near a fold)
         remaining = math.radians(abs(end - math.degrees(z[-1])))

@@ -36,6 +36,7 @@ import numpy as np
 
 from chaingraph.errors import MechanismError
 from chaingraph.model.chain import chosen_inputs
+from chaingraph.model.snap import size_of
 
 __all__ = ["Constraint", "Step", "InputJoint", "Plan", "build_plan"]
 
@@ -408,9 +409,9 @@ def build_plan(chain, fixed=None, driver=None, *, inputs=None, closed_form=True)
     items = _input_joints(chain, fixed, driver, inputs, name)
     from_driver = not inputs
     lone = items[0] if len(items) == 1 and items[0].kind == "R" and items[0].a == fixed else None
-    points = [j.at for j in chain.joints] + [p.at for p in chain.points]
-    xs, ys = [p[0] for p in points], [p[1] for p in points]
-    size = max(max(xs) - min(xs), max(ys) - min(ys), 1e-300)
+    where = {j.id: j.at for j in chain.joints} | {p.id: p.at for p in chain.points}
+    size = size_of(where)
+    xs, ys = [p[0] for p in where.values()], [p[1] for p in where.values()]
     origin = (0.5 * (max(xs) + min(xs)), 0.5 * (max(ys) + min(ys)))
     constraints = tuple(_constraints(chain, fixed, items, origin))
     mobility = 3 * (len(chain.links) - 1) - 2 * sum(j.order - 1 for j in chain.joints)

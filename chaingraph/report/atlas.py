@@ -16,6 +16,7 @@ from chaingraph.drawing.mechanism import mechanism_svg, skeleton_svg
 from chaingraph.errors import AssemblyError, ChainGraphError
 from chaingraph.files import dumps
 from chaingraph.kinematics import solve
+from chaingraph.model.snap import size_of
 from chaingraph.naming.atlas import atlas_names
 from chaingraph.structure.atlas.illustrate import (
     generic_pose,
@@ -86,13 +87,6 @@ def _graph_svg(chain, size=260):
     return "".join(out)
 
 
-def _extent(chain):
-    """The drawn chain's extent (the larger side of its joints' bounding box)."""
-    xs = [j.at[0] for j in chain.joints]
-    ys = [j.at[1] for j in chain.joints]
-    return max(max(xs) - min(xs), max(ys) - min(ys))
-
-
 def _page_job(task):
     """Everything of one chain's page, computed in a worker: (html, chain files, how many
     inversions were animated, those that failed, the chain's catalog names)."""
@@ -119,7 +113,7 @@ def _page_job(task):
                 except AssemblyError:
                     # a slide that runs on without a limit: shown over half its size each way
                     sliding = inversion_mechanism(chain, fixed, name=mechanism.name,
-                                                  slide=_extent(chain) / 2)
+                                                  slide=size_of({j.id: j.at for j in chain.joints}) / 2)
                     if sliding.mechanism == mechanism.mechanism:
                         raise
                     motion = solve(sliding, steps=2 * frames, summary=False)
