@@ -238,10 +238,7 @@ def cmd_forces(args) -> int:
         if at:
             pose = result
         else:                                   # the sweep's first pose
-            first = [float(result["input:" + j][0]) for j in result.inputs] \
-                if any(k.startswith("input:") for k in result.columns) \
-                else float(result["theta"][0])
-            pose = forces(chain, at=first, **common)
+            pose = forces(chain, at=result.motion.input_values(0), **common)
         if args.draw:
             write_text(args.draw, free_body_svg(pose))
         if args.polygon:

@@ -97,6 +97,22 @@ class Motion:
     def __getitem__(self, name) -> np.ndarray:
         return self.columns[name]
 
+    def input_values(self, k=0):
+        """The inputs' values at row ``k``, as ``at`` takes them (``instant_centres``,
+        ``forces``): the driver's angle, or one value per input.
+
+        Examples
+        --------
+        >>> import chaingraph
+        >>> from chaingraph.naming.catalog import catalog_path
+        >>> engine = chaingraph.load(catalog_path("reciprocating-engine"))
+        >>> chaingraph.solve(engine, steps=4).input_values(1)
+        150.0
+        """
+        if self.inputs:
+            return [float(self.columns["input:" + i.joint][k]) for i in self.inputs]
+        return float(self.columns["theta"][k])
+
     @property
     def theta(self) -> np.ndarray:
         return self.columns["theta"]

@@ -257,10 +257,7 @@ def _analyse(entry, steps):
             if chain.masses or chain.loads or chain.gravity:
                 try:
                     entry.forces = forces(chain, steps=steps)
-                    first = ([float(entry.motion["input:" + i.joint][0])
-                              for i in entry.motion.inputs] if entry.motion.inputs
-                             else float(entry.motion["theta"][0]))
-                    entry.pose_forces = forces(chain, at=first)
+                    entry.pose_forces = forces(chain, at=entry.motion.input_values(0))
                 except ChainGraphError as e:
                     entry.warnings.append(f"forces not found: {e}")
 
@@ -455,7 +452,7 @@ def _forces_section(e):
     """The forces: the summary over the sweep, the free bodies at its first pose and
     the turning-moment diagram."""
     f, pose = e.forces, e.pose_forces
-    kind = "static" if f.static else f"kinetostatic, {pose_speed(e)}"
+    kind = "static" if f.static else f"kinetostatic, {_pose_speed(e)}"
     out = [f"<h2>Forces</h2><p>From the file's masses, gravity and loads ({_esc(kind)}); "
            "<code>chaingraph forces</code> gives them at any pose and speed.</p>"
            "<table id=\"forces\">"]
@@ -484,7 +481,7 @@ def _forces_section(e):
     return out
 
 
-def pose_speed(e):
+def _pose_speed(e):
     """The input speed the inertia forces are worked out at, in words."""
     lead = e.motion.plan.inputs[e.motion.plan.lead]
     unit = "rad/s" if lead.kind == "R" else f"{e.chain.units}/s"
