@@ -1,7 +1,8 @@
 """Behaviour over the dimensions: a mechanism solved once per value of one link's length.
 
-:func:`vary` writes the mechanism by its lengths (:func:`~chaingraph.kinematics.assembly.measure`:
-every link's lengths, every sliding line, the input's value and every assembly mode),
+:func:`vary` takes the mechanism by its lengths, as ``chaingraph measure`` writes it
+(:func:`~chaingraph.kinematics.assembly.measured_document`: every link's lengths, every
+sliding line, the input's value and every assembly mode),
 changes the one length, assembles it again in the same modes and solves it, row by row;
 a value where it cannot be assembled or solved is a row that says why.
 :func:`length_values` is the range FROM, FROM + STEP, ... up to TO.
@@ -11,13 +12,12 @@ from __future__ import annotations
 
 import copy
 import math
-import tomllib
 from dataclasses import dataclass
 
 from chaingraph.errors import ChainGraphError, MechanismError
 from chaingraph.files import from_document
 from chaingraph.kinematics import solve
-from chaingraph.kinematics.assembly import measure
+from chaingraph.kinematics.assembly import measured_document
 
 __all__ = ["VariationRow", "Variation", "length_values", "vary"]
 
@@ -137,7 +137,7 @@ def vary(mechanism, link, values, *, steps=360, output=None) -> Variation:
     values = tuple(float(v) for v in values)
     if not values:
         raise MechanismError("no lengths to try", mechanism=name, parameter="length")
-    doc = tomllib.loads(measure(mechanism))
+    doc = measured_document(mechanism)
     lengths = doc.get("lengths", {})
     fixed = mechanism.mechanism.fixed if mechanism.mechanism else None
     if link == fixed:

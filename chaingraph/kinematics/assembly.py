@@ -57,7 +57,7 @@ from chaingraph.model.chainfile import parse_document, toml_text
 from chaingraph.model.dimensions import MODE_WORDS, LineSpec, link_features, link_shape
 from chaingraph.model.snap import ROUNDING, SILENT, feature_label, size_of
 
-__all__ = ["Assembly", "Mode", "assemble", "measure"]
+__all__ = ["Assembly", "Mode", "assemble", "measure", "measured_document"]
 
 
 @dataclass(frozen=True)
@@ -1161,6 +1161,12 @@ def measure(chain):
     output = "slotted lever"
     <BLANKLINE>
     """
+    return toml_text(measured_document(chain))
+
+
+def measured_document(chain) -> dict:
+    """The document (a dict, as a chain file reads) that :func:`measure` writes: the
+    mechanism by its lengths, sliding lines, inputs' values and assembly modes."""
     m = chain.mechanism
     if m is None:
         raise DimensionError("measuring needs [mechanism] (the fixed link and the input)",
@@ -1310,4 +1316,4 @@ def measure(chain):
              if ":" not in mode.part and not mode.part.startswith("group ")}
     extra = {j.id for j in chain.joints if j.kind == "P" and fixed not in j.links
              and math.dist(pose.joints[j.id], j.at) > 1e-9 * pose.size}
-    return toml_text(document(extra, near, modes))
+    return document(extra, near, modes)
