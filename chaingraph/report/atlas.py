@@ -13,7 +13,7 @@ from pathlib import Path
 
 from chaingraph._util.parallel import process_runner
 from chaingraph.drawing.mechanism import mechanism_svg, skeleton_svg
-from chaingraph.errors import AssemblyError, ChainGraphError
+from chaingraph.errors import ChainGraphError, UnboundedRangeError
 from chaingraph.files import dumps
 from chaingraph.kinematics import solve
 from chaingraph.model.snap import size_of
@@ -110,10 +110,10 @@ def _page_job(task):
             try:
                 try:
                     motion = solve(mechanism, steps=2 * frames, summary=False)
-                except AssemblyError:
+                except UnboundedRangeError:
                     # a slide that runs on without a limit: shown over half its size each way
-                    sliding = inversion_mechanism(chain, fixed, name=mechanism.name,
-                                                  slide=size_of({j.id: j.at for j in chain.joints}) / 2)
+                    half = size_of({j.id: j.at for j in chain.joints}) / 2
+                    sliding = inversion_mechanism(chain, fixed, name=mechanism.name, slide=half)
                     if sliding.mechanism == mechanism.mechanism:
                         raise
                     motion = solve(sliding, steps=2 * frames, summary=False)
