@@ -3,7 +3,7 @@
 Usage: python benchmarks/atlas_sliding.py [--max-links N]
 
 Targets (issue 27): 8 links with every K under 10 s, 10 links under 5 minutes, on the
-2-core machine. The time goes to the rank of the assignments the structure does not
+2-core machine. The time goes to the exact evaluation of the assignments the structure does not
 decide; the table below is what docs/atlas.md quotes. No peer is compared: pylinkage and
 Pyslvs enumerate turning pairs only.
 """

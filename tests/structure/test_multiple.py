@@ -13,22 +13,34 @@ from chaingraph.cli.main import main
 from chaingraph.model.chain import Chain, Joint
 from chaingraph.naming.atlas import atlas_names
 from chaingraph.structure.atlas import atlas_graphs
-from chaingraph.structure.atlas.multiple import multiple_atlas
+from chaingraph.structure.atlas.admissibility import admissible, decide, verdicts
+from chaingraph.structure.atlas.multiple import _merges, multiple_atlas
 from chaingraph.structure.isomorphism import automorphism_orbits, canonical_form
 
 from .generic_rank import mobility_and_locked, twist
 
 
-def _verdict(links, joints, seed):
-    """(mobility, any locked joint) at a random pose, the first link fixed."""
+def _verdict(links, joints, seed, kinds=None):
+    """(mobility, any locked joint) at a random pose, the first link fixed (``kinds``:
+    "R"/"P" per joint, all R by default)."""
     rnd = np.random.default_rng(seed)
     cols = 3 * (links - 1)
     rows, rates = [], []
 
     def block(link, values):
         return twist(cols, link, values)
-    for j in joints:
+    for j, kind in zip(joints, kinds or "R" * len(joints)):
         x, y = rnd.normal(size=2)
+        if kind == "P":          # turn together; no slip across the line (normal n)
+            a, b = j
+            angle = rnd.uniform(0, 2 * np.pi)
+            nx, ny = np.cos(angle), np.sin(angle)
+            rows.append(block(a, (1, 0, 0)) - block(b, (1, 0, 0)))
+            across = (-nx * y + ny * x, nx, ny)
+            rows.append(block(a, across) - block(b, across))
+            along = (ny * y + nx * x, -ny, nx)
+            rates.append(block(b, along) - block(a, along))
+            continue
         for other in j[1:]:
             for comp in ((-y, 1, 0), (x, 0, 1)):
                 rows.append(block(j[0], comp) - block(other, comp))
@@ -59,6 +71,8 @@ def _direct(links, dof):
         first = _verdict(links, joints, 1)
         if first != _verdict(links, joints, 2):
             raise AssertionError(joints)            # two random draws must agree
+        # the product's proof, by Whiteley's count alone, is the same verdict
+        assert (decide(links, joints) is None) == (first == (dof, False)), joints
         if first == (dof, False):
             chain = Chain("x", tuple(Joint(f"J{i}", "R", tuple(f"L{x}" for x in j))
                                      for i, j in enumerate(joints)))
@@ -90,6 +104,30 @@ def test_the_atlas_with_multiple_joints_is_the_direct_enumeration(links, dof):
     forms = {canonical_form(e.chain(), oriented=False) for e in got}
     assert forms == set(direct)
     assert got.distinct_inversions == sum(direct.values())
+
+
+@pytest.mark.parametrize("links, dof", [(6, 1), pytest.param(7, 2, marks=pytest.mark.slow)])
+def test_pins_with_sliding_pairs_are_decided_as_the_rank_decides(links, dof):
+    """Every merge of pins in every chain, with every set of its simple joints made
+    sliding that the structure of the P joints leaves open: the product's verdict
+    (an evaluation's proof or a bound's) is the floating-point rank's at two random
+    poses, and every one is decided."""
+    candidates, kinds = [], []
+    for entry in atlas_graphs(links, dof):
+        for joints in sorted(set(_merges(links, [tuple(e) for e in entry.edges]))):
+            simple = [i for i, j in enumerate(joints) if len(j) == 2]
+            for k in range(len(simple) + 1):
+                for chosen in itertools.combinations(simple, k):
+                    kind = "".join("P" if i in chosen else "R" for i in range(len(joints)))
+                    if admissible(links, joints, kind) is None:
+                        candidates.append(joints)
+                        kinds.append(kind)
+    got = verdicts(links, candidates, kinds=kinds, dof=dof)
+    assert len(got) > 100 and got.count(None) > 10 and got.count("locked") > 0
+    for joints, kind, reason in zip(candidates, kinds, got):
+        first = _verdict(links, joints, 1, kind)
+        assert first == _verdict(links, joints, 2, kind), (joints, kind)
+        assert (reason is None) == (first == (dof, False)), (joints, kind, reason, first)
 
 
 def test_the_six_link_chains_with_multiple_joints_are_named():

@@ -1,7 +1,7 @@
 """The atlas with sliding pairs against brute force: every assignment of P joints to
 every turning-pair chain, admissibility by the rank of the velocity equations at random
-poses (exact arithmetic modulo a prime, two draws that must agree), isomorphism by
-canonical forms of every candidate."""
+poses (floating point, two draws that must agree) against the product's forests and
+its exact evaluation, isomorphism by canonical forms of every candidate."""
 
 import json
 
@@ -11,7 +11,10 @@ import pytest
 from chaingraph.cli.main import main
 from chaingraph.model.chain import Chain, Joint
 from chaingraph.structure.atlas import atlas_graphs
-from chaingraph.structure.atlas.sliding import admissible, generic_verdicts, sliding_atlas
+from chaingraph.structure.atlas.admissibility import admissible, verdicts
+from chaingraph.structure.atlas.forests import forest_verdicts
+from chaingraph.structure.atlas.generic import generic_verdicts
+from chaingraph.structure.atlas.sliding import sliding_atlas
 from chaingraph.structure.isomorphism import automorphism_orbits, canonical_form
 
 from .generic_rank import mobility_and_locked, twist
@@ -45,11 +48,16 @@ def generic_verdict(links, edges, kinds, dof, seed):
     return mobility_and_locked(rows, rates, cols)
 
 
-def admissible_by_rank(links, edges, kinds, dof):
+def reference(links, edges, kinds, dof):
+    """(mobility, locked joints) by the floating-point rank, two draws agreeing."""
     first = generic_verdict(links, edges, kinds, dof, seed=(1, tuple(kinds)))
     second = generic_verdict(links, edges, kinds, dof, seed=(2, tuple(kinds)))
     assert first == second, (edges, kinds)          # two generic draws agree
-    mobility, locked = first
+    return first
+
+
+def admissible_by_rank(links, edges, kinds, dof):
+    mobility, locked = reference(links, edges, kinds, dof)
     return mobility == dof and not locked
 
 
@@ -84,13 +92,18 @@ def _brute_force(links, dof):
     for entry in atlas_graphs(links, dof):
         edges = [tuple(e) for e in entry.edges]
         masks = list(range(1 << len(edges)))
-        mobility, locked = generic_verdicts(links, edges, masks)   # the product's verdicts
+        mobility, locked = generic_verdicts(links, edges, masks)   # one exact evaluation
         for mask in masks:
             kinds = ["P" if mask >> i & 1 else "R" for i in range(len(edges))]
-            by_rank = admissible_by_rank(links, edges, kinds, dof)
+            float_mobility, float_locked = reference(links, edges, kinds, dof)
+            by_rank = float_mobility == dof and not float_locked
             if admissible(links, edges, kinds) is not None:    # the structure's verdict
                 assert not by_rank, (edges, kinds)
-            assert by_rank == (int(mobility[mask]) == dof and not locked[mask]), (edges, kinds)
+            # forests decide exactly: the generic rank and every lock, not only the verdict
+            rank, stuck = forest_verdicts(links, edges, kinds)
+            assert (3 * (links - 1) - rank, stuck) == (float_mobility, bool(float_locked))
+            if int(mobility[mask]) == dof and not locked[mask]:
+                assert by_rank, (edges, kinds)            # an evaluation's admission is proof
             if by_rank:
                 chain = _chain(links, edges, kinds)
                 form = canonical_form(chain, oriented=False)
@@ -160,8 +173,8 @@ def test_the_rejected_are_the_textbook_s_cases():
     kinds = "PPPRRRR"
     assert admissible(6, stephenson, kinds) is None
     assert generic_verdict(6, stephenson, kinds, 1, 0) == (1, [3, 4, 5, 6])
-    mobility, locked = generic_verdicts(6, stephenson, [0b0000111])
-    assert mobility.tolist() == [1] and locked.tolist() == [True]
+    assert forest_verdicts(6, stephenson, kinds) == (14, True)
+    assert verdicts(6, [stephenson], kinds=[kinds], dof=1) == ["locked"]
 
 
 def test_atlas_prismatic_on_the_command_line(capsys):

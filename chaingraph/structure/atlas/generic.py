@@ -1,12 +1,16 @@
-"""Generic rank: the mobility of a chain and its locked joints at a generic pose, in
-exact arithmetic.
+"""The velocity equations of chains at one drawn pose, in exact arithmetic: the proof
+that an admissible chain is admissible.
 
-The velocity equations of a chain are written at pseudo-random pins and sliding
-directions and reduced modulo the prime 2**31 - 1 (products of two residues fit in
-int64, so numpy reduces thousands of matrices at once). A rank computed so is exact
-arithmetic, not a float's judgement; it falls below the generic rank only where the
-draw hits the zeros of a polynomial of degree at most twice the joints, and the larger
-rank of two independent draws is taken, which is wrong with probability below 1e-15.
+The equations are written at pseudo-random pins and sliding directions and reduced
+modulo the prime 2**31 - 1 (products of two residues fit in int64, so numpy reduces
+thousands of matrices at once). Their entries are polynomials with integer
+coefficients in the pins and directions, so a minor that is not zero at the drawn
+values (modulo the prime) is not zero as a polynomial: a rank found here is at most
+the generic rank, a full rank is the generic rank, and a rate that is independent of
+the equations here is independent at a generic pose. So a chain whose drawn equations
+are independent and lock no joint is proven admissible. The converse is not proven by
+a draw (it may hit a zero of a minor); :mod:`~chaingraph.structure.atlas.admissibility`
+proves rejections by forests and counts.
 """
 
 from __future__ import annotations
@@ -86,20 +90,12 @@ def _verdicts(rows, rates, valid=None):
     return rank, (found if valid is None else found & valid).any(axis=1)
 
 
-def _keep_larger(best, rank, locked):
-    """The draw with the larger rank, candidate by candidate (a rank is generic or
-    lower, never higher)."""
-    if best is None:
-        return rank, locked
-    better = rank > best[0]
-    return np.where(better, rank, best[0]), np.where(better, locked, best[1])
-
-
-def generic_verdicts(links, edges, masks, *, seed=0):
-    """For each assignment (a bit mask over ``edges``: P where set), the generic
-    mobility of the chain (the first link fixed) and whether a joint is locked, by the
-    rank of its velocity equations at generic pins and sliding directions (exact,
-    modulo PRIME; the larger rank of two independent draws).
+def generic_verdicts(links, edges, masks, *, draw=0):
+    """For each assignment (a bit mask over ``edges``: P where set), the mobility of
+    the chain (the first link fixed) and whether a joint is locked, by the rank of its
+    velocity equations at the pose ``draw`` (pseudo-random pins and sliding
+    directions, exact modulo PRIME): the generic mobility or more, the generic
+    verdict where the mobility is the least its joints allow and no joint is locked.
 
     A link's velocity is its twist (omega, vx, vy) at the origin. An R joint at (x, y)
     gives the pin one velocity on both links (2 rows); a P joint with normal n turns its
@@ -116,42 +112,41 @@ def generic_verdicts(links, edges, masks, *, seed=0):
     """
     masks = np.asarray(masks, dtype=np.int64)
     m, cols = len(edges), 3 * (links - 1)
-    best = None
-    for draw in range(2):
-        rnd = random.Random(f"{seed}:{draw}:{links}:{edges}")
-        values = [[rnd.randrange(1, PRIME) for _ in range(4)] for _ in edges]
-        count = masks.size
-        rows = np.zeros((count, 2 * m, cols), dtype=np.int64)
-        rates = np.zeros((count, m, cols), dtype=np.int64)
+    rnd = random.Random(f"{draw}:{links}:{edges}")
+    values = [[rnd.randrange(1, PRIME) for _ in range(4)] for _ in edges]
+    count = masks.size
+    rows = np.zeros((count, 2 * m, cols), dtype=np.int64)
+    rates = np.zeros((count, m, cols), dtype=np.int64)
 
-        def put(target, index, row, link, coefficients, sign):
-            if link:
-                for k, v in enumerate(coefficients):
-                    target[index, row, 3 * (link - 1) + k] += sign * v
-        everything = np.arange(count)
-        for i, ((a, b), (x, y, nx, ny)) in enumerate(zip(edges, values)):
-            sliding = (masks >> i & 1).astype(bool)
-            r, s = everything[~sliding], everything[sliding]
-            for link, sign in ((a, 1), (b, -1)):
-                # R: the pin's velocity v + omega k x (x, y), both components
-                put(rows, r, 2 * i, link, (-y, 1, 0), sign)
-                put(rows, r, 2 * i + 1, link, (x, 0, 1), sign)
-                put(rates, r, i, link, (1, 0, 0), -sign)
-                # P: the same turn; no slip across the line at (x, y) (normal n)
-                put(rows, s, 2 * i, link, (1, 0, 0), sign)
-                put(rows, s, 2 * i + 1, link, ((-nx * y + ny * x) % PRIME, nx, ny), sign)
-                put(rates, s, i, link, ((ny * y + nx * x) % PRIME, -ny, nx), -sign)
-        best = _keep_larger(best, *_verdicts(rows, rates))
-    return cols - best[0], best[1]
+    def put(target, index, row, link, coefficients, sign):
+        if link:
+            for k, v in enumerate(coefficients):
+                target[index, row, 3 * (link - 1) + k] += sign * v
+    everything = np.arange(count)
+    for i, ((a, b), (x, y, nx, ny)) in enumerate(zip(edges, values)):
+        sliding = (masks >> i & 1).astype(bool)
+        r, s = everything[~sliding], everything[sliding]
+        for link, sign in ((a, 1), (b, -1)):
+            # R: the pin's velocity v + omega k x (x, y), both components
+            put(rows, r, 2 * i, link, (-y, 1, 0), sign)
+            put(rows, r, 2 * i + 1, link, (x, 0, 1), sign)
+            put(rates, r, i, link, (1, 0, 0), -sign)
+            # P: the same turn; no slip across the line at (x, y) (normal n)
+            put(rows, s, 2 * i, link, (1, 0, 0), sign)
+            put(rows, s, 2 * i + 1, link, ((-nx * y + ny * x) % PRIME, nx, ny), sign)
+            put(rates, s, i, link, ((ny * y + nx * x) % PRIME, -ny, nx), -sign)
+    rank, locked = _verdicts(rows, rates)
+    return cols - rank, locked
 
 
-def joint_verdicts(links, candidates, *, kinds=None, seed=0):
-    """For each candidate (a tuple of joints, each a tuple of links), the generic
-    mobility with the first link fixed and whether a joint is locked (two links of a
-    turning pair that cannot turn relative to each other, or a sliding pair that cannot
-    slide), by the rank of the velocity equations with each joint's pin at one generic
-    place (exact, modulo the prime; the larger rank of two draws). ``kinds`` gives each
-    candidate's joint kinds ("R", or "P" for a joint of two links), all R by default.
+def joint_verdicts(links, candidates, *, kinds=None, draw=0):
+    """For each candidate (a tuple of joints, each a tuple of links), the mobility with
+    the first link fixed and whether a joint is locked (two links of a turning pair
+    that cannot turn relative to each other, or a sliding pair that cannot slide), by
+    the rank of the velocity equations at the pose ``draw``, each joint's pin at one
+    place (exact, modulo the prime; as :func:`generic_verdicts`, a proof where the
+    mobility is the least and no joint is locked). ``kinds`` gives each candidate's
+    joint kinds ("R", or "P" for a joint of two links), all R by default.
 
     Examples
     --------
@@ -166,40 +161,38 @@ def joint_verdicts(links, candidates, *, kinds=None, seed=0):
     kinds = [k or "R" * len(c) for k, c in zip(kinds or [None] * count, candidates)]
     rows_needed = max(2 * sum(len(j) - 1 for j in c) for c in candidates)
     pairs_needed = max(sum(len(j) * (len(j) - 1) // 2 for j in c) for c in candidates)
-    best = None
 
     def put(target, n, r, link, values, sign):
         if link:
             target[n, r, 3 * (link - 1):3 * link] += [sign * v for v in values]
-    for draw in range(2):
-        rnd = random.Random(f"{seed}:{draw}:{links}")
-        rows = np.zeros((count, rows_needed, cols), dtype=np.int64)
-        rates = np.zeros((count, pairs_needed, cols), dtype=np.int64)
-        valid = np.zeros((count, pairs_needed), dtype=bool)
-        for n, (joints, kind) in enumerate(zip(candidates, kinds)):
-            r = p = 0
-            for j, k in zip(joints, kind):
-                x, y = rnd.randrange(PRIME), rnd.randrange(PRIME)
-                if k == "P":
-                    nx, ny = rnd.randrange(PRIME), rnd.randrange(PRIME)
-                    a, b = j
-                    for link, sign in ((a, 1), (b, -1)):
-                        put(rows, n, r, link, (1, 0, 0), sign)
-                        put(rows, n, r + 1, link, ((-nx * y + ny * x) % PRIME, nx, ny), sign)
-                        put(rates, n, p, link, ((ny * y + nx * x) % PRIME, -ny, nx), -sign)
+    rnd = random.Random(f"{draw}:{links}")
+    rows = np.zeros((count, rows_needed, cols), dtype=np.int64)
+    rates = np.zeros((count, pairs_needed, cols), dtype=np.int64)
+    valid = np.zeros((count, pairs_needed), dtype=bool)
+    for n, (joints, kind) in enumerate(zip(candidates, kinds)):
+        r = p = 0
+        for j, k in zip(joints, kind):
+            x, y = rnd.randrange(PRIME), rnd.randrange(PRIME)
+            if k == "P":
+                nx, ny = rnd.randrange(PRIME), rnd.randrange(PRIME)
+                a, b = j
+                for link, sign in ((a, 1), (b, -1)):
+                    put(rows, n, r, link, (1, 0, 0), sign)
+                    put(rows, n, r + 1, link, ((-nx * y + ny * x) % PRIME, nx, ny), sign)
+                    put(rates, n, p, link, ((ny * y + nx * x) % PRIME, -ny, nx), -sign)
+                valid[n, p] = True
+                r, p = r + 2, p + 1
+                continue
+            for other in j[1:]:
+                for link, sign in ((j[0], 1), (other, -1)):
+                    put(rows, n, r, link, (-y, 1, 0), sign)
+                    put(rows, n, r + 1, link, (x, 0, 1), sign)
+                r += 2
+            for i, a in enumerate(j):
+                for b in j[i + 1:]:
+                    put(rates, n, p, a, (1, 0, 0), -1)
+                    put(rates, n, p, b, (1, 0, 0), 1)
                     valid[n, p] = True
-                    r, p = r + 2, p + 1
-                    continue
-                for other in j[1:]:
-                    for link, sign in ((j[0], 1), (other, -1)):
-                        put(rows, n, r, link, (-y, 1, 0), sign)
-                        put(rows, n, r + 1, link, (x, 0, 1), sign)
-                    r += 2
-                for i, a in enumerate(j):
-                    for b in j[i + 1:]:
-                        put(rates, n, p, a, (1, 0, 0), -1)
-                        put(rates, n, p, b, (1, 0, 0), 1)
-                        valid[n, p] = True
-                        p += 1
-        best = _keep_larger(best, *_verdicts(rows, rates, valid))
-    return cols - best[0], best[1]
+                    p += 1
+    rank, locked = _verdicts(rows, rates, valid)
+    return cols - rank, locked

@@ -12,11 +12,11 @@ the chain with multiple joints would be too. ``tests/structure/test_multiple.py`
 this against a direct enumeration of every set of joints on N links up to 7 links (an
 enumeration that merged only vertex-disjoint trees missed a chain of 7 links whose two
 ternary joints share a link). A merged chain is kept when every link has two joints or
-more, no two joints join the same two links, and the rank of its velocity equations at
-a generic pose (the pins of a multiple joint at one place; exact arithmetic modulo a
-prime, two draws) gives F freedoms with no joint locked. Chains are told apart by canonical forms of their
-link-joint graphs (nauty where installed), and their inversion classes are the orbits
-of their links.
+more, no two joints join the same two links, and it has F freedoms with no joint
+locked (:mod:`~chaingraph.structure.atlas.admissibility`: admitted by an exact
+evaluation, rejected by Whiteley's count of bodies and pins). Chains are told apart by
+canonical forms of their link-joint graphs (nauty where installed), and their
+inversion classes are the orbits of their links.
 """
 
 from __future__ import annotations
@@ -26,7 +26,7 @@ from dataclasses import dataclass
 
 from chaingraph._util.disjoint import DisjointSets
 from chaingraph.model.chain import Chain, Joint
-from chaingraph.structure.atlas.generic import joint_verdicts
+from chaingraph.structure.atlas.admissibility import verdicts
 from chaingraph.structure.atlas.sliding import Entries
 from chaingraph.structure.isomorphism import automorphism_orbits, canonical_form
 
@@ -165,10 +165,10 @@ def multiple_atlas(base) -> MultipleAtlas:
             candidates.append(joints)
         if not candidates:
             continue
-        mobility, locked = joint_verdicts(entry.links, candidates)
-        for joints, free, stuck in zip(candidates, mobility, locked):
-            if free != base.dof or stuck:
-                rejected["mobility" if free != base.dof else "locked"] += 1
+        for joints, reason in zip(candidates, verdicts(entry.links, candidates,
+                                                       dof=base.dof)):
+            if reason is not None:
+                rejected[reason] += 1
                 continue
             found.append(joints)
     forms, entries = set(), []

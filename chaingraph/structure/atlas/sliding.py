@@ -12,18 +12,15 @@ inside it). Two causes are seen in the structure of the P joints alone:
 * an R joint whose two links are joined by a path of P joints cannot turn (the path
   keeps them parallel): it is *locked* (rejected: ``"locked"``).
 
-The rest is decided by the rank of the chain's velocity equations at a generic pose
-(:func:`~chaingraph.structure.atlas.generic.generic_verdicts`): exact integer arithmetic modulo the prime 2**31 - 1 at
-pseudo-random pins and sliding directions, two independent draws, the larger rank
-taken. A rank is exact arithmetic, not a float's judgement; it falls below the generic
-rank only where the draw hits the zeros of a polynomial of degree at most twice the
-joints, which for two draws happens with probability below 1e-15. It finds what the
-structure of the P joints alone does not: two binary links between two links that a
-path of P joints keeps parallel (Stephenson's chain with the path P-P-P between its
-ternary links) make a rigid sub-chain that locks their four R joints.
-``tests/structure/test_sliding.py`` checks the verdicts against an independent rank
-(Python integers, another prime, other draws) for every assignment of every chain up
-to 8 links.
+The rest is decided with proofs (:mod:`~chaingraph.structure.atlas.admissibility`):
+an admission by one exact evaluation of the velocity equations, a rejection by forests
+(the rows split into three forests of the link graph exactly when they are independent
+at a generic pose). Forests find what the structure of the P joints alone does not:
+two binary links between two links that a path of P joints keeps parallel (Stephenson's
+chain with the path P-P-P between its ternary links) make a rigid sub-chain that locks
+their four R joints. ``tests/structure/test_sliding.py`` checks the verdicts against a
+floating-point rank at random poses for every assignment of every chain up to 8
+links.
 
 Two chains are the same when an isomorphism of their link graphs maps P joints to P
 joints; with ``oriented``, also the link that carries each guide to the link that
@@ -42,7 +39,8 @@ from chaingraph.errors import AtlasSizeError
 from chaingraph.model.chain import Chain, Joint
 from chaingraph.model.chainfile import dumps
 from chaingraph.structure.atlas.entry import order_counts
-from chaingraph.structure.atlas.generic import generic_verdicts, joint_verdicts
+from chaingraph.structure.atlas.admissibility import REASONS, admissible, verdicts
+from chaingraph.structure.atlas.generic import generic_verdicts
 from chaingraph.structure.classify import order_name
 from chaingraph.structure.isomorphism import (
     automorphism_generators,
@@ -51,13 +49,6 @@ from chaingraph.structure.isomorphism import (
 __all__ = ["SlidingEntry", "SlidingAtlas", "sliding_atlas", "admissible", "REASONS",
            "prismatic_counts",
            "sliding_dict", "write_sliding"]
-
-#: why an assignment of sliding pairs is rejected, in the order they are tested
-REASONS = {"mobility": "a generic mobility other than asked (a loop of sliding pairs only "
-                       "has one freedom more than its joints allow)",
-           "locked": "a locked joint (a turning pair whose two links are joined by sliding "
-                     "pairs only cannot turn; a rigid sub-chain locks its joints)"}
-
 
 @dataclass(frozen=True)
 class SlidingEntry:
@@ -179,28 +170,6 @@ def prismatic_counts(links, dof, joints, prismatic, oriented=False):
     return tuple(sorted(set(asked)))
 
 
-def admissible(links, edges, kinds):
-    """What the structure of the P joints alone says of an assignment of ``kinds``
-    ("R"/"P") to the joints ``edges``: ``"mobility"`` for a loop of P joints only,
-    ``"locked"`` for an R joint whose links are joined by P joints, else None (then the
-    rank decides: :func:`~chaingraph.structure.atlas.generic.generic_verdicts`).
-
-    Examples
-    --------
-    >>> ring = [(0, 1), (1, 2), (2, 3), (3, 0)]
-    >>> [admissible(4, ring, k) for k in ("RRRR", "RRRP", "RRPP", "RPRP", "RPPP", "PPPP")]
-    [None, None, None, None, 'locked', 'mobility']
-    """
-    slides = DisjointSets(links)
-    for j, k in zip(edges, kinds):
-        if k == "P" and not slides.join(*j):
-            return "mobility"
-    for j, k in zip(edges, kinds):
-        if k == "R" and len({slides.find(x) for x in j}) < len(j):
-            return "locked"
-    return None
-
-
 def _edge_maps(chain, gens):
     """Each automorphism (link-joint graph node map) as (link permutation, edge
     permutation) over indices."""
@@ -291,21 +260,18 @@ def sliding_atlas(base, *, prismatic, oriented=False) -> SlidingAtlas:
         group = _group(gens, n, m)
         masks = [s for s in range(1 << m) if bin(s).count("1") in wanted and s & ~simple == 0]
         acts = [lambda s, e=eperm: _permute_mask(s, e) for _, eperm in gens]
-        reps, left = _orbit_representatives(masks, acts), []
+        reps = _orbit_representatives(masks, acts)
+        # the structure of the P joints first; the rest drawn in one batch, then proven
+        found = {s: admissible(n, edges, _kinds(s, m)) for s in reps}
+        left = [s for s in reps if found[s] is None]
+        drawn = None if multiple or not left else generic_verdicts(n, edges, left)
+        found.update(zip(left, verdicts(n, [tuple(edges)] * len(left),
+                                        kinds=[_kinds(s, m) for s in left],
+                                        dof=base.dof, drawn=drawn)))
         for mask in reps:
-            reason = admissible(n, edges, _kinds(mask, m))
+            reason = found[mask]
             if reason is not None:
                 rejected[reason] += 1
-            else:
-                left.append(mask)
-        if left and multiple:
-            mobility, locked = joint_verdicts(n, [tuple(edges)] * len(left),
-                                              kinds=[_kinds(s, m) for s in left])
-        elif left:
-            mobility, locked = generic_verdicts(n, edges, left)
-        for mask, free, stuck in zip(left, mobility if left else (), locked if left else ()):
-            if free != base.dof or stuck:
-                rejected["mobility" if free != base.dof else "locked"] += 1
                 continue
             kinds = _kinds(mask, m)
             own = [g for g in group if _permute_mask(mask, g[1]) == mask]

@@ -1,0 +1,145 @@
+"""Which chains the atlas admits, every verdict proven.
+
+A chain is admissible when its generic mobility is the one its joints allow (its
+velocity rows are independent at a generic pose), no joint is locked (moves in no
+motion) and so no sub-chain is rigid (a rigid sub-chain locks the joints inside it).
+
+Each verdict carries a proof, not a sampled pose's judgement:
+
+* **the structure of the sliding pairs** (:func:`admissible`): a loop of P joints only
+  leaves a turn row dependent; a turning pair whose links a path of P joints keeps
+  parallel cannot turn;
+* **an admission** is proven by one exact evaluation of the velocity rows
+  (:mod:`~chaingraph.structure.atlas.generic`): independent rows that lock no joint
+  at one pose, modulo a prime, are independent at a generic pose;
+* **a rejection** is proven by forests (:mod:`~chaingraph.structure.atlas.forests`),
+  a theorem for chains of simple joints, turning and sliding, and by Whiteley's count
+  (:mod:`~chaingraph.structure.atlas.pins`), a theorem for chains of turning pairs
+  with pins of several links; either bound proves a chain with pins and sliding pairs
+  overbraced or locked.
+
+A chain with both pins and sliding pairs is admitted when an evaluation proves it and
+rejected when a bound does. Neither bound is a theorem there: a path of sliding pairs
+that keeps two links parallel can make, with a pin, a rigid sub-chain that the count
+does not see and that spreading the pin hides from forests (4 assignments of the 8-link
+atlas with pins are such). Those are rejected when :data:`DRAWS` independent exact
+evaluations all find them dependent or locked: a minor of degree at most twice the
+joints vanishes at a random point modulo the prime 2**31 - 1 with probability below
+1e-8, so four evaluations that all miss an admissible chain have probability below
+1e-31. That is the one verdict here that is not a proof.
+"""
+
+from __future__ import annotations
+
+from chaingraph._util.disjoint import DisjointSets
+from chaingraph.structure.atlas.forests import forest_verdicts
+from chaingraph.structure.atlas.generic import joint_verdicts
+from chaingraph.structure.atlas.pins import overbraced, pin_verdicts
+
+__all__ = ["REASONS", "DRAWS", "admissible", "decide", "verdicts"]
+
+#: why an assignment of sliding pairs is rejected, in the order they are tested
+REASONS = {"mobility": "a generic mobility other than asked (a loop of sliding pairs only "
+                       "has one freedom more than its joints allow)",
+           "locked": "a locked joint (a turning pair whose two links are joined by sliding "
+                     "pairs only cannot turn; a rigid sub-chain locks its joints)"}
+
+#: exact evaluations that must all find a chain dependent or locked when no bound proves
+#: it (a chain with pins and sliding pairs only)
+DRAWS = 4
+
+_UNDECIDED = "undecided"
+
+
+def admissible(links, edges, kinds):
+    """What the structure of the P joints alone says of an assignment of ``kinds``
+    ("R"/"P") to the joints ``edges``: ``"mobility"`` for a loop of P joints only,
+    ``"locked"`` for an R joint whose links are joined by P joints, else None (then
+    :func:`decide` decides).
+
+    Examples
+    --------
+    >>> ring = [(0, 1), (1, 2), (2, 3), (3, 0)]
+    >>> [admissible(4, ring, k) for k in ("RRRR", "RRRP", "RRPP", "RPRP", "RPPP", "PPPP")]
+    [None, None, None, None, 'locked', 'mobility']
+    """
+    slides = DisjointSets(links)
+    for j, k in zip(edges, kinds):
+        if k == "P" and not slides.join(*j):
+            return "mobility"
+    for j, k in zip(edges, kinds):
+        if k == "R" and len({slides.find(x) for x in j}) < len(j):
+            return "locked"
+    return None
+
+
+def decide(links, joints, kinds=None, *, independent=False):
+    """The proven verdict on a chain (``joints``: tuples of links; ``kinds``: "R"/"P"
+    per joint) by forests and counts: None (admissible), ``"mobility"`` or
+    ``"locked"``; ``"undecided"`` where neither bound proves a chain with pins and
+    sliding pairs either way. ``independent``: its rows are already proven independent
+    (by an evaluation), so a rate the bounds find dependent proves a lock.
+
+    Examples
+    --------
+    >>> stephenson = [(0, 1), (0, 4), (1, 5), (2, 4), (2, 5), (3, 4), (3, 5)]
+    >>> decide(6, stephenson, "PPPRRRR")     # links 4 and 5 kept parallel: rigid
+    'locked'
+    >>> decide(4, [(0, 1, 2), (1, 3), (2, 3), (0, 3)])      # a pin of three: rigid
+    'mobility'
+    """
+    kinds = kinds or "R" * len(joints)
+    pins, sliding = any(len(j) > 2 for j in joints), "P" in kinds
+    if pins and not sliding:                             # Whiteley's count: a theorem
+        dependent, locked = pin_verdicts(links, [joints])
+        return "mobility" if dependent[0] else "locked" if locked[0] else None
+    rank, locked = forest_verdicts(links, joints, kinds)
+    rows = 2 * sum(len(j) - 1 for j in joints)
+    if not pins:                                         # forests: a theorem
+        return "mobility" if rank < rows else "locked" if locked else None
+    if rank < rows or overbraced(links, joints, kinds):
+        return "mobility"
+    if independent and (locked or any(pin_verdicts(links, [joints], kinds=[kinds])[1])):
+        return "locked"
+    return _UNDECIDED
+
+
+def verdicts(links, candidates, *, kinds=None, dof, drawn=None):
+    """For each candidate (a tuple of joints, each a tuple of links; ``kinds``: each
+    one's joint kinds, all R by default), None when it is admissible with ``dof``
+    degrees of freedom, else its reason (a key of :data:`REASONS`). ``drawn``: the
+    candidates' ``(mobility, locked)`` at the first pose, where a caller has them.
+
+    Examples
+    --------
+    >>> ring = ((0, 1), (1, 2), (2, 3), (3, 0))
+    >>> verdicts(4, [ring] * 4, kinds=["RRRR", "RRPP", "RPPP", "PPPP"], dof=1)
+    [None, None, 'locked', 'mobility']
+    """
+    count = len(candidates)
+    kinds = [k or "R" * len(c) for k, c in zip(kinds or [None] * count, candidates)]
+    out = [admissible(links, c, k) for c, k in zip(candidates, kinds)]
+    todo = [i for i in range(count) if out[i] is None]
+    for draw in range(DRAWS):
+        if not todo:
+            break
+        if draw == 0 and drawn is not None:
+            mobility, locked = (drawn[0][todo], drawn[1][todo])
+        else:
+            mobility, locked = joint_verdicts(links, [candidates[i] for i in todo],
+                                              kinds=[kinds[i] for i in todo], draw=draw)
+        left = []
+        for i, free, stuck in zip(todo, mobility, locked):
+            least = 3 * (links - 1) - 2 * sum(len(j) - 1 for j in candidates[i])
+            if free == least and not stuck:
+                out[i] = None                             # proven by the evaluation
+                continue
+            reason = decide(links, candidates[i], kinds[i], independent=free == least)
+            if reason == _UNDECIDED:
+                left.append(i)
+                # what every evaluation so far says, should none admit it
+                out[i] = "mobility" if free != least else "locked"
+            else:
+                out[i] = reason
+        todo = left
+    return out

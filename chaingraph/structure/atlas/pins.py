@@ -1,0 +1,96 @@
+"""Generic mobility of a chain with multiple joints, decided by counting: Whiteley's
+count for bodies and pins.
+
+A joint of ``d`` links (a pin at one generic point) puts ``2 (d - 1)`` rows on their
+twists, a sliding pair two. Rows on the links of a set ``S`` only are blind to the
+three motions that move ``S`` as one body, so they have rank at most ``3 |S| - 3``;
+a set whose joints put more rows on it than that, counting a pin by the links of
+``S`` it holds (``2 (d_S - 1)`` rows), is *overbraced*: its rows are dependent, and the
+chain has a freedom more than its joints allow. For links and pins at generic points
+the converse holds too (Whiteley, "A matroid on hypergraphs, with applications in
+scene analysis and geometry", Discrete Comput. Geom. 4, 1989): the rows are
+independent unless some set is overbraced.
+
+A joint is locked when fixing its rate (the relative turn of two links on a pin, or a
+slide) adds nothing to the rank. Fixing it welds its two links into one; the joint's
+own two rows and its rate then span all three relative motions, so the rate is
+dependent exactly when the welded chain's rows are: a chain is locked when a weld of
+one of its joints leaves an overbraced set.
+
+Sliding pairs carry one more condition, on turns alone (their links turn together):
+a loop of them leaves a turn row dependent, and a turning pair whose links a path of
+them keeps parallel is locked. :func:`~chaingraph.structure.atlas.admissibility.admissible`
+tests those before the count.
+"""
+
+from __future__ import annotations
+
+import numpy as np
+
+__all__ = ["overbraced", "weld", "pin_verdicts"]
+
+_BITS = np.array([bin(s).count("1") for s in range(1 << 12)])     # links in a set
+
+
+def overbraced(links, joints, kinds=None) -> int:
+    """The least set of links (a bit mask) on which ``joints`` (tuples of links; ``kinds``
+    "R"/"P" per joint) put more rows than ``3 |S| - 3``, or 0 when there is none.
+
+    >>> overbraced(4, [(0, 1), (1, 2), (2, 3), (3, 0)])            # the four-bar
+    0
+    >>> bin(overbraced(4, [(0, 1, 2), (1, 3), (2, 3), (0, 3)]))     # a pin of three
+    '0b1111'
+    """
+    sets = np.arange(1 << links)
+    held = _BITS[:1 << links]
+    rows = np.zeros(sets.size, dtype=np.int64)
+    for j in joints:
+        rows += 2 * np.maximum(held[sets & sum(1 << x for x in j)] - 1, 0)
+    over = np.nonzero((rows > 3 * held - 3) & (held > 1))[0]
+    return int(over[0]) if over.size else 0
+
+
+def weld(joints, kinds, a, b):
+    """The chain with links ``a`` and ``b`` made one (``b`` becomes ``a``; the links
+    above ``b`` move down by one): the joints that keep two links or more, and their
+    kinds.
+
+    >>> weld([(0, 1, 2), (1, 3), (2, 3)], "RRR", 1, 2)
+    ([(0, 1), (1, 2), (1, 2)], ['R', 'R', 'R'])
+    """
+    def new(x):
+        x = a if x == b else x
+        return x - 1 if x > b else x
+    out, out_kinds = [], []
+    for j, k in zip(joints, kinds or "R" * len(joints)):
+        held = tuple(sorted({new(x) for x in j}))
+        if len(held) > 1:
+            out.append(held)
+            out_kinds.append(k)
+    return out, out_kinds
+
+
+def pin_verdicts(links, candidates, *, kinds=None):
+    """For each candidate (a tuple of joints, each a tuple of links; ``kinds`` gives
+    each candidate's joint kinds, all R by default), whether its rows are dependent
+    (an overbraced set: a freedom more than its joints allow) and whether a joint is
+    locked (a weld of it leaves an overbraced set), by the count (module text); a
+    dependent candidate is not also called locked.
+
+    Examples
+    --------
+    >>> four = ((0, 1), (1, 2), (2, 3), (3, 0))
+    >>> fan = ((0, 1, 2), (1, 3), (2, 3), (0, 3))
+    >>> dependent, locked = pin_verdicts(4, [four, fan])
+    >>> dependent.tolist(), locked.tolist()
+    ([False, True], [False, False])
+    """
+    kinds = [k or "R" * len(c) for k, c in zip(kinds or [None] * len(candidates),
+                                               candidates)]
+    dependent, locked = [], []
+    for joints, kind in zip(candidates, kinds):
+        dependent.append(bool(overbraced(links, joints, kind)))
+        pairs = {(a, b) for j in joints for i, a in enumerate(j) for b in j[i + 1:]}
+        locked.append(not dependent[-1] and any(
+            overbraced(links - 1, *weld(joints, kind, a, b)) for a, b in sorted(pairs)))
+    return np.array(dependent, dtype=bool), np.array(locked, dtype=bool)
