@@ -46,7 +46,11 @@ from chaingraph.naming.atlas import atlas_names
 from chaingraph.naming.catalog import catalog_dir
 from chaingraph.naming.identify import identify
 from chaingraph.naming.inversions import inversions
-from chaingraph.report.atlas import write_illustrated
+from chaingraph.report.atlas import (
+    ANIMATED_WITHOUT_ASKING,
+    animated_by_default,
+    write_illustrated,
+)
 from chaingraph.report.build import build_report
 from chaingraph.structure.atlas import (
     DaskRunner,
@@ -502,8 +506,8 @@ def _sliding(args, wanted) -> int:
             result, prismatic=args.prismatic, names=names)
         paths = write_sliding(result, args.out, record=whole)
         if args.links <= 8 or args.illustrate:
-            pages = write_illustrated(result, args.out,
-                                      animate_upto=args.links if args.illustrate else 6,
+            animate = args.illustrate or animated_by_default(result)
+            pages = write_illustrated(result, args.out, animate=animate,
                                       workers=workers_asked(args.workers))
             paths["pages"] = pages
     if args.json or args.summary:
@@ -541,4 +545,8 @@ def _sliding(args, wanted) -> int:
                   f"{sum(p.animated for p in pages)} animations"
                   + (f" ({failed} inversions did not solve: listed on their pages)"
                      if failed else ""))
+            if not animate:
+                print(f"not animated: {result.distinct_inversions} inversions of {args.links} "
+                      f"links, more than the {ANIMATED_WITHOUT_ASKING} animated without "
+                      "asking (--illustrate animates them)")
     return 0

@@ -246,7 +246,7 @@ def build_parser() -> argparse.ArgumentParser:
     p.add_argument("--illustrate", action="store_true",
                    help="with --out and --prismatic or --multiple: draw and animate every "
                         "chain whatever the size (by default drawn up to 8 links, animated "
-                        "up to 6)")
+                        "up to 6, and at 8 when there are at most 1000 inversions)")
     p.add_argument("-q", "--quiet", action="store_true", help="no progress bar")
     p.set_defaults(run=cmd_atlas)
 

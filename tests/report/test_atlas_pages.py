@@ -103,3 +103,23 @@ def test_names_survive_relabelling_the_links_and_joints():
         assert {rename[x] for c in names["inversions"] for x in c["links"]} == \
             {x for c in other["inversions"] for x in c["links"]}
     assert named == 4            # Watt's, Stephenson's, the quick return with its ram, the beam engine's
+
+
+def test_larger_runs_are_animated_when_asked(tmp_path, capsys, monkeypatch):
+    """Every inversion is animated up to 6 links; at 7 and 8 links only a run of at most
+    ANIMATED_WITHOUT_ASKING inversions, unless --illustrate asks: the pages are drawn
+    either way, and the run says what it left out and how to ask for it."""
+    from chaingraph.report import atlas as pages
+
+    six = sliding_atlas(atlas_graphs(6, 1), prismatic=range(8))
+    seven = sliding_atlas(atlas_graphs(7, 2), prismatic=5)
+    assert pages.animated_by_default(six) and pages.animated_by_default(seven)
+    monkeypatch.setattr(pages, "ANIMATED_WITHOUT_ASKING", seven.distinct_inversions - 1)
+    assert pages.animated_by_default(six) and not pages.animated_by_default(seven)
+    out = tmp_path / "seven"
+    argv = ["atlas", "--links", "7", "--dof", "2", "--prismatic", "5", "--out", str(out), "-q"]
+    assert main(argv) == 0
+    said = capsys.readouterr().out
+    assert "18 chain pages, 116 inversion chain files, 0 animations" in said
+    assert "not animated: 116 inversions of 7 links" in said and "--illustrate" in said
+    assert "<svg" in (out / "chain-1.html").read_text()          # drawn all the same
