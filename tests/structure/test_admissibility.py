@@ -123,13 +123,26 @@ def test_renaming_the_links_changes_no_verdict(data):
     assert (15 - rank, locked) == _float(6, STEPHENSON, kinds)
 
 
-def test_pins_with_a_parallel_path_are_rejected_by_every_evaluation():
+def test_pins_with_a_parallel_path_are_proven_locked_by_the_path_s_row():
     """Links 4 and 5 kept parallel by the path P-P-P through 0 and 1, and a pin of three
-    links (2, 3, 6) on links joined to 4, 5 and 7: a rigid sub-chain that neither the
-    count nor the spread pins see. Every evaluation finds it locked, as the
-    floating-point rank does, and so it is rejected."""
+    links (2, 3, 6) on links joined to 4, 5 and 7: a rigid sub-chain that spreading the
+    pin hides from forests, and that the plain count misses. Counting the path as one
+    row proves it: welding 4 and 7 overbraces the links 2 to 7. The floating-point
+    rank agrees, and should every bound fail, four evaluations would still say so."""
     joints = ((0, 1), (0, 4), (1, 5), (2, 3, 6), (2, 4), (3, 5), (4, 7), (5, 7), (6, 7))
     kinds = "PPPRRRRRR"
-    assert decide(8, joints, kinds, independent=True) == "undecided"
+    assert decide(8, joints, kinds, independent=True) == "locked"
+    assert decide(8, joints, kinds, independent=False) == "undecided"   # needs independence
+    assert forest_verdicts(8, joints, kinds) == (20, False)
     assert _float(8, joints, kinds) == (1, True)
     assert verdicts(8, [joints], kinds=[kinds], dof=1) == ["locked"]
+
+
+def test_every_evaluation_rejecting_is_the_last_resort(monkeypatch):
+    """With the bounds taken away, a chain no evaluation admits is rejected for what
+    the evaluations say."""
+    monkeypatch.setattr(admissibility, "decide", lambda *a, **k: "undecided")
+    joints = ((0, 1), (0, 4), (1, 5), (2, 3, 6), (2, 4), (3, 5), (4, 7), (5, 7), (6, 7))
+    assert verdicts(8, [joints], kinds=["PPPRRRRRR"], dof=1) == ["locked"]
+    ring = ((0, 1), (1, 2), (2, 3), (3, 0))
+    assert verdicts(4, [ring], kinds=["PRRR"], dof=1) == [None]     # an evaluation admits

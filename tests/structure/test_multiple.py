@@ -111,7 +111,7 @@ def test_pins_with_sliding_pairs_are_decided_as_the_rank_decides(links, dof):
     """Every merge of pins in every chain, with every set of its simple joints made
     sliding that the structure of the P joints leaves open: the product's verdict
     (an evaluation's proof or a bound's) is the floating-point rank's at two random
-    poses, and every one is decided."""
+    poses, and every rejection is proven by a bound."""
     candidates, kinds = [], []
     for entry in atlas_graphs(links, dof):
         for joints in sorted(set(_merges(links, [tuple(e) for e in entry.edges]))):
@@ -128,6 +128,8 @@ def test_pins_with_sliding_pairs_are_decided_as_the_rank_decides(links, dof):
         first = _verdict(links, joints, 1, kind)
         assert first == _verdict(links, joints, 2, kind), (joints, kind)
         assert (reason is None) == (first == (dof, False)), (joints, kind, reason, first)
+        if reason is not None:      # every rejection has its proof: a bound, not a draw
+            assert decide(links, joints, kind, independent=reason == "locked") == reason
 
 
 def test_the_six_link_chains_with_multiple_joints_are_named():

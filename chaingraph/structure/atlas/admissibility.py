@@ -19,14 +19,17 @@ Each verdict carries a proof, not a sampled pose's judgement:
   overbraced or locked.
 
 A chain with both pins and sliding pairs is admitted when an evaluation proves it and
-rejected when a bound does. Neither bound is a theorem there: a path of sliding pairs
-that keeps two links parallel can make, with a pin, a rigid sub-chain that the count
-does not see and that spreading the pin hides from forests (4 assignments of the 8-link
-atlas with pins are such). Those are rejected when :data:`DRAWS` independent exact
-evaluations all find them dependent or locked: a minor of degree at most twice the
-joints vanishes at a random point modulo the prime 2**31 - 1 with probability below
-1e-8, so four evaluations that all miss an admissible chain have probability below
-1e-31. That is the one verdict here that is not a proof.
+rejected when a bound does: forests with each pin spread over points of its own (the
+chain is a special case of that one, so its rank is no higher), or the count, which
+takes a path of sliding pairs outside a set of links as the one turn row it adds to it.
+Neither is known to be a theorem there, but together they decide every such chain of
+the atlas to 9 links (a path of sliding pairs keeping two links parallel, with a pin,
+makes the rigid sub-chains that only the count's path row sees). Should some chain
+escape both, it is rejected when :data:`DRAWS` independent exact evaluations all find
+it dependent or locked: a minor of degree at most twice the joints vanishes at a random
+point modulo the prime 2**31 - 1 with probability below 1e-8, so four evaluations that
+all miss an admissible chain have probability below 1e-31. That verdict alone would not
+be a proof; none is made to 9 links.
 """
 
 from __future__ import annotations

@@ -20,7 +20,16 @@ one of its joints leaves an overbraced set.
 Sliding pairs carry one more condition, on turns alone (their links turn together):
 a loop of them leaves a turn row dependent, and a turning pair whose links a path of
 them keeps parallel is locked. :func:`~chaingraph.structure.atlas.admissibility.admissible`
-tests those before the count.
+tests those before the count. A path of sliding pairs between two links of ``S``
+through links outside it also keeps them parallel, and the count takes it as one row
+more: take the rows on ``S`` and the turn rows of the paths' sliding pairs outside
+``S``, which touch the paths' own links ``O``. Every motion of ``S`` that its rows and
+the paths' parallels allow (the three rigid ones at least) extends to ``O``, whose
+links the turn rows leave free to translate, so those rows have rank at most
+``3 |S| - 3 + |O|``, while a path through ``k`` links of ``O`` brings ``k + 1`` turn
+rows: one more than its links. That bound needs no generic pose, so it proves a
+rejection wherever it is exceeded; with pins and sliding pairs together it is not
+known to be the whole story (:mod:`~chaingraph.structure.atlas.admissibility`).
 """
 
 from __future__ import annotations
@@ -34,18 +43,47 @@ _BITS = np.array([bin(s).count("1") for s in range(1 << 12)])     # links in a s
 
 def overbraced(links, joints, kinds=None) -> int:
     """The least set of links (a bit mask) on which ``joints`` (tuples of links; ``kinds``
-    "R"/"P" per joint) put more rows than ``3 |S| - 3``, or 0 when there is none.
+    "R"/"P" per joint, the P joints a forest) put more rows than ``3 |S| - 3``, a path
+    of P joints between two of its links through links outside it counting one row (see
+    the module's text), or 0 when there is none.
 
     >>> overbraced(4, [(0, 1), (1, 2), (2, 3), (3, 0)])            # the four-bar
     0
     >>> bin(overbraced(4, [(0, 1, 2), (1, 3), (2, 3), (0, 3)]))     # a pin of three
     '0b1111'
+
+    Links 4 and 5 of Stephenson's chain kept parallel by P joints through 0 and 1, and
+    joined by the binary links 2 and 3: a rigid four-link loop, locked, so welding two
+    of its links overbraces it:
+
+    >>> joints = [(0, 1), (0, 4), (1, 5), (2, 4), (2, 5), (3, 4), (3, 5)]
+    >>> overbraced(6, joints, "PPPRRRR"), bin(overbraced(5, *weld(joints, "PPPRRRR", 2, 4)))
+    (0, '0b11100')
     """
+    kinds = kinds or "R" * len(joints)
     sets = np.arange(1 << links)
     held = _BITS[:1 << links]
     rows = np.zeros(sets.size, dtype=np.int64)
-    for j in joints:
-        rows += 2 * np.maximum(held[sets & sum(1 << x for x in j)] - 1, 0)
+    slides = list(range(links))             # the P joints' components over all links
+
+    def find(x):
+        while slides[x] != x:
+            x = slides[x]
+        return x
+    for j, kind in zip(joints, kinds):
+        bits = sum(1 << x for x in j)
+        rows += 2 * np.maximum(held[sets & bits] - 1, 0)
+        if kind == "P":
+            rows -= held[sets & bits] == 2          # P joints inside S, counted below
+            slides[find(j[0])] = find(j[1])
+    if "P" in kinds:
+        # + |S| - (P joints inside S) - (P components S meets): one row per path outside
+        components = {}
+        for x in range(links):
+            components[find(x)] = components.get(find(x), 0) | 1 << x
+        rows += held
+        for bits in components.values():
+            rows -= (sets & bits) != 0
     over = np.nonzero((rows > 3 * held - 3) & (held > 1))[0]
     return int(over[0]) if over.size else 0
 
