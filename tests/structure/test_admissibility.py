@@ -146,3 +146,11 @@ def test_every_evaluation_rejecting_is_the_last_resort(monkeypatch):
     assert verdicts(8, [joints], kinds=["PPPRRRRRR"], dof=1) == ["locked"]
     ring = ((0, 1), (1, 2), (2, 3), (3, 0))
     assert verdicts(4, [ring], kinds=["PRRR"], dof=1) == [None]     # an evaluation admits
+
+
+def test_a_candidate_with_the_wrong_joints_for_its_freedoms_is_named():
+    from chaingraph.errors import ChainStructureError
+    ring = ((0, 1), (1, 2), (2, 3), (3, 0))
+    with pytest.raises(ChainStructureError, match=r"leave 1 degrees of freedom by their "
+                                                  r"count, not 2"):
+        verdicts(4, [ring], dof=2)

@@ -35,6 +35,7 @@ be a proof; none is made to 9 links.
 from __future__ import annotations
 
 from chaingraph._util.disjoint import DisjointSets
+from chaingraph.errors import ChainStructureError
 from chaingraph.structure.atlas.forests import forest_verdicts
 from chaingraph.structure.atlas.generic import joint_verdicts
 from chaingraph.structure.atlas.pins import overbraced, pin_verdicts
@@ -108,10 +109,11 @@ def decide(links, joints, kinds=None, *, independent=False):
 
 
 def verdicts(links, candidates, *, kinds=None, dof, drawn=None):
-    """For each candidate (a tuple of joints, each a tuple of links; ``kinds``: each
-    one's joint kinds, all R by default), None when it is admissible with ``dof``
-    degrees of freedom, else its reason (a key of :data:`REASONS`). ``drawn``: the
-    candidates' ``(mobility, locked)`` at the first pose, where a caller has them.
+    """For each candidate (a tuple of joints, each a tuple of links, as many as ``dof``
+    degrees of freedom allow; ``kinds``: each one's joint kinds, all R by default),
+    None when it is admissible, else its reason (a key of :data:`REASONS`). ``drawn``:
+    the candidates' ``(mobility, locked)`` at the first pose, where a caller has them.
+    A candidate with other than the joints ``dof`` allows is a ChainStructureError.
 
     Examples
     --------
@@ -121,6 +123,11 @@ def verdicts(links, candidates, *, kinds=None, dof, drawn=None):
     """
     count = len(candidates)
     kinds = [k or "R" * len(c) for k, c in zip(kinds or [None] * count, candidates)]
+    for c in candidates:
+        if 3 * (links - 1) - 2 * sum(len(j) - 1 for j in c) != dof:
+            raise ChainStructureError(f"the joints {list(c)} on {links} links leave "
+                                      f"{3 * (links - 1) - 2 * sum(len(j) - 1 for j in c)} "
+                                      f"degrees of freedom by their count, not {dof}")
     out = [admissible(links, c, k) for c, k in zip(candidates, kinds)]
     todo = [i for i in range(count) if out[i] is None]
     for draw in range(DRAWS):
@@ -133,15 +140,14 @@ def verdicts(links, candidates, *, kinds=None, dof, drawn=None):
                                               kinds=[kinds[i] for i in todo], draw=draw)
         left = []
         for i, free, stuck in zip(todo, mobility, locked):
-            least = 3 * (links - 1) - 2 * sum(len(j) - 1 for j in candidates[i])
-            if free == least and not stuck:
+            if free == dof and not stuck:
                 out[i] = None                             # proven by the evaluation
                 continue
-            reason = decide(links, candidates[i], kinds[i], independent=free == least)
+            reason = decide(links, candidates[i], kinds[i], independent=free == dof)
             if reason == _UNDECIDED:
                 left.append(i)
                 # what every evaluation so far says, should none admit it
-                out[i] = "mobility" if free != least else "locked"
+                out[i] = "mobility" if free != dof else "locked"
             else:
                 out[i] = reason
         todo = left
