@@ -79,6 +79,36 @@ def test_six_link_chain_files_classify_to_the_atlas_and_their_inversions_solve_c
     assert solved >= 20
 
 
+@pytest.mark.slow
+def test_a_sample_of_eight_link_chain_files_classifies_and_solves_closed():
+    """Every 50th chain of the 8-link atlas with every number of sliding pairs: its
+    chain file reads back to the atlas's figures, and the first inversion with a
+    natural input of every 400th solves with rigid links."""
+    result = sliding_atlas(atlas_graphs(8, 1), prismatic=range(11))
+    solved = 0
+    for entry in list(result)[::50]:
+        back = chaingraph.loads(chaingraph.dumps(generic_pose(entry.chain(1))))
+        c = chaingraph.classify(back)
+        assert (c.links, c.mobility, c.pair_kinds.get("P", 0)) == (8, 1, entry.prismatic)
+        assert len(automorphism_orbits(back, oriented=False)) == entry.inversion_classes
+        if entry.id % 400 != 1:
+            continue
+        for links in automorphism_orbits(back, oriented=False):
+            mechanism = inversion_mechanism(back, links[0])
+            if mechanism is None:
+                continue
+            try:
+                motion = chaingraph.solve(mechanism, steps=12, summary=False)
+            except chaingraph.UnboundedRangeError:
+                continue
+            size = max(max(j.at[0] for j in back.joints) - min(j.at[0] for j in back.joints),
+                       max(j.at[1] for j in back.joints) - min(j.at[1] for j in back.joints))
+            assert _rigid(motion, back, size) <= 1e-9, (entry.id, links)
+            solved += 1
+            break
+    assert solved >= 7
+
+
 def test_names_survive_relabelling_the_links_and_joints():
     rng = random.Random(7)
     named = 0
