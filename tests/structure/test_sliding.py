@@ -1,7 +1,7 @@
 """The atlas with sliding pairs against brute force: every assignment of P joints to
-every turning-pair chain, admissibility by the rank of the velocity equations at random
-poses (floating point, two draws that must agree) against the product's forests and
-its exact evaluation, isomorphism by canonical forms of every candidate."""
+every turning-pair chain, admissibility by the rank of the velocity equations at a
+random pose (floating point) against the product's forests and its exact evaluation,
+isomorphism by canonical forms of every candidate."""
 
 import json
 
@@ -49,11 +49,9 @@ def generic_verdict(links, edges, kinds, dof, seed):
 
 
 def reference(links, edges, kinds, dof):
-    """(mobility, locked joints) by the floating-point rank, two draws agreeing."""
-    first = generic_verdict(links, edges, kinds, dof, seed=(1, tuple(kinds)))
-    second = generic_verdict(links, edges, kinds, dof, seed=(2, tuple(kinds)))
-    assert first == second, (edges, kinds)          # two generic draws agree
-    return first
+    """(mobility, locked joints) by the floating-point rank at a random pose (an unlucky
+    draw would show as a disagreement with the forests, which are exact)."""
+    return generic_verdict(links, edges, kinds, dof, seed=(1, tuple(kinds)))
 
 
 def admissible_by_rank(links, edges, kinds, dof):
