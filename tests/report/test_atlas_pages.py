@@ -52,6 +52,27 @@ def _rigid(motion, chain, size):
     return worst
 
 
+def _solve_closed(entry, chain, *, steps, at_most=None):
+    """Solve the inversions of ``chain`` that have a natural input and a bounded range
+    (at most ``at_most`` of them), each checked rigid to 1e-9 of the size; how many."""
+    size = max(max(j.at[0] for j in chain.joints) - min(j.at[0] for j in chain.joints),
+               max(j.at[1] for j in chain.joints) - min(j.at[1] for j in chain.joints))
+    solved = 0
+    for links in automorphism_orbits(chain, oriented=False):
+        mechanism = inversion_mechanism(chain, links[0])
+        if mechanism is None:
+            continue
+        try:
+            motion = chaingraph.solve(mechanism, steps=steps, summary=False)
+        except chaingraph.UnboundedRangeError:
+            continue
+        assert _rigid(motion, chain, size) <= 1e-9, (entry.id, links)
+        solved += 1
+        if solved == at_most:
+            break
+    return solved
+
+
 @pytest.mark.slow
 def test_six_link_chain_files_classify_to_the_atlas_and_their_inversions_solve_closed():
     result = sliding_atlas(atlas_graphs(6, 1), prismatic=range(8))
@@ -64,18 +85,7 @@ def test_six_link_chain_files_classify_to_the_atlas_and_their_inversions_solve_c
         assert len(automorphism_orbits(back, oriented=False)) == entry.inversion_classes
         if entry.id % 8:                      # a sample of the inversions: every 8th chain
             continue
-        for links in automorphism_orbits(back, oriented=False):
-            mechanism = inversion_mechanism(back, links[0])
-            if mechanism is None:
-                continue
-            try:
-                motion = chaingraph.solve(mechanism, steps=24, summary=False)
-            except chaingraph.UnboundedRangeError:
-                continue
-            size = max(max(j.at[0] for j in back.joints) - min(j.at[0] for j in back.joints),
-                       max(j.at[1] for j in back.joints) - min(j.at[1] for j in back.joints))
-            assert _rigid(motion, back, size) <= 1e-9, (entry.id, links)
-            solved += 1
+        solved += _solve_closed(entry, back, steps=24)
     assert solved >= 20
 
 
@@ -93,19 +103,7 @@ def test_a_sample_of_eight_link_chain_files_classifies_and_solves_closed():
         assert len(automorphism_orbits(back, oriented=False)) == entry.inversion_classes
         if entry.id % 400 != 1:
             continue
-        for links in automorphism_orbits(back, oriented=False):
-            mechanism = inversion_mechanism(back, links[0])
-            if mechanism is None:
-                continue
-            try:
-                motion = chaingraph.solve(mechanism, steps=12, summary=False)
-            except chaingraph.UnboundedRangeError:
-                continue
-            size = max(max(j.at[0] for j in back.joints) - min(j.at[0] for j in back.joints),
-                       max(j.at[1] for j in back.joints) - min(j.at[1] for j in back.joints))
-            assert _rigid(motion, back, size) <= 1e-9, (entry.id, links)
-            solved += 1
-            break
+        solved += _solve_closed(entry, back, steps=12, at_most=1)
     assert solved >= 7
 
 

@@ -2,8 +2,6 @@
 pins, an exact evaluation for admissions; against closed-form cases and the
 floating-point rank of tests/structure/generic_rank.py."""
 
-import itertools
-
 import numpy as np
 import pytest
 from hypothesis import given, settings
@@ -14,7 +12,7 @@ from chaingraph.structure.atlas.admissibility import decide, verdicts
 from chaingraph.structure.atlas.forests import ANY, OMEGA, Forests, forest_verdicts
 from chaingraph.structure.atlas.pins import overbraced, pin_verdicts, weld
 
-from .generic_rank import mobility_and_locked, twist
+from .generic_rank import random_pose
 
 RING = ((0, 1), (1, 2), (2, 3), (3, 0))
 STEPHENSON = ((0, 1), (0, 4), (1, 5), (2, 4), (2, 5), (3, 4), (3, 5))
@@ -88,25 +86,7 @@ def test_a_weld_makes_two_links_one():
 
 def _float(links, joints, kinds, seed=3):
     """(mobility, any joint locked) by the floating-point rank at a random pose."""
-    rnd = np.random.default_rng(seed)
-    cols = 3 * (links - 1)
-    rows, rates = [], []
-    for j, kind in zip(joints, kinds):
-        x, y = rnd.normal(size=2)
-        if kind == "P":
-            a, b = j
-            nx, ny = np.cos(t := rnd.uniform(0, 6.3)), np.sin(t)
-            for comp in ((1, 0, 0), (-nx * y + ny * x, nx, ny)):
-                rows.append(twist(cols, a, comp) - twist(cols, b, comp))
-            along = (ny * y + nx * x, -ny, nx)
-            rates.append(twist(cols, b, along) - twist(cols, a, along))
-            continue
-        for other in j[1:]:
-            for comp in ((-y, 1, 0), (x, 0, 1)):
-                rows.append(twist(cols, j[0], comp) - twist(cols, other, comp))
-        for a, b in itertools.combinations(j, 2):
-            rates.append(twist(cols, b, (1, 0, 0)) - twist(cols, a, (1, 0, 0)))
-    mobility, locked = mobility_and_locked(rows, rates, cols)
+    mobility, locked = random_pose(links, joints, kinds, np.random.default_rng(seed))
     return mobility, bool(locked)
 
 

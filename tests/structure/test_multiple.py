@@ -17,36 +17,14 @@ from chaingraph.structure.atlas.admissibility import admissible, decide, verdict
 from chaingraph.structure.atlas.multiple import _merges, multiple_atlas
 from chaingraph.structure.isomorphism import automorphism_orbits, canonical_form
 
-from .generic_rank import mobility_and_locked, twist
+from .generic_rank import random_pose
 
 
 def _verdict(links, joints, seed, kinds=None):
     """(mobility, any locked joint) at a random pose, the first link fixed (``kinds``:
     "R"/"P" per joint, all R by default)."""
-    rnd = np.random.default_rng(seed)
-    cols = 3 * (links - 1)
-    rows, rates = [], []
-
-    def block(link, values):
-        return twist(cols, link, values)
-    for j, kind in zip(joints, kinds or "R" * len(joints)):
-        x, y = rnd.normal(size=2)
-        if kind == "P":          # turn together; no slip across the line (normal n)
-            a, b = j
-            angle = rnd.uniform(0, 2 * np.pi)
-            nx, ny = np.cos(angle), np.sin(angle)
-            rows.append(block(a, (1, 0, 0)) - block(b, (1, 0, 0)))
-            across = (-nx * y + ny * x, nx, ny)
-            rows.append(block(a, across) - block(b, across))
-            along = (ny * y + nx * x, -ny, nx)
-            rates.append(block(b, along) - block(a, along))
-            continue
-        for other in j[1:]:
-            for comp in ((-y, 1, 0), (x, 0, 1)):
-                rows.append(block(j[0], comp) - block(other, comp))
-        for a, b in itertools.combinations(j, 2):
-            rates.append(block(b, (1, 0, 0)) - block(a, (1, 0, 0)))
-    mobility, locked = mobility_and_locked(rows, rates, cols)
+    mobility, locked = random_pose(links, joints, kinds or "R" * len(joints),
+                                   np.random.default_rng(seed))
     return mobility, bool(locked)
 
 
