@@ -136,28 +136,38 @@ def _walk(plan, direction):
     return None, None
 
 
+#: how near the paths close in on a limit before the fold is solved for: near enough for
+#: a fold's Newton's method; closer only where no fold is found (the limit then is the
+#: last point assembled, to ``_FINEST``)
+_NEAR, _FINEST = 1e-7, 1e-10
+
+
 def _limit(plan, ev, k, bad):
     """The last angle that can be assembled past ev's point k, towards ``bad``,
     continued on ever finer paths from the last point that assembles: (angle, the
     evaluation at that angle)."""
     good, state, at = float(ev.theta[k]), ev.at(k), ev.take(np.array([k]))
     far = bad
-    for _ in range(16):
-        ts = np.linspace(good, bad, 17)
-        trial = evaluate(plan, ts, start=state)
-        if trial.feasible.all():
-            # reached from nearer (Newton's method near a group's fold depends on
-            # where it starts): the fold is past it, before ``far``
-            good, at, bad = float(bad), trial.take(np.array([16])), far
-            break
-        j = int(np.argmin(trial.feasible)) - 1
-        if j < 0:
-            break
-        good, state, bad = float(ts[j]), trial.at(j), float(ts[j + 1])
-        at = trial.take(np.array([j]))
-        if abs(bad - good) < 1e-10:
-            break
-    return _fold(plan, at, good, bad, far)
+    for tolerance in (_NEAR, _FINEST):
+        for _ in range(16):
+            if abs(bad - good) < tolerance:
+                break
+            ts = np.linspace(good, bad, 17)
+            trial = evaluate(plan, ts, start=state)
+            if trial.feasible.all():
+                # reached from nearer (Newton's method near a group's fold depends on
+                # where it starts): the fold is past it, before ``far``
+                good, at, bad = float(bad), trial.take(np.array([16])), far
+                return _fold(plan, at, good, bad, far)
+            j = int(np.argmin(trial.feasible)) - 1
+            if j < 0:
+                return _fold(plan, at, good, bad, far)
+            good, state, bad = float(ts[j]), trial.at(j), float(ts[j + 1])
+            at = trial.take(np.array([j]))
+        limit = _fold(plan, at, good, bad, far)
+        if limit[0] != good:                  # a fold: solved exactly
+            return limit
+    return limit
 
 
 _AT_FOLD = 1e-12     # a dyad's discriminant (over the size squared) this small: a fold
