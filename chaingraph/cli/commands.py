@@ -47,8 +47,8 @@ from chaingraph.naming.catalog import catalog_dir
 from chaingraph.naming.identify import identify
 from chaingraph.naming.inversions import inversions
 from chaingraph.report.atlas import (
-    ANIMATED_WITHOUT_ASKING,
     animated_by_default,
+    animation_seconds,
     write_illustrated,
 )
 from chaingraph.report.build import build_report
@@ -60,7 +60,7 @@ from chaingraph.structure.atlas import (
     write_atlas,
 )
 from chaingraph.structure.atlas.contracted import joints_for
-from chaingraph.structure.atlas.estimate import check_size
+from chaingraph.structure.atlas.estimate import LOCAL_HOURS, check_size
 from chaingraph.structure.atlas.multiple import multiple_atlas
 from chaingraph.structure.atlas.sliding import (
     REASONS,
@@ -506,9 +506,9 @@ def _sliding(args, wanted) -> int:
             result, prismatic=args.prismatic, names=names)
         paths = write_sliding(result, args.out, record=whole)
         if args.links <= 8 or args.illustrate:
-            animate = args.illustrate or animated_by_default(result)
-            pages = write_illustrated(result, args.out, animate=animate,
-                                      workers=workers_asked(args.workers))
+            workers = workers_asked(args.workers)
+            animate = args.illustrate or animated_by_default(result, workers=workers)
+            pages = write_illustrated(result, args.out, animate=animate, workers=workers)
             paths["pages"] = pages
     if args.json or args.summary:
         print_json(record)
@@ -546,7 +546,10 @@ def _sliding(args, wanted) -> int:
                   + (f" ({failed} inversions did not solve: listed on their pages)"
                      if failed else ""))
             if not animate:
-                print(f"not animated: {result.distinct_inversions} inversions of {args.links} "
-                      f"links, more than the {ANIMATED_WITHOUT_ASKING} animated without "
-                      "asking (--illustrate animates them)")
+                hours = animation_seconds(result, workers=workers) / 3600
+                print(f"not animated: {result.distinct_inversions:,} inversions of "
+                      f"{args.links} links, about {hours:.1f} hours on {workers} "
+                      f"worker{'s' if workers != 1 else ''}, more than the "
+                      f"{LOCAL_HOURS:g} hour a run takes without asking (--illustrate "
+                      "animates them)")
     return 0

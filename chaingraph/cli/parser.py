@@ -245,8 +245,9 @@ def build_parser() -> argparse.ArgumentParser:
                         "counts as d - 1); with --prismatic, only simple joints slide")
     p.add_argument("--illustrate", action="store_true",
                    help="with --out and --prismatic or --multiple: draw and animate every "
-                        "chain whatever the size (by default drawn up to 8 links, animated "
-                        "up to 6, and at 8 when there are at most 1000 inversions)")
+                        "chain whatever the size (by default drawn up to 8 links, and "
+                        "animated where that is estimated to take at most an hour on the "
+                        "workers)")
     p.add_argument("-q", "--quiet", action="store_true", help="no progress bar")
     p.set_defaults(run=cmd_atlas)
 

@@ -18,6 +18,7 @@ from chaingraph.files import dumps
 from chaingraph.kinematics import solve
 from chaingraph.model.snap import size_of
 from chaingraph.naming.atlas import atlas_names
+from chaingraph.structure.atlas.estimate import LOCAL_HOURS
 from chaingraph.structure.atlas.illustrate import (
     generic_pose,
     inversion_mechanism,
@@ -27,7 +28,7 @@ from chaingraph.structure.classify import classify
 from chaingraph.structure.isomorphism import automorphism_orbits
 
 __all__ = ["write_illustrated", "IllustratedPage", "animated_by_default",
-           "ANIMATED_WITHOUT_ASKING"]
+           "animation_seconds", "SECONDS_PER_INVERSION"]
 
 _STYLE = ("body{font-family:sans-serif;margin:1.5em;max-width:70em}"
           "table{border-collapse:collapse;margin:.6em 0}"
@@ -158,29 +159,38 @@ def _page_job(task):
     return page, files, animated, tuple(failed), names["chain"]
 
 
-#: inversions animated without asking: every one up to 6 links, and at 8 links a run of
-#: at most this many (the solver takes about 0.7 s of one core for an inversion of 8
-#: links: 575 of them, one sliding pair, in 3 min 19 s on two workers)
-ANIMATED_WITHOUT_ASKING = 1000
+#: seconds of one core to solve and animate an inversion, by links (measured with
+#: ``chaingraph atlas --links N --prismatic ... --out DIR --workers 2``: 234 inversions
+#: of 6 links in 33 s, the 575 of 8 links with one sliding pair in 3 min 0 s)
+SECONDS_PER_INVERSION = {4: 0.1, 5: 0.2, 6: 0.3, 7: 0.45, 8: 0.65}
 
 
-def animated_by_default(result) -> bool:
+def animation_seconds(result, *, workers=1) -> float:
+    """About how long animating every inversion of ``result`` takes on ``workers``
+    processes (seconds of the wall clock)."""
+    per = SECONDS_PER_INVERSION.get(result.links, SECONDS_PER_INVERSION[8])
+    return result.distinct_inversions * per / max(1, workers)
+
+
+def animated_by_default(result, *, workers=1) -> bool:
     """Whether :func:`write_illustrated` animates ``result``'s inversions unless told:
-    chains of up to 6 links, or up to 8 when they have at most
-    :data:`ANIMATED_WITHOUT_ASKING` inversions."""
-    return result.links <= 6 or (result.links <= 8
-                                 and result.distinct_inversions <= ANIMATED_WITHOUT_ASKING)
+    chains of up to 8 links, when that is estimated to take at most the hour an atlas
+    run takes here without a cluster (:data:`~chaingraph.structure.atlas.estimate.
+    LOCAL_HOURS`)."""
+    return result.links <= 8 and \
+        animation_seconds(result, workers=workers) <= LOCAL_HOURS * 3600
 
 
 def write_illustrated(result, out_dir, *, animate=None, frames=24, workers=1) -> list:
     """Write ``DIR/index.html`` (the chains by links, sliding pairs and multiple joints,
     with their names) and ``DIR/chain-N.html`` per chain, with a chain file per
     inversion under ``DIR/chains/``; inversions are animated when ``animate`` is true
-    (None: :func:`animated_by_default`). Returns the :class:`IllustratedPage` of each
-    chain."""
+    (None: :func:`animated_by_default` on ``workers``). Returns the
+    :class:`IllustratedPage` of each chain."""
     out = Path(out_dir)
     (out / "chains").mkdir(parents=True, exist_ok=True)
-    animate = animated_by_default(result) if animate is None else bool(animate)
+    animate = (animated_by_default(result, workers=workers) if animate is None
+               else bool(animate))
     tasks = [(e, result.dof, result.oriented, animate, frames) for e in result]
     done = {}
     process_runner(workers)(_page_job, tasks, done.__setitem__)

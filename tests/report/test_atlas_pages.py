@@ -134,20 +134,27 @@ def test_names_survive_relabelling_the_links_and_joints():
 
 
 def test_larger_runs_are_animated_when_asked(tmp_path, capsys, monkeypatch):
-    """Every inversion is animated up to 6 links; at 7 and 8 links only a run of at most
-    ANIMATED_WITHOUT_ASKING inversions, unless --illustrate asks: the pages are drawn
-    either way, and the run says what it left out and how to ask for it."""
+    """Every inversion up to 8 links is animated unless that is estimated to take more
+    than the hour an atlas run takes without asking (every K at 8 links: about two
+    hours on two workers); then the pages are drawn all the same, and the run says what
+    it left out, how long it would take and how to ask for it."""
     from chaingraph.report import atlas as pages
 
     six = sliding_atlas(atlas_graphs(6, 1), prismatic=range(8))
     seven = sliding_atlas(atlas_graphs(7, 2), prismatic=5)
+    eight = sliding_atlas(atlas_graphs(8, 1), prismatic=range(11))
     assert pages.animated_by_default(six) and pages.animated_by_default(seven)
-    monkeypatch.setattr(pages, "ANIMATED_WITHOUT_ASKING", seven.distinct_inversions - 1)
+    assert not pages.animated_by_default(eight, workers=2)
+    assert pages.animated_by_default(eight, workers=8)        # under the hour on 8
+    assert 1.5 < pages.animation_seconds(eight, workers=2) / 3600 < 2.5
+    monkeypatch.setitem(pages.SECONDS_PER_INVERSION, 7, 3600.0)
     assert pages.animated_by_default(six) and not pages.animated_by_default(seven)
     out = tmp_path / "seven"
-    argv = ["atlas", "--links", "7", "--dof", "2", "--prismatic", "5", "--out", str(out), "-q"]
+    argv = ["atlas", "--links", "7", "--dof", "2", "--prismatic", "5", "--out", str(out),
+            "--workers", "1", "-q"]
     assert main(argv) == 0
     said = capsys.readouterr().out
     assert "18 chain pages, 116 inversion chain files, 0 animations" in said
-    assert "not animated: 116 inversions of 7 links" in said and "--illustrate" in said
+    assert "not animated: 116 inversions of 7 links, about 116.0 hours on 1 worker" in said
+    assert "--illustrate" in said
     assert "<svg" in (out / "chain-1.html").read_text()          # drawn all the same
