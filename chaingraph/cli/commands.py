@@ -59,11 +59,11 @@ from chaingraph.structure.atlas import (
     run_atlas,
     write_atlas,
 )
+from chaingraph.structure.atlas.admissibility import REASONS
 from chaingraph.structure.atlas.contracted import joints_for
 from chaingraph.structure.atlas.estimate import LOCAL_HOURS, check_size
 from chaingraph.structure.atlas.multiple import multiple_atlas
 from chaingraph.structure.atlas.sliding import (
-    REASONS,
     prismatic_counts,
     sliding_atlas,
     sliding_dict,

@@ -38,16 +38,15 @@ from chaingraph._util.disjoint import DisjointSets
 from chaingraph.errors import AtlasSizeError
 from chaingraph.model.chain import Chain, Joint
 from chaingraph.model.chainfile import dumps
-from chaingraph.structure.atlas.entry import order_counts
 from chaingraph.structure.atlas.admissibility import REASONS, admissible, verdicts
+from chaingraph.structure.atlas.entry import order_counts
 from chaingraph.structure.atlas.generic import generic_verdicts
 from chaingraph.structure.classify import order_name
 from chaingraph.structure.isomorphism import (
     automorphism_generators,
 )
 
-__all__ = ["SlidingEntry", "SlidingAtlas", "sliding_atlas", "admissible", "REASONS",
-           "prismatic_counts",
+__all__ = ["SlidingEntry", "SlidingAtlas", "sliding_atlas", "prismatic_counts",
            "sliding_dict", "write_sliding"]
 
 @dataclass(frozen=True)
