@@ -159,9 +159,10 @@ def _page_job(task):
     return page, files, animated, tuple(failed), names["chain"]
 
 
-#: seconds of one core to solve and animate an inversion, by links (measured with
-#: ``chaingraph atlas --links N --prismatic ... --out DIR --workers 2``: 234 inversions
-#: of 6 links in 33 s, the 575 of 8 links with one sliding pair in 3 min 0 s)
+#: seconds of one core to solve and animate an inversion, by links: 6 and 8 measured
+#: with ``chaingraph atlas --links N --prismatic ... --out DIR --workers 2`` (234
+#: inversions of 6 links in 33 s, the 575 of 8 links with one sliding pair in 3 min 0 s),
+#: the others between and below them (4 and 5 links take seconds in all)
 SECONDS_PER_INVERSION = {4: 0.1, 5: 0.2, 6: 0.3, 7: 0.45, 8: 0.65}
 
 

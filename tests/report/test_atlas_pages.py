@@ -11,6 +11,7 @@ import pytest
 import chaingraph
 from chaingraph.cli.main import main
 from chaingraph.naming.atlas import atlas_names
+from chaingraph.report import atlas as pages
 from chaingraph.structure.atlas import atlas_graphs
 from chaingraph.structure.atlas.illustrate import generic_pose, inversion_mechanism
 from chaingraph.structure.atlas.sliding import sliding_atlas
@@ -138,8 +139,6 @@ def test_larger_runs_are_animated_when_asked(tmp_path, capsys, monkeypatch):
     than the hour an atlas run takes without asking (every K at 8 links: about two
     hours on two workers); then the pages are drawn all the same, and the run says what
     it left out, how long it would take and how to ask for it."""
-    from chaingraph.report import atlas as pages
-
     six = sliding_atlas(atlas_graphs(6, 1), prismatic=range(8))
     seven = sliding_atlas(atlas_graphs(7, 2), prismatic=5)
     eight = sliding_atlas(atlas_graphs(8, 1), prismatic=range(11))

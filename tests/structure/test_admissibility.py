@@ -7,6 +7,7 @@ import pytest
 from hypothesis import given, settings
 from hypothesis import strategies as st
 
+from chaingraph.errors import ChainStructureError
 from chaingraph.structure.atlas import admissibility
 from chaingraph.structure.atlas.admissibility import decide, verdicts
 from chaingraph.structure.atlas.forests import ANY, OMEGA, Forests, forest_verdicts
@@ -129,7 +130,6 @@ def test_every_evaluation_rejecting_is_the_last_resort(monkeypatch):
 
 
 def test_a_candidate_with_the_wrong_joints_for_its_freedoms_is_named():
-    from chaingraph.errors import ChainStructureError
     ring = ((0, 1), (1, 2), (2, 3), (3, 0))
     with pytest.raises(ChainStructureError, match=r"leave 1 degrees of freedom by their "
                                                   r"count, not 2"):

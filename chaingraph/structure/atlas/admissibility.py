@@ -38,7 +38,7 @@ from chaingraph._util.disjoint import DisjointSets
 from chaingraph.errors import ChainStructureError
 from chaingraph.structure.atlas.forests import forest_verdicts
 from chaingraph.structure.atlas.generic import joint_verdicts
-from chaingraph.structure.atlas.pins import overbraced, pin_verdicts
+from chaingraph.structure.atlas.pins import pin_verdicts
 
 __all__ = ["REASONS", "DRAWS", "admissible", "decide", "verdicts"]
 
@@ -101,9 +101,10 @@ def decide(links, joints, kinds=None, *, independent=False):
     rows = 2 * sum(len(j) - 1 for j in joints)
     if not pins:                                         # forests: a theorem
         return "mobility" if rank < rows else "locked" if locked else None
-    if rank < rows or overbraced(links, joints, kinds):
+    dependent, welded = pin_verdicts(links, [joints], kinds=[kinds])
+    if rank < rows or dependent[0]:
         return "mobility"
-    if independent and (locked or any(pin_verdicts(links, [joints], kinds=[kinds])[1])):
+    if independent and (locked or welded[0]):
         return "locked"
     return _UNDECIDED
 
@@ -124,10 +125,11 @@ def verdicts(links, candidates, *, kinds=None, dof, drawn=None):
     count = len(candidates)
     kinds = [k or "R" * len(c) for k, c in zip(kinds or [None] * count, candidates)]
     for c in candidates:
-        if 3 * (links - 1) - 2 * sum(len(j) - 1 for j in c) != dof:
+        counted = 3 * (links - 1) - 2 * sum(len(j) - 1 for j in c)
+        if counted != dof:
             raise ChainStructureError(f"the joints {list(c)} on {links} links leave "
-                                      f"{3 * (links - 1) - 2 * sum(len(j) - 1 for j in c)} "
-                                      f"degrees of freedom by their count, not {dof}")
+                                      f"{counted} degrees of freedom by their count, not "
+                                      f"{dof}")
     out = [admissible(links, c, k) for c, k in zip(candidates, kinds)]
     todo = [i for i in range(count) if out[i] is None]
     for draw in range(DRAWS):

@@ -36,9 +36,9 @@ from __future__ import annotations
 
 import numpy as np
 
-__all__ = ["overbraced", "weld", "pin_verdicts"]
+from chaingraph._util.disjoint import DisjointSets
 
-_BITS = np.array([bin(s).count("1") for s in range(1 << 12)])     # links in a set
+__all__ = ["overbraced", "weld", "pin_verdicts"]
 
 
 def overbraced(links, joints, kinds=None) -> int:
@@ -62,29 +62,22 @@ def overbraced(links, joints, kinds=None) -> int:
     """
     kinds = kinds or "R" * len(joints)
     sets = np.arange(1 << links)
-    held = _BITS[:1 << links]
+    member = [sets >> x & 1 for x in range(links)]      # whether each set holds link x
+    size = sum(member)
     rows = np.zeros(sets.size, dtype=np.int64)
-    slides = list(range(links))             # the P joints' components over all links
-
-    def find(x):
-        while slides[x] != x:
-            x = slides[x]
-        return x
+    slides = DisjointSets(links)            # the P joints' components over all links
     for j, kind in zip(joints, kinds):
-        bits = sum(1 << x for x in j)
-        rows += 2 * np.maximum(held[sets & bits] - 1, 0)
+        inside = sum(member[x] for x in j)
+        rows += 2 * np.maximum(inside - 1, 0)
         if kind == "P":
-            rows -= held[sets & bits] == 2          # P joints inside S, counted below
-            slides[find(j[0])] = find(j[1])
+            rows -= inside == 2             # P joints inside S, counted below
+            slides.join(*j)
     if "P" in kinds:
         # + |S| - (P joints inside S) - (P components S meets): one row per path outside
-        components = {}
-        for x in range(links):
-            components[find(x)] = components.get(find(x), 0) | 1 << x
-        rows += held
-        for bits in components.values():
-            rows -= (sets & bits) != 0
-    over = np.nonzero((rows > 3 * held - 3) & (held > 1))[0]
+        rows += size
+        for block in slides.blocks().values():
+            rows -= (sets & sum(1 << x for x in block)) != 0
+    over = np.nonzero((rows > 3 * size - 3) & (size > 1))[0]
     return int(over[0]) if over.size else 0
 
 
