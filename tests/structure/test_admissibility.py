@@ -33,7 +33,11 @@ def test_an_augmenting_path_moves_rows_between_forests():
     the greedy split fails where the partition does not."""
     f = Forests(3)
     rows = [(0, 1, OMEGA), (0, 1, ANY), (1, 2, ANY), (1, 2, ANY), (0, 2, ANY), (0, 2, ANY)]
-    assert all(f.add(*r) for r in rows) and f.rank == 6
+    assert all(f.add(*r) for r in rows[:5])
+    before = list(f.where)
+    assert f.add(*rows[5]) and f.rank == 6
+    assert f.where[:5] != before                  # it moved rows already placed
+    assert f.where[0] == 0                        # the fixed turn row stays in omega
     for k in range(3):          # every forest is a forest
         kept = [rows[i][:2] for i, w in enumerate(f.where) if w == k]
         assert len(kept) <= 2 and len({frozenset(e) for e in kept}) == len(kept)
