@@ -113,11 +113,12 @@ def mechanism_svg(motion, *, frames=None, seconds=4.0, width=640, paths=True):
     return "\n".join(parts)
 
 
-def skeleton_svg(chain, *, width=420):
+def skeleton_svg(chain, *, width=420, labels=True):
     """The kinematic skeleton of any chain, mechanism or not: its links as bars (binary)
     and plates (three or more joints) between its joints, R joints as pins, P joints as
     blocks on their guides, higher pairs as dashed rings; the fixed link (if any) is the
-    ground: hatched pivots and ways, not a body. Pins are drawn over blocks.
+    ground: hatched pivots and ways, not a body. Pins are drawn over blocks, and the
+    joints' names beside them unless ``labels`` is false (a thumbnail).
     From the drawn pose when every joint has one, else from a computed layout.
 
     Examples
@@ -212,6 +213,8 @@ def skeleton_svg(chain, *, width=420):
             parts.append(f'<circle class="higher" data-joint="{jid}" cx="{x:.4g}" '
                          f'cy="{y:.4g}" r="{1.3 * r:.3g}" fill="none" stroke="#b05000" '
                          f'stroke-dasharray="{stroke:.3g}" stroke-width="{0.8 * stroke:.3g}"/>')
+        if not labels:
+            continue
         parts.append(f'<text x="{x + 1.2 * r:.4g}" y="{y - 1.2 * r:.4g}" '
                      f'font-size="{0.06 * span:.3g}" font-family="sans-serif" '
                      f'paint-order="stroke" stroke="white" stroke-width="{0.015 * span:.3g}">'

@@ -18,6 +18,7 @@ from chaingraph.files import dumps
 from chaingraph.kinematics import solve
 from chaingraph.model.snap import size_of
 from chaingraph.naming.atlas import atlas_names
+from chaingraph.report.atlas_index import thumbnail_svg, write_index
 from chaingraph.structure.atlas.estimate import LOCAL_HOURS
 from chaingraph.structure.atlas.illustrate import (
     generic_pose,
@@ -91,7 +92,7 @@ def _graph_svg(chain, size=260):
 
 def _page_job(task):
     """Everything of one chain's page, computed in a worker: (html, chain files, how many
-    inversions were animated, those that failed, the chain's catalog names)."""
+    inversions were animated, those that failed, its catalog names, its thumbnail)."""
     entry, dof, oriented, animate, frames = task
     chain = generic_pose(entry.chain(dof))
     names = atlas_names(chain, oriented=oriented)
@@ -156,7 +157,7 @@ def _page_job(task):
     page = (f"<!DOCTYPE html><html lang=\"en\"><head><meta charset=\"utf-8\"><title>"
             f"{_esc(chain.name)}</title><style>{_STYLE}</style></head><body>"
             + "\n".join(body) + "</body></html>\n")
-    return page, files, animated, tuple(failed), names["chain"]
+    return page, files, animated, tuple(failed), names, thumbnail_svg(chain)
 
 
 #: seconds of one core to solve and animate an inversion, by links: 6 and 8 measured
@@ -195,9 +196,9 @@ def write_illustrated(result, out_dir, *, animate=None, frames=24, workers=1) ->
     tasks = [(e, result.dof, result.oriented, animate, frames) for e in result]
     done = {}
     process_runner(workers)(_page_job, tasks, done.__setitem__)
-    pages, rows = [], []
+    pages, cards = [], []
     for i, e in enumerate(result):
-        page, files, animated, failed, chain_names = done[i]
+        page, files, animated, failed, names, thumbnail = done[i]
         path = out / f"chain-{e.id}.html"
         path.write_text(page, encoding="utf-8")
         written = []
@@ -205,25 +206,6 @@ def write_illustrated(result, out_dir, *, animate=None, frames=24, workers=1) ->
             (out / "chains" / name).write_text(text, encoding="utf-8")
             written.append(out / "chains" / name)
         pages.append(IllustratedPage(e.id, path, tuple(written), animated, failed))
-        multiple = sum(len(j) > 2 for j in e.edges)
-        rows.append((e.prismatic, multiple, e, chain_names))
-    index = [f"<h1>Chains of {result.links} links, {result.dof} degree(s) of freedom"
-             f"{' (oriented)' if result.oriented else ''}</h1>"]
-    for (k, multiple) in sorted({(r[0], r[1]) for r in rows}):
-        group = [r for r in rows if r[0] == k and r[1] == multiple]
-        index.append(f"<h2>{k} sliding pair{'s' if k != 1 else ''}"
-                     + (f", {multiple} multiple joint{'s' if multiple != 1 else ''}"
-                        if multiple else "") + f" ({len(group)})</h2><table>"
-                     "<tr><th>chain</th><th>link orders</th><th>inversions</th>"
-                     "<th>catalog name</th></tr>")
-        for _, _, e, chain_names in group:
-            orders = ", ".join(f"{v} {o}" for o, v in e.link_orders.items())
-            index.append(f"<tr><td><a href=\"chain-{e.id}.html\">{e.id}</a></td>"
-                         f"<td>{_esc(orders)}</td><td>{e.inversion_classes}</td>"
-                         f"<td>{_esc(', '.join(chain_names))}</td></tr>")
-        index.append("</table>")
-    (out / "index.html").write_text(
-        f"<!DOCTYPE html><html lang=\"en\"><head><meta charset=\"utf-8\"><title>atlas"
-        f"</title><style>{_STYLE}</style></head><body>" + "\n".join(index)
-        + "</body></html>\n", encoding="utf-8")
+        cards.append((e, names, thumbnail))
+    write_index(result, out, cards)
     return pages
