@@ -1,7 +1,8 @@
-// The atlas index's filter: shows the rows (tr.chain) whose data attributes match the
-// form's fields (base chain, number of sliding pairs and of multiple joints, named
-// inversions only, a text in the names), hides the groups left empty, and says how many
-// are shown. No other asset: the page is opened from disk.
+// The atlas index's filter: shows the rows (tr.chain) that match the form's fields
+// (base chain, numbers of sliding pairs and of multiple joints, named inversions only:
+// the rows' data attributes; a text: the rows' own text, names, links, chain numbers),
+// hides the groups left empty, and says how many are shown. No other asset: the page
+// is opened from disk.
 (function () {
   var rows = Array.prototype.slice.call(document.querySelectorAll('tr.chain'));
   var groups = Array.prototype.slice.call(document.querySelectorAll('section.group'));
@@ -17,7 +18,7 @@
         (!sliding || r.getAttribute('data-sliding') === sliding) &&
         (!multiple || r.getAttribute('data-multiple') === multiple) &&
         (!named || r.getAttribute('data-named') === '1') &&
-        (!text || r.getAttribute('data-text').indexOf(text) >= 0);
+        (!text || r.textContent.toLowerCase().indexOf(text) >= 0);
       r.hidden = !ok;
       if (ok) { shown += 1; }
     });

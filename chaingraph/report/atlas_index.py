@@ -122,7 +122,6 @@ def _row(entry, names, base, base_page, *, oriented):
     """One chain's row of the index, with its filter's data attributes."""
     multiple = sum(len(j) > 2 for j in entry.edges)
     named = [(n, c["links"]) for c in names["inversions"] for n in c["names"]]
-    words = " ".join([f"chain {entry.id}", base, *names["chain"], *(n for n, _ in named)])
     where = where_text(entry, oriented=oriented)
     orders = ", ".join(f"{v} {o}" for o, v in entry.link_orders.items())
     title = "".join(f"<br><b>{_esc(n)}</b>" for n in names["chain"])
@@ -136,10 +135,10 @@ def _row(entry, names, base, base_page, *, oriented):
             for n, links in named) + "</ul>"
     return (f'<tr class="chain" id="chain-{entry.id}" data-base="{_esc(base)}" '
             f'data-sliding="{entry.prismatic}" data-multiple="{multiple}" '
-            f'data-named="{1 if named else 0}" data-text="{_esc(words.lower())}">'
+            f'data-named="{1 if named else 0}">'
             f'<td class="thumb"><a href="chain-{entry.id}.html"><img class="thumb" '
             f'src="thumbs/chain-{entry.id}.svg" loading="lazy" '
-            f'alt="skeleton of chain {entry.id}"></a></td>'
+            f'alt="chain {entry.id}"></a></td>'
             f'<td><a href="chain-{entry.id}.html">chain {entry.id}</a>{title}'
             f'<br><small>{_esc(orders)} links</small></td><td>{base_cell}</td>'
             f'<td>{where_cell}</td><td>{inversions}</td></tr>')
@@ -163,8 +162,8 @@ def _filter(result, rows, labels):
     if multiple != [0]:
         parts.append(select("f-multiple", "multiple joints", [(k, k) for k in multiple]))
     parts.append('<label><input type="checkbox" id="f-named"> with named inversions'
-                 '</label><label>names <input type="search" id="f-text" '
-                 'placeholder="Watt, engine, chain 12"></label>'
+                 '</label><label>text <input type="search" id="f-text" '
+                 'placeholder="Watt, engine, L4, chain 12"></label>'
                  f'<output id="f-shown">{len(rows)} chains</output>')
     return '<form id="filter" hidden onsubmit="return false">' + "".join(parts) + "</form>"
 
