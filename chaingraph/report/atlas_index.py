@@ -88,7 +88,7 @@ def where_text(entry, *, oriented=False) -> list:
     >>> from chaingraph.structure.atlas import atlas_graphs
     >>> from chaingraph.structure.atlas.sliding import sliding_atlas
     >>> where_text(sliding_atlas(atlas_graphs(4, 1), prismatic=1).entries[0])
-    ['sliding pair J1 between binary L1 and binary L3']
+    ['sliding pair J1 between binary L1 and binary L2']
     """
     order = [order_name(sum(x in j for j in entry.edges)) for x in range(entry.links)]
     out = []
