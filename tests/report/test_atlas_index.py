@@ -210,3 +210,20 @@ def test_the_filter_hides_rows_in_a_real_browser(six):
         assert sorted(shown["rows"]) == sorted(named) and len(named) == 4
         shown = _set(browser, tab, "f-named", False)
         assert sorted(shown["rows"]) == sorted(everything)
+
+
+def test_oriented_sliding_pairs_say_which_link_carries_the_guide():
+    result = sliding_atlas(atlas_graphs(4, 1), prismatic=2, oriented=True)
+    page = index_page(result, [(e, atlas_names(e.chain(1), oriented=True), None)
+                               for e in result])
+    assert "(oriented)</h1>" in page
+    rows = _rows(page)
+    guides = set()
+    for e in result:
+        row = rows[e.id][1]
+        for i, ((a, b), kind) in enumerate(zip(e.edges, e.kinds)):
+            if kind == "P":
+                assert f"sliding pair J{i + 1}: binary L{b + 1} on a guide on binary " \
+                       f"L{a + 1}" in row
+                guides.add((e.base, a, b))
+    assert len(result) == 5 and len(guides) > len({(g[0], *sorted(g[1:])) for g in guides})
