@@ -144,7 +144,7 @@ def _row(entry, names, base, base_page, *, oriented):
             f'<td>{where_cell}</td><td>{inversions}</td></tr>')
 
 
-def _filter(result, rows, labels):
+def _filter(rows, labels):
     """The filter's form: base chain, sliding pairs, multiple joints, named, text."""
     def select(id_, title, values):
         options = "".join(f'<option value="{_esc(v)}">{_esc(text)}</option>'
@@ -189,7 +189,7 @@ def index_page(result, cards) -> str:
             f"numbered as in <code>{_esc(listing)}</code>. Links "
             "are L1, L2...; joints J1, J2... as on the chain's page; the thumbnails show "
             "each skeleton in a generic pose (sliding pairs as blocks on guides).</p>",
-            _filter(result, cards, labels)]
+            _filter(cards, labels)]
     headers = ("<tr><th>skeleton</th><th>chain</th><th>base chain</th>"
                "<th>sliding pairs and multiple joints</th><th>inversions</th></tr>")
     groups = {}
