@@ -11,17 +11,18 @@ __all__ = ["counted", "short_list", "write_columns"]
 
 
 def counted(n, singular, plural=None) -> str:
-    """``n`` and the noun, singular for one: ``counted(1, "degree of freedom",
-    "degrees of freedom")``; the plural is the singular with an ``s`` unless given.
+    """``n`` (with thousands separated) and the noun, singular for one:
+    ``counted(1, "degree of freedom", "degrees of freedom")``; the plural is the
+    singular with an ``s`` unless given.
 
     Examples
     --------
     >>> counted(1, "degree of freedom", "degrees of freedom"), counted(2, "chain")
     ('1 degree of freedom', '2 chains')
-    >>> counted(0, "sliding pair")
-    '0 sliding pairs'
+    >>> counted(0, "sliding pair"), counted(3107, "chain")
+    ('0 sliding pairs', '3,107 chains')
     """
-    return f"{n} {singular if n == 1 else plural or singular + 's'}"
+    return f"{n:,} {singular if n == 1 else plural or singular + 's'}"
 
 
 def short_list(items, keep=6) -> str:

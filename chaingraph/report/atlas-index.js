@@ -1,7 +1,7 @@
 // The atlas index's filter: shows the rows (tr.chain) that match the form's fields
 // (base chain, numbers of sliding pairs and of multiple joints, named inversions only:
 // the rows' data attributes; a text: the rows' own text, names, links, chain numbers),
-// hides the groups left empty, and says how many are shown. No other asset: the page
+// hides the groups left empty, and says how many are shown, in all and by group. No other asset: the page
 // is opened from disk.
 (function () {
   var rows = Array.prototype.slice.call(document.querySelectorAll('tr.chain'));
@@ -23,7 +23,9 @@
       if (ok) { shown += 1; }
     });
     groups.forEach(function (g) {
-      g.hidden = !g.querySelector('tr.chain:not([hidden])');
+      var left = g.querySelectorAll('tr.chain:not([hidden])').length;
+      g.querySelector('.shown').textContent = left;
+      g.hidden = !left;
     });
     field('f-shown').textContent = shown + ' of ' + rows.length + ' chains shown';
   }

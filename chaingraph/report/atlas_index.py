@@ -199,7 +199,8 @@ def index_page(result, cards) -> str:
     for (k, multiple), group in sorted(groups.items()):
         title = counted(k, "sliding pair") + (
             f", {counted(multiple, 'multiple joint')}" if multiple else "")
-        body.append(f'<section class="group"><h2>{_esc(title)} ({len(group)})</h2>'
+        body.append(f'<section class="group"><h2>{_esc(title)} (<span class="shown">'
+                    f'{len(group)}</span>)</h2>'
                     f"<table>{headers}")
         for e, names, *_ in group:
             body.append(_row(e, names, labels[e.base], pages.get(e.base),

@@ -156,6 +156,7 @@ _VISIBLE = """(function () {
   var images = Array.prototype.filter.call(document.querySelectorAll('img.thumb'),
     function (i) { return i.complete && i.naturalWidth > 0; });
   return {rows: rows.map(function (r) { return +r.id.slice(6); }), groups: groups.length,
+          counts: groups.map(function (g) { return +g.querySelector('.shown').textContent; }),
           shown: document.getElementById('f-shown').textContent, loaded: images.length,
           form: !document.getElementById('filter').hidden};
 })()"""
@@ -194,9 +195,11 @@ def test_the_filter_hides_rows_in_a_real_browser(six):
         assert start["loaded"] >= 3
         shown = _set(browser, tab, "f-sliding", "1")
         assert sorted(shown["rows"]) == sorted(one) and shown["groups"] == 1
+        assert shown["counts"] == [len(one)]
         shown = _set(browser, tab, "f-base", "Watt six-bar chain")
         assert sorted(shown["rows"]) == sorted(watt_one)
         assert shown["shown"] == f"{len(watt_one)} of {len(result)} chains shown"
+        assert shown["counts"] == [len(watt_one)] and 0 < len(watt_one) < len(one)
         shown = _set(browser, tab, "f-text", "BEAM engine")
         beam = [e.id for e in result if e.prismatic == 1 and any(
             "Beam engine" in n for c in atlas_names(e.chain(1))["inversions"]
@@ -210,6 +213,8 @@ def test_the_filter_hides_rows_in_a_real_browser(six):
         assert sorted(shown["rows"]) == sorted(named) and len(named) == 4
         shown = _set(browser, tab, "f-named", False)
         assert sorted(shown["rows"]) == sorted(everything)
+        assert sum(shown["counts"]) == len(result) and shown["groups"] == len(
+            {e.prismatic for e in result})
 
 
 def test_oriented_sliding_pairs_say_which_link_carries_the_guide():
