@@ -52,8 +52,10 @@ Each node costs a few maximum flows on a network of the links and multiple joint
 (a link pinned to every node of a grid of links, joined by binary links, makes one with
 each cycle of the grid), so no method lists them all in polynomial time. For a chain
 whose rigid parts are few, the pruning keeps the nodes to about one per link and rigid
-set found (a 100-link chain classifies in well under a second); a search past
-``MAX_FLOWS`` maximum flows (about a minute) is refused with the count it reached.
+set found (a 100-link chain classifies in well under a second). A search past
+``MAX_FLOWS`` maximum flows (about a minute) hands a chain small enough for the scan
+(``MAX_LINKS`` links) to the scan, so that no chain the scan took is refused, and refuses
+a larger one with the count it reached.
 """
 
 from __future__ import annotations
@@ -346,8 +348,9 @@ def rigid_subchains(chain) -> list[tuple[str, ...]]:
     Raises
     ------
     ChainStructureError
-        When the search would run more than ``MAX_FLOWS`` maximum flows (a chain with
-        a great many rigid parts; see the module's text).
+        When the search would run more than ``MAX_FLOWS`` maximum flows on a chain
+        too large for the exhaustive scan (a chain with a great many rigid parts; see
+        the module's text).
 
     Examples
     --------
@@ -372,6 +375,8 @@ def rigid_subchains(chain) -> list[tuple[str, ...]]:
         for r in _bits(allowed):
             links.grow(1 << r, allowed & ~((1 << r) - 1), found)
     except _TooMany:
+        if n <= MAX_LINKS and (1 << n) * max(1, len(merged)) <= MAX_WORK:
+            return rigid_subchains_by_subsets(chain)      # small enough to scan
         raise ChainStructureError(
             f"the rigid sub-chain search ran {MAX_FLOWS:,} maximum flows and found "
             f"{len(found):,} minimal rigid sub-chains without finishing: this chain has "

@@ -264,8 +264,7 @@ def _chain(edges, name):
 def test_structure_commands_refuse_what_they_cannot_finish():
     import itertools
     complete = _chain(list(itertools.combinations(range(26), 2)), "K26")
-    with pytest.raises(chaingraph.ChainStructureError, match="subset-joint checks"):
-        chaingraph.classify(complete)
+    assert len(chaingraph.classify(complete).rigid_subchains) == 2600   # every triangle
     long_loop = _chain([(i, (i + 1) % 2001) for i in range(2001)], "loop")
     with pytest.raises(chaingraph.ChainStructureError, match="at most 2,000 links"):
         chaingraph.inversions(long_loop)
