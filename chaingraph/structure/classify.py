@@ -137,9 +137,6 @@ class Classification:
         rows.append(("verdict", self.verdict, ""))
         rows.append(("degenerate", "yes" if self.degenerate else "no",
                      "; ".join("{" + ", ".join(s) + "}" for s in self.rigid_subchains)))
-        if not self.rigid_subchains_complete:
-            rows.append(("smallest rigid sub-chains", f"{len(self.rigid_subchains)} found",
-                         "the search stopped at its bound; more may exist"))
         if self.rigid_regions:
             rows.append(("rigid regions", len(self.rigid_regions),
                          "; ".join("{" + ", ".join(s) + "}" for s in self.rigid_regions)))
@@ -165,9 +162,10 @@ class Classification:
                        + " separates the chain into closed parts")
         if self.degenerate:
             odd.append("degenerate: rigid sub-chain(s) "
-                       + "; ".join("{" + ", ".join(s) + "}" for s in self.rigid_subchains)
-                       + ("" if self.rigid_subchains_complete else
-                          " (the search stopped at its bound; more may exist)"))
+                       + "; ".join("{" + ", ".join(s) + "}" for s in self.rigid_subchains))
+        if not self.rigid_subchains_complete:
+            odd.append(f"smallest rigid sub-chains: {len(self.rigid_subchains)} found, the "
+                       "search stopped at its bound; more may exist")
         return odd
 
     def to_dict(self) -> dict:

@@ -119,12 +119,15 @@ joined by binary links, makes one with each cycle of the grid), so no method lis
 all in polynomial time; where many link sets extend to rigid sets that are not minimal
 (a heavily overconstrained part with loose links round it) the search may also visit
 many nodes per set found. :func:`rigid_parts` (what ``classify`` reports) therefore
-runs it only on a degenerate chain, and within a budget of ``SEARCH_BUDGET`` work units
-(an arc of a flow network scanned once per phase of a maximum flow: a count, so the
-answer does not depend on the machine or its load; about a second here). When the
-budget runs out, it returns the sets found so far, the witness of fact 6 among them,
-marked incomplete. On a chain of a dozen links (``SCAN_CELLS`` link set and joint
-pairs) it lists by the scan instead, which is faster there.
+lists only on a degenerate chain, region by region (every smallest rigid sub-chain lies
+in one): a region small enough (``SCAN_CELLS`` link set and joint pairs, about a dozen
+links) by the scan of its link sets, which is faster there; a larger one by the search,
+within a budget of ``SEARCH_BUDGET`` work units for all of them (an arc of a flow
+network scanned in a phase of a maximum flow, a joint read for a mobility or a
+bearing: a count, so the answer does not depend on the machine or its load; about a
+second here). When the budget runs out it returns the sets found so far, the witness of
+fact 6 among them, marked incomplete; which ones those are depends on the order of the
+links.
 """
 
 from __future__ import annotations

@@ -1,6 +1,7 @@
 """Long chains whose rigid sub-chains are known by construction (tests and
 tests/data/make_long_chains.py)."""
 
+import itertools
 import random
 
 from chaingraph.model.chain import Chain, Joint
@@ -73,3 +74,39 @@ def random_dyads(links=100, *, seed=0, sliding=10, triangle=False):
     chain = _chain(f"random dyads ({n} links)", [pairs[i] for i in order],
                    [kinds[i] for i in order])
     return chain, rigid
+
+
+def hub_on_grid(k):
+    """A hub link pinned to every node link of a 2-by-k grid, whose edges are binary
+    links: each cycle of the grid with the hub is a minimal rigid set (F = 0, every
+    part of it a path with the hub, F >= 1), and there are no others: k choose 2 of
+    them, one per pair of rungs; the whole chain is one rigid region."""
+    nodes = [(r, c) for r in range(2) for c in range(k)]
+    joints = [Joint(f"H{_node(p)}", "R", ("hub", _node(p))) for p in nodes]
+    for i, (p, q) in enumerate(_grid_edges(k)):
+        joints += [Joint(f"A{i}", "R", (_node(p), f"y{i}")),
+                   Joint(f"B{i}", "R", (f"y{i}", _node(q)))]
+    return Chain(f"hub on a 2x{k} grid", tuple(joints))
+
+
+def _node(p):
+    return f"x{p[0]}{p[1]}"
+
+
+def _grid_edges(k):
+    """The rungs, then the rows' edges, of a 2-by-k grid."""
+    return ([((0, c), (1, c)) for c in range(k)]
+            + [((r, c), (r, c + 1)) for r in range(2) for c in range(k - 1)])
+
+
+def hub_cycles(k):
+    """The minimal rigid sets of :func:`hub_on_grid`, by construction: the hub and
+    the cycle between rungs i < j (its node links and edge links)."""
+    edges = _grid_edges(k)
+    out = set()
+    for i, j in itertools.combinations(range(k), 2):
+        cycle = [e for e, (p, q) in enumerate(edges)
+                 if (p[1] == q[1] and p[1] in (i, j)) or (p[1] != q[1] and i <= p[1] < j)]
+        out.add(frozenset(["hub"] + [_node((r, c)) for r in range(2) for c in range(i, j + 1)]
+                          + [f"y{e}" for e in cycle]))
+    return out
