@@ -344,11 +344,11 @@ class _Links:
         return sum(1 << x for x in links if side[node[x]])
 
     def rigid_through(self, y, allowed):
-        """The greatest rigid set through ``y`` inside ``allowed`` when some rigid set
-        of two links or more through ``y`` is of least mobility there (always, when
-        every rigid set inside ``allowed`` holds ``y``), else 0 (facts 5 and 6). Then a
-        smallest rigid set inside ``allowed`` holds y, so y bears d constraints or more
-        within ``allowed`` (fact 2): no flow is run when it bears fewer."""
+        """For ``allowed`` whose rigid sets all hold ``y`` (the callers' case, facts 5
+        to 7): the greatest set of least mobility through y inside ``allowed`` when
+        a rigid set lies there (then it is one, of two links or more), else 0. A
+        smallest rigid set inside ``allowed`` then holds y, so y bears d constraints
+        or more within ``allowed`` (fact 2): no flow is run when it bears fewer."""
         if self.bearing(y, allowed) < self.d:
             return 0
         s = self.minimiser(1 << y, allowed, greatest=True)
