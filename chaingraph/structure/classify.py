@@ -27,7 +27,7 @@ from fractions import Fraction
 
 import networkx as nx
 
-from chaingraph.structure.rigidity import rigid_subchains
+from chaingraph.structure.rigidity import rigid_parts
 
 __all__ = ["Check", "Classification", "classify", "order_name", "verdict_for"]
 
@@ -93,6 +93,8 @@ class Classification:
     separating_joints: tuple[str, ...] = ()
     singular_links: tuple[str, ...] = ()
     pieces: tuple[tuple[str, ...], ...] = field(default=())
+    rigid_subchains_complete: bool = True
+    rigid_regions: tuple[tuple[str, ...], ...] = ()
 
     def __repr__(self):
         return (f"Classification({self.name!r}, links={self.links}, pairs={self.pairs}, "
@@ -135,6 +137,9 @@ class Classification:
         rows.append(("verdict", self.verdict, ""))
         rows.append(("degenerate", "yes" if self.degenerate else "no",
                      "; ".join("{" + ", ".join(s) + "}" for s in self.rigid_subchains)))
+        if self.rigid_regions:
+            rows.append(("rigid regions", len(self.rigid_regions),
+                         "; ".join("{" + ", ".join(s) + "}" for s in self.rigid_regions)))
         return rows
 
     def check(self, rule: str) -> Check:
@@ -158,6 +163,9 @@ class Classification:
         if self.degenerate:
             odd.append("degenerate: rigid sub-chain(s) "
                        + "; ".join("{" + ", ".join(s) + "}" for s in self.rigid_subchains))
+        if not self.rigid_subchains_complete:
+            odd.append(f"smallest rigid sub-chains: {len(self.rigid_subchains)} found, the "
+                       "search stopped at its bound; more may exist")
         return odd
 
     def to_dict(self) -> dict:
@@ -177,6 +185,8 @@ class Classification:
             "verdict": self.verdict,
             "degenerate": self.degenerate,
             "rigid_subchains": [list(s) for s in self.rigid_subchains],
+            "rigid_subchains_complete": self.rigid_subchains_complete,
+            "rigid_regions": [list(s) for s in self.rigid_regions],
             "space": self.space,
             "fractionated": self.fractionated,
             "separating_links": list(self.separating_links),
@@ -272,18 +282,19 @@ def classify(chain) -> Classification:
     pair_kinds = dict(Counter(j.kind for j in chain.joints))
     checks = (_two_p_check(chain, n_links, n_pairs, link_degree, H),
               _j_check(chain, n_links, J, H))
-    rigid = tuple(rigid_subchains(chain))
+    rigid = rigid_parts(chain)
     separating_links, separating_joints = _separators(chain)
     return Classification(
         name=chain.name, links=n_links, pairs=n_pairs, joint_equivalents=J, higher_pairs=H,
         joint_orders=joint_orders, link_orders=link_orders, pair_kinds=pair_kinds,
         loops=loops, mobility=mobility, checks=checks,
         verdict=verdict_for(Fraction(1), Fraction(mobility)),
-        degenerate=bool(rigid), rigid_subchains=rigid, space=space,
+        degenerate=rigid.degenerate, rigid_subchains=rigid.smallest, space=space,
         fractionated=bool(separating_links or separating_joints),
         separating_links=separating_links, separating_joints=separating_joints,
         singular_links=tuple(x for x in chain.links if g.degree(("link", x)) == 1),
-        pieces=chain.pieces)
+        pieces=chain.pieces, rigid_subchains_complete=rigid.complete,
+        rigid_regions=rigid.regions)
 
 
 def _two_p_check(chain, n_links, n_pairs, link_degree, H) -> Check:

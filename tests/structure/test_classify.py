@@ -15,7 +15,7 @@ from ..conftest import catalog_path, run_cli
 
 KEYS = ["name", "links", "pairs", "joint_equivalents", "higher_pairs", "joint_orders",
         "link_orders", "pair_kinds", "loops", "mobility", "checks", "verdict",
-        "degenerate", "rigid_subchains"]
+        "degenerate", "rigid_subchains", "rigid_subchains_complete", "rigid_regions"]
 TWO_P, J_RULE = "L = 2P - 4", "J + H/2 = 3L/2 - 2"
 
 
@@ -71,6 +71,9 @@ def test_textbook_chains_every_key(row):
     verdict = {0: "locked chain", 1: "kinematic chain", 2: "unconstrained chain"}[F]
     assert d["verdict"] == verdict
     assert d["degenerate"] is False and d["rigid_subchains"] == []
+    assert d["rigid_subchains_complete"] is True
+    assert d["rigid_regions"] == ([list(chaingraph.load(catalog_path(stem)).links)] if F <= 0
+                                  else [])   # a locked chain is one rigid region
     c2p, cj = check(d, TWO_P), check(d, J_RULE)
     assert set(c2p) == {"rule", "lhs", "rhs", "applicable", "verdict", "note"}
     assert (c2p["lhs"], c2p["rhs"]) == (L, 2 * P - 4)
@@ -232,9 +235,12 @@ def test_relabelling_changes_no_classification(n, ternary, sliding, seed):
     assert sorted(links[x] for x in a["singular_links"]) == sorted(b["singular_links"])
 
 
-def test_rigid_search_refuses_huge_chains():
-    with pytest.raises(chaingraph.ChainStructureError, match="at most 26 links"):
-        rigid_subchains(random_chain(27, seed=0))
+def test_rigid_search_takes_chains_past_the_scans_limit():
+    # 27 links: more than the exhaustive scan takes; the search has no link limit
+    chain = random_chain(27, seed=0)
+    found = rigid_subchains(chain)
+    assert all(subchain_mobility(chain, s) <= 0 for s in found)
+    assert classify(chain).degenerate is bool(found)
 
 
 def test_cli_text_and_json():
