@@ -29,9 +29,9 @@ import math
 from functools import lru_cache
 
 from chaingraph.geometry import distance
-from chaingraph.kinematics import full_turns
+from chaingraph.kinematics import full_turns, full_turns_cost
 
-__all__ = ["turning_links", "behaviour", "behaviour_key", "four_link_loop"]
+__all__ = ["turning_links", "behaviour", "behaviour_key", "behaviour_cost", "four_link_loop"]
 
 _TOL = 1e-9
 
@@ -188,8 +188,24 @@ def behaviour_key(chain, fixed):
     return ("full turns", turning)
 
 
+def _solvable(chain):
+    """Whether a chain that is no four-link loop has its behaviour solved numerically."""
+    return (chain.has_pose and chain.space == "planar" and len(chain.pieces) == 1
+            and all(j.kind in ("R", "P") for j in chain.joints))
+
+
+def behaviour_cost(chain, fixed) -> float:
+    """An estimate, in seconds of one core, of working out the behaviour of the
+    inversion with ``fixed`` fixed: 0 for a closed form (four-link loops) or where there
+    is nothing to solve, else :func:`~chaingraph.kinematics.full_turns_cost` (a
+    cycle of every candidate driver)."""
+    if four_link_loop(chain) is not None or not _solvable(chain):
+        return 0.0
+    return full_turns_cost(chain, fixed)
+
+
 def _numeric(chain, fixed):
-    if any(j.kind not in ("R", "P") for j in chain.joints) or len(chain.pieces) > 1:
+    if not _solvable(chain):
         return None
     found = full_turns(chain, fixed)
     if found is None:
