@@ -214,25 +214,31 @@ BEHAVIOUR_LINKS = 40
 
 #: the inversions' behaviours solved in all, in estimated seconds of one core
 #: (:func:`~chaingraph.kinematics.behaviour.behaviour_cost`): the cheapest first, the
-#: others only where a name needs them (a chain of dyads fixed at an outer link is one
-#: Assur group of up to 24 links, whose cycle takes seconds to trace; 30 links took
-#: minutes in all)
+#: others only where a name needs them (a chain of dyads fixed at an outer link is an
+#: Assur group of up to 24 links, whose cycle takes seconds to trace: 20 and 30 links
+#: took minutes in all)
 BEHAVIOUR_SECONDS = 8.0
 
 
 def _behaviours_solved(chain, needed):
     """The fixed links whose behaviour :func:`inversions` solves: those in ``needed``
-    (a catalog name needs it), and the others, cheapest first, while the estimated
-    seconds in all stay within :data:`BEHAVIOUR_SECONDS`; with each one's estimate."""
+    (a catalog name needs it), and the others, the cheapest first, while the least
+    each takes (:func:`behaviour_cost`: its first driver's cycle) keeps the estimated
+    seconds spent (counted as each is solved, every driver it tried) within
+    :data:`BEHAVIOUR_SECONDS` (so past it by one inversion's drivers at most); and each
+    unsolved one's least estimate."""
     if len(chain.links) > BEHAVIOUR_LINKS:
         return set(needed), {}
-    cost = {x: behaviour_cost(chain, x) for x in chain.links}
-    solved, spent = set(needed), sum(cost[x] for x in needed)
-    for x in sorted(chain.links, key=lambda x: (cost[x], chain.links.index(x))):
-        if x not in solved and spent + cost[x] <= BEHAVIOUR_SECONDS:
-            solved.add(x)
-            spent += cost[x]
-    return solved, cost
+    least = {x: behaviour_cost(chain, x) for x in chain.links}
+    solved, spent = set(), 0.0
+    for x in list(needed) + sorted(chain.links, key=lambda x: (least[x],
+                                                                chain.links.index(x))):
+        if x in solved or (x not in needed and spent + least[x] > BEHAVIOUR_SECONDS):
+            continue
+        behaviour(chain, x)
+        spent += behaviour_cost(chain, x, spent=True)
+        solved.add(x)
+    return solved, {x: c for x, c in least.items() if x not in solved}
 
 
 #: the isomorphisms tried per catalog entry, looking for one whose behaviour is alike
@@ -400,9 +406,9 @@ def inversions(chain, *, with_input: bool = False, catalog=None) -> Inversions:
         elif not names:
             note = "the catalog names no inversion of this structure with this link fixed"
         if not solved and chain.has_pose and fixed in cost:
-            note += (f"; its behaviour is not solved (its cycles would take about "
-                     f"{cost[fixed]:.0f} s, past the {BEHAVIOUR_SECONDS:.0f} s the "
-                     "inversions' behaviours take in all; solve the inversion for it)")
+            note += (f"; its behaviour is not solved (its cycles would take "
+                     f"{cost[fixed]:.2g} s or more, past the {BEHAVIOUR_SECONDS:.0f} s "
+                     "the inversions' behaviours take in all; solve the inversion for it)")
         elif not solved and chain.has_pose:
             note += (f"; its behaviour is not solved (over {BEHAVIOUR_LINKS} links, every "
                      "inversion's whole cycle; solve the inversion for it)")
