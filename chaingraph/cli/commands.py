@@ -338,7 +338,7 @@ def cmd_assemble(args) -> int:
     chain, assembly = read_file(args.file)
     if args.json:
         out = {"name": chain.name, "file": args.file,
-               "joints": {j.id: list(j.at) for j in chain.joints},
+               "joints": {j.id: None if j.at is None else list(j.at) for j in chain.joints},
                "axes": {j.id: j.axis for j in chain.joints if j.kind == "P"},
                "points": {p.id: list(p.at) for p in chain.points},
                "modes": [{"part": m.part, "mode": m.word, "reference": m.reference,

@@ -11,7 +11,13 @@
 * :mod:`.motion` :func:`solve` and the :class:`Motion` it returns (results).
 """
 
-from chaingraph.kinematics.motion import Motion, full_turns, solve
+from chaingraph.kinematics.motion import (
+    Motion,
+    full_turns,
+    full_turns_cost,
+    full_turns_drivers,
+    solve,
+)
 from chaingraph.kinematics.plan import Plan, build_plan
 from chaingraph.kinematics.summary import (
     ExtremePosition,
@@ -24,5 +30,5 @@ from chaingraph.kinematics.summary import (
 from chaingraph.kinematics.sweep import Cycle, cycle, feasible_range
 
 __all__ = ["Motion", "Plan", "Cycle", "solve", "build_plan", "cycle", "feasible_range",
-           "full_turns", "Summary", "ExtremePosition", "summary_rows", "path_direction",
+           "full_turns", "full_turns_cost", "full_turns_drivers", "Summary", "ExtremePosition", "summary_rows", "path_direction",
            "output_signal", "OutputSignal"]

@@ -29,9 +29,10 @@ import math
 from functools import lru_cache
 
 from chaingraph.geometry import distance
-from chaingraph.kinematics import full_turns
+from chaingraph.kinematics import cycle, full_turns, full_turns_cost, full_turns_drivers
+from chaingraph.kinematics.motion import plan_of
 
-__all__ = ["turning_links", "behaviour", "behaviour_key", "four_link_loop"]
+__all__ = ["turning_links", "behaviour", "behaviour_key", "behaviour_cost", "four_link_loop"]
 
 _TOL = 1e-9
 
@@ -188,25 +189,54 @@ def behaviour_key(chain, fixed):
     return ("full turns", turning)
 
 
+def _solvable(chain):
+    """Whether a chain that is no four-link loop has its behaviour solved numerically."""
+    return (chain.has_pose and chain.space == "planar" and len(chain.pieces) == 1
+            and all(j.kind in ("R", "P") for j in chain.joints))
+
+
+def behaviour_cost(chain, fixed, *, spent=False) -> float:
+    """An estimate, in seconds of one core, of working out the behaviour of the
+    inversion with ``fixed`` fixed (:func:`~chaingraph.kinematics.full_turns_cost`): 0
+    for a closed form (four-link loops) or where there is nothing to solve; else the
+    cycle of the first candidate driver, the least it takes, or, with ``spent`` (once
+    it is worked out), of the drivers it tried (those up to one that turns fully, every
+    one where none does)."""
+    if four_link_loop(chain) is not None or not _solvable(chain):
+        return 0.0
+    drivers = full_turns_drivers(chain, fixed)
+    if not spent:
+        return full_turns_cost(chain, fixed, drivers=drivers[:1])
+    found = _analyse(chain, fixed, with_driver=True)
+    driver = None if found is None else found[2]
+    if driver is not None and cycle(plan_of(chain, fixed, driver)).full_turn:
+        drivers = drivers[:drivers.index(driver) + 1]
+    return full_turns_cost(chain, fixed, drivers=drivers)
+
+
 def _numeric(chain, fixed):
-    if any(j.kind not in ("R", "P") for j in chain.joints) or len(chain.pieces) > 1:
+    if not _solvable(chain):
         return None
     found = full_turns(chain, fixed)
     if found is None:
         return None
-    turning = found[0]
+    turning, driver = found
     order = {x: i for i, x in enumerate(chain.links)}
     words = ", ".join(sorted(turning, key=order.get))
-    return ("full turns: " + words if turning else "no link turns fully"), turning
+    return ("full turns: " + words if turning else "no link turns fully"), turning, driver
 
 
-def _analyse(chain, fixed):
+def _analyse(chain, fixed, *, with_driver=False):
     """(words, turning links) of the inversion, or None; solved once per chain and
-    fixed link (behaviour, its key and the turning links all ask for it)."""
+    fixed link (behaviour, its key and the turning links all ask for it); with
+    ``with_driver``, the driver solved too (None for a closed form)."""
     try:
-        return _analysed(chain, fixed)
+        found = _analysed(chain, fixed)
     except TypeError:                    # a chain that cannot be hashed: not cached
-        return _analysed.__wrapped__(chain, fixed)
+        found = _analysed.__wrapped__(chain, fixed)
+    if found is None:
+        return None
+    return found if with_driver else found[:2]
 
 
 @lru_cache(maxsize=1024)
@@ -220,7 +250,7 @@ def _analysed(chain, fixed):
     kinds = "".join(j.kind for j in joints)
     n_p = kinds.count("P")
     if n_p == 0:
-        return _four_bar(links, joints, fixed)
+        return _four_bar(links, joints, fixed) + (None,)
     if n_p == 1:
         turning = _single_slider(links, joints, fixed)
     elif n_p == 2 and ("PP" in kinds or (kinds[0] == "P" and kinds[-1] == "P")):
@@ -231,4 +261,4 @@ def _analysed(chain, fixed):
         return None
     order = {x: i for i, x in enumerate(chain.links)}
     words = ", ".join(sorted(turning, key=order.get))
-    return ("full turns: " + words if turning else "no link turns fully"), turning
+    return ("full turns: " + words if turning else "no link turns fully"), turning, None

@@ -174,15 +174,13 @@ def minus(a, b):
 def group_matrix(links, rows, n):
     col = {link: 3 * k for k, link in enumerate(links)}
     size = 3 * len(links)
-    entries = [[0.0] * size for _ in rows]
+    # only a row's own links' entries are set: a group's rows are sparse (a joint
+    # touches two links), and setting every entry made a large group's matrix slow
+    mat = np.zeros((n, len(rows), size))
     for i, (coef, _) in enumerate(rows):
         for link, cf in coef.items():
             for k in range(3):
-                entries[i][col[link] + k] = cf[k]
-    mat = np.empty((n, len(rows), size))
-    for i, row in enumerate(entries):
-        for j, v in enumerate(row):
-            mat[:, i, j] = v
+                mat[:, i, col[link] + k] = cf[k]
     rhs = np.empty((n, len(rows)))
     for i, (_, r) in enumerate(rows):
         rhs[:, i] = r

@@ -117,13 +117,17 @@ def newton_path(plan, step, pose, theta, q0, coarse_deg=10.0, *, head):
         q[redo], ok[redo] = q2, ok2
     ok &= np.linalg.norm(q - guess, axis=1) <= 0.05 * plan.size
     ok &= reached
+    # past a fold the trace found, the branch does not go on: Newton's method from the
+    # fold may land on another branch (a small group's, a quaternary joint chain's)
+    past = (direction * (theta - fold[0]) > 1e-12 if fold is not None
+            else np.zeros(n, dtype=bool))
     # near a fold the tangent blows up and guesses are poor: continue point by point,
     # approaching each point through ever finer substeps (a limit of the range is a
     # fold, where Newton's method converges only linearly)
     for i in range(1, n):
         if ok[i]:
             continue
-        if not ok[i - 1]:
+        if not ok[i - 1] or past[i]:
             break
         qi = _approach(plan, step, pose, theta, head, float(theta[i - 1]), q[i - 1],
                        float(theta[i]))

@@ -26,7 +26,12 @@ from networkx.algorithms.isomorphism import GraphMatcher
 
 from chaingraph._util.text import short_list
 from chaingraph.errors import ChainStructureError
-from chaingraph.kinematics.behaviour import behaviour, behaviour_key, turning_links
+from chaingraph.kinematics.behaviour import (
+    behaviour,
+    behaviour_cost,
+    behaviour_key,
+    turning_links,
+)
 from chaingraph.naming.catalog import bundled_catalog
 from chaingraph.structure.isomorphism import (
     automorphism_orbits,
@@ -207,6 +212,34 @@ class Match:
 # links, growing as the cube of the links): beyond this, only where a name needs it
 BEHAVIOUR_LINKS = 40
 
+#: the inversions' behaviours solved in all, in estimated seconds of one core
+#: (:func:`~chaingraph.kinematics.behaviour.behaviour_cost`): the cheapest first, the
+#: others only where a name needs them (a chain of dyads fixed at an outer link is an
+#: Assur group of up to 24 links, whose cycle takes seconds to trace: 20 and 30 links
+#: took minutes in all)
+BEHAVIOUR_SECONDS = 8.0
+
+
+def _behaviours_solved(chain, needed):
+    """The fixed links whose behaviour :func:`inversions` solves: those in ``needed``
+    (a catalog name needs it), and the others, the cheapest first, while the least
+    each takes (:func:`behaviour_cost`: its first driver's cycle) keeps the estimated
+    seconds spent (counted as each is solved, every driver it tried) within
+    :data:`BEHAVIOUR_SECONDS` (so past it by one inversion's drivers at most); and each
+    unsolved one's least estimate."""
+    if len(chain.links) > BEHAVIOUR_LINKS:
+        return set(needed), {}
+    least = {x: behaviour_cost(chain, x) for x in chain.links}
+    solved, spent = set(), 0.0
+    for x in list(needed) + sorted(chain.links, key=lambda x: (least[x],
+                                                                chain.links.index(x))):
+        if x in solved or (x not in needed and spent + least[x] > BEHAVIOUR_SECONDS):
+            continue
+        behaviour(chain, x)
+        spent += behaviour_cost(chain, x, spent=True)
+        solved.add(x)
+    return solved, {x: c for x, c in least.items() if x not in solved}
+
 
 #: the isomorphisms tried per catalog entry, looking for one whose behaviour is alike
 #: (after the one that keeps driver and output): a chain with a symmetric group of
@@ -355,14 +388,16 @@ def inversions(chain, *, with_input: bool = False, catalog=None) -> Inversions:
         pairs = [(f, d) for f in chain.links for d in drivers[f]]
         pair_class = {p: i + 1 for i, orbit in enumerate(pair_orbits(chain, pairs)) for p in orbit}
     order = {x: i for i, x in enumerate(chain.links)}
+    found = {fixed: catalog_matches(chain, fixed, catalog) for fixed in chain.links}
+    solvable, cost = _behaviours_solved(chain, [x for x in chain.links if found[x]])
     result = []
     for fixed in chain.links:
-        matches = catalog_matches(chain, fixed, catalog)
+        matches = found[fixed]
         named = naming_matches(matches)
         names = tuple(dict.fromkeys(x.entry.name for x in named))
         differ = [x.entry.name for x in matches if x.alike is False and x.oriented
                   and x.entry.name not in names]
-        solved = len(chain.links) <= BEHAVIOUR_LINKS or matches
+        solved = fixed in solvable
         how = behaviour(chain, fixed) if solved else None
         note = None
         if differ:
@@ -370,7 +405,11 @@ def inversions(chain, *, with_input: bool = False, catalog=None) -> Inversions:
                     + ", ".join(dict.fromkeys(differ)) + ", whose names need that behaviour")
         elif not names:
             note = "the catalog names no inversion of this structure with this link fixed"
-        if not solved and chain.has_pose:
+        if not solved and chain.has_pose and fixed in cost:
+            note += (f"; its behaviour is not solved (its cycles would take "
+                     f"{cost[fixed]:.2g} s or more, past the {BEHAVIOUR_SECONDS:.0f} s "
+                     "the inversions' behaviours take in all; solve the inversion for it)")
+        elif not solved and chain.has_pose:
             note += (f"; its behaviour is not solved (over {BEHAVIOUR_LINKS} links, every "
                      "inversion's whole cycle; solve the inversion for it)")
         turning = turning_links(chain, fixed) if solved else None
