@@ -20,6 +20,7 @@ from chaingraph.model.chain import Chain, Joint
 from chaingraph.naming.atlas import atlas_names
 from chaingraph.structure.atlas import atlas_graphs
 from chaingraph.structure.atlas.admissibility import admissible, decide, verdicts
+from chaingraph.structure.atlas.generic import generic_verdicts
 from chaingraph.structure.atlas.labelling import link_joint_form, link_joint_keys
 from chaingraph.structure.atlas.multiple import link_joint_graphs, multiple_atlas
 from chaingraph.structure.classify import classify
@@ -192,6 +193,11 @@ def test_the_chains_are_the_same_relabelled_and_by_either_labelling():
         assert by["nauty"] == by["own"] and by["own"]
 
 
+def _mask(kinds):
+    """The sliding pairs of ``kinds`` ("R"/"P" per joint) as a bit mask."""
+    return sum(1 << i for i, k in enumerate(kinds) if k == "P")
+
+
 def _every_pin_graph(links, dof):
     """Every link-joint graph of this size with a multiple joint, admissible or not."""
     return [g for g in _every_graph(links, dof) if any(len(j) > 2 for j in g)]
@@ -202,7 +208,9 @@ def test_pins_with_sliding_pairs_are_decided_as_the_rank_decides(links, dof):
     """Every link-joint graph with a multiple joint (admissible or not), with every set
     of its simple joints made sliding that the structure of the P joints leaves open:
     the product's verdict (an evaluation's proof or a bound's) is the floating-point
-    rank's at two random poses, and every rejection is proven by a bound."""
+    rank's at two random poses, and every rejection is proven by a bound; the exact
+    evaluation of all of a chain's assignments at once (the sliding atlas's) finds the
+    mobility and locks the rank finds."""
     candidates, kinds = [], []
     for joints in _every_pin_graph(links, dof):
         joints = tuple(joints)
@@ -215,8 +223,14 @@ def test_pins_with_sliding_pairs_are_decided_as_the_rank_decides(links, dof):
                     kinds.append(kind)
     got = verdicts(links, candidates, kinds=kinds, dof=dof)
     assert len(got) > 100 and got.count(None) > 10 and got.count("locked") > 0
+    drawn = {}                 # the sliding atlas's one evaluation of a chain's every mask
+    for joints in set(candidates):
+        masks = [_mask(kind) for c, kind in zip(candidates, kinds) if c == joints]
+        mobility, locked = generic_verdicts(links, joints, masks)
+        drawn.update(((joints, m), (int(f), bool(s))) for m, f, s in zip(masks, mobility, locked))
     for joints, kind, reason in zip(candidates, kinds, got):
         first = _verdict(links, joints, 1, kind)
+        assert drawn[joints, _mask(kind)] == first
         assert first == _verdict(links, joints, 2, kind), (joints, kind)
         assert (reason is None) == (first == (dof, False)), (joints, kind, reason, first)
         if reason is not None:      # every rejection has its proof: a bound, not a draw

@@ -176,12 +176,17 @@ def multigraph_automorphisms(k, edges, *, backend="nauty"):
     return sorted(group)
 
 
-def _link_joint_adjacency(n, joints):
+def _link_joint_adjacency(n, joints, members=None):
     """A link-joint graph's adjacency: links 0..n-1, then one node per joint (a bit mask
-    of its links) joined to its links."""
+    of its links) joined to its links (``members``: a dict of masks' links, filled as
+    it goes, for many graphs)."""
+    members = {} if members is None else members
     adjacency = {v: [] for v in range(n)}
-    for k, mask in enumerate(joints):
-        adjacency[n + k] = [x for x in range(n) if mask >> x & 1]
+    for k, mask in enumerate(joints, start=n):
+        links = members.get(mask)
+        if links is None:
+            links = members[mask] = [x for x in range(n) if mask >> x & 1]
+        adjacency[k] = links
     return adjacency
 
 
@@ -216,12 +221,12 @@ def link_joint_keys(n, graphs, *, backend="nauty"):
     _check(backend)
     if backend == "own":
         return [_own_link_joint(n, joints)[0] for joints in graphs]
-    keys, g = [], None
+    keys, g, members = [], None, {}
     for joints in graphs:
         nodes = n + len(joints)
         if g is None or g.number_of_vertices != nodes:
             g = _nauty.Graph(nodes, vertex_coloring=[set(range(n)), set(range(n, nodes))])
-        g._adjacency_dict = _link_joint_adjacency(n, joints)   # skips the validation
+        g._adjacency_dict = _link_joint_adjacency(n, joints, members)   # unvalidated
         keys.append(_nautywrap.graph_cert(g))
     return keys
 

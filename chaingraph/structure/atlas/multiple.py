@@ -197,19 +197,19 @@ def link_joint_graphs(links: int, pattern, *, backend=None) -> list:
     for degree in pattern:
         masks, rows_of = _candidates(links, degree)
         children, made = [], []
-        for joints, rows, once, twice, beyond in level:
-            fits = np.nonzero((rows_of <= capacity - rows).all(axis=1))[0]
-            for i in fits.tolist():
-                mask = masks[i]
-                more = beyond + (mask & twice).bit_count()
-                if more <= spare:
-                    children.append(joints + (mask,))
-                    made.append((rows + rows_of[i], once | mask,
-                                 twice | (once & mask), more))
+        for k, (joints, rows, once, twice, beyond) in enumerate(level):
+            for i in np.nonzero((rows_of <= capacity - rows).all(axis=1))[0].tolist():
+                if beyond + (masks[i] & twice).bit_count() <= spare:
+                    children.append(joints + (masks[i],))
+                    made.append((k, i))
         kept = {}
-        for key, child, state in zip(link_joint_keys(links, children, backend=backend),
-                                     children, made):
-            kept.setdefault(key, (child, *state))
+        for key, child, (k, i) in zip(link_joint_keys(links, children, backend=backend),
+                                      children, made):
+            if key not in kept:
+                _, rows, once, twice, beyond = level[k]
+                mask = masks[i]
+                kept[key] = (child, rows + rows_of[i], once | mask, twice | (once & mask),
+                             beyond + (mask & twice).bit_count())
         level = list(kept.values())
     return [joints for joints, *_ in level if _connected(links, joints)]
 
