@@ -193,6 +193,16 @@ def test_the_chains_are_the_same_relabelled_and_by_either_labelling():
         assert by["nauty"] == by["own"] and by["own"]
 
 
+@pytest.mark.parametrize("links, dof", [(8, 3), (9, 2)])
+def test_fractionated_chains_are_the_ones_classify_finds(links, dof):
+    """A chain is fractionated when a link or a joint separates it into closed parts:
+    those of the atlas's chains of simple joints, and the chains with multiple joints
+    whose link-joint graph a node separates."""
+    got = multiple_atlas(atlas_graphs(links, dof))
+    assert [e.fractionated for e in got] == [classify(e.chain()).fractionated for e in got]
+    assert any(e.fractionated for e in got if e.multiple)
+
+
 def _mask(kinds):
     """The sliding pairs of ``kinds`` ("R"/"P" per joint) as a bit mask."""
     return sum(1 << i for i, k in enumerate(kinds) if k == "P")

@@ -39,6 +39,7 @@ import functools
 import itertools
 from dataclasses import dataclass
 
+import networkx as nx
 import numpy as np
 
 from chaingraph._util.disjoint import DisjointSets
@@ -58,13 +59,15 @@ __all__ = ["MultipleEntry", "MultipleAtlas", "multiple_atlas", "joint_patterns",
 @dataclass(frozen=True)
 class MultipleEntry:
     """One chain with multiple joints: ``joints``, each the tuple of the (0-based)
-    links it joins; ``links`` how many; its inversion classes; ``multiple`` how many of
+    links it joins; ``links`` how many; its inversion classes; whether it is
+    fractionated (a link or a joint whose removal splits it); ``multiple`` how many of
     its joints join three links or more."""
 
     id: int
     joints: tuple
     links: int
     inversion_classes: int
+    fractionated: bool = False
 
     @property
     def multiple(self) -> int:
@@ -167,6 +170,14 @@ def _capacity(links):
     return np.where(size >= 2, 3 * size - 4, np.iinfo(np.int16).max).astype(np.int16)
 
 
+def _fractionated(links, joints):
+    """Whether a link or a joint (a bit mask of links) separates the link-joint graph
+    (every side of it then closed: its every node is on two others or more)."""
+    g = nx.Graph((links + k, x) for k, mask in enumerate(joints)
+                 for x in range(links) if mask >> x & 1)
+    return not nx.is_biconnected(g)
+
+
 def _connected(links, joints):
     parts = DisjointSets(links)
     for mask in joints:
@@ -246,8 +257,11 @@ def multiple_atlas(base) -> MultipleAtlas:
     admitted.sort(key=lambda form: (sum(len(j) > 2 for j in form[0]),
                                     sorted((-len(j) for j in form[0] if len(j) > 2)),
                                     form[0]))
-    entries = [MultipleEntry(i, tuple(map(tuple, e.edges)), links, e.inversion_classes)
+    entries = [MultipleEntry(i, tuple(map(tuple, e.edges)), links, e.inversion_classes,
+                             bool(e.fractionated))
                for i, e in enumerate(base, start=1)]
     for joints, orbits in admitted:
-        entries.append(MultipleEntry(len(entries) + 1, joints, links, orbits))
+        masks = [sum(1 << x for x in j) for j in joints]
+        entries.append(MultipleEntry(len(entries) + 1, joints, links, orbits,
+                                     _fractionated(links, masks)))
     return MultipleAtlas(links, dof, tuple(entries), rejected)

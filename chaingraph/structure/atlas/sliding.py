@@ -247,7 +247,7 @@ def sliding_atlas(base, *, prismatic, oriented=False) -> SlidingAtlas:
     """
     wanted = (prismatic,) if isinstance(prismatic, int) else tuple(sorted(set(prismatic)))
     entries, rejected = [], {reason: 0 for reason in REASONS}
-    for reason, n in getattr(base, "rejected", {}).items():    # merges of multiple joints
+    for reason, n in getattr(base, "rejected", {}).items():    # link-joint graphs
         rejected[reason] += n
     for base_id, entry in enumerate(base, start=1):
         multiple = hasattr(entry, "joints")
