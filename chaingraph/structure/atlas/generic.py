@@ -39,7 +39,11 @@ def _modular_inverse(v):
 
 def reduce_mod(mats):
     """Each stacked matrix (int64, entries modulo PRIME) in reduced row echelon form, and
-    its rank."""
+    its rank.
+
+    The rows from the rank down are zero left of the column being reduced (each earlier
+    column was either a pivot's, cleared in every other row, or zero in them), so a
+    step swaps and subtracts the columns from there on only."""
     m = mats % PRIME
     count, rows, cols = m.shape
     rank = np.zeros(count, dtype=np.int64)
@@ -51,34 +55,34 @@ def reduce_mod(mats):
             continue
         pivot = np.argmax(candidate[has], axis=1)
         top = rank[has]
-        sub = m[has]
+        sub = m[has, :, c:]
         k = np.arange(has.size)
         sub[k, pivot], sub[k, top] = sub[k, top], sub[k, pivot].copy()
-        sub[k, top] = sub[k, top] * _modular_inverse(sub[k, top, c])[:, None] % PRIME
-        factor = sub[:, :, c].copy()
+        sub[k, top] = sub[k, top] * _modular_inverse(sub[k, top, 0])[:, None] % PRIME
+        factor = sub[:, :, 0].copy()
         factor[k, top] = 0
         sub = (sub - factor[:, :, None] * sub[k, top][:, None, :]) % PRIME
-        m[has] = sub
+        m[has, :, c:] = sub
         rank[has] += 1
     return m, rank
 
 
 def in_row_space(reduced, rank, vectors):
     """Whether each of ``vectors`` (count, k, cols) lies in the row space of its
-    matrix, given in reduced row echelon form with its rank."""
+    matrix, given in reduced row echelon form with its rank.
+
+    A vector is in the row space exactly when it is the sum of the rows, each times
+    the vector's entry at the row's pivot (a pivot's column is zero in every other
+    row), so the test is one product per matrix; its factors are split into 16-bit
+    halves so that no sum of products overflows int64."""
     v = vectors % PRIME
-    count, rows, cols = reduced.shape
-    everything = np.arange(count)
-    for r in range(rows):
-        live = everything[rank > r]
-        if not live.size:
-            break
-        row = reduced[live, r]                                  # (n, cols)
-        pivot = np.argmax(row != 0, axis=1)                     # its leading 1
-        here = v[live]                                          # (n, k, cols)
-        coefficient = here[np.arange(live.size), :, pivot]      # (n, k)
-        v[live] = (here - coefficient[:, :, None] * row[:, None, :]) % PRIME
-    return ~v.any(axis=2)
+    pivots = np.argmax(reduced != 0, axis=2)            # (count, rows); zero rows: 0
+    pivots[np.arange(reduced.shape[1])[None, :] >= rank[:, None]] = 0
+    coefficients = np.take_along_axis(v, np.broadcast_to(
+        pivots[:, None, :], (v.shape[0], v.shape[1], pivots.shape[1])), axis=2)
+    high, low = coefficients >> 16, coefficients & 0xFFFF
+    span = ((high @ reduced) % PRIME * (1 << 16) + low @ reduced) % PRIME
+    return (v == span).all(axis=2)
 
 
 def _verdicts(rows, rates, valid=None):
