@@ -6,8 +6,9 @@ every set of joints), told apart by the project's own canonical forms
 * every set of joints on N links (each joint a set of two links or more, no two joints
   on the same two links), labelled, to 6 links;
 * every link-joint graph up to isomorphism (each joint degree pattern's joints added in
-  every way, told apart by the project's own labelling), to 8 links: no bound of
-  rigidity prunes it, so every graph of the pattern is decided by the rank."""
+  every way, told apart by nauty's labelling and, to 6 links, by the project's own
+  alike), to 8 links: no bound of rigidity prunes it, so every graph of the pattern is
+  decided by the rank."""
 
 import itertools
 import json
