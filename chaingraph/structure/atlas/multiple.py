@@ -20,8 +20,8 @@ extend it, when
   3 |S| - 3: S is rigid, so a weld of a joint inside it overbraces it), since adding a
   joint only adds rows. Two joints on the same two links are such a set (4 rows on 2
   links), so a pair of links is joined once at most;
-* its links' joints beyond two each already exceed what the pattern leaves
-  (sum d_j - 2 N): some link would end on fewer than two joints.
+* the joints its links hold beyond two each, summed, already exceed what the pattern
+  leaves (sum d_j - 2 N): some link would end on fewer than two joints.
 
 Every set of joints that completes its pattern, connected, is then decided by the
 atlas's own verdict (:func:`~chaingraph.structure.atlas.admissibility.verdicts`: an
