@@ -98,7 +98,7 @@ def atlas(*, links: int, dof: int = 1, workers: int = 1, prismatic=None,
     >>> [[j.kind for j in c.joints] for c in atlas(links=4, prismatic=2)]
     [['P', 'P', 'R', 'R'], ['R', 'P', 'P', 'R']]
     >>> [max(len(j.links) for j in c.joints) for c in atlas(links=6, multiple=True)]
-    [2, 3, 3, 2]
+    [2, 2, 3, 3]
     """
     wanted = prismatic_counts(links, dof, joints_for(links, dof), prismatic, oriented)
     base = atlas_graphs(links, dof, workers=workers)

@@ -23,13 +23,14 @@ rejected when a bound does: forests with each pin spread over points of its own 
 chain is a special case of that one, so its rank is no higher), or the count, which
 takes a path of sliding pairs outside a set of links as the one turn row it adds to it.
 Neither is known to be a theorem there, but together they decide every such chain of
-the atlas to 9 links (a path of sliding pairs keeping two links parallel, with a pin,
-makes the rigid sub-chains that only the count's path row sees). Should some chain
+the atlas to 10 links with one degree of freedom and 9 with two (a path of sliding pairs
+keeping two links parallel, with a pin, makes the rigid sub-chains that only the
+count's path row sees). Should some chain
 escape both, it is rejected when :data:`DRAWS` independent exact evaluations all find
 it dependent or locked: a minor of degree at most twice the joints vanishes at a random
 point modulo the prime 2**31 - 1 with probability below 1e-8, so four evaluations that
 all miss an admissible chain have probability below 1e-31. That verdict alone would not
-be a proof; none is made to 9 links.
+be a proof; none is made to those sizes.
 """
 
 from __future__ import annotations

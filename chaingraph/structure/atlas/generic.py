@@ -39,7 +39,11 @@ def _modular_inverse(v):
 
 def reduce_mod(mats):
     """Each stacked matrix (int64, entries modulo PRIME) in reduced row echelon form, and
-    its rank."""
+    its rank.
+
+    The rows from the rank down are zero left of the column being reduced (each earlier
+    column was either a pivot's, cleared in every other row, or zero in them), so a
+    step swaps and subtracts the columns from there on only."""
     m = mats % PRIME
     count, rows, cols = m.shape
     rank = np.zeros(count, dtype=np.int64)
@@ -51,34 +55,34 @@ def reduce_mod(mats):
             continue
         pivot = np.argmax(candidate[has], axis=1)
         top = rank[has]
-        sub = m[has]
+        sub = m[has, :, c:]
         k = np.arange(has.size)
         sub[k, pivot], sub[k, top] = sub[k, top], sub[k, pivot].copy()
-        sub[k, top] = sub[k, top] * _modular_inverse(sub[k, top, c])[:, None] % PRIME
-        factor = sub[:, :, c].copy()
+        sub[k, top] = sub[k, top] * _modular_inverse(sub[k, top, 0])[:, None] % PRIME
+        factor = sub[:, :, 0].copy()
         factor[k, top] = 0
         sub = (sub - factor[:, :, None] * sub[k, top][:, None, :]) % PRIME
-        m[has] = sub
+        m[has, :, c:] = sub
         rank[has] += 1
     return m, rank
 
 
 def in_row_space(reduced, rank, vectors):
     """Whether each of ``vectors`` (count, k, cols) lies in the row space of its
-    matrix, given in reduced row echelon form with its rank."""
+    matrix, given in reduced row echelon form with its rank.
+
+    A vector is in the row space exactly when it is the sum of the rows, each times
+    the vector's entry at the row's pivot (a pivot's column is zero in every other
+    row), so the test is one product per matrix; its factors are split into 16-bit
+    halves so that no sum of products overflows int64."""
     v = vectors % PRIME
-    count, rows, cols = reduced.shape
-    everything = np.arange(count)
-    for r in range(rows):
-        live = everything[rank > r]
-        if not live.size:
-            break
-        row = reduced[live, r]                                  # (n, cols)
-        pivot = np.argmax(row != 0, axis=1)                     # its leading 1
-        here = v[live]                                          # (n, k, cols)
-        coefficient = here[np.arange(live.size), :, pivot]      # (n, k)
-        v[live] = (here - coefficient[:, :, None] * row[:, None, :]) % PRIME
-    return ~v.any(axis=2)
+    pivots = np.argmax(reduced != 0, axis=2)            # (count, rows); zero rows: 0
+    pivots[np.arange(reduced.shape[1])[None, :] >= rank[:, None]] = 0
+    coefficients = np.take_along_axis(v, np.broadcast_to(
+        pivots[:, None, :], (v.shape[0], v.shape[1], pivots.shape[1])), axis=2)
+    high, low = coefficients >> 16, coefficients & 0xFFFF
+    span = ((high @ reduced) % PRIME * (1 << 16) + low @ reduced) % PRIME
+    return (v == span).all(axis=2)
 
 
 def _verdicts(rows, rates, valid=None):
@@ -96,12 +100,15 @@ def generic_verdicts(links, edges, masks, *, draw=0):
     velocity equations at the pose ``draw`` (pseudo-random pins and sliding
     directions, exact modulo PRIME): the generic mobility or more, the generic
     verdict where the mobility is the least its joints allow and no joint is locked.
+    ``edges`` are the chain's joints, each a tuple of links: a joint of more than two
+    links is a pin of them all (a turning pair; its bit is never set).
 
     A link's velocity is its twist (omega, vx, vy) at the origin. An R joint at (x, y)
-    gives the pin one velocity on both links (2 rows); a P joint with normal n turns its
-    links together and lets no point slip across its line (2 rows). A joint is locked
-    when its rate (an R joint's relative turn, a P joint's slide) is zero in every
-    motion: its row lies in the equations' row space.
+    gives the pin one velocity on all its links (2 rows per link past the first); a P
+    joint with normal n turns its links together and lets no point slip across its
+    line (2 rows). A joint is locked when its rate (an R joint's relative turn, of each
+    two of its links; a P joint's slide) is zero in every motion: its row lies in the
+    equations' row space.
 
     Examples
     --------
@@ -109,32 +116,46 @@ def generic_verdicts(links, edges, masks, *, draw=0):
     >>> mobility, locked = generic_verdicts(4, ring, [0b0000, 0b0011, 0b1111, 0b0111])
     >>> mobility.tolist(), locked.tolist()
     ([1, 1, 2, 1], [False, False, False, True])
+    >>> fan = [(0, 1, 2), (1, 3), (2, 3), (0, 3)]          # a pin of three: rigid
+    >>> [v.tolist() for v in generic_verdicts(4, fan, [0b0000, 0b1000])]
+    [[0, 0], [True, True]]
     """
     masks = np.asarray(masks, dtype=np.int64)
-    m, cols = len(edges), 3 * (links - 1)
+    cols = 3 * (links - 1)
     rnd = random.Random(f"{draw}:{links}:{edges}")
     values = [[rnd.randrange(1, PRIME) for _ in range(4)] for _ in edges]
     count = masks.size
-    rows = np.zeros((count, 2 * m, cols), dtype=np.int64)
-    rates = np.zeros((count, m, cols), dtype=np.int64)
+    rows = np.zeros((count, sum(2 * (len(j) - 1) for j in edges), cols), dtype=np.int64)
+    rates = np.zeros((count, sum(len(j) * (len(j) - 1) // 2 for j in edges), cols),
+                     dtype=np.int64)
 
     def put(target, index, row, link, coefficients, sign):
         if link:
             for k, v in enumerate(coefficients):
                 target[index, row, 3 * (link - 1) + k] += sign * v
     everything = np.arange(count)
-    for i, ((a, b), (x, y, nx, ny)) in enumerate(zip(edges, values)):
+    row = rate = 0
+    for i, (joint, (x, y, nx, ny)) in enumerate(zip(edges, values)):
         sliding = (masks >> i & 1).astype(bool)
         r, s = everything[~sliding], everything[sliding]
-        for link, sign in ((a, 1), (b, -1)):
-            # R: the pin's velocity v + omega k x (x, y), both components
-            put(rows, r, 2 * i, link, (-y, 1, 0), sign)
-            put(rows, r, 2 * i + 1, link, (x, 0, 1), sign)
-            put(rates, r, i, link, (1, 0, 0), -sign)
-            # P: the same turn; no slip across the line at (x, y) (normal n)
-            put(rows, s, 2 * i, link, (1, 0, 0), sign)
-            put(rows, s, 2 * i + 1, link, ((-nx * y + ny * x) % PRIME, nx, ny), sign)
-            put(rates, s, i, link, ((ny * y + nx * x) % PRIME, -ny, nx), -sign)
+        if len(joint) == 2:
+            a, b = joint
+            for link, sign in ((a, 1), (b, -1)):
+                # P: the same turn; no slip across the line at (x, y) (normal n)
+                put(rows, s, row, link, (1, 0, 0), sign)
+                put(rows, s, row + 1, link, ((-nx * y + ny * x) % PRIME, nx, ny), sign)
+                put(rates, s, rate, link, ((ny * y + nx * x) % PRIME, -ny, nx), -sign)
+        for other in joint[1:]:
+            for link, sign in ((joint[0], 1), (other, -1)):
+                # R: the pin's velocity v + omega k x (x, y), both components
+                put(rows, r, row, link, (-y, 1, 0), sign)
+                put(rows, r, row + 1, link, (x, 0, 1), sign)
+            row += 2
+        for k, a in enumerate(joint):
+            for b in joint[k + 1:]:
+                put(rates, r, rate, a, (1, 0, 0), -1)
+                put(rates, r, rate, b, (1, 0, 0), 1)
+                rate += 1
     rank, locked = _verdicts(rows, rates)
     return cols - rank, locked
 

@@ -21,8 +21,8 @@ try:                                          # nauty: the field's canonical lab
 except ImportError:                           # pragma: no cover - pynauty is a dependency
     _nauty = _nautywrap = None
 
-__all__ = ["graph_form", "graph_forms", "multigraph_key", "multigraph_automorphisms", "BACKENDS",
-           "default_backend"]
+__all__ = ["graph_form", "graph_forms", "multigraph_key", "multigraph_automorphisms",
+           "link_joint_keys", "link_joint_form", "BACKENDS", "default_backend"]
 
 BACKENDS = ("nauty", "own")
 
@@ -174,3 +174,86 @@ def multigraph_automorphisms(k, edges, *, backend="nauty"):
                     new.append(q)
         frontier = new
     return sorted(group)
+
+
+def _link_joint_adjacency(n, joints, members=None):
+    """A link-joint graph's adjacency: links 0..n-1, then one node per joint (a bit mask
+    of its links) joined to its links (``members``: a dict of masks' links, filled as
+    it goes, for many graphs)."""
+    members = {} if members is None else members
+    adjacency = {v: [] for v in range(n)}
+    for k, mask in enumerate(joints, start=n):
+        links = members.get(mask)
+        if links is None:
+            links = members[mask] = [x for x in range(n) if mask >> x & 1]
+        adjacency[k] = links
+    return adjacency
+
+
+def _own_link_joint(n, joints):
+    """:func:`refine_search` of a link-joint graph: its certificate, node order and
+    automorphism generators."""
+    adjacency = _link_joint_adjacency(n, joints)
+    adj = [[] for _ in adjacency]
+    for v, ends in adjacency.items():
+        for x in ends:
+            adj[v].append((x, 0))
+            adj[x].append((v, 0))
+    labels = [("link",)] * n + [("joint",)] * len(joints)
+    cert, order, generators, _ = refine_search(labels, adj)
+    return (tuple(labels[v] for v in order), cert), order, generators
+
+
+def link_joint_keys(n, graphs, *, backend="nauty"):
+    """A key for each link-joint graph of ``graphs``, equal for two graphs on ``n``
+    links with as many joints exactly when they are isomorphic (links to links, joints
+    to joints). Each graph is a sequence of joints, each a bit mask of its links (bit
+    ``x`` for link ``x``).
+
+    Examples
+    --------
+    >>> a, b, c = link_joint_keys(4, [(0b0111, 0b1010, 0b1100, 0b1001),
+    ...                               (0b1110, 0b0101, 0b0011, 0b1001),
+    ...                               (0b0011, 0b0110, 0b1100, 0b1001)], backend="own")
+    >>> a == b, a == c
+    (True, False)
+    """
+    _check(backend)
+    if backend == "own":
+        return [_own_link_joint(n, joints)[0] for joints in graphs]
+    keys, g, members = [], None, {}
+    for joints in graphs:
+        nodes = n + len(joints)
+        if g is None or g.number_of_vertices != nodes:
+            g = _nauty.Graph(nodes, vertex_coloring=[set(range(n)), set(range(n, nodes))])
+        g._adjacency_dict = _link_joint_adjacency(n, joints, members)   # unvalidated
+        keys.append(_nautywrap.graph_cert(g))
+    return keys
+
+
+def link_joint_form(n, joints, *, backend="nauty"):
+    """A link-joint graph's joints in canonical labels, and its link orbits.
+
+    Returns ``(joints, orbits)``: each joint (``joints`` as in :func:`link_joint_keys`)
+    a sorted tuple of links renumbered canonically (isomorphic graphs get the same
+    tuple), the tuple sorted; ``orbits`` the number of orbits of the links under the
+    graph's automorphisms (the chain's distinct inversions).
+
+    Examples
+    --------
+    >>> link_joint_form(4, (0b0111, 0b1010, 0b1100, 0b1001), backend="own")
+    (((0, 1, 2), (0, 3), (1, 3), (2, 3)), 2)
+    """
+    _check(backend)
+    if backend == "own":
+        _, order, generators = _own_link_joint(n, joints)
+        orbits = len(set(orbits_of(generators, n + len(joints))[:n]))
+    else:
+        g = _nauty.Graph(n + len(joints), adjacency_dict=_link_joint_adjacency(n, joints),
+                         vertex_coloring=[set(range(n)), set(range(n, n + len(joints)))])
+        order = _nauty.canon_label(g)
+        orbits = len(set(_nauty.autgrp(g)[3][:n]))
+    position = {v: i for i, v in enumerate(v for v in order if v < n)}
+    canonical = sorted(tuple(sorted(position[x] for x in range(n) if mask >> x & 1))
+                       for mask in joints)
+    return tuple(canonical), orbits

@@ -2,51 +2,81 @@
 turning pairs may each join more than two links (a compound hinge; a joint of d links
 counts as d - 1 simple joints), as link-joint bipartite graphs.
 
-A chain with multiple joints becomes a chain of simple joints when each multiple joint
-is spread into d - 1 simple joints along a tree of its links (the pins then at distinct
-places); so the chains are found by merging, in the chains of simple joints, sets of
-joints that form trees into one pin each (two merged pins may share a link). The chains
-of simple joints used are the atlas's own, without rigid sub-chains: a spread that has
-one would be overconstrained, and coincident pins only add constraints' coincidences, so
-the chain with multiple joints would be too. ``tests/structure/test_multiple.py`` checks
-this against a direct enumeration of every set of joints on N links up to 7 links (an
-enumeration that merged only vertex-disjoint trees missed a chain of 7 links whose two
-ternary joints share a link). A merged chain is kept when every link has two joints or
-more, no two joints join the same two links, and it has F freedoms with no joint
-locked (:mod:`~chaingraph.structure.atlas.admissibility`: admitted by an exact
-evaluation, rejected by Whiteley's count of bodies and pins). Chains are told apart by
-canonical forms of their link-joint graphs (nauty where installed), and their
-inversion classes are the orbits of their links.
+The chains with a multiple joint are enumerated directly, as link-joint graphs, so that
+the atlas is complete by construction. A chain's joints are fixed by its *joint
+pattern*: the degrees d_j of its joints, with sum (d_j - 1) = (3 (N - 1) - F) / 2 (the
+Kutzbach count) and sum d_j >= 2 N (every link on two joints or more). For each pattern
+with a joint of three links or more, the joints are added one at a time in the
+pattern's order (largest first), in every way on the N links, and the sets of joints
+found are told apart by nauty's canonical form of their link-joint graph at each step
+(:func:`~chaingraph.structure.atlas.labelling.link_joint_keys`), so each is kept once
+and extended in every way. A set of joints is dropped, with everything that would
+extend it, when
+
+* some set S of two links or more holds 3 |S| - 3 rows or more, a joint counting
+  2 (d_S - 1) for the d_S links of S it holds: Whiteley's count
+  (:mod:`~chaingraph.structure.atlas.pins`) then proves the chain, and every chain with
+  more joints, dependent (more than 3 |S| - 3: overbraced) or locked (exactly
+  3 |S| - 3: S is rigid, so a weld of a joint inside it overbraces it), since adding a
+  joint only adds rows. Two joints on the same two links are such a set (4 rows on 2
+  links), so a pair of links is joined once at most;
+* the joints its links hold beyond two each, summed, already exceed what the pattern
+  leaves (sum d_j - 2 N): some link would end on fewer than two joints.
+
+Every set of joints that completes its pattern, connected, is then decided by the
+atlas's own verdict (:func:`~chaingraph.structure.atlas.admissibility.verdicts`: an
+exact evaluation admits, Whiteley's count rejects); the count the search prunes by is
+the one the verdict rejects by, so none is rejected there (``rejected`` counts them by
+reason should one be). The chains of simple joints are the atlas's own (``base``),
+found by contracted graphs. ``tests/structure/test_multiple.py`` checks the whole
+against a brute force over every link-joint graph to 8 links. The inversion classes
+are the orbits of the links under the link-joint graph's automorphisms.
 """
 
 from __future__ import annotations
 
+import functools
 import itertools
 from dataclasses import dataclass
 
+import networkx as nx
+import numpy as np
+
 from chaingraph._util.disjoint import DisjointSets
 from chaingraph.model.chain import Chain, Joint
-from chaingraph.structure.atlas.admissibility import verdicts
+from chaingraph.structure.atlas.admissibility import REASONS, verdicts
+from chaingraph.structure.atlas.labelling import (
+    default_backend,
+    link_joint_form,
+    link_joint_keys,
+)
 from chaingraph.structure.atlas.sliding import Entries
-from chaingraph.structure.isomorphism import automorphism_orbits, canonical_form
 
-__all__ = ["MultipleEntry", "MultipleAtlas", "multiple_atlas"]
+__all__ = ["MultipleEntry", "MultipleAtlas", "multiple_atlas", "joint_patterns",
+           "link_joint_graphs"]
 
 
 @dataclass(frozen=True)
 class MultipleEntry:
     """One chain with multiple joints: ``joints``, each the tuple of the (0-based)
-    links it joins; ``links`` how many; its inversion classes; ``multiple`` how many of
+    links it joins; ``links`` how many; its inversion classes; whether it is
+    fractionated (a link or a joint whose removal splits it); ``multiple`` how many of
     its joints join three links or more."""
 
     id: int
     joints: tuple
     links: int
     inversion_classes: int
+    fractionated: bool = False
 
     @property
     def multiple(self) -> int:
         return sum(len(j) > 2 for j in self.joints)
+
+    @property
+    def degrees(self) -> tuple:
+        """How many links each multiple joint joins, largest first."""
+        return tuple(sorted((len(j) for j in self.joints if len(j) > 2), reverse=True))
 
     def chain(self, dof=None) -> Chain:
         joints = tuple(Joint(f"J{i + 1}", "R", tuple(f"L{x + 1}" for x in links))
@@ -68,7 +98,8 @@ class MultipleEntry:
 @dataclass(frozen=True)
 class MultipleAtlas(Entries):
     """The chains with multiple joints of one size (those with only simple joints
-    included), and the merged candidates rejected by reason."""
+    first, in the atlas's order), and the complete link-joint graphs the verdict
+    rejected, by reason."""
 
     links: int
     dof: int
@@ -77,75 +108,131 @@ class MultipleAtlas(Entries):
 
     @property
     def count_by_multiple(self) -> dict:
+        """Chains by how many of their joints join three links or more."""
         out = {}
         for e in self.entries:
             out[e.multiple] = out.get(e.multiple, 0) + 1
         return dict(sorted(out.items()))
 
+    @property
+    def count_by_degrees(self) -> dict:
+        """Chains by the degrees of their multiple joints (a tuple, largest first;
+        ``()`` for simple joints only)."""
+        out = {}
+        for e in self.entries:
+            out[e.degrees] = out.get(e.degrees, 0) + 1
+        return dict(sorted(out.items(), key=lambda kv: (len(kv[0]), [-d for d in kv[0]])))
 
 
-def _partitions(items):
-    """Every partition of the list ``items`` into blocks."""
-    if not items:
-        yield []
-        return
-    first, rest = items[0], items[1:]
-    for part in _partitions(rest):
-        yield [[first]] + part
-        for i in range(len(part)):
-            yield part[:i] + [[first] + part[i]] + part[i + 1:]
+def joint_patterns(links: int, dof: int) -> list:
+    """The joint patterns of chains of ``links`` links and ``dof`` degrees of freedom:
+    each the degrees of its joints, largest first, with the Kutzbach count of ``dof``
+    and at least two joints per link by count (sum of the degrees >= 2 links).
+
+    Examples
+    --------
+    >>> joint_patterns(6, 1)
+    [(4, 2, 2, 2, 2), (3, 3, 2, 2, 2), (3, 2, 2, 2, 2, 2), (2, 2, 2, 2, 2, 2, 2)]
+    """
+    rows = 3 * (links - 1) - dof
+    if rows < 0 or rows % 2:
+        return []
+    out = []
+
+    def grow(pattern, left):
+        if not left:
+            if sum(pattern) >= 2 * links:
+                out.append(tuple(pattern))
+            return
+        for d in range(min(pattern[-1] if pattern else links, left + 1), 1, -1):
+            grow(pattern + [d], left - (d - 1))
+    grow([], rows // 2)
+    return out
 
 
-def _connected(edges):
-    seen, todo = {edges[0][0]}, [edges[0][0]]
-    while todo:
-        x = todo.pop()
-        for a, b in edges:
-            for u, v in ((a, b), (b, a)):
-                if u == x and v not in seen:
-                    seen.add(v)
-                    todo.append(v)
-    return all(a in seen for a, _ in edges)
+@functools.lru_cache(maxsize=64)
+def _candidates(links, degree):
+    """Every joint of ``degree`` links on ``links`` links (bit masks), and the rows it
+    puts on each set of links (a row per set, sets as bit masks): 2 (d_S - 1) for the
+    d_S links of S it holds."""
+    masks = [sum(1 << x for x in c) for c in itertools.combinations(range(links), degree)]
+    sets = np.arange(1 << links)
+    held = sum(((sets[None, :] >> x) & 1) * np.array([[m >> x & 1] for m in masks])
+               for x in range(links))
+    return masks, (2 * np.maximum(held - 1, 0)).astype(np.int16)
 
 
-def _merges(links, edges):
-    """Every way of merging sets of the simple joints ``edges`` into pins: each set a
-    tree of two edges or more (several sets may share a link), its links then on one
-    pin. Yields the chains' joints (tuples of links) with every link keeping two joints
-    or more and no two joints on the same two links."""
-    m = len(edges)
-    for mask in range(1 << m):
-        chosen = [edges[i] for i in range(m) if mask >> i & 1]
-        if len(chosen) == 1:
-            continue
-        trees = DisjointSets(links)
-        if not all(trees.join(a, b) for a, b in chosen):
-            continue                                   # a loop: not a forest
-        components = {}
-        for e in chosen:
-            components.setdefault(trees.find(e[0]), []).append(e)
-        options = []
-        for part in components.values():
-            ways = [[tuple(sorted({x for e in block for x in e})) for block in blocks]
-                    for blocks in _partitions(part)
-                    if all(len(block) >= 2 and _connected(block) for block in blocks)]
-            if not ways:
-                break
-            options.append(ways)
-        else:
-            rest = [e for i, e in enumerate(edges) if not mask >> i & 1]
-            for choice in itertools.product(*options):
-                joints = [j for groups in choice for j in groups] + rest
-                if any(sum(x in j for j in joints) < 2 for x in range(links)):
-                    continue
-                if any(len(set(a) & set(b)) > 1 for a, b in itertools.combinations(joints, 2)):
-                    continue
-                yield tuple(sorted(joints))
+@functools.lru_cache(maxsize=16)
+def _capacity(links):
+    """The rows each set S of links may hold without a rigid or overbraced set:
+    3 |S| - 4 for two links or more (no bound for fewer)."""
+    size = np.array([s.bit_count() for s in range(1 << links)])
+    return np.where(size >= 2, 3 * size - 4, np.iinfo(np.int16).max).astype(np.int16)
+
+
+def _fractionated(links, joints):
+    """Whether a link or a joint (a bit mask of links) separates the link-joint graph
+    (every side of it then closed: its every node is on two others or more)."""
+    g = nx.Graph((links + k, x) for k, mask in enumerate(joints)
+                 for x in range(links) if mask >> x & 1)
+    return not nx.is_biconnected(g)
+
+
+def _connected(links, joints):
+    parts = DisjointSets(links)
+    for mask in joints:
+        members = [x for x in range(links) if mask >> x & 1]
+        for x in members[1:]:
+            parts.join(members[0], x)
+    return parts.count == 1
+
+
+def link_joint_graphs(links: int, pattern, *, backend=None) -> list:
+    """Every connected link-joint graph on ``links`` links with joints of the degrees
+    ``pattern`` (largest first) whose every link is on two joints or more and no set S
+    of two links or more holds 3 |S| - 3 rows (module text), once up to isomorphism:
+    each a tuple of joints as bit masks of their links (bit ``x`` for link ``x``), in
+    the order of ``pattern``. ``backend``: the canonical labelling (nauty by default).
+
+    Examples
+    --------
+    >>> [[bin(m) for m in g] for g in link_joint_graphs(6, (3, 3, 2, 2, 2))]
+    [['0b111', '0b111000', '0b1001', '0b10010', '0b100100']]
+    """
+    backend = backend or default_backend()
+    capacity = _capacity(links)
+    spare = sum(pattern) - 2 * links                 # joints beyond two, over all links
+    rows_of = {}                                     # a joint's rows on each set of links
+    # a set of joints: (joints, links on a joint, links on two joints or more, joints
+    # beyond two over all links); its rows are summed where it is extended
+    level = [((), 0, 0, 0)]
+    for degree in pattern:
+        masks, rows = _candidates(links, degree)
+        rows_of.update(zip(masks, rows))
+        children, made = [], []
+        for k, (joints, once, twice, beyond) in enumerate(level):
+            free = capacity - sum((rows_of[m] for m in joints), np.zeros_like(capacity))
+            for i in np.nonzero((rows <= free).all(axis=1))[0].tolist():
+                if beyond + (masks[i] & twice).bit_count() <= spare:
+                    children.append(joints + (masks[i],))
+                    made.append(k)
+        kept = {}
+        for key, child, k in zip(link_joint_keys(links, children, backend=backend),
+                                 children, made):
+            if key not in kept:
+                _, once, twice, beyond = level[k]
+                mask = child[-1]
+                kept[key] = (child, once | mask, twice | (once & mask),
+                             beyond + (mask & twice).bit_count())
+        level = list(kept.values())
+    return [joints for joints, *_ in level if _connected(links, joints)]
 
 
 def multiple_atlas(base) -> MultipleAtlas:
-    """The chains with multiple joints made from the simple-joint chains of ``base``
-    (an :class:`~chaingraph.structure.atlas.run.Atlas`).
+    """The chains with multiple joints of the size of ``base`` (an
+    :class:`~chaingraph.structure.atlas.run.Atlas`: the chains of simple joints, which
+    come first), the chains with a multiple joint then by their number, their degrees
+    and their canonical joints.
 
     Examples
     --------
@@ -153,32 +240,32 @@ def multiple_atlas(base) -> MultipleAtlas:
     >>> six = multiple_atlas(atlas_graphs(6, 1))
     >>> six.count_by_multiple
     {0: 2, 1: 1, 2: 1}
+    >>> eight = multiple_atlas(atlas_graphs(8, 1))
+    >>> len(eight), eight.count_by_degrees      # doctest: +NORMALIZE_WHITESPACE
+    (60, {(): 16, (4,): 2, (3,): 20, (4, 4): 1, (4, 3): 1, (3, 3): 16, (3, 3, 3): 3,
+          (3, 3, 3, 3): 1})
     """
-    seen, found, rejected = set(), [], {"mobility": 0, "locked": 0}
-    for entry in base:
-        edges = [tuple(e) for e in entry.edges]
-        candidates = []
-        for joints in _merges(entry.links, edges):
-            if joints in seen:
-                continue
-            seen.add(joints)
-            candidates.append(joints)
-        if not candidates:
-            continue
-        for joints, reason in zip(candidates, verdicts(entry.links, candidates,
-                                                       dof=base.dof)):
-            if reason is not None:
-                rejected[reason] += 1
-                continue
-            found.append(joints)
-    forms, entries = set(), []
-    for joints in found:
-        made = MultipleEntry(0, joints, base.links, 0)
-        chain = made.chain()
-        form = canonical_form(chain, oriented=False)
-        if form in forms:
-            continue
-        forms.add(form)
-        entries.append(MultipleEntry(len(entries) + 1, joints, base.links,
-                                     len(automorphism_orbits(chain, oriented=False))))
-    return MultipleAtlas(base.links, base.dof, tuple(entries), rejected)
+    links, dof = base.links, base.dof
+    backend = getattr(base, "labelling", None) or default_backend()
+    found = [graph for pattern in joint_patterns(links, dof) if pattern[0] > 2
+             for graph in link_joint_graphs(links, pattern, backend=backend)]
+    candidates = [tuple(tuple(x for x in range(links) if mask >> x & 1) for mask in g)
+                  for g in found]
+    rejected = {reason: 0 for reason in REASONS}
+    admitted = []
+    for graph, reason in zip(found, verdicts(links, candidates, dof=dof)):
+        if reason is None:
+            admitted.append(link_joint_form(links, graph, backend=backend))
+        else:
+            rejected[reason] += 1
+    admitted.sort(key=lambda form: (sum(len(j) > 2 for j in form[0]),
+                                    sorted((-len(j) for j in form[0] if len(j) > 2)),
+                                    form[0]))
+    entries = [MultipleEntry(i, tuple(map(tuple, e.edges)), links, e.inversion_classes,
+                             bool(e.fractionated))
+               for i, e in enumerate(base, start=1)]
+    for joints, orbits in admitted:
+        masks = [sum(1 << x for x in j) for j in joints]
+        entries.append(MultipleEntry(len(entries) + 1, joints, links, orbits,
+                                     _fractionated(links, masks)))
+    return MultipleAtlas(links, dof, tuple(entries), rejected)

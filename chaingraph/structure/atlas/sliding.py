@@ -247,7 +247,7 @@ def sliding_atlas(base, *, prismatic, oriented=False) -> SlidingAtlas:
     """
     wanted = (prismatic,) if isinstance(prismatic, int) else tuple(sorted(set(prismatic)))
     entries, rejected = [], {reason: 0 for reason in REASONS}
-    for reason, n in getattr(base, "rejected", {}).items():    # merges of multiple joints
+    for reason, n in getattr(base, "rejected", {}).items():    # link-joint graphs
         rejected[reason] += n
     for base_id, entry in enumerate(base, start=1):
         multiple = hasattr(entry, "joints")
@@ -263,7 +263,7 @@ def sliding_atlas(base, *, prismatic, oriented=False) -> SlidingAtlas:
         # the structure of the P joints first; the rest drawn in one batch, then proven
         found = {s: admissible(n, edges, _kinds(s, m)) for s in reps}
         left = [s for s in reps if found[s] is None]
-        drawn = None if multiple or not left else generic_verdicts(n, edges, left)
+        drawn = generic_verdicts(n, edges, left) if left else None
         found.update(zip(left, verdicts(n, [tuple(edges)] * len(left),
                                         kinds=[_kinds(s, m) for s in left],
                                         dof=base.dof, drawn=drawn)))
