@@ -11,6 +11,7 @@ import html
 from dataclasses import dataclass
 from pathlib import Path
 
+from chaingraph._util.atomic import withdraw, write_atomic
 from chaingraph._util.parallel import process_runner
 from chaingraph.drawing.mechanism import mechanism_svg, skeleton_svg
 from chaingraph.errors import ChainGraphError, UnboundedRangeError
@@ -190,6 +191,7 @@ def write_illustrated(result, out_dir, *, animate=None, frames=24, workers=1) ->
     :class:`IllustratedPage` of each chain."""
     out = Path(out_dir)
     (out / "chains").mkdir(parents=True, exist_ok=True)
+    withdraw(out)          # the old index goes before any page is rewritten
     animate = (animated_by_default(result, workers=workers) if animate is None
                else bool(animate))
     tasks = [(e, result.dof, result.oriented, animate, frames) for e in result]
@@ -222,8 +224,8 @@ def write_illustrated(result, out_dir, *, animate=None, frames=24, workers=1) ->
                          f"<td>{_esc(orders)}</td><td>{e.inversion_classes}</td>"
                          f"<td>{_esc(', '.join(chain_names))}</td></tr>")
         index.append("</table>")
-    (out / "index.html").write_text(
-        f"<!DOCTYPE html><html lang=\"en\"><head><meta charset=\"utf-8\"><title>atlas"
-        f"</title><style>{_STYLE}</style></head><body>" + "\n".join(index)
-        + "</body></html>\n", encoding="utf-8")
+    write_atomic(out / "index.html",          # last, after every page (none before: withdrawn)
+                 f"<!DOCTYPE html><html lang=\"en\"><head><meta charset=\"utf-8\"><title>"
+                 f"atlas</title><style>{_STYLE}</style></head><body>" + "\n".join(index)
+                 + "</body></html>\n")
     return pages
