@@ -271,7 +271,6 @@ def test_resume_refuses_what_it_cannot_continue(tmp_path):
 
 
 def test_a_local_dask_cluster_gives_the_local_run():
-    pytest.importorskip("distributed")
     import numpy as np
 
     from chaingraph.structure.atlas import DaskRunner, run_atlas
@@ -288,7 +287,6 @@ def test_a_local_dask_cluster_gives_the_local_run():
 
 
 def test_an_unreachable_scheduler_is_one_line(monkeypatch):
-    pytest.importorskip("distributed")
     from chaingraph.structure.atlas import run
     monkeypatch.setattr(run, "CONNECT_TIMEOUT", 1.0)     # nothing listens there anyway
     code, out, err = run_cli("atlas", "--links", "8", "--scheduler", "tcp://127.0.0.1:9",
