@@ -201,6 +201,7 @@ class SlidingEstimate:
     ``10 ** log10_seconds`` seconds of CPU."""
 
     base: Estimate
+    joints: int
     prismatic: tuple
     oriented: bool
     multiple: bool
@@ -217,7 +218,7 @@ class SlidingEstimate:
                   f"about {_big(base.log10_chains)} turning-pair chains")
         if self.multiple:
             chains += f" (about {_big(self.log10_chains_tried)} with multiple joints)"
-        every = len(self.prismatic) > 1 and self.prismatic == tuple(range(len(self.prismatic)))
+        every = set(range(self.joints + 1)) <= set(self.prismatic)
         ks = ("every K" if every else "K = " + ", ".join(map(str, self.prismatic)))
         text = (f"{chains}, each tried with up to {self.assignments:,} assignment"
                 f"{'s' if self.assignments != 1 else ''} of sliding pairs ({ks}"
@@ -255,5 +256,5 @@ def sliding_estimate(links: int, dof: int = 1, *, prismatic=(0,), oriented=False
     per_chain = (10 ** _fitted("chain", links) + assignments * 10 ** _fitted("assignment", links)
                  + extra * 10 ** _fitted("orientation", links))
     seconds += 10 ** (log_chains + math.log10(per_chain))
-    return SlidingEstimate(base, wanted, bool(oriented), bool(multiple), log_chains,
+    return SlidingEstimate(base, joints, wanted, bool(oriented), bool(multiple), log_chains,
                            assignments, math.log10(seconds))
