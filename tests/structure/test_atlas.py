@@ -467,3 +467,25 @@ def test_a_summary_counts_the_chains_as_it_finds_them(monkeypatch):
     code, out, err = run_cli("atlas", "--links", "6", "--prismatic", "1", "-q")
     assert code == 0 and out.startswith("6 chains") and "id  link assortment" in out
     assert [line.split()[0] for line in out.splitlines()[-6:]] == list("123456")
+
+
+def test_an_interrupted_rewrite_of_an_atlas_folder_presents_no_index(tmp_path, monkeypatch):
+    """Rewriting an atlas folder (the turning-pair atlas's, the illustrated pages of one
+    with sliding pairs) and interrupted halfway: no index.html beside the mixture."""
+    from chaingraph.report import atlas as pages
+    from chaingraph.structure.atlas import output
+
+    def interrupted(*args, **kwargs):
+        raise KeyboardInterrupt
+    for args, module, name in ((["--links", "6"], output, "chain_text"),
+                               (["--links", "4", "--prismatic", "all"], pages, "_page_job")):
+        out = tmp_path / name
+        code, _, err = run_cli("atlas", *args, "--out", out, "-q")
+        assert code == 0 and (out / "index.html").exists(), err
+        with monkeypatch.context() as m:
+            m.setattr(module, name, interrupted)
+            code, _, err = run_cli("atlas", *args, "--out", out, "-q")
+        assert code == 130 and err.strip() == "chaingraph: interrupted"
+        assert not (out / "index.html").exists() and (out / "chains").exists()
+        code, _, err = run_cli("atlas", *args, "--out", out, "-q")       # and again, whole
+        assert code == 0 and (out / "index.html").exists(), err
