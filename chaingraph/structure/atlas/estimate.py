@@ -178,14 +178,17 @@ def _check_sliding(links, dof, *, cores, hours, prismatic, oriented, multiple):
 
 # -- with sliding pairs and multiple joints ------------------------------------------------
 #: ``(a, b)`` of ``log10 seconds = a + b N`` (CPU seconds of one process, N links), fitted
-#: to the times measured at 6, 8 and 10 links by ``benchmarks/atlas_sliding.py --fit``:
-#: "chain" per turning-pair chain (its automorphism group), "assignment" per assignment
-#: of sliding pairs tried, "orientation" per further orientation of their guides (with
-#: ``oriented``), "merge" per turning-pair chain for its multiple joints, and
-#: "multiple_chains" the chains with multiple joints per turning-pair chain
-SLIDING_FIT = {"chain": (-3.4, 0.10), "assignment": (-5.3, 0.07),
-               "orientation": (-6.5, 0.05), "merge": (-4.4, 0.42),
-               "multiple_chains": (-0.90, 0.15)}
+#: to the times measured by ``benchmarks/atlas_sliding.py --fit`` on the 2-core machine
+#: while it was shared (so they lean high, by up to twice): "chain" per turning-pair
+#: chain (its automorphism group; 3.3, 6.0, 6.9 ms at 6, 8, 10 links), "assignment" per
+#: assignment of sliding pairs tried (10, 30, 72 us), "orientation" per further
+#: orientation of their guides with ``oriented`` (0.52, 0.44, 0.48 us), "merge" per
+#: turning-pair chain for its multiple joints (0.011, 0.27 s at 6, 8 links; 10 links take
+#: too long to time) and "multiple_chains" the chains with multiple joints per
+#: turning-pair chain (2 and 3.7 at 6, 8 links)
+SLIDING_FIT = {"chain": (-2.940, 0.081), "assignment": (-6.241, 0.211),
+               "orientation": (-6.247, -0.010), "merge": (-6.148, 0.698),
+               "multiple_chains": (-0.496, 0.133)}
 
 
 def _fitted(name, links):
@@ -216,14 +219,20 @@ class SlidingEstimate:
         base = self.base
         chains = (f"the {round(base.chains):,} turning-pair chains" if base.published else
                   f"about {_big(base.log10_chains)} turning-pair chains")
-        if self.multiple:
-            chains += f" (about {_big(self.log10_chains_tried)} with multiple joints)"
         every = set(range(self.joints + 1)) <= set(self.prismatic)
         ks = ("every K" if every else "K = " + ", ".join(map(str, self.prismatic)))
-        text = (f"{chains}, each tried with up to {self.assignments:,} assignment"
-                f"{'s' if self.assignments != 1 else ''} of sliding pairs ({ks}"
-                f"{', oriented' if self.oriented else ''}): about "
-                f"{_duration(self.log10_seconds)} of CPU in one process")
+        tried = (f"each tried with up to {self.assignments:,} assignment"
+                 f"{'s' if self.assignments != 1 else ''} of sliding pairs ({ks}"
+                 f"{', oriented' if self.oriented else ''})")
+        if self.multiple and self.prismatic == (0,):
+            text = (f"{chains} merged into about {_big(self.log10_chains_tried)} chains "
+                    "with multiple joints")
+        elif self.multiple:
+            text = (f"{chains} (about {_big(self.log10_chains_tried)} with multiple "
+                    f"joints), {tried}")
+        else:
+            text = f"{chains}, {tried}"
+        text += f": about {_duration(self.log10_seconds)} of CPU in one process"
         if cores:
             total = math.log10(self.wall_seconds(cores))
             text += f" ({_duration(total)} with the turning-pair atlas on {cores} " \
