@@ -96,6 +96,11 @@ def _duration(log10_seconds):
     return f"{s:.0f} s" if s >= 1 else "under a second"
 
 
+def _about(log10_seconds):
+    duration = _duration(log10_seconds)
+    return duration if duration.startswith("under") else f"about {duration}"
+
+
 def estimate(links: int, dof: int = 1) -> Estimate:
     """The estimated size and CPU time of an atlas.
 
@@ -232,7 +237,7 @@ class SlidingEstimate:
                     f"joints), {tried}")
         else:
             text = f"{chains}, {tried}"
-        text += f": about {_duration(self.log10_seconds)} of CPU in one process"
+        text += f": {_about(self.log10_seconds)} of CPU in one process"
         if cores:
             total = math.log10(self.wall_seconds(cores))
             text += f" ({_duration(total)} with the turning-pair atlas on {cores} " \
