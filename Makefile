@@ -19,7 +19,7 @@ $(VENV)/.installed: pyproject.toml $(SOURCES) | $(BIN)/python
 	touch $@
 
 $(VENV)/.installed-test: pyproject.toml $(VENV)/.installed
-	$(BIN)/python -m pip install --quiet ".[test,cluster]"
+	$(BIN)/python -m pip install --quiet ".[test]"
 	touch $@
 
 report: $(VENV)/.installed

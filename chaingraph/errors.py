@@ -136,9 +136,10 @@ class OutputError(ChainGraphError, OSError):
 
 class AtlasRunError(ChainGraphError, RuntimeError):
     """An atlas run that cannot go on: a Dask scheduler that cannot be reached, Dask not
-    installed, or an output folder that holds no run to resume or a different one.
-    ``reason`` is ``"unreachable"``, ``"missing"`` or ``"resume"``; ``parameter`` the
-    parameter of the call at fault (``"scheduler"``, ``"out"``, ``"resume"``)."""
+    installed, an output folder that holds no run to resume or a different one, or an
+    empty output path. ``reason`` is ``"unreachable"``, ``"missing"``, ``"resume"`` or
+    ``"out"``; ``parameter`` the parameter of the call at fault (``"scheduler"``,
+    ``"out"``, ``"resume"``)."""
 
     def __init__(self, problem, *, reason=None, parameter=None):
         self.problem = problem

@@ -4,9 +4,10 @@ import ast
 import re
 import subprocess
 import sys
+import tomllib
+from importlib import metadata
 from pathlib import Path
 
-import pytest
 
 PACKAGE = Path(__file__).resolve().parent.parent / "chaingraph"
 MODULES = sorted(PACKAGE.rglob("*.py"))
@@ -21,11 +22,9 @@ def _trees():
 def test_the_layers_hold():
     """import-linter's contract (pyproject.toml): each layer imports only from below,
     siblings are independent; `make test` runs it too."""
-    lint = Path(sys.executable).with_name("lint-imports")
-    if not lint.exists():
-        pytest.skip("import-linter is not installed (the test extra installs it)")
-    done = subprocess.run([str(lint), "--no-cache"], capture_output=True, text=True,
-                          cwd=PACKAGE.parent)
+    done = subprocess.run([sys.executable, "-c", "from importlinter.cli import "
+                           "lint_imports_command; lint_imports_command()", "--no-cache"],
+                          capture_output=True, text=True, cwd=PACKAGE.parent)
     assert done.returncode == 0, done.stdout[-2000:]
 
 
@@ -119,3 +118,26 @@ def test_library_errors_name_parameters_not_flags():
                     getattr(node, "attr", None), getattr(node, "id", None)):
                 found.append(f"{path}:{node.lineno} exit_status")
     assert found == []
+
+
+def test_the_test_extra_installs_what_the_tests_need():
+    """``pip install .[test]`` gives every test what it needs, so that none is skipped
+    for a dependency the project declares: every requirement of the test extra (the
+    notebook and cluster extras included) is installed, and no test imports-or-skips."""
+    project = tomllib.loads((PACKAGE.parent / "pyproject.toml").read_text())["project"]
+    extras = project["optional-dependencies"]
+    test = {re.split(r"[\[<>=~!; ]", r, maxsplit=1)[0].lower() for r in extras["test"]}
+    for extra in ("notebook", "cluster"):
+        for requirement in extras[extra]:
+            assert re.split(r"[\[<>=~!; ]", requirement, maxsplit=1)[0].lower() in test
+    missing = []
+    for name in sorted(test):
+        try:
+            metadata.version(name)
+        except metadata.PackageNotFoundError:
+            missing.append(name)
+    assert not missing, f"not installed: {missing} (pip install '.[test]')"
+    skipping = [str(path.relative_to(PACKAGE.parent)) for path in
+                sorted((PACKAGE.parent / "tests").rglob("*.py"))
+                if path != Path(__file__).resolve() and "importorskip" in path.read_text()]
+    assert not skipping, skipping

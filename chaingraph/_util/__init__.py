@@ -1,2 +1,2 @@
 """Small helpers shared by every layer: text for reprs, the process runner, the
-progress bar."""
+progress bar, union-find, and writes that a reader never sees half made."""

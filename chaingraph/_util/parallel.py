@@ -2,8 +2,10 @@
 
 A runner is ``runner(fn, tasks, on_result)``: it calls ``on_result(i, fn(tasks[i]))``
 for every task, in whatever order they finish. Workers leave Ctrl-C to the main
-process, which stops them all (no worker left behind, no traceback of theirs), and
-end by themselves when the main process is gone (killed with SIGKILL, say).
+process, which stops them all (no worker left behind, no traceback of theirs), end at
+once on SIGTERM (whatever handler the main process set, which a forked worker would
+otherwise inherit), and end by themselves when the main process is gone (killed with
+SIGKILL, say).
 """
 
 from __future__ import annotations
@@ -25,8 +27,11 @@ def serial(fn, tasks, on_result):
 
 
 def ignore_interrupts():
-    """In a worker process: leave Ctrl-C to the main process, which stops the workers."""
+    """In a worker process: leave Ctrl-C to the main process, which stops the workers,
+    and end quietly on SIGTERM (the signal the main process stops them with; a worker
+    forked from a command line would otherwise inherit its handler, and print)."""
     signal.signal(signal.SIGINT, signal.SIG_IGN)
+    signal.signal(signal.SIGTERM, signal.SIG_DFL)
 
 
 def prepare_worker(parent):

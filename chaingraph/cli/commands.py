@@ -64,8 +64,10 @@ from chaingraph.structure.atlas.contracted import joints_for
 from chaingraph.structure.atlas.estimate import LOCAL_HOURS, check_size
 from chaingraph.structure.atlas.multiple import multiple_atlas
 from chaingraph.structure.atlas.sliding import (
+    SlidingCounts,
     prismatic_counts,
     sliding_atlas,
+    sliding_chains,
     sliding_dict,
     write_sliding,
 )
@@ -408,7 +410,8 @@ def cmd_atlas(args) -> int:
         workers = workers_asked(args.workers)
     else:                        # a remote cluster's cores are its own; refused below 1
         workers = args.workers if args.workers >= 1 else workers_asked(args.workers)
-    check_size(args.links, args.dof, cores=workers, cluster=args.scheduler is not None)
+    check_size(args.links, args.dof, cores=workers, cluster=args.scheduler is not None,
+               hours=args.max_hours)
     if args.resume and not args.out:
         raise ChainGraphError("--resume continues a run in its output folder: give --out DIR")
     if args.out:
@@ -486,32 +489,34 @@ def _sliding(args, wanted) -> int:
     if args.scheduler is not None or args.resume:
         raise ChainGraphError("--prismatic runs here, from the turning-pair atlas in memory: "
                               "leave out --scheduler and --resume")
-    check_size(args.links, args.dof, cores=workers_asked(args.workers), cluster=False)
+    workers = workers_asked(args.workers)
+    check_size(args.links, args.dof, cores=workers, cluster=False, hours=args.max_hours,
+               prismatic=wanted, oriented=args.oriented, multiple=args.multiple)
     if args.out:
         output_folder(args.out, what="atlas")
     start = time.perf_counter()
-    base = run_atlas(args.links, args.dof, runner=process_runner(workers_asked(args.workers)))
+    base = run_atlas(args.links, args.dof, runner=process_runner(workers))
     if args.multiple:
         base = multiple_atlas(base)
-    result = sliding_atlas(base, prismatic=wanted, oriented=args.oriented)
-    if args.no_fractionated:
-        result = result.without_fractionated()
     def names(chain):
         return atlas_names(chain, oriented=args.oriented)
-    record = sliding_dict(result, prismatic=args.prismatic, chains=not args.summary,
-                          names=names)
+    if args.out or (args.json and not args.summary):
+        result = sliding_atlas(base, prismatic=wanted, oriented=args.oriented)
+        shown = result = result.without_fractionated() if args.no_fractionated else result
+    else:                   # counted as found: memory stays flat whatever the size
+        result, shown = _counted(base, wanted, args)
+    record = sliding_dict(result, prismatic=args.prismatic, chains=False)
     elapsed = time.perf_counter() - start
     if args.out:
-        whole = record if not args.summary else sliding_dict(
-            result, prismatic=args.prismatic, names=names)
-        paths = write_sliding(result, args.out, record=whole)
+        paths = write_sliding(result, args.out, record=sliding_dict(
+            result, prismatic=args.prismatic, names=names))
         if args.links <= 8 or args.illustrate:
-            workers = workers_asked(args.workers)
             animate = args.illustrate or animated_by_default(result, workers=workers)
             pages = write_illustrated(result, args.out, animate=animate, workers=workers)
             paths["pages"] = pages
     if args.json or args.summary:
-        print_json(record)
+        print_json(record if args.summary else
+                   sliding_dict(result, prismatic=args.prismatic, names=names))
         return 0
     kinds = ("any number of sliding pairs" if args.prismatic == "all" else
              "turning pairs only" if args.prismatic is None else
@@ -524,13 +529,13 @@ def _sliding(args, wanted) -> int:
     for reason, n in result.rejected.items():
         if n:
             print(f"rejected: {n} with {REASONS[reason]}")
-    if len(result) <= 60:
+    if shown is not None and len(shown) <= LISTED_UP_TO:
         rows = [[e.id, ", ".join(f"{v} {k}" for k, v in e.link_orders.items()),
                  e.inversion_classes,
                  " ".join(("-" if k == "R" else ">" if args.oriented else "=").join(
                      str(x + 1) for x in j) for j, k in zip(e.edges, e.kinds)),
-                 ", ".join(c["names"]["chain"]) or "-"]
-                for e, c in zip(result, record["chains"])]
+                 ", ".join(names(e.chain(args.dof))["chain"]) or "-"]
+                for e in shown]
         print(table(rows, ["id", "link assortment", "inversions",
                            "joints (R a-b, P a=b" + (", guide on a: a>b" if args.oriented
                                                      else "") + ")", "catalog name"]))
@@ -553,3 +558,23 @@ def _sliding(args, wanted) -> int:
                       f"{LOCAL_HOURS:g} hour a run takes without asking (--illustrate "
                       "animates them)")
     return 0
+
+
+#: the text of atlas --prismatic lists the chains up to this many
+LISTED_UP_TO = 60
+
+
+def _counted(base, wanted, args):
+    """The counts of the chains with sliding pairs, counted as they are found, and the
+    chains themselves when there are few enough to list (else None)."""
+    counts = SlidingCounts(base.links, base.dof, wanted, args.oriented, {})
+    first = []
+    for entry in sliding_chains(base, prismatic=wanted, oriented=args.oriented,
+                                rejected=counts.rejected):
+        if args.no_fractionated and entry.fractionated:
+            continue
+        counts.add(entry)
+        if len(first) <= LISTED_UP_TO:
+            first.append(entry)
+    listed = first if len(counts) <= LISTED_UP_TO else None
+    return counts, listed

@@ -5,6 +5,7 @@ from __future__ import annotations
 import argparse
 
 from chaingraph import __version__
+from chaingraph.structure.atlas.estimate import LOCAL_HOURS
 from chaingraph.cli.commands import (
     cmd_assemble,
     cmd_atlas,
@@ -21,7 +22,7 @@ from chaingraph.cli.commands import (
     cmd_vary,
 )
 
-__all__ = ['build_parser', 'whole_number']
+__all__ = ['build_parser', 'whole_number', 'path_argument']
 
 
 class _Parser(argparse.ArgumentParser):
@@ -60,7 +61,8 @@ def build_parser() -> argparse.ArgumentParser:
     p = sub.add_parser("classify", help="structural classification of chain files",
                        description="Counts, orders, loops, Kutzbach mobility, the textbook "
                                    "checks and degeneracy of each chain file.")
-    p.add_argument("files", nargs="+", metavar="FILE", help="chain files (TOML)")
+    p.add_argument("files", nargs="+", type=path_argument, metavar="FILE",
+                   help="chain files (TOML)")
     p.add_argument("--json", action="store_true", help="print JSON (a list for several files)")
     p.set_defaults(run=cmd_classify)
 
@@ -68,7 +70,7 @@ def build_parser() -> argparse.ArgumentParser:
                        description="One inversion per link, grouped into classes by the "
                                    "chain's automorphisms, named from the catalog, with "
                                    "their behaviour where the file has dimensions.")
-    p.add_argument("file", metavar="FILE", help="a chain file (TOML)")
+    p.add_argument("file", type=path_argument, metavar="FILE", help="a chain file (TOML)")
     p.add_argument("--json", action="store_true", help="print JSON")
     p.add_argument("--with-input", action="store_true",
                    help="also designate the input link (joined to the fixed link by an R joint)")
@@ -77,7 +79,7 @@ def build_parser() -> argparse.ArgumentParser:
     p = sub.add_parser("identify", help="which catalog chain (and inversion) a file is",
                        description="Find the file's chain in the catalog by structure and, "
                                    "for a mechanism, which catalog inversion it is.")
-    p.add_argument("file", metavar="FILE", help="a chain file (TOML)")
+    p.add_argument("file", type=path_argument, metavar="FILE", help="a chain file (TOML)")
     p.add_argument("--json", action="store_true", help="print JSON")
     p.set_defaults(run=cmd_identify)
 
@@ -85,7 +87,8 @@ def build_parser() -> argparse.ArgumentParser:
                        description="Solve the mechanism (the file's [mechanism], or the "
                                    "inversion --fixed and --driver or --input choose) over the "
                                    "input sweep, in the assembly mode of the drawn pose.")
-    p.add_argument("file", metavar="FILE", help="a mechanism file (TOML) with a drawn pose")
+    p.add_argument("file", type=path_argument, metavar="FILE",
+                   help="a mechanism file (TOML) with a drawn pose")
     _inversion_arguments(p, input_help="an input joint (R or P, between any two links); "
                                        "repeat it, one per degree of freedom")
     _sweep_arguments(p)
@@ -93,12 +96,13 @@ def build_parser() -> argparse.ArgumentParser:
                    help="the summary's output instead of the file's: a link, a point or "
                         "a joint")
     p.add_argument("--json", action="store_true", help="print the JSON summary")
-    p.add_argument("--csv", metavar="PATH", help="write every column of every step")
-    p.add_argument("--plot", metavar="PATH.svg",
+    p.add_argument("--csv", type=path_argument, metavar="PATH",
+                   help="write every column of every step")
+    p.add_argument("--plot", type=path_argument, metavar="PATH.svg",
                    help="plot the output's displacement, velocity and acceleration")
-    p.add_argument("--draw", metavar="PATH.svg",
+    p.add_argument("--draw", type=path_argument, metavar="PATH.svg",
                    help="draw the mechanism in its drawn pose with the paths of its points")
-    p.add_argument("--limits", metavar="PATH.svg",
+    p.add_argument("--limits", type=path_argument, metavar="PATH.svg",
                    help="draw the limit positions: the two extreme poses of the output, the "
                         "input's arcs between them with their angles, the stroke")
     p.set_defaults(run=cmd_solve)
@@ -109,14 +113,16 @@ def build_parser() -> argparse.ArgumentParser:
                                    "and tabulate the summary: time ratio, stroke, "
                                    "transmission angle, range. A value where it cannot be "
                                    "assembled is a row that says so.")
-    p.add_argument("file", metavar="FILE", help="a mechanism file (TOML) with dimensions")
+    p.add_argument("file", type=path_argument, metavar="FILE",
+                   help="a mechanism file (TOML) with dimensions")
     p.add_argument("--length", required=True, metavar="LINK=FROM:TO:STEP",
                    help="the link and its lengths: FROM, FROM + STEP, ... up to TO")
     p.add_argument("--steps", type=whole_number, default=360, metavar="N",
                    help="the sweep's intervals for each value (default 360)")
     p.add_argument("--output", metavar="NAME", help="the summary's output instead of the file's")
     p.add_argument("--json", action="store_true", help="print JSON")
-    p.add_argument("--plot", metavar="PATH", help="plot the time ratio and stroke")
+    p.add_argument("--plot", type=path_argument, metavar="PATH",
+                   help="plot the time ratio and stroke")
     p.set_defaults(run=cmd_vary)
 
     p = sub.add_parser("forces", help="joint reactions and input efforts, static or "
@@ -127,7 +133,8 @@ def build_parser() -> argparse.ArgumentParser:
                                    "one pose (--at) or over the sweep of solve; kinetostatic "
                                    "(with the links' inertia at the input speed) unless "
                                    "--static.")
-    p.add_argument("file", metavar="FILE", help="a mechanism file (TOML) with units and masses "
+    p.add_argument("file", type=path_argument, metavar="FILE",
+                   help="a mechanism file (TOML) with units and masses "
                                                "or loads")
     _inversion_arguments(p)
     p.add_argument("--at", action="append", type=float, metavar="X",
@@ -142,12 +149,13 @@ def build_parser() -> argparse.ArgumentParser:
                    help="for a crank turning fully: the flywheel inertia that holds the "
                         "speed within this coefficient of fluctuation")
     p.add_argument("--json", action="store_true", help="print JSON")
-    p.add_argument("--csv", metavar="PATH", help="write every column of every step")
-    p.add_argument("--draw", metavar="PATH.svg",
+    p.add_argument("--csv", type=path_argument, metavar="PATH",
+                   help="write every column of every step")
+    p.add_argument("--draw", type=path_argument, metavar="PATH.svg",
                    help="draw the free bodies at the pose (--at; else the sweep's first)")
-    p.add_argument("--plot", metavar="PATH.svg",
+    p.add_argument("--plot", type=path_argument, metavar="PATH.svg",
                    help="plot the turning-moment diagram of the sweep (one input)")
-    p.add_argument("--polygon", metavar="PATH.svg",
+    p.add_argument("--polygon", type=path_argument, metavar="PATH.svg",
                    help="draw the force polygon of each dyad at the pose of --draw")
     p.set_defaults(run=cmd_forces)
 
@@ -162,7 +170,8 @@ def build_parser() -> argparse.ArgumentParser:
              "every point's image and the relative vectors, with their centripetal, "
              "tangential, sliding and Coriolis components.")):
         p = sub.add_parser(name, help=helptext, description=description)
-        p.add_argument("file", metavar="FILE", help="a mechanism file (TOML) with dimensions")
+        p.add_argument("file", type=path_argument, metavar="FILE",
+                       help="a mechanism file (TOML) with dimensions")
         p.add_argument("--at", action="append", type=float, metavar="X",
                        help="the input value (degrees, or slide for a P input; default: "
                             "the drawn pose); with several inputs the first's value, or "
@@ -171,7 +180,8 @@ def build_parser() -> argparse.ArgumentParser:
         p.add_argument("--omega", type=float, metavar="W",
                        help="the (first) input's speed (default: the file's, else 1)")
         p.add_argument("--json", action="store_true", help="print JSON")
-        p.add_argument("--draw", metavar="PATH.svg", help="draw the construction")
+        p.add_argument("--draw", type=path_argument, metavar="PATH.svg",
+                       help="draw the construction")
         p.set_defaults(run=run)
 
     p = sub.add_parser("assemble", help="the drawn pose of a mechanism given by its lengths",
@@ -179,8 +189,10 @@ def build_parser() -> argparse.ArgumentParser:
                                    "input's value and the assembly modes, and write the "
                                    "mechanism with coordinates (to standard output, or OUT). "
                                    "The modes used are listed, with where each came from.")
-    p.add_argument("file", metavar="FILE", help="a mechanism file (TOML) with [lengths]")
-    p.add_argument("-o", "--output", metavar="OUT", help="write the assembled file here")
+    p.add_argument("file", type=path_argument, metavar="FILE",
+                   help="a mechanism file (TOML) with [lengths]")
+    p.add_argument("-o", "--output", type=path_argument, metavar="OUT",
+                   help="write the assembled file here")
     p.add_argument("--json", action="store_true",
                    help="print the positions and the assembly modes as JSON")
     p.set_defaults(run=cmd_assemble)
@@ -189,16 +201,19 @@ def build_parser() -> argparse.ArgumentParser:
                        description="Write a drawn mechanism as its dimensions: the lengths "
                                    "of its links, its sliding lines, the input's value and "
                                    "every assembly mode (the inverse of assemble).")
-    p.add_argument("file", metavar="FILE", help="a mechanism file (TOML) with a drawn pose")
-    p.add_argument("-o", "--output", metavar="OUT", help="write the file with lengths here")
+    p.add_argument("file", type=path_argument, metavar="FILE",
+                   help="a mechanism file (TOML) with a drawn pose")
+    p.add_argument("-o", "--output", type=path_argument, metavar="OUT",
+                   help="write the file with lengths here")
     p.set_defaults(run=cmd_measure)
 
     p = sub.add_parser("report", help="the browsable HTML catalog",
                        description="Write DIR/index.html and a page per entry for the given "
                                    "chain files or folders (by default the bundled catalog). "
                                    "Files that fail are listed and the rest go on (exit 1).")
-    p.add_argument("paths", nargs="*", metavar="PATH", help="chain files or folders")
-    p.add_argument("-o", "--output", default="report", metavar="DIR",
+    p.add_argument("paths", nargs="*", type=path_argument, metavar="PATH",
+                   help="chain files or folders")
+    p.add_argument("-o", "--output", default="report", type=path_argument, metavar="DIR",
                    help="output folder (default: report)")
     p.add_argument("-q", "--quiet", action="store_true", help="no progress bar")
     p.add_argument("--workers", type=int, metavar="K",
@@ -210,7 +225,8 @@ def build_parser() -> argparse.ArgumentParser:
                        description="Every non-isomorphic, non-degenerate planar chain with "
                                    "simple revolute joints (non-planar link graphs and "
                                    "fractionated chains included). Sizes estimated to take "
-                                   "over an hour here are refused with the estimate.")
+                                   "over an hour here (--max-hours) are refused with the "
+                                   "estimate.")
     p.add_argument("--links", type=int, required=True, metavar="N")
     p.add_argument("--dof", type=int, default=1, metavar="F")
     p.add_argument("--json", action="store_true", help="print JSON")
@@ -218,7 +234,7 @@ def build_parser() -> argparse.ArgumentParser:
                    help="print the counts alone (JSON without the chains)")
     p.add_argument("--no-fractionated", action="store_true",
                    help="keep only the non-fractionated chains")
-    p.add_argument("--out", metavar="DIR",
+    p.add_argument("--out", type=path_argument, metavar="DIR",
                    help="write atlas.json, a graph6 file, index.html and (up to 10,000 "
                         "chains) chain files, with the run's shards under DIR/shards")
     files = p.add_mutually_exclusive_group()
@@ -248,6 +264,10 @@ def build_parser() -> argparse.ArgumentParser:
                         "chain whatever the size (by default drawn up to 8 links, and "
                         "animated where that is estimated to take at most an hour on the "
                         "workers)")
+    p.add_argument("--max-hours", dest="max_hours", type=positive_number, default=LOCAL_HOURS,
+                   metavar="H",
+                   help=f"run what is estimated to take up to H hours on the workers "
+                        f"(default {LOCAL_HOURS:g}); longer runs are refused with the estimate")
     p.add_argument("-q", "--quiet", action="store_true", help="no progress bar")
     p.set_defaults(run=cmd_atlas)
 
@@ -261,7 +281,8 @@ def build_parser() -> argparse.ArgumentParser:
     p.add_argument("--crank", type=float, required=True, metavar="C")
     p.add_argument("--stroke", type=float, required=True, metavar="S")
     p.add_argument("--json", action="store_true", help="print JSON")
-    p.add_argument("--out", metavar="FILE", help="write the designed mechanism (TOML)")
+    p.add_argument("--out", type=path_argument, metavar="FILE",
+                   help="write the designed mechanism (TOML)")
     p.set_defaults(run=cmd_design)
     return parser
 
@@ -279,6 +300,25 @@ def prismatic_count(text):
             from None
     if value < 0:
         raise argparse.ArgumentTypeError(f"a number of sliding pairs is 0 or more, got {value}")
+    return value
+
+
+def path_argument(text):
+    """A file or folder named on the command line: not empty (an empty path names
+    nothing, and a folder made from it would be the current one)."""
+    if text == "":
+        raise argparse.ArgumentTypeError("an empty path names no file or folder")
+    return text
+
+
+def positive_number(text):
+    """An option's finite number above 0 (a number of hours)."""
+    try:
+        value = float(text)
+    except ValueError:
+        raise argparse.ArgumentTypeError(f"invalid number: {text!r}") from None
+    if not (value > 0 and value < float("inf")):
+        raise argparse.ArgumentTypeError(f"must be a number above 0, got {text}")
     return value
 
 

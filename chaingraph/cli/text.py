@@ -52,7 +52,8 @@ FLAGS = {"fixed": "--fixed LINK", "driver": "--driver LINK", "inputs": "--input 
           "scheduler": "--scheduler ADDRESS", "workers": "--workers K", "out": "--out DIR",
           "resume": "--resume", "prismatic": "--prismatic K", "oriented": "--oriented",
           "speed_fluctuation": "--speed-fluctuation CS", "static": "--static",
-          "output": "--output NAME", "length": "--length LINK=FROM:TO:STEP"}
+          "output": "--output NAME", "length": "--length LINK=FROM:TO:STEP",
+          "hours": "--max-hours H"}
 
 def exit_status(error) -> int:
     """The exit status of an error: 1 for an analysis that failed (a pose that cannot

@@ -11,6 +11,7 @@ import html
 from dataclasses import dataclass
 from pathlib import Path
 
+from chaingraph._util.atomic import withdraw
 from chaingraph._util.parallel import process_runner
 from chaingraph.drawing.mechanism import mechanism_svg, skeleton_svg
 from chaingraph.errors import ChainGraphError, UnboundedRangeError
@@ -191,6 +192,7 @@ def write_illustrated(result, out_dir, *, animate=None, frames=24, workers=1) ->
     :class:`IllustratedPage` of each chain."""
     out = Path(out_dir)
     (out / "chains").mkdir(parents=True, exist_ok=True)
+    withdraw(out)          # the old index goes before any page is rewritten
     animate = (animated_by_default(result, workers=workers) if animate is None
                else bool(animate))
     tasks = [(e, result.dof, result.oriented, animate, frames) for e in result]

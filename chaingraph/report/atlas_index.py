@@ -16,6 +16,7 @@ import html
 from importlib import resources
 from pathlib import Path
 
+from chaingraph._util.atomic import write_atomic
 from chaingraph._util.text import counted
 from chaingraph.drawing.mechanism import skeleton_svg
 from chaingraph.model.chain import Chain, Joint
@@ -218,6 +219,5 @@ def write_index(result, out_dir, cards) -> Path:
     (out / "thumbs").mkdir(parents=True, exist_ok=True)
     for e, _, thumbnail in cards:
         (out / "thumbs" / f"chain-{e.id}.svg").write_text(thumbnail, encoding="utf-8")
-    path = out / "index.html"
-    path.write_text(index_page(result, cards), encoding="utf-8")
-    return path
+    # last, after every page and thumbnail (the caller withdrew the old one first)
+    return write_atomic(out / "index.html", index_page(result, cards))

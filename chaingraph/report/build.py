@@ -23,6 +23,7 @@ from pathlib import Path
 
 import numpy as np
 
+from chaingraph._util.atomic import staged, write_atomic
 from chaingraph._util.parallel import process_runner
 from chaingraph._util.progress import ProgressBar
 from chaingraph.drawing.constructions import draw_centres, draw_polygons
@@ -116,14 +117,6 @@ def chain_paths(paths):
 RESERVED = frozenset({"index", "img"})
 
 
-def _write_page(path, text):
-    """Write a page under a temporary name and rename it: a page is never seen half
-    written, even when the run is interrupted."""
-    tmp = path.with_name(path.name + ".tmp")
-    tmp.write_text(text, encoding="utf-8")
-    os.replace(tmp, path)
-
-
 def _slug(text, taken):
     base = re.sub(r"[^a-z0-9]+", "-", text.lower()).strip("-") or "entry"
     slug, k = base, 2
@@ -157,39 +150,40 @@ def build_report(paths, out_dir, *, progress=sys.stderr, steps=180, frames=48,
         ``failures`` lists (path, message) of what could not be done; ``complete`` is
         True when there are none.
     """
-    out = Path(out_dir)
-    (out / "img").mkdir(parents=True, exist_ok=True)
-    files, problems = chain_paths(paths)
-    failures = list(problems)
-    taken = set(RESERVED)
-    jobs = [(str(path), _slug(path.stem, taken), str(out), steps, frames) for path in files]
+    if str(out_dir) == "":
+        raise ValueError("out_dir is an empty path: give the folder to write the report into")
     cpus = os.cpu_count() or 1
     if workers is not None and (isinstance(workers, bool) or not isinstance(workers, int)
                                 or workers < 1):
         raise ValueError(f"workers must be a whole number of 1 or more, got {workers!r}")
-    workers = min(workers or cpus, cpus, max(len(jobs), 1))
-    bar = ProgressBar(len(jobs), progress)
-    bar.show(0, "")
-    results = {}
+    out = Path(out_dir)
+    files, problems = chain_paths(paths)
+    failures = list(problems)
+    taken = set(RESERVED)
+    # built where nobody looks, then moved into place, the index last: an interrupted
+    # report leaves the folder as it was (staged)
+    with staged(out) as stage:
+        (stage / "img").mkdir()
+        jobs = [(str(path), _slug(path.stem, taken), str(stage), steps, frames)
+                for path in files]
+        workers = min(workers or cpus, cpus, max(len(jobs), 1))
+        bar = ProgressBar(len(jobs), progress)
+        bar.show(0, "")
+        results = {}
 
-    def finished(k, row):
-        results[jobs[k][1]] = row
-        done.append(k)
-        bar.show(len(done), Path(jobs[k][0]).name)
-    done = []
-    try:
-        # the index is written only after every entry: an interrupted report is never
-        # presented as complete
-        process_runner(workers)(_entry_job, jobs, finished)
-    except BaseException:
-        bar.close()
-        raise
-    bar.close()
-    entries = [results[job[1]] for job in jobs]
-    failures += [(e.source, e.error) for e in entries if e.error]
-    index = out / "index.html"
-    _write_page(index, _index_page(entries, failures))
-    return Report(index=index, entries=entries, failures=failures)
+        def finished(k, row):
+            results[jobs[k][1]] = row
+            done.append(k)
+            bar.show(len(done), Path(jobs[k][0]).name)
+        done = []
+        try:
+            process_runner(workers)(_entry_job, jobs, finished)
+        finally:
+            bar.close()
+        entries = [results[job[1]] for job in jobs]
+        failures += [(e.source, e.error) for e in entries if e.error]
+        write_atomic(stage / "index.html", _index_page(entries, failures))
+    return Report(index=out / "index.html", entries=entries, failures=failures)
 
 
 @dataclass
@@ -220,7 +214,7 @@ def _entry_job(job):
             _analyse(entry, steps)
             _write_images(entry, Path(out), frames)
             entry.frames = frames
-        _write_page(Path(out) / f"{slug}.html", _entry_page(entry))
+        write_atomic(Path(out) / f"{slug}.html", _entry_page(entry))
     except ChainGraphError as e:
         row.error = str(e)
         return row

@@ -343,6 +343,76 @@ def test_ctrl_c_in_report_is_one_line_and_exit_130(tmp_path):
     assert not (out / "index.html").exists()           # no half report shown as whole
 
 
+def _no_process_with(text):
+    """Whether no process's command line holds ``text`` (a worker left behind)."""
+    for pid in filter(str.isdigit, os.listdir("/proc")):
+        try:
+            with open(f"/proc/{pid}/cmdline") as f:
+                if text in f.read():
+                    return False
+        except OSError:
+            pass
+    return True
+
+
+@pytest.mark.parametrize("command, group", [
+    (["report", "--workers", "2"], False),           # to the command alone: it stops its workers
+    (["atlas", "--links", "14", "--workers", "2"], True),   # to its group, as `timeout` does
+])
+def test_sigterm_is_one_line_and_exit_143(tmp_path, command, group):
+    """SIGTERM (a CI timeout, a service manager) is treated as Ctrl-C: the workers
+    stopped, one line, exit 143, and no index presented as complete."""
+    out = tmp_path / "out"
+    flag = "-o" if command[0] == "report" else "--out"
+    proc = subprocess.Popen([sys.executable, "-m", "chaingraph", *command, flag, str(out),
+                             "-q"], stdout=subprocess.PIPE, stderr=subprocess.PIPE,
+                            text=True, start_new_session=True)
+    assert wait_for(lambda: len(children(proc.pid)) >= 2, 120), "no workers started"
+    assert proc.poll() is None, "it finished before it could be terminated"
+    if group:
+        os.killpg(proc.pid, signal.SIGTERM)
+    else:
+        os.kill(proc.pid, signal.SIGTERM)
+    _, err = proc.communicate(timeout=60)
+    assert proc.returncode == 143, err
+    assert err.strip() == "chaingraph: terminated (SIGTERM)"
+    assert wait_for(lambda: _no_process_with(str(out)), 5), "a worker was left behind"
+    assert not (out / "index.html").exists()
+
+
+@pytest.mark.parametrize("args", [
+    ["atlas", "--links", "6", "--out", ""],
+    ["atlas", "--links", "4", "--prismatic", "1", "--out", ""],
+    ["report", FOUR_BAR, "-o", ""],
+    ["solve", CRANK, "--csv", ""], ["solve", CRANK, "--plot", ""],
+    ["solve", CRANK, "--draw", ""], ["solve", CRANK, "--limits", ""],
+    ["forces", CRANK, "--draw", ""], ["centres", CRANK, "--draw", ""],
+    ["assemble", CRANK, "-o", ""], ["measure", CRANK, "--output", ""],
+    ["design", "whitworth", "--time-ratio", "1.5", "--crank", "100", "--stroke", "300",
+     "--out", ""],
+    ["solve", ""], ["classify", FOUR_BAR, ""], ["report", ""],
+])
+def test_an_empty_path_is_refused_naming_its_option(args, tmp_path, monkeypatch):
+    """An empty path would be the current folder (or nothing at all): bad input, one
+    line naming the option, exit 2, nothing written."""
+    monkeypatch.chdir(tmp_path)
+    code, out, err = _main(*args)
+    before = str(args[args.index("") - 1])
+    assert code == 2 and _one_line(err) and "empty path" in err, err
+    assert f"argument {before}" in err or f"/{before}" in err or "argument " in err and \
+        not before.startswith("-")
+    assert list(tmp_path.iterdir()) == []
+
+
+def test_an_empty_output_folder_is_refused_by_the_library():
+    from chaingraph.structure.atlas import run_atlas
+    from chaingraph.report.build import build_report
+    with pytest.raises(chaingraph.AtlasRunError, match="out is an empty path"):
+        run_atlas(4, 1, out="")
+    with pytest.raises(ValueError, match="out_dir is an empty path"):
+        build_report([FOUR_BAR], "", progress=None)
+
+
 # -- fuzzing the command line ---------------------------------------------------------
 _FLAG_VALUES = st.sampled_from(["0", "-1", "1e9", "1e308", "nan", "inf", "-inf", "3.5", "x",
                                 "", "100000000000", "7", "$x$", "B", "crank", "9" * 400])

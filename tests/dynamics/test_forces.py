@@ -585,6 +585,6 @@ def test_forces_of_a_chain_the_solver_refuses_and_the_frame_of_a_sweep(tmp_path)
     path.write_text(chaingraph.dumps(watt))
     status, out, err = run_cli("forces", path, "--at", "10")
     assert status == 1 and "can turn only from" in err and "Traceback" not in err
-    pandas = pytest.importorskip("pandas")
+    import pandas                     # the test extra installs it
     frame = chaingraph.forces(engine(), steps=8).to_frame()
     assert isinstance(frame, pandas.DataFrame) and list(frame.columns)[-1] == "effort:O"

@@ -178,3 +178,81 @@ def test_two_inputs_have_two_independent_sliders(tmp_path):
     assert left["pins"]["D"] == right["pins"]["D"]             # the right crank stayed
     assert math.dist(left["pins"]["B"], right["pins"]["B"]) > 1.0
     assert math.dist(left["pins"]["C"], right["pins"]["C"]) > 1.0   # the pen follows both
+
+
+# -- an interrupted rewrite --------------------------------------------------------------
+def _snapshot(folder):
+    """Every file under ``folder`` by its relative path, with its bytes."""
+    return {str(p.relative_to(folder)): p.read_bytes()
+            for p in sorted(folder.rglob("*")) if p.is_file()}
+
+
+SMALL = [catalog_dir() / f"{name}.toml" for name in
+         ("four-bar-chain", "crank-rocker-with-slider")]
+
+
+@pytest.fixture
+def old_report(tmp_path):
+    """A complete report of two entries, as a reader last saw it."""
+    out = tmp_path / "out"
+    build_report(SMALL, out, progress=None, steps=12, frames=4, workers=1)
+    return out, _snapshot(out)
+
+
+def test_a_report_interrupted_while_pages_are_made_leaves_the_old_one(old_report,
+                                                                        monkeypatch):
+    """Interrupted after a new page was made (Ctrl-C in the page writer of the second
+    entry): the folder is the old complete report, file for file, and nothing half made
+    is left beside it."""
+    from chaingraph.report import build
+    out, before = old_report
+    made = []
+    real = build._entry_page
+
+    def page(entry):
+        made.append(entry.slug)
+        if len(made) == 2:
+            raise KeyboardInterrupt
+        return real(entry)
+    monkeypatch.setattr(build, "_entry_page", page)
+    with pytest.raises(KeyboardInterrupt):
+        build_report(SMALL[::-1], out, progress=None, steps=24, frames=6, workers=1)
+    assert len(made) == 2                            # a new page was made first
+    assert _snapshot(out) == before
+    assert not [p for p in out.iterdir() if p.name.startswith(".")]
+
+
+def test_a_report_interrupted_while_moved_into_place_has_no_index(old_report,
+                                                                    monkeypatch):
+    """Interrupted while its files are moved into place: new and old pages side by side,
+    and no index.html to present them as a report."""
+    from chaingraph._util import atomic
+    out, before = old_report
+    moved = []
+    real = atomic.os.replace
+
+    def replace(a, b):
+        if Path(b).parent == out and Path(b).suffix == ".html":
+            moved.append(b)
+            if len(moved) == 2:
+                raise KeyboardInterrupt
+        return real(a, b)
+    monkeypatch.setattr(atomic.os, "replace", replace)
+    with pytest.raises(KeyboardInterrupt):
+        build_report(SMALL[::-1], out, progress=None, steps=24, frames=6, workers=1)
+    after = _snapshot(out)
+    assert "index.html" in before and "index.html" not in after
+    assert after != {k: v for k, v in before.items() if k != "index.html"}   # some are new
+    assert not [p for p in out.iterdir() if p.name.startswith(".")]
+
+
+def test_a_finished_rewrite_replaces_every_page_and_the_index_last(old_report):
+    out, before = old_report
+    report = build_report(SMALL[:1], out, progress=None, steps=24, frames=6, workers=1)
+    after = _snapshot(out)
+    assert report.index == out / "index.html" and report.complete
+    assert set(after) == set(before)          # the pages of the two left out stay
+    assert after["four-bar-chain.html"] != before["four-bar-chain.html"] or \
+        after["index.html"] != before["index.html"]
+    assert 'href="crank-rocker-with-slider.html"' not in after["index.html"].decode()
+    assert not [p for p in out.iterdir() if p.name.startswith(".")]

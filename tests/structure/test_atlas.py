@@ -271,7 +271,6 @@ def test_resume_refuses_what_it_cannot_continue(tmp_path):
 
 
 def test_a_local_dask_cluster_gives_the_local_run():
-    pytest.importorskip("distributed")
     import numpy as np
 
     from chaingraph.structure.atlas import DaskRunner, run_atlas
@@ -288,7 +287,6 @@ def test_a_local_dask_cluster_gives_the_local_run():
 
 
 def test_an_unreachable_scheduler_is_one_line(monkeypatch):
-    pytest.importorskip("distributed")
     from chaingraph.structure.atlas import run
     monkeypatch.setattr(run, "CONNECT_TIMEOUT", 1.0)     # nothing listens there anyway
     code, out, err = run_cli("atlas", "--links", "8", "--scheduler", "tcp://127.0.0.1:9",
@@ -392,3 +390,102 @@ def test_the_atlas_page_draws_no_joint_at_a_crossing_and_numbers_links_as_the_fi
         labels = sorted(int(t) for t in re.findall(r">(\d+)</text>", svg))
         assert labels == list(range(1, entry.links + 1))
         assert f'"L{entry.links}"' in chain_text(entry)
+
+
+# -- the size check and the memory of atlases with sliding pairs ------------------------
+@pytest.mark.parametrize("args", [
+    ["--links", "12", "--prismatic", "all", "--summary"],          # issue 35: ran for hours
+    ["--links", "12", "--prismatic", "8", "--oriented", "--summary"],
+    ["--links", "12", "--multiple"],
+    ["--links", "16", "--prismatic", "1"],
+])
+def test_atlases_with_sliding_pairs_that_cannot_finish_are_refused_up_front(args):
+    """The estimate covers --prismatic, --oriented and --multiple: refused before any
+    work, with the estimate and the option that allows it, and nothing printed."""
+    code, out, err = run_cli("atlas", *args)
+    assert code == 2 and out == "" and "Traceback" not in err and err.count("\n") == 1, err
+    assert "refused on this machine" in err and "more than 1 hour" in err
+    assert "of CPU in one process" in err and "--max-hours H" in err
+
+
+def test_max_hours_is_what_a_run_may_take():
+    """The same run refused under a tighter limit runs under the default one."""
+    args = ["atlas", "--links", "6", "--prismatic", "all", "--summary", "-q"]
+    code, out, err = run_cli(*args, "--max-hours", "1e-9")
+    assert code == 2 and "more than 1e-09 hours" in err and out == ""
+    code, out, err = run_cli(*args)
+    assert code == 0 and json.loads(out)["count"] == 52
+    code, out, err = run_cli("atlas", "--links", "22", "--max-hours", "1e9", "--workers",
+                             "1", "--scheduler", "tcp://127.0.0.1:9")
+    assert code == 2 and "core-hours" in err          # a cluster's own limit still holds
+
+
+def test_the_sliding_estimate_grows_with_what_is_asked():
+    from math import comb
+
+    from chaingraph.structure.atlas.estimate import sliding_estimate
+    every = tuple(range(17))
+    one = sliding_estimate(12, 1, prismatic=(1,))
+    plain = sliding_estimate(12, 1, prismatic=every)
+    oriented = sliding_estimate(12, 1, prismatic=every, oriented=True)
+    multiple = sliding_estimate(12, 1, prismatic=every, multiple=True)
+    assert (one.assignments, plain.assignments) == (16, 2 ** 16)
+    assert sliding_estimate(12, 1, prismatic=(2, 3)).assignments == comb(16, 2) + comb(16, 3)
+    assert one.log10_seconds < plain.log10_seconds < oriented.log10_seconds
+    assert plain.log10_seconds < multiple.log10_seconds
+    for links in (6, 8, 10, 12, 14):           # more links, more time, whatever is asked
+        now = sliding_estimate(links, 1, prismatic=every)
+        after = sliding_estimate(links + 2, 1, prismatic=every)
+        assert now.log10_seconds < after.log10_seconds
+    assert plain.wall_seconds(2) > 3600 > one.wall_seconds(2)
+
+
+def test_a_summary_counts_the_chains_as_it_finds_them(monkeypatch):
+    """--summary (and the text of a long run) hold no list of chains: the chains are
+    counted as they are found (memory flat: 10 links oriented, 18.8 million chains, once
+    took 10 GB), and the counts are those of the listed atlas."""
+    from chaingraph.cli import commands
+    code, out, err = run_cli("atlas", "--links", "6", "--prismatic", "all", "--multiple",
+                             "--json", "-q")
+    assert code == 0, err
+    listed = json.loads(out)
+    del listed["chains"]
+
+    def kept(*args, **kwargs):
+        raise AssertionError("the chains were kept")
+    monkeypatch.setattr(commands, "sliding_atlas", kept)
+    code, out, err = run_cli("atlas", "--links", "6", "--prismatic", "all", "--multiple",
+                             "--summary", "-q")
+    assert code == 0, err
+    assert json.loads(out) == listed and listed["count"] == 71          # docs/atlas.md
+    assert listed["count_by_multiple"]["0"] == 52     # those of simple joints alone
+    code, out, err = run_cli("atlas", "--links", "8", "--prismatic", "all", "--oriented",
+                             "--summary", "-q")
+    assert code == 0 and json.loads(out)["count"] == 50477             # docs/atlas.md
+    code, out, err = run_cli("atlas", "--links", "8", "--prismatic", "1", "-q")
+    assert code == 0 and out.startswith("84 chains") and "id  link assortment" not in out
+    code, out, err = run_cli("atlas", "--links", "6", "--prismatic", "1", "-q")
+    assert code == 0 and out.startswith("6 chains") and "id  link assortment" in out
+    assert [line.split()[0] for line in out.splitlines()[-6:]] == list("123456")
+
+
+def test_an_interrupted_rewrite_of_an_atlas_folder_presents_no_index(tmp_path, monkeypatch):
+    """Rewriting an atlas folder (the turning-pair atlas's, the illustrated pages of one
+    with sliding pairs) and interrupted halfway: no index.html beside the mixture."""
+    from chaingraph.report import atlas as pages
+    from chaingraph.structure.atlas import output
+
+    def interrupted(*args, **kwargs):
+        raise KeyboardInterrupt
+    for args, module, name in ((["--links", "6"], output, "chain_text"),
+                               (["--links", "4", "--prismatic", "all"], pages, "_page_job")):
+        out = tmp_path / name
+        code, _, err = run_cli("atlas", *args, "--out", out, "-q")
+        assert code == 0 and (out / "index.html").exists(), err
+        with monkeypatch.context() as m:
+            m.setattr(module, name, interrupted)
+            code, _, err = run_cli("atlas", *args, "--out", out, "-q")
+        assert code == 130 and err.strip() == "chaingraph: interrupted"
+        assert not (out / "index.html").exists() and (out / "chains").exists()
+        code, _, err = run_cli("atlas", *args, "--out", out, "-q")       # and again, whole
+        assert code == 0 and (out / "index.html").exists(), err

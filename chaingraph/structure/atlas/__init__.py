@@ -39,14 +39,17 @@ from chaingraph.structure.atlas.run import (
 )
 from chaingraph.structure.atlas.sliding import (
     SlidingAtlas,
+    SlidingCounts,
     SlidingEntry,
     prismatic_counts,
     sliding_atlas,
+    sliding_chains,
 )
 
 __all__ = ["atlas", "atlas_graphs", "AtlasEntry", "Atlas", "AtlasCounts", "joints_for",
            "assortments", "atlas_dict", "write_atlas", "run_atlas", "process_runner",
-           "DaskRunner", "sliding_atlas", "SlidingAtlas", "SlidingEntry"]
+           "DaskRunner", "sliding_atlas", "sliding_chains", "SlidingAtlas", "SlidingCounts",
+           "SlidingEntry"]
 
 
 def atlas_graphs(links: int, dof: int = 1, *, workers: int = 1, progress=None,
@@ -108,5 +111,5 @@ def atlas(*, links: int, dof: int = 1, workers: int = 1, prismatic=None,
         for entry in base:
             yield entry.chain(dof)
         return
-    for entry in sliding_atlas(base, prismatic=wanted, oriented=oriented):
+    for entry in sliding_chains(base, prismatic=wanted, oriented=oriented):
         yield entry.chain(dof)

@@ -7,18 +7,28 @@ count where there is one (OEIS A233288 for one degree of freedom, the multi-dof 
 of the tests) and otherwise a fit of the counts measured here, ``log10 count = a + b N +
 c l + d N l`` with ``l = (N - 1 - F) / 2`` independent loops, within a factor of two of
 every count up to 16 links.
+
+With sliding pairs (``prismatic``), the chains of the turning-pair atlas are then tried,
+in one process, with every assignment of K sliding pairs to their joints: a fixed cost
+per chain (its automorphism group), a cost per assignment tried (the orbits, the
+structure, the exact evaluation) and, with ``oriented``, a cost per orientation of its
+guides. Each is measured at 6, 8 and 10 links (``benchmarks/atlas_sliding.py --fit``)
+and fitted as ``log10 seconds = a + b N``; with ``multiple``, the chains with multiple
+joints are more (their number per turning-pair chain fitted alike) and their merging
+costs its own time per turning-pair chain.
 """
 
 from __future__ import annotations
 
 import math
 from dataclasses import dataclass
+from math import comb
 
 from chaingraph.errors import AtlasSizeError
 from chaingraph.structure.atlas.contracted import joints_for
 
 __all__ = ["Estimate", "estimate", "check_size", "LOCAL_HOURS", "CLUSTER_CORE_HOURS",
-           "MAX_LINKS"]
+           "MAX_LINKS", "SlidingEstimate", "sliding_estimate", "SLIDING_FIT"]
 
 #: exact counts (links, dof) -> chains: A233288, and the multi-dof counts of the tests
 KNOWN = {(4, 1): 1, (6, 1): 2, (8, 1): 16, (10, 1): 230, (12, 1): 6856, (14, 1): 318162,
@@ -86,6 +96,11 @@ def _duration(log10_seconds):
     return f"{s:.0f} s" if s >= 1 else "under a second"
 
 
+def _about(log10_seconds):
+    duration = _duration(log10_seconds)
+    return duration if duration.startswith("under") else f"about {duration}"
+
+
 def estimate(links: int, dof: int = 1) -> Estimate:
     """The estimated size and CPU time of an atlas.
 
@@ -108,16 +123,27 @@ def estimate(links: int, dof: int = 1) -> Estimate:
     return Estimate(links, dof, log_chains, log_cpu, published)
 
 
-def check_size(links: int, dof: int, *, cores: int, cluster: bool) -> Estimate:
+def check_size(links: int, dof: int, *, cores: int, cluster: bool, hours: float = LOCAL_HOURS,
+               prismatic=None, oriented: bool = False, multiple: bool = False):
     """Refuse, with the estimate and what to do instead, a size that cannot finish in
-    reasonable time: over :data:`LOCAL_HOURS` on ``cores`` local processes, or over
-    :data:`CLUSTER_CORE_HOURS` on a cluster. Returns the estimate otherwise."""
+    reasonable time: over ``hours`` (:data:`LOCAL_HOURS` unless asked) on ``cores``
+    local processes, or over :data:`CLUSTER_CORE_HOURS` on a cluster. With sliding
+    pairs (``prismatic``, the numbers K asked for; ``oriented``) or ``multiple``
+    joints, the estimate is :func:`sliding_estimate`'s. Returns the estimate
+    otherwise."""
     joints_for(links, dof)
     if links > MAX_LINKS:
         raise AtlasSizeError(
             f"{links} links is beyond the atlas: at most {MAX_LINKS} links (the number of "
             "chains grows about a hundredfold every two links; 16 links already have "
             "19,819,281)", links=links, dof=dof)
+    if not (hours > 0 and math.isfinite(hours)):
+        raise AtlasSizeError(f"hours must be a positive number, got {hours!r}", links=links,
+                             dof=dof, parameter="hours")
+    if prismatic is not None or multiple:
+        return _check_sliding(links, dof, cores=cores, hours=hours,
+                              prismatic=prismatic or (0,), oriented=oriented,
+                              multiple=multiple)
     e = estimate(links, dof)
     if cluster:
         if e.log10_cpu_seconds > math.log10(CLUSTER_CORE_HOURS * 3600):
@@ -126,10 +152,123 @@ def check_size(links: int, dof: int, *, cores: int, cluster: bool) -> Estimate:
                 f"than the {CLUSTER_CORE_HOURS:,.0f} core-hours allowed on a cluster",
                 links=links, dof=dof)
         return e
-    if e.log10_cpu_seconds - math.log10(max(1, cores)) > math.log10(LOCAL_HOURS * 3600):
+    if e.log10_cpu_seconds - math.log10(max(1, cores)) > math.log10(hours * 3600):
         raise AtlasSizeError(
             f"an atlas of {links} links and {dof} dof is refused on this machine: "
-            f"{e.describe(cores)}, more than {LOCAL_HOURS:g} hour; run it on a Dask "
+            f"{e.describe(cores)}, more than {_hours(hours)}; run it on a Dask "
             f"cluster (see docs/atlas.md) or with more workers",
             links=links, dof=dof, parameter="scheduler")
     return e
+
+
+def _hours(hours):
+    return f"{hours:g} hour{'s' if hours != 1 else ''}"
+
+
+def _check_sliding(links, dof, *, cores, hours, prismatic, oriented, multiple):
+    """check_size of an atlas with sliding pairs or multiple joints: refused over
+    ``hours`` with the estimate, and the parameter that allows it named."""
+    e = sliding_estimate(links, dof, prismatic=prismatic, oriented=oriented,
+                         multiple=multiple)
+    if e.wall_seconds(cores) > hours * 3600:
+        what = ("sliding pairs" if not multiple else "multiple joints" if prismatic == (0,)
+                else "sliding pairs and multiple joints")
+        fewer = ", or ask for fewer sliding pairs" if max(prismatic) > 0 else ""
+        raise AtlasSizeError(
+            f"an atlas of {links} links and {dof} dof with {what} is refused on this "
+            f"machine: {e.describe(cores)}, more than {_hours(hours)}; allow the time "
+            f"(hours){fewer}", links=links, dof=dof, parameter="hours")
+    return e
+
+
+# -- with sliding pairs and multiple joints ------------------------------------------------
+#: ``(a, b)`` of ``log10 seconds = a + b N`` (CPU seconds of one process, N links), fitted
+#: to the times measured by ``benchmarks/atlas_sliding.py --fit`` on the 2-core machine
+#: while it was shared (so they lean high, by up to twice): "chain" per turning-pair
+#: chain (its automorphism group; 3.3, 6.0, 6.9 ms at 6, 8, 10 links), "assignment" per
+#: assignment of sliding pairs tried (10, 30, 72 us), "orientation" per further
+#: orientation of their guides with ``oriented`` (0.52, 0.44, 0.48 us), "merge" per
+#: turning-pair chain for its multiple joints (0.011, 0.27 s at 6, 8 links; 10 links take
+#: too long to time) and "multiple_chains" the chains with multiple joints per
+#: turning-pair chain (2 and 3.7 at 6, 8 links)
+SLIDING_FIT = {"chain": (-2.940, 0.081), "assignment": (-6.241, 0.211),
+               "orientation": (-6.247, -0.010), "merge": (-6.148, 0.698),
+               "multiple_chains": (-0.496, 0.133)}
+
+
+def _fitted(name, links):
+    a, b = SLIDING_FIT[name]
+    return a + b * links
+
+
+@dataclass(frozen=True)
+class SlidingEstimate:
+    """The estimate of an atlas with sliding pairs (``prismatic``, the numbers K asked
+    for) or multiple joints: the turning-pair atlas ``base`` (run on the workers), then
+    its chains tried with ``assignments`` assignments each, in one process, for about
+    ``10 ** log10_seconds`` seconds of CPU."""
+
+    base: Estimate
+    joints: int
+    prismatic: tuple
+    oriented: bool
+    multiple: bool
+    log10_chains_tried: float
+    assignments: int
+    log10_seconds: float
+
+    def wall_seconds(self, cores: int) -> float:
+        return self.base.wall_seconds(cores) + 10 ** min(self.log10_seconds, 300)
+
+    def describe(self, cores=None) -> str:
+        base = self.base
+        chains = (f"the {round(base.chains):,} turning-pair chains" if base.published else
+                  f"about {_big(base.log10_chains)} turning-pair chains")
+        every = set(range(self.joints + 1)) <= set(self.prismatic)
+        ks = ("every K" if every else "K = " + ", ".join(map(str, self.prismatic)))
+        tried = (f"each tried with up to {self.assignments:,} assignment"
+                 f"{'s' if self.assignments != 1 else ''} of sliding pairs ({ks}"
+                 f"{', oriented' if self.oriented else ''})")
+        if self.multiple and self.prismatic == (0,):
+            text = (f"{chains} merged into about {_big(self.log10_chains_tried)} chains "
+                    "with multiple joints")
+        elif self.multiple:
+            text = (f"{chains} (about {_big(self.log10_chains_tried)} with multiple "
+                    f"joints), {tried}")
+        else:
+            text = f"{chains}, {tried}"
+        text += f": {_about(self.log10_seconds)} of CPU in one process"
+        if cores:
+            total = math.log10(self.wall_seconds(cores))
+            text += f" ({_duration(total)} with the turning-pair atlas on {cores} " \
+                    f"core{'s' if cores != 1 else ''})"
+        return text
+
+
+def sliding_estimate(links: int, dof: int = 1, *, prismatic=(0,), oriented=False,
+                     multiple=False) -> SlidingEstimate:
+    """The estimated CPU time of an atlas with sliding pairs (``prismatic``: the numbers
+    of sliding pairs asked for) and, with ``multiple``, multiple joints.
+
+    Examples
+    --------
+    >>> quick = sliding_estimate(12, 1, prismatic=(1,))
+    >>> every = sliding_estimate(12, 1, prismatic=tuple(range(17)))
+    >>> every.assignments, every.wall_seconds(2) > 3600 > quick.wall_seconds(2)
+    (65536, True)
+    """
+    base = estimate(links, dof)
+    joints = joints_for(links, dof)
+    wanted = tuple(sorted(set(prismatic)))
+    assignments = sum(comb(joints, k) for k in wanted)
+    extra = sum(comb(joints, k) * (2 ** k - 1) for k in wanted) if oriented else 0
+    log_chains = base.log10_chains
+    seconds = 0.0
+    if multiple:
+        seconds += 10 ** (base.log10_chains + _fitted("merge", links))
+        log_chains += max(0.0, _fitted("multiple_chains", links))
+    per_chain = (10 ** _fitted("chain", links) + assignments * 10 ** _fitted("assignment", links)
+                 + extra * 10 ** _fitted("orientation", links))
+    seconds += 10 ** (log_chains + math.log10(per_chain))
+    return SlidingEstimate(base, joints, wanted, bool(oriented), bool(multiple), log_chains,
+                           assignments, math.log10(seconds))

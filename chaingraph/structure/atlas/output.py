@@ -10,6 +10,7 @@ import math
 import os
 from pathlib import Path
 
+from chaingraph._util.atomic import withdraw
 from chaingraph.structure.atlas.entry import AtlasEntry, encode_chains, order_counts
 from chaingraph.structure.atlas.run import ring_of
 
@@ -100,9 +101,11 @@ def write_atlas(atlas, out_dir, *, shard_dir=None, no_fractionated=False,
     TOML file per chain under ``chains/``, into ``out_dir``; returns the paths by kind.
 
     The chains are streamed (from ``shard_dir`` when given), each file written under a
-    temporary name and renamed when complete."""
+    temporary name and renamed when complete; the old index is removed first and the
+    new one written last, so an interrupted write is never presented as complete."""
     out = Path(out_dir)
     out.mkdir(parents=True, exist_ok=True)
+    withdraw(out)             # no old index beside new files until the new one is written
     count = atlas.count_non_fractionated if no_fractionated else atlas.count
     if chain_files is None:
         chain_files = count <= CHAIN_FILES_UP_TO

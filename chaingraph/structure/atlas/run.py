@@ -14,11 +14,11 @@ from __future__ import annotations
 
 import hashlib
 import json
-import os
 from pathlib import Path
 
 import numpy as np
 
+from chaingraph._util.atomic import write_atomic
 from chaingraph._util.parallel import process_runner, serial
 from chaingraph.errors import AtlasRunError
 from chaingraph.structure.atlas.contracted import (
@@ -271,6 +271,9 @@ def run_atlas(links, dof=1, *, workers=1, runner=None, out=None, resume=False,
     """
     backend = backend or default_backend()
     joints = joints_for(links, dof)
+    if out is not None and str(out) == "":
+        raise AtlasRunError("out is an empty path: give the folder to write the run into",
+                            reason="out", parameter="out")
     runner = runner or process_runner(workers)
     say = progress or (lambda fraction, text: None)
     shard_dir = Path(out) / "shards" if out is not None else None
@@ -294,7 +297,7 @@ def run_atlas(links, dof=1, *, workers=1, runner=None, out=None, resume=False,
         if not stored:
             for old in shard_dir.glob("shard-*"):
                 old.unlink()
-            _write_atomic(state_path, json.dumps(
+            write_atomic(state_path, json.dumps(
                 {"links": links, "dof": dof, "labelling": backend, "digest": digest,
                  "shards": len(shards), "pieces": len(jobs), "jobs": jobs}))
     shard_work = [sum(work[a:b]) for a, b in shards]
@@ -360,12 +363,6 @@ def _counts(result):
 
 
 # -- shards on disk ----------------------------------------------------------------------
-def _write_atomic(path, text):
-    tmp = path.with_name(path.name + ".tmp")
-    tmp.write_text(text, encoding="utf-8")
-    os.replace(tmp, path)
-
-
 def _shard_path(shard_dir, s, suffix):
     return shard_dir / f"shard-{s:05d}{suffix}"
 
@@ -378,11 +375,8 @@ def _shard_done(shard_dir, s):
 def _write_shard(shard_dir, s, result):
     """The shard's graph6 lines, then its JSON lines; the JSON lines file appears (by
     rename) only when both are complete: it marks the shard done."""
-    g6 = _shard_path(shard_dir, s, ".g6")
-    tmp = g6.with_name(g6.name + ".tmp")
-    tmp.write_bytes(result[3])
-    os.replace(tmp, g6)
-    _write_atomic(_shard_path(shard_dir, s, ".jsonl"), result[4])
+    write_atomic(_shard_path(shard_dir, s, ".g6"), result[3], encoding=None)
+    write_atomic(_shard_path(shard_dir, s, ".jsonl"), result[4])
 
 
 def _read_shard(shard_dir, s, joints):

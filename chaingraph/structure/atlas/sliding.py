@@ -32,8 +32,10 @@ from __future__ import annotations
 
 import json
 from dataclasses import dataclass
+from itertools import combinations
 from pathlib import Path
 
+from chaingraph._util.atomic import withdraw, write_atomic
 from chaingraph._util.disjoint import DisjointSets
 from chaingraph.errors import AtlasSizeError
 from chaingraph.model.chain import Chain, Joint
@@ -46,8 +48,8 @@ from chaingraph.structure.isomorphism import (
     automorphism_generators,
 )
 
-__all__ = ["SlidingEntry", "SlidingAtlas", "sliding_atlas", "prismatic_counts",
-           "sliding_dict", "write_sliding"]
+__all__ = ["SlidingEntry", "SlidingAtlas", "SlidingCounts", "sliding_atlas",
+           "sliding_chains", "prismatic_counts", "sliding_dict", "write_sliding"]
 
 @dataclass(frozen=True)
 class SlidingEntry:
@@ -130,10 +132,95 @@ class SlidingAtlas(Entries):
             out[e.prismatic] += 1
         return out
 
+    @property
+    def count_non_fractionated(self) -> int:
+        return sum(1 for e in self.entries if not e.fractionated)
+
+    @property
+    def count_by_multiple(self):
+        """Chains by how many of their joints join three links or more; None when no
+        chain comes from the atlas with multiple joints."""
+        if not any(e.multiple for e in self.entries):
+            return None
+        out = {}
+        for e in self.entries:
+            k = _multiple_joints(e)
+            out[k] = out.get(k, 0) + 1
+        return dict(sorted(out.items()))
+
     def without_fractionated(self):
         return SlidingAtlas(self.links, self.dof, self.prismatic, self.oriented,
                             tuple(e for e in self.entries if not e.fractionated),
                             dict(self.rejected))
+
+
+class SlidingCounts:
+    """The counts of an atlas with sliding pairs whose chains were counted as they were
+    found, not kept (what ``--summary`` prints; the chains of 10 links, oriented, would
+    take gigabytes): the same counts as :class:`SlidingAtlas`, by K, by multiple joints,
+    fractionated or not.
+
+    Examples
+    --------
+    >>> from chaingraph.structure.atlas import atlas_graphs
+    >>> counts = sliding_atlas(atlas_graphs(6, 1), prismatic=range(8), keep=False)
+    >>> kept = sliding_atlas(atlas_graphs(6, 1), prismatic=range(8))
+    >>> (len(counts), counts.distinct_inversions) == (len(kept), kept.distinct_inversions)
+    True
+    """
+
+    def __init__(self, links, dof, prismatic, oriented, rejected):
+        self.links, self.dof, self.prismatic, self.oriented = links, dof, prismatic, oriented
+        self.rejected = rejected
+        # (fractionated, K, multiple joints) -> [chains, distinct inversions]
+        self.tally = {}
+        self.multiple = False
+
+    def add(self, entry) -> None:
+        key = (entry.fractionated, entry.prismatic, _multiple_joints(entry))
+        row = self.tally.setdefault(key, [0, 0])
+        row[0] += 1
+        row[1] += entry.inversion_classes
+        self.multiple = self.multiple or entry.multiple
+
+    def __len__(self):
+        return sum(row[0] for row in self.tally.values())
+
+    @property
+    def distinct_inversions(self) -> int:
+        return sum(row[1] for row in self.tally.values())
+
+    @property
+    def count_non_fractionated(self) -> int:
+        return sum(row[0] for key, row in self.tally.items() if not key[0])
+
+    @property
+    def count_by_prismatic(self) -> dict:
+        out = {k: 0 for k in self.prismatic}
+        for (_, k, _), row in self.tally.items():
+            out[k] += row[0]
+        return out
+
+    @property
+    def count_by_multiple(self):
+        if not self.multiple:
+            return None
+        out = {}
+        for (_, _, k), row in self.tally.items():
+            out[k] = out.get(k, 0) + row[0]
+        return dict(sorted(out.items()))
+
+    def without_fractionated(self) -> "SlidingCounts":
+        out = SlidingCounts(self.links, self.dof, self.prismatic, self.oriented,
+                            dict(self.rejected))
+        out.tally = {key: list(row) for key, row in self.tally.items() if not key[0]}
+        out.multiple = self.multiple
+        return out
+
+
+def _multiple_joints(entry) -> int:
+    """How many of a chain's joints join three links or more."""
+    return sum(len(j) > 2 for j in entry.edges)
 
 
 def prismatic_counts(links, dof, joints, prismatic, oriented=False):
@@ -226,7 +313,7 @@ def _link_orbits(n, elements):
     return orbits.count
 
 
-def sliding_atlas(base, *, prismatic, oriented=False) -> SlidingAtlas:
+def sliding_atlas(base, *, prismatic, oriented=False, keep=True):
     """The chains with sliding pairs made from the turning-pair chains of ``base`` (an
     :class:`~chaingraph.structure.atlas.run.Atlas`), with ``prismatic`` sliding pairs
     (an int, or a sequence of them).
@@ -235,6 +322,9 @@ def sliding_atlas(base, *, prismatic, oriented=False) -> SlidingAtlas:
     taken one per orbit of it, and a chain's own automorphisms (for its inversion
     classes, and the orbits of its guides' orientations) are the elements that keep
     its sliding pairs (and their guides) in place.
+
+    ``keep=False`` counts the chains as they are found instead of keeping them, and
+    returns :class:`SlidingCounts` (memory stays flat whatever the size).
 
     Examples
     --------
@@ -246,49 +336,75 @@ def sliding_atlas(base, *, prismatic, oriented=False) -> SlidingAtlas:
     {2: 5}
     """
     wanted = (prismatic,) if isinstance(prismatic, int) else tuple(sorted(set(prismatic)))
-    entries, rejected = [], {reason: 0 for reason in REASONS}
+    rejected = {reason: 0 for reason in REASONS}
+    chains = sliding_chains(base, prismatic=wanted, oriented=oriented, rejected=rejected)
+    if keep:
+        entries = tuple(chains)
+        return SlidingAtlas(base.links, base.dof, wanted, oriented, entries, rejected)
+    counts = SlidingCounts(base.links, base.dof, wanted, oriented, rejected)
+    for entry in chains:
+        counts.add(entry)
+    return counts
+
+
+def sliding_chains(base, *, prismatic, oriented=False, rejected=None):
+    """Yield the chains of :func:`sliding_atlas` one by one, in its order, adding the
+    assignments rejected (one per orbit) to ``rejected`` (a dict by reason) as it goes.
+
+    Examples
+    --------
+    >>> from chaingraph.structure.atlas import atlas_graphs
+    >>> refused = {}
+    >>> [e.kinds for e in sliding_chains(atlas_graphs(4, 1), prismatic=2, rejected=refused)]
+    [('P', 'P', 'R', 'R'), ('R', 'P', 'P', 'R')]
+    >>> refused
+    {'mobility': 0, 'locked': 0}
+    """
+    wanted = (prismatic,) if isinstance(prismatic, int) else tuple(sorted(set(prismatic)))
+    rejected = {} if rejected is None else rejected
+    for reason in REASONS:
+        rejected.setdefault(reason, 0)
     for reason, n in getattr(base, "rejected", {}).items():    # link-joint graphs
         rejected[reason] += n
+    count = 0
     for base_id, entry in enumerate(base, start=1):
-        multiple = hasattr(entry, "joints")
-        edges = [tuple(e) for e in (entry.joints if multiple else entry.edges)]
-        n, m = entry.links, len(edges)
-        simple = sum(1 << i for i, e in enumerate(edges) if len(e) == 2)
-        chain = entry.chain()
-        gens = _edge_maps(chain, automorphism_generators(chain, oriented=False))
-        group = _group(gens, n, m)
-        masks = [s for s in range(1 << m) if bin(s).count("1") in wanted and s & ~simple == 0]
-        acts = [lambda s, e=eperm: _permute_mask(s, e) for _, eperm in gens]
-        reps = _orbit_representatives(masks, acts)
-        # the structure of the P joints first; the rest drawn in one batch, then proven
-        found = {s: admissible(n, edges, _kinds(s, m)) for s in reps}
-        left = [s for s in reps if found[s] is None]
-        drawn = generic_verdicts(n, edges, left) if left else None
-        found.update(zip(left, verdicts(n, [tuple(edges)] * len(left),
-                                        kinds=[_kinds(s, m) for s in left],
-                                        dof=base.dof, drawn=drawn)))
-        for mask in reps:
-            reason = found[mask]
-            if reason is not None:
-                rejected[reason] += 1
-                continue
-            kinds = _kinds(mask, m)
-            own = [g for g in group if _permute_mask(mask, g[1]) == mask]
-            for oriented_edges, keep in _orientations(edges, kinds, own, oriented):
-                entries.append(SlidingEntry(len(entries) + 1, oriented_edges, kinds, n,
-                                            _link_orbits(n, keep),
-                                            bool(getattr(entry, "fractionated", False)),
-                                            base_id, oriented, multiple))
-    return SlidingAtlas(base.links, base.dof, wanted, oriented, tuple(entries), rejected)
+        for found in _chain_assignments(base, base_id, entry, wanted, oriented, rejected):
+            count += 1
+            yield SlidingEntry(count, *found)
 
 
-def _by_multiple(result):
-    """Chains by how many of their joints join three links or more."""
-    out = {}
-    for e in result:
-        k = sum(len(j) > 2 for j in e.edges)
-        out[str(k)] = out.get(str(k), 0) + 1
-    return dict(sorted(out.items(), key=lambda kv: int(kv[0])))
+def _chain_assignments(base, base_id, entry, wanted, oriented, rejected):
+    """The admissible assignments of one turning-pair chain, one per orbit (and
+    orientation), as the fields of its :class:`SlidingEntry` after its id."""
+    multiple = hasattr(entry, "joints")
+    edges = [tuple(e) for e in (entry.joints if multiple else entry.edges)]
+    n, m = entry.links, len(edges)
+    simple = [i for i, e in enumerate(edges) if len(e) == 2]
+    chain = entry.chain()
+    gens = _edge_maps(chain, automorphism_generators(chain, oriented=False))
+    group = _group(gens, n, m)
+    masks = sorted(sum(1 << i for i in chosen) for k in wanted
+                   for chosen in combinations(simple, k))
+    acts = [lambda s, e=eperm: _permute_mask(s, e) for _, eperm in gens]
+    reps = _orbit_representatives(masks, acts)
+    # the structure of the P joints first; the rest drawn in one batch, then proven
+    found = {s: admissible(n, edges, _kinds(s, m)) for s in reps}
+    left = [s for s in reps if found[s] is None]
+    drawn = generic_verdicts(n, edges, left) if left else None
+    found.update(zip(left, verdicts(n, [tuple(edges)] * len(left),
+                                    kinds=[_kinds(s, m) for s in left],
+                                    dof=base.dof, drawn=drawn)))
+    fractionated = bool(getattr(entry, "fractionated", False))
+    for mask in reps:
+        reason = found[mask]
+        if reason is not None:
+            rejected[reason] += 1
+            continue
+        kinds = _kinds(mask, m)
+        own = [g for g in group if _permute_mask(mask, g[1]) == mask]
+        for oriented_edges, keep in _orientations(edges, kinds, own, oriented):
+            yield (oriented_edges, kinds, n, _link_orbits(n, keep), fractionated, base_id,
+                   oriented, multiple)
 
 
 def _orders(degree):
@@ -337,7 +453,7 @@ def _orientations(edges, kinds, own, oriented):
 
 def sliding_dict(result, *, prismatic=None, chains=True, names=None) -> dict:
     """The JSON object of ``chaingraph atlas --prismatic K`` (``chains=False``:
-    ``--summary``): the counts, the rejected assignments by reason, the count by K
+    ``--summary``, of a :class:`SlidingAtlas` or :class:`SlidingCounts`): the counts, the rejected assignments by reason, the count by K
     when every K was asked for (``prismatic="all"``), and each chain with ``"kinds"``
     and, given ``names`` (a function of a chain), its ``"names"``.
 
@@ -352,9 +468,10 @@ def sliding_dict(result, *, prismatic=None, chains=True, names=None) -> dict:
            "prismatic": prismatic if prismatic is not None else (
                result.prismatic[0] if len(result.prismatic) == 1 else list(result.prismatic)),
            "oriented": result.oriented, "count": len(result),
-           **({"multiple": True, "count_by_multiple": _by_multiple(result)}
-              if any(e.multiple for e in result) else {}),
-           "count_non_fractionated": sum(1 for e in result if not e.fractionated),
+           **({"multiple": True, "count_by_multiple": {
+               str(k): v for k, v in result.count_by_multiple.items()}}
+              if result.count_by_multiple is not None else {}),
+           "count_non_fractionated": result.count_non_fractionated,
            "distinct_inversions": result.distinct_inversions,
            "rejected": dict(result.rejected)}
     if prismatic == "all" or len(result.prismatic) > 1:
@@ -369,12 +486,14 @@ def sliding_dict(result, *, prismatic=None, chains=True, names=None) -> dict:
 
 def write_sliding(result, out_dir, *, record=None, chain_files_up_to=10_000) -> dict:
     """Write ``atlas.json`` (``record``, else :func:`sliding_dict`) and, up to
-    ``chain_files_up_to`` chains, one chain file per chain under ``chains/``."""
+    ``chain_files_up_to`` chains, one chain file per chain under ``chains/``. An
+    ``index.html`` of earlier pages is removed first (the pages, when drawn, write a
+    new one last)."""
     out = Path(out_dir)
     out.mkdir(parents=True, exist_ok=True)
-    path = out / "atlas.json"
-    path.write_text(json.dumps(record or sliding_dict(result), indent=1) + "\n",
-                    encoding="utf-8")
+    withdraw(out)          # the old pages' index, until new pages are written
+    path = write_atomic(out / "atlas.json",
+                        json.dumps(record or sliding_dict(result), indent=1) + "\n")
     chain_dir = out / "chains"
     written = []
     if len(result) <= chain_files_up_to:
