@@ -25,6 +25,17 @@ def counted(n, singular, plural=None) -> str:
     return f"{n:,} {singular if n == 1 else plural or singular + 's'}"
 
 
+def freedom(dof) -> str:
+    """``dof`` degrees of freedom, in words: singular for one.
+
+    Examples
+    --------
+    >>> freedom(1), freedom(2)
+    ('1 degree of freedom', '2 degrees of freedom')
+    """
+    return counted(dof, "degree of freedom", "degrees of freedom")
+
+
 def short_list(items, keep=6) -> str:
     """``[a, b, c, ... (N)]``: a list cut to ``keep`` items for a repr.
 

@@ -73,6 +73,7 @@ from chaingraph.structure.atlas.sliding import (
 )
 from chaingraph.structure.classify import classify
 from chaingraph.synthesis.design import KINDS
+from chaingraph._util.text import freedom
 
 __all__ = ['cmd_classify', 'cmd_inversions', 'cmd_identify', 'cmd_solve', 'cmd_centres', 'cmd_polygons', 'cmd_assemble', 'cmd_measure', 'cmd_report', 'cmd_atlas', 'cmd_design']
 
@@ -451,8 +452,8 @@ def cmd_atlas(args) -> int:
     which = ("non-fractionated " if args.no_fractionated else "")
     also = ("" if args.no_fractionated else
             f" ({result.count_non_fractionated} non-fractionated)")
-    print(f"{count} {which}chains of {args.links} links and {args.dof} degree(s) of "
-          f"freedom{also}, {inversions} distinct inversions ({elapsed:.2f} s)")
+    print(f"{count} {which}chains of {args.links} links and {freedom(args.dof)}{also}, "
+          f"{inversions} distinct inversions ({elapsed:.2f} s)")
     if listing and count <= 60:
         rows = [[e.id, ", ".join(f"{v} {k}" for k, v in e.link_orders.items()),
                  e.inversion_classes, "yes" if e.fractionated else "no",
@@ -523,7 +524,7 @@ def _sliding(args, wanted) -> int:
              f"{args.prismatic} sliding pair{'s' if args.prismatic != 1 else ''}")
     if args.multiple:
         kinds += ", multiple joints allowed"
-    print(f"{len(result)} chains of {args.links} links and {args.dof} degree(s) of freedom with "
+    print(f"{len(result)} chains of {args.links} links and {freedom(args.dof)} with "
           f"{kinds}{' (oriented)' if args.oriented else ''}, "
           f"{result.distinct_inversions} distinct inversions ({elapsed:.2f} s)")
     for reason, n in result.rejected.items():

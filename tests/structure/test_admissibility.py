@@ -135,6 +135,6 @@ def test_every_evaluation_rejecting_is_the_last_resort(monkeypatch):
 
 def test_a_candidate_with_the_wrong_joints_for_its_freedoms_is_named():
     ring = ((0, 1), (1, 2), (2, 3), (3, 0))
-    with pytest.raises(ChainStructureError, match=r"leave 1 degrees of freedom by their "
+    with pytest.raises(ChainStructureError, match=r"leave 1 degree of freedom by their "
                                                   r"count, not 2"):
         verdicts(4, [ring], dof=2)

@@ -36,6 +36,7 @@ be a proof; none is made to those sizes.
 from __future__ import annotations
 
 from chaingraph._util.disjoint import DisjointSets
+from chaingraph._util.text import freedom
 from chaingraph.errors import ChainStructureError
 from chaingraph.structure.atlas.forests import forest_verdicts
 from chaingraph.structure.atlas.generic import joint_verdicts
@@ -129,7 +130,7 @@ def verdicts(links, candidates, *, kinds=None, dof, drawn=None):
         counted = 3 * (links - 1) - 2 * sum(len(j) - 1 for j in c)
         if counted != dof:
             raise ChainStructureError(f"the joints {list(c)} on {links} links leave "
-                                      f"{counted} degrees of freedom by their count, not "
+                                      f"{freedom(counted)} by their count, not "
                                       f"{dof}")
     out = [admissible(links, c, k) for c, k in zip(candidates, kinds)]
     todo = [i for i in range(count) if out[i] is None]

@@ -8,6 +8,7 @@ string that leaves a link and comes back to it), with the links' orders as degre
 
 from __future__ import annotations
 
+from chaingraph._util.text import freedom
 from chaingraph.errors import AtlasSizeError
 from chaingraph.structure.atlas.labelling import multigraph_key
 
@@ -29,13 +30,13 @@ def joints_for(links: int, dof: int) -> int:
     twice = 3 * (links - 1) - dof
     if twice % 2:
         raise AtlasSizeError(
-            f"no chain has {links} links and {dof} degree(s) of freedom: 3(N - 1) - F = "
+            f"no chain has {links} links and {freedom(dof)}: 3(N - 1) - F = "
             f"{twice} is odd, and simple revolute joints remove two freedoms each",
             links=links, dof=dof)
     joints = twice // 2
     if joints < links:
         raise AtlasSizeError(
-            f"no closed chain has {links} links and {dof} degree(s) of freedom: it would "
+            f"no closed chain has {links} links and {freedom(dof)}: it would "
             f"have {joints} joints, fewer than its {links} links (the fewest links is "
             f"{dof + 3}, a single loop)", links=links, dof=dof)
     return joints

@@ -11,6 +11,7 @@ import os
 from pathlib import Path
 
 from chaingraph._util.atomic import withdraw
+from chaingraph._util.text import freedom
 from chaingraph.structure.atlas.entry import AtlasEntry, encode_chains, order_counts
 from chaingraph.structure.atlas.run import ring_of
 
@@ -270,7 +271,7 @@ def _atlas_page(atlas, figures, by_assortment, count, total, no_fractionated):
     which = ("non-fractionated chains only" if no_fractionated else
              f"{atlas.count_non_fractionated:,} of them non-fractionated")
     return ("<!DOCTYPE html>\n<html lang=\"en\"><head><meta charset=\"utf-8\">"
-            f"<title>Atlas: {links} links, {dof} degree(s) of freedom</title><style>"
+            f"<title>Atlas: {links} links, {freedom(dof)}</title><style>"
             "body{font-family:Georgia,serif;margin:2em;color:#1b1b1b}"
             "h1{font-family:Arial,sans-serif;color:#1f4e79}"
             "table{border-collapse:collapse;margin:1em 0}"
@@ -279,7 +280,7 @@ def _atlas_page(atlas, figures, by_assortment, count, total, no_fractionated):
             ".grid{display:flex;flex-wrap:wrap;gap:10px}"
             "figure{margin:0;width:170px;border:1px solid #ddd;padding:4px}"
             "figcaption{font-size:11px}</style></head><body>"
-            f"<h1>Kinematic chains of {links} links, {dof} degree(s) of freedom</h1>"
+            f"<h1>Kinematic chains of {links} links, {freedom(dof)}</h1>"
             f"<p>{count:,} chains (non-isomorphic, non-degenerate, simple revolute "
             f"joints; {which}), {total:,} distinct inversions. Links are circles (darker "
             "for more joints) numbered as in the chain files (L1, L2, ...; atlas.json's "
