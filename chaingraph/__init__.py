@@ -20,6 +20,7 @@ from chaingraph.errors import (
     ChainGraphError,
     ChainGraphWarning,
     ChainStructureError,
+    DegenerateDrawingError,
     DesignError,
     DimensionError,
     MechanismError,
@@ -89,5 +90,5 @@ __all__ = [
     "atlas", "design", "solve", "forces", "PoseForces", "SweepForces", "vary", "Variation", "instant_centres", "velocity_polygon", "measure", "animate", "Motion", "Summary", "feasible_range", "build_plan", "Plan",
     "ChainGraphError", "ChainFileError", "ChainStructureError", "MechanismError",
     "AssemblyError", "AtlasRunError", "AtlasSizeError", "DesignError", "DimensionError",
-    "UnboundedRangeError", "ChainGraphWarning", "PoseAdjustedWarning",
+    "DegenerateDrawingError", "UnboundedRangeError", "ChainGraphWarning", "PoseAdjustedWarning",
 ]

@@ -14,6 +14,7 @@ __all__ = [
     "ChainGraphError",
     "ChainFileError",
     "DimensionError",
+    "DegenerateDrawingError",
     "ChainStructureError",
     "MechanismError",
     "AssemblyError",
@@ -73,6 +74,23 @@ class DimensionError(ChainFileError):
         self.part = part
         self.feasible_range = feasible_range
         super().__init__(problem, source=source, where=where)
+
+
+class DegenerateDrawingError(DimensionError):
+    """A drawn pose in which a link has no size: every joint that turns it (its R
+    joints, two or more, and no sliding pair to set its direction) drawn at one point,
+    so that it has zero length and its direction is undefined. Bad input: exit
+    status 2.
+
+    Extra fields: ``link`` (the link, also ``part``), ``joints`` (its joints drawn
+    there) and ``at`` (the point, in the file's units).
+    """
+
+    def __init__(self, problem, *, source=None, link=None, joints=(), at=None):
+        self.link = link
+        self.joints = tuple(joints)
+        self.at = at
+        super().__init__(problem, source=source, part=link)
 
 
 class ChainStructureError(ChainGraphError, ValueError):

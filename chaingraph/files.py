@@ -17,7 +17,7 @@ from chaingraph.model.chainfile import (
     parse_text,
     save,
 )
-from chaingraph.model.snap import snap_to_lines
+from chaingraph.model.snap import check_link_sizes, snap_to_lines
 
 __all__ = ["load", "loads", "from_document", "dumps", "save", "read_file", "read_text",
            "read_document", "place"]
@@ -95,6 +95,7 @@ def place(document):
     file of coordinates has its drawing-level rounding mended (:func:`snap_to_lines`,
     ``assembly`` None)."""
     if document.dimensions is None:
+        check_link_sizes(document.chain)
         return snap_to_lines(document.chain), None
     structure, dims = document.chain, document.dimensions
     point_links = [(p.id, p.link) for p in document.points]

@@ -215,9 +215,17 @@ def circle_circle(c1, r1, c2, r2):
     dx, dy = c2[0] - c1[0], c2[1] - c1[1]
     d2 = dx * dx + dy * dy
     d = np.sqrt(d2)
-    along = (r1 * r1 - r2 * r2 + d2) / (2 * d)
     ux, uy = dx / d, dy / d
-    return (c1[0] + along * ux, c1[1] + along * uy), (-uy, ux), r1 * r1 - along * along
+    # measured from the centre of the smaller circle, as (r - along) (r + along): the
+    # half-chord squared then carries a rounding of about eps * r * d, not eps * d**2,
+    # so that a link far shorter than the other keeps its length at a fold
+    along1 = (r1 * r1 - r2 * r2 + d2) / (2 * d)
+    along2 = (r2 * r2 - r1 * r1 + d2) / (2 * d)
+    first = r1 <= r2
+    raw = np.where(first, (r1 - along1) * (r1 + along1), (r2 - along2) * (r2 + along2))
+    mx = np.where(first, c1[0] + along1 * ux, c2[0] - along2 * ux)
+    my = np.where(first, c1[1] + along1 * uy, c2[1] - along2 * uy)
+    return (mx, my), (-uy, ux), raw
 
 
 def circle_line(centre, r, base, direction):
@@ -232,7 +240,8 @@ def circle_line(centre, r, base, direction):
     """
     ex, ey = base[0] - centre[0], base[1] - centre[1]
     beta = direction[0] * ex + direction[1] * ey
-    raw = beta * beta - (ex * ex + ey * ey - r * r)
+    h = direction[0] * ey - direction[1] * ex       # the centre's distance to the line
+    raw = (r - h) * (r + h)     # rounding about eps * r * |base - centre|
     foot = (base[0] - beta * direction[0], base[1] - beta * direction[1])
     return foot, direction, raw
 

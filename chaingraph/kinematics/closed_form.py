@@ -13,6 +13,7 @@ import math
 import numpy as np
 
 from chaingraph.geometry import (
+    DISC_TOL,
     circle_circle,
     circle_line,
     clamp_disc,
@@ -95,9 +96,15 @@ def dyad_roots(step, pose, scale, *, double=False):
     Returns (keys, build, ok, disc): ``keys`` the two modes' joint point (or rotation as
     a unit vector), arrays of shape (N, 2) or None for a dyad with one mode;
     ``build(sign)`` the poses of the dyad's links for an array of mode signs (+1 or -1);
-    ``ok`` where the dyad can be assembled; ``disc`` the discriminant over the size
-    squared (dimensionless: negative where the dyad cannot be assembled, zero where its
-    two modes meet), or None for a dyad with one mode.
+    ``ok`` where the dyad can be assembled; ``disc`` the discriminant made
+    dimensionless by the dyad's own lengths (negative where the dyad cannot be
+    assembled, zero where its two modes meet), or None for a dyad with one mode.
+    ``scale`` is the mechanism's size. The discriminant of two circles (the squared
+    half-chord, at most the smaller radius squared) is taken over the smaller radius
+    times the sum of the radii, that of a circle and a line over the radius times
+    (radius + ``scale``): its cut at rounding (``DISC_TOL``) then moves a fold's joint
+    by about ``DISC_TOL`` of the lengths involved, however short the shorter link
+    (over ``scale`` squared, a crank of 1e-5 of the size would be off by 1e-8 of it).
     """
     a, b = step.links
     ca, cb, cj = step.constraints
@@ -111,11 +118,15 @@ def dyad_roots(step, pose, scale, *, double=False):
         ra = math.dist(q, ca.point)
         if pattern == "RRR":
             wb = world(pose, cb.other(b), cb.point)
-            mid, across, raw = circle_circle(wa, ra, wb, math.dist(q, cb.point))
+            rb = math.dist(q, cb.point)
+            mid, across, raw = circle_circle(wa, ra, wb, rb)
+            norm = min(ra, rb) * (ra + rb)
         else:
             base, dirn, turn_b = line_of(pose, cb, b, q)
             mid, across, raw = circle_line(wa, ra, base, dirn)
-        disc, ok = clamp_disc(raw, scale * scale, double)
+            norm = ra * (ra + scale)
+        norm = max(norm, (DISC_TOL * scale) ** 2)      # a link of zero length
+        disc, ok = clamp_disc(raw, norm, double)
         h = np.sqrt(disc)
         off = (h * across[0], h * across[1])
         keys = (np.stack((mid[0] + off[0], mid[1] + off[1]), axis=-1),
@@ -127,7 +138,7 @@ def dyad_roots(step, pose, scale, *, double=False):
             if pattern == "RRR":
                 return {a: pa, b: fit_two_points(cb.point, wb, q, (x, y))}
             return {a: pa, b: from_point(turn_b, q, (x, y))}
-        return keys, build, ok, raw / (scale * scale)
+        return keys, build, ok, raw / norm
     if pattern == "RPR":
         wa = world(pose, ca.other(a), ca.point)
         wb = world(pose, cb.other(b), cb.point)

@@ -383,7 +383,26 @@ def check_poses(plan, pose, feasible):
     bad = feasible & ~(res <= 1e-9 * plan.size)
     if bad.any():
         i = int(np.argmax(bad))
+        if not np.isfinite(res[i]):
+            raise AssemblyError(f"the pose at step {i} cannot be computed: "
+                                f"{_undefined_at(plan, pose, i)}",
+                                mechanism=plan.chain.name)
         raise AssemblyError(f"loop closure fails at step {i} (residual {res[i]:.3g}, "
                             f"more than 1e-9 of the mechanism's size {plan.size:g})",
                             mechanism=plan.chain.name)
     return res
+
+
+def _undefined_at(plan, pose, i):
+    """What is undefined at point i of a pose whose residual there is not a number: the
+    first joint whose equations are not (a link placed from two joints that meet, a
+    sliding pair whose line or direction is undefined)."""
+    for c in plan.constraints:
+        with np.errstate(invalid="ignore"):
+            eqs = [np.asarray(e, dtype=float) for e in _constraint_residuals(c, pose)]
+        if not all(np.isfinite(e.reshape(-1)[i if e.size > 1 else 0]) for e in eqs):
+            pair = "sliding pair" if c.kind == "P" else "joint"
+            return (f"the {pair} {c.joint!r} of links {c.a!r} and {c.b!r} has no defined "
+                    "place there (a link placed from two joints that meet, or a sliding "
+                    "pair whose line is undefined)")
+    return "a link's place is undefined there (two joints that place it meet)"

@@ -37,7 +37,7 @@ import numpy as np
 
 from chaingraph.errors import MechanismError
 from chaingraph.model.chain import chosen_inputs
-from chaingraph.model.snap import size_of
+from chaingraph.model.snap import check_link_sizes, size_of
 
 __all__ = ["Constraint", "Step", "InputJoint", "Plan", "build_plan"]
 
@@ -467,6 +467,7 @@ def build_plan(chain, fixed=None, driver=None, *, inputs=None, closed_form=True)
     if len(chain.pieces) > 1:
         raise MechanismError("the chain is in several pieces that share no joint",
                              mechanism=name)
+    check_link_sizes(chain)
     inputs = tuple(inputs or ())
     items = _input_joints(chain, fixed, driver, inputs, name)
     from_driver = not inputs

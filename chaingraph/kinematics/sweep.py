@@ -170,7 +170,7 @@ def _limit(plan, ev, k, bad):
     return limit
 
 
-_AT_FOLD = 1e-12     # a dyad's discriminant (over the size squared) this small: a fold
+_AT_FOLD = 1e-12     # a dyad's discriminant (dimensionless) this small: a fold
 
 
 def _fold(plan, at, good, bad, far):

@@ -188,11 +188,13 @@ def _evaluate(plan, theta, start):
             drawn = (1.0, 0.0) if step.pattern == "RPR" else step.constraints[2].point
             sign0 = start.signs[i] if start is not None else initial_sign(keys, drawn)
             ref = Evaluation(theta, pose, feasible, signs, group_q, switches)
-            chosen, ok, found = _track(plan, i, step, ref, np.where(feasible, disc, np.nan),
-                                       sign0)
+            chosen, ok, found, touching = _track(plan, i, step, ref,
+                                                 np.where(feasible, disc, np.nan), sign0)
             feasible &= ok
             signs[i] = chosen
             switches[i] = found
+            if touching.any():       # samples at a touch: the double root, not the
+                build = dyad_roots(step, pose, plan.size, double=touching)[1]   # sqrt
             pose.update(build(chosen))
             continue
         q0 = start.group_q[i] if start is not None else np.zeros(group_form(step).size)
@@ -225,7 +227,11 @@ def _track(plan, i, step, head, disc, sign0):
     angles where its label switches.
 
     ``head`` is the path's evaluation so far (the steps before i); ``disc`` the dyad's
-    sampled discriminant (NaN where an earlier step failed).
+    sampled discriminant (NaN where an earlier step failed). Returns (signs, ok,
+    switches, touching), ``touching`` the samples that lie on a touch of the two modes
+    (their discriminant zero to rounding): there the pose is the double root, where
+    the computed discriminant's rounding, of either sign, would put the joint off by
+    its square root (a parallelogram at its change point, sampled there).
     """
     theta = head.theta
     n = theta.size
@@ -233,6 +239,7 @@ def _track(plan, i, step, head, disc, sign0):
     last = n if ok.all() else int(np.argmin(ok))
     direction = 1.0 if n < 2 or theta[-1] >= theta[0] else -1.0
     found = []
+    touching = np.zeros(n, dtype=bool)
     if last >= 2:
         d = disc[:last]
         left = np.r_[np.inf, d[:-1]]
@@ -245,6 +252,7 @@ def _track(plan, i, step, head, disc, sign0):
                 last = min(last, int(np.argmax(direction * (theta - tstar) >= 0)))
                 break
             if dmin <= DISC_TOL:
+                touching[k] = abs(d[k]) <= DISC_TOL
                 tstar = _touch_vertex(plan, i, step, head, int(k), tstar)
                 sign = sign0 * (-1.0) ** len(found)
                 if _switches_label(plan, i, step, head, int(k), tstar, direction, sign):
@@ -255,7 +263,7 @@ def _track(plan, i, step, head, disc, sign0):
         signs = np.where(direction * (theta - t) > 0, -signs, signs)
     ok = np.zeros(n, dtype=bool)
     ok[:last] = True
-    return signs, ok, found
+    return signs, ok, found, touching & ok
 
 
 def _head_roots(plan, i, step, head, k, ts):

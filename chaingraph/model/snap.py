@@ -11,10 +11,10 @@ from dataclasses import replace
 
 import numpy as np
 
-from chaingraph.errors import PoseAdjustedWarning
+from chaingraph.errors import DegenerateDrawingError, PoseAdjustedWarning
 from chaingraph.geometry import dot, normal, sub
 
-__all__ = ["snap_to_lines", "size_of", "feature_label", "SILENT", "ROUNDING"]
+__all__ = ["snap_to_lines", "check_link_sizes", "size_of", "feature_label", "SILENT", "ROUNDING"]
 
 #: typed positions within this fraction of the mechanism's size are taken as exact
 SILENT = 1e-6
@@ -39,6 +39,58 @@ def feature_label(chain, name):
 
 def _figure(x):
     return f"{x:.6g}"
+
+
+def _listed(names):
+    quoted = [repr(x) for x in names]
+    return quoted[0] if len(quoted) == 1 else ", ".join(quoted[:-1]) + " and " + quoted[-1]
+
+
+# -- a drawing that gives a link no size -------------------------------------------------------
+def check_link_sizes(chain):
+    """Refuse a drawn pose in which a link has zero length: a link turned by two or more
+    R joints (and set in direction by no sliding pair) whose joints are all drawn at one
+    point (within 1e-12 of the mechanism's size): its direction is undefined, and no
+    analysis of the drawing means anything. Raises
+    :class:`~chaingraph.errors.DegenerateDrawingError` naming the link, its joints and
+    the point (the first such link; all the joints at one point are said to be so).
+
+    Examples
+    --------
+    >>> from chaingraph.model.chain import Chain, Joint
+    >>> chain = Chain("four-bar", (
+    ...     Joint("A", "R", ("frame", "crank"), at=(0.0, 0.0)),
+    ...     Joint("B", "R", ("crank", "coupler"), at=(30.0, 40.0)),
+    ...     Joint("C", "R", ("coupler", "rocker"), at=(30.0, 40.0)),
+    ...     Joint("D", "R", ("rocker", "frame"), at=(100.0, 0.0))))
+    >>> check_link_sizes(chain)
+    Traceback (most recent call last):
+    ...
+    chaingraph.errors.DegenerateDrawingError: four-bar: link 'coupler' has zero length: joints 'B' and 'C' are both drawn at (30, 40)
+    """
+    if not chain.has_pose:
+        return
+    where = {j.id: j.at for j in chain.joints}
+    where.update({p.id: p.at for p in chain.points})
+    tol = 1e-12 * size_of(where)
+    everything = all(math.dist(at, chain.joints[0].at) <= tol for at in where.values())
+    for link in chain.links:
+        joints = chain.joints_of(link)
+        turning = [j for j in joints if j.kind == "R"]
+        if len(turning) < 2 or any(j.kind == "P" for j in joints):
+            continue
+        at = turning[0].at
+        if all(math.dist(j.at, at) <= tol for j in turning[1:]):
+            names = [j.id for j in turning]
+            point = f"({_figure(at[0] + 0.0)}, {_figure(at[1] + 0.0)})"
+            both = "both" if len(names) == 2 else "all"
+            problem = (f"link {link!r} has zero length: joints {_listed(names)} are {both} "
+                       f"drawn at {point}")
+            if everything:
+                problem += (" (every joint of the chain is drawn there: draw the "
+                            "mechanism in a pose, or give its lengths)")
+            raise DegenerateDrawingError(problem, source=chain.source or chain.name,
+                                         link=link, joints=names, at=tuple(at))
 
 
 # -- drawing-level rounding in a file of coordinates -------------------------------------------

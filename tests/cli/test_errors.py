@@ -543,3 +543,28 @@ def test_the_console_script_exits_0_2_and_1():
     code, out, err = run_console_script("solve", catalog_path("watts-indicator-mechanism"),
                                         "--from", "0", "--to", "180")
     assert code == 1 and "can turn only from" in err
+
+
+# -- issue 35, item 4: a drawing that gives a link no length ---------------------------
+DEGENERATE = Path(__file__).parents[1] / "data" / "degenerate"
+
+
+@pytest.mark.parametrize("command", ["solve", "inversions", "forces", "centres",
+                                     "assemble"])
+@pytest.mark.parametrize("name, link, joints, at", [
+    ("all-joints-at-one-point", "frame", "'A' and 'D'", "(0, 0)"),
+    ("coupler-zero-length", "coupler", "'B' and 'C'", "(30, 40)"),
+    ("crank-zero-length", "crank", "'A' and 'B'", "(0, 0)"),
+    ("engine-all-at-one-point", "crank", "'A' and 'O'", "(0, 0)"),
+    ("engine-rod-zero-length", "connecting rod", "'A' and 'B'", "(50, 0)"),
+])
+def test_a_link_drawn_with_zero_length_is_named_in_one_line(command, name, link, joints,
+                                                            at):
+    """Joints drawn at one point so that a link has no length (once told "the driver
+    'crank' can turn only from 0.000000 to 0.000000 degrees", or "residual nan", or
+    answered as a parallelogram): every command names the link, its joints and the
+    point, in one line, exit status 2."""
+    code, out, err = _main(command, DEGENERATE / f"{name}.toml")
+    assert code == 2 and _one_line(err), err
+    assert f"link {link!r} has zero length: joints {joints} are both drawn at {at}" in err
+    assert "nan" not in err.lower().replace("name", "")

@@ -3,6 +3,7 @@ constraint equations, computed as one (a dyad's double root, a group's extended
 system), so poses, strokes, extremes and time ratios there carry the rounding, not its
 square root; symmetric mechanisms give exactly symmetric answers."""
 
+import json
 import math
 from pathlib import Path
 
@@ -17,7 +18,7 @@ from chaingraph.kinematics.equations import residuals
 from chaingraph.kinematics.rates import rates
 from chaingraph.kinematics.sweep import cycle
 
-from ..conftest import CATALOG
+from ..conftest import CATALOG, run_cli
 
 EXAMPLES = sorted((Path(__file__).parents[2] / "examples").glob("*.toml"))
 
@@ -168,3 +169,62 @@ def test_a_limit_where_a_dyad_degenerates_is_no_fold():
         plan = motion.plan
         for end in cycle(plan).limit_poses:
             assert float(np.max(residuals(plan, end.pose))) <= 1e-9 * plan.size
+
+
+# -- issue 35, item 4: a crank far shorter than the mechanism, driven by its rocker ----
+def _rocker_driven_tiny_crank_closed_form(a, b, c, f):
+    """The rocker's limits (crank and coupler in line: the distance from the crank's
+    pivot to the rocker's joint is b + a or b - a, by the law of cosines at the rocker's
+    pivot, the frame along x from (0, 0) to (f, 0), the rocker above it), and the crank's
+    direction there (towards the rocker's joint, then away from it), in degrees."""
+    limits, crank = [], []
+    for sign in (1.0, -1.0):
+        psi = math.acos(((b + sign * a) ** 2 - f * f - c * c) / (2 * f * c))
+        cx, cy = f + c * math.cos(psi), c * math.sin(psi)
+        limits.append(math.degrees(psi))
+        crank.append(math.degrees(math.atan2(cy, cx)) + (0.0 if sign > 0 else 180.0))
+    return limits, crank
+
+
+def _tiny_crank_file(tmp_path, crank):
+    at = (crank / math.sqrt(2), crank / math.sqrt(2))
+    joints = (chaingraph.Joint("A", "R", ("frame", "crank"), at=(0.0, 0.0)),
+              chaingraph.Joint("B", "R", ("crank", "coupler"), at=at),
+              chaingraph.Joint("C", "R", ("coupler", "rocker"), at=(60.0, 50.0)),
+              chaingraph.Joint("D", "R", ("rocker", "frame"), at=(100.0, 0.0)))
+    chain = chaingraph.Chain("tiny crank", joints, units="mm",
+                             mechanism=chaingraph.Mechanism("frame", driver="rocker",
+                                                            output="crank"))
+    path = tmp_path / "tiny.toml"
+    chaingraph.save(chain, path)
+    return path, at
+
+
+@pytest.mark.parametrize("crank", [None, 1.0, 1e-1, 1e-2, 1e-3, 1e-4])
+def test_a_crank_far_shorter_than_the_frame_driven_by_its_rocker(tmp_path, crank):
+    """The solver's reproducer (a crank of 0.003 mm in a 100 mm four-bar, driven by its
+    rocker: refused at step 0 when a dyad's discriminant was cut relative to the
+    mechanism's size squared) and the same four-bar with cranks of 1e-2 to 1e-6 of the
+    frame: the input range is the rocker's limits in closed form to 1e-9 degrees, and
+    the crank's extremes its directions there, to 1e-9 degrees or the rounding of its
+    joints' places seen from its length (its stroke is 180 degrees plus the angle the
+    rocker's joint turns through about the crank's pivot: 180.0000878 for 0.003 mm)."""
+    if crank is None:
+        path = Path(__file__).parents[1] / "data" / "solver" / \
+            "solver-tiny-crank-rocker-driven.toml"
+        at = chaingraph.load(path).joint("B").at
+    else:
+        path, at = _tiny_crank_file(tmp_path, crank)
+    code, out, err = run_cli("solve", path, "--json")
+    assert code == 0, err
+    s = json.loads(out)["summary"]
+    a = math.hypot(*at)
+    b, c = math.dist(at, (60.0, 50.0)), math.dist((60.0, 50.0), (100.0, 0.0))
+    limits, crank_at = _rocker_driven_tiny_crank_closed_form(a, b, c, 100.0)
+    assert s["input_range"] == pytest.approx(sorted(limits), abs=1e-9)
+    # the crank's direction is known only as well as its joints' places, which carry a
+    # rounding of the size: a few of them, seen from the crank's length
+    tol = max(1e-9, math.degrees(4 * np.finfo(float).eps * 100.0 / a))
+    values = {round(e["input"], 6): e["value"] for e in s["extreme_positions"]}
+    assert [values[round(t, 6)] for t in limits] == pytest.approx(crank_at, abs=tol)
+    assert s["stroke"] == pytest.approx(abs(crank_at[1] - crank_at[0]), abs=2 * tol)

@@ -18,7 +18,7 @@ from chaingraph.cli.main import main
 from chaingraph.kinematics import solve
 from chaingraph.kinematics.sweep import evaluate_sweep
 from chaingraph.kinematics.plan import build_plan
-from chaingraph.kinematics.equations import residuals
+from chaingraph.kinematics.equations import check_poses, residuals
 from chaingraph.kinematics.rates import rates
 from chaingraph.kinematics.tracking import evaluate
 
@@ -609,3 +609,17 @@ def test_where_a_slide_runs_off_to_infinity_the_range_ends_on_every_path_alike()
               for c in motion.columns if c[:2] in ("x:", "y:"))
     # (the trace measures a link's reference point, the columns its joints: within a size)
     assert abs(out - RUNAWAY_SIZES * plan.size) < plan.size
+
+
+def test_a_pose_that_is_not_a_number_is_named_not_told_residual_nan():
+    """A pose whose residual is not a number (a step that degenerated) is refused with
+    the joint whose place is undefined, never with "residual nan"."""
+    chain = chaingraph.load(catalog_path("reciprocating-engine"))
+    m = chaingraph.solve(chain, steps=4, summary=False)
+    ev = evaluate(m.plan, m.theta)
+    x, y, phi, c, s = ev.pose["connecting rod"]
+    ev.pose["connecting rod"] = (np.where(np.arange(x.size) == 2, np.nan, x), y, phi, c, s)
+    with pytest.raises(chaingraph.AssemblyError) as caught:
+        check_poses(m.plan, ev.pose, ev.feasible)
+    said = str(caught.value)
+    assert "nan" not in said and "step 2" in said and "'connecting rod'" in said

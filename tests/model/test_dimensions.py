@@ -14,7 +14,10 @@ import numpy as np
 import pytest
 
 import chaingraph
+from chaingraph.errors import DegenerateDrawingError, DimensionError
 from chaingraph.kinematics.assembly import measure
+from chaingraph.kinematics.plan import build_plan
+from chaingraph.model.snap import check_link_sizes
 from chaingraph.naming.catalog import catalog_files
 from chaingraph.model.chain import Chain, Input, Joint, Mechanism, Point
 from chaingraph.files import loads, read_text
@@ -559,3 +562,45 @@ def test_the_whitworth_worked_example_gives_the_text_s_ratio_and_stroke():
     assert round(s["time_ratio"], 3) == 2.735
     assert s["stroke"] == pytest.approx(87.5, rel=1e-9)
     assert "43.75" in chain.notes and "87.5" in chain.notes and "not give" in chain.notes
+
+
+# -- issue 35, item 4: a drawing that gives a link no length ---------------------------
+def _drawn(*joints):
+    return Chain("drawn", tuple(Joint(*j[:3], at=j[3], axis=j[4] if len(j) > 4 else None)
+                                for j in joints))
+
+
+def test_a_link_with_its_joints_at_one_point_is_a_dimension_error_with_its_fields():
+    chain = _drawn(("A", "R", ("frame", "crank"), (0.0, 0.0)),
+                   ("B", "R", ("crank", "coupler"), (20.0, 0.0)),
+                   ("C", "R", ("coupler", "rocker"), (20.0, 1e-13)),
+                   ("D", "R", ("rocker", "frame"), (100.0, 0.0)))
+    with pytest.raises(DegenerateDrawingError) as caught:
+        check_link_sizes(chain)
+    e = caught.value
+    assert isinstance(e, DimensionError) and isinstance(e, ValueError)
+    assert (e.link, e.part, e.joints, e.at) == ("coupler", "coupler", ("B", "C"), (20.0, 0.0))
+    assert str(e) == "drawn: link 'coupler' has zero length: joints 'B' and 'C' are both " \
+                     "drawn at (20, 0)"
+    # the same chain through the solver's front door
+    with pytest.raises(DegenerateDrawingError):
+        build_plan(chain, fixed="frame", driver="crank")
+
+
+def test_short_links_and_joints_that_share_a_point_on_purpose_are_not_refused():
+    """A link of 1e-9 of the size is short, not degenerate; a block's R joint on its
+    sliding pair's point, and two R joints of a ternary link at one point (a multiple
+    joint written as two) give the link its direction by other joints."""
+    check_link_sizes(_drawn(("A", "R", ("frame", "crank"), (0.0, 0.0)),
+                            ("B", "R", ("crank", "coupler"), (1e-7, 0.0)),
+                            ("C", "R", ("coupler", "rocker"), (60.0, 50.0)),
+                            ("D", "R", ("rocker", "frame"), (100.0, 0.0))))
+    check_link_sizes(_drawn(("O", "R", ("frame", "crank"), (0.0, 0.0)),
+                            ("A", "R", ("crank", "rod"), (20.0, 30.0)),
+                            ("B", "R", ("rod", "block"), (150.0, 0.0)),
+                            ("S", "P", ("frame", "block"), (150.0, 0.0), 0.0)))
+    check_link_sizes(_drawn(("A", "R", ("frame", "plate"), (0.0, 0.0)),
+                            ("B", "R", ("plate", "x"), (40.0, 0.0)),
+                            ("C", "R", ("plate", "y"), (40.0, 0.0)),
+                            ("D", "R", ("x", "frame"), (80.0, 10.0)),
+                            ("E", "R", ("y", "frame"), (80.0, -10.0))))
