@@ -84,6 +84,8 @@ def animate_inversion(mechanism, *, frames=24, width=300) -> Animation:
     n = motion.theta.size - (1 if full else 0)      # a turn's last step is its first
     rows = _window(motion, mechanism, n, full)
     shown = len(rows) / n
+    if shown == 1.0:
+        rows = list(range(n))                  # from the drawn pose, as the file runs
     theta = np.asarray(motion.theta, dtype=float)
     period = 360.0 if full else 0.0
 
