@@ -80,6 +80,21 @@ class View:
     def __init__(self, lo, hi, pad):
         self.lo, self.hi, self.pad = lo, hi, pad
 
+    @property
+    def decimals(self):
+        """Decimals enough that a length keeps its value to 1e-5 of the picture's size,
+        whatever the size (a link's length must not wobble from frame to frame)."""
+        return max(0, 5 - math.floor(math.log10(max(max(self.size), 1e-300))))
+
+    def num(self, v):
+        """A picture coordinate as text, to the view's decimals."""
+        if getattr(self, "_format", None) is None:
+            self._format = f"{{:.{self.decimals}f}}"
+        text = self._format.format(v)
+        if "." in text:
+            text = text.rstrip("0").rstrip(".")
+        return "0" if text in ("-0", "") else text
+
     # model -> picture coordinates (y up -> y down)
     def X(self, x):
         return x - self.lo[0] + self.pad
@@ -88,7 +103,7 @@ class View:
         return self.hi[1] - y + self.pad
 
     def pt(self, x, y):
-        return f"{self.X(x):.4g},{self.Y(y):.4g}"
+        return f"{self.num(self.X(x))},{self.num(self.Y(y))}"
 
     @property
     def size(self):
@@ -112,7 +127,7 @@ class Scene(View):
         self.angle, self.slide, self.pairs, self.ends, self.blocks = {}, {}, {}, {}, {}
         for j in self.slides:
             a = np.asarray(angle[j.id], dtype=float)
-            self.angle[j.id] = np.where(np.isfinite(a), a, math.radians(j.axis))
+            self.angle[j.id] = np.where(np.isfinite(a), a, math.radians(j.axis or 0.0))
             s = np.asarray(slide[j.id], dtype=float)
             self.slide[j.id] = np.where(np.isfinite(s), s, 0.0)
             pair = self.pairs[j.id] = self._pair(j, s[np.isfinite(s)])
@@ -124,24 +139,30 @@ class Scene(View):
         ys = [v[1] for v in self.xy.values()] + [e[1] for p in self.ends.values() for e in p]
         xs, ys = np.concatenate(xs), np.concatenate(ys)
         xs, ys = xs[np.isfinite(xs)], ys[np.isfinite(ys)]
-        self.lo = (float(xs.min()), float(ys.min()))
-        self.hi = (float(xs.max()), float(ys.max()))
-        self.span = max(self.hi[0] - self.lo[0], self.hi[1] - self.lo[1], 1e-9)
+        lo, hi = [float(xs.min()), float(ys.min())], [float(xs.max()), float(ys.max())]
+        self.span = max(hi[0] - lo[0], hi[1] - lo[1], 1e-9)
+        for axis in (0, 1):       # no sliver of a picture: each side at least half the other
+            grow = 0.25 * self.span - 0.5 * (hi[axis] - lo[axis])
+            if grow > 0:
+                lo[axis], hi[axis] = lo[axis] - grow, hi[axis] + grow
+        self.lo, self.hi = tuple(lo), tuple(hi)
         self.pad = 0.12 * self.span
         self.w = 0.035 * self.span           # a block's half length, a slot's width
 
     @classmethod
-    def of_motion(cls, motion, *, also=None):
+    def of_motion(cls, motion, *, also=None, rows=None):
         """The scene over a solved :class:`~chaingraph.kinematics.Motion`; ``also``, a
         motion of the same mechanism whose steps are added after the first's (a pose
-        to draw that is not one of the sweep's steps)."""
+        to draw that is not one of the sweep's steps); ``rows``, the steps to keep (the
+        scene's steps are then those, in that order: the picture is fitted to them)."""
         chain = motion.plan.chain
         names = [j.id for j in chain.joints] + [p.id for p in chain.points]
         motions = [motion] if also is None else [motion, also]
+        keep = slice(None) if rows is None else np.asarray(rows, dtype=int)
 
         def column(key):
             return np.concatenate([np.asarray(m[key], dtype=float).reshape(-1)
-                                   for m in motions])
+                                   for m in motions])[keep]
         xy = {name: (column(f"x:{name}"), column(f"y:{name}")) for name in names}
         angle, slide = {}, {}
         for j in chain.joints:
@@ -151,6 +172,17 @@ class Scene(View):
                 angle[j.id] = math.radians(j.axis) + turn
                 slide[j.id] = column(f"s:{j.id}")
         return cls(chain, motion.fixed, xy, angle, slide)
+
+    @classmethod
+    def of_chain(cls, chain):
+        """The scene of a chain in its drawn pose (one step): a mechanism's fixed link
+        is the ground; a chain without a mechanism has none."""
+        xy = {j.id: ([j.at[0]], [j.at[1]]) for j in chain.joints}
+        xy.update({p.id: ([p.at[0]], [p.at[1]]) for p in chain.points})
+        angle = {j.id: [math.radians(j.axis or 0.0)] for j in chain.joints if j.kind == "P"}
+        slide = {j.id: [0.0] for j in chain.joints if j.kind == "P"}
+        return cls(chain, chain.mechanism.fixed if chain.mechanism else None, xy, angle,
+                   slide)
 
     @classmethod
     def of_pose(cls, state):
@@ -214,7 +246,7 @@ class Scene(View):
             side = 1 - links.index(fixed)
             pin = on_pin(links[side])
             at = coord(pin.at) if pin else 0.0
-            return _Pair(fixed, links[side], "way", padded([across(at, side)], 0.04 * extent),
+            return _Pair(fixed, links[side], "way", padded([across(at, side)], 0.1 * extent),
                          pin=pin.id if pin else None, at=at)
         held = [side for side in (0, 1) if on_pin(links[side])]
         if len(held) == 1:
@@ -255,36 +287,53 @@ def _line(cls, p, q, colour, width, data=(), dash=()):
 
 
 def frame_shapes(scene, k):
-    """The shapes of the pose at step ``k``: links (plates and bars), sliding pairs
-    (guides and blocks), joints (fixed pivots on hatched ground, pins), points, labels."""
-    chain, w = scene.chain, scene.w
-    stroke = 0.012 * scene.span
-    out = []
+    """The shapes of the pose at step ``k``: links (plates and bars, each whole: with
+    its blocks and the slots it carries), sliding pairs (guides and blocks), joints
+    (fixed pivots on hatched ground, pins, higher pairs), points, and labels placed
+    clear of each other and, where they can be, of the links."""
     at = {name: (v[0][k], v[1][k]) for name, v in scene.xy.items()}
     ends = {j: ((e1[0][k], e1[1][k]), (e2[0][k], e2[1][k])) for j, (e1, e2) in scene.ends.items()}
     blocks = {j: (b[0][k], b[1][k]) for j, b in scene.blocks.items()}
-    # what a link's body joins besides its pins and points: a rod reaches its piston;
-    # a link with fewer than two pins and points (a yoke, Oldham's disc) joins its
-    # blocks and the middles of its slots
-    rods, spare = {}, {}
+    out = _bodies(scene, at, ends, blocks)
+    for j in scene.slides:
+        out += _slide_shapes(scene, j, k, ends[j.id], blocks[j.id])
+    out += _joint_shapes(scene, at)
+    out += _labels(scene, at, out)
+    return out
+
+
+def _members(scene, link, at, ends, blocks):
+    """The points a link's body joins at one pose: its turning pairs and points, the
+    blocks it carries (a block not on one of its pins, a piston at its rod's end), the
+    middles of the slots cut in it, and a cylinder's barrel where the body does not
+    reach it."""
+    chain = scene.chain
+    members = [at[j.id] for j in chain.joints_of(link) if j.kind != "P"]
+    members += [at[p.id] for p in chain.points if p.link == link]
+    barrels = []
     for jid, pair in scene.pairs.items():
-        if pair.style == "cylinder":
-            rods.setdefault(pair.block_link, []).append(blocks[jid])
-        elif pair.pin is None:
-            spare.setdefault(pair.block_link, []).append(blocks[jid])
-        if pair.style == "slot":
+        if pair.block_link == link and pair.pin is None:
+            members.append(blocks[jid])
+        if pair.carrier == link and pair.style == "slot":
             (x1, y1), (x2, y2) = ends[jid]
-            spare.setdefault(pair.carrier, []).append((0.5 * (x1 + x2), 0.5 * (y1 + y2)))
-    # links: plates and bars (between their R joints and points)
-    for c, link in enumerate(chain.links):
+            members.append((0.5 * (x1 + x2), 0.5 * (y1 + y2)))
+        elif pair.carrier == link and pair.style == "cylinder":
+            barrels.append(ends[jid])
+    for p1, p2 in barrels:
+        if not any(_segment_distance(m, p1, p2) <= 0.9 * scene.w for m in members):
+            members.append(min((p1, p2), key=lambda e: min(
+                (math.dist(e, m) for m in members), default=0.0)))
+    return [p for p in members if _finite(p)]
+
+
+def _bodies(scene, at, ends, blocks):
+    """The moving links as plates (three or more points not in one line) and bars."""
+    stroke = 0.012 * scene.span
+    out = []
+    for c, link in enumerate(scene.chain.links):
         if link == scene.fixed:
             continue
-        members = [at[j.id] for j in chain.joints_of(link) if j.kind == "R"]
-        members += [at[p.id] for p in chain.points if p.link == link]
-        members += rods.get(link, [])
-        if len(members) < 2:
-            members += spare.get(link, [])
-        pts = [p for p in members if _finite(p)]
+        pts = _members(scene, link, at, ends, blocks)
         colour = COLOURS[c % len(COLOURS)]
         hull = convex_hull([(round(x, 12), round(y, 12)) for x, y in pts])
         if len(hull) >= 3 and polygon_area(hull) <= 1e-6 * scene.span ** 2:
@@ -297,54 +346,73 @@ def frame_shapes(scene, k):
         elif len(hull) == 2:
             out.append(Shape("polyline", "bar", tuple(hull), data=(("link", link),),
                              stroke=colour, width=2 * stroke, cap="round"))
-    # sliding pairs: the guide on its link, the block on it
-    for j in scene.slides:
-        pair = scene.pairs[j.id]
-        p1, p2 = ends[j.id]
-        centre = blocks[j.id]
-        if not _finite(p1, p2, centre):
-            continue
-        a = float(scene.angle[j.id][k])
-        u, nrm = (math.cos(a), math.sin(a)), (-math.sin(a), math.cos(a))
-        tag = (("joint", j.id), ("link", pair.carrier))
+    return out
 
-        def off(p, d):
-            return (p[0] + d * nrm[0], p[1] + d * nrm[1])
 
-        if pair.style == "way":
-            # a way on the fixed link: hatched on one side
-            out.append(_line("guide", p1, p2, "#444444", stroke, tag))
-            for i in range(13):
-                t = i / 12
-                b = off((p1[0] + t * (p2[0] - p1[0]), p1[1] + t * (p2[1] - p1[1])), -0.9 * w)
-                e = (b[0] - 0.5 * w * (u[0] + nrm[0]), b[1] - 0.5 * w * (u[1] + nrm[1]))
-                out.append(_line("hatch", b, e, "#777777", 0.5 * stroke))
-        elif pair.style == "slot":
-            # a slot in a moving link: two sides about its centre line
-            out.append(_line("guide", p1, p2, "#444444", 0.5 * stroke, tag))
-            for side in (-1, 1):
-                out.append(_line("slot", off(p1, side * 0.8 * w), off(p2, side * 0.8 * w),
-                                 "#444444", stroke, (("joint", j.id),)))
-        else:
-            # a cylinder: the barrel, closed at one end, about a dash-dot centre line
-            out.append(_line("guide", p1, p2, "#888888", 0.4 * stroke, tag,
-                             dash=(2 * stroke, stroke, 0.5 * stroke, stroke)))
-            shut, open_ = (p1, p2) if pair.cap == "lo" else (p2, p1)
-            wall = (off(open_, -0.9 * w), off(shut, -0.9 * w), off(shut, 0.9 * w),
-                    off(open_, 0.9 * w))
-            out.append(Shape("polyline", "barrel", wall, data=tag, stroke="#333333",
-                             width=stroke, join="round"))
-        half = (0.6 * w, 0.85 * w) if pair.style == "cylinder" else (w, 0.7 * w)
-        corners = tuple((centre[0] + du * half[0] * u[0] + dn * half[1] * nrm[0],
-                         centre[1] + du * half[0] * u[1] + dn * half[1] * nrm[1])
-                        for du, dn in ((-1, -1), (1, -1), (1, 1), (-1, 1)))
-        out.append(Shape("polygon", "block", corners, data=(("joint", j.id),),
-                         fill="#f2f2f2", stroke="#222222", width=stroke))
-    # joints: fixed pivots on hatched ground, pins as circles
-    for j in chain.joints:
-        if j.kind != "R" or not all(math.isfinite(v) for v in at[j.id]):
+def _slide_shapes(scene, j, k, guide, centre):
+    """One sliding pair at step ``k``: its guide on the link that carries it (a hatched
+    way, a slot, a barrel) and its block on the other link."""
+    pair, w = scene.pairs[j.id], scene.w
+    stroke = 0.012 * scene.span
+    p1, p2 = guide
+    if not _finite(p1, p2, centre):
+        return []
+    a = float(scene.angle[j.id][k])
+    u, nrm = (math.cos(a), math.sin(a)), (-math.sin(a), math.cos(a))
+    tag = (("joint", j.id), ("link", pair.carrier))
+    out = []
+
+    def off(p, d):
+        return (p[0] + d * nrm[0], p[1] + d * nrm[1])
+
+    if pair.style == "way":
+        # a way on the fixed link: hatched on one side
+        out.append(_line("guide", p1, p2, "#444444", stroke, tag))
+        count = max(2, min(40, int(round(math.dist(p1, p2) / (0.8 * w)))))
+        for i in range(count + 1):
+            t = i / count
+            b = off((p1[0] + t * (p2[0] - p1[0]), p1[1] + t * (p2[1] - p1[1])), -0.9 * w)
+            e = (b[0] - 0.5 * w * (u[0] + nrm[0]), b[1] - 0.5 * w * (u[1] + nrm[1]))
+            out.append(_line("hatch", b, e, "#777777", 0.5 * stroke))
+    elif pair.style == "slot":
+        # a slot in a moving link: two sides about its centre line
+        out.append(_line("guide", p1, p2, "#444444", 0.5 * stroke, tag))
+        for side in (-1, 1):
+            out.append(_line("slot", off(p1, side * 0.8 * w), off(p2, side * 0.8 * w),
+                             "#444444", stroke, (("joint", j.id),)))
+    else:
+        # a cylinder: the barrel, closed at one end, about a dash-dot centre line
+        out.append(_line("guide", p1, p2, "#888888", 0.4 * stroke, tag,
+                         dash=(2 * stroke, stroke, 0.5 * stroke, stroke)))
+        shut, open_ = (p1, p2) if pair.cap == "lo" else (p2, p1)
+        wall = (off(open_, -0.9 * w), off(shut, -0.9 * w), off(shut, 0.9 * w),
+                off(open_, 0.9 * w))
+        out.append(Shape("polyline", "barrel", wall, data=tag, stroke="#333333",
+                         width=stroke, join="round"))
+    half = (0.6 * w, 0.85 * w) if pair.style == "cylinder" else (w, 0.7 * w)
+    corners = tuple((centre[0] + du * half[0] * u[0] + dn * half[1] * nrm[0],
+                     centre[1] + du * half[0] * u[1] + dn * half[1] * nrm[1])
+                    for du, dn in ((-1, -1), (1, -1), (1, 1), (-1, 1)))
+    out.append(Shape("polygon", "block", corners,
+                     data=(("joint", j.id), ("link", pair.block_link)),
+                     fill="#f2f2f2", stroke="#222222", width=stroke))
+    return out
+
+
+def _joint_shapes(scene, at):
+    """Fixed pivots on hatched ground, pins as circles, higher pairs as dashed rings,
+    tracer points as dots."""
+    w, stroke = scene.w, 0.012 * scene.span
+    out = []
+    for j in scene.chain.joints:
+        if j.kind == "P" or not all(math.isfinite(v) for v in at[j.id]):
             continue
         x, y = at[j.id]
+        if j.kind != "R":
+            out.append(Shape("circle", "higher", ((x, y),), data=(("joint", j.id),),
+                             radius=0.6 * w, stroke="#b05000", width=stroke * 0.8,
+                             dash=(stroke, stroke)))
+            continue
         if scene.fixed in j.links:
             tri = ((x, y), (x - 1.1 * w, y - 1.6 * w), (x + 1.1 * w, y - 1.6 * w))
             out.append(Shape("polygon", "ground", tri, fill="#dddddd", stroke="#222222",
@@ -356,22 +424,164 @@ def frame_shapes(scene, k):
         out.append(Shape("circle", "pin", ((x, y),), data=(("joint", j.id),),
                          radius=0.45 * w, fill="#555555" if scene.fixed in j.links else "white",
                          stroke="#111111", width=stroke * 0.8))
-    for p in chain.points:
+    for p in scene.chain.points:
         x, y = at[p.id]
         if math.isfinite(x) and math.isfinite(y):
             out.append(Shape("circle", "point", ((x, y),), data=(("point", p.id),),
                              radius=0.3 * w, fill="#c00000"))
-    # labels, legible at any size: a share of the drawing, with a white halo
-    # (names at one place, such as a pen on a pin, are stacked, not overprinted)
-    font = 0.045 * scene.span
-    placed = []
-    for name, (x, y) in at.items():
-        if math.isfinite(x) and math.isfinite(y):
-            lift = 1.1 * font * sum(math.dist((x, y), p) < 0.5 * w for p in placed)
-            placed.append((x, y))
-            out.append(Shape("text", "label", ((x + 0.6 * w, y + 0.6 * w + lift),),
-                             text=name, size=font, halo=0.25 * font))
     return out
+
+
+#: a label's box, in font sizes: the width of a character (an over-estimate for the
+#: sans-serif capitals and digits of joint names), the depth below the baseline and the
+#: height above it
+LABEL_CHAR, LABEL_DEPTH, LABEL_HEIGHT = 0.62, 0.25, 0.8
+
+
+def label_box(x, y, text, size):
+    """The box ``(x0, y0, x1, y1)`` a label of ``size`` at baseline point ``(x, y)``
+    takes (in the mechanism's coordinates, y up)."""
+    return (x, y - LABEL_DEPTH * size, x + LABEL_CHAR * size * len(text),
+            y + LABEL_HEIGHT * size)
+
+
+def _labels(scene, at, shapes):
+    """Every joint's and point's name, placed where it overlaps no other name and, as
+    far as it can, no link, pin or guide: tried round the joint, away from the links it
+    joins first, nearer first."""
+    font = 0.045 * scene.span
+    clutter = _Clutter(shapes, (scene.lo[0] - scene.pad, scene.lo[1] - scene.pad,
+                                scene.hi[0] + scene.pad, scene.hi[1] + scene.pad))
+    near = {}
+    for link in scene.chain.links:
+        names = [j.id for j in scene.chain.joints_of(link)]
+        names += [p.id for p in scene.chain.points if p.link == link]
+        for name in names:
+            near.setdefault(name, []).extend(at[n] for n in names if n != name)
+    wanted = []
+    for name, (x, y) in at.items():
+        if not (math.isfinite(x) and math.isfinite(y)):
+            continue
+        others = [p for p in near.get(name, []) if _finite(p)]
+        dx, dy = (x - sum(p[0] for p in others) / len(others),
+                  y - sum(p[1] for p in others) / len(others)) if others else (1.0, 1.0)
+        base = math.atan2(dy, dx) if math.hypot(dx, dy) > 1e-9 * scene.span else math.pi / 4
+        wanted.append((name, *_candidates(x, y, name, font, scene.w, base)))
+    if not wanted:
+        return []
+    every = np.concatenate([boxes for _, _, boxes in wanted])
+    costs = np.split(clutter.of(every), len(wanted))
+    placed, out, gap = np.zeros((0, 4)), [], 0.1 * font
+    for (name, cost, boxes), more in zip(wanted, costs):
+        taken = ((boxes[:, None, 0] < placed[None, :, 2] + gap)
+                 & (placed[None, :, 0] < boxes[:, None, 2] + gap)
+                 & (boxes[:, None, 1] < placed[None, :, 3] + gap)
+                 & (placed[None, :, 1] < boxes[:, None, 3] + gap)).any(axis=1)
+        box = boxes[int(np.argmin(cost + more + np.where(taken, np.inf, 0.0)))]
+        placed = np.vstack([placed, box])
+        out.append(Shape("text", "label", ((float(box[0]), float(box[1]) + LABEL_DEPTH * font),),
+                         text=name, size=font, halo=0.25 * font))
+    return out
+
+
+def _candidates(x, y, text, size, w, base):
+    """(preference cost, boxes) of the places tried for a label of the point (x, y):
+    eight directions from ``base`` (the nearer to it, the better), at four distances
+    (the nearer, the better); boxes as rows (x0, y0, x1, y1)."""
+    x0, y0, x1, y1 = label_box(0.0, 0.0, text, size)
+    hw, hh = 0.5 * (x1 - x0), 0.5 * (y1 - y0)
+    turn = np.tile(np.arange(-3, 5), 4)
+    ring = np.repeat(np.arange(4), 8)
+    a = base + turn * math.pi / 4
+    dx, dy = np.cos(a), np.sin(a)
+    reach = np.array([0.75, 1.6, 2.8, 4.5])[ring] * w + np.abs(dx) * hw + np.abs(dy) * hh
+    cx, cy = x + dx * reach, y + dy * reach
+    return 0.3 * np.abs(turn) + 0.9 * ring, np.stack([cx - hw, cy - hh, cx + hw, cy + hh],
+                                                     axis=1)
+
+
+class _Clutter:
+    """What a label should not cover, from a frame's shapes: pins, lines (with their
+    half widths), the inside of plates and blocks, the outside of the ``view``."""
+
+    def __init__(self, shapes, view):
+        segs, circles, self.areas = [], [], []
+        for s in shapes:
+            if s.cls in ("hatch", "path", "label"):
+                continue
+            half = 0.5 * (s.width or 0.0)
+            pts = list(s.points)
+            if s.kind in ("line", "polyline"):
+                segs += [(*p, *q, half) for p, q in zip(pts, pts[1:])]
+            elif s.kind == "polygon":
+                segs += [(*p, *q, half) for p, q in zip(pts, pts[1:] + pts[:1])]
+                if s.cls in ("plate", "block", "ground"):
+                    self.areas.append(pts)
+            elif s.kind == "circle":
+                circles.append((*s.points[0], s.radius + half))
+        self.segs = np.array(segs, dtype=float).reshape(-1, 5)
+        self.circles = np.array(circles, dtype=float).reshape(-1, 3)
+        self.view = view
+
+    def of(self, boxes):
+        """The clutter cost of each box (rows x0, y0, x1, y1)."""
+        c = self.circles
+        cost = 4.0 * ((boxes[:, None, 0] - c[None, :, 2] < c[None, :, 0])
+                      & (c[None, :, 0] < boxes[:, None, 2] + c[None, :, 2])
+                      & (boxes[:, None, 1] - c[None, :, 2] < c[None, :, 1])
+                      & (c[None, :, 1] < boxes[:, None, 3] + c[None, :, 2])).sum(axis=1)
+        cost = cost + 1.5 * _segments_meet_boxes(self.segs, boxes).sum(axis=1)
+        middle = np.stack([0.5 * (boxes[:, 0] + boxes[:, 2]),
+                           0.5 * (boxes[:, 1] + boxes[:, 3])], axis=1)
+        for pts in self.areas:
+            xs, ys = [p[0] for p in pts], [p[1] for p in pts]
+            near = ((middle[:, 0] > min(xs)) & (middle[:, 0] < max(xs))
+                    & (middle[:, 1] > min(ys)) & (middle[:, 1] < max(ys)))
+            if near.any():
+                cost = cost + 0.8 * (near & _inside_many(middle, pts))
+        v = self.view
+        return cost + 2.0 * ((boxes[:, 0] < v[0]) | (boxes[:, 1] < v[1])
+                             | (boxes[:, 2] > v[2]) | (boxes[:, 3] > v[3]))
+
+
+def _segments_meet_boxes(segs, boxes):
+    """(boxes, segments) booleans: whether each segment (rows x1, y1, x2, y2, half
+    width) meets each box grown by its half width (Liang-Barsky clipping)."""
+    px, py, qx, qy, half = (segs[None, :, i] for i in range(5))
+    lo_x, lo_y = boxes[:, None, 0] - half, boxes[:, None, 1] - half
+    hi_x, hi_y = boxes[:, None, 2] + half, boxes[:, None, 3] + half
+    t0 = np.zeros(lo_x.shape)
+    t1 = np.ones(lo_x.shape)
+    ok = np.ones(lo_x.shape, dtype=bool)
+    for p, d, lo, hi in ((px, qx - px, lo_x, hi_x), (py, qy - py, lo_y, hi_y)):
+        flat = np.abs(d) < 1e-300
+        ok &= ~(flat & ((p < lo) | (p > hi)))
+        safe = np.where(flat, 1.0, d)
+        a, b = (lo - p) / safe, (hi - p) / safe
+        a, b = np.where(flat, -np.inf, np.minimum(a, b)), np.where(flat, np.inf, np.maximum(a, b))
+        t0, t1 = np.maximum(t0, a), np.minimum(t1, b)
+    return ok & (t0 <= t1)
+
+
+def _inside_many(points, polygon):
+    """Whether each of the points (rows x, y) is inside the polygon (even-odd)."""
+    inside = np.zeros(len(points), dtype=bool)
+    x, y = points[:, 0], points[:, 1]
+    for (x1, y1), (x2, y2) in zip(polygon, polygon[1:] + polygon[:1]):
+        if y1 == y2:
+            continue
+        cross = ((y1 > y) != (y2 > y)) & (x < x1 + (y - y1) * (x2 - x1) / (y2 - y1))
+        inside ^= cross
+    return inside
+
+
+def _segment_distance(p, a, b):
+    """The distance from the point p to the segment ab."""
+    ax, ay = b[0] - a[0], b[1] - a[1]
+    length = ax * ax + ay * ay
+    t = 0.0 if length == 0 else max(0.0, min(1.0, ((p[0] - a[0]) * ax + (p[1] - a[1]) * ay)
+                                         / length))
+    return math.dist(p, (a[0] + t * ax, a[1] + t * ay))
 
 
 def path_shapes(scene, *, steps=None):
@@ -416,19 +626,20 @@ def _svg(scene, s):
         attrs.append('stroke-dasharray="' + " ".join(f"{d:.3g}" for d in s.dash) + '"')
     if s.kind == "line":
         (x1, y1), (x2, y2) = s.points
-        attrs.append(f'x1="{scene.X(x1):.4g}" y1="{scene.Y(y1):.4g}" '
-                     f'x2="{scene.X(x2):.4g}" y2="{scene.Y(y2):.4g}"')
+        attrs.append(f'x1="{scene.num(scene.X(x1))}" y1="{scene.num(scene.Y(y1))}" '
+                     f'x2="{scene.num(scene.X(x2))}" y2="{scene.num(scene.Y(y2))}"')
     elif s.kind in ("polygon", "polyline"):
         attrs.append('points="' + " ".join(scene.pt(*p) for p in s.points) + '"')
         attrs.append(f'fill="{s.fill or "none"}"')
     elif s.kind == "circle":
         (x, y), = s.points
-        attrs.append(f'cx="{scene.X(x):.4g}" cy="{scene.Y(y):.4g}" r="{s.radius:.3g}"')
+        attrs.append(f'cx="{scene.num(scene.X(x))}" cy="{scene.num(scene.Y(y))}" '
+                     f'r="{s.radius:.3g}"')
         attrs.append(f'fill="{s.fill or "none"}"')
     elif s.kind == "text":
         (x, y), = s.points
-        attrs.append(f'x="{scene.X(x):.4g}" y="{scene.Y(y):.4g}" font-size="{s.size:.3g}" '
-                     'font-family="sans-serif"')
+        attrs.append(f'x="{scene.num(scene.X(x))}" y="{scene.num(scene.Y(y))}" '
+                     f'font-size="{s.size:.3g}" font-family="sans-serif"')
         if s.halo:
             attrs.append(f'paint-order="stroke" stroke="white" stroke-width="{s.halo:.3g}"')
         return f"<text {' '.join(attrs)}>{html.escape(s.text)}</text>"

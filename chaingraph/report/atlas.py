@@ -13,18 +13,18 @@ from pathlib import Path
 
 from chaingraph._util.atomic import withdraw
 from chaingraph._util.parallel import process_runner
-from chaingraph.drawing.mechanism import mechanism_svg, skeleton_svg
-from chaingraph.errors import ChainGraphError, UnboundedRangeError
+from chaingraph.drawing.mechanism import skeleton_svg
+from chaingraph.errors import ChainGraphError
 from chaingraph.files import dumps
-from chaingraph.kinematics import solve
-from chaingraph.model.snap import size_of
-from chaingraph.naming.atlas import atlas_names
+from chaingraph.naming.atlas import atlas_names, named_mechanisms
+from chaingraph.report.animation import animate_inversion
 from chaingraph.report.atlas_index import thumbnail_svg, write_index
 from chaingraph.structure.atlas.estimate import LOCAL_HOURS
 from chaingraph.structure.atlas.illustrate import (
     generic_pose,
     inversion_mechanism,
     link_layout,
+    natural_input,
 )
 from chaingraph.structure.classify import classify
 from chaingraph.structure.isomorphism import automorphism_orbits
@@ -91,6 +91,20 @@ def _graph_svg(chain, size=260):
     return "".join(out)
 
 
+@dataclass(frozen=True)
+class _Figure:
+    """One animated (or drawn) inversion on a chain's page: its heading (a catalog name,
+    or None), its chain file's name and text, its picture (None when not animated or
+    not solved), what the page says under it, and why it failed to solve."""
+
+    title: str | None
+    file: str
+    text: str
+    svg: str | None
+    notes: tuple
+    failed: str | None = None
+
+
 def _page_job(task):
     """Everything of one chain's page, computed in a worker: (html, chain files, how many
     inversions were animated, those that failed, its catalog names, its thumbnail)."""
@@ -98,38 +112,81 @@ def _page_job(task):
     chain = generic_pose(entry.chain(dof))
     names = atlas_names(chain, oriented=oriented)
     named = {link: c["names"] for c in names["inversions"] for link in c["links"]}
+    proportioned = named_mechanisms(chain, oriented=oriented)
     rows = classify(chain).rows()
     classes = automorphism_orbits(chain, oriented=oriented)
-    files, figures, failed, animated = [], [], [], 0
+    sections, files, failed, animated = [], [], [], 0
     for i, links in enumerate(classes, start=1):
-        fixed = links[0]
-        label = ", ".join(named.get(fixed, [])) or f"inversion {i}"
-        mechanism = inversion_mechanism(chain, fixed, name=f"{chain.name}: {label}")
-        if mechanism is None:
-            figures.append((i, links, label, None, "no turning or sliding pair on the fixed "
-                                                   "link to drive it by"))
-            continue
-        svg, why = None, None
-        if animate:
-            try:
-                try:
-                    motion = solve(mechanism, steps=2 * frames, summary=False)
-                except UnboundedRangeError:
-                    # a slide that runs on without a limit: shown over half its size each way
-                    half = size_of({j.id: j.at for j in chain.joints}) / 2
-                    sliding = inversion_mechanism(chain, fixed, name=mechanism.name, slide=half)
-                    if sliding.mechanism == mechanism.mechanism:
-                        raise
-                    motion = solve(sliding, steps=2 * frames, summary=False)
-                    mechanism = sliding
-                    why = "its input slides without a limit: shown over half its size each way"
-                svg = mechanism_svg(motion, frames=frames, width=300).split("?>", 1)[-1]
-                animated += 1
-            except ChainGraphError as e:
-                failed.append((fixed, str(e)))
-                svg = None
-        files.append((f"chain-{entry.id}-inversion-{i}.toml", dumps(mechanism)))
-        figures.append((i, links, label, svg, why))
+        label = ", ".join(named.get(links[0], [])) or f"inversion {i}"
+        stem = f"chain-{entry.id}-inversion-{i}"
+        mine = [m for m in proportioned if m.links == links]
+        if mine:
+            figures = [_named_figure(m, stem if n == 0 else f"{stem}-{m.source}", animate,
+                                     frames) for n, m in enumerate(mine)]
+        elif natural_input(chain, links[0]) is None:
+            figures = []
+        else:
+            figures = [_generic_figure(entry, dof, chain, links[0], f"{chain.name}: {label}",
+                                       stem, animate, frames)]
+        for f in figures:
+            files.append((f.file, f.text))
+            animated += f.svg is not None
+            if f.failed:
+                failed.append((links[0], f.failed))
+        sections.append((i, links, label, figures))
+    page = _page_html(entry, chain, names, rows, sections, animate)
+    return page, files, animated, tuple(failed), names, thumbnail_svg(chain)
+
+
+def _named_figure(named, stem, animate, frames):
+    """A catalog mechanism of the chain's structure, animated with its own proportions
+    (scaled), so that it moves as its name says."""
+    scale = "" if named.scale == 1 else f", scaled by {named.scale:g}"
+    notes = (f"Shown with the proportions of the catalog's {named.name} "
+             f"(catalog/{named.source}.toml{scale}).",)
+    return _animated(named.mechanism, named.name, stem, notes, animate, frames)[0]
+
+
+def _generic_figure(entry, dof, chain, fixed, name, stem, animate, frames):
+    """An inversion in the chain's generic pose; one that its generic pose makes hard
+    to read (the links fill the picture over less than :data:`_READABLE` of its range)
+    in the first other generic pose that does better."""
+    mechanism = inversion_mechanism(chain, fixed, name=name)
+    best = _animated(mechanism, None, stem, ("Shown in the chain's generic pose.",),
+                     animate, frames)
+    for seed in range(1, _SEEDS + 1):
+        if not animate or best[1] >= _READABLE or best[0].svg is None:
+            break
+        other = inversion_mechanism(generic_pose(entry.chain(dof), seed=seed), fixed,
+                                    name=name)
+        why = (f"Re-proportioned: in the chain's generic pose the links fill the picture "
+               f"over only {best[1]:.0%} of this inversion's range; shown in another "
+               f"generic pose (number {seed}).",)
+        tried = _animated(other, None, stem, why, animate, frames)
+        if tried[0].svg is not None and tried[1] > best[1] + 0.05:
+            best = tried
+    return best[0]
+
+
+#: an inversion is re-proportioned when its links fill the picture over less than this
+#: share of its input's range, trying up to :data:`_SEEDS` other generic poses
+_READABLE, _SEEDS = 0.3, 3
+
+
+def _animated(mechanism, title, stem, notes, animate, frames):
+    """(the figure, the share of the range shown) of ``mechanism``."""
+    if not animate:
+        return _Figure(title, f"{stem}.toml", dumps(mechanism), None, notes), 1.0
+    try:
+        a = animate_inversion(mechanism, frames=frames, width=300)
+    except ChainGraphError as e:
+        return _Figure(title, f"{stem}.toml", dumps(mechanism), None, notes, str(e)), 0.0
+    return _Figure(title, f"{stem}.toml", dumps(a.mechanism), a.svg, notes + a.notes), \
+        a.shown
+
+
+def _page_html(entry, chain, names, rows, sections, animate):
+    """The chain's page: skeleton, link-joint graph, classification, inversions."""
     body = [f"<p><a href=\"index.html\">atlas</a></p><h1>{_esc(chain.name)}</h1>"]
     if names["chain"]:
         body.append(f"<p>The catalog's <b>{_esc(', '.join(names['chain']))}</b>.</p>")
@@ -140,25 +197,24 @@ def _page_job(task):
     body.append("<h2>Classification</h2><table>" + "".join(
         "<tr>" + "".join(f"<td>{_esc(c)}</td>" for c in r) + "</tr>" for r in rows) + "</table>")
     body.append("<h2>Inversions</h2>")
-    for i, links, label, svg, why in figures:
+    for i, links, label, figures in sections:
         body.append(f"<h3>{i}. {_esc(label)} <small>(fixed: {_esc(', '.join(links))})</small>"
                     "</h3>")
-        if why and svg is None:
-            body.append(f"<p>{_esc(why)}</p>")
-            continue
-        body.append(f"<p><a href=\"chains/chain-{entry.id}-inversion-{i}.toml\">chain file</a>"
-                    f" (driven by its natural input; <code>chaingraph solve</code> runs it)</p>")
-        if svg:
-            body.append(svg)
-            if why:
-                body.append(f"<p>{_esc(why)}</p>")
-        elif animate:
-            message = next(m for f, m in failed if f == links[0])
-            body.append(f"<p>not solved: {_esc(message)}</p>")
-    page = (f"<!DOCTYPE html><html lang=\"en\"><head><meta charset=\"utf-8\"><title>"
+        if not figures:
+            body.append("<p>no turning or sliding pair on the fixed link to drive it by</p>")
+        for f in figures:
+            if f.title and len(figures) > 1:
+                body.append(f"<h4>{_esc(f.title)}</h4>")
+            body.append(f"<p><a href=\"chains/{f.file}\">chain file</a> (driven by its "
+                        "natural input; <code>chaingraph solve</code> runs it as shown)</p>")
+            if f.svg:
+                body.append(f"<figure class=\"inversion\">{f.svg}</figure>")
+            elif f.failed:
+                body.append(f"<p>not solved: {_esc(f.failed)}</p>")
+            body.append("".join(f"<p class=\"note\">{_esc(n)}</p>" for n in f.notes))
+    return (f"<!DOCTYPE html><html lang=\"en\"><head><meta charset=\"utf-8\"><title>"
             f"{_esc(chain.name)}</title><style>{_STYLE}</style></head><body>"
             + "\n".join(body) + "</body></html>\n")
-    return page, files, animated, tuple(failed), names, thumbnail_svg(chain)
 
 
 #: seconds of one core to solve and animate an inversion, by links: 6 and 8 measured

@@ -138,21 +138,27 @@ def test_solve_draw_writes_the_drawing(tmp_path):
 
 @pytest.mark.parametrize("path", CATALOG, ids=[p.stem for p in CATALOG])
 def test_every_chain_has_a_skeleton(path):
+    """The skeleton is the animation's scene at the drawn pose: every joint a pin, a
+    block (on its guide) or a higher pair; every moving link of two joints or more a
+    body; the fixed link the ground."""
     from chaingraph.drawing.mechanism import skeleton_svg
     chain = chaingraph.load(path)
     root = ET.fromstring(skeleton_svg(chain))
-    marks = (root.findall(".//s:circle[@class='pin']", NS) + root.findall(".//s:rect[@class='block']", NS)
+    marks = (root.findall(".//s:circle[@class='pin']", NS)
+             + root.findall(".//s:polygon[@class='block']", NS)
              + root.findall(".//s:circle[@class='higher']", NS))
     assert len(marks) == len(chain.joints)
-    drawn = [e for e in root.iter() if e.get("data-link")]
+    bodies = root.findall(".//s:polygon[@class='plate']", NS) + \
+        root.findall(".//s:polyline[@class='bar']", NS)
     fixed = chain.mechanism.fixed if chain.mechanism else None
-    # the fixed link is the ground (hatched pivots and ways), never a moving body
-    assert {e.get("data-link") for e in drawn} == {x for x in chain.links
-                                                   if len(chain.joints_of(x)) >= 2
-                                                   and x != fixed}
+    # the fixed link is the ground (hatched pivots and ways), never a moving body; a
+    # block on the link's one pin is the link's body
+    assert {e.get("data-link") for e in bodies} == {
+        x for x in chain.links if x != fixed and len(
+            {(round(j.at[0], 6), round(j.at[1], 6)) for j in chain.joints_of(x)}) >= 2}
     grounds = root.findall(".//s:polygon[@class='ground']", NS)
     assert len(grounds) == sum(1 for j in chain.joints if j.kind == "R" and fixed in j.links)
-    guides = root.findall(".//s:g[@class='guide']", NS)
+    guides = root.findall(".//s:line[@class='guide']", NS)
     assert len(guides) == sum(j.kind == "P" for j in chain.joints)
     # every pin after every block: a pin at a block's place stays in sight
     order = [e.get("class") for e in root.iter() if e.get("class") in ("pin", "block")]

@@ -68,8 +68,10 @@ def _segments_cross(p, q, r, s):
 
 def generic_pose(chain, *, seed=0) -> Chain:
     """The chain with a drawn pose: every joint at the middle of its links' places in
-    :func:`link_layout`, moved off by up to 6 units (a fixed pseudo-random amount), P
-    joints along the line from the guide's link to the block's.
+    :func:`link_layout`, moved off by up to 6 units (a fixed pseudo-random amount, one
+    per ``seed``), P joints along the line from the guide's link to the block's; no
+    turning pair within :data:`CLEARANCE` of the size of a sliding line of its links
+    (it would read back as a joint drawn on the line and rounded).
 
     Examples
     --------
@@ -90,8 +92,40 @@ def generic_pose(chain, *, seed=0) -> Chain:
             axis = round(math.degrees(math.atan2(d[1], d[0])) + rnd.uniform(-25, 25), 6)
         joints.append(Joint(j.id, j.kind, j.links, at=(round(float(at[0]), 6),
                                                        round(float(at[1]), 6)), axis=axis))
-    return Chain(chain.name, tuple(joints), family=chain.family, units="mm",
-                 notes=chain.notes)
+    return Chain(chain.name, tuple(_clear_of_lines(joints)), family=chain.family,
+                 units="mm", notes=chain.notes)
+
+
+#: the least distance of a turning pair from a sliding line of its links, as a share of
+#: the pose's size: far beyond what a file reader takes for rounding (1e-3), so that a
+#: file of the pose reads back exactly as written
+CLEARANCE = 0.02
+
+
+def _clear_of_lines(joints):
+    """The joints with every turning pair that lies near a sliding line of its links
+    (within :data:`CLEARANCE` of the size) moved off it, across the line, to that
+    distance (a few passes: a move may bring it near another line)."""
+    joints = list(joints)
+    size = max(max(j.at[0] for j in joints) - min(j.at[0] for j in joints),
+               max(j.at[1] for j in joints) - min(j.at[1] for j in joints))
+    clear = CLEARANCE * size
+    for _ in range(4):
+        moved = False
+        for p in [j for j in joints if j.kind == "P"]:
+            n = (-math.sin(math.radians(p.axis)), math.cos(math.radians(p.axis)))
+            for i, j in enumerate(joints):
+                if j.kind != "R" or not set(j.links) & set(p.links):
+                    continue
+                d = n[0] * (j.at[0] - p.at[0]) + n[1] * (j.at[1] - p.at[1])
+                if abs(d) < clear:
+                    step = math.copysign(clear * 1.01, d if d else 1.0) - d
+                    joints[i] = Joint(j.id, j.kind, j.links, at=(
+                        round(j.at[0] + step * n[0], 6), round(j.at[1] + step * n[1], 6)))
+                    moved = True
+        if not moved:
+            break
+    return joints
 
 
 def natural_input(chain, fixed):
