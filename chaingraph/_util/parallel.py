@@ -81,7 +81,12 @@ def process_runner(workers):
             # Ctrl-C or a failure: stop every worker now, leave nothing running
             for process in list(getattr(pool, "_processes", {}).values()):
                 process.terminate()
-            pool.shutdown(wait=True, cancel_futures=True)
+            try:
+                pool.shutdown(wait=True, cancel_futures=True)
+            except RuntimeError:
+                # interrupted while the pool started its manager thread: nothing to join,
+                # and the interruption is what the caller must see
+                pass
             raise
         pool.shutdown()
     return run
