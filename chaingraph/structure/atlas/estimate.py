@@ -165,9 +165,21 @@ def _hours(hours):
     return f"{hours:g} hour{'s' if hours != 1 else ''}"
 
 
+#: the largest atlas with multiple joints measured: 10 links in 21 s; at 12 links
+#: (``chaingraph atlas --links 12 --multiple --summary``) the enumeration had not
+#: finished after 15 minutes of CPU and held 20 GB, so it is refused whatever the hours
+MULTIPLE_MEASURED_LINKS = 10
+
+
 def _check_sliding(links, dof, *, cores, hours, prismatic, oriented, multiple):
     """check_size of an atlas with sliding pairs or multiple joints: refused over
     ``hours`` with the estimate, and the parameter that allows it named."""
+    if multiple and links > MULTIPLE_MEASURED_LINKS:
+        raise AtlasSizeError(
+            f"an atlas of {links} links with multiple joints is refused: their direct "
+            f"enumeration is measured to {MULTIPLE_MEASURED_LINKS} links (21 s); at 12 links "
+            "it had not finished after 15 minutes of CPU and held 20 GB of memory, more than "
+            "this machine has", links=links, dof=dof, parameter="links")
     e = sliding_estimate(links, dof, prismatic=prismatic, oriented=oriented,
                          multiple=multiple)
     if e.wall_seconds(cores) > hours * 3600:
@@ -183,17 +195,17 @@ def _check_sliding(links, dof, *, cores, hours, prismatic, oriented, multiple):
 
 # -- with sliding pairs and multiple joints ------------------------------------------------
 #: ``(a, b)`` of ``log10 seconds = a + b N`` (CPU seconds of one process, N links), fitted
-#: to the times measured by ``benchmarks/atlas_sliding.py --fit`` on the 2-core machine
-#: while it was shared (so they lean high, by up to twice): "chain" per turning-pair
-#: chain (its automorphism group; 3.3, 6.0, 6.9 ms at 6, 8, 10 links), "assignment" per
-#: assignment of sliding pairs tried (10, 30, 72 us), "orientation" per further
-#: orientation of their guides with ``oriented`` (0.52, 0.44, 0.48 us), "merge" per
-#: turning-pair chain for its multiple joints (0.011, 0.27 s at 6, 8 links; 10 links take
-#: too long to time) and "multiple_chains" the chains with multiple joints per
-#: turning-pair chain (2 and 3.7 at 6, 8 links)
-SLIDING_FIT = {"chain": (-2.940, 0.081), "assignment": (-6.241, 0.211),
-               "orientation": (-6.247, -0.010), "merge": (-6.148, 0.698),
-               "multiple_chains": (-0.496, 0.133)}
+#: to the times measured by ``benchmarks/atlas_sliding.py --fit --sizes 6 8 10
+#: --multiple-up-to 10`` on the 2-core machine while it was shared (so they lean high):
+#: "chain" per turning-pair chain (its automorphism group; 3.0, 6.3, 5.1 ms at 6, 8, 10
+#: links), "assignment" per assignment of sliding pairs tried (12, 20, 48 us),
+#: "orientation" per further orientation of their guides with ``oriented`` (0.34, 0.41,
+#: 0.42 us), "merge" the direct enumeration of the chains with multiple joints, per
+#: turning-pair chain (2.2, 3.3, 13.5 ms), and "multiple_chains" the chains with multiple
+#: joints per turning-pair chain (2, 3.75, 11.5)
+SLIDING_FIT = {"chain": (-2.794, 0.057), "assignment": (-5.883, 0.155),
+               "orientation": (-6.601, 0.024), "merge": (-3.930, 0.199),
+               "multiple_chains": (-0.874, 0.190)}
 
 
 def _fitted(name, links):
