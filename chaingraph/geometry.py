@@ -286,6 +286,20 @@ def convex_hull(points):
     return lower[:-1] + upper[:-1]
 
 
+def segment_distance(p, a, b):
+    """The distance from the point ``p`` to the segment ``a``-``b`` (a point when the two
+    ends coincide).
+
+    >>> segment_distance((1, 1), (0, 0), (2, 0)), segment_distance((3, 0), (0, 0), (0, 0))
+    (1.0, 3.0)
+    """
+    ax, ay = b[0] - a[0], b[1] - a[1]
+    length = ax * ax + ay * ay
+    t = 0.0 if length == 0 else max(0.0, min(1.0, ((p[0] - a[0]) * ax + (p[1] - a[1]) * ay)
+                                         / length))
+    return math.dist(p, (a[0] + t * ax, a[1] + t * ay))
+
+
 def polygon_area(polygon):
     """The area of a simple polygon (shoelace).
 

@@ -19,7 +19,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from chaingraph.geometry import convex_hull, polygon_area
+from chaingraph.geometry import convex_hull, polygon_area, segment_distance
 
 __all__ = ["View", "Scene", "Shape", "svg_document", "frame_shapes", "path_shapes", "svg_elements", "draw_shapes",
            "COLOURS"]
@@ -320,7 +320,7 @@ def _members(scene, link, at, ends, blocks):
         elif pair.carrier == link and pair.style == "cylinder":
             barrels.append(ends[jid])
     for p1, p2 in barrels:
-        if not any(_segment_distance(m, p1, p2) <= 0.9 * scene.w for m in members):
+        if not any(segment_distance(m, p1, p2) <= 0.9 * scene.w for m in members):
             members.append(min((p1, p2), key=lambda e: min(
                 (math.dist(e, m) for m in members), default=0.0)))
     return [p for p in members if _finite(p)]
@@ -573,15 +573,6 @@ def _inside_many(points, polygon):
         cross = ((y1 > y) != (y2 > y)) & (x < x1 + (y - y1) * (x2 - x1) / (y2 - y1))
         inside ^= cross
     return inside
-
-
-def _segment_distance(p, a, b):
-    """The distance from the point p to the segment ab."""
-    ax, ay = b[0] - a[0], b[1] - a[1]
-    length = ax * ax + ay * ay
-    t = 0.0 if length == 0 else max(0.0, min(1.0, ((p[0] - a[0]) * ax + (p[1] - a[1]) * ay)
-                                         / length))
-    return math.dist(p, (a[0] + t * ax, a[1] + t * ay))
 
 
 def path_shapes(scene, *, steps=None):

@@ -15,6 +15,7 @@ import pytest
 
 import chaingraph
 from chaingraph.cli.main import main
+from chaingraph.geometry import segment_distance
 from chaingraph.naming.atlas import atlas_names
 from chaingraph.report import atlas as pages
 from chaingraph.structure.atlas import atlas_graphs
@@ -69,14 +70,6 @@ def _points(element):
     return [tuple(map(float, xy.split(","))) for xy in element.get("points").split()]
 
 
-def _segment_distance(p, a, b):
-    ax, ay = b[0] - a[0], b[1] - a[1]
-    length = ax * ax + ay * ay
-    t = 0.0 if length == 0 else max(0.0, min(1.0, ((p[0] - a[0]) * ax + (p[1] - a[1]) * ay)
-                                         / length))
-    return math.dist(p, (a[0] + t * ax, a[1] + t * ay))
-
-
 def _inside(p, polygon):
     inside = False
     for (x1, y1), (x2, y2) in zip(polygon, polygon[1:] + polygon[:1]):
@@ -112,7 +105,7 @@ def _frame_faults(svg, chain):
             if body is None or own == chain.mechanism.fixed:
                 continue                           # the block is its link's body
             off = 0.0 if len(body) > 2 and _inside(centre, body) else min(
-                _segment_distance(centre, a, b) for a, b in zip(body, body[1:] + body[:1]))
+                segment_distance(centre, a, b) for a, b in zip(body, body[1:] + body[:1]))
             if off > math.dist(corners[0], corners[2]):
                 faults.append(f"block {j.id} {off:.3g} off its link {own}")
         drawn = [p for pts in bodies.values() for p in pts] + [

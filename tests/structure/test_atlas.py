@@ -375,7 +375,8 @@ def test_the_atlas_page_draws_no_joint_at_a_crossing_and_numbers_links_as_the_fi
     import re
 
     from chaingraph.structure.atlas import atlas_graphs
-    from chaingraph.structure.atlas.output import atlas_svg, segment_distance, chain_text
+    from chaingraph.geometry import segment_distance
+    from chaingraph.structure.atlas.output import atlas_svg, chain_text
     for entry in atlas_graphs(10, 1):
         svg = atlas_svg(entry)
         bars = [tuple(map(float, m)) for m in re.findall(

@@ -12,6 +12,7 @@ from pathlib import Path
 
 from chaingraph._util.atomic import withdraw
 from chaingraph._util.text import freedom
+from chaingraph.geometry import segment_distance
 from chaingraph.structure.atlas.entry import AtlasEntry, encode_chains, order_counts
 from chaingraph.structure.atlas.run import ring_of
 
@@ -212,13 +213,6 @@ def atlas_svg(entry, size=170):
                      f'fill="{"#fff" if dark else "#000"}">{v + 1}</text>')
     parts.append("</svg>")
     return "".join(parts)
-
-
-def segment_distance(p, a, b):
-    """Distance from point p to the segment a-b."""
-    dx, dy = b[0] - a[0], b[1] - a[1]
-    t = max(0.0, min(1.0, ((p[0] - a[0]) * dx + (p[1] - a[1]) * dy) / (dx * dx + dy * dy)))
-    return math.hypot(p[0] - a[0] - t * dx, p[1] - a[1] - t * dy)
 
 
 def _joint_place(bar, others, squares, clear=5.0):
