@@ -19,6 +19,8 @@ from chaingraph.structure.atlas.multiple import multiple_atlas
 from chaingraph.structure.atlas.sliding import sliding_atlas
 from chaingraph.structure.isomorphism import canonical_form
 
+from .browser import Browser
+
 CHROMIUM = shutil.which("chromium") or shutil.which("chromium-browser")
 ROW = re.compile(r'<tr class="chain" id="chain-(\d+)" ([^>]*)>(.*?)</tr>', re.S)
 
@@ -180,7 +182,6 @@ def _set(browser, tab, field, value):
 @pytest.mark.skipif(CHROMIUM is None, reason="Chromium is not installed (.ci/run installs "
                                              "Debian's chromium; install it to run this test)")
 def test_the_filter_hides_rows_in_a_real_browser(six):
-    from .browser import Browser
     result, out, _ = six
     everything = [e.id for e in sorted(result, key=lambda e: (e.prismatic, e.id))]
     one = [e.id for e in result if e.prismatic == 1]
