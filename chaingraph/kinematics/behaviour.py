@@ -29,8 +29,7 @@ import math
 from functools import lru_cache
 
 from chaingraph.geometry import distance
-from chaingraph.kinematics import cycle, full_turns, full_turns_cost, full_turns_drivers
-from chaingraph.kinematics.motion import plan_of
+from chaingraph.kinematics import full_turns, full_turns_cost, full_turns_drivers
 
 __all__ = ["turning_links", "behaviour", "behaviour_key", "behaviour_cost", "four_link_loop"]
 
@@ -208,9 +207,9 @@ def behaviour_cost(chain, fixed, *, spent=False) -> float:
     if not spent:
         return full_turns_cost(chain, fixed, drivers=drivers[:1])
     found = _analyse(chain, fixed, with_driver=True)
-    driver = None if found is None else found[2]
-    if driver is not None and cycle(plan_of(chain, fixed, driver)).full_turn:
-        drivers = drivers[:drivers.index(driver) + 1]
+    if found is not None and found[2] in found[1]:
+        # full_turns stopped at this driver, which turned fully: the ones after it untried
+        drivers = drivers[:drivers.index(found[2]) + 1]
     return full_turns_cost(chain, fixed, drivers=drivers)
 
 
