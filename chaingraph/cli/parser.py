@@ -58,6 +58,16 @@ def build_parser() -> argparse.ArgumentParser:
         description="Analyse planar kinematic chains as link-joint graphs.")
     parser.add_argument("--version", action="version", version=f"%(prog)s {_version()}")
     sub = parser.add_subparsers(dest="command", required=True, metavar="COMMAND")
+    for add in (_classify_command, _inversions_command, _identify_command,
+                _solve_command, _vary_command, _forces_command,
+                _centres_and_polygons_command, _assemble_command, _measure_command,
+                _report_command, _atlas_command, _design_command):
+        add(sub)
+    return parser
+
+
+def _classify_command(sub) -> None:
+    """The arguments of ``chaingraph classify``."""
     p = sub.add_parser("classify", help="structural classification of chain files",
                        description="Counts, orders, loops, Kutzbach mobility, the textbook "
                                    "checks and degeneracy of each chain file.")
@@ -66,6 +76,9 @@ def build_parser() -> argparse.ArgumentParser:
     p.add_argument("--json", action="store_true", help="print JSON (a list for several files)")
     p.set_defaults(run=cmd_classify)
 
+
+def _inversions_command(sub) -> None:
+    """The arguments of ``chaingraph inversions``."""
     p = sub.add_parser("inversions", help="inversions: fix each link in turn",
                        description="One inversion per link, grouped into classes by the "
                                    "chain's automorphisms, named from the catalog, with "
@@ -76,6 +89,9 @@ def build_parser() -> argparse.ArgumentParser:
                    help="also designate the input link (joined to the fixed link by an R joint)")
     p.set_defaults(run=cmd_inversions)
 
+
+def _identify_command(sub) -> None:
+    """The arguments of ``chaingraph identify``."""
     p = sub.add_parser("identify", help="which catalog chain (and inversion) a file is",
                        description="Find the file's chain in the catalog by structure and, "
                                    "for a mechanism, which catalog inversion it is.")
@@ -83,6 +99,9 @@ def build_parser() -> argparse.ArgumentParser:
     p.add_argument("--json", action="store_true", help="print JSON")
     p.set_defaults(run=cmd_identify)
 
+
+def _solve_command(sub) -> None:
+    """The arguments of ``chaingraph solve``."""
     p = sub.add_parser("solve", help="position, velocity and acceleration over an input sweep",
                        description="Solve the mechanism (the file's [mechanism], or the "
                                    "inversion --fixed and --driver or --input choose) over the "
@@ -107,6 +126,9 @@ def build_parser() -> argparse.ArgumentParser:
                         "input's arcs between them with their angles, the stroke")
     p.set_defaults(run=cmd_solve)
 
+
+def _vary_command(sub) -> None:
+    """The arguments of ``chaingraph vary``."""
     p = sub.add_parser("vary", help="the summary over the values of one link's length",
                        description="Solve the mechanism once per value of one link's length "
                                    "(the rest of its dimensions and its assembly modes kept) "
@@ -125,6 +147,9 @@ def build_parser() -> argparse.ArgumentParser:
                    help="plot the time ratio and stroke")
     p.set_defaults(run=cmd_vary)
 
+
+def _forces_command(sub) -> None:
+    """The arguments of ``chaingraph forces``."""
     p = sub.add_parser("forces", help="joint reactions and input efforts, static or "
                                       "kinetostatic",
                        description="The force that each joint carries and the effort each "
@@ -159,6 +184,9 @@ def build_parser() -> argparse.ArgumentParser:
                    help="draw the force polygon of each dyad at the pose of --draw")
     p.set_defaults(run=cmd_forces)
 
+
+def _centres_and_polygons_command(sub) -> None:
+    """The arguments of centres and polygons: one input value, a construction."""
     for name, run, helptext, description in (
             ("centres", cmd_centres, "instantaneous centres (Kennedy's theorem)",
              "Every instantaneous centre of the mechanism at one input value: the primary "
@@ -184,6 +212,9 @@ def build_parser() -> argparse.ArgumentParser:
                        help="draw the construction")
         p.set_defaults(run=run)
 
+
+def _assemble_command(sub) -> None:
+    """The arguments of ``chaingraph assemble``."""
     p = sub.add_parser("assemble", help="the drawn pose of a mechanism given by its lengths",
                        description="Find every joint's position from the file's lengths, the "
                                    "input's value and the assembly modes, and write the "
@@ -197,6 +228,9 @@ def build_parser() -> argparse.ArgumentParser:
                    help="print the positions and the assembly modes as JSON")
     p.set_defaults(run=cmd_assemble)
 
+
+def _measure_command(sub) -> None:
+    """The arguments of ``chaingraph measure``."""
     p = sub.add_parser("measure", help="the lengths of a drawn mechanism",
                        description="Write a drawn mechanism as its dimensions: the lengths "
                                    "of its links, its sliding lines, the input's value and "
@@ -207,6 +241,9 @@ def build_parser() -> argparse.ArgumentParser:
                    help="write the file with lengths here")
     p.set_defaults(run=cmd_measure)
 
+
+def _report_command(sub) -> None:
+    """The arguments of ``chaingraph report``."""
     p = sub.add_parser("report", help="the browsable HTML catalog",
                        description="Write DIR/index.html and a page per entry for the given "
                                    "chain files or folders (by default the bundled catalog). "
@@ -221,6 +258,9 @@ def build_parser() -> argparse.ArgumentParser:
                         "the CPUs)")
     p.set_defaults(run=cmd_report)
 
+
+def _atlas_command(sub) -> None:
+    """The arguments of ``chaingraph atlas``."""
     p = sub.add_parser("atlas", help="every chain of N links and F degrees of freedom",
                        description="Every non-isomorphic, non-degenerate planar chain with "
                                    "simple revolute joints (non-planar link graphs and "
@@ -271,6 +311,9 @@ def build_parser() -> argparse.ArgumentParser:
     p.add_argument("-q", "--quiet", action="store_true", help="no progress bar")
     p.set_defaults(run=cmd_atlas)
 
+
+def _design_command(sub) -> None:
+    """The arguments of ``chaingraph design``."""
     p = sub.add_parser("design", help="dimensional synthesis of quick return drives",
                        description="From a time ratio, crank and stroke to the centre "
                                    "distance and lever (slotted-lever: the ram's line through "
@@ -284,7 +327,7 @@ def build_parser() -> argparse.ArgumentParser:
     p.add_argument("--out", type=path_argument, metavar="FILE",
                    help="write the designed mechanism (TOML)")
     p.set_defaults(run=cmd_design)
-    return parser
+
 
 def _version() -> str:
     return __version__
