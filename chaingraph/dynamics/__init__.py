@@ -1,7 +1,7 @@
 """Forces: the joints' reactions and the inputs' efforts, static and kinetostatic
 (:func:`forces`), from the motion the kinematics solves."""
 
-from chaingraph.dynamics.forces import (
+from chaingraph.dynamics.reactions import (
     Effort,
     EffortStats,
     ForcesSummary,
