@@ -25,14 +25,16 @@ $(VENV)/.installed-test: pyproject.toml $(VENV)/.installed
 report: $(VENV)/.installed
 	$(BIN)/chaingraph report catalog -o report
 
-# the layers first (import-linter, contract in pyproject.toml), then the whole suite on
-# both cores (pytest-xdist; a file's tests on one worker, so its fixtures are built once)
+# the layers first (import-linter, contract in pyproject.toml), the types (mypy, its
+# settings in pyproject.toml), then the whole suite on both cores (pytest-xdist; a file's
+# tests on one worker, so its fixtures are built once)
 test: $(VENV)/.installed-test
 	$(BIN)/lint-imports --no-cache
+	$(BIN)/python -m mypy chaingraph
 	$(BIN)/python -m pytest -n 2 --dist loadfile
 
 benchmark: $(VENV)/.installed
 	$(BIN)/python benchmarks/classify.py
 
 clean:
-	rm -rf $(VENV) report .pytest_cache .hypothesis
+	rm -rf $(VENV) report .pytest_cache .hypothesis .mypy_cache
