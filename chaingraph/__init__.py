@@ -42,9 +42,9 @@ from chaingraph.kinematics import (
 )
 from chaingraph.kinematics.assembly import measure
 from chaingraph.model.chain import Chain, Input, Joint, LinkMass, Load, Mechanism, Point
-from chaingraph.naming.identify import Identification, identify
-from chaingraph.naming.inversions import Inversion, Inversions, inversions
-from chaingraph.structure.classify import Check, Classification, classify
+from chaingraph.naming.identification import Identification, identify
+from chaingraph.naming.inversion_classes import Inversion, Inversions, inversions
+from chaingraph.structure.classification import Check, Classification, classify
 from chaingraph.structure.isomorphism import (
     automorphism_orbits,
     canonical_form,

@@ -44,8 +44,8 @@ from chaingraph.kinematics import solve, summary_rows
 from chaingraph.kinematics.assembly import measure
 from chaingraph.naming.atlas import atlas_names
 from chaingraph.naming.catalog import catalog_dir
-from chaingraph.naming.identify import identify
-from chaingraph.naming.inversions import inversions
+from chaingraph.naming.identification import identify
+from chaingraph.naming.inversion_classes import inversions
 from chaingraph.report.atlas import (
     animated_by_default,
     animation_seconds,
@@ -71,7 +71,7 @@ from chaingraph.structure.atlas.sliding import (
     sliding_dict,
     write_sliding,
 )
-from chaingraph.structure.classify import classify
+from chaingraph.structure.classification import classify
 from chaingraph.synthesis.design import KINDS
 from chaingraph._util.text import freedom
 

@@ -3,7 +3,7 @@
 The chain is found by structure alone, whatever the dimensions and with or without a
 mechanism: by its canonical form with P orientation respected, then forgotten, then
 with every joint taken as a turning pair (a sliding pair is a turning pair at infinity).
-The inversion, for a mechanism file, through :func:`chaingraph.naming.inversions.catalog_matches`:
+The inversion, for a mechanism file, through :func:`chaingraph.naming.inversion_classes.catalog_matches`:
 its fixed link always; a name of behaviour (a beam engine is a crank-rocker) also needs
 the behaviour where both have dimensions; among the names that apply, the one whose
 driver and output correspond, then of the nearest proportions (link lengths over the
@@ -19,7 +19,7 @@ from pathlib import Path
 from chaingraph.kinematics.behaviour import behaviour
 from chaingraph.model.chain import Chain, Joint
 from chaingraph.naming.catalog import bundled_catalog, catalog_dir
-from chaingraph.naming.inversions import (
+from chaingraph.naming.inversion_classes import (
     catalog_matches,
     naming_matches,
     require_connected,

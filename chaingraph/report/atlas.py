@@ -26,7 +26,7 @@ from chaingraph.structure.atlas.illustrate import (
     link_layout,
     natural_input,
 )
-from chaingraph.structure.classify import classify
+from chaingraph.structure.classification import classify
 from chaingraph.structure.isomorphism import automorphism_orbits
 
 __all__ = ["write_illustrated", "IllustratedPage", "animated_by_default",

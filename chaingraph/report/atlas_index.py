@@ -21,7 +21,7 @@ from chaingraph._util.text import counted
 from chaingraph.drawing.mechanism import skeleton_svg
 from chaingraph.model.chain import Chain, Joint
 from chaingraph.naming.atlas import atlas_names
-from chaingraph.structure.classify import order_name
+from chaingraph.structure.classification import order_name
 
 __all__ = ["THUMBNAIL_WIDTH", "thumbnail_svg", "base_chain", "base_labels", "where_text",
            "index_page", "write_index"]

@@ -41,8 +41,8 @@ from chaingraph.kinematics import solve, summary_rows
 from chaingraph.kinematics.motion import Motion
 from chaingraph.kinematics.pose import pose_motion
 from chaingraph.model.chain import Input
-from chaingraph.naming.inversions import inversions
-from chaingraph.structure.classify import classify
+from chaingraph.naming.inversion_classes import inversions
+from chaingraph.structure.classification import classify
 
 __all__ = ["Report", "build_report", "chain_paths"]
 

@@ -10,7 +10,7 @@ import pytest
 import chaingraph
 from chaingraph.kinematics import full_turns
 from chaingraph.kinematics.behaviour import behaviour_cost
-from chaingraph.naming import inversions as inversions_module
+from chaingraph.naming import inversion_classes as inversions_module
 from chaingraph.report.build import build_report
 
 from ..conftest import run_cli

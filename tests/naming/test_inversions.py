@@ -16,8 +16,8 @@ from chaingraph import Chain, ChainStructureError, Joint, Mechanism
 from chaingraph.kinematics.behaviour import behaviour, turning_links
 from chaingraph.naming.catalog import catalog_files, catalog_path
 from chaingraph.structure.generators import random_chain
-from chaingraph.naming.identify import identify
-from chaingraph.naming.inversions import inversions
+from chaingraph.naming.identification import identify
+from chaingraph.naming.inversion_classes import inversions
 from chaingraph.structure.isomorphism import (automorphism_orbits, canonical, canonical_form,
                                     is_isomorphic, isomorphism)
 
@@ -359,7 +359,7 @@ def test_a_large_chain_solves_each_inversions_behaviour_once(monkeypatch):
 
 
 def test_past_the_bound_no_behaviour_is_solved_and_the_note_says_so(monkeypatch):
-    from chaingraph.naming.inversions import BEHAVIOUR_LINKS
+    from chaingraph.naming.inversion_classes import BEHAVIOUR_LINKS
     calls = _counting_full_turns(monkeypatch)
     chain = _dyadic_chain((BEHAVIOUR_LINKS - 4) // 2 + 1)
     found = inversions(chain)

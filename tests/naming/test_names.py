@@ -12,8 +12,8 @@ import pytest
 import chaingraph
 from chaingraph import Chain, Joint, MechanismError
 from chaingraph.naming.catalog import catalog_files, catalog_path
-from chaingraph.naming.identify import identify
-from chaingraph.naming.inversions import inversions
+from chaingraph.naming.identification import identify
+from chaingraph.naming.inversion_classes import inversions
 
 from ..conftest import run_cli
 from .test_inversions import _four_bar

@@ -24,7 +24,7 @@ from chaingraph.structure.atlas.admissibility import admissible, decide, verdict
 from chaingraph.structure.atlas.generic import generic_verdicts
 from chaingraph.structure.atlas.labelling import link_joint_form, link_joint_keys
 from chaingraph.structure.atlas.multiple import link_joint_graphs, multiple_atlas
-from chaingraph.structure.classify import classify
+from chaingraph.structure.classification import classify
 from chaingraph.structure.isomorphism import automorphism_orbits, canonical_form
 
 from .generic_rank import random_pose

@@ -9,7 +9,7 @@ from dataclasses import dataclass
 import numpy as np
 
 from chaingraph.model.chain import Chain, Joint
-from chaingraph.structure.classify import order_name
+from chaingraph.structure.classification import order_name
 
 __all__ = ["AtlasEntry", "graph6_line", "graph6_lines", "encode_chains", "order_counts"]
 

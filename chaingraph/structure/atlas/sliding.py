@@ -43,7 +43,7 @@ from chaingraph.model.chainfile import dumps
 from chaingraph.structure.atlas.admissibility import REASONS, admissible, verdicts
 from chaingraph.structure.atlas.entry import order_counts
 from chaingraph.structure.atlas.generic import generic_verdicts
-from chaingraph.structure.classify import order_name
+from chaingraph.structure.classification import order_name
 from chaingraph.structure.isomorphism import (
     automorphism_generators,
 )
