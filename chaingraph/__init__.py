@@ -1,17 +1,23 @@
 """chaingraph: planar kinematic chains as link-joint graphs.
 
-Load a chain file, classify it, and (in later modules) enumerate its inversions,
-solve its motion and draw it.
+Load a chain file, classify it, enumerate and name its inversions, solve its motion and
+its forces, draw it; the atlas of every chain of N links; the design of quick-return
+drives. Each subpackage's face (``chaingraph.kinematics``, ``chaingraph.naming`` ...)
+offers the rest of its names.
 
 >>> import chaingraph
->>> from chaingraph.naming.catalog import catalog_path
->>> chain = chaingraph.load(catalog_path("four-bar-chain"))
+>>> chain = chaingraph.load(chaingraph.catalog_path("four-bar-chain"))
 >>> chaingraph.classify(chain).verdict
 'kinematic chain'
 """
 
-import importlib
+from __future__ import annotations
 
+import sys
+from typing import TYPE_CHECKING, Any
+
+from chaingraph._util.lazy import lazy_attribute
+from chaingraph.dynamics import PoseForces, SweepForces, forces
 from chaingraph.errors import (
     AssemblyError,
     AtlasRunError,
@@ -27,32 +33,42 @@ from chaingraph.errors import (
     PoseAdjustedWarning,
     UnboundedRangeError,
 )
-from chaingraph.dynamics import PoseForces, SweepForces, forces
 from chaingraph.files import dumps, from_document, load, loads, save
-from chaingraph.graphical import instant_centres, velocity_polygon
-from chaingraph.graphical.centres import InstantCentres
-from chaingraph.graphical.polygons import Polygons
+from chaingraph.graphical import InstantCentres, Polygons, instant_centres, velocity_polygon
 from chaingraph.kinematics import (
     Motion,
     Plan,
+    PoseMotion,
     Summary,
     build_plan,
     feasible_range,
+    measure,
+    pose_motion,
     solve,
 )
-from chaingraph.kinematics.assembly import measure
-from chaingraph.model.chain import Chain, Input, Joint, LinkMass, Load, Mechanism, Point
-from chaingraph.naming.identification import Identification, identify
-from chaingraph.naming.inversion_classes import Inversion, Inversions, inversions
-from chaingraph.structure.classification import Check, Classification, classify
+from chaingraph.model import Chain, Input, Joint, LinkMass, Load, Mechanism, Point
+from chaingraph.naming import (
+    Identification,
+    Inversion,
+    Inversions,
+    catalog_path,
+    identify,
+    inversions,
+)
+from chaingraph.structure import Check, Classification, classify, rigid_subchains
 from chaingraph.structure.isomorphism import (
     automorphism_orbits,
     canonical_form,
     is_isomorphic,
     isomorphism,
 )
-from chaingraph.structure.rigidity import rigid_subchains
 from chaingraph.variation import Variation, vary
+
+if TYPE_CHECKING:
+    from chaingraph import synthesis
+    from chaingraph.drawing.notebook import animate
+    from chaingraph.structure.atlas import Atlas, atlas
+    from chaingraph.synthesis import design
 
 __version__ = "0.1.0"
 
@@ -62,22 +78,19 @@ RESULTS = (Chain, Classification, Inversions, Motion, InstantCentres, Polygons, 
 
 # loaded when first used, so that `import chaingraph` loads neither the atlas (nor
 # pynauty) nor the drawing modules: name -> (module, attribute or None for the module)
-_LAZY = {"atlas": ("chaingraph.structure.atlas", "atlas"),
-         "design": ("chaingraph.synthesis.design", None),
-         "animate": ("chaingraph.drawing.notebook", "animate")}
+_LAZY: dict[str, tuple[str, str | None]] = {
+    "atlas": ("chaingraph.structure.atlas", "atlas"),
+    "Atlas": ("chaingraph.structure.atlas", "Atlas"),
+    "synthesis": ("chaingraph.synthesis", None),
+    "design": ("chaingraph.synthesis.design", None),
+    "animate": ("chaingraph.drawing.notebook", "animate")}
 
 
-def __getattr__(name):
-    if name in _LAZY:
-        module, attribute = _LAZY[name]
-        value = importlib.import_module(module)
-        value = getattr(value, attribute) if attribute else value
-        globals()[name] = value
-        return value
-    raise AttributeError(f"module 'chaingraph' has no attribute {name!r}")
+def __getattr__(name: str) -> Any:
+    return lazy_attribute(__name__, _LAZY, name)
 
 
-if "IPython" in __import__("sys").modules:        # in a notebook: its rich displays
+if "IPython" in sys.modules:        # in a notebook: its rich displays
     from chaingraph.drawing.notebook import register as _register_displays
     _register_displays(RESULTS)
 
@@ -87,7 +100,10 @@ __all__ = [
     "classify", "Classification", "Check", "rigid_subchains",
     "inversions", "Inversions", "Inversion", "identify", "Identification",
     "canonical_form", "is_isomorphic", "isomorphism", "automorphism_orbits",
-    "atlas", "design", "solve", "forces", "PoseForces", "SweepForces", "vary", "Variation", "instant_centres", "velocity_polygon", "measure", "animate", "Motion", "Summary", "feasible_range", "build_plan", "Plan",
+    "catalog_path", "solve", "Motion", "Summary", "feasible_range", "build_plan", "Plan",
+    "pose_motion", "PoseMotion", "measure", "forces", "PoseForces", "SweepForces",
+    "instant_centres", "InstantCentres", "velocity_polygon", "Polygons", "vary",
+    "Variation", "atlas", "Atlas", "synthesis", "design", "animate",
     "ChainGraphError", "ChainFileError", "ChainStructureError", "MechanismError",
     "AssemblyError", "AtlasRunError", "AtlasSizeError", "DesignError", "DimensionError",
     "DegenerateDrawingError", "UnboundedRangeError", "ChainGraphWarning", "PoseAdjustedWarning",

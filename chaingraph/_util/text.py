@@ -7,7 +7,7 @@ import io
 
 import numpy as np
 
-__all__ = ["counted", "short_list", "write_columns"]
+__all__ = ["counted", "freedom", "short_list", "write_columns"]
 
 
 def counted(n, singular, plural=None) -> str:

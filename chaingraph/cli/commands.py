@@ -7,7 +7,7 @@ import sys
 import time
 from pathlib import Path
 
-from chaingraph._util.progress import ProgressBar
+from chaingraph._util import ProgressBar, freedom
 from chaingraph.cli.outputs import (
     Writing,
     output_file,
@@ -26,54 +26,51 @@ from chaingraph.cli.text import (
     print_json,
     table,
 )
-from chaingraph.drawing.constructions import draw_centres, draw_polygons
-from chaingraph.drawing.limits import limits_svg
-from chaingraph.drawing.forces import force_polygon_svg, free_body_svg, plot_turning_moment
-from chaingraph.drawing.mechanism import mechanism_svg
-from chaingraph.drawing.plots import (
+from chaingraph.drawing import (
+    draw_centres,
     draw_mechanism,  # PNG and the other raster formats
+    draw_polygons,
+    force_polygon_svg,
+    free_body_svg,
+    limits_svg,
+    mechanism_svg,
     plot_motion,
+    plot_turning_moment,
     plot_variation,
 )
 from chaingraph.dynamics import forces
 from chaingraph.errors import ChainGraphError, OutputError
-from chaingraph.variation import length_values, vary
 from chaingraph.files import dumps, load, read_file, save
 from chaingraph.graphical import instant_centres, velocity_polygon
-from chaingraph.kinematics import solve, summary_rows
-from chaingraph.kinematics.assembly import measure
-from chaingraph.naming.atlas import atlas_names
-from chaingraph.naming.catalog import catalog_dir
-from chaingraph.naming.identification import identify
-from chaingraph.naming.inversion_classes import inversions
-from chaingraph.report.atlas import (
+from chaingraph.kinematics import measure, solve, summary_rows
+from chaingraph.naming import atlas_names, catalog_dir, identify, inversions
+from chaingraph.report import (
     animated_by_default,
     animation_seconds,
+    build_report,
     write_illustrated,
 )
-from chaingraph.report.build import build_report
+from chaingraph.structure import classify
 from chaingraph.structure.atlas import (
+    LOCAL_HOURS,
+    REASONS,
     DaskRunner,
+    SlidingCounts,
     atlas_dict,
+    check_size,
+    joints_for,
+    multiple_atlas,
+    prismatic_counts,
     process_runner,
     run_atlas,
-    write_atlas,
-)
-from chaingraph.structure.atlas.admissibility import REASONS
-from chaingraph.structure.atlas.contracted import joints_for
-from chaingraph.structure.atlas.estimate import LOCAL_HOURS, check_size
-from chaingraph.structure.atlas.multiple import multiple_atlas
-from chaingraph.structure.atlas.sliding import (
-    SlidingCounts,
-    prismatic_counts,
     sliding_atlas,
     sliding_chains,
     sliding_dict,
+    write_atlas,
     write_sliding,
 )
-from chaingraph.structure.classification import classify
-from chaingraph.synthesis.design import KINDS
-from chaingraph._util.text import freedom
+from chaingraph.synthesis import KINDS
+from chaingraph.variation import length_values, vary
 
 __all__ = ['cmd_classify', 'cmd_inversions', 'cmd_identify', 'cmd_solve', 'cmd_centres', 'cmd_polygons', 'cmd_assemble', 'cmd_measure', 'cmd_report', 'cmd_atlas', 'cmd_design']
 

@@ -1,7 +1,14 @@
 """Forces: the joints' reactions and the inputs' efforts, static and kinetostatic
-(:func:`forces`), from the motion the kinematics solves."""
+(:func:`forces`), from the motion the kinematics solves.
+
+* :mod:`.reactions` :func:`forces` and its results, :class:`PoseForces` at one pose
+  and :class:`SweepForces` over a sweep;
+* :mod:`.equilibrium` the equations of every link's equilibrium, solved at each pose.
+"""
 
 from chaingraph.dynamics.reactions import (
+    AppliedCouple,
+    AppliedForce,
     Effort,
     EffortStats,
     ForcesSummary,
@@ -12,4 +19,4 @@ from chaingraph.dynamics.reactions import (
 )
 
 __all__ = ["forces", "PoseForces", "SweepForces", "Reaction", "Effort", "EffortStats",
-           "ForcesSummary"]
+           "ForcesSummary", "AppliedForce", "AppliedCouple"]

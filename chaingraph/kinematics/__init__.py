@@ -8,9 +8,16 @@
 * :mod:`.rates` exact velocities and accelerations;
 * :mod:`.sweep` the input's cycle and the sweep; :mod:`.columns` the CSV's columns;
 * :mod:`.summary` stroke, time ratio, extremes, dead centres;
-* :mod:`.motion` :func:`solve` and the :class:`Motion` it returns (results).
+* :mod:`.motion` :func:`solve` and the :class:`Motion` it returns (results);
+* :mod:`.pose` :func:`pose_motion`, every link's motion at one input value;
+* :mod:`.assembly` a file given by lengths assembled (:func:`assemble`), a drawn one
+  measured (:func:`measure`);
+* :mod:`.behaviour` which links turn fully (Grashof's categories and beyond); its
+  function ``behaviour`` keeps its module's name, so it is not offered here.
 """
 
+from chaingraph.kinematics.assembly import Assembly, assemble, measure, measured_document
+from chaingraph.kinematics.behaviour import behaviour_cost, behaviour_key, turning_links
 from chaingraph.kinematics.motion import (
     Motion,
     full_turns,
@@ -19,6 +26,7 @@ from chaingraph.kinematics.motion import (
     solve,
 )
 from chaingraph.kinematics.plan import Plan, build_plan
+from chaingraph.kinematics.pose import PoseMotion, pose_motion
 from chaingraph.kinematics.summary import (
     ExtremePosition,
     OutputSignal,
@@ -31,4 +39,6 @@ from chaingraph.kinematics.sweep import Cycle, cycle, feasible_range
 
 __all__ = ["Motion", "Plan", "Cycle", "solve", "build_plan", "cycle", "feasible_range",
            "full_turns", "full_turns_cost", "full_turns_drivers", "Summary", "ExtremePosition", "summary_rows", "path_direction",
-           "output_signal", "OutputSignal"]
+           "output_signal", "OutputSignal", "pose_motion", "PoseMotion", "assemble",
+           "measure", "measured_document", "Assembly", "turning_links", "behaviour_key",
+           "behaviour_cost"]

@@ -29,7 +29,7 @@ import math
 from functools import lru_cache
 
 from chaingraph.geometry import distance
-from chaingraph.kinematics import full_turns, full_turns_cost, full_turns_drivers
+from chaingraph.kinematics.motion import full_turns, full_turns_cost, full_turns_drivers
 
 __all__ = ["turning_links", "behaviour", "behaviour_key", "behaviour_cost", "four_link_loop"]
 

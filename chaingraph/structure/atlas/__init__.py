@@ -26,9 +26,20 @@ tells the cost of a size before it starts and refuses the sizes that cannot fini
 
 from __future__ import annotations
 
+from collections.abc import Callable, Iterator
+
+from chaingraph.model.chain import Chain
+from chaingraph.structure.atlas.admissibility import REASONS
 from chaingraph.structure.atlas.contracted import assortments, joints_for
 from chaingraph.structure.atlas.entry import AtlasEntry
-from chaingraph.structure.atlas.multiple import multiple_atlas
+from chaingraph.structure.atlas.estimate import LOCAL_HOURS, MAX_LINKS, check_size
+from chaingraph.structure.atlas.illustrate import (
+    generic_pose,
+    inversion_mechanism,
+    link_layout,
+    natural_input,
+)
+from chaingraph.structure.atlas.multiple import MultipleAtlas, MultipleEntry, multiple_atlas
 from chaingraph.structure.atlas.output import atlas_dict, write_atlas
 from chaingraph.structure.atlas.run import (
     Atlas,
@@ -44,16 +55,22 @@ from chaingraph.structure.atlas.sliding import (
     prismatic_counts,
     sliding_atlas,
     sliding_chains,
+    sliding_dict,
+    write_sliding,
 )
 
 __all__ = ["atlas", "atlas_graphs", "AtlasEntry", "Atlas", "AtlasCounts", "joints_for",
            "assortments", "atlas_dict", "write_atlas", "run_atlas", "process_runner",
-           "DaskRunner", "sliding_atlas", "sliding_chains", "SlidingAtlas", "SlidingCounts",
-           "SlidingEntry"]
+           "DaskRunner", "check_size", "LOCAL_HOURS", "MAX_LINKS", "REASONS",
+           "multiple_atlas", "MultipleAtlas", "MultipleEntry", "sliding_atlas",
+           "sliding_chains", "prismatic_counts", "sliding_dict", "write_sliding",
+           "SlidingAtlas", "SlidingCounts", "SlidingEntry", "generic_pose",
+           "inversion_mechanism", "link_layout", "natural_input"]
 
 
-def atlas_graphs(links: int, dof: int = 1, *, workers: int = 1, progress=None,
-                 labelling=None) -> Atlas:
+def atlas_graphs(links: int, dof: int = 1, *, workers: int = 1,
+                 progress: Callable[[float, str], None] | None = None,
+                 labelling: str | None = None) -> Atlas:
     """Every chain of the atlas, numbered by link assortment and contracted graph.
 
     Parameters
@@ -84,8 +101,9 @@ def atlas_graphs(links: int, dof: int = 1, *, workers: int = 1, progress=None,
     return run_atlas(links, dof, workers=workers, progress=progress, backend=labelling)
 
 
-def atlas(*, links: int, dof: int = 1, workers: int = 1, prismatic=None,
-          oriented: bool = False, multiple: bool = False):
+def atlas(*, links: int, dof: int = 1, workers: int = 1,
+          prismatic: int | str | None = None, oriented: bool = False,
+          multiple: bool = False) -> Iterator[Chain]:
     """Yield every chain of ``links`` links and ``dof`` degrees of freedom as a Chain.
 
     ``prismatic`` (a number, or "all") gives the chains whose joints are that many
