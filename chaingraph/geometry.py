@@ -23,6 +23,8 @@ Examples
 
 from __future__ import annotations
 
+from typing import Any
+
 import math
 
 import numpy as np
@@ -275,7 +277,7 @@ def convex_hull(points):
         return pts
 
     def half(seq):
-        out = []
+        out: list[Any] = []
         for p in seq:
             while len(out) >= 2 and cross(sub(out[-1], out[-2]), sub(p, out[-2])) <= 0:
                 out.pop()

@@ -7,6 +7,8 @@ never an index beside a mixture of old and new pages.
 
 from __future__ import annotations
 
+from collections.abc import Iterator
+
 import contextlib
 import os
 import shutil
@@ -19,14 +21,15 @@ __all__ = ["write_atomic", "withdraw", "staged", "INDEX"]
 INDEX = "index.html"
 
 
-def write_atomic(path, text, *, encoding="utf-8") -> Path:
+def write_atomic(path: str | os.PathLike[str], text: str | bytes, *,
+                 encoding: str | None = "utf-8") -> Path:
     """Write ``text`` (str, or bytes when ``encoding`` is None) to ``path`` under a
     temporary name beside it, then rename it onto ``path``: the file is never seen half
     written, even when the run is interrupted."""
     path = Path(path)
     tmp = path.with_name(path.name + ".tmp")
     try:
-        if encoding is None:
+        if isinstance(text, bytes):
             tmp.write_bytes(text)
         else:
             tmp.write_text(text, encoding=encoding)
@@ -37,14 +40,14 @@ def write_atomic(path, text, *, encoding="utf-8") -> Path:
     return path
 
 
-def withdraw(folder, name=INDEX) -> None:
+def withdraw(folder: str | os.PathLike[str], name: str = INDEX) -> None:
     """Remove ``folder/name`` (by default the index) before the folder is rewritten,
     so that what follows, until a new index is written, is not presented as complete."""
     Path(folder, name).unlink(missing_ok=True)
 
 
 @contextlib.contextmanager
-def staged(folder, *, last=INDEX):
+def staged(folder: str | os.PathLike[str], *, last: str = INDEX) -> Iterator[Path]:
     """Build a folder's new content in a hidden temporary folder inside it, and move
     it into place when the block ends without an error: the old ``last`` (the index)
     is withdrawn first, every other file moved over the old one, ``last`` moved at the

@@ -3,6 +3,9 @@ isomorphism code and the assembly grow by joining elements."""
 
 from __future__ import annotations
 
+from collections.abc import Iterable
+from typing import Any
+
 __all__ = ["DisjointSets"]
 
 
@@ -22,12 +25,13 @@ class DisjointSets:
     {'a': ['a'], 'b': ['b'], 'c': ['c']}
     """
 
-    def __init__(self, elements):
+    def __init__(self, elements: int | Iterable[Any]) -> None:
+        self.parent: Any
         self.parent = list(range(elements)) if isinstance(elements, int) else \
             {x: x for x in elements}
         self.count = len(self.parent)
 
-    def find(self, x):
+    def find(self, x: Any) -> Any:
         """The name of ``x``'s block."""
         parent = self.parent
         while parent[x] != x:
@@ -35,7 +39,7 @@ class DisjointSets:
             x = parent[x]
         return x
 
-    def join(self, x, y) -> bool:
+    def join(self, x: Any, y: Any) -> bool:
         """Merge the blocks of ``x`` and ``y``; False if they were one already."""
         a, b = self.find(x), self.find(y)
         if a == b:
@@ -46,9 +50,9 @@ class DisjointSets:
         self.count -= 1
         return True
 
-    def blocks(self) -> dict:
+    def blocks(self) -> dict[Any, list[Any]]:
         """Block name -> its members, in the elements' order."""
-        out = {}
+        out: dict[Any, list[Any]] = {}
         members = range(len(self.parent)) if isinstance(self.parent, list) else self.parent
         for x in members:
             out.setdefault(self.find(x), []).append(x)

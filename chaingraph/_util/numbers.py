@@ -7,7 +7,7 @@ import math
 __all__ = ["tidy"]
 
 
-def tidy(value, scale):
+def tidy(value: float | None, scale: float) -> float | None:
     """``value`` (a figure of magnitude up to about ``scale``) as the round number it
     is within rounding of (1e-12 of the scale): the nearest number with six
     significant digits at the scale's magnitude, where that is so near; else as it is

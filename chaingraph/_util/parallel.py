@@ -10,6 +10,9 @@ SIGKILL, say).
 
 from __future__ import annotations
 
+from collections.abc import Callable, Sequence
+from typing import Any
+
 import ctypes
 import os
 import signal
@@ -17,16 +20,21 @@ import threading
 import time
 from concurrent.futures import FIRST_COMPLETED, ProcessPoolExecutor, wait
 
-__all__ = ["serial", "process_runner", "ignore_interrupts", "prepare_worker"]
+__all__ = ["serial", "process_runner", "ignore_interrupts", "prepare_worker", "Runner"]
+
+#: ``runner(fn, tasks, on_result)``: runs ``fn`` on each task somewhere and calls
+#: ``on_result(index, result)`` as each finishes
+Runner = Callable[[Callable[[Any], Any], Sequence[Any], Callable[[int, Any], None]], None]
 
 
-def serial(fn, tasks, on_result):
+def serial(fn: Callable[[Any], Any], tasks: Sequence[Any],
+           on_result: Callable[[int, Any], None]) -> None:
     """Run the tasks here, one after the other."""
     for i, task in enumerate(tasks):
         on_result(i, fn(task))
 
 
-def ignore_interrupts():
+def ignore_interrupts() -> None:
     """In a worker process: leave Ctrl-C to the main process, which stops the workers,
     and end quietly on SIGTERM (the signal the main process stops them with; a worker
     forked from a command line would otherwise inherit its handler, and print)."""
@@ -34,7 +42,7 @@ def ignore_interrupts():
     signal.signal(signal.SIGTERM, signal.SIG_DFL)
 
 
-def prepare_worker(parent):
+def prepare_worker(parent: int) -> None:
     """In a worker process: leave Ctrl-C to the main process, and end when the main
     process ``parent`` (its pid) is gone however it went (killed, out of memory, a
     closed terminal), so that no worker outlives it: the kernel is asked to kill the
@@ -47,7 +55,7 @@ def prepare_worker(parent):
     except (OSError, AttributeError):
         pass
 
-    def watch():
+    def watch() -> None:
         while os.getppid() == parent:
             time.sleep(0.25)
         os._exit(1)
@@ -56,7 +64,7 @@ def prepare_worker(parent):
     threading.Thread(target=watch, name="chaingraph-parent-watch", daemon=True).start()
 
 
-def process_runner(workers):
+def process_runner(workers: int) -> Runner:
     """A runner on ``workers`` local processes (results in any order).
 
     Examples
@@ -66,7 +74,8 @@ def process_runner(workers):
     >>> found
     {0: 2, 1: 3}
     """
-    def run(fn, tasks, on_result):
+    def run(fn: Callable[[Any], Any], tasks: Sequence[Any],
+            on_result: Callable[[int, Any], None]) -> None:
         if workers <= 1 or len(tasks) <= 1:
             return serial(fn, tasks, on_result)
         pool = ProcessPoolExecutor(max_workers=min(workers, len(tasks)),

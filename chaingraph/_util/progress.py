@@ -2,6 +2,8 @@
 
 from __future__ import annotations
 
+from typing import TextIO
+
 import time
 
 __all__ = ["ProgressBar"]
@@ -22,18 +24,20 @@ class ProgressBar:
     True
     """
 
-    def __init__(self, total, stream, *, width=30, percent=False, start=None):
+    def __init__(self, total: int, stream: TextIO | None, *, width: int = 30,
+                 percent: bool = False, start: float | None = None) -> None:
         self.total, self.stream, self.width = total, stream, width
         self.percent = percent                    # show a percentage, not done/total
         self.start = time.perf_counter() if start is None else start
-        self._label, self._tenth = None, None
+        self._label: str | None = None
+        self._tenth: int | None = None
 
     @property
-    def terminal(self):
+    def terminal(self) -> bool:
         isatty = getattr(self.stream, "isatty", None)
         return bool(isatty and isatty())
 
-    def show(self, done, label=""):
+    def show(self, done: int, label: str = "") -> None:
         if self.stream is None:
             return
         if not self.terminal:
@@ -52,12 +56,12 @@ class ProgressBar:
                           f"{self._count(done)} {elapsed:6.1f} s  {label[:40]:40s}")
         self.stream.flush()
 
-    def _count(self, done):
+    def _count(self, done: int) -> str:
         if self.percent:
             return f"{100 * done / max(self.total, 1):3.0f}%"
         return f"{done}/{self.total}"
 
-    def close(self):
+    def close(self) -> None:
         if self.stream is not None and self.terminal:
             self.stream.write("\r" + " " * (self.width + 60) + "\r")   # leave nothing behind
             self.stream.flush()

@@ -2,6 +2,11 @@
 
 from __future__ import annotations
 
+from collections.abc import Mapping, Sequence
+from typing import TextIO
+
+from numpy.typing import ArrayLike
+
 import csv
 import io
 
@@ -10,7 +15,7 @@ import numpy as np
 __all__ = ["counted", "freedom", "short_list", "write_columns"]
 
 
-def counted(n, singular, plural=None) -> str:
+def counted(n: int, singular: str, plural: str | None = None) -> str:
     """``n`` (with thousands separated) and the noun, singular for one:
     ``counted(1, "degree of freedom", "degrees of freedom")``; the plural is the
     singular with an ``s`` unless given.
@@ -25,7 +30,7 @@ def counted(n, singular, plural=None) -> str:
     return f"{n:,} {singular if n == 1 else plural or singular + 's'}"
 
 
-def freedom(dof) -> str:
+def freedom(dof: int) -> str:
     """``dof`` degrees of freedom, in words: singular for one.
 
     Examples
@@ -36,7 +41,7 @@ def freedom(dof) -> str:
     return counted(dof, "degree of freedom", "degrees of freedom")
 
 
-def short_list(items, keep=6) -> str:
+def short_list(items: Sequence[object], keep: int = 6) -> str:
     """``[a, b, c, ... (N)]``: a list cut to ``keep`` items for a repr.
 
     Examples
@@ -50,7 +55,8 @@ def short_list(items, keep=6) -> str:
     return "[" + ", ".join(repr(x) for x in items[:keep]) + f", ... ({len(items)})]"
 
 
-def write_columns(out, columns, rows, *, block=20_000):
+def write_columns(out: TextIO, columns: Mapping[str, ArrayLike], rows: int, *,
+                  block: int = 20_000) -> None:
     """Named columns (arrays of ``rows`` values) to ``out`` as CSV: a header, then one
     line per row; numbers as Python writes them (the shortest text that reads back to
     the same float), ``nan`` where there is no value; in blocks of rows, so memory does

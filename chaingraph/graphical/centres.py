@@ -23,6 +23,8 @@ the fixed link.
 
 from __future__ import annotations
 
+from typing import Any
+
 import itertools
 import math
 from dataclasses import dataclass
@@ -263,7 +265,7 @@ def _from_velocities(state, a, b):
 
 def _primary(state):
     """The centres the joints give: (pair -> (homogeneous point, "joint J"))."""
-    known = {}
+    known: dict[Any, Any] = {}
     for j in state.chain.joints:
         if j.kind == "R":
             h = normalised((*_scaled(state, state.positions[j.id]), 1.0))

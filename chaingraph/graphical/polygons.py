@@ -20,6 +20,8 @@ zero (``loops`` gives each loop and how closely it closes).
 
 from __future__ import annotations
 
+from typing import Any
+
 import math
 from dataclasses import dataclass
 
@@ -182,7 +184,9 @@ def _images_of(state):
     """Every image (name -> (link, position)) and each link's images in order, and the
     P joints' (guide image, block image)."""
     chain, fixed = state.chain, state.fixed
-    images, on_link, slides = {}, {x: [] for x in chain.links}, {}
+    images: dict[str, Any] = {}
+    on_link: dict[str, list[Any]] = {x: [] for x in chain.links}
+    slides: dict[str, Any] = {}
     taken = {j.id for j in chain.joints} | {p.id for p in chain.points}
 
     def add(name, link, at):

@@ -51,7 +51,8 @@ def four_link_loop(chain):
         return None
     if any(len(chain.joints_of(x)) != 2 for x in chain.links):
         return None
-    links, joints = [chain.links[0]], []
+    links: list[str] = [chain.links[0]]
+    joints: list[str] = []
     while len(joints) < 4:
         here = links[-1]
         j = next(j for j in chain.joints_of(here) if j not in joints)

@@ -16,6 +16,8 @@ fixed link's frame is the drawing's.
 
 from __future__ import annotations
 
+from typing import Any
+
 import difflib
 import math
 from dataclasses import dataclass, field
@@ -124,7 +126,7 @@ def _single_joint(link, joint, joints, points):
     """Why one number cannot be the length of ``link``, which has a single joint or
     point, and the likely cause: another link of a single joint whose name looks like
     this one (a misspelling in some joint's ``links`` makes a link of its own)."""
-    count = {}
+    count: dict[Any, Any] = {}
     for j in joints:
         for x in j.links:
             count.setdefault(x, []).append(j.id)
@@ -236,7 +238,7 @@ def _modes(table, fail):
 
 
 def _values(table, fail):
-    values = {}
+    values: dict[Any, Any] = {}
     if not isinstance(table, dict):
         return values
     if "at" in table:

@@ -10,6 +10,8 @@ with the textbook's inversions on their fixed links.
 
 from __future__ import annotations
 
+from typing import Any
+
 import math
 from dataclasses import dataclass, replace
 from functools import lru_cache
@@ -36,7 +38,7 @@ def _key(chain):
 @lru_cache(maxsize=4)
 def _catalog_forms(oriented, catalog=None):
     """The catalog's chains and mechanisms by (key, canonical form)."""
-    out = {}
+    out: dict[Any, Any] = {}
     for entry in catalog if catalog is not None else bundled_catalog():
         if entry.space != "planar":
             continue
@@ -68,7 +70,7 @@ def atlas_names(chain, *, oriented=False, catalog=None) -> dict:
     {'chain': [], 'inversions': []}
     """
     forms = _catalog_forms(oriented, tuple(catalog) if catalog is not None else None)
-    out = {"chain": [], "inversions": []}
+    out: dict[str, list[Any]] = {"chain": [], "inversions": []}
     key = _key(chain)
     if not any(k == key for k, _ in forms):
         return out
@@ -77,7 +79,7 @@ def atlas_names(chain, *, oriented=False, catalog=None) -> dict:
         return out
     classes = automorphism_orbits(chain, oriented=oriented)
     where = {link: i for i, c in enumerate(classes) for link in c}
-    named = {}
+    named: dict[Any, Any] = {}
     for entry in entries:
         if entry.mechanism is None:
             if entry.name not in out["chain"]:

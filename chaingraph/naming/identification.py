@@ -99,7 +99,8 @@ def identify(chain, *, catalog=None) -> Identification:
     if catalog is None:
         catalog = bundled_catalog()
     chain_name = chain_file = None
-    mapping, orientation, kinds = {}, "respected", "respected"
+    mapping: dict[str, str] | None = {}
+    orientation, kinds = "respected", "respected"
     chains = [e for e in catalog if e.mechanism is None]
     for level in ("oriented", "unoriented", "kinds"):
         mine = _as_turning_pairs(chain) if level == "kinds" else chain

@@ -12,6 +12,8 @@ links) stays light.
 
 from __future__ import annotations
 
+from typing import Any
+
 import html
 from importlib import resources
 from pathlib import Path
@@ -152,7 +154,7 @@ def _filter(rows, labels):
                           for v, text in values)
         return (f'<label>{title} <select id="{id_}"><option value="">any</option>'
                 f"{options}</select></label>")
-    bases = {}
+    bases: dict[Any, Any] = {}
     for e, *_ in rows:
         bases[e.base] = bases.get(e.base, 0) + 1
     sliding = sorted({e.prismatic for e, *_ in rows})
@@ -193,7 +195,7 @@ def index_page(result, cards) -> str:
             _filter(cards, labels)]
     headers = ("<tr><th>skeleton</th><th>chain</th><th>base chain</th>"
                "<th>sliding pairs and multiple joints</th><th>inversions</th></tr>")
-    groups = {}
+    groups: dict[Any, Any] = {}
     for card in cards:
         e = card[0]
         groups.setdefault((e.prismatic, sum(len(j) > 2 for j in e.edges)), []).append(card)

@@ -210,7 +210,8 @@ def _separators(chain):
     """
     g = chain.graph
     adj = {n: list(g[n]) for n in g}
-    links, joints = [], []
+    links: list[str] = []
+    joints: list[str] = []
     for v in nx.articulation_points(g):
         seen = {v}
         closed_sides = 0

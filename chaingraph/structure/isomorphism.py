@@ -20,6 +20,8 @@ decide: the canonical form is a complete invariant.
 
 from __future__ import annotations
 
+from typing import Any
+
 import importlib.util
 from dataclasses import dataclass
 from functools import lru_cache
@@ -63,7 +65,7 @@ def _structure(chain, oriented):
     for n in nodes:
         data = chain.graph.nodes[n]
         labels.append(("link",) if n[0] == "link" else ("joint", data["kind"]))
-    adj = [[] for _ in nodes]
+    adj: list[list[int]] = [[] for _ in nodes]
     for u, v, data in chain.graph.edges(data=True):
         e = _EDGE[data["role"]] if oriented else min(_EDGE[data["role"]], 1)
         adj[index[u]].append((index[v], e))
@@ -104,7 +106,7 @@ def refine_search(labels, adj):
     label_rank = {lab: i for i, lab in enumerate(sorted(set(labels)))}
     root = _refine([label_rank[lab] for lab in labels], adj)
     state = {"first": None, "best": None}
-    generators = []
+    generators: list[Any] = []
     first_path = []
 
     def certificate(colors):
@@ -138,13 +140,13 @@ def refine_search(labels, adj):
         return None
 
     def dfs(colors, path):
-        cells = {}
+        cells: dict[Any, Any] = {}
         for v, c in enumerate(colors):
             cells.setdefault(c, []).append(v)
         if len(cells) == n:
             return leaf(colors, path)
         target = min((len(vs), c) for c, vs in cells.items() if len(vs) > 1)[1]
-        explored = []
+        explored: list[Any] = []
         for v in cells[target]:
             if explored:
                 orbit = orbits_of(generators, n, fixing=path)
@@ -208,12 +210,12 @@ def _search_nauty(labels, adj):
     n = len(labels)
     kinds = sorted(set(labels))
     edges = [(v, u, e) for v in range(n) for u, e in adj[v] if v < u]
-    counts = {}
+    counts: dict[Any, Any] = {}
     for _, _, e in edges:
         counts[e] = counts.get(e, 0) + 1
     common = max(sorted(counts), key=counts.get) if counts else 0
     others = [(v, u, e) for v, u, e in edges if e != common]
-    adjacency = {v: [] for v in range(n + len(others))}
+    adjacency: dict[int, list[int]] = {v: [] for v in range(n + len(others))}
     for v, u, e in edges:
         if e == common:
             adjacency[v].append(u)
@@ -332,7 +334,7 @@ def _group(items, generators, *, key, act=None):
             j = index.get(act(g, x))
             if j is not None:
                 blocks.join(i, j)
-    groups = {}
+    groups: dict[Any, Any] = {}
     for x, i in index.items():
         groups.setdefault(blocks.find(i), []).append(key(x))
     return [tuple(g) for _, g in sorted(groups.items())]

@@ -132,6 +132,8 @@ links.
 
 from __future__ import annotations
 
+from typing import Any
+
 from collections import deque
 from dataclasses import dataclass
 
@@ -163,7 +165,7 @@ def _incidence(chain):
     the same links merged (their weights add: a bundle of parallel joints costs one)."""
     index = {name: i for i, name in enumerate(chain.links)}
     d = 3 if chain.space == "planar" else 6
-    merged = {}
+    merged: dict[Any, Any] = {}
     for j in chain.joints:
         mask = sum(1 << index[x] for x in j.links)
         merged[mask] = merged.get(mask, 0) + d - j.pair.freedom(chain.space)
@@ -200,7 +202,7 @@ class _MaxFlow:
     greatest minimum cut's source side. ``work`` counts the arcs its phases scan."""
 
     def __init__(self, nodes):
-        self.head = [[] for _ in range(nodes)]
+        self.head: list[list[int]] = [[] for _ in range(nodes)]
         self.to, self.cap = [], []
         self.work = 0
 
@@ -290,7 +292,7 @@ class _Links:
         self.n, self.d = n, d
         self.joints = list(merged.items())
         self.members = [(_bits(mask), w) for mask, w in self.joints]
-        self.at = [[] for _ in range(n)]          # joints on each link
+        self.at: list[list[int]] = [[] for _ in range(n)]          # joints on each link
         self.near = [0] * n                       # links sharing a joint with each link
         for k, (mask, _) in enumerate(self.joints):
             for x in _bits(mask):
@@ -457,7 +459,7 @@ def _contracted(groups, d, merged):
     for i, g in enumerate(groups):
         for x in _bits(g):
             node[x] = i
-    joints = {}
+    joints: dict[Any, Any] = {}
     for mask, w in merged.items():
         m = 0
         for x in _bits(mask):
@@ -517,7 +519,7 @@ def _listing(links, regions, witness, budget, *, scan):
                 found.add(1 << u | 1 << v)
     searched = []
     for region in regions:
-        inside = {}
+        inside: dict[Any, Any] = {}
         for mask, w in links.joints:
             if (mask & region).bit_count() >= 2:
                 inside[mask & region] = inside.get(mask & region, 0) + w
@@ -733,7 +735,7 @@ def _scan(links, d, merged, *, proper):
     smallest first (a rigid set is minimal unless it holds one already picked)."""
     place = _bits(links)
     n = len(place)
-    local = {}
+    local: dict[Any, Any] = {}
     for mask, w in merged.items():
         m = sum(1 << i for i, x in enumerate(place) if mask >> x & 1)
         local[m] = local.get(m, 0) + w

@@ -8,6 +8,8 @@ string that leaves a link and comes back to it), with the links' orders as degre
 
 from __future__ import annotations
 
+from typing import Any
+
 from chaingraph._util.text import freedom
 from chaingraph.errors import AtlasSizeError
 from chaingraph.structure.atlas.labelling import multigraph_key
@@ -82,7 +84,7 @@ def contracted_graphs(degrees, *, backend="nauty"):
     k = len(degrees)
     found = {}
     remaining = list(degrees)
-    edges = []
+    edges: list[Any] = []
 
     def rec(i):
         if i == k:

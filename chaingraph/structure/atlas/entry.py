@@ -3,6 +3,8 @@ lines, the JSON lines of a shard, the link orders."""
 
 from __future__ import annotations
 
+from typing import Any
+
 import json
 from dataclasses import dataclass
 
@@ -106,7 +108,7 @@ def order_counts(edges, links):
 
 
 def _orders_of_degrees(degrees):
-    counts = {}
+    counts: dict[Any, Any] = {}
     for d in sorted(degrees):
         counts[order_name(d)] = counts.get(order_name(d), 0) + 1
     return counts

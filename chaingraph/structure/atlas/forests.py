@@ -64,7 +64,7 @@ class Forests:
 
     def _rooted(self, k):
         """Forest ``k`` rooted: each link's (parent link, row to it, depth, root)."""
-        adjacent = [[] for _ in range(self.links)]
+        adjacent: list[list[int]] = [[] for _ in range(self.links)]
         for i, w in enumerate(self.where):
             if w == k:
                 x, y, _ = self.rows[i]

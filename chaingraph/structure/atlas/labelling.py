@@ -11,6 +11,8 @@ other through the project's own canonical form.
 
 from __future__ import annotations
 
+from typing import Any
+
 import numpy as np
 
 from chaingraph.structure.isomorphism import orbits_of, refine_search
@@ -77,7 +79,7 @@ def graph_forms(n, edges, *, backend="nauty"):
     if backend == "nauty":
         g = _nauty.Graph(n)                     # one graph object, its adjacency swapped
         for i, chain in enumerate(edges.tolist()):
-            adjacency = {v: [] for v in range(n)}
+            adjacency: dict[int, list[int]] = {v: [] for v in range(n)}
             for a, b in chain:
                 adjacency[a].append(b)
             g._adjacency_dict = adjacency       # skips pynauty's per-call validation
@@ -86,7 +88,7 @@ def graph_forms(n, edges, *, backend="nauty"):
     else:
         for i, chain in enumerate(edges.tolist()):
             labels = [("link",)] * n
-            adj = [[] for _ in range(n)]
+            adj: list[list[int]] = [[] for _ in range(n)]
             for a, b in chain:
                 adj[a].append((b, 0))
                 adj[b].append((a, 0))
@@ -105,7 +107,7 @@ def graph_forms(n, edges, *, backend="nauty"):
 def _incidence(k, edges):
     """The multigraph as a simple coloured graph: its nodes, then one node per edge
     joined to the edge's ends (a loop's node to its one end)."""
-    adjacency = {v: [] for v in range(k + len(edges))}
+    adjacency: dict[int, list[int]] = {v: [] for v in range(k + len(edges))}
     for e, (a, b) in enumerate(edges):
         adjacency[k + e].append(a)
         if b != a:
@@ -129,7 +131,8 @@ def multigraph_key(k, edges, *, backend="nauty"):
 def _weighted(k, edges):
     """A multigraph as a labelled simple graph: a node's label is its degree and number
     of loops, an edge's label its multiplicity."""
-    loops, degree, mult = [0] * k, [0] * k, {}
+    loops, degree = [0] * k, [0] * k
+    mult: dict[tuple[int, int], int] = {}
     for a, b in edges:
         degree[a] += 1
         degree[b] += 1
@@ -138,7 +141,7 @@ def _weighted(k, edges):
         else:
             mult[(a, b)] = mult.get((a, b), 0) + 1
     labels = [("node", degree[i], loops[i]) for i in range(k)]
-    adj = [[] for _ in range(k)]
+    adj: list[list[int]] = [[] for _ in range(k)]
     for (a, b), m in mult.items():
         adj[a].append((b, m))
         adj[b].append((a, m))
@@ -181,7 +184,7 @@ def _link_joint_adjacency(n, joints, members=None):
     of its links) joined to its links (``members``: a dict of masks' links, filled as
     it goes, for many graphs)."""
     members = {} if members is None else members
-    adjacency = {v: [] for v in range(n)}
+    adjacency: dict[int, list[int]] = {v: [] for v in range(n)}
     for k, mask in enumerate(joints, start=n):
         links = members.get(mask)
         if links is None:
@@ -194,7 +197,7 @@ def _own_link_joint(n, joints):
     """:func:`refine_search` of a link-joint graph: its certificate, node order and
     automorphism generators."""
     adjacency = _link_joint_adjacency(n, joints)
-    adj = [[] for _ in adjacency]
+    adj: list[list[int]] = [[] for _ in adjacency]
     for v, ends in adjacency.items():
         for x in ends:
             adj[v].append((x, 0))
@@ -221,7 +224,9 @@ def link_joint_keys(n, graphs, *, backend="nauty"):
     _check(backend)
     if backend == "own":
         return [_own_link_joint(n, joints)[0] for joints in graphs]
-    keys, g, members = [], None, {}
+    keys: list[bytes] = []
+    members: dict[Any, Any] = {}
+    g = None
     for joints in graphs:
         nodes = n + len(joints)
         if g is None or g.number_of_vertices != nodes:

@@ -35,6 +35,8 @@ are the orbits of the links under the link-joint graph's automorphisms.
 
 from __future__ import annotations
 
+from typing import Any
+
 import functools
 import itertools
 from dataclasses import dataclass
@@ -86,7 +88,7 @@ class MultipleEntry:
         return Chain(name, joints, family="atlas")
 
     def to_dict(self) -> dict:
-        orders = {}
+        orders: dict[Any, Any] = {}
         for x in range(self.links):
             k = sum(x in j for j in self.joints)
             orders[k] = orders.get(k, 0) + 1
@@ -109,7 +111,7 @@ class MultipleAtlas(Entries):
     @property
     def count_by_multiple(self) -> dict:
         """Chains by how many of their joints join three links or more."""
-        out = {}
+        out: dict[Any, Any] = {}
         for e in self.entries:
             out[e.multiple] = out.get(e.multiple, 0) + 1
         return dict(sorted(out.items()))
@@ -118,7 +120,7 @@ class MultipleAtlas(Entries):
     def count_by_degrees(self) -> dict:
         """Chains by the degrees of their multiple joints (a tuple, largest first;
         ``()`` for simple joints only)."""
-        out = {}
+        out: dict[Any, Any] = {}
         for e in self.entries:
             out[e.degrees] = out.get(e.degrees, 0) + 1
         return dict(sorted(out.items(), key=lambda kv: (len(kv[0]), [-d for d in kv[0]])))
@@ -202,7 +204,7 @@ def link_joint_graphs(links: int, pattern, *, backend=None) -> list:
     backend = backend or default_backend()
     capacity = _capacity(links)
     spare = sum(pattern) - 2 * links                 # joints beyond two, over all links
-    rows_of = {}                                     # a joint's rows on each set of links
+    rows_of: dict[Any, Any] = {}                                     # a joint's rows on each set of links
     # a set of joints: (joints, links on a joint, links on two joints or more, joints
     # beyond two over all links); its rows are summed where it is extended
     level = [((), 0, 0, 0)]

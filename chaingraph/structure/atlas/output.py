@@ -4,6 +4,8 @@ or from a run's shards), so that memory does not grow with the atlas."""
 
 from __future__ import annotations
 
+from typing import Any
+
 import html as _html
 import json
 import math
@@ -120,7 +122,9 @@ def write_atlas(atlas, out_dir, *, shard_dir=None, no_fractionated=False,
     header = _header(atlas, no_fractionated)
     json_tmp, json_file = _open_for_writing(paths["json"])
     g6_tmp, g6_file = _open_for_writing(paths["graph6"], "wb")
-    by_assortment, figures, total = {}, [], 0
+    by_assortment: dict[Any, Any] = {}
+    figures: list[Any] = []
+    total = 0
     width = len(str(count))
     with json_file, g6_file:
         json_file.write("{" + json.dumps(header)[1:-1] + ', "chains": [\n')
@@ -197,7 +201,7 @@ def atlas_svg(entry, size=170):
     for (x1, y1), (x2, y2) in bars:
         parts.append(f'<line x1="{x1:.1f}" y1="{y1:.1f}" x2="{x2:.1f}" y2="{y2:.1f}" '
                      'stroke="#444" stroke-width="1.3"/>')
-    squares = []
+    squares: list[Any] = []
     for k, bar in enumerate(bars):
         mx, my = _joint_place(bar, [b for i, b in enumerate(bars) if i != k], squares)
         squares.append((mx, my))
@@ -233,7 +237,7 @@ def _joint_place(bar, others, squares, clear=5.0):
 
 def _ring_order(n, edges):
     """Links in an order that follows the chain (a depth-first walk), for drawing."""
-    adj = {v: [] for v in range(n)}
+    adj: dict[int, list[int]] = {v: [] for v in range(n)}
     for a, b in edges:
         adj[a].append(b)
         adj[b].append(a)

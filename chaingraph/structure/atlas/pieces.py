@@ -30,6 +30,8 @@ as numpy arrays:
 
 from __future__ import annotations
 
+from typing import Any
+
 import math
 
 import networkx as nx
@@ -66,7 +68,7 @@ def piece_work(job) -> int:
     return math.comb(spare + len(edges) - 1, len(edges) - 1) + 1
 
 
-_CACHE = {}
+_CACHE: dict[Any, Any] = {}
 #: compositions kept for reuse: small tables only (bounds a worker's memory)
 _CACHE_ROWS = 4096
 
@@ -223,7 +225,9 @@ def piece(job, *, backend="nauty") -> Piece:
     minimum = np.array([3 if a == b else 0 for a, b in edges], dtype=np.int16)
     spare = binaries - int(minimum.sum())
     joints = len(edges) + binaries
-    found_edges, found_orbits, fractionated = [], [], False
+    found_edges: list[Any] = []
+    found_orbits: list[Any] = []
+    fractionated = False
     if spare >= 0:
         runs = _bundles(edges)
         images = _images(k, edges, multigraph_automorphisms(k, edges, backend=backend))

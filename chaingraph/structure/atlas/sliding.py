@@ -30,6 +30,8 @@ automorphisms, so each chain is counted once without a canonical form per candid
 
 from __future__ import annotations
 
+from typing import Any
+
 import json
 from dataclasses import dataclass
 from itertools import combinations
@@ -142,7 +144,7 @@ class SlidingAtlas(Entries):
         chain comes from the atlas with multiple joints."""
         if not any(e.multiple for e in self.entries):
             return None
-        out = {}
+        out: dict[Any, Any] = {}
         for e in self.entries:
             k = _multiple_joints(e)
             out[k] = out.get(k, 0) + 1
@@ -205,7 +207,7 @@ class SlidingCounts:
     def count_by_multiple(self):
         if not self.multiple:
             return None
-        out = {}
+        out: dict[Any, Any] = {}
         for (_, _, k), row in self.tally.items():
             out[k] = out.get(k, 0) + row[0]
         return dict(sorted(out.items()))
@@ -410,7 +412,7 @@ def _chain_assignments(base, base_id, entry, wanted, oriented, rejected):
 def _orders(degree):
     """The link orders' counts (as the atlas words them) of links with these numbers of
     joints."""
-    counts = {}
+    counts: dict[Any, Any] = {}
     for d in sorted(degree):
         counts[order_name(d)] = counts.get(order_name(d), 0) + 1
     return counts
