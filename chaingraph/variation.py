@@ -16,8 +16,7 @@ from dataclasses import dataclass
 
 from chaingraph.errors import ChainGraphError, MechanismError
 from chaingraph.files import from_document
-from chaingraph.kinematics import solve
-from chaingraph.kinematics.assembly import measured_document
+from chaingraph.kinematics import Summary, measured_document, solve
 
 __all__ = ["VariationRow", "Variation", "length_values", "vary"]
 
@@ -31,7 +30,7 @@ class VariationRow:
     :class:`~chaingraph.kinematics.summary.Summary`), or ``error``, why there is none."""
 
     value: float
-    summary: object = None
+    summary: Summary | None = None
     error: str | None = None
 
     def to_dict(self) -> dict:

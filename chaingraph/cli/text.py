@@ -62,5 +62,6 @@ def exit_status(error) -> int:
 
 def error_text(error) -> str:
     """The error's message, with the flag of the parameter at fault."""
-    flag = FLAGS.get(getattr(error, "parameter", None))
+    parameter = getattr(error, "parameter", None)
+    flag = FLAGS.get(parameter) if parameter is not None else None
     return f"{error}" if flag is None else f"{error}; on the command line: {flag}"

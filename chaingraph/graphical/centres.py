@@ -34,6 +34,9 @@ import numpy as np
 from chaingraph.geometry import normalised, perp
 from chaingraph.kinematics.pose import AtOneValue, PoseMotion, pose_motion
 
+#: a line of Kennedy's theorem: the two link pairs whose centres it passes through
+Line = tuple[tuple[str, str], tuple[str, str]]
+
 __all__ = ["Centre", "InstantCentres", "instant_centres"]
 
 #: lines or points whose (unit) cross product is below this are taken as coincident
@@ -57,7 +60,7 @@ class Centre:
     numbers: tuple
     at: tuple | None
     direction: float | None
-    found: object
+    found: str | tuple[Line, Line]
     homogeneous: tuple        # (x, y, w) in the plan's frame scaled by the size, unit norm
 
     @property
@@ -210,7 +213,7 @@ def link_numbers(chain, fixed, inputs=()) -> dict:
     while queue:
         here = queue.pop(0)
         near = sorted({x for j in chain.joints if here in j.links for x in j.links},
-                      key=rank.get)
+                      key=rank.__getitem__)
         for x in near:
             if x not in order:
                 order.append(x)
@@ -295,7 +298,7 @@ def _kennedy(links, known):
                 ak, kb = frozenset((a, k)), frozenset((k, b))
                 if ak in known and kb in known:
                     line = np.cross(known[ak][0], known[kb][0])
-                    n = np.linalg.norm(line)
+                    n = float(np.linalg.norm(line))
                     if n > _COINCIDENT:
                         lines.append((line / n, ((a, k), (k, b))))
             best, how = None, None
@@ -459,7 +462,7 @@ def centres_of(state: PoseMotion) -> InstantCentres:
             h = h if h[2] >= 0 else -h
             at, direction = _finish(h, state)
         if not isinstance(how, str):              # name each line's centres low first
-            how = tuple(tuple(tuple(sorted(p, key=numbers.get)) for p in line)
+            how = tuple(tuple(tuple(sorted(p, key=numbers.__getitem__)) for p in line)
                         for line in how)
         centres[pair] = Centre((a, b), (numbers[a], numbers[b]), at, direction, how,
                                tuple(float(v) for v in h))

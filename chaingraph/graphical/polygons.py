@@ -86,7 +86,7 @@ class Relative:
     def to_dict(self, which) -> dict:
         components = self.velocity if which == "velocity" else self.acceleration
         total = self.velocity_vector if which == "velocity" else self.acceleration_vector
-        out = {"from": self.start, "to": self.to}
+        out: dict[str, Any] = {"from": self.start, "to": self.to}
         out.update({"link": self.link} if self.joint is None else {"joint": self.joint})
         out.update(vector=list(total), magnitude=math.hypot(*total),
                    direction=direction_deg(total),
@@ -260,7 +260,7 @@ def polygons_of(state: PoseMotion) -> Polygons:
              Component("Coriolis", _vector(*coriolis)))))
     # the images from the pole along a tree of the vectors; the others close loops
     known = {n: ((0.0, 0.0), (0.0, 0.0)) for n in on_link[fixed]}
-    parent = {n: None for n in known}
+    parent: dict[str, tuple[str, int] | None] = {n: None for n in known}
     tree, loops = set(), []
     pending = list(range(len(relatives)))
     while pending:

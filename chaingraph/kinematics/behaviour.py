@@ -222,7 +222,7 @@ def _numeric(chain, fixed):
         return None
     turning, driver = found
     order = {x: i for i, x in enumerate(chain.links)}
-    words = ", ".join(sorted(turning, key=order.get))
+    words = ", ".join(sorted(turning, key=order.__getitem__))
     return ("full turns: " + words if turning else "no link turns fully"), turning, driver
 
 
@@ -260,5 +260,5 @@ def _analysed(chain, fixed):
     else:
         return None
     order = {x: i for i, x in enumerate(chain.links)}
-    words = ", ".join(sorted(turning, key=order.get))
+    words = ", ".join(sorted(turning, key=order.__getitem__))
     return ("full turns: " + words if turning else "no link turns fully"), turning, None

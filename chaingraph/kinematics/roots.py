@@ -2,18 +2,26 @@
 
 from __future__ import annotations
 
+from collections.abc import Callable
+from typing import Any
+
+from numpy.typing import ArrayLike
+
 import numpy as np
 
 __all__ = ["bracketed_roots"]
 
 
-def bracketed_roots(f, a, b, fa, fb, *, newton=False, tol=1e-10, iterations=60):
+def bracketed_roots(f: Callable[[np.ndarray], Any], a: ArrayLike, b: ArrayLike,
+                    fa: ArrayLike, fb: ArrayLike, *, newton: bool = False,
+                    tol: float = 1e-10, iterations: int = 60) -> np.ndarray:
     """Roots of f between a and b (arrays of brackets with fa, fb of opposite signs),
     all at once: Newton's step (``newton``: f returns the value and its derivative
     per degree) or the secant, kept inside the bracket, with a bisection every other
     step so that the bracket at least halves. Returns the roots."""
     a, b, fa, fb = (np.array(v, dtype=float) for v in (a, b, fa, fb))
     t = 0.5 * (a + b)
+    value = slope = np.zeros_like(t)           # the first step is the secant's
     for it in range(iterations):
         with np.errstate(divide="ignore", invalid="ignore"):   # a zero slope: bisect
             if newton and it > 0:

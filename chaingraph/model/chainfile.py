@@ -17,10 +17,11 @@ import os
 import re
 import tomllib
 from dataclasses import dataclass
+from typing import Any
 
 from chaingraph.errors import ChainFileError
 from chaingraph.model.chain import Chain, Input, Joint, LinkMass, Load, Mechanism, Point
-from chaingraph.model.dimensions import parse_dimensions
+from chaingraph.model.dimensions import Dimensions, parse_dimensions
 from chaingraph.model.values import LARGEST, number, shown, type_name
 
 __all__ = ["Document", "parse_file", "parse_text", "parse_document", "dumps", "save",
@@ -48,7 +49,7 @@ class Document:
     ``joints`` and ``points`` as written. :func:`chaingraph.files.load` places it."""
 
     chain: Chain
-    dimensions: object = None
+    dimensions: Dimensions | None = None
     joints: tuple = ()
     points: tuple = ()
 
@@ -432,7 +433,7 @@ def _is_table(value):
 
 def chain_document(chain: Chain) -> dict:
     """The chain as a chain file's document (the dict :func:`toml_text` writes)."""
-    doc = {"name": chain.name}
+    doc: dict[str, Any] = {"name": chain.name}
     for key in ("family", "units", "notes", "naming"):
         if getattr(chain, key) is not None:
             doc[key] = getattr(chain, key)
@@ -440,7 +441,7 @@ def chain_document(chain: Chain) -> dict:
         doc["space"] = chain.space
     joints = []
     for j in chain.joints:
-        item = {"id": j.id, "kind": j.kind, "links": list(j.links)}
+        item: dict[str, Any] = {"id": j.id, "kind": j.kind, "links": list(j.links)}
         if j.at is not None:
             item["at"] = list(j.at)
         if j.axis is not None:
@@ -456,7 +457,7 @@ def chain_document(chain: Chain) -> dict:
         doc["points"] = [{"id": p.id, "link": p.link, "at": list(p.at)} for p in chain.points]
     m = chain.mechanism
     if m is not None:
-        mech = {"fixed": m.fixed}
+        mech: dict[str, Any] = {"fixed": m.fixed}
         if m.driver is not None:
             mech["driver"] = m.driver
         if m.inputs:

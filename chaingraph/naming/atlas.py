@@ -86,6 +86,7 @@ def atlas_names(chain, *, oriented=False, catalog=None) -> dict:
                 out["chain"].append(entry.name)
             continue
         mapping = isomorphism(chain, entry, oriented=oriented)
+        assert mapping is not None               # the entry has the chain's canonical form
         back = {theirs: mine for mine, theirs in mapping.items()}
         fixed = back.get(entry.mechanism.fixed)
         if fixed in where:

@@ -35,7 +35,7 @@ class Identification:
 
     chain: str | None
     inversion: str | None
-    mapping: dict = field(default_factory=dict)
+    mapping: dict[str, str] = field(default_factory=dict)
     chain_file: str | None = None
     inversion_file: str | None = None
     orientation: str = "respected"     # or "ignored": P orientation had to be forgotten
@@ -144,7 +144,7 @@ def identify(chain, *, catalog=None) -> Identification:
             note = "the catalog names no inversion of this structure with this link fixed"
     if chain_name is None:
         note = "; ".join(x for x in ("the catalog has no chain of this structure", note) if x)
-    return Identification(chain=chain_name, inversion=inversion, mapping=mapping,
+    return Identification(chain=chain_name, inversion=inversion, mapping=mapping or {},
                           chain_file=chain_file, inversion_file=inversion_file,
                           orientation=orientation, joint_kinds=kinds, note=note)
 

@@ -101,7 +101,7 @@ class Classification:
                 f"mobility={self.mobility}, verdict={self.verdict!r}, "
                 f"degenerate={self.degenerate})")
 
-    def rows(self) -> list[tuple]:
+    def rows(self) -> list[tuple[str, object, str | None]]:
         """The facts as (what, value, detail) rows in the textbook's words, as the
         command line, the report and a notebook show them.
 
@@ -121,7 +121,7 @@ class Classification:
                 return "n/a"
             sign = "=" if check.lhs == check.rhs else (">" if check.lhs > check.rhs else "<")
             return f"{check.lhs} {sign} {check.rhs}"
-        rows = [
+        rows: list[tuple[str, object, str | None]] = [
             ("links L", self.links, counts(self.link_orders)),
             ("pairs P", self.pairs, counts(self.pair_kinds)),
             ("joint equivalents J", self.joint_equivalents,
@@ -132,7 +132,8 @@ class Classification:
              "Kutzbach, " + ("3(L - 1) - 2J - H" if self.space == "planar"
                              else "6(L - 1) - sum(6 - f)")),
         ]
-        rows += [(c.rule, sides(c), c.verdict if c.applicable else f"not applicable: {c.note}")
+        rows += [(c.rule, sides(c),
+                  c.verdict if c.applicable else f"not applicable: {c.note}")
                  for c in self.checks]
         rows.append(("verdict", self.verdict, ""))
         rows.append(("degenerate", "yes" if self.degenerate else "no",
@@ -236,7 +237,7 @@ def _separators(chain):
         if closed_sides >= 2:
             (links if v[0] == "link" else joints).append(v[1])
     order = {name: i for i, name in enumerate(chain.links)}
-    return tuple(sorted(links, key=order.get)), tuple(sorted(joints))
+    return tuple(sorted(links, key=order.__getitem__)), tuple(sorted(joints))
 
 
 def classify(chain) -> Classification:

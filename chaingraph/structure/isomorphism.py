@@ -65,7 +65,7 @@ def _structure(chain, oriented):
     for n in nodes:
         data = chain.graph.nodes[n]
         labels.append(("link",) if n[0] == "link" else ("joint", data["kind"]))
-    adj: list[list[int]] = [[] for _ in nodes]
+    adj: list[list[tuple[int, int]]] = [[] for _ in nodes]
     for u, v, data in chain.graph.edges(data=True):
         e = _EDGE[data["role"]] if oriented else min(_EDGE[data["role"]], 1)
         adj[index[u]].append((index[v], e))
@@ -105,7 +105,7 @@ def refine_search(labels, adj):
     n = len(labels)
     label_rank = {lab: i for i, lab in enumerate(sorted(set(labels)))}
     root = _refine([label_rank[lab] for lab in labels], adj)
-    state = {"first": None, "best": None}
+    state: dict[str, Any] = {"first": None, "best": None}
     generators: list[Any] = []
     first_path = []
 
@@ -213,7 +213,7 @@ def _search_nauty(labels, adj):
     counts: dict[Any, Any] = {}
     for _, _, e in edges:
         counts[e] = counts.get(e, 0) + 1
-    common = max(sorted(counts), key=counts.get) if counts else 0
+    common = max(sorted(counts), key=counts.__getitem__) if counts else 0
     others = [(v, u, e) for v, u, e in edges if e != common]
     adjacency: dict[int, list[int]] = {v: [] for v in range(n + len(others))}
     for v, u, e in edges:

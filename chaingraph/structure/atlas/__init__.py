@@ -122,7 +122,7 @@ def atlas(*, links: int, dof: int = 1, workers: int = 1,
     [2, 2, 3, 3]
     """
     wanted = prismatic_counts(links, dof, joints_for(links, dof), prismatic, oriented)
-    base = atlas_graphs(links, dof, workers=workers)
+    base: Atlas | MultipleAtlas = atlas_graphs(links, dof, workers=workers)
     if multiple:
         base, wanted = multiple_atlas(base), wanted or (0,)
     if wanted is None:

@@ -34,6 +34,7 @@ What the atlas asks follows:
 from __future__ import annotations
 
 from collections import deque
+from typing import Any
 
 __all__ = ["Forests", "forest_verdicts"]
 
@@ -64,13 +65,13 @@ class Forests:
 
     def _rooted(self, k):
         """Forest ``k`` rooted: each link's (parent link, row to it, depth, root)."""
-        adjacent: list[list[int]] = [[] for _ in range(self.links)]
+        adjacent: list[list[tuple[int, int]]] = [[] for _ in range(self.links)]
         for i, w in enumerate(self.where):
             if w == k:
                 x, y, _ = self.rows[i]
                 adjacent[x].append((y, i))
                 adjacent[y].append((x, i))
-        up = [None] * self.links
+        up: list[Any] = [None] * self.links
         for start in range(self.links):
             if up[start] is not None:
                 continue
@@ -109,7 +110,7 @@ class Forests:
         self.where.append(-1)
         if a == b:
             return False
-        label = {s: None}           # row -> (row that takes its place, forest)
+        label: dict[int, Any] = {s: None}   # row -> (row that takes its place, forest)
         todo = deque([s])
         while todo:
             u = todo.popleft()
@@ -173,8 +174,9 @@ def forest_verdicts(links, joints, kinds=None):
                 forests.add(pin, x)
             pin += 1
         else:
-            forests.add(*j)
-            forests.add(*j, ANY if kind == "R" else OMEGA)
+            a, b = j
+            forests.add(a, b)
+            forests.add(a, b, ANY if kind == "R" else OMEGA)
         # a joint's rates: an R joint's turns (fixed rows), a P joint's slide (generic)
         rates += [(a, b, OMEGA if kind == "R" else ANY)
                   for i, a in enumerate(j) for b in j[i + 1:]]

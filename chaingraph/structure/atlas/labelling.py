@@ -141,7 +141,7 @@ def _weighted(k, edges):
         else:
             mult[(a, b)] = mult.get((a, b), 0) + 1
     labels = [("node", degree[i], loops[i]) for i in range(k)]
-    adj: list[list[int]] = [[] for _ in range(k)]
+    adj: list[list[tuple[int, int]]] = [[] for _ in range(k)]
     for (a, b), m in mult.items():
         adj[a].append((b, m))
         adj[b].append((a, m))

@@ -207,7 +207,7 @@ def link_joint_graphs(links: int, pattern, *, backend=None) -> list:
     rows_of: dict[Any, Any] = {}                                     # a joint's rows on each set of links
     # a set of joints: (joints, links on a joint, links on two joints or more, joints
     # beyond two over all links); its rows are summed where it is extended
-    level = [((), 0, 0, 0)]
+    level: list[tuple[tuple[int, ...], int, int, int]] = [((), 0, 0, 0)]
     for degree in pattern:
         masks, rows = _candidates(links, degree)
         rows_of.update(zip(masks, rows))
@@ -218,7 +218,7 @@ def link_joint_graphs(links: int, pattern, *, backend=None) -> list:
                 if beyond + (masks[i] & twice).bit_count() <= spare:
                     children.append(joints + (masks[i],))
                     made.append(k)
-        kept = {}
+        kept: dict[Any, tuple[tuple[int, ...], int, int, int]] = {}
         for key, child, k in zip(link_joint_keys(links, children, backend=backend),
                                  children, made):
             if key not in kept:

@@ -95,7 +95,7 @@ def _chain_record(id_, edges, orbits, fractionated, links):
 def _open_for_writing(path, mode="w"):
     """A temporary file beside ``path``, renamed onto it by :func:`_finish`."""
     tmp = path.with_name(path.name + ".tmp")
-    return tmp, open(tmp, mode, **({} if "b" in mode else {"encoding": "utf-8"}))
+    return tmp, open(tmp, mode, encoding=None if "b" in mode else "utf-8")
 
 
 def write_atlas(atlas, out_dir, *, shard_dir=None, no_fractionated=False,
@@ -113,7 +113,7 @@ def write_atlas(atlas, out_dir, *, shard_dir=None, no_fractionated=False,
     count = atlas.count_non_fractionated if no_fractionated else atlas.count
     if chain_files is None:
         chain_files = count <= CHAIN_FILES_UP_TO
-    paths = {"json": out / "atlas.json",
+    paths: dict[str, Any] = {"json": out / "atlas.json",
              "graph6": out / f"atlas-{atlas.links}-links-{atlas.dof}-dof.g6",
              "html": out / "index.html", "chains": [], "chain_dir": None}
     if chain_files:

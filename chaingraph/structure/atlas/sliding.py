@@ -30,6 +30,7 @@ automorphisms, so each chain is counted once without a canonical form per candid
 
 from __future__ import annotations
 
+from collections.abc import Sequence
 from typing import Any
 
 import json
@@ -102,6 +103,8 @@ class SlidingEntry:
 class Entries:
     """What the atlases' result classes share: their ``entries`` in order, counted and
     iterated, and the sum of their inversion classes."""
+
+    entries: Sequence[Any]
 
     def __len__(self):
         return len(self.entries)
