@@ -23,9 +23,9 @@ Examples
 
 from __future__ import annotations
 
-from typing import Any
-
 import math
+from collections.abc import Iterable, Mapping, Sequence
+from typing import Any, TypeAlias
 
 import numpy as np
 
@@ -35,43 +35,56 @@ __all__ = [
     "apply", "compose", "inverse", "frame_from_two", "fit_frame", "line_in",
     "FIXED", "make_pose", "turn_by", "world", "fit_two_points", "from_point",
     "DISC_TOL", "clamp_disc", "circle_circle", "circle_line", "line_by_two_distances",
-    "convex_hull", "polygon_area",
+    "convex_hull", "polygon_area", "segment_distance", "Scalar", "Vec", "Frame", "PoseEntry",
+    "Line",
 ]
 
 
+#: a coordinate, length or angle: a float, or a numpy array of them (a sweep at once)
+Scalar: TypeAlias = Any
+#: a point or vector (x, y), or a numpy array of the two
+Vec: TypeAlias = "tuple[Scalar, Scalar] | np.ndarray"
+#: a frame (phi, x, y)
+Frame: TypeAlias = tuple[Scalar, Scalar, Scalar]
+#: a pose entry (x, y, phi, cos phi, sin phi)
+PoseEntry: TypeAlias = tuple[Scalar, Scalar, Scalar, Scalar, Scalar]
+#: a line (angle, offset): the points p with normal(angle) . p == offset
+Line: TypeAlias = tuple[Scalar, Scalar]
+
+
 # -- vectors ---------------------------------------------------------------------------
-def sub(a, b):
+def sub(a: Vec, b: Vec) -> Vec:
     """a - b."""
     return (a[0] - b[0], a[1] - b[1])
 
 
-def dot(a, b):
+def dot(a: Vec, b: Vec) -> Scalar:
     return a[0] * b[0] + a[1] * b[1]
 
 
-def cross(a, b):
+def cross(a: Vec, b: Vec) -> Scalar:
     """The z component of a x b (positive when b is counter-clockwise of a)."""
     return a[0] * b[1] - a[1] * b[0]
 
 
-def perp(v):
+def perp(v: Vec) -> Vec:
     """The vector turned a quarter turn counter-clockwise (k x v)."""
     return (-v[1], v[0])
 
 
-def distance(p, q):
+def distance(p: Vec, q: Vec) -> Scalar:
     return math.hypot(p[0] - q[0], p[1] - q[1])
 
 
-def normalised(v):
+def normalised(v: Vec) -> np.ndarray | None:
     """``v`` as a unit numpy vector, or None when it has no direction (zero, or not
     finite)."""
-    v = np.asarray(v, dtype=float)
-    n = float(np.linalg.norm(v))
-    return v / n if n > 0 and math.isfinite(n) else None
+    u = np.asarray(v, dtype=float)
+    n = float(np.linalg.norm(u))
+    return u / n if n > 0 and math.isfinite(n) else None
 
 
-def rotate(v, angle):
+def rotate(v: Vec, angle: Scalar) -> Vec:
     """``v`` turned by ``angle`` (radians) counter-clockwise."""
     c, s = np.cos(angle), np.sin(angle)
     if not isinstance(angle, np.ndarray):
@@ -79,22 +92,22 @@ def rotate(v, angle):
     return (c * v[0] - s * v[1], s * v[0] + c * v[1])
 
 
-def unit(angle):
+def unit(angle: Scalar) -> Vec:
     """The unit vector at ``angle`` (radians)."""
     return (math.cos(angle), math.sin(angle))
 
 
-def normal(angle):
+def normal(angle: Scalar) -> Vec:
     """The unit normal of the direction ``angle`` (radians): ``unit`` turned a quarter."""
     return (-math.sin(angle), math.cos(angle))
 
 
-def unit_deg(degrees):
+def unit_deg(degrees: Scalar) -> Vec:
     """The unit vector at ``degrees``."""
     return math.cos(math.radians(degrees)), math.sin(math.radians(degrees))
 
 
-def direction_deg(v):
+def direction_deg(v: Vec) -> Scalar:
     """The direction of ``v`` in degrees in [0, 360), or None for the zero vector.
 
     >>> direction_deg((0.0, -2.0)), direction_deg((0.0, 0.0))
@@ -104,24 +117,24 @@ def direction_deg(v):
 
 
 # -- frames (phi, x, y) ----------------------------------------------------------------
-def apply(frame, p):
+def apply(frame: Frame, p: Vec) -> Vec:
     """The point ``p`` of a body, where the body's ``frame`` puts it."""
     q = rotate(p, frame[0])
     return (q[0] + frame[1], q[1] + frame[2])
 
 
-def compose(a, b):
+def compose(a: Frame, b: Frame) -> Frame:
     """The frame ``a`` after ``b``."""
     t = apply(a, (b[1], b[2]))
     return (a[0] + b[0], t[0], t[1])
 
 
-def inverse(a):
+def inverse(a: Frame) -> Frame:
     t = rotate((-a[1], -a[2]), -a[0])
     return (-a[0], t[0], t[1])
 
 
-def frame_from_two(q1, w1, q2, w2):
+def frame_from_two(q1: Vec, w1: Vec, q2: Vec, w2: Vec) -> Frame:
     """The frame taking body points q1, q2 to w1, w2 (the rotation from the chord)."""
     phi = (math.atan2(w2[1] - w1[1], w2[0] - w1[0])
            - math.atan2(q2[1] - q1[1], q2[0] - q1[0]))
@@ -129,7 +142,7 @@ def frame_from_two(q1, w1, q2, w2):
     return (phi, w1[0] - r[0], w1[1] - r[1])
 
 
-def fit_frame(pairs):
+def fit_frame(pairs: Sequence[tuple[Vec, Vec]]) -> Frame:
     """The frame that best takes body points to given places, ``pairs`` of
     ``(body point, place)`` (least squares)."""
     q = np.array([p for p, _ in pairs], dtype=float)
@@ -142,7 +155,7 @@ def fit_frame(pairs):
     return (phi, float(m[0] - r[0]), float(m[1] - r[1]))
 
 
-def line_in(frame, line):
+def line_in(frame: Frame, line: Line) -> Line:
     """A body's line ``(angle, offset)`` where the body's ``frame`` puts it."""
     angle = line[0] + frame[0]
     return (angle, line[1] + dot(normal(angle), (frame[1], frame[2])))
@@ -152,20 +165,21 @@ def line_in(frame, line):
 FIXED = (0.0, 0.0, 0.0, 1.0, 0.0)
 
 
-def make_pose(x, y, phi, c=None, s=None):
+def make_pose(x: Scalar, y: Scalar, phi: Scalar, c: Scalar = None,
+              s: Scalar = None) -> PoseEntry:
     """A pose entry from a motion (x, y, phi)."""
     if c is None:
         c, s = np.cos(phi), np.sin(phi)
     return (x, y, phi, c, s)
 
 
-def turn_by(entry, p):
+def turn_by(entry: PoseEntry, p: Vec) -> Vec:
     """The drawn vector ``p`` turned by the pose entry's rotation."""
     c, s = entry[3], entry[4]
     return c * p[0] - s * p[1], s * p[0] + c * p[1]
 
 
-def world(pose, link, p):
+def world(pose: Mapping[str, PoseEntry], link: str, p: Vec) -> Vec:
     """Where the pose puts the drawn point ``p`` of ``link`` (``pose`` maps links to
     entries)."""
     e = pose[link]
@@ -173,7 +187,7 @@ def world(pose, link, p):
     return rx + e[0], ry + e[1]
 
 
-def fit_two_points(p1, w1, p2, w2):
+def fit_two_points(p1: Vec, w1: Vec, p2: Vec, w2: Vec) -> PoseEntry:
     """The pose entry taking drawn points p1, p2 to w1, w2 (rotation from the chord)."""
     dpx, dpy = p2[0] - p1[0], p2[1] - p1[1]
     dwx, dwy = w2[0] - w1[0], w2[1] - w1[1]
@@ -185,7 +199,7 @@ def fit_two_points(p1, w1, p2, w2):
     return make_pose(w1[0] - rx, w1[1] - ry, np.arctan2(s, c), c, s)
 
 
-def from_point(entry, p, w):
+def from_point(entry: PoseEntry, p: Vec, w: Vec) -> PoseEntry:
     """The pose entry with the rotation of ``entry`` that puts drawn point p at w."""
     rx, ry = turn_by(entry, p)
     return make_pose(w[0] - rx, w[1] - ry, entry[2], entry[3], entry[4])
@@ -195,7 +209,7 @@ def from_point(entry, p, w):
 DISC_TOL = 1e-13   # dimensionless discriminant: rounding is about 1e-16
 
 
-def clamp_disc(disc, scale, double=False):
+def clamp_disc(disc: Scalar, scale: Scalar, double: Scalar = False) -> Scalar:
     """A discriminant where the modes exist (within rounding of zero: zero), NaN
     elsewhere, and where it is; zero where ``double`` (the modes' double root).
     ``scale`` is the discriminant's magnitude (a length squared, or 1)."""
@@ -204,7 +218,7 @@ def clamp_disc(disc, scale, double=False):
     return np.where(double, 0.0, np.where(ok, np.maximum(disc, 0.0), np.nan)), ok
 
 
-def circle_circle(c1, r1, c2, r2):
+def circle_circle(c1: Vec, r1: Scalar, c2: Vec, r2: Scalar) -> tuple[Vec, Vec, Scalar]:
     """Where two circles meet: ``(mid, across, raw)``, the points being
     ``mid +- sqrt(raw) * across`` (``+``: left of the line from c1 to c2), ``raw`` the
     squared half-chord (negative where the circles do not meet; judge it with
@@ -230,7 +244,8 @@ def circle_circle(c1, r1, c2, r2):
     return (mx, my), (-uy, ux), raw
 
 
-def circle_line(centre, r, base, direction):
+def circle_line(centre: Vec, r: Scalar, base: Vec,
+                direction: Vec) -> tuple[Vec, Vec, Scalar]:
     """Where a circle meets the line through ``base`` along the unit ``direction``:
     ``(foot, direction, raw)``, the points being ``foot +- sqrt(raw) * direction``
     (``+``: ahead along the line), ``foot`` the centre's foot on the line, ``raw`` the
@@ -248,7 +263,7 @@ def circle_line(centre, r, base, direction):
     return foot, direction, raw
 
 
-def line_by_two_distances(a, b, c):
+def line_by_two_distances(a: Vec, b: Vec, c: Scalar) -> tuple[Vec, Scalar, Scalar]:
     """The lines that pass at signed distances ``h_a`` from ``a`` and ``h_b`` from
     ``b`` with ``c = h_b - h_a``: their unit normal n satisfies ``n . (b - a) = c``.
     Returns ``(u, ratio, raw)``: ``u`` the unit vector from a to b, ``ratio = c / |b - a|``
@@ -266,7 +281,7 @@ def line_by_two_distances(a, b, c):
 
 
 # -- polygons --------------------------------------------------------------------------
-def convex_hull(points):
+def convex_hull(points: Iterable[Vec]) -> list[Vec]:
     """The convex hull of 2-D points, counter-clockwise (monotone chain).
 
     >>> convex_hull([(0, 0), (2, 0), (1, 1), (2, 2), (0, 2)])
@@ -288,7 +303,7 @@ def convex_hull(points):
     return lower[:-1] + upper[:-1]
 
 
-def segment_distance(p, a, b):
+def segment_distance(p: Vec, a: Vec, b: Vec) -> float:
     """The distance from the point ``p`` to the segment ``a``-``b`` (a point when the two
     ends coincide).
 
@@ -302,10 +317,11 @@ def segment_distance(p, a, b):
     return math.dist(p, (a[0] + t * ax, a[1] + t * ay))
 
 
-def polygon_area(polygon):
+def polygon_area(polygon: Sequence[Vec]) -> float:
     """The area of a simple polygon (shoelace).
 
     >>> polygon_area([(0, 0), (2, 0), (2, 2), (0, 2)])
     4.0
     """
-    return 0.5 * abs(sum(cross(p, q) for p, q in zip(polygon, polygon[1:] + polygon[:1])))
+    points = list(polygon)
+    return 0.5 * abs(sum(cross(p, q) for p, q in zip(points, points[1:] + points[:1])))
