@@ -6,11 +6,14 @@ back by :func:`dumps` and :func:`save`.
 
 from __future__ import annotations
 
+import os
 from dataclasses import replace
+from typing import Any
 
-from chaingraph.kinematics.assembly import assemble
+from chaingraph.kinematics.assembly import Assembly, assemble
 from chaingraph.model.chain import Chain, Joint, Point
 from chaingraph.model.chainfile import (
+    Document,
     dumps,
     parse_document,
     parse_file,
@@ -23,7 +26,7 @@ __all__ = ["load", "loads", "from_document", "dumps", "save", "read_file", "read
            "read_document", "place"]
 
 
-def load(path) -> Chain:
+def load(path: str | os.PathLike[str]) -> Chain:
     """Read a chain file.
 
     Parameters
@@ -67,29 +70,30 @@ def loads(text: str, *, source: str = "<string>") -> Chain:
     return read_text(text, source=source)[0]
 
 
-def from_document(doc, *, source: str = "<document>") -> Chain:
+def from_document(doc: dict[str, Any], *, source: str = "<document>") -> Chain:
     """A chain from an already parsed document (a dict of the file's keys)."""
     return read_document(doc, source=source)[0]
 
 
-def read_file(path):
+def read_file(path: str | os.PathLike[str]) -> tuple[Chain, Assembly | None]:
     """``(chain, assembly)`` of a chain file: ``assembly`` is the
     :class:`~chaingraph.kinematics.assembly.Assembly` found for a mechanism given by its lengths
     (its modes, its groups), else None."""
     return place(parse_file(path))
 
 
-def read_text(text: str, *, source: str = "<string>"):
+def read_text(text: str, *, source: str = "<string>") -> tuple[Chain, Assembly | None]:
     """``(chain, assembly)`` of TOML text; see :func:`read_file`."""
     return place(parse_text(text, source=source))
 
 
-def read_document(doc, *, source: str = "<document>"):
+def read_document(doc: dict[str, Any], *,
+                  source: str = "<document>") -> tuple[Chain, Assembly | None]:
     """``(chain, assembly)`` of a parsed document; see :func:`read_file`."""
     return place(parse_document(doc, source=source))
 
 
-def place(document):
+def place(document: Document) -> tuple[Chain, Assembly | None]:
     """A read chain file in its drawn pose: ``(chain, assembly)``. A file given by
     lengths is assembled (``assembly`` is its :class:`~chaingraph.kinematics.assembly.Assembly`: modes and groups); a
     file of coordinates has its drawing-level rounding mended (:func:`snap_to_lines`,

@@ -11,12 +11,14 @@ a value where it cannot be assembled or solved is a row that says why.
 from __future__ import annotations
 
 import copy
+from collections.abc import Iterable
 import math
 from dataclasses import dataclass
 
 from chaingraph.errors import ChainGraphError, MechanismError
 from chaingraph.files import from_document
 from chaingraph.kinematics import Summary, measured_document, solve
+from chaingraph.model.chain import Chain
 
 __all__ = ["VariationRow", "Variation", "length_values", "vary"]
 
@@ -73,7 +75,7 @@ class Variation:
         return out
 
 
-def length_values(start, stop, step) -> tuple[float, ...]:
+def length_values(start: float, stop: float, step: float) -> tuple[float, ...]:
     """FROM, FROM + STEP, ... up to TO (TO included when the steps reach it to within
     1e-9 of a step).
 
@@ -101,7 +103,8 @@ def length_values(start, stop, step) -> tuple[float, ...]:
     return tuple(float(start + k * step) for k in range(count))
 
 
-def vary(mechanism, link, values, *, steps=360, output=None) -> Variation:
+def vary(mechanism: Chain, link: str, values: Iterable[float], *, steps: int = 360,
+         output: str | None = None) -> Variation:
     """The mechanism's summary for each value of ``link``'s length.
 
     Parameters

@@ -29,6 +29,7 @@ import math
 from functools import lru_cache
 
 from chaingraph.geometry import distance
+from chaingraph.model.chain import Chain, Joint
 from chaingraph.kinematics.motion import full_turns, full_turns_cost, full_turns_drivers
 
 __all__ = ["turning_links", "behaviour", "behaviour_key", "behaviour_cost", "four_link_loop"]
@@ -36,7 +37,7 @@ __all__ = ["turning_links", "behaviour", "behaviour_key", "behaviour_cost", "fou
 _TOL = 1e-9
 
 
-def four_link_loop(chain):
+def four_link_loop(chain: Chain) -> tuple[tuple[str, ...], tuple[Joint, ...]] | None:
     """The chain's links and joints in loop order, when it is a single loop of four
     binary links on four binary R or P joints; else None.
 
@@ -52,7 +53,7 @@ def four_link_loop(chain):
     if any(len(chain.joints_of(x)) != 2 for x in chain.links):
         return None
     links: list[str] = [chain.links[0]]
-    joints: list[str] = []
+    joints: list[Joint] = []
     while len(joints) < 4:
         here = links[-1]
         j = next(j for j in chain.joints_of(here) if j not in joints)
@@ -139,7 +140,7 @@ def _double_slider(links, joints, fixed):
     return frozenset(others) if fixed == bar else frozenset({bar})
 
 
-def turning_links(chain, fixed) -> frozenset | None:
+def turning_links(chain: Chain, fixed: str) -> frozenset[str] | None:
     """The links that make full turns relative to ``fixed``, or None where unknown.
 
     Known (closed form) for four-link loops of R and P joints with a drawn pose.
@@ -156,7 +157,7 @@ def turning_links(chain, fixed) -> frozenset | None:
     return None if found is None else found[1]
 
 
-def behaviour(chain, fixed) -> str | None:
+def behaviour(chain: Chain, fixed: str) -> str | None:
     """What the inversion with ``fixed`` fixed does, in words; None without dimensions.
 
     Four-bars get Grashof's words; other chains the links that turn fully.
@@ -173,7 +174,7 @@ def behaviour(chain, fixed) -> str | None:
     return None if found is None else found[0]
 
 
-def behaviour_key(chain, fixed):
+def behaviour_key(chain: Chain, fixed: str) -> tuple[str, object] | None:
     """What two inversions must share to be the same named mechanism, or None.
 
     For a four-bar, Grashof's category (``"double crank"`` for a parallelogram too);
@@ -195,7 +196,7 @@ def _solvable(chain):
             and all(j.kind in ("R", "P") for j in chain.joints))
 
 
-def behaviour_cost(chain, fixed, *, spent=False) -> float:
+def behaviour_cost(chain: Chain, fixed: str, *, spent: bool = False) -> float:
     """An estimate, in seconds of one core, of working out the behaviour of the
     inversion with ``fixed`` fixed (:func:`~chaingraph.kinematics.full_turns_cost`): 0
     for a closed form (four-link loops) or where there is nothing to solve; else the

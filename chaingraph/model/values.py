@@ -4,14 +4,19 @@ in a message (every reader of the format uses these)."""
 from __future__ import annotations
 
 import math
+from collections.abc import Callable
+from typing import NoReturn, TypeAlias
 
 __all__ = ["LARGEST", "number", "type_name", "shown"]
 
 
 LARGEST = 1e9
 
+#: how a reader refuses a value: ``fail(message, where)`` raises
+Fail: TypeAlias = Callable[[str, str], NoReturn]
 
-def number(value, where, fail, *, positive=False):
+
+def number(value: object, where: str, fail: Fail, *, positive: bool = False) -> float:
     """A finite number of at most :data:`LARGEST` in size (a float), or ``fail``."""
     if isinstance(value, bool) or not isinstance(value, (int, float)):
         fail(f"must be a number, got {type_name(value)}", where)
@@ -24,13 +29,13 @@ def number(value, where, fail, *, positive=False):
     return float(value)
 
 
-def type_name(value) -> str:
+def type_name(value: object) -> str:
     """What kind of TOML value ``value`` is, in words ("a string", "an array")."""
     return {bool: "a boolean", int: "an integer", float: "a number", str: "a string",
             list: "an array", dict: "a table"}.get(type(value), f"a {type(value).__name__}")
 
 
-def shown(value) -> str:
+def shown(value: object) -> str:
     """A value as a message quotes it: short, and never a huge integer's digits."""
     if isinstance(value, int) and abs(value) > 10**30:
         # (no decimal text of a huge integer: Python refuses past 4,300 digits)

@@ -97,7 +97,8 @@ def _drive(name, centre, pin, slot_axis, pivot, lever_end, link, ram, units, not
         mechanism=Mechanism("frame", "crank", 1.0, "ram"))
 
 
-def slotted_lever(*, time_ratio: float, crank: float, stroke: float, units="mm") -> Design:
+def slotted_lever(*, time_ratio: float, crank: float, stroke: float,
+                  units: str = "mm") -> Design:
     """Design a crank and slotted lever quick return drive.
 
     Parameters
@@ -165,7 +166,8 @@ def slotted_lever(*, time_ratio: float, crank: float, stroke: float, units="mm")
                   link=link, mechanism=mech)
 
 
-def whitworth(*, time_ratio: float, crank: float, stroke: float, units="mm") -> Design:
+def whitworth(*, time_ratio: float, crank: float, stroke: float,
+              units: str = "mm") -> Design:
     """Design a Whitworth quick return drive (the ram's line through the lever's pivot).
 
     Returns
