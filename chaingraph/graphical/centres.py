@@ -23,11 +23,10 @@ the fixed link.
 
 from __future__ import annotations
 
-from typing import Any
-
 import itertools
 import math
 from dataclasses import dataclass
+from typing import Any
 
 import numpy as np
 

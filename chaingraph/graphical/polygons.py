@@ -20,10 +20,9 @@ zero (``loops`` gives each loop and how closely it closes).
 
 from __future__ import annotations
 
-from typing import Any
-
 import math
 from dataclasses import dataclass
+from typing import Any
 
 import numpy as np
 

@@ -16,11 +16,10 @@ fixed link's frame is the drawing's.
 
 from __future__ import annotations
 
-from typing import Any
-
 import difflib
 import math
 from dataclasses import dataclass, field
+from typing import Any
 
 from chaingraph.geometry import rotate, sub
 from chaingraph.model.values import number

@@ -10,12 +10,11 @@ with the textbook's inversions on their fixed links.
 
 from __future__ import annotations
 
-from typing import Any
-
 import math
 from dataclasses import dataclass, replace
 from functools import lru_cache
 from pathlib import Path
+from typing import Any
 
 from chaingraph.model.chain import Chain, Input, Mechanism
 from chaingraph.model.snap import size_of

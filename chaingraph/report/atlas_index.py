@@ -12,11 +12,10 @@ links) stays light.
 
 from __future__ import annotations
 
-from typing import Any
-
 import html
 from importlib import resources
 from pathlib import Path
+from typing import Any
 
 from chaingraph._util.atomic import write_atomic
 from chaingraph._util.text import counted

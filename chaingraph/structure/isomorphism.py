@@ -20,11 +20,10 @@ decide: the canonical form is a complete invariant.
 
 from __future__ import annotations
 
-from typing import Any
-
 import importlib.util
 from dataclasses import dataclass
 from functools import lru_cache
+from typing import Any
 
 from chaingraph._util.disjoint import DisjointSets
 from chaingraph.errors import ChainStructureError

@@ -132,10 +132,9 @@ links.
 
 from __future__ import annotations
 
-from typing import Any
-
 from collections import deque
 from dataclasses import dataclass
+from typing import Any
 
 import numpy as np
 

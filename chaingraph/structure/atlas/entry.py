@@ -3,10 +3,9 @@ lines, the JSON lines of a shard, the link orders."""
 
 from __future__ import annotations
 
-from typing import Any
-
 import json
 from dataclasses import dataclass
+from typing import Any
 
 import numpy as np
 

@@ -35,11 +35,10 @@ are the orbits of the links under the link-joint graph's automorphisms.
 
 from __future__ import annotations
 
-from typing import Any
-
 import functools
 import itertools
 from dataclasses import dataclass
+from typing import Any
 
 import networkx as nx
 import numpy as np

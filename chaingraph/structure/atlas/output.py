@@ -4,13 +4,12 @@ or from a run's shards), so that memory does not grow with the atlas."""
 
 from __future__ import annotations
 
-from typing import Any
-
 import html as _html
 import json
 import math
 import os
 from pathlib import Path
+from typing import Any
 
 from chaingraph._util.atomic import withdraw
 from chaingraph._util.text import freedom

@@ -30,9 +30,8 @@ as numpy arrays:
 
 from __future__ import annotations
 
-from typing import Any
-
 import math
+from typing import Any
 
 import networkx as nx
 import numpy as np
