@@ -1092,20 +1092,58 @@ def measure(chain):
     return toml_text(measured_document(chain))
 
 
+@dataclass(frozen=True)
+class _Measures:
+    """What a drawn mechanism's pose gives its chain file: ``lengths`` per moving link,
+    ``sides`` the side of each further joint of a link with more than two (right only:
+    left is the default), ``lines`` each P joint's angle and offset on its moving links,
+    ``values`` each input's value (``None`` for the driver)."""
+
+    lengths: dict
+    sides: dict
+    lines: dict
+    values: dict
+
+
 def measured_document(chain) -> dict:
     """The document (a dict, as a chain file reads) that :func:`measure` writes: the
     mechanism by its lengths, sliding lines, inputs' values and assembly modes."""
-    m = chain.mechanism
-    if m is None:
+    if chain.mechanism is None:
         raise DimensionError("measuring needs [mechanism] (the fixed link and the input)",
                              source=chain.source, where="[mechanism]")
     if not chain.has_pose:
         raise DimensionError("measuring needs the drawn pose ('at' of every joint)",
                              source=chain.source)
-    fixed = m.fixed
+    fixed = chain.mechanism.fixed
+    where = {j.id: j.at for j in chain.joints} | {p.id: p.at for p in chain.points}
+    lengths, sides = _measured_lengths(chain, fixed, where)
+    frames = {link: _frame_of(chain, link, fixed) for link in chain.links}
+    measures = _Measures(lengths, sides, _measured_lines(chain, fixed, frames, where),
+                         _measured_values(chain, fixed, frames))
+    # assemble once with every moving joint as a rough position: that finds the modes,
+    # the groups (which keep their rough positions) and the reference points to type
+    moving = {j.id for j in chain.joints if fixed not in j.links}
+    moving |= {p.id for p in chain.points if p.link != fixed}
+    with warnings.catch_warnings():
+        warnings.simplefilter("ignore")
+        written = parse_document(_document(chain, measures, set(), moving, {}),
+                                 source=chain.source or "<measure>")
+        pose = assemble(written.chain, [(p.id, p.link) for p in written.points],
+                        written.dimensions)
     points = [(p.id, p.link) for p in chain.points]
-    where = {j.id: j.at for j in chain.joints}
-    where.update({p.id: p.at for p in chain.points})
+    near = {n for group in pose.groups for link in group
+            for n in link_features(chain.joints, points, link)} & moving
+    modes = {mode.part: mode.word for mode in pose.modes
+             if ":" not in mode.part and not mode.part.startswith("group ")}
+    extra = {j.id for j in chain.joints if j.kind == "P" and fixed not in j.links
+             and math.dist(pose.joints[j.id], j.at) > 1e-9 * pose.size}
+    return _document(chain, measures, extra, near, modes)
+
+
+def _measured_lengths(chain, fixed, where):
+    """Every moving link's lengths (one number for two joints or points, else the
+    distances from the first two to each other one) and the sides of the others."""
+    points = [(p.id, p.link) for p in chain.points]
     lengths, sides = {}, {}
     for link in chain.links:
         if link == fixed:
@@ -1130,8 +1168,13 @@ def measured_document(chain) -> dict:
             if cross(sub(where[f1], where[f0]), sub(where[f], where[f0])) < 0:
                 sides.setdefault(link, {})[f] = "right"
         lengths[link] = table
-    frames = {link: _frame_of(chain, link, fixed) for link in chain.links}
-    line_keys = {}
+    return lengths, sides
+
+
+def _measured_lines(chain, fixed, frames, where):
+    """Each P joint's sliding line on its moving links: its angle and offset in the
+    link's frame (the block's as ``block_angle``, ``block_offset``), where not zero."""
+    out = {}
     for j in chain.joints:
         if j.kind != "P":
             continue
@@ -1145,103 +1188,100 @@ def measured_document(chain) -> dict:
             keys = ("angle", "offset") if role == 0 else ("block_angle", "block_offset")
             for key, value in zip(keys, (angle, offset)):
                 if abs(value) > 1e-12 * size_of(where):
-                    line_keys.setdefault(j.id, {})[key] = value
+                    out.setdefault(j.id, {})[key] = value
+    return out
+
+
+def _measured_values(chain, fixed, frames):
+    """Each input's value in the drawn pose (keyed by its joint), or the driver's angle
+    (keyed None)."""
     _, driver, inputs = chosen_inputs(chain)
     values = {}
-    if inputs:
-        for item in inputs:
-            j = chain.joint(item.joint)
-            if j.kind == "R":
-                if fixed in j.links:
-                    b = next(x for x in j.links if x != fixed)
-                    values[j.id] = chain.reference_direction(b, joint=j.id)
-                else:
-                    values[j.id] = math.remainder(
-                        chain.reference_direction(j.links[1], joint=j.id)
-                        - chain.reference_direction(j.links[0], joint=j.id), 360.0)
-            else:
-                g, k = j.links
-                u = unit(math.radians(j.axis))
-                ref = []
-                for link in (g, k):
-                    origin = frames[link][0]
-                    n = normal(math.radians(j.axis))
-                    h = dot(n, sub(j.at, origin))
-                    ref.append((origin[0] + h * n[0], origin[1] + h * n[1]))
-                values[j.id] = dot(sub(ref[1], ref[0]), u)
-    else:
-        pivots = sorted(j.id for j in chain.joints if j.kind == "R" and fixed in j.links
-                        and driver in j.links)
-        if not pivots:
-            raise DimensionError(f"the driver {driver!r} is not pinned to the fixed link "
-                                 f"{fixed!r} by an R joint, so its angle cannot be measured",
-                                 source=chain.source, where="[mechanism] key 'driver'")
-        values[None] = chain.reference_direction(driver, joint=pivots[0])
-
-    def document(extra_at, near, modes):
-        doc = {"name": chain.name}
-        for key in ("family", "units", "notes", "naming"):
-            if getattr(chain, key) is not None:
-                doc[key] = getattr(chain, key)
-        joints = []
-        for j in chain.joints:
-            item = {"id": j.id, "kind": j.kind, "links": list(j.links)}
-            if fixed in j.links or j.id in extra_at:
-                item["at"] = list(j.at)
-            if j.kind == "P" and (fixed in j.links or j.id in near):
-                item["axis"] = j.axis
-            item.update(line_keys.get(j.id, {}))
-            if j.id in near and j.kind == "R":
-                item["near"] = list(j.at)
-            joints.append(item)
-        doc["joints"] = joints
-        points_out = []
-        for p in chain.points:
-            item = {"id": p.id, "link": p.link}
-            if p.link == fixed:
-                item["at"] = list(p.at)
-            if p.id in near:
-                item["near"] = list(p.at)
-            points_out.append(item)
-        if points_out:
-            doc["points"] = points_out
-        doc["lengths"] = {link: ({"-".join(k): v for k, v in value.items()}
-                                 if isinstance(value, dict) else value)
-                          for link, value in lengths.items()}
-        if modes or sides:
-            doc["assembly"] = {**modes, **sides}
-        mech = {"fixed": fixed}
-        if inputs:
-            items = []
-            for item in inputs:
-                entry = {"joint": item.joint, "at": values[item.joint]}
-                if item.start is not None:
-                    entry.update({"from": item.start, "to": item.stop})
-                items.append(entry)
-            mech["inputs"] = items
+    for item in inputs or ():
+        j = chain.joint(item.joint)
+        if j.kind == "R" and fixed in j.links:
+            b = next(x for x in j.links if x != fixed)
+            values[j.id] = chain.reference_direction(b, joint=j.id)
+        elif j.kind == "R":
+            values[j.id] = math.remainder(
+                chain.reference_direction(j.links[1], joint=j.id)
+                - chain.reference_direction(j.links[0], joint=j.id), 360.0)
         else:
-            mech.update(driver=driver, at=values[None])
-        if m.omega != 1.0:
-            mech["omega"] = m.omega
-        if m.output is not None:
-            mech["output"] = m.output
-        doc["mechanism"] = mech
-        return doc
+            u, n = unit(math.radians(j.axis)), normal(math.radians(j.axis))
+            ref = []
+            for link in j.links:
+                origin = frames[link][0]
+                h = dot(n, sub(j.at, origin))
+                ref.append((origin[0] + h * n[0], origin[1] + h * n[1]))
+            values[j.id] = dot(sub(ref[1], ref[0]), u)
+    if inputs:
+        return values
+    pivots = sorted(j.id for j in chain.joints if j.kind == "R" and fixed in j.links
+                    and driver in j.links)
+    if not pivots:
+        raise DimensionError(f"the driver {driver!r} is not pinned to the fixed link "
+                             f"{fixed!r} by an R joint, so its angle cannot be measured",
+                             source=chain.source, where="[mechanism] key 'driver'")
+    return {None: chain.reference_direction(driver, joint=pivots[0])}
 
-    # assemble once with every moving joint as a rough position: that finds the modes,
-    # the groups (which keep their rough positions) and the reference points to type
-    moving = {j.id for j in chain.joints if fixed not in j.links}
-    moving |= {p.id for p in chain.points if p.link != fixed}
-    with warnings.catch_warnings():
-        warnings.simplefilter("ignore")
-        written = parse_document(document(set(), moving, {}),
-                                 source=chain.source or "<measure>")
-        pose = assemble(written.chain, [(p.id, p.link) for p in written.points],
-                        written.dimensions)
-    near = {n for group in pose.groups for link in group
-            for n in link_features(chain.joints, points, link)} & moving
-    modes = {mode.part: mode.word for mode in pose.modes
-             if ":" not in mode.part and not mode.part.startswith("group ")}
-    extra = {j.id for j in chain.joints if j.kind == "P" and fixed not in j.links
-             and math.dist(pose.joints[j.id], j.at) > 1e-9 * pose.size}
-    return document(extra, near, modes)
+
+def _document(chain, measures, extra_at, near, modes):
+    """The chain file's document: ``extra_at`` the moving joints that keep their
+    'at', ``near`` those given as rough positions, ``modes`` the dyads' modes."""
+    fixed = chain.mechanism.fixed
+    doc = {"name": chain.name}
+    for key in ("family", "units", "notes", "naming"):
+        if getattr(chain, key) is not None:
+            doc[key] = getattr(chain, key)
+    joints = []
+    for j in chain.joints:
+        item = {"id": j.id, "kind": j.kind, "links": list(j.links)}
+        if fixed in j.links or j.id in extra_at:
+            item["at"] = list(j.at)
+        if j.kind == "P" and (fixed in j.links or j.id in near):
+            item["axis"] = j.axis
+        item.update(measures.lines.get(j.id, {}))
+        if j.id in near and j.kind == "R":
+            item["near"] = list(j.at)
+        joints.append(item)
+    doc["joints"] = joints
+    points_out = []
+    for p in chain.points:
+        item = {"id": p.id, "link": p.link}
+        if p.link == fixed:
+            item["at"] = list(p.at)
+        if p.id in near:
+            item["near"] = list(p.at)
+        points_out.append(item)
+    if points_out:
+        doc["points"] = points_out
+    doc["lengths"] = {link: ({"-".join(k): v for k, v in value.items()}
+                             if isinstance(value, dict) else value)
+                      for link, value in measures.lengths.items()}
+    if modes or measures.sides:
+        doc["assembly"] = {**modes, **measures.sides}
+    doc["mechanism"] = _document_mechanism(chain, measures.values)
+    return doc
+
+
+def _document_mechanism(chain, values):
+    """The document's ``[mechanism]``: the fixed link, the driver or the inputs at
+    their values, the speed and the output."""
+    m = chain.mechanism
+    _, driver, inputs = chosen_inputs(chain)
+    mech = {"fixed": m.fixed}
+    if inputs:
+        items = []
+        for item in inputs:
+            entry = {"joint": item.joint, "at": values[item.joint]}
+            if item.start is not None:
+                entry.update({"from": item.start, "to": item.stop})
+            items.append(entry)
+        mech["inputs"] = items
+    else:
+        mech.update(driver=driver, at=values[None])
+    if m.omega != 1.0:
+        mech["omega"] = m.omega
+    if m.output is not None:
+        mech["output"] = m.output
+    return mech
