@@ -30,7 +30,7 @@ from chaingraph.geometry import (
 )
 
 
-def carried(c, entry, link):
+def carried(c, entry, link) -> tuple:
     """The rotation of ``link`` across the P joint ``c`` from the other link's pose
     entry: the same (a drawn chain's links turn together), or turned by ``c.turn``
     (links drawn each in its own frame, as the assembly from lengths places them)."""
@@ -45,7 +45,7 @@ def _known_point(pose, c, unknown):
     return world(pose, other, c.at(other))
 
 
-def line_of(pose, attach, unknown, through):
+def line_of(pose, attach, unknown, through) -> tuple:
     """The line on which the unknown link's drawn point ``through`` must stay, for a P
     attachment to a known link: (base point, direction, the unknown link's rotation)."""
     other = attach.other(unknown)
@@ -59,7 +59,7 @@ def line_of(pose, attach, unknown, through):
 
 
 # -- closed-form steps ---------------------------------------------------------------
-def single_link(step, pose):
+def single_link(step, pose) -> dict:
     """The pose of a single link's step: welded by an input, or placed from two
     attachments to known links (RR, RP, PP)."""
     u = step.links[0]
@@ -107,7 +107,7 @@ def _two_lines(pose, u, c1, c2):
     return make_pose(x, y, turn[2], turn[3], turn[4])
 
 
-def dyad_roots(step, pose, scale, *, double=False):
+def dyad_roots(step, pose, scale, *, double=False) -> tuple:
     """A dyad's assembly modes.
 
     ``double`` (a bool, or a bool per point) takes the discriminant as exactly zero:
@@ -255,7 +255,7 @@ def _rpp_roots(links, constraints, pose):
     return None, build, np.isfinite(wa[0]), None
 
 
-def initial_sign(keys, drawn):
+def initial_sign(keys, drawn) -> float:
     """The mode of the drawn pose: the one whose first point is nearest the drawing."""
     kp, km = keys
     dp = np.hypot(kp[0, 0] - drawn[0], kp[0, 1] - drawn[1])

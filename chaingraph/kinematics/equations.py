@@ -98,7 +98,7 @@ def constraint_gammas(c, pose, vel, geom=None):
     return out
 
 
-def constraint_residuals(c, pose):
+def constraint_residuals(c, pose) -> list:
     """The constraint's equations at the pose: lengths, and rotations in radians."""
     wa, wb = world(pose, c.a, c.point), world(pose, c.b, c.at(c.b))
     dphi = np.remainder(pose[c.b][2] - pose[c.a][2] - c.turn + np.pi, 2 * np.pi) - np.pi
@@ -301,12 +301,14 @@ def _point_accel(acc, vel, r):
     return acc[0] - acc[2] * r[1] - w2 * r[0], acc[1] + acc[2] * r[0] - w2 * r[1]
 
 
-_FORMS = {}
+_FORMS: dict = {}
 
 
 def group_form(step):
     form = _FORMS.get(step)
     if form is None:
+        if len(_FORMS) >= 4096:     # every assembly from lengths has its own steps
+            _FORMS.clear()
         form = _FORMS[step] = _GroupForm(step)
     return form
 
@@ -361,7 +363,7 @@ def newton_step(mat, r):
     return batched_solve(mat, -r)
 
 
-def place_translations(links, constraints, pose):
+def place_translations(links, constraints, pose) -> dict | None:
     """Links whose rotations are known, placed by their translations.
 
     ``pose`` holds each of ``links`` at its rotation (at any translation) beside the

@@ -68,7 +68,7 @@ class Constraint:
     def other(self, link):
         return self.b if link == self.a else self.a
 
-    def at(self, link):
+    def at(self, link) -> tuple[float, float]:
         """The joint's point in ``link``'s frame."""
         return self.point if self.point_b is None or link == self.a else self.point_b
 
