@@ -17,6 +17,11 @@ solution does with compass and ruler:
 * what is left (an Assur group of higher class, as in Stephenson's third inversion) is
   solved by Newton's method from the rough positions of its joints.
 
+Every step is the position kernel's, as the sweep and the single pose take it
+(:mod:`~chaingraph.kinematics.closed_form`, :mod:`~chaingraph.kinematics.equations`,
+:func:`~chaingraph.kinematics.groups.newton`, on pose entries): this module chooses the
+order of placement, the modes, and says what does not close.
+
 :func:`measure` is the inverse: the dimensions of a drawn mechanism, written as a chain
 file. :func:`chaingraph.model.snap.snap_to_lines` moves the joints of a coordinate file that lie within
 drawing-level rounding of a sliding line onto it.
