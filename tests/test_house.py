@@ -328,3 +328,27 @@ def test_the_package_says_it_is_typed_and_mypy_checks_it():
     assert project["tool"]["mypy"]["check_untyped_defs"] is True
     makefile = (PACKAGE.parent / "Makefile").read_text()
     assert "$(BIN)/python -m mypy chaingraph" in makefile.split("\ntest:")[1].split("\n\n")[0]
+
+
+def test_dyads_and_newton_steps_are_the_kernel_s_alone():
+    """One position kernel: a dyad's intersections (geometry's ``circle_circle``,
+    ``circle_line``, ``line_by_two_distances``) and Newton's step
+    (``equations.newton_step``) are named only by the kernel's modules, so that the
+    sweep, the single pose and the assembly from lengths place their dyads and groups
+    alike. Today ``closed_form`` intersects and ``equations`` and ``groups`` step
+    (``tracking``, the sweep's, calls them through these); the assembly had its own."""
+    kernel = {"geometry.py", "closed_form.py", "equations.py", "groups.py", "tracking.py"}
+    solvers = {"circle_circle", "circle_line", "line_by_two_distances", "newton_step"}
+    # the package the tests import (conftest's), wherever this file is
+    package = Path(sys.modules["chaingraph"].__file__).parent
+    found = []
+    for path in sorted(package.rglob("*.py")):
+        if path.name in kernel and path.parent.name in ("chaingraph", "kinematics"):
+            continue
+        for node in ast.walk(ast.parse(path.read_text(encoding="utf-8"))):
+            names = ([a.name for a in node.names] if isinstance(node, ast.ImportFrom)
+                     else [getattr(node, "id", None) or getattr(node, "attr", None)]
+                     if isinstance(node, (ast.Name, ast.Attribute)) else [])
+            found += [f"{path.relative_to(package.parent)}:{node.lineno} {n}"
+                      for n in names if n in solvers]
+    assert found == []

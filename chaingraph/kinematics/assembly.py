@@ -17,6 +17,11 @@ solution does with compass and ruler:
 * what is left (an Assur group of higher class, as in Stephenson's third inversion) is
   solved by Newton's method from the rough positions of its joints.
 
+Every step is the position kernel's, as the sweep and the single pose take it
+(:mod:`~chaingraph.kinematics.closed_form`, :mod:`~chaingraph.kinematics.equations`,
+:func:`~chaingraph.kinematics.groups.newton`, on pose entries): this module chooses the
+order of placement, the modes, and says what does not close.
+
 :func:`measure` is the inverse: the dimensions of a drawn mechanism, written as a chain
 file. :func:`chaingraph.model.snap.snap_to_lines` moves the joints of a coordinate file that lie within
 drawing-level rounding of a sliding line onto it.
@@ -33,24 +38,31 @@ import numpy as np
 from chaingraph._util.disjoint import DisjointSets
 from chaingraph.errors import DimensionError, PoseAdjustedWarning
 from chaingraph.geometry import (
+    FIXED,
     apply,
-    circle_circle,
-    circle_line,
     compose,
     cross,
     dot,
     fit_frame,
-    frame_from_two,
     inverse,
-    line_by_two_distances,
     line_in,
+    make_pose,
     normal,
     rotate,
     sub,
+    turn_by,
     unit,
+    unit_deg,
+    world,
 )
-from chaingraph.kinematics.equations import newton_step
-from chaingraph.kinematics.plan import build_plan
+from chaingraph.kinematics.closed_form import dyad_roots, line_of, single_link
+from chaingraph.kinematics.equations import (
+    constraint_residuals,
+    group_form,
+    place_translations,
+)
+from chaingraph.kinematics.groups import newton
+from chaingraph.kinematics.plan import Constraint, Step, build_plan
 from chaingraph.kinematics.sweep import feasible_range
 from chaingraph.model.chain import Chain, Joint, Point, chosen_inputs, line_direction
 from chaingraph.model.chainfile import parse_document, toml_text
@@ -79,7 +91,8 @@ class Assembly:
     (for a P joint the block's reference point), ``axes`` ``{P joint: degrees}``,
     ``points`` ``{id: (x, y)}``; ``modes`` the assembly mode of every part that has two;
     ``groups`` the links solved by Newton's method; ``size`` the mechanism's size;
-    ``links`` ``{link: (phi, x, y)}`` where each link's frame is (radians, position)."""
+    ``links`` each link's pose entry ``(x, y, phi, cos phi, sin phi)``: the motion
+    from the link's own frame (the one its lengths are drawn in) to the world."""
 
     joints: dict
     axes: dict
@@ -271,8 +284,24 @@ class _Model:
         return 0.0 if turn is None else turn
 
 
-# -- the assembly at given input values ---------------------------------------------------
+# -- the assembly at given input values -----------------------------------------------------
+@dataclass(frozen=True)
+class _Size:
+    """What the kernel's Newton method reads of a plan: the size its tolerances are
+    relative to."""
+
+    size: float
+
+
 class _Solver:
+    """The pose at the inputs' values: the links welded by the inputs are bodies,
+    each drawn in its own frame; the joints between bodies are the kernel's
+    constraints (a joint's point, or sliding line, on each body); the bodies are placed
+    in the order the lengths allow, each step by the position kernel (a single body,
+    a dyad, bodies whose rotations are known, a group by Newton's method), on pose
+    entries. What is the assembly's own: the order, the modes (``[assembly]``, else the
+    rough positions, else the default) and the messages."""
+
     def __init__(self, model, values):
         self.model = model
         self.chain = model.chain
@@ -281,6 +310,8 @@ class _Solver:
         self.groups = []
         self.used_modes = set()
         self._bodies()
+        self.pose = {model.fixed: FIXED}
+        self.angle = {model.fixed: 0.0}
         self._constraints()
 
     def _bodies(self):
@@ -314,8 +345,6 @@ class _Solver:
                     body[y] = (body[x][0], compose(body[x][1], rel))
                     stack.append(y)
         self.body = body
-        self.pose = {model.fixed: (0.0, 0.0, 0.0)}
-        self.angle = {model.fixed: 0.0}
 
     def _weld(self, joint, a, b, value):
         model = self.model
@@ -332,42 +361,55 @@ class _Solver:
         return (phi, ref_g[0] + value * u[0] - ref_k[0], ref_g[1] + value * u[1] - ref_k[1])
 
     def _constraints(self):
-        """Non-input joints between links as (kind, joint, (link, link))."""
+        """The joints that are not inputs, as the kernel's constraints between bodies
+        (``self.checked``, in the joints' order); ``self.constraints`` those between
+        two bodies (the others lie within a body, which the welds must close)."""
         inputs = {j.id for j, *_ in self.model.inputs}
-        out = []
+        fixed = self.model.fixed
+        self.checked = []
         for j in self.chain.joints:
             if j.id in inputs:
                 continue
             if j.kind == "R":
-                base = self.model.fixed if self.model.fixed in j.links else j.links[0]
-                out += [("R", j.id, base, x) for x in j.links if x != base]
+                base = fixed if fixed in j.links else j.links[0]
+                self.checked += [self._constraint(j, base, x) for x in j.links if x != base]
             else:
-                out.append(("P", j.id, j.links[0], j.links[1]))
-        self.constraints = out
+                self.checked.append(self._constraint(j, *j.links))
+        self.constraints = [c for c in self.checked if c.a != c.b]
 
-    # features in body frames and in the world
-    def point(self, link, name):
-        body, t = self.body[link]
-        return body, apply(t, self.model.frames[link][0][name])
+    def _constraint(self, joint, a, b):
+        """Joint ``joint`` between links a and b (for a P joint, the guide and the
+        block) as a constraint between their bodies."""
+        (ba, ta), (bb, tb) = self.body[a], self.body[b]
+        (pa, la), (pb, lb) = self.model.frames[a], self.model.frames[b]
+        if joint.kind == "R":
+            return Constraint("R", joint.id, ba, bb, apply(ta, pa[joint.id]),
+                              point_b=apply(tb, pb[joint.id]))
+        (ga, ea), (gb, eb) = line_in(ta, la[joint.id]), line_in(tb, lb[joint.id])
+        # each body's point on the line: its foot from the body's origin
+        return Constraint("P", joint.id, ba, bb, (ea * normal(ga)[0], ea * normal(ga)[1]),
+                          axis=math.degrees(ga), point_b=(eb * normal(gb)[0],
+                                                          eb * normal(gb)[1]),
+                          turn=ga - gb)
 
-    def line(self, link, name):
-        body, t = self.body[link]
-        return body, line_in(t, self.model.frames[link][1][name])
-
+    # features in the world
     def world_point(self, link, name):
-        body, q = self.point(link, name)
-        return apply(self.pose[body], q)
+        body, t = self.body[link]
+        return world(self.pose, body, apply(t, self.model.frames[link][0][name]))
 
     def world_line(self, link, name):
-        body, l = self.line(link, name)
-        return line_in(self.pose[body], l)
+        body, t = self.body[link]
+        return _line_at(self.pose[body], line_in(t, self.model.frames[link][1][name]))
 
-    def ends(self, c):
-        """The constraint's two bodies and their features in body frames."""
-        kind, j, a, b = c
-        get = self.point if kind == "R" else self.line
-        (ba, fa), (bb, fb) = get(a, j), get(b, j)
-        return (ba, fa), (bb, fb)
+    def _known(self, c, body):
+        """Where the placed body of constraint ``c`` puts the joint's point."""
+        other = c.other(body)
+        return world(self.pose, other, c.at(other))
+
+    def _place(self, placed):
+        for body, entry in placed.items():
+            self.pose[body] = tuple(float(v) for v in entry)
+            self.angle[body] = self.pose[body][2]
 
     # the solve
     def run(self):
@@ -385,95 +427,56 @@ class _Solver:
         return self
 
     def _propagate_angles(self):
+        """A sliding pair turns its two bodies together (by its ``turn`` apart)."""
         changed = True
         while changed:
             changed = False
             for c in self.constraints:
-                if c[0] != "P":
+                if c.kind != "P":
                     continue
-                (ba, la), (bb, lb) = self.ends(c)
-                for x, lx, y, ly in ((ba, la, bb, lb), (bb, lb, ba, la)):
-                    if x in self.angle and y not in self.angle:
-                        self.angle[y] = self.angle[x] + lx[0] - ly[0]
-                        changed = True
+                if c.a in self.angle and c.b not in self.angle:
+                    self.angle[c.b] = self.angle[c.a] + c.turn
+                    changed = True
+                elif c.b in self.angle and c.a not in self.angle:
+                    self.angle[c.a] = self.angle[c.b] - c.turn
+                    changed = True
 
-    def _rows(self, bodies):
-        """Linear equations in the translations of ``bodies`` (directions known):
-        rows (coefficient dict, rhs)."""
-        rows = []
-        for c in self.constraints:
-            (ba, fa), (bb, fb) = self.ends(c)
-            if ba == bb or (ba not in bodies and bb not in bodies):
-                continue
-            if any(x not in bodies and x not in self.pose for x in (ba, bb)):
-                continue
-            if c[0] == "R":
-                wa, wb = rotate(fa, self.angle[ba]), rotate(fb, self.angle[bb])
-                for k in (0, 1):
-                    coef, rhs = {}, wb[k] - wa[k]
-                    for x, sign in ((ba, 1.0), (bb, -1.0)):
-                        if x in bodies:
-                            coef[(x, k)] = coef.get((x, k), 0.0) + sign
-                        else:
-                            rhs -= sign * self.pose[x][1 + k]
-                    rows.append((coef, rhs))
-            else:
-                angle = fa[0] + self.angle[ba]
-                n = normal(angle)
-                coef, rhs = {}, fb[1] - fa[1]
-                for x, sign in ((ba, 1.0), (bb, -1.0)):
-                    for k in (0, 1):
-                        if x in bodies:
-                            coef[(x, k)] = coef.get((x, k), 0.0) + sign * n[k]
-                        else:
-                            rhs -= sign * n[k] * self.pose[x][1 + k]
-                rows.append((coef, rhs))
-        return rows
-
-    def _solve_linear(self, bodies):
-        rows = self._rows(bodies)
-        keys = [(b, k) for b in bodies for k in (0, 1)]
-        if len(rows) < len(keys):
+    def _translate(self, bodies):
+        """Bodies whose rotations are known, placed by the kernel's linear step; False
+        where their joints do not fix them yet."""
+        inside = set(bodies) | set(self.pose)
+        cons = [c for c in self.constraints if (c.a in bodies or c.b in bodies)
+                and c.a in inside and c.b in inside]
+        trial = dict(self.pose)
+        trial.update({b: make_pose(0.0, 0.0, self.angle[b]) for b in bodies})
+        placed = place_translations(list(bodies), cons, trial)
+        if placed is None:
             return False
-        A = np.array([[r[0].get(key, 0.0) for key in keys] for r in rows])
-        y = np.array([r[1] for r in rows])
-        if np.linalg.matrix_rank(A, tol=1e-9 * max(1.0, np.abs(A).max())) < len(keys):
-            return False
-        t, *_ = np.linalg.lstsq(A, y, rcond=None)
-        for b in bodies:
-            self.pose[b] = (self.angle[b], float(t[keys.index((b, 0))]),
-                            float(t[keys.index((b, 1))]))
+        self._place(placed)
         return True
 
     def _singles(self):
         """Bodies placed from placed ones alone: two points, or directions known."""
         done = False
+        scale = self.model.scale
         for b in sorted({x for x, _ in self.body.values()}):
             if b in self.pose:
                 continue
             if b in self.angle:
-                if self._solve_linear([b]):
-                    done = True
+                done = self._translate([b]) or done
                 continue
-            anchors = []
-            for c in self.constraints:
-                if c[0] != "R":
-                    continue
-                (ba, fa), (bb, fb) = self.ends(c)
-                for x, fx, y, fy in ((ba, fa, bb, fb), (bb, fb, ba, fa)):
-                    if x == b and y in self.pose and y != b:
-                        anchors.append((fx, apply(self.pose[y], fy), c[1]))
-            far = [(q, w, j) for q, w, j in anchors
-                   if math.dist(q, anchors[0][0]) > 1e-9 * self.model.scale]
+            anchors = [c for c in self._to_placed(b) if c.kind == "R"]
+            far = [c for c in anchors if math.dist(c.at(b), anchors[0].at(b)) > 1e-9 * scale]
             if anchors and far:
-                (q1, w1, j1), (q2, w2, j2) = anchors[0], far[0]
-                held, apart = math.dist(q1, q2), math.dist(w1, w2)
-                if abs(held - apart) > 1e-9 * self.model.scale:
-                    raise _DoesNotClose(j2, f"joints {j1} and {j2} are {_fmt(apart)} apart, "
-                                            f"but the link {self._name(b)} holds them "
-                                            f"{_fmt(held)} apart")
-                self.pose[b] = frame_from_two(q1, w1, q2, w2)
-                self.angle[b] = self.pose[b][0]
+                c1, c2 = anchors[0], far[0]
+                held = math.dist(c1.at(b), c2.at(b))
+                apart = math.dist(self._known(c1, b), self._known(c2, b))
+                if abs(held - apart) > 1e-9 * scale:
+                    raise _DoesNotClose(c2.joint, f"joints {c1.joint} and {c2.joint} are "
+                                                  f"{_fmt(apart)} apart, but the link "
+                                                  f"{self._name(b)} holds them {_fmt(held)} "
+                                                  "apart")
+                self._place(single_link(Step("single", (b,), (c1, c2), "RR"), self.pose))
                 done = True
         return done
 
@@ -484,10 +487,9 @@ class _Solver:
         # components of free bodies joined by constraints
         bodies = DisjointSets(free)
         for c in self.constraints:
-            (ba, _), (bb, _) = self.ends(c)
-            if ba in bodies.parent and bb in bodies.parent:
-                bodies.join(ba, bb)
-        return any(self._solve_linear(sorted(g)) for g in bodies.blocks().values()
+            if c.a in bodies.parent and c.b in bodies.parent:
+                bodies.join(c.a, c.b)
+        return any(self._translate(sorted(g)) for g in bodies.blocks().values()
                    if len(g) > 1)
 
     def _name(self, body):
@@ -495,54 +497,36 @@ class _Solver:
         return " + ".join(repr(x) for x in links)
 
     def _to_placed(self, b):
-        out = []
-        for c in self.constraints:
-            (ba, fa), (bb, fb) = self.ends(c)
-            if ba == b and bb in self.pose and bb != b:
-                out.append((c, fa, bb, fb))
-            elif bb == b and ba in self.pose and ba != b:
-                out.append((c, fb, ba, fa))
-        return out
+        return [c for c in self.constraints if b in (c.a, c.b) and c.other(b) in self.pose]
 
     def _between(self, b1, b2):
-        out = []
-        for c in self.constraints:
-            (ba, fa), (bb, fb) = self.ends(c)
-            if (ba, bb) == (b1, b2):
-                out.append((c, fa, fb))
-            elif (ba, bb) == (b2, b1):
-                out.append((c, fb, fa))
-        return out
+        return [c for c in self.constraints if {c.a, c.b} == {b1, b2}]
 
     def _dyads(self):
         free = sorted(b for b in {x for x, _ in self.body.values()} if b not in self.pose)
         for i, b1 in enumerate(free):
             for b2 in free[i + 1:]:
                 link = self._between(b1, b2)
-                if len(link) != 1:
-                    continue
                 one, two = self._to_placed(b1), self._to_placed(b2)
-                if len(one) != 1 or len(two) != 1:
+                if len(link) != 1 or len(one) != 1 or len(two) != 1:
                     continue
-                kinds = one[0][0][0] + link[0][0][0] + two[0][0][0]
-                if kinds == "RRR" and b1 not in self.angle and b2 not in self.angle:
-                    self._rrr(b1, b2, one[0], link[0], two[0])
+                kinds = one[0].kind + link[0].kind + two[0].kind
+                turning = (b1 not in self.angle, b2 not in self.angle)
+                if kinds in ("RRR", "RPR") and turning == (True, True):
+                    step = Step("dyad", (b1, b2), (one[0], two[0], link[0]), kinds)
+                    (self._rrr if kinds == "RRR" else self._rpr)(step)
                     return True
-                if kinds == "RRP" and b1 not in self.angle and b2 in self.angle:
-                    self._rrp(b1, b2, one[0], link[0], two[0])
+                if kinds == "RRP" and turning == (True, False):
+                    self._rrp(Step("dyad", (b1, b2), (one[0], two[0], link[0]), "RRP"))
                     return True
-                if kinds == "PRR" and b2 not in self.angle and b1 in self.angle:
-                    c, fa, fb = link[0]
-                    self._rrp(b2, b1, two[0], (c, fb, fa), one[0])
-                    return True
-                if kinds == "RPR" and b1 not in self.angle and b2 not in self.angle:
-                    self._rpr(b1, b2, one[0], link[0], two[0])
+                if kinds == "PRR" and turning == (False, True):
+                    self._rrp(Step("dyad", (b2, b1), (two[0], one[0], link[0]), "RRP"))
                     return True
         return False
 
     def _choose(self, part, reference, candidates, words):
-        """Pick one of two candidate placements ``{body: pose}``: the mode given in
-        ``[assembly]``, else the one nearest the sketched positions, else the first."""
+        """Pick one of two candidate placements ``{body: pose entry}``: the mode given
+        in ``[assembly]``, else the one nearest the sketched positions, else the first."""
         given = self.model.dims.modes.get(part)
         self.used_modes.add(part)
         if isinstance(given, str):
@@ -559,9 +543,7 @@ class _Solver:
             else:
                 k, source = 0, "default"
         self.modes.append(Mode(part, words[k], reference, source))
-        self.pose.update(candidates[k])
-        for b, p in candidates[k].items():
-            self.angle[b] = p[0]
+        self._place(candidates[k])
 
     def _distance_to_sketch(self, placement):
         total, seen = 0.0, False
@@ -572,115 +554,87 @@ class _Solver:
             pts, lines = self.model.frames[link]
             for name, p in pts.items():
                 if name in sketch:
-                    total += math.dist(apply(placement[body], apply(t, p)), sketch[name]) ** 2
+                    total += math.dist(world(placement, body, apply(t, p)), sketch[name]) ** 2
                     seen = True
             for name, line in lines.items():
                 axis = self.model.dims.axes.get(name)
                 if axis is not None and self.chain.joint(name).links[0] == link:
-                    angle = line[0] + t[0] + placement[body][0]
+                    angle = line[0] + t[0] + placement[body][2]
                     turn = math.remainder(angle - math.radians(axis), 2 * math.pi)
                     total += (turn * self.model.scale) ** 2
                     seen = True
         return total if seen else None
 
-    def _rrr(self, b1, b2, one, link, two):
-        (c1, q1, _, f1), (c12, s1, s2), (c2, q2, _, f2) = one, link, two
-        w1, w2 = apply(self.pose[one[2]], f1), apply(self.pose[two[2]], f2)
-        r1, r2 = math.dist(q1, s1), math.dist(q2, s2)
-        j = c12[1]
-        d = math.dist(w1, w2)
-        known = sorted([(c1[1], w1), (c2[1], w2)])
+    def _roots(self, step):
+        """The kernel's two placements of a dyad ``(build(+1), build(-1))``, their
+        joint points (or rotations), and whether it closes."""
+        keys, build, ok, _ = dyad_roots(step, self.pose, self.model.scale)
+        return (build(1.0), build(-1.0)), keys, bool(ok)
+
+    def _rrr(self, step):
+        """Two bodies turning about placed joints, pinned to each other."""
+        (b1, b2), (c1, c2, c12) = step.links, step.constraints
+        w1, w2 = self._known(c1, b1), self._known(c2, b2)
+        r1, r2 = math.dist(c1.at(b1), c12.at(b1)), math.dist(c2.at(b2), c12.at(b2))
+        j, d = c12.joint, math.dist(w1, w2)
         if d == 0:
-            raise _DoesNotClose(j, f"the dyad at joint {j}: its joints {c1[1]} and {c2[1]} "
-                                   "are at one place")
-        mid, across, h2 = circle_circle(w1, r1, w2, r2)
-        if h2 < -1e-12 * max(r1, r2, d) * max(r1, r2, d):
+            raise _DoesNotClose(j, f"the dyad at joint {j}: its joints {c1.joint} and "
+                                   f"{c2.joint} are at one place")
+        placements, keys, ok = self._roots(step)
+        if not ok:
             raise _DoesNotClose(j, f"the dyad of links {self._name(b1)} and {self._name(b2)} "
-                                   f"at joint {j} does not close: {c1[1]} and {c2[1]} are "
-                                   f"{_fmt(d)} apart, and the links reach from "
+                                   f"at joint {j} does not close: {c1.joint} and {c2.joint} "
+                                   f"are {_fmt(d)} apart, and the links reach from "
                                    f"{_fmt(abs(r1 - r2))} to {_fmt(r1 + r2)}")
-        h = math.sqrt(max(h2, 0.0))
-        (ka, wa), (kb, wb) = known
-        cands = []
-        for sign in (1.0, -1.0):
-            p = (mid[0] + sign * h * across[0], mid[1] + sign * h * across[1])
-            side = cross(sub(wb, wa), sub(p, wa))
-            cands.append((-side, p))     # left (positive side) first
-        cands.sort(key=lambda t: t[0])
-        placements = [{b1: frame_from_two(q1, w1, s1, p), b2: frame_from_two(q2, w2, s2, p)}
-                      for _, p in cands]
-        self._choose(j, f"of the line {ka}\u2192{kb}", placements, ("left", "right"))
+        (ka, wa), (kb, wb) = sorted([(c1.joint, w1), (c2.joint, w2)])
+        sides = [cross(sub(wb, wa), sub(k, wa)) for k in keys]
+        left = 1 if sides[1] > sides[0] else 0
+        self._choose(j, f"of the line {ka}\u2192{kb}", [placements[left], placements[1 - left]],
+                     ("left", "right"))
 
-    def _rrp(self, b1, b2, one, link, two):
+    def _rrp(self, step):
         """b1 turns about a placed joint; b2 (direction known) slides on a placed line;
-        they share an R joint."""
-        (c1, q1, _, f1), (c12, s1, s2), (c2, l2, o2, lo) = one, link, two
-        w1 = apply(self.pose[one[2]], f1)
-        angle2 = self.angle[b2]
-        world = line_in(self.pose[o2], lo)
-        psi = world[0]
-        n, u = normal(psi), unit(psi)
-        # n . t2 = c - e2, where b2's line in its body frame is l2
-        s2w = rotate(s2, angle2)
-        c_line = dot(n, s2w) + world[1] - l2[1]
-        r = math.dist(q1, s1)
-        h = c_line - dot(n, w1)
-        foot, _, a2 = circle_line(w1, r, (c_line * n[0], c_line * n[1]), u)
-        j = c12[1]
-        if a2 < -1e-12 * max(r, abs(h)) * max(r, abs(h)):
+        they share an R joint. The kernel's first root is ahead along the line."""
+        (b1, b2), (c1, c2, c12) = step.links, step.constraints
+        placements, _, ok = self._roots(step)
+        j = c12.joint
+        if not ok:
+            base, u, _ = line_of(self.pose, c2, b2, c12.at(b2))
+            h = abs(cross(u, sub(self._known(c1, b1), base)))
             raise _DoesNotClose(j, f"the dyad of links {self._name(b1)} and {self._name(b2)} "
-                                   f"at joint {j} does not close: {c1[1]} is {_fmt(abs(h))} "
+                                   f"at joint {j} does not close: {c1.joint} is {_fmt(h)} "
                                    f"from the line that {j} slides on, farther than "
-                                   f"{_fmt(r)}")
-        along = math.sqrt(max(a2, 0.0))
-        placements = []
-        for sign in (1.0, -1.0):
-            p = (foot[0] + sign * along * u[0], foot[1] + sign * along * u[1])
-            placements.append({b1: frame_from_two(q1, w1, s1, p),
-                               b2: (angle2, p[0] - s2w[0], p[1] - s2w[1])})
-        self._choose(j, f"of the foot of {c1[1]} along the sliding line of {c2[1]}",
-                     placements, ("ahead", "behind"))
+                                   f"{_fmt(math.dist(c1.at(b1), c12.at(b1)))}")
+        self._choose(j, f"of the foot of {c1.joint} along the sliding line of {c2.joint}",
+                     list(placements), ("ahead", "behind"))
 
-    def _rpr(self, b1, b2, one, link, two):
+    def _rpr(self, step):
         """Two bodies joined by a sliding pair, each turning about a placed joint."""
-        (c1, q1, _, f1), (c12, l1, l2), (c2, q2, _, f2) = one, link, two
-        A, B = apply(self.pose[one[2]], f1), apply(self.pose[two[2]], f2)
-        h1 = l1[1] - dot(normal(l1[0]), q1)
-        h2 = l2[1] - dot(normal(l2[0]), q2)
-        d = math.dist(A, B)
-        j = c12[1]
+        (b1, b2), (c1, c2, c12) = step.links, step.constraints
+        A, B = self._known(c1, b1), self._known(c2, b2)
+        d, j = math.dist(A, B), c12.joint
         if d == 0:
-            raise _DoesNotClose(j, f"the sliding pair {j}: joints {c1[1]} and {c2[1]} are at "
-                                   "one place")
-        u, ratio, raw = line_by_two_distances(B, A, h2 - h1)
-        if raw < -2e-12:
+            raise _DoesNotClose(j, f"the sliding pair {j}: joints {c1.joint} and {c2.joint} "
+                                   "are at one place")
+        placements, _, ok = self._roots(step)
+        if not ok:
+            h1, h2 = (_off_line(c12, body, c.at(body)) for body, c in ((b1, c1), (b2, c2)))
             raise _DoesNotClose(j, f"the sliding pair {j} does not close: the line must pass "
-                                   f"{_fmt(abs(h1))} from {c1[1]} and {_fmt(abs(h2))} from "
-                                   f"{c2[1]}, which are only {_fmt(d)} apart")
-        # the line's normal is the centre line B->A turned by +-spread
-        delta = math.atan2(u[1], u[0])
-        spread = math.atan2(math.sqrt(max(raw, 0.0)), ratio)
-        guide_first = self.chain.joint(j).links[0] in [x for x, (b, _) in self.body.items()
-                                                        if b == b1]
-        placements = []
-        for psi in (delta + spread - math.pi / 2, delta - spread - math.pi / 2):
-            phi1, phi2 = psi - l1[0], psi - l2[0]
-            r1, r2 = rotate(q1, phi1), rotate(q2, phi2)
-            place = {b1: (phi1, A[0] - r1[0], A[1] - r1[1]),
-                     b2: (phi2, B[0] - r2[0], B[1] - r2[1])}
-            pins = sub(B, A) if guide_first else sub(A, B)
-            placements.append((-dot(pins, unit(psi)), place))
-        placements.sort(key=lambda t: t[0])
-        guide, block = (c1[1], c2[1]) if guide_first else (c2[1], c1[1])
+                                   f"{_fmt(h1)} from {c1.joint} and {_fmt(h2)} from "
+                                   f"{c2.joint}, which are only {_fmt(d)} apart")
+        guide_first = c12.a == b1
+        pins = sub(B, A) if guide_first else sub(A, B)
+        ahead = sorted(placements, key=lambda p: -dot(
+            pins, turn_by(p[c12.a], unit_deg(c12.axis))))
+        guide, block = (c1.joint, c2.joint) if guide_first else (c2.joint, c1.joint)
         self._choose(j, f"of {guide} along the sliding line, for the pin {block}",
-                     [p for _, p in placements], ("ahead", "behind"))
+                     ahead, ("ahead", "behind"))
 
-    def _group(self, free):
-        """Bodies left after every closed-form step: Newton's method from the rough
-        positions of their joints."""
+    def _guess(self, free):
+        """Each free body's pose entry from the rough positions of its joints (and
+        the placed joints it is pinned to)."""
         model = self.model
-        guess = {}
-        lacking = []
+        guess, lacking = {}, []
         for b in free:
             pairs = []
             for link, (body, t) in self.body.items():
@@ -689,15 +643,15 @@ class _Solver:
                 for name, p in model.frames[link][0].items():
                     if name in model.sketch:
                         pairs.append((apply(t, p), model.sketch[name]))
-            for c, fb, other, fo in self._to_placed(b):
-                if c[0] == "R":
-                    pairs.append((fb, apply(self.pose[other], fo)))
+            pairs += [(c.at(b), self._known(c, b)) for c in self._to_placed(b)
+                      if c.kind == "R"]
             distinct = [pr for pr in pairs if math.dist(pr[0], pairs[0][0]) > 1e-9 * model.scale]
             if b in self.angle and pairs:
                 r = rotate(pairs[0][0], self.angle[b])
-                guess[b] = (self.angle[b], pairs[0][1][0] - r[0], pairs[0][1][1] - r[1])
+                guess[b] = make_pose(pairs[0][1][0] - r[0], pairs[0][1][1] - r[1], self.angle[b])
             elif pairs and distinct:
-                guess[b] = fit_frame(pairs)
+                phi, x, y = fit_frame(pairs)
+                guess[b] = make_pose(x, y, phi)
             else:
                 lacking.append(b)
         if lacking:
@@ -709,58 +663,38 @@ class _Solver:
                 "be assembled dyad by dyad (an Assur group of higher class): give rough "
                 f"positions of its joints ({', '.join(joints)}) with near = [x, y] to "
                 "choose its assembly", source=self.chain.source, part=free[0])
-        x = np.array([v for b in free for v in guess[b]])
-        column = {b: 3 * i for i, b in enumerate(free)}
+        return guess
 
-        def residual(x, jacobian=False):
-            """The residuals of the constraints on the group, and their Jacobian in
-            the bodies' (phi, x, y)."""
-            for i, b in enumerate(free):
-                self.pose[b] = tuple(x[3 * i:3 * i + 3])
-            res, rows = [], []
-            for c in self.constraints:
-                (ba, fa), (bb, fb) = self.ends(c)
-                if ba == bb or (ba not in free and bb not in free):
-                    continue
-                if ba not in self.pose or bb not in self.pose:
-                    continue
-                r, da, db = _residual(c[0], self.pose[ba], fa, self.pose[bb], fb,
-                                      model.scale)
-                res += r
-                if jacobian:
-                    block = np.zeros((2, x.size))
-                    for body, d in ((ba, da), (bb, db)):
-                        if body in column:
-                            block[:, column[body]:column[body] + 3] += d
-                    rows.append(block)
-            return np.array(res), (np.vstack(rows) if jacobian else None)
-
-        for _ in range(60):
-            r, jac = residual(x, jacobian=True)
-            if np.abs(r).max() <= 1e-13 * model.scale:
-                break
-            x = x + newton_step(jac[None], r[None])[0]
-        r, _ = residual(x)
-        if not np.all(np.isfinite(r)) or np.abs(r).max() > 1e-9 * model.scale:
-            for b in free:
-                self.pose.pop(b, None)
+    def _group(self, free):
+        """Bodies left after every closed-form step: the kernel's group, by Newton's
+        method from the rough positions of their joints."""
+        guess = self._guess(free)
+        inside = set(free) | set(self.pose)
+        cons = tuple(c for c in self.constraints if (c.a in free or c.b in free)
+                     and c.a in inside and c.b in inside)
+        step = Step("group", tuple(free), cons, f"group of {len(free)} links")
+        form = group_form(step)
+        q0 = np.array([[v for b in form.bodies for v in guess[b][:3]]])
+        q, ok = newton(_Size(self.model.scale), step, self.pose, q0, iterations=60)
+        if not ok[0]:
             raise _DoesNotClose(free[0], f"the group of links "
                                          f"{', '.join(self._name(b) for b in free)} does not "
                                          "close near the rough positions given")
-        for b in free:
-            self.angle[b] = self.pose[b][0]
+        placed = form.complete(form.set_bodies(self.pose, q))
+        self._place({b: tuple(np.asarray(v).reshape(-1)[0] for v in placed[b]) for b in free})
         self.groups.append(tuple(x for x, (body, _) in self.body.items() if body in free))
         self.modes.append(Mode("group " + "/".join(self._name(b) for b in free), "near",
                                "the rough positions given", "sketch"))
 
     def _check(self):
-        for c in self.constraints:
-            (ba, fa), (bb, fb) = self.ends(c)
-            res, _, _ = _residual(c[0], self.pose[ba], fa, self.pose[bb], fb,
-                                  self.model.scale)
-            if max(abs(v) for v in res) > 1e-9 * self.model.scale:
-                raise _DoesNotClose(c[1], f"joint {c[1]} does not close (off by "
-                                          f"{_fmt(max(abs(v) for v in res))})")
+        scale = self.model.scale
+        for c in self.checked:
+            eqs = constraint_residuals(c, self.pose)
+            off = max(abs(float(e)) * (scale if c.kind == "P" and k == 0 else 1.0)
+                      for k, e in enumerate(eqs))
+            if off > 1e-9 * scale:
+                raise _DoesNotClose(c.joint, f"joint {c.joint} does not close (off by "
+                                             f"{_fmt(off)})")
         for j, x, y, rel in self.loops:
             a = compose(self.body[x][1], rel)
             b = self.body[y][1]
@@ -770,24 +704,17 @@ class _Solver:
                                           f"fit (at input {j.id})")
 
 
-def _residual(kind, pa, fa, pb, fb, scale):
-    """A constraint's two residuals between bodies at frames ``pa``, ``pb`` (``fa``,
-    ``fb`` the joint's point, or the sliding line, in each body), and their derivatives
-    in each body's (phi, x, y): ``(residuals, d/d pa, d/d pb)``. An R joint: the
-    points' difference; a P joint: the lines' turn (times the size) and offset."""
-    if kind == "R":
-        ra, rb = rotate(fa, pa[0]), rotate(fb, pb[0])
-        res = [ra[0] + pa[1] - rb[0] - pb[1], ra[1] + pa[2] - rb[1] - pb[2]]
-        da = np.array([[-ra[1], 1.0, 0.0], [ra[0], 0.0, 1.0]])
-        db = -np.array([[-rb[1], 1.0, 0.0], [rb[0], 0.0, 1.0]])
-        return res, da, db
-    la, lb = line_in(pa, fa), line_in(pb, fb)
-    res = [math.remainder(la[0] - lb[0], 2 * math.pi) * scale, la[1] - lb[1]]
+def _line_at(entry, line):
+    """A body's line ``(angle, offset)`` where its pose entry puts it."""
+    angle = line[0] + entry[2]
+    return (angle, line[1] + dot(normal(angle), (entry[0], entry[1])))
 
-    def slope(frame, line):
-        n, u = normal(line[0]), unit(line[0])
-        return np.array([[scale, 0.0, 0.0], [-dot(u, (frame[1], frame[2])), n[0], n[1]]])
-    return res, slope(pa, la), -slope(pb, lb)
+
+def _off_line(c, body, p):
+    """How far the point ``p`` of ``body`` is from the sliding line of the P joint
+    ``c`` on that body."""
+    axis = math.radians(c.axis) - (0.0 if body == c.a else c.turn)
+    return abs(cross(unit(axis), sub(p, c.at(body))))
 
 
 # -- the public functions ----------------------------------------------------------------
@@ -918,7 +845,7 @@ def _correct_inputs(model, result):
                     Joint(x.id, x.kind, x.links, at=result.joints[x.id],
                           axis=result.axes.get(x.id)) for x in model.chain.joints))
             got = math.radians(placed.reference_direction(link, joint=j.id))
-            used = result.links[link][0] + model._beta(link, j)
+            used = result.links[link][2] + model._beta(link, j)
             error = math.remainder(got - used, 2 * math.pi)
             if abs(error) > 1e-12:
                 model.corrections[link] = model.corrections.get(link, 0.0) + error
@@ -1004,7 +931,7 @@ def _pose(model, solver):
     joints, axes = {}, {}
     for j in chain.joints:
         if j.kind == "R":
-            joints[j.id] = solver.world_point(j.links[0], j.id)
+            joints[j.id] = _xy(solver.world_point(j.links[0], j.id))
     for j in chain.joints:
         if j.kind != "P":
             continue
@@ -1025,13 +952,19 @@ def _pose(model, solver):
             ref = _reference(model, solver, j, joints)
         h = offset - dot(n, ref)
         # a pin on the line is the reference point itself, to the last digit
-        joints[j.id] = (tuple(ref) if abs(h) <= 1e-12 * model.scale
-                        else (ref[0] + h * n[0], ref[1] + h * n[1]))
-    pts = {pid: solver.world_point(link, pid) for pid, link in model.points}
+        joints[j.id] = _xy(ref if abs(h) <= 1e-12 * model.scale
+                           else (ref[0] + h * n[0], ref[1] + h * n[1]))
+    pts = {pid: _xy(solver.world_point(link, pid)) for pid, link in model.points}
     size = size_of({**joints, **pts})
     modes = tuple(model.shape_modes) + tuple(solver.modes)
-    frames = {link: compose(solver.pose[body], t) for link, (body, t) in solver.body.items()}
-    return Assembly(joints, axes, pts, modes, tuple(solver.groups), size, frames)
+    links = {link: make_pose(*world(solver.pose, body, (t[1], t[2])),
+                             solver.pose[body][2] + t[0])
+             for link, (body, t) in solver.body.items()}
+    return Assembly(joints, axes, pts, modes, tuple(solver.groups), size, links)
+
+
+def _xy(p):
+    return (float(p[0]), float(p[1]))
 
 
 def _reference(model, solver, joint, placed):
@@ -1048,7 +981,7 @@ def _reference(model, solver, joint, placed):
         if candidates:
             return placed[candidates[0][1]]
     body, t = solver.body[block]
-    return apply(solver.pose[body], (t[1], t[2]))
+    return world(solver.pose, body, (t[1], t[2]))
 
 
 def _check_typed(model, result):
@@ -1164,20 +1097,58 @@ def measure(chain):
     return toml_text(measured_document(chain))
 
 
+@dataclass(frozen=True)
+class _Measures:
+    """What a drawn mechanism's pose gives its chain file: ``lengths`` per moving link,
+    ``sides`` the side of each further joint of a link with more than two (right only:
+    left is the default), ``lines`` each P joint's angle and offset on its moving links,
+    ``values`` each input's value (``None`` for the driver)."""
+
+    lengths: dict
+    sides: dict
+    lines: dict
+    values: dict
+
+
 def measured_document(chain) -> dict:
     """The document (a dict, as a chain file reads) that :func:`measure` writes: the
     mechanism by its lengths, sliding lines, inputs' values and assembly modes."""
-    m = chain.mechanism
-    if m is None:
+    if chain.mechanism is None:
         raise DimensionError("measuring needs [mechanism] (the fixed link and the input)",
                              source=chain.source, where="[mechanism]")
     if not chain.has_pose:
         raise DimensionError("measuring needs the drawn pose ('at' of every joint)",
                              source=chain.source)
-    fixed = m.fixed
+    fixed = chain.mechanism.fixed
+    where = {j.id: j.at for j in chain.joints} | {p.id: p.at for p in chain.points}
+    lengths, sides = _measured_lengths(chain, fixed, where)
+    frames = {link: _frame_of(chain, link, fixed) for link in chain.links}
+    measures = _Measures(lengths, sides, _measured_lines(chain, fixed, frames, where),
+                         _measured_values(chain, fixed, frames))
+    # assemble once with every moving joint as a rough position: that finds the modes,
+    # the groups (which keep their rough positions) and the reference points to type
+    moving = {j.id for j in chain.joints if fixed not in j.links}
+    moving |= {p.id for p in chain.points if p.link != fixed}
+    with warnings.catch_warnings():
+        warnings.simplefilter("ignore")
+        written = parse_document(_document(chain, measures, set(), moving, {}),
+                                 source=chain.source or "<measure>")
+        pose = assemble(written.chain, [(p.id, p.link) for p in written.points],
+                        written.dimensions)
     points = [(p.id, p.link) for p in chain.points]
-    where = {j.id: j.at for j in chain.joints}
-    where.update({p.id: p.at for p in chain.points})
+    near = {n for group in pose.groups for link in group
+            for n in link_features(chain.joints, points, link)} & moving
+    modes = {mode.part: mode.word for mode in pose.modes
+             if ":" not in mode.part and not mode.part.startswith("group ")}
+    extra = {j.id for j in chain.joints if j.kind == "P" and fixed not in j.links
+             and math.dist(pose.joints[j.id], j.at) > 1e-9 * pose.size}
+    return _document(chain, measures, extra, near, modes)
+
+
+def _measured_lengths(chain, fixed, where):
+    """Every moving link's lengths (one number for two joints or points, else the
+    distances from the first two to each other one) and the sides of the others."""
+    points = [(p.id, p.link) for p in chain.points]
     lengths, sides = {}, {}
     for link in chain.links:
         if link == fixed:
@@ -1202,8 +1173,13 @@ def measured_document(chain) -> dict:
             if cross(sub(where[f1], where[f0]), sub(where[f], where[f0])) < 0:
                 sides.setdefault(link, {})[f] = "right"
         lengths[link] = table
-    frames = {link: _frame_of(chain, link, fixed) for link in chain.links}
-    line_keys = {}
+    return lengths, sides
+
+
+def _measured_lines(chain, fixed, frames, where):
+    """Each P joint's sliding line on its moving links: its angle and offset in the
+    link's frame (the block's as ``block_angle``, ``block_offset``), where not zero."""
+    out = {}
     for j in chain.joints:
         if j.kind != "P":
             continue
@@ -1217,103 +1193,100 @@ def measured_document(chain) -> dict:
             keys = ("angle", "offset") if role == 0 else ("block_angle", "block_offset")
             for key, value in zip(keys, (angle, offset)):
                 if abs(value) > 1e-12 * size_of(where):
-                    line_keys.setdefault(j.id, {})[key] = value
+                    out.setdefault(j.id, {})[key] = value
+    return out
+
+
+def _measured_values(chain, fixed, frames):
+    """Each input's value in the drawn pose (keyed by its joint), or the driver's angle
+    (keyed None)."""
     _, driver, inputs = chosen_inputs(chain)
     values = {}
-    if inputs:
-        for item in inputs:
-            j = chain.joint(item.joint)
-            if j.kind == "R":
-                if fixed in j.links:
-                    b = next(x for x in j.links if x != fixed)
-                    values[j.id] = chain.reference_direction(b, joint=j.id)
-                else:
-                    values[j.id] = math.remainder(
-                        chain.reference_direction(j.links[1], joint=j.id)
-                        - chain.reference_direction(j.links[0], joint=j.id), 360.0)
-            else:
-                g, k = j.links
-                u = unit(math.radians(j.axis))
-                ref = []
-                for link in (g, k):
-                    origin = frames[link][0]
-                    n = normal(math.radians(j.axis))
-                    h = dot(n, sub(j.at, origin))
-                    ref.append((origin[0] + h * n[0], origin[1] + h * n[1]))
-                values[j.id] = dot(sub(ref[1], ref[0]), u)
-    else:
-        pivots = sorted(j.id for j in chain.joints if j.kind == "R" and fixed in j.links
-                        and driver in j.links)
-        if not pivots:
-            raise DimensionError(f"the driver {driver!r} is not pinned to the fixed link "
-                                 f"{fixed!r} by an R joint, so its angle cannot be measured",
-                                 source=chain.source, where="[mechanism] key 'driver'")
-        values[None] = chain.reference_direction(driver, joint=pivots[0])
-
-    def document(extra_at, near, modes):
-        doc = {"name": chain.name}
-        for key in ("family", "units", "notes", "naming"):
-            if getattr(chain, key) is not None:
-                doc[key] = getattr(chain, key)
-        joints = []
-        for j in chain.joints:
-            item = {"id": j.id, "kind": j.kind, "links": list(j.links)}
-            if fixed in j.links or j.id in extra_at:
-                item["at"] = list(j.at)
-            if j.kind == "P" and (fixed in j.links or j.id in near):
-                item["axis"] = j.axis
-            item.update(line_keys.get(j.id, {}))
-            if j.id in near and j.kind == "R":
-                item["near"] = list(j.at)
-            joints.append(item)
-        doc["joints"] = joints
-        points_out = []
-        for p in chain.points:
-            item = {"id": p.id, "link": p.link}
-            if p.link == fixed:
-                item["at"] = list(p.at)
-            if p.id in near:
-                item["near"] = list(p.at)
-            points_out.append(item)
-        if points_out:
-            doc["points"] = points_out
-        doc["lengths"] = {link: ({"-".join(k): v for k, v in value.items()}
-                                 if isinstance(value, dict) else value)
-                          for link, value in lengths.items()}
-        if modes or sides:
-            doc["assembly"] = {**modes, **sides}
-        mech = {"fixed": fixed}
-        if inputs:
-            items = []
-            for item in inputs:
-                entry = {"joint": item.joint, "at": values[item.joint]}
-                if item.start is not None:
-                    entry.update({"from": item.start, "to": item.stop})
-                items.append(entry)
-            mech["inputs"] = items
+    for item in inputs or ():
+        j = chain.joint(item.joint)
+        if j.kind == "R" and fixed in j.links:
+            b = next(x for x in j.links if x != fixed)
+            values[j.id] = chain.reference_direction(b, joint=j.id)
+        elif j.kind == "R":
+            values[j.id] = math.remainder(
+                chain.reference_direction(j.links[1], joint=j.id)
+                - chain.reference_direction(j.links[0], joint=j.id), 360.0)
         else:
-            mech.update(driver=driver, at=values[None])
-        if m.omega != 1.0:
-            mech["omega"] = m.omega
-        if m.output is not None:
-            mech["output"] = m.output
-        doc["mechanism"] = mech
-        return doc
+            u, n = unit(math.radians(j.axis)), normal(math.radians(j.axis))
+            ref = []
+            for link in j.links:
+                origin = frames[link][0]
+                h = dot(n, sub(j.at, origin))
+                ref.append((origin[0] + h * n[0], origin[1] + h * n[1]))
+            values[j.id] = dot(sub(ref[1], ref[0]), u)
+    if inputs:
+        return values
+    pivots = sorted(j.id for j in chain.joints if j.kind == "R" and fixed in j.links
+                    and driver in j.links)
+    if not pivots:
+        raise DimensionError(f"the driver {driver!r} is not pinned to the fixed link "
+                             f"{fixed!r} by an R joint, so its angle cannot be measured",
+                             source=chain.source, where="[mechanism] key 'driver'")
+    return {None: chain.reference_direction(driver, joint=pivots[0])}
 
-    # assemble once with every moving joint as a rough position: that finds the modes,
-    # the groups (which keep their rough positions) and the reference points to type
-    moving = {j.id for j in chain.joints if fixed not in j.links}
-    moving |= {p.id for p in chain.points if p.link != fixed}
-    with warnings.catch_warnings():
-        warnings.simplefilter("ignore")
-        written = parse_document(document(set(), moving, {}),
-                                 source=chain.source or "<measure>")
-        pose = assemble(written.chain, [(p.id, p.link) for p in written.points],
-                        written.dimensions)
-    near = {n for group in pose.groups for link in group
-            for n in link_features(chain.joints, points, link)} & moving
-    modes = {mode.part: mode.word for mode in pose.modes
-             if ":" not in mode.part and not mode.part.startswith("group ")}
-    extra = {j.id for j in chain.joints if j.kind == "P" and fixed not in j.links
-             and math.dist(pose.joints[j.id], j.at) > 1e-9 * pose.size}
-    return document(extra, near, modes)
+
+def _document(chain, measures, extra_at, near, modes):
+    """The chain file's document: ``extra_at`` the moving joints that keep their
+    'at', ``near`` those given as rough positions, ``modes`` the dyads' modes."""
+    fixed = chain.mechanism.fixed
+    doc = {"name": chain.name}
+    for key in ("family", "units", "notes", "naming"):
+        if getattr(chain, key) is not None:
+            doc[key] = getattr(chain, key)
+    joints = []
+    for j in chain.joints:
+        item = {"id": j.id, "kind": j.kind, "links": list(j.links)}
+        if fixed in j.links or j.id in extra_at:
+            item["at"] = list(j.at)
+        if j.kind == "P" and (fixed in j.links or j.id in near):
+            item["axis"] = j.axis
+        item.update(measures.lines.get(j.id, {}))
+        if j.id in near and j.kind == "R":
+            item["near"] = list(j.at)
+        joints.append(item)
+    doc["joints"] = joints
+    points_out = []
+    for p in chain.points:
+        item = {"id": p.id, "link": p.link}
+        if p.link == fixed:
+            item["at"] = list(p.at)
+        if p.id in near:
+            item["near"] = list(p.at)
+        points_out.append(item)
+    if points_out:
+        doc["points"] = points_out
+    doc["lengths"] = {link: ({"-".join(k): v for k, v in value.items()}
+                             if isinstance(value, dict) else value)
+                      for link, value in measures.lengths.items()}
+    if modes or measures.sides:
+        doc["assembly"] = {**modes, **measures.sides}
+    doc["mechanism"] = _document_mechanism(chain, measures.values)
+    return doc
+
+
+def _document_mechanism(chain, values):
+    """The document's ``[mechanism]``: the fixed link, the driver or the inputs at
+    their values, the speed and the output."""
+    m = chain.mechanism
+    _, driver, inputs = chosen_inputs(chain)
+    mech = {"fixed": m.fixed}
+    if inputs:
+        items = []
+        for item in inputs:
+            entry = {"joint": item.joint, "at": values[item.joint]}
+            if item.start is not None:
+                entry.update({"from": item.start, "to": item.stop})
+            items.append(entry)
+        mech["inputs"] = items
+    else:
+        mech.update(driver=driver, at=values[None])
+    if m.omega != 1.0:
+        mech["omega"] = m.omega
+    if m.output is not None:
+        mech["output"] = m.output
+    return mech

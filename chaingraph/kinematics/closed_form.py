@@ -17,40 +17,61 @@ from chaingraph.geometry import (
     circle_circle,
     circle_line,
     clamp_disc,
+    dot,
     fit_two_points,
     from_point,
     line_by_two_distances,
     make_pose,
+    rotate,
+    sub,
     turn_by,
     unit_deg,
     world,
 )
 
 
-def line_of(pose, attach, unknown, through):
+def carried(c, entry, link) -> tuple:
+    """The rotation of ``link`` across the P joint ``c`` from the other link's pose
+    entry: the same (a drawn chain's links turn together), or turned by ``c.turn``
+    (links drawn each in its own frame, as the assembly from lengths places them)."""
+    if not c.turn:
+        return entry
+    return make_pose(entry[0], entry[1], entry[2] + (c.turn if link == c.b else -c.turn))
+
+
+def _known_point(pose, c, unknown):
+    """Where the known link of constraint ``c`` puts the joint's point."""
+    other = c.other(unknown)
+    return world(pose, other, c.at(other))
+
+
+def line_of(pose, attach, unknown, through) -> tuple:
     """The line on which the unknown link's drawn point ``through`` must stay, for a P
     attachment to a known link: (base point, direction, the unknown link's rotation)."""
-    known = pose[attach.other(unknown)]
-    base = world(pose, attach.other(unknown), attach.point)
-    dx, dy = through[0] - attach.point[0], through[1] - attach.point[1]
-    ox, oy = turn_by(known, (dx, dy))
-    u = turn_by(known, unit_deg(attach.axis))
-    return (base[0] + ox, base[1] + oy), u, known
+    other = attach.other(unknown)
+    known = pose[other]
+    turn = carried(attach, known, unknown)
+    base = world(pose, other, attach.at(other))
+    p = attach.at(unknown)
+    ox, oy = turn_by(turn, (through[0] - p[0], through[1] - p[1]))
+    u = turn_by(known if other == attach.a else turn, unit_deg(attach.axis))
+    return (base[0] + ox, base[1] + oy), u, turn
 
 
 # -- closed-form steps ---------------------------------------------------------------
-def single_link(step, pose):
+def single_link(step, pose) -> dict:
+    """The pose of a single link's step: welded by an input, or placed from two
+    attachments to known links (RR, RP, PP)."""
     u = step.links[0]
     if step.pattern[0] == "W":
         return {u: _welded(pose, u, step.constraints[0])}
     c1, c2 = step.constraints[:2]
     if c1.kind == "R" and c2.kind == "R":
-        w1 = world(pose, c1.other(u), c1.point)
-        w2 = world(pose, c2.other(u), c2.point)
-        return {u: fit_two_points(c1.point, w1, c2.point, w2)}
+        return {u: fit_two_points(c1.at(u), _known_point(pose, c1, u),
+                                  c2.at(u), _known_point(pose, c2, u))}
     if c1.kind == "R":
-        return {u: from_point(pose[c2.other(u)], c1.point,
-                               world(pose, c1.other(u), c1.point))}
+        return {u: from_point(carried(c2, pose[c2.other(u)], u), c1.at(u),
+                              _known_point(pose, c1, u))}
     return {u: _two_lines(pose, u, c1, c2)}
 
 
@@ -61,21 +82,22 @@ def _welded(pose, u, c):
     known = pose[c.other(u)]
     delta = pose[c.drive][2]
     sign = 1.0 if u == c.b else -1.0
-    w = world(pose, c.other(u), c.point)
+    w = _known_point(pose, c, u)
     if c.kind == "R":
-        return from_point(make_pose(0.0, 0.0, known[2] + sign * delta), c.point, w)
-    t = turn_by(known, unit_deg(c.axis))
-    return from_point(known, c.point, (w[0] + sign * delta * t[0], w[1] + sign * delta * t[1]))
+        return from_point(make_pose(0.0, 0.0, known[2] + sign * delta), c.at(u), w)
+    t = turn_by(known if c.other(u) == c.a else carried(c, known, u), unit_deg(c.axis))
+    return from_point(carried(c, known, u), c.at(u),
+                      (w[0] + sign * delta * t[0], w[1] + sign * delta * t[1]))
 
 
 def _two_lines(pose, u, c1, c2):
     """Pose of link u with two P attachments to known links (its rotation from c1)."""
-    turn = pose[c1.other(u)]
+    turn = carried(c1, pose[c1.other(u)], u)
     rows, rhs = [], []
     for c in (c1, c2):
-        base, dirn, _ = line_of(pose, c, u, c.point)
+        base, dirn, _ = line_of(pose, c, u, c.at(u))
         nx_, ny_ = -dirn[1], dirn[0]
-        rx, ry = turn_by(turn, c.point)
+        rx, ry = turn_by(turn, c.at(u))
         rows.append((nx_, ny_))
         rhs.append(nx_ * (base[0] - rx) + ny_ * (base[1] - ry))
     (a, b), (c, d) = rows
@@ -85,7 +107,7 @@ def _two_lines(pose, u, c1, c2):
     return make_pose(x, y, turn[2], turn[3], turn[4])
 
 
-def dyad_roots(step, pose, scale, *, double=False):
+def dyad_roots(step, pose, scale, *, double=False) -> tuple:
     """A dyad's assembly modes.
 
     ``double`` (a bool, or a bool per point) takes the discriminant as exactly zero:
@@ -105,6 +127,8 @@ def dyad_roots(step, pose, scale, *, double=False):
     (radius + ``scale``): its cut at rounding (``DISC_TOL``) then moves a fold's joint
     by about ``DISC_TOL`` of the lengths involved, however short the shorter link
     (over ``scale`` squared, a crank of 1e-5 of the size would be off by 1e-8 of it).
+    The single pose, the sweep and the assembly from lengths all place their dyads
+    here (pose entries, one point or a batch of them).
     """
     a, b = step.links
     ca, cb, cj = step.constraints
@@ -112,80 +136,126 @@ def dyad_roots(step, pose, scale, *, double=False):
     if pattern in ("PRR", "PPR"):  # mirror to the R-first form
         a, b, ca, cb = b, a, cb, ca
         pattern = pattern[::-1]
-    q = cj.point
     if pattern in ("RRR", "RRP"):
-        wa = world(pose, ca.other(a), ca.point)
-        ra = math.dist(q, ca.point)
-        if pattern == "RRR":
-            wb = world(pose, cb.other(b), cb.point)
-            rb = math.dist(q, cb.point)
-            mid, across, raw = circle_circle(wa, ra, wb, rb)
-            norm = min(ra, rb) * (ra + rb)
-        else:
-            base, dirn, turn_b = line_of(pose, cb, b, q)
-            mid, across, raw = circle_line(wa, ra, base, dirn)
-            norm = ra * (ra + scale)
-        norm = max(norm, (DISC_TOL * scale) ** 2)      # a link of zero length
-        disc, ok = clamp_disc(raw, norm, double)
-        h = np.sqrt(disc)
-        off = (h * across[0], h * across[1])
-        keys = (np.stack((mid[0] + off[0], mid[1] + off[1]), axis=-1),
-                np.stack((mid[0] - off[0], mid[1] - off[1]), axis=-1))
-
-        def build(sign):
-            x, y = mid[0] + sign * off[0], mid[1] + sign * off[1]
-            pa = fit_two_points(ca.point, wa, q, (x, y))
-            if pattern == "RRR":
-                return {a: pa, b: fit_two_points(cb.point, wb, q, (x, y))}
-            return {a: pa, b: from_point(turn_b, q, (x, y))}
-        return keys, build, ok, raw / norm
+        return _circle_roots(pattern, (a, b), (ca, cb, cj), pose, scale, double)
     if pattern == "RPR":
-        wa = world(pose, ca.other(a), ca.point)
-        wb = world(pose, cb.other(b), cb.point)
-        nx_, ny_ = -unit_deg(cj.axis)[1], unit_deg(cj.axis)[0]
-        c = nx_ * (cb.point[0] - ca.point[0]) + ny_ * (cb.point[1] - ca.point[1])
-        (cs0, sn0), ratio, raw = line_by_two_distances(wa, wb, c)
-        disc, ok = clamp_disc(raw, 1.0, double)
-        # rotation phi = start +- spread, with cos(spread) = ratio: the centre line's
-        # direction turned back by the drawn normal
-        cn, sn = nx_, ny_
-        cst, snt = cs0 * cn + sn0 * sn, sn0 * cn - cs0 * sn   # start = delta - nu
-        root = np.sqrt(disc)
-
-        def turn(sign):
-            c1, s1 = cst * ratio - snt * sign * root, snt * ratio + cst * sign * root
-            return c1, s1
-        keys = tuple(np.stack(turn(sg), axis=-1) for sg in (1.0, -1.0))
-
-        def build(sign):
-            c1, s1 = turn(sign)
-            e = make_pose(0.0, 0.0, np.arctan2(s1, c1), c1, s1)
-            return {a: from_point(e, ca.point, wa), b: from_point(e, cb.point, wb)}
-        return keys, build, ok, raw
+        return _rpr_roots((a, b), (ca, cb, cj), pose, double)
     if pattern == "PRP":
-        base_a, dir_a, turn_a = line_of(pose, ca, a, q)
-        base_b, dir_b, turn_b = line_of(pose, cb, b, q)
-        det = dir_a[0] * -dir_b[1] + dir_b[0] * dir_a[1]
-        rx, ry = base_b[0] - base_a[0], base_b[1] - base_a[1]
-        s_ = (rx * -dir_b[1] + dir_b[0] * ry) / det
-        x, y = base_a[0] + s_ * dir_a[0], base_a[1] + s_ * dir_a[1]
-
-        def build(sign):
-            return {a: from_point(turn_a, q, (x, y)), b: from_point(turn_b, q, (x, y))}
-        return None, build, np.isfinite(x), None
+        return _prp_roots((a, b), (ca, cb, cj), pose)
     if pattern == "RPP":
-        wa = world(pose, ca.other(a), ca.point)
-        pa = from_point(pose[cb.other(b)], ca.point, wa)
-
-        def build(sign):
-            known = dict(pose)
-            known[a] = pa
-            return {a: pa, b: _two_lines(known, b, cb, cj)}
-        return None, build, np.isfinite(wa[0]), None
+        return _rpp_roots((a, b), (ca, cb, cj), pose)
     raise ValueError(f"no closed form for a {pattern} dyad")
 
 
-def initial_sign(keys, drawn):
+def _circle_roots(pattern, links, constraints, pose, scale, double):
+    """An RRR dyad (two circles) or an RRP dyad (a circle and the line the second link
+    slides on): the joint between the links at their crossing."""
+    (a, b), (ca, cb, cj) = links, constraints
+    qa, qb = cj.at(a), cj.at(b)
+    wa = _known_point(pose, ca, a)
+    ra = math.dist(qa, ca.at(a))
+    if pattern == "RRR":
+        wb = _known_point(pose, cb, b)
+        rb = math.dist(qb, cb.at(b))
+        mid, across, raw = circle_circle(wa, ra, wb, rb)
+        norm = min(ra, rb) * (ra + rb)
+    else:
+        base, dirn, turn_b = line_of(pose, cb, b, qb)
+        mid, across, raw = circle_line(wa, ra, base, dirn)
+        norm = ra * (ra + scale)
+    norm = max(norm, (DISC_TOL * scale) ** 2)      # a link of zero length
+    disc, ok = clamp_disc(raw, norm, double)
+    h = np.sqrt(disc)
+    off = (h * across[0], h * across[1])
+    keys = (np.stack((mid[0] + off[0], mid[1] + off[1]), axis=-1),
+            np.stack((mid[0] - off[0], mid[1] - off[1]), axis=-1))
+
+    def build(sign):
+        x, y = mid[0] + sign * off[0], mid[1] + sign * off[1]
+        pa = fit_two_points(ca.at(a), wa, qa, (x, y))
+        if pattern == "RRR":
+            return {a: pa, b: fit_two_points(cb.at(b), wb, qb, (x, y))}
+        return {a: pa, b: from_point(turn_b, qb, (x, y))}
+    return keys, build, ok, raw / norm
+
+
+def _rpr_offset(links, constraints, n):
+    """``c`` such that the sliding line's normal in the world, ``n_w``, has
+    ``n_w . (wb - wa) = c`` (``wa``, ``wb`` where the links turn, ``n`` the line's
+    normal on the guide): the line passes through both links' points on it."""
+    (a, b), (ca, cb, cj) = links, constraints
+    if cj.point_b is None and not cj.turn:          # a drawn chain: one point
+        pa, pb = ca.at(a), cb.at(b)
+        return n[0] * (pb[0] - pa[0]) + n[1] * (pb[1] - pa[1])
+    g, k = cj.a, cj.b
+    turns_about = {a: ca.at(a), b: cb.at(b)}
+    on_guide = sub(cj.at(g), turns_about[g])
+    on_block = rotate(sub(cj.at(k), turns_about[k]), cj.turn)
+    c = dot(n, on_guide) - dot(n, on_block)
+    return c if g == a else -c
+
+
+def _rpr_roots(links, constraints, pose, double):
+    """An RPR dyad: two links turning about known points, one sliding on the other;
+    the sliding line at the distances from both points (its two tangents)."""
+    (a, b), (ca, cb, cj) = links, constraints
+    wa, wb = _known_point(pose, ca, a), _known_point(pose, cb, b)
+    nx_, ny_ = -unit_deg(cj.axis)[1], unit_deg(cj.axis)[0]
+    c = _rpr_offset(links, constraints, (nx_, ny_))
+    (cs0, sn0), ratio, raw = line_by_two_distances(wa, wb, c)
+    disc, ok = clamp_disc(raw, 1.0, double)
+    # the guide's rotation phi = start +- spread, with cos(spread) = ratio: the centre
+    # line's direction turned back by the drawn normal
+    cn, sn = nx_, ny_
+    cst, snt = cs0 * cn + sn0 * sn, sn0 * cn - cs0 * sn   # start = delta - nu
+    root = np.sqrt(disc)
+
+    def turn(sign):
+        c1, s1 = cst * ratio - snt * sign * root, snt * ratio + cst * sign * root
+        return c1, s1
+    keys = tuple(np.stack(turn(sg), axis=-1) for sg in (1.0, -1.0))
+
+    def build(sign):
+        c1, s1 = turn(sign)
+        guide = make_pose(0.0, 0.0, np.arctan2(s1, c1), c1, s1)
+        rotation = {cj.a: guide, cj.b: carried(cj, guide, cj.b)}
+        return {a: from_point(rotation[a], ca.at(a), wa),
+                b: from_point(rotation[b], cb.at(b), wb)}
+    return keys, build, ok, raw
+
+
+def _prp_roots(links, constraints, pose):
+    """A PRP dyad: two links sliding on known lines, pinned where the lines cross."""
+    (a, b), (ca, cb, cj) = links, constraints
+    qa, qb = cj.at(a), cj.at(b)
+    base_a, dir_a, turn_a = line_of(pose, ca, a, qa)
+    base_b, dir_b, turn_b = line_of(pose, cb, b, qb)
+    det = dir_a[0] * -dir_b[1] + dir_b[0] * dir_a[1]
+    rx, ry = base_b[0] - base_a[0], base_b[1] - base_a[1]
+    s_ = (rx * -dir_b[1] + dir_b[0] * ry) / det
+    x, y = base_a[0] + s_ * dir_a[0], base_a[1] + s_ * dir_a[1]
+
+    def build(sign):
+        return {a: from_point(turn_a, qa, (x, y)), b: from_point(turn_b, qb, (x, y))}
+    return None, build, np.isfinite(x), None
+
+
+def _rpp_roots(links, constraints, pose):
+    """An RPP dyad: a link turning about a known point slides on a link that slides on
+    a known line: both turn with that line."""
+    (a, b), (ca, cb, cj) = links, constraints
+    wa = _known_point(pose, ca, a)
+    turn_b = carried(cb, pose[cb.other(b)], b)
+    pa = from_point(carried(cj, turn_b, a), ca.at(a), wa)
+
+    def build(sign):
+        known = dict(pose)
+        known[a] = pa
+        return {a: pa, b: _two_lines(known, b, cb, cj)}
+    return None, build, np.isfinite(wa[0]), None
+
+
+def initial_sign(keys, drawn) -> float:
     """The mode of the drawn pose: the one whose first point is nearest the drawing."""
     kp, km = keys
     dp = np.hypot(kp[0, 0] - drawn[0], kp[0, 1] - drawn[1])

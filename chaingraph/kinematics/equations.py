@@ -22,7 +22,8 @@ from chaingraph.geometry import (
     world,
 )
 
-__all__ = ["residuals", "check_poses", "newton_step"]
+__all__ = ["residuals", "check_poses", "newton_step", "constraint_residuals",
+           "place_translations"]
 
 
 # -- constraint rows (Jacobian and quadratic velocity terms) ------------------------
@@ -32,7 +33,7 @@ def constraint_geometry(c, pose):
     the block's offset from the guide's point (and the guide's direction when the
     joint is an input)."""
     ra = turn_by(pose[c.a], c.point)
-    rb = turn_by(pose[c.b], c.point)
+    rb = turn_by(pose[c.b], c.at(c.b))
     if c.kind == "R":
         return ra, rb, None, None
     u = turn_by(pose[c.a], unit_deg(c.axis))
@@ -97,10 +98,10 @@ def constraint_gammas(c, pose, vel, geom=None):
     return out
 
 
-def _constraint_residuals(c, pose):
+def constraint_residuals(c, pose) -> list:
     """The constraint's equations at the pose: lengths, and rotations in radians."""
-    wa, wb = world(pose, c.a, c.point), world(pose, c.b, c.point)
-    dphi = np.remainder(pose[c.b][2] - pose[c.a][2] + np.pi, 2 * np.pi) - np.pi
+    wa, wb = world(pose, c.a, c.point), world(pose, c.b, c.at(c.b))
+    dphi = np.remainder(pose[c.b][2] - pose[c.a][2] - c.turn + np.pi, 2 * np.pi) - np.pi
     if c.kind == "R":
         out = [wa[0] - wb[0], wa[1] - wb[1]]
         if c.drive is not None:
@@ -118,7 +119,7 @@ def residuals(plan, pose):
     """Largest constraint residual at every point (lengths; rotations times the size)."""
     worst = None
     for c in plan.constraints:
-        eqs = _constraint_residuals(c, pose)
+        eqs = constraint_residuals(c, pose)
         if c.kind == "R":
             r = np.hypot(eqs[0], eqs[1])
             if c.drive is not None:
@@ -214,14 +215,17 @@ class _GroupForm:
         for x in step.links:
             if x in bars:
                 c1, c2 = touching[x]
-                self.bars.append((x, c1.other(x), c1.point, c2.other(x), c2.point,
-                                  math.dist(c1.point, c2.point)))
+                # (the bar, each link it joins with the pin's point on that link,
+                # the pins' distance, and the pins' points on the bar)
+                y1, y2 = c1.other(x), c2.other(x)
+                self.bars.append((x, y1, c1.at(y1), y2, c2.at(y2),
+                                  math.dist(c1.at(x), c2.at(x)), c1.at(x), c2.at(x)))
         self.others = tuple(c for c in step.constraints if c.a not in bars and c.b not in bars)
         self.size = 3 * len(self.bodies)
 
     def residual(self, pose):
         out = list(_group_residual_of(self.others, pose).T) if self.others else []
-        for _, x, px, y, py, length in self.bars:
+        for _, x, px, y, py, length, _, _ in self.bars:
             wx, wy = world(pose, x, px), world(pose, y, py)
             d2 = (wx[0] - wy[0]) ** 2 + (wx[1] - wy[1]) ** 2
             out.append((d2 - length * length) / (2 * length))
@@ -229,7 +233,7 @@ class _GroupForm:
 
     def rows(self, pose):
         rows = [coef for c in self.others for coef in constraint_rows(c, pose)]
-        for _, x, px, y, py, length in self.bars:
+        for _, x, px, y, py, length, _, _ in self.bars:
             rx, ry_ = turn_by(pose[x], px), turn_by(pose[y], py)
             d = (rx[0] + pose[x][0] - ry_[0] - pose[y][0], rx[1] + pose[x][1] - ry_[1] - pose[y][1])
             px_, py_ = perp(rx), perp(ry_)
@@ -244,7 +248,7 @@ class _GroupForm:
 
     def gammas(self, pose, vel):
         out = [g for c in self.others for g in constraint_gammas(c, pose, vel)]
-        for _, x, px, y, py, length in self.bars:
+        for _, x, px, y, py, length, _, _ in self.bars:
             rx, ry_ = turn_by(pose[x], px), turn_by(pose[y], py)
             d = (rx[0] + pose[x][0] - ry_[0] - pose[y][0], rx[1] + pose[x][1] - ry_[1] - pose[y][1])
             vx_, vy_ = _point_rate(vel[x], rx), _point_rate(vel[y], ry_)
@@ -263,15 +267,15 @@ class _GroupForm:
 
     def complete(self, pose):
         """Add the bars' poses (each fitted to its two pins)."""
-        for bar, x, px, y, py, _ in self.bars:
-            pose[bar] = fit_two_points(px, world(pose, x, px), py, world(pose, y, py))
+        for bar, x, px, y, py, _, bx, by in self.bars:
+            pose[bar] = fit_two_points(bx, world(pose, x, px), by, world(pose, y, py))
         return pose
 
     def bar_rates(self, pose, vel, acc=None):
         """The bars' velocities (or, with ``acc``, accelerations) from their pins'."""
         out = {}
-        for bar, x, px, y, py, _ in self.bars:
-            r1, r2 = turn_by(pose[bar], px), turn_by(pose[bar], py)
+        for bar, x, px, y, py, _, bx, by in self.bars:
+            r1, r2 = turn_by(pose[bar], bx), turn_by(pose[bar], by)
             d = (r2[0] - r1[0], r2[1] - r1[1])
             d2 = d[0] * d[0] + d[1] * d[1]
             if acc is None:
@@ -297,19 +301,21 @@ def _point_accel(acc, vel, r):
     return acc[0] - acc[2] * r[1] - w2 * r[0], acc[1] + acc[2] * r[0] - w2 * r[1]
 
 
-_FORMS = {}
+_FORMS: dict = {}
 
 
 def group_form(step):
     form = _FORMS.get(step)
     if form is None:
+        if len(_FORMS) >= 4096:     # every assembly from lengths has its own steps
+            _FORMS.clear()
         form = _FORMS[step] = _GroupForm(step)
     return form
 
 
 # -- Newton's method for groups ------------------------------------------------------
 def _group_residual_of(constraints, pose):
-    return np.stack([e for c in constraints for e in _constraint_residuals(c, pose)], axis=-1)
+    return np.stack([e for c in constraints for e in constraint_residuals(c, pose)], axis=-1)
 
 
 def with_group(pose, step, q):
@@ -357,6 +363,32 @@ def newton_step(mat, r):
     return batched_solve(mat, -r)
 
 
+def place_translations(links, constraints, pose) -> dict | None:
+    """Links whose rotations are known, placed by their translations.
+
+    ``pose`` holds each of ``links`` at its rotation (at any translation) beside the
+    links already placed; ``constraints`` join them to each other and to placed links.
+    The equations are linear in the translations, so one Newton step in them is exact
+    (least squares where there are more equations than unknowns). Returns the links'
+    pose entries, or None where the equations do not fix the translations. One pose
+    (the assembly from lengths), not a batch.
+    """
+    col = {link: 3 * k for k, link in enumerate(links)}
+    rows = [({x: v for x, v in coef.items() if x in col}, 0.0)
+            for c in constraints for coef in constraint_rows(c, pose)]
+    mat = group_matrix(links, rows, 1)[0][0]
+    moves = [col[link] + k for link in links for k in (0, 1)]
+    mat = mat[:, moves]
+    if len(rows) < len(moves) or np.linalg.matrix_rank(
+            mat, tol=1e-9 * max(1.0, float(np.abs(mat).max()))) < len(moves):
+        return None
+    r = np.array([float(e) for c in constraints for e in constraint_residuals(c, pose)])
+    step = newton_step(mat[None], r[None])[0]
+    return {link: make_pose(pose[link][0] + step[2 * k], pose[link][1] + step[2 * k + 1],
+                            pose[link][2], pose[link][3], pose[link][4])
+            for k, link in enumerate(links)}
+
+
 def batched_solve(mat, rhs):
     """Solve stacked systems; a singular one (at a fold) gets its least-squares step,
     one with non-finite entries NaN."""
@@ -399,7 +431,7 @@ def _undefined_at(plan, pose, i):
     sliding pair whose line or direction is undefined)."""
     for c in plan.constraints:
         with np.errstate(invalid="ignore"):
-            eqs = [np.asarray(e, dtype=float) for e in _constraint_residuals(c, pose)]
+            eqs = [np.asarray(e, dtype=float) for e in constraint_residuals(c, pose)]
         if not all(np.isfinite(e.reshape(-1)[i if e.size > 1 else 0]) for e in eqs):
             pair = "sliding pair" if c.kind == "P" else "joint"
             return (f"the {pair} {c.joint!r} of links {c.a!r} and {c.b!r} has no defined "

@@ -46,7 +46,14 @@ __all__ = ["Constraint", "Step", "InputJoint", "Plan", "build_plan"]
 class Constraint:
     """One R pair (links a, b) or P joint (a the guide, b the block) at ``point``;
     ``drive`` names the input (its key in pose and rate tables) that prescribes the
-    pair's relative motion, if it is an input."""
+    pair's relative motion, if it is an input.
+
+    In a plan of a drawn chain every link's frame is the drawing, so the joint is at
+    ``point`` on both links and a P joint's links turn together. The assembly from
+    lengths places links drawn each in its own frame: there ``point_b`` is the joint
+    on b (``point`` on a) and ``turn`` a P joint's rotation of b less a's (radians).
+    The position kernel (closed forms, group equations) reads both; the rates and the
+    summary are asked of drawn chains only."""
 
     kind: str
     joint: str
@@ -55,9 +62,15 @@ class Constraint:
     point: tuple[float, float]
     axis: float | None = None
     drive: str | None = None
+    point_b: tuple[float, float] | None = None
+    turn: float = 0.0
 
     def other(self, link):
         return self.b if link == self.a else self.a
+
+    def at(self, link) -> tuple[float, float]:
+        """The joint's point in ``link``'s frame."""
+        return self.point if self.point_b is None or link == self.a else self.point_b
 
 
 @dataclass(frozen=True)
