@@ -148,11 +148,9 @@ def snap_to_lines(chain):
         return chain      # the fixed link's joints themselves disagree: leave it as drawn
     moved = sorted(((math.dist(x[index[f]:index[f] + 2], x0[index[f]:index[f] + 2]), f)
                     for f in features), reverse=True)
-    joints = []
-    for j in chain.joints:
-        at = tuple(float(v) for v in x[index[j.id]:index[j.id] + 2]) if j.id in index else j.at
-        joints.append(type(j)(j.id, j.kind, j.links, at=at, axis=j.axis, closure=j.closure))
-    points = [type(p)(p.id, p.link, tuple(float(v) for v in x[index[p.id]:index[p.id] + 2]))
+    joints = [replace(j, at=tuple(float(v) for v in x[index[j.id]:index[j.id] + 2]))
+              if j.id in index else j for j in chain.joints]
+    points = [replace(p, at=tuple(float(v) for v in x[index[p.id]:index[p.id] + 2]))
               if p.id in index else p for p in chain.points]
     snapped = replace(chain, joints=tuple(joints), points=tuple(points))
     if moved[0][0] > SILENT * size:
