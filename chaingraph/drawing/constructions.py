@@ -87,7 +87,7 @@ def _line_through(ax, plan, a, b, centre_of_view, edge, **style):
     # the line h . (x, y, 1) = 0 clipped to the view, drawn across it
     n = h[:2] / np.linalg.norm(h[:2])
     d = np.array([-n[1], n[0]])
-    size, ox, oy = plan.size, *plan.origin
+    size, (ox, oy) = plan.size, plan.origin
     c = -h[2] / np.linalg.norm(h[:2]) * size
     base = np.array([ox, oy]) + n * c
     t = np.dot(centre_of_view - base, d)
