@@ -36,45 +36,69 @@ def draw_centres(centres, path=None):
     picture as an arrow towards it, with its coordinates."""
     plt = pyplot_module()
     state = centres.state
-    plan = state.plan
     fig, (ax, circle) = plt.subplots(1, 2, figsize=(12, 6),
                                      gridspec_kw={"width_ratios": [3, 2]})
     scene = Scene.of_pose(state)
-    points = np.array(list(state.positions.values()))
-    middle = (points.min(axis=0) + points.max(axis=0)) / 2
-    reach = max(float(np.ptp(points, axis=0).max()) / 2, 1e-9 * plan.size) * 1.6
-    # the view: the mechanism and the centres within 2.5 times its reach
-    shown = [c for c in centres.centres if c.at is not None and
-             np.abs(np.subtract(c.at, middle)).max() <= 2.5 * reach]
-    every = np.array([*points, *(c.at for c in shown)])
-    lo = every.min(axis=0) - 0.12 * reach
-    hi = every.max(axis=0) + 0.12 * reach
-    edge = max(hi[0] - lo[0], hi[1] - lo[1]) / 2
-    centre_of_view = (lo + hi) / 2
+    centre_of_view, edge, shown = _centres_view(centres)
     lo, hi = centre_of_view - edge, centre_of_view + edge
-    numbers = centres.numbers
-
-    def line_through(a, b, **style):
-        h = np.cross(a, b)
-        if np.linalg.norm(h[:2]) < 1e-12:
-            return
-        # the line h . (x, y, 1) = 0 clipped to the view, drawn across it
-        n = h[:2] / np.linalg.norm(h[:2])
-        d = np.array([-n[1], n[0]])
-        size, ox, oy = plan.size, *plan.origin
-        c = -h[2] / np.linalg.norm(h[:2]) * size
-        base = np.array([ox, oy]) + n * c
-        t = np.dot(centre_of_view - base, d)
-        p0, p1 = base + d * (t - 3 * edge), base + d * (t + 3 * edge)
-        ax.plot([p0[0], p1[0]], [p0[1], p1[1]], **style)
     for c in centres.centres:
         if isinstance(c.found, str):             # from a joint, or not by Kennedy
             continue
         for pair1, pair2 in c.found:
             a = centres.centre(*pair1).homogeneous
             b = centres.centre(*pair2).homogeneous
-            line_through(np.array(a), np.array(b), color="#9a9a9a", lw=0.6, ls="--",
-                         zorder=0)
+            _line_through(ax, state.plan, np.array(a), np.array(b), centre_of_view, edge,
+                          color="#9a9a9a", lw=0.6, ls="--", zorder=0)
+    _centre_marks(ax, centres, shown, centre_of_view, edge)
+    ax.set_xlim(lo[0], hi[0])
+    ax.set_ylim(lo[1], hi[1])
+    ax.set_aspect("equal")
+    ax.grid(True, color="#eeeeee", lw=0.5)
+    ax.set_title(f"{state.name}\ninstantaneous centres at {state.input_text('θ', '°')}", fontsize=10)
+    _circle_diagram(circle, centres, centres.numbers)
+    fig.tight_layout()
+    # the mechanism under the construction, as every drawing of it looks
+    draw_shapes(ax, scene, frame_shapes(scene, 0), view=(lo, hi), zorder=0.5)
+    return finish(plt, fig, path)
+
+
+def _centres_view(centres):
+    """The view of the centres' picture, a square (its centre, half its edge): the
+    mechanism and the centres within 2.5 times its reach; and those centres."""
+    state = centres.state
+    points = np.array(list(state.positions.values()))
+    middle = (points.min(axis=0) + points.max(axis=0)) / 2
+    reach = max(float(np.ptp(points, axis=0).max()) / 2, 1e-9 * state.plan.size) * 1.6
+    shown = [c for c in centres.centres if c.at is not None and
+             np.abs(np.subtract(c.at, middle)).max() <= 2.5 * reach]
+    every = np.array([*points, *(c.at for c in shown)])
+    lo = every.min(axis=0) - 0.12 * reach
+    hi = every.max(axis=0) + 0.12 * reach
+    edge = max(hi[0] - lo[0], hi[1] - lo[1]) / 2
+    return (lo + hi) / 2, edge, shown
+
+
+def _line_through(ax, plan, a, b, centre_of_view, edge, **style):
+    """The line through the homogeneous points a and b (about the plan's origin, in
+    units of its size), drawn across the view."""
+    h = np.cross(a, b)
+    if np.linalg.norm(h[:2]) < 1e-12:
+        return
+    # the line h . (x, y, 1) = 0 clipped to the view, drawn across it
+    n = h[:2] / np.linalg.norm(h[:2])
+    d = np.array([-n[1], n[0]])
+    size, (ox, oy) = plan.size, plan.origin
+    c = -h[2] / np.linalg.norm(h[:2]) * size
+    base = np.array([ox, oy]) + n * c
+    t = np.dot(centre_of_view - base, d)
+    p0, p1 = base + d * (t - 3 * edge), base + d * (t + 3 * edge)
+    ax.plot([p0[0], p1[0]], [p0[1], p1[1]], **style)
+
+
+def _centre_marks(ax, centres, shown, centre_of_view, edge):
+    """Each centre: a dot where it is ``shown``, else (far off or at infinity) an arrow
+    at the view's edge towards it with its coordinates or direction."""
+    size = centres.state.plan.size
     far = 0
     for c in centres.centres:
         label = c.name
@@ -88,7 +112,7 @@ def draw_centres(centres, path=None):
             if c.at is not None:
                 d = np.subtract(c.at, centre_of_view)
                 d = d / np.linalg.norm(d)
-                text = f"{label} at ({_num(c.at[0], plan.size)}, {_num(c.at[1], plan.size)})"
+                text = f"{label} at ({_num(c.at[0], size)}, {_num(c.at[1], size)})"
             else:
                 a = math.radians(c.direction)
                 d = np.array([math.cos(a), math.sin(a)])
@@ -102,16 +126,6 @@ def draw_centres(centres, path=None):
                         ha="left" if d[0] < 0 else "right", xytext=(0, -9 * far),
                         textcoords="offset points")
             far += 1
-    ax.set_xlim(lo[0], hi[0])
-    ax.set_ylim(lo[1], hi[1])
-    ax.set_aspect("equal")
-    ax.grid(True, color="#eeeeee", lw=0.5)
-    ax.set_title(f"{state.name}\ninstantaneous centres at {state.input_text('θ', '°')}", fontsize=10)
-    _circle_diagram(circle, centres, numbers)
-    fig.tight_layout()
-    # the mechanism under the construction, as every drawing of it looks
-    draw_shapes(ax, scene, frame_shapes(scene, 0), view=(lo, hi), zorder=0.5)
-    return finish(plt, fig, path)
 
 
 def _circle_diagram(ax, centres, numbers):

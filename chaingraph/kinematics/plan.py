@@ -449,6 +449,32 @@ def build_plan(chain, fixed=None, driver=None, *, inputs=None, closed_form=True)
     """
     name = chain.source or chain.name
     fixed, driver, inputs = chosen_inputs(chain, fixed, driver, inputs)
+    _check_solvable(chain, fixed, inputs, name)
+    inputs = tuple(inputs or ())
+    items = _input_joints(chain, fixed, driver, inputs, name)
+    from_driver = not inputs
+    lone = items[0] if len(items) == 1 and items[0].kind == "R" and items[0].a == fixed else None
+    where = {j.id: j.at for j in chain.joints} | {p.id: p.at for p in chain.points}
+    size = size_of(where)
+    xs, ys = [p[0] for p in where.values()], [p[1] for p in where.values()]
+    origin = (0.5 * (max(xs) + min(xs)), 0.5 * (max(ys) + min(ys)))
+    constraints = tuple(_constraints(chain, fixed, items, origin))
+    mobility = 3 * (len(chain.links) - 1) - 2 * sum(j.order - 1 for j in chain.joints)
+    numeric = _numeric_mobility(chain, fixed, constraints, size, with_inputs=False)
+    _check_inputs_hold(chain, fixed, items, constraints, size, mobility=mobility,
+                       numeric=numeric, driver=driver, from_driver=from_driver)
+    steps = _steps(chain, fixed, constraints, closed_form)
+    lead, line, tau0 = _line(items, size)
+    return Plan(chain=chain, fixed=fixed, driver=lone.b if lone else None, inputs=items,
+                lead=lead, line=line, theta0=tau0, steps=steps, constraints=constraints,
+                size=size, mobility=mobility, numeric_mobility=numeric, origin=origin,
+                from_driver=from_driver)
+
+
+def _check_solvable(chain, fixed, inputs, name):
+    """Refuse what cannot be solved for motion whatever its inputs: no fixed link or
+    one not of the chain, a spatial chain, an input or a joint that is not R or P, a
+    joint without a position, a chain in pieces, a link of zero length."""
     if fixed is None:
         raise MechanismError("no fixed link: name it ([mechanism] fixed in the file, or the "
                              "parameter fixed)", mechanism=name, parameter="fixed")
@@ -481,17 +507,14 @@ def build_plan(chain, fixed=None, driver=None, *, inputs=None, closed_form=True)
         raise MechanismError("the chain is in several pieces that share no joint",
                              mechanism=name)
     check_link_sizes(chain)
-    inputs = tuple(inputs or ())
-    items = _input_joints(chain, fixed, driver, inputs, name)
-    from_driver = not inputs
-    lone = items[0] if len(items) == 1 and items[0].kind == "R" and items[0].a == fixed else None
-    where = {j.id: j.at for j in chain.joints} | {p.id: p.at for p in chain.points}
-    size = size_of(where)
-    xs, ys = [p[0] for p in where.values()], [p[1] for p in where.values()]
-    origin = (0.5 * (max(xs) + min(xs)), 0.5 * (max(ys) + min(ys)))
-    constraints = tuple(_constraints(chain, fixed, items, origin))
-    mobility = 3 * (len(chain.links) - 1) - 2 * sum(j.order - 1 for j in chain.joints)
-    numeric = _numeric_mobility(chain, fixed, constraints, size, with_inputs=False)
+
+
+def _check_inputs_hold(chain, fixed, items, constraints, size, *, mobility, numeric,
+                       driver, from_driver):
+    """Refuse inputs that are not one per degree of freedom (``numeric`` at the drawn
+    pose, ``mobility`` by Kutzbach's count), or that leave a freedom undriven; the
+    message names the ``driver`` when the inputs are ``from_driver``."""
+    name = chain.source or chain.name
     count = len(items)
     # a drawn pose at a dead centre or change point loses rank there: that is no reason
     # to refuse a chain whose count says it moves (its range says where it can go)
@@ -513,12 +536,6 @@ def build_plan(chain, fixed=None, driver=None, *, inputs=None, closed_form=True)
                 f"motion: with them held, {left} degree{'s' if left > 1 else ''} of freedom "
                 "remain (two inputs that drive the same freedom?)", mechanism=name,
                 mobility=numeric)
-    steps = _steps(chain, fixed, constraints, closed_form)
-    lead, line, tau0 = _line(items, size)
-    return Plan(chain=chain, fixed=fixed, driver=lone.b if lone else None, inputs=items,
-                lead=lead, line=line, theta0=tau0, steps=steps, constraints=constraints,
-                size=size, mobility=mobility, numeric_mobility=numeric, origin=origin,
-                from_driver=from_driver)
 
 
 def _numeric_mobility(chain, fixed, constraints, size, *, with_inputs=False, generic=False):

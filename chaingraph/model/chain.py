@@ -489,105 +489,128 @@ def _validate(chain: Chain) -> None:
         fail("the chain has no joints (add [[joints]] tables)", "key 'joints'")
     seen = set()
     for j in chain.joints:
-        where = f"joint {j.id!r}"
         if not isinstance(j.id, str) or not j.id:
             fail("a joint id must be a non-empty string", "joint")
         if j.id in seen:
-            fail("duplicate joint id", where)
+            fail("duplicate joint id", f"joint {j.id!r}")
         seen.add(j.id)
-        if j.kind not in PAIR_KINDS:
-            fail(f"unknown kind {j.kind!r} (expected one of {', '.join(PAIR_KINDS)})", where)
-        pair = PAIR_KINDS[j.kind]
-        if pair.freedom(chain.space) is None:
-            other = "spatial" if chain.space == "planar" else "planar"
-            fail(f"a {pair.name} ({j.kind}) has no {chain.space} form; "
-                 f"it belongs in a chain with space = {other!r}", where)
-        if any(not isinstance(x, str) or not x for x in j.links):
-            fail("link names must be non-empty strings", where)
-        if len(j.links) < 2:
-            fail(f"a joint needs at least two links, got {len(j.links)}", where)
-        if len(set(j.links)) != len(j.links):
-            dup = next(x for x in j.links if j.links.count(x) > 1)
-            fail(f"link {dup!r} is named twice in one joint", where)
-        if j.kind != "R" and len(j.links) != 2:
-            fail(f"a {pair.name} ({j.kind}) joins exactly two links, got {len(j.links)}; "
-                 "only R joints may be multiple", where)
-        if j.at is not None and not _is_finite_pair(j.at):
-            fail("'at' must be two finite numbers [x, y]", where)
-        if j.kind == "P":
-            # 'at' and 'axis' go together: a chain written for its structure alone
-            # needs neither
-            if j.at is not None and j.axis is None:
-                fail("a P joint with 'at' needs 'axis' (direction of sliding, degrees); "
-                     "a chain written for its structure alone needs neither", where)
-            if j.axis is not None and j.at is None:
-                fail("a P joint with 'axis' needs 'at' (a point of the sliding line); "
-                     "a chain written for its structure alone needs neither", where)
-            if j.axis is not None and (isinstance(j.axis, bool)
-                                       or not isinstance(j.axis, (int, float))
-                                       or not math.isfinite(j.axis)):
-                fail("'axis' must be a finite number of degrees", where)
-        elif j.axis is not None:
-            fail("'axis' is only for P joints", where)
-        if j.closure is not None:
-            if j.closure not in CLOSURES:
-                fail(f"unknown closure {j.closure!r} (expected 'form' or 'force')", where)
-            if pair.lower and j.closure == "force":
-                fail("a lower pair is a closed pair; closure = 'force' is only for "
-                     "higher pairs", where)
+        _validate_joint(chain, j, fail)
     links = set(chain.links)
-    point_ids = set()
-    for p in chain.points:
-        where = f"point {p.id!r}"
-        if not isinstance(p.id, str) or not p.id:
-            fail("a point id must be a non-empty string", "point")
-        if p.id in point_ids or p.id in seen:
-            fail("duplicate id (points and joints share one namespace)", where)
-        point_ids.add(p.id)
-        if p.link not in links:
-            fail(f"'link' names no link of the chain: {p.link!r}", where)
-        if not _is_finite_pair(p.at):
-            fail("'at' must be two finite numbers [x, y]", where)
+    point_ids = _validate_points(chain, fail, links, seen)
     if chain.naming is not None and chain.naming not in ("structure", "behaviour", "example"):
         fail(f"'naming' must be \"structure\" (the name holds for any dimensions), "
              f"\"behaviour\" (it needs the catalog's behaviour) or \"example\" (a worked "
              f"example: as behaviour, and a general name is preferred to it), "
              f"got {chain.naming!r}", "key 'naming'")
     _validate_forces(chain, fail, links, point_ids)
+    if chain.mechanism is not None:
+        _validate_mechanism(chain, fail, links, point_ids)
+
+
+def _validate_joint(chain, j, fail):
+    """One joint: its kind in the chain's space, its links, its position and axis, its
+    closure."""
+    where = f"joint {j.id!r}"
+    if j.kind not in PAIR_KINDS:
+        fail(f"unknown kind {j.kind!r} (expected one of {', '.join(PAIR_KINDS)})", where)
+    pair = PAIR_KINDS[j.kind]
+    if pair.freedom(chain.space) is None:
+        other = "spatial" if chain.space == "planar" else "planar"
+        fail(f"a {pair.name} ({j.kind}) has no {chain.space} form; "
+             f"it belongs in a chain with space = {other!r}", where)
+    if any(not isinstance(x, str) or not x for x in j.links):
+        fail("link names must be non-empty strings", where)
+    if len(j.links) < 2:
+        fail(f"a joint needs at least two links, got {len(j.links)}", where)
+    if len(set(j.links)) != len(j.links):
+        dup = next(x for x in j.links if j.links.count(x) > 1)
+        fail(f"link {dup!r} is named twice in one joint", where)
+    if j.kind != "R" and len(j.links) != 2:
+        fail(f"a {pair.name} ({j.kind}) joins exactly two links, got {len(j.links)}; "
+             "only R joints may be multiple", where)
+    if j.at is not None and not _is_finite_pair(j.at):
+        fail("'at' must be two finite numbers [x, y]", where)
+    if j.kind == "P":
+        _validate_axis(j, fail, where)
+    elif j.axis is not None:
+        fail("'axis' is only for P joints", where)
+    if j.closure is not None:
+        if j.closure not in CLOSURES:
+            fail(f"unknown closure {j.closure!r} (expected 'form' or 'force')", where)
+        if pair.lower and j.closure == "force":
+            fail("a lower pair is a closed pair; closure = 'force' is only for "
+                 "higher pairs", where)
+
+
+def _validate_axis(j, fail, where):
+    """A P joint's 'at' and 'axis' go together: a chain written for its structure alone
+    needs neither."""
+    if j.at is not None and j.axis is None:
+        fail("a P joint with 'at' needs 'axis' (direction of sliding, degrees); "
+             "a chain written for its structure alone needs neither", where)
+    if j.axis is not None and j.at is None:
+        fail("a P joint with 'axis' needs 'at' (a point of the sliding line); "
+             "a chain written for its structure alone needs neither", where)
+    if j.axis is not None and (isinstance(j.axis, bool)
+                               or not isinstance(j.axis, (int, float))
+                               or not math.isfinite(j.axis)):
+        fail("'axis' must be a finite number of degrees", where)
+
+
+def _validate_points(chain, fail, links, joint_ids):
+    """The points: ids unique beside the joints', on a link of the chain, placed;
+    returns their ids."""
+    point_ids = set()
+    for p in chain.points:
+        where = f"point {p.id!r}"
+        if not isinstance(p.id, str) or not p.id:
+            fail("a point id must be a non-empty string", "point")
+        if p.id in point_ids or p.id in joint_ids:
+            fail("duplicate id (points and joints share one namespace)", where)
+        point_ids.add(p.id)
+        if p.link not in links:
+            fail(f"'link' names no link of the chain: {p.link!r}", where)
+        if not _is_finite_pair(p.at):
+            fail("'at' must be two finite numbers [x, y]", where)
+    return point_ids
+
+
+def _validate_mechanism(chain, fail, links, point_ids):
+    """The ``[mechanism]``: its fixed link, driver, inputs, output and speed."""
     m = chain.mechanism
-    if m is not None:
-        if m.fixed not in links:
-            fail(f"'fixed' names no link of the chain: {m.fixed!r} "
+    if m.fixed not in links:
+        fail(f"'fixed' names no link of the chain: {m.fixed!r} "
+             f"(links: {', '.join(chain.links)})", "[mechanism]")
+    if m.driver is not None:
+        if m.driver not in links:
+            fail(f"'driver' names no link of the chain: {m.driver!r} "
                  f"(links: {', '.join(chain.links)})", "[mechanism]")
-        if m.driver is not None:
-            if m.driver not in links:
-                fail(f"'driver' names no link of the chain: {m.driver!r} "
-                     f"(links: {', '.join(chain.links)})", "[mechanism]")
-            if m.driver == m.fixed:
-                fail("'driver' is the fixed link", "[mechanism]")
-        joint_ids = {j.id: j for j in chain.joints}
-        named = set()
-        for i, item in enumerate(m.inputs):
-            where = f"[mechanism] inputs #{i + 1}"
-            if item.joint not in joint_ids:
-                fail(f"'inputs' names no joint of the chain: {item.joint!r} "
-                     f"(joints: {', '.join(sorted(joint_ids))})", where)
-            if item.joint in named:
-                fail(f"joint {item.joint!r} is named twice in 'inputs'", where)
-            named.add(item.joint)
-            if joint_ids[item.joint].kind not in ("R", "P"):
-                fail(f"an input must be an R or P joint; {item.joint!r} is "
-                     f"{joint_ids[item.joint].kind}", where)
-            if (item.start is None) != (item.stop is None):
-                fail("give both 'from' and 'to', or neither (the input then stays at "
-                     "its drawn value)", where)
-        if m.output is not None and m.output not in links and m.output not in point_ids \
-                and m.output not in joint_ids:
-            fail(f"'output' names no link, joint or point of the chain: {m.output!r}",
-                 "[mechanism]")
-        if (isinstance(m.omega, bool) or not isinstance(m.omega, (int, float))
-                or not math.isfinite(m.omega) or m.omega == 0):
-            fail("'omega' must be a finite non-zero number (rad/s)", "[mechanism]")
+        if m.driver == m.fixed:
+            fail("'driver' is the fixed link", "[mechanism]")
+    joint_ids = {j.id: j for j in chain.joints}
+    named = set()
+    for i, item in enumerate(m.inputs):
+        where = f"[mechanism] inputs #{i + 1}"
+        if item.joint not in joint_ids:
+            fail(f"'inputs' names no joint of the chain: {item.joint!r} "
+                 f"(joints: {', '.join(sorted(joint_ids))})", where)
+        if item.joint in named:
+            fail(f"joint {item.joint!r} is named twice in 'inputs'", where)
+        named.add(item.joint)
+        if joint_ids[item.joint].kind not in ("R", "P"):
+            fail(f"an input must be an R or P joint; {item.joint!r} is "
+                 f"{joint_ids[item.joint].kind}", where)
+        if (item.start is None) != (item.stop is None):
+            fail("give both 'from' and 'to', or neither (the input then stays at "
+                 "its drawn value)", where)
+    if m.output is not None and m.output not in links and m.output not in point_ids \
+            and m.output not in joint_ids:
+        fail(f"'output' names no link, joint or point of the chain: {m.output!r}",
+             "[mechanism]")
+    if (isinstance(m.omega, bool) or not isinstance(m.omega, (int, float))
+            or not math.isfinite(m.omega) or m.omega == 0):
+        fail("'omega' must be a finite non-zero number (rad/s)", "[mechanism]")
+
 
 def chosen_inputs(chain, fixed=None, driver=None, inputs=None):
     """Which inputs a mechanism uses: ``(fixed, driver, inputs)``, those given, else

@@ -128,17 +128,7 @@ def snap_to_lines(chain):
     where = {j.id: j.at for j in chain.joints}
     where.update({p.id: p.at for p in chain.points})
     size = size_of(where)
-    on = []          # (P joint, feature, distance)
-    for j in chain.joints:
-        if j.kind != "P":
-            continue
-        n = normal(math.radians(j.axis))
-        names = {x.id for link in j.links for x in chain.joints_of(link) if x.kind == "R"}
-        names |= {p.id for p in chain.points if p.link in j.links}
-        for name in sorted(names):
-            d = abs(dot(n, sub(where[name], j.at)))
-            if d <= ROUNDING * size:
-                on.append((j.id, name, d))
+    on = _near_lines(chain, where, size)
     if not any(d > 1e-12 * size for *_, d in on):
         return chain
     # the nearest pose: the typed axes and the fixed link's joints stay as drawn; the
@@ -150,48 +140,74 @@ def snap_to_lines(chain):
     if not features:
         return chain
     index = {name: 2 * i for i, name in enumerate(features)}
-    x = np.array([v for name in features for v in where[name]])
-    x0 = x.copy()
-
-    def position(name):
-        return x[index[name]:index[name] + 2] if name in index else np.array(where[name])
-
-    # each constraint n . (feature - line point) = 0 is linear in the positions (the axes
-    # stay), so one minimum-norm step lands on the nearest consistent pose
-    rows, res = [], []
-    for p, name, _ in on:
-        n = np.array(normal(math.radians(chain.joint(p).axis)))
-        row = np.zeros(len(x))
-        for f, sign in ((name, 1.0), (p, -1.0)):
-            if f in index:
-                row[index[f]:index[f] + 2] += sign * n
-        rows.append(row)
-        res.append(float(n @ (position(name) - position(p))))
-    J, r = np.array(rows), np.array(res)
-    x = x - J.T @ np.linalg.lstsq(J @ J.T, r, rcond=None)[0]
-    if max(abs(dot(normal(math.radians(chain.joint(p).axis)), position(name) - position(p)))
+    x0 = np.array([v for name in features for v in where[name]])
+    x = _nearest_pose(chain, on, index, x0, where)
+    if max(abs(dot(normal(math.radians(chain.joint(p).axis)),
+                   _position(name, x, index, where) - _position(p, x, index, where)))
            for p, name, _ in on) > 1e-12 * size:
         return chain      # the fixed link's joints themselves disagree: leave it as drawn
     moved = sorted(((math.dist(x[index[f]:index[f] + 2], x0[index[f]:index[f] + 2]), f)
                     for f in features), reverse=True)
-    joints = []
-    for j in chain.joints:
-        at = tuple(float(v) for v in x[index[j.id]:index[j.id] + 2]) if j.id in index else j.at
-        joints.append(type(j)(j.id, j.kind, j.links, at=at, axis=j.axis, closure=j.closure))
-    points = [type(p)(p.id, p.link, tuple(float(v) for v in x[index[p.id]:index[p.id] + 2]))
+    joints = [replace(j, at=tuple(float(v) for v in x[index[j.id]:index[j.id] + 2]))
+              if j.id in index else j for j in chain.joints]
+    points = [replace(p, at=tuple(float(v) for v in x[index[p.id]:index[p.id] + 2]))
               if p.id in index else p for p in chain.points]
     snapped = replace(chain, joints=tuple(joints), points=tuple(points))
-    far = max((d, p, name) for p, name, d in on)
     if moved[0][0] > SILENT * size:
-        others = sum(1 for d, _ in moved[1:] if d > SILENT * size)
-        more = f" (and {others} other{'s' if others > 1 else ''} less)" if others else ""
-        units = f" {chain.units}" if chain.units else ""
-        d, p, name = far
-        how = ("moved onto it" if moved[0][1] == name else
-               f"{feature_label(chain, moved[0][1])} moved {_figure(moved[0][0])}{units} to put it on it")
-        warnings.warn(PoseAdjustedWarning(
-            f"{chain.source or chain.name}: {feature_label(chain, name)} was {_figure(d)}{units} off "
-            f"the sliding line of {p}: {how}{more} (taken as drawing-level rounding: up to "
-            f"1e-3 of the size {_figure(size)}; an offset slider is drawn farther off)",
-            joint=moved[0][1], distance=moved[0][0], size=size), stacklevel=3)
+        _warn_moved(chain, on, moved, size)
     return snapped
+
+
+def _near_lines(chain, where, size):
+    """(P joint, feature, distance) for every R joint or point of a sliding pair's
+    guide or block within drawing-level rounding of its sliding line."""
+    on = []
+    for j in chain.joints:
+        if j.kind != "P":
+            continue
+        n = normal(math.radians(j.axis))
+        names = {x.id for link in j.links for x in chain.joints_of(link) if x.kind == "R"}
+        names |= {p.id for p in chain.points if p.link in j.links}
+        for name in sorted(names):
+            d = abs(dot(n, sub(where[name], j.at)))
+            if d <= ROUNDING * size:
+                on.append((j.id, name, d))
+    return on
+
+
+def _position(name, x, index, where):
+    """A feature's position: from the coordinates ``x`` if it moves, else as drawn."""
+    return x[index[name]:index[name] + 2] if name in index else np.array(where[name])
+
+
+def _nearest_pose(chain, on, index, x0, where):
+    """The moving features' coordinates nearest ``x0`` that put each feature of ``on``
+    on its line. Each constraint n . (feature - line point) = 0 is linear in the
+    positions (the axes stay), so one minimum-norm step lands on it."""
+    rows, res = [], []
+    for p, name, _ in on:
+        n = np.array(normal(math.radians(chain.joint(p).axis)))
+        row = np.zeros(len(x0))
+        for f, sign in ((name, 1.0), (p, -1.0)):
+            if f in index:
+                row[index[f]:index[f] + 2] += sign * n
+        rows.append(row)
+        res.append(float(n @ (_position(name, x0, index, where) - _position(p, x0, index, where))))
+    J, r = np.array(rows), np.array(res)
+    return x0 - J.T @ np.linalg.lstsq(J @ J.T, r, rcond=None)[0]
+
+
+def _warn_moved(chain, on, moved, size):
+    """Say what moved most, from how far off its line, and how many others moved."""
+    far = max((d, p, name) for p, name, d in on)
+    others = sum(1 for d, _ in moved[1:] if d > SILENT * size)
+    more = f" (and {others} other{'s' if others > 1 else ''} less)" if others else ""
+    units = f" {chain.units}" if chain.units else ""
+    d, p, name = far
+    how = ("moved onto it" if moved[0][1] == name else
+           f"{feature_label(chain, moved[0][1])} moved {_figure(moved[0][0])}{units} to put it on it")
+    warnings.warn(PoseAdjustedWarning(
+        f"{chain.source or chain.name}: {feature_label(chain, name)} was {_figure(d)}{units} off "
+        f"the sliding line of {p}: {how}{more} (taken as drawing-level rounding: up to "
+        f"1e-3 of the size {_figure(size)}; an offset slider is drawn farther off)",
+        joint=moved[0][1], distance=moved[0][0], size=size), stacklevel=4)

@@ -356,6 +356,24 @@ def test_typed_pose_within_rounding_assembles_with_one_warning_beyond_refused():
             assert warned[0].message.distance == pytest.approx(off * size, rel=1e-6)
 
 
+def test_snapping_a_pin_onto_its_line_keeps_every_joint_s_other_fields():
+    """A guide whose friction and closure are given, on a link that is not fixed (so
+    the guide's point moves too): snapped, only the positions change."""
+    from chaingraph.model.snap import snap_to_lines
+    engine = Chain("engine", (
+        Joint("O", "R", ("frame", "crank"), at=(0.0, 0.0)),
+        Joint("A", "R", ("crank", "rod"), at=(20.0, 34.64)),
+        Joint("B", "R", ("rod", "piston"), at=(176.2, 0.01)),
+        Joint("S", "P", ("rod", "piston"), at=(150.0, 0.0), axis=0.0, friction=0.2,
+              closure="form")),
+        mechanism=Mechanism("frame", "crank"))
+    with pytest.warns(PoseAdjustedWarning):
+        snapped = snap_to_lines(engine)
+    assert snapped.joint("B").at[1] == pytest.approx(snapped.joint("S").at[1], abs=1e-12)
+    for before, after in zip(engine.joints, snapped.joints):
+        assert replace(after, at=before.at) == before
+
+
 def test_pin_within_rounding_of_its_line_is_put_on_it(tmp_path):
     engine = chaingraph.load(catalog_path("reciprocating-engine"))
     size = 176.20499351813308 + 20.0

@@ -207,14 +207,14 @@ def test_a_report_interrupted_while_pages_are_made_leaves_the_old_one(old_report
     from chaingraph.report import build
     out, before = old_report
     made = []
-    real = build._entry_page
+    real = build.entry_page
 
     def page(entry):
         made.append(entry.slug)
         if len(made) == 2:
             raise KeyboardInterrupt
         return real(entry)
-    monkeypatch.setattr(build, "_entry_page", page)
+    monkeypatch.setattr(build, "entry_page", page)
     with pytest.raises(KeyboardInterrupt):
         build_report(SMALL[::-1], out, progress=None, steps=24, frames=6, workers=1)
     assert len(made) == 2                            # a new page was made first

@@ -295,43 +295,72 @@ def run_atlas(links, dof=1, *, workers=1, runner=None, out=None, resume=False,
     if shard_dir is not None:
         shard_dir.mkdir(parents=True, exist_ok=True)
         if not stored:
-            for old in shard_dir.glob("shard-*"):
-                old.unlink()
-            write_atomic(state_path, json.dumps(
-                {"links": links, "dof": dof, "labelling": backend, "digest": digest,
-                 "shards": len(shards), "pieces": len(jobs), "jobs": jobs}))
-    shard_work = [sum(work[a:b]) for a, b in shards]
-    total = sum(shard_work) or 1
-    results = [None] * len(shards)
-    counts = {"chains": 0, "done": 0, "work": 0}
-    todo = []
-    for s in range(len(shards)):
-        if resume and shard_dir is not None and _shard_done(shard_dir, s):
-            found = _read_shard(shard_dir, s, joints)
-            results[s] = found if keep else _counts(found)
-            counts["chains"] += len(found[1])
-            counts["done"] += 1
-            counts["work"] += shard_work[s]
-        else:
-            todo.append(s)
-    if counts["done"]:
-        say(counts["work"] / total, f"{counts['done']} of {len(shards)} shards already done")
-
-    def finished(i, result):
-        s = todo[i]
-        if shard_dir is not None:
-            _write_shard(shard_dir, s, result)
-        results[s] = result[:3] if keep else _counts(result[:3])
-        counts["done"] += 1
-        counts["work"] += shard_work[s]
-        counts["chains"] += len(result[1])
-        say(counts["work"] / total, f"shard {counts['done']}/{len(shards)}, "
-                                    f"{counts['chains']:,} chains")
-
+            _start_folder(shard_dir, state_path, {
+                "links": links, "dof": dof, "labelling": backend, "digest": digest,
+                "shards": len(shards), "pieces": len(jobs), "jobs": jobs})
+    run = _Run(shards, [sum(work[a:b]) for a, b in shards], shard_dir, keep, say)
+    run.take_done(joints if resume else None)
     encode = shard_dir is not None
     runner(_shard_task, [(jobs[slice(*shards[s])], links, joints, backend, encode)
-                         for s in todo], finished)
-    parts = ([ring_of(links, backend)] if links == dof + 3 else []) + results
+                         for s in run.todo], run.finished)
+    parts = ([ring_of(links, backend)] if links == dof + 3 else []) + run.results
+    return _gathered(links, dof, joints, backend, parts, keep=keep)
+
+
+def _start_folder(shard_dir, state_path, state):
+    """A new run in ``shard_dir``: the shards of an earlier one removed, the plan
+    (``state``) written to ``state_path``."""
+    for old in shard_dir.glob("shard-*"):
+        old.unlink()
+    write_atomic(state_path, json.dumps(state))
+
+
+class _Run:
+    """The shards of a run as they finish: ``results`` in plan order (counts only
+    unless ``keep``), ``todo`` the shards still to run, each finished one written to
+    ``shard_dir`` (if any) and its progress said."""
+
+    def __init__(self, shards, shard_work, shard_dir, keep, say):
+        self.shards, self.shard_work, self.shard_dir = shards, shard_work, shard_dir
+        self.keep, self.say = keep, say
+        self.total = sum(shard_work) or 1
+        self.results = [None] * len(shards)
+        self.counts = {"chains": 0, "done": 0, "work": 0}
+        self.todo = []
+
+    def take_done(self, joints):
+        """Take the shards already written (when resuming: ``joints`` given); the others
+        are to do."""
+        counts = self.counts
+        for s in range(len(self.shards)):
+            if joints is not None and self.shard_dir is not None \
+                    and _shard_done(self.shard_dir, s):
+                found = _read_shard(self.shard_dir, s, joints)
+                self.results[s] = found if self.keep else _counts(found)
+                counts["chains"] += len(found[1])
+                counts["done"] += 1
+                counts["work"] += self.shard_work[s]
+            else:
+                self.todo.append(s)
+        if counts["done"]:
+            self.say(counts["work"] / self.total,
+                     f"{counts['done']} of {len(self.shards)} shards already done")
+
+    def finished(self, i, result):
+        """Task ``i`` (of ``todo``) came back with ``result``."""
+        s, counts = self.todo[i], self.counts
+        if self.shard_dir is not None:
+            _write_shard(self.shard_dir, s, result)
+        self.results[s] = result[:3] if self.keep else _counts(result[:3])
+        counts["done"] += 1
+        counts["work"] += self.shard_work[s]
+        counts["chains"] += len(result[1])
+        self.say(counts["work"] / self.total, f"shard {counts['done']}/{len(self.shards)}, "
+                                              f"{counts['chains']:,} chains")
+
+
+def _gathered(links, dof, joints, backend, parts, *, keep):
+    """The atlas from its parts in plan order (the counts alone unless ``keep``)."""
     if not keep:
         return AtlasCounts(links, dof, [p if isinstance(p[0], int) else _counts(p)
                                         for p in parts], labelling=backend)
