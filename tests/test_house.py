@@ -255,34 +255,13 @@ NOT_YET_ANNOTATED = {
     "chaingraph/kinematics/sweep.py",  # being rewritten by another part of issue 36
     "chaingraph/kinematics/tracking.py",  # being rewritten by another part of issue 36
     "chaingraph/model/chain.py",  # being rewritten by another part of issue 36
-    "chaingraph/model/chainfile.py",
-    "chaingraph/model/dimensions.py",
     "chaingraph/model/snap.py",  # being rewritten by another part of issue 36
     "chaingraph/naming/atlas.py",
-    "chaingraph/naming/identification.py",
     "chaingraph/naming/inversion_classes.py",  # being rewritten by another part of issue 36
     "chaingraph/report/animation.py",
     "chaingraph/report/atlas.py",  # being rewritten by another part of issue 36
-    "chaingraph/report/atlas_index.py",
     "chaingraph/report/build.py",  # being rewritten by another part of issue 36
-    "chaingraph/structure/atlas/admissibility.py",
-    "chaingraph/structure/atlas/contracted.py",
-    "chaingraph/structure/atlas/entry.py",
-    "chaingraph/structure/atlas/estimate.py",
-    "chaingraph/structure/atlas/forests.py",
-    "chaingraph/structure/atlas/generic.py",
-    "chaingraph/structure/atlas/illustrate.py",
-    "chaingraph/structure/atlas/labelling.py",
-    "chaingraph/structure/atlas/multiple.py",
-    "chaingraph/structure/atlas/output.py",
-    "chaingraph/structure/atlas/pieces.py",
-    "chaingraph/structure/atlas/pins.py",
     "chaingraph/structure/atlas/run.py",  # being rewritten by another part of issue 36
-    "chaingraph/structure/atlas/sliding.py",
-    "chaingraph/structure/classification.py",
-    "chaingraph/structure/generators.py",
-    "chaingraph/structure/isomorphism.py",
-    "chaingraph/structure/rigidity.py",
 }
 
 
