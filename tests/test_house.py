@@ -240,8 +240,6 @@ NOT_YET_ANNOTATED = {
     "chaingraph/drawing/scene.py",  # being rewritten by another part of issue 36
     "chaingraph/dynamics/equilibrium.py",  # being rewritten by another part of issue 36
     "chaingraph/dynamics/reactions.py",  # being rewritten by another part of issue 36
-    "chaingraph/graphical/centres.py",
-    "chaingraph/graphical/polygons.py",
     "chaingraph/kinematics/assembly.py",  # being rewritten by another part of issue 36
     "chaingraph/kinematics/closed_form.py",  # being rewritten by another part of issue 36
     "chaingraph/kinematics/columns.py",  # being rewritten by another part of issue 36
