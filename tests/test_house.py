@@ -231,11 +231,8 @@ NOT_YET_ANNOTATED = {
     "chaingraph/cli/parser.py",
     "chaingraph/cli/text.py",
     "chaingraph/drawing/constructions.py",  # being rewritten by another part of issue 36
-    "chaingraph/drawing/forces.py",
-    "chaingraph/drawing/graph.py",
     "chaingraph/drawing/limits.py",  # being rewritten by another part of issue 36
     "chaingraph/drawing/mechanism.py",  # being rewritten by another part of issue 36
-    "chaingraph/drawing/notebook.py",
     "chaingraph/drawing/plots.py",  # being rewritten by another part of issue 36
     "chaingraph/drawing/scene.py",  # being rewritten by another part of issue 36
     "chaingraph/dynamics/equilibrium.py",  # being rewritten by another part of issue 36
