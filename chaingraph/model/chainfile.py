@@ -457,7 +457,9 @@ def chain_document(chain: Chain) -> dict[str, Any]:
     if joints:
         doc["joints"] = joints
     if chain.points:
-        doc["points"] = [{"id": p.id, "link": p.link, "at": list(p.at)} for p in chain.points]
+        doc["points"] = [{"id": p.id, "link": p.link,
+                          **({"at": list(p.at)} if p.at is not None else {})}
+                         for p in chain.points]
     m = chain.mechanism
     if m is not None:
         mech: dict[str, Any] = {"fixed": m.fixed}
