@@ -12,6 +12,9 @@ import signal
 import sys
 import threading
 import warnings
+from collections.abc import Callable, Sequence
+from types import FrameType
+from typing import TextIO
 
 from chaingraph.cli.parser import build_parser
 from chaingraph.cli.text import error_text, exit_status
@@ -25,11 +28,11 @@ class Terminated(KeyboardInterrupt):
     Ctrl-C runs (workers stopped, temporary files removed) runs for it too."""
 
 
-def _terminate(signum, frame):
+def _terminate(signum: int, frame: FrameType | None) -> None:
     raise Terminated()
 
 
-def _on_sigterm():
+def _on_sigterm() -> Callable[[], object]:
     """Turn SIGTERM into :class:`Terminated` while a command runs; returns a function
     that puts the previous handler back (a no-op where signals cannot be set: not the
     main thread)."""
@@ -40,13 +43,14 @@ def _on_sigterm():
                                  signal.SIG_DFL if previous is None else previous)
 
 
-def main(argv=None) -> int:
+def main(argv: Sequence[str] | None = None) -> int:
     """Run the command line; returns the exit status."""
     parser = build_parser()
     args = parser.parse_args(argv)
     shown = warnings.showwarning
 
-    def show(message, category, filename, lineno, file=None, line=None):
+    def show(message: Warning | str, category: type[Warning], filename: str, lineno: int,
+             file: TextIO | None = None, line: str | None = None) -> None:
         if issubclass(category, ChainGraphWarning):
             print(f"chaingraph: warning: {message}", file=sys.stderr)
         else:

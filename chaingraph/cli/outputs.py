@@ -6,13 +6,16 @@ from __future__ import annotations
 
 import os
 from pathlib import Path
+from types import TracebackType
+from typing import Literal
 
 from chaingraph.errors import ChainGraphError, OutputError
 
 __all__ = ['write_text', 'Writing', 'output_file', 'output_folder', 'picture_file', 'svg_file']
 
 
-def write_text(path, text) -> None:
+def write_text(path: str | os.PathLike[str], text: str) -> None:
+    """Write ``text`` to ``path`` (checked first), or OutputError naming it."""
     output_file(path)
     try:
         with open(path, "w", encoding="utf-8") as f:
@@ -24,19 +27,20 @@ class Writing:
     """Turn a write that fails midway (a full disk, a lost mount) into one line naming
     the output."""
 
-    def __init__(self, path):
+    def __init__(self, path: str | os.PathLike[str]) -> None:
         self.path = path
 
-    def __enter__(self):
+    def __enter__(self) -> Writing:
         return self
 
-    def __exit__(self, kind, error, trace):
+    def __exit__(self, kind: type[BaseException] | None, error: BaseException | None,
+                 trace: TracebackType | None) -> Literal[False]:
         if isinstance(error, OSError) and not isinstance(error, ChainGraphError):
             raise OutputError(error.filename or self.path,
                               f"cannot be written ({error.strerror or error})") from None
         return False
 
-def _existing_folder_above(path):
+def _existing_folder_above(path: str | os.PathLike[str]) -> Path:
     """The nearest folder above ``path`` that exists, or OutputError when a file is in
     the way."""
     above = Path(os.path.abspath(path)).parent
@@ -46,7 +50,7 @@ def _existing_folder_above(path):
         raise OutputError(path, f"{above} is a file, not a folder")
     return above
 
-def output_file(path, *, what="output"):
+def output_file(path: str | os.PathLike[str], *, what: str = "output") -> Path:
     """Check a file to write before the work starts, and make its missing folders."""
     p = Path(path)
     if p.is_dir():
@@ -59,7 +63,7 @@ def output_file(path, *, what="output"):
     p.parent.mkdir(parents=True, exist_ok=True)
     return p
 
-def output_folder(path, *, what="output"):
+def output_folder(path: str | os.PathLike[str], *, what: str = "output") -> Path:
     """Check a folder to write into before the work starts, and make it."""
     p = Path(path)
     if p.exists() and not p.is_dir():
@@ -70,7 +74,7 @@ def output_folder(path, *, what="output"):
     p.mkdir(parents=True, exist_ok=True)
     return p
 
-def picture_file(path, *, what):
+def picture_file(path: str | os.PathLike[str], *, what: str) -> Path:
     """An output picture: a known format (by the file's ending), then as output_file."""
     suffix = Path(path).suffix.lower().lstrip(".")
     if suffix:
@@ -82,7 +86,7 @@ def picture_file(path, *, what):
     return output_file(path, what=what)
 
 
-def svg_file(path, *, what):
+def svg_file(path: str | os.PathLike[str], *, what: str) -> Path:
     """An output drawn as SVG only: a ``.svg`` file, then as :func:`output_file`."""
     if not str(path).lower().endswith(".svg"):
         raise OutputError(path, f"the {what} are drawn as SVG: give a .svg file")

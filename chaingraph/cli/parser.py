@@ -3,6 +3,7 @@
 from __future__ import annotations
 
 import argparse
+from typing import NoReturn
 
 from chaingraph import __version__
 from chaingraph.structure.atlas.estimate import LOCAL_HOURS
@@ -28,13 +29,14 @@ __all__ = ['build_parser', 'whole_number', 'path_argument']
 class _Parser(argparse.ArgumentParser):
     """argparse, with a usage error as one line (``chaingraph COMMAND: error: ...``)."""
 
-    def error(self, message):
+    def error(self, message: str) -> NoReturn:
         usage = " ".join(self.format_usage().split())
         self.exit(2, f"{self.prog}: error: {message} ({usage})\n")
 
 
-def _inversion_arguments(p, *, input_help="an input joint; repeat it, one per degree of "
-                                            "freedom"):
+def _inversion_arguments(p: argparse.ArgumentParser, *,
+                         input_help: str = "an input joint; repeat it, one per degree of "
+                                           "freedom") -> None:
     """--fixed, and --driver or --input: the inversion and its inputs, as solve takes them."""
     p.add_argument("--fixed", metavar="LINK", help="the fixed link")
     given = p.add_mutually_exclusive_group()
@@ -44,8 +46,10 @@ def _inversion_arguments(p, *, input_help="an input joint; repeat it, one per de
                        help=input_help)
 
 
-def _sweep_arguments(p, *, first="the first input's first value (degrees, or slide for a "
-                                 "P input)", last="the first input's last value"):
+def _sweep_arguments(p: argparse.ArgumentParser, *,
+                     first: str = "the first input's first value (degrees, or slide for "
+                                  "a P input)",
+                     last: str = "the first input's last value") -> None:
     """--from, --to and --steps: the sweep, as solve takes it."""
     p.add_argument("--from", dest="start", type=float, metavar="X", help=first)
     p.add_argument("--to", dest="stop", type=float, metavar="X", help=last)
@@ -332,7 +336,7 @@ def _design_command(sub) -> None:
 def _version() -> str:
     return __version__
 
-def prismatic_count(text):
+def prismatic_count(text: str) -> int | str:
     """--prismatic: a whole number of sliding pairs, 0 or more, or 'all'."""
     if text == "all":
         return text
@@ -346,7 +350,7 @@ def prismatic_count(text):
     return value
 
 
-def path_argument(text):
+def path_argument(text: str) -> str:
     """A file or folder named on the command line: not empty (an empty path names
     nothing, and a folder made from it would be the current one)."""
     if text == "":
@@ -354,7 +358,7 @@ def path_argument(text):
     return text
 
 
-def positive_number(text):
+def positive_number(text: str) -> float:
     """An option's finite number above 0 (a number of hours)."""
     try:
         value = float(text)
@@ -365,7 +369,7 @@ def positive_number(text):
     return value
 
 
-def whole_number(text):
+def whole_number(text: str) -> int:
     """An option's whole number of 1 or more (a number of steps)."""
     try:
         value = int(text)

@@ -11,39 +11,49 @@ turning-moment diagram is a matplotlib plot (:func:`plot_turning_moment`).
 from __future__ import annotations
 
 import math
+import os
+from typing import TYPE_CHECKING, overload
 
 import numpy as np
 
 from chaingraph.drawing.plots import finish, pyplot_module
 from chaingraph.drawing.scene import COLOURS, Shape, View, svg_document, svg_elements
+from chaingraph.dynamics.reactions import PoseForces, SweepForces
 from chaingraph.geometry import convex_hull
+
+if TYPE_CHECKING:                   # matplotlib is imported only when a plot is drawn
+    from matplotlib.figure import Figure
 
 __all__ = ["free_body_shapes", "free_body_svg", "force_polygon_shapes", "force_polygon_svg",
            "plot_turning_moment"]
 
 #: arrow colours by what the force is
+_Point = tuple[float, float]
+#: a force on a link: (what, its colour's key in ARROWS, where it acts, the force)
+Force = tuple[str, str, _Point, _Point]
+
 ARROWS = {"reaction": "#b2182b", "load": "#2166ac", "weight": "#1b7837",
           "inertia force": "#777777", "effort": "#000000"}
 
 
-def _newtons(f):
+def _newtons(f: _Point) -> str:
     m = math.hypot(*f)
     return f"{m / 1000:.3g} kN" if m >= 1000 else f"{m:.3g} N"
 
 
-def forces_on(result, link):
+def forces_on(result: PoseForces, link: str) -> list[Force]:
     """(what, colour key, point, force) of every force on ``link``."""
     chain = result.chain
-    out = []
+    out: list[Force] = []
     for r in result.reactions:
-        if None in r.force:
+        fx, fy = r.force
+        if fx is None or fy is None:
             continue
         j = chain.joint(r.joint)
         if r.on == link:
-            out.append((f"{r.joint}", "reaction", result.points[r.joint], r.force))
+            out.append((f"{r.joint}", "reaction", result.points[r.joint], (fx, fy)))
         elif len(j.links) == 2 and link in j.links:
-            out.append((f"{r.joint}", "reaction", result.points[r.joint],
-                        (-r.force[0], -r.force[1])))
+            out.append((f"{r.joint}", "reaction", result.points[r.joint], (-fx, -fy)))
     for a in result.applied:
         if a.link == link and None not in a.force:
             key = "effort" if a.what.startswith("effort") else a.what
@@ -51,14 +61,14 @@ def forces_on(result, link):
     return out
 
 
-def free_body_shapes(result):
+def free_body_shapes(result: PoseForces) -> tuple[list[Shape], View]:
     """The free bodies of a :class:`~chaingraph.dynamics.PoseForces` as shapes: each
     moving link in a panel of its own (the panels in rows of three), its joints and
     forces drawn to one scale. Returns (shapes, view)."""
     chain = result.chain
     links = [x for x in chain.links if x != result.fixed]
     colour = {link: COLOURS[i % len(COLOURS)] for i, link in enumerate(chain.links)}
-    bodies = {}
+    bodies: dict[str, list[_Point]] = {}
     for link in links:
         pts = [result.points[j.id] for j in chain.joints if link in j.links]
         bodies[link] = pts
@@ -75,7 +85,7 @@ def free_body_shapes(result):
     scale = arrow / biggest
     cell = extent + 2.4 * arrow
     size = 0.012 * cell                        # a pin's radius, the text's scale
-    shapes = []
+    shapes: list[Shape] = []
     cols = min(3, len(links))
     for i, link in enumerate(links):
         pts = bodies[link]
@@ -84,7 +94,7 @@ def free_body_shapes(result):
         ox = (i % cols) * cell + 0.5 * cell - cx
         oy = -(i // cols) * cell - 0.5 * cell - cy
 
-        def at(p):
+        def at(p: _Point) -> _Point:
             return (p[0] + ox, p[1] + oy)
         shapes.append(Shape("text", "label", (at((cx - 0.45 * cell, cy + 0.42 * cell)),),
                             text=link, size=3.2 * size))
@@ -121,14 +131,14 @@ def free_body_shapes(result):
     return shapes, view
 
 
-def force_polygon_shapes(result):
+def force_polygon_shapes(result: PoseForces) -> tuple[list[Shape], View] | None:
     """The force polygon of each dyad of the solver's plan, as the graphical method
     draws it: the forces on the dyad's first link head to tail, then those on its
     second, closing where they began (the dyad is in equilibrium); the reaction at the
     joint between the two links, dashed, closes the first link's polygon. Panels side
     by side, each to its own scale. Returns (shapes, view), or None without dyads."""
     chain = result.chain
-    panels = []
+    panels: list[tuple[str, str, str, list[Force], list[Force]]] = []
     for a, b in result.dyads:
         middle = [j.id for j in chain.joints if a in j.links and b in j.links]
         on_a = [x for x in forces_on(result, a) if x[0] not in middle]
@@ -137,7 +147,7 @@ def force_polygon_shapes(result):
             panels.append((a, b, middle[0], on_a, on_b))
     if not panels:
         return None
-    shapes = []
+    shapes: list[Shape] = []
     cell = 1.0
     size = 0.012 * cell
     for i, (a, b, mid, on_a, on_b) in enumerate(panels):
@@ -150,7 +160,7 @@ def force_polygon_shapes(result):
         ox = i * cell + 0.5 * cell - 0.5 * (max(xs) + min(xs)) * scale
         oy = -0.5 * cell - 0.5 * (max(ys) + min(ys)) * scale
 
-        def at(p):
+        def at(p: _Point) -> _Point:
             return (ox + p[0] * scale, oy + p[1] * scale)
         shapes.append(Shape("text", "label", ((i * cell + 0.03 * cell, -0.05 * cell),),
                             text=f"dyad {a}, {b}", size=3.2 * size))
@@ -168,7 +178,9 @@ def force_polygon_shapes(result):
     return shapes, view
 
 
-def _arrow(p, q, colour, size, what, f, *, dash=(), head=None, label="mid"):
+def _arrow(p: _Point, q: _Point, colour: str, size: float, what: str, f: _Point, *,
+           dash: tuple[float, ...] = (), head: float | None = None,
+           label: str = "mid") -> list[Shape]:
     """An arrow from p to q for the force ``f``, labelled with ``what`` and its size
     (at the arrow's middle, or by its ``tail``): a shaft, and a head ``head`` wide (1.6
     pin radii ``size`` unless given)."""
@@ -189,7 +201,7 @@ def _arrow(p, q, colour, size, what, f, *, dash=(), head=None, label="mid"):
                   size=2.2 * size, halo=0.6 * size)]
 
 
-def force_polygon_svg(result, *, width=None) -> str | None:
+def force_polygon_svg(result: PoseForces, *, width: int | None = None) -> str | None:
     """The dyads' force polygons (:func:`force_polygon_shapes`) as SVG (``width``:
     420 pixels a dyad by default); None when the mechanism has no dyad with forces on
     both links."""
@@ -202,7 +214,7 @@ def force_polygon_svg(result, *, width=None) -> str | None:
                         title=f"{result.name}: force polygons of the dyads")
 
 
-def free_body_svg(result, *, width=900) -> str:
+def free_body_svg(result: PoseForces, *, width: int = 900) -> str:
     """The free-body diagrams of a :class:`~chaingraph.dynamics.PoseForces` as SVG.
 
     Examples
@@ -221,7 +233,16 @@ def free_body_svg(result, *, width=900) -> str:
                         title=f"{result.name}: free bodies ({kind}) at {at}")
 
 
-def plot_turning_moment(result, path=None):
+@overload
+def plot_turning_moment(result: SweepForces, path: None = None) -> Figure: ...
+
+
+@overload
+def plot_turning_moment(result: SweepForces, path: str | os.PathLike[str]) -> None: ...
+
+
+def plot_turning_moment(result: SweepForces, path: str | os.PathLike[str] | None = None,
+                        ) -> Figure | None:
     """The turning-moment diagram of a :class:`~chaingraph.dynamics.SweepForces` (one
     input): the effort against the input, its mean, and the largest swing of the
     energy about the mean shaded between its two extremes. Written to ``path`` (SVG,

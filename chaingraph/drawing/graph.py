@@ -9,19 +9,26 @@ pose gets a spring layout. The layout is seeded, so drawings are reproducible.
 
 from __future__ import annotations
 
+import os
+from typing import TYPE_CHECKING
+
 import networkx as nx
 import numpy as np
 
 from chaingraph.drawing.plots import finish, plain_text, pyplot_module
+from chaingraph.model.chain import Chain
+
+if TYPE_CHECKING:                   # matplotlib is imported only when a graph is drawn
+    from matplotlib.figure import Figure
 
 __all__ = ["draw_link_joint_graph", "layout"]
 
 
-def layout(chain):
+def layout(chain: Chain) -> dict[tuple[str, str], np.ndarray]:
     """Positions of the link-joint graph's nodes for drawing."""
     g = chain.graph
     if chain.has_pose:
-        init = {}
+        init: dict[tuple[str, str], np.ndarray] = {}
         for j in chain.joints:
             init[("joint", j.id)] = np.array(j.at, dtype=float)
         for link in chain.links:
@@ -35,7 +42,8 @@ def layout(chain):
 
 
 @plain_text
-def draw_link_joint_graph(chain, path=None):
+def draw_link_joint_graph(chain: Chain, path: str | os.PathLike[str] | None = None,
+                          ) -> Figure | None:
     """The link-joint graph of ``chain``: written as SVG (or PNG, by the file's ending)
     to ``path``, or returned as a matplotlib Figure without one."""
     plt = pyplot_module()

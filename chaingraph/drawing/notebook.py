@@ -13,24 +13,47 @@ from __future__ import annotations
 
 import html
 import io
+import os
+from collections.abc import Callable, Iterable, Sequence
+from typing import TYPE_CHECKING, Any, Protocol
 
 from chaingraph.drawing.constructions import draw_centres, draw_polygons
 from chaingraph.drawing.forces import free_body_svg, plot_turning_moment
 from chaingraph.drawing.mechanism import mechanism_svg, skeleton_svg
 from chaingraph.drawing.plots import plot_motion
-from chaingraph.kinematics import summary_rows
+from chaingraph.dynamics.reactions import PoseForces, SweepForces
+from chaingraph.graphical.centres import InstantCentres
+from chaingraph.graphical.polygons import Polygons
+from chaingraph.kinematics import Motion, summary_rows
+from chaingraph.model.chain import Chain
+from chaingraph.structure.classification import Classification
+
+if TYPE_CHECKING:                   # matplotlib is imported only when a plot is drawn
+    from matplotlib.figure import Figure
 
 __all__ = ["Animation", "animate", "figure_svg", "register", "DISPLAYS"]
 
 
-def figure_svg(fig) -> str:
+class InversionTable(Protocol):
+    """What the inversions' display reads of
+    :class:`~chaingraph.naming.inversion_classes.Inversions` (naming is beside drawing,
+    not below it)."""
+
+    name: str
+    links: int
+    classes: int
+
+    def rows(self) -> list[tuple]: ...
+
+
+def figure_svg(fig: Figure) -> str:
     """A matplotlib Figure as SVG text."""
     buf = io.StringIO()
     fig.savefig(buf, format="svg")
     return buf.getvalue()
 
 
-def _table(rows, header=None) -> str:
+def _table(rows: Iterable[Sequence[object]], header: Sequence[object] | None = None) -> str:
     out = ["<table>"]
     if header:
         out.append("<tr>" + "".join(f"<th>{html.escape(str(h))}</th>" for h in header) + "</tr>")
@@ -40,26 +63,30 @@ def _table(rows, header=None) -> str:
     return "".join(out)
 
 
-def chain_svg(chain) -> str:
+def chain_svg(chain: Chain) -> str:
+    """The chain's kinematic skeleton."""
     return skeleton_svg(chain)
 
 
-def classification_html(result) -> str:
+def classification_html(result: Classification) -> str:
+    """The classification as a table."""
     return f"<b>{html.escape(result.name)}</b>" + _table(result.rows())
 
 
-def inversions_html(result) -> str:
+def inversions_html(result: InversionTable) -> str:
+    """The inversions as a table."""
     header, *rows = result.rows()
     return (f"<b>{html.escape(result.name)}</b>: {result.links} links, {result.classes} "
             "distinct inversions" + _table(rows, header))
 
 
-def motion_html(motion) -> str:
+def motion_html(motion: Motion) -> str:
+    """The motion's summary as a table, and its plot."""
     rows = [("mechanism", motion.name), *summary_rows(motion)]
     return _table(rows) + figure_svg(plot_motion(motion))
 
 
-def centres_html(centres) -> str:
+def centres_html(centres: InstantCentres) -> str:
     """The centres as a table and the picture of the construction."""
     return (f"<b>{html.escape(centres.name)}</b>: instantaneous centres at input "
             f"{centres.input:.6g}" + _table(centres.rows(), ["centre", "links", "x", "y",
@@ -67,7 +94,7 @@ def centres_html(centres) -> str:
             + figure_svg(draw_centres(centres)))
 
 
-def polygons_html(polygons) -> str:
+def polygons_html(polygons: Polygons) -> str:
     """The images as a table and the two polygons."""
     return (f"<b>{html.escape(polygons.name)}</b>: velocity and acceleration polygons at "
             f"input {polygons.input:.6g}"
@@ -76,7 +103,7 @@ def polygons_html(polygons) -> str:
             + figure_svg(draw_polygons(polygons)))
 
 
-def pose_forces_html(result) -> str:
+def pose_forces_html(result: PoseForces) -> str:
     """The reactions and efforts as tables and the free bodies."""
     efforts = [(e.joint, "-" if e.value is None else f"{e.value:.6g} {e.unit}")
                for e in result.efforts]
@@ -89,7 +116,7 @@ def pose_forces_html(result) -> str:
             + free_body_svg(result).split("?>", 1)[-1])
 
 
-def sweep_forces_html(result) -> str:
+def sweep_forces_html(result: SweepForces) -> str:
     """The summary and the turning-moment diagram."""
     out = (f"<b>{html.escape(result.name)}</b>: forces over {result.steps} steps"
            + _table(result.rows()) + "".join(f"<p>{html.escape(n)}</p>" for n in result.notes))
@@ -102,21 +129,22 @@ class Animation:
     """One cycle of a solved motion as an animated SVG (SMIL: no script, no network).
     A notebook shows it inline; :meth:`save` writes it."""
 
-    def __init__(self, svg: str):
+    def __init__(self, svg: str) -> None:
         self.svg = svg
 
-    def __repr__(self):
+    def __repr__(self) -> str:
         return f"Animation(svg={len(self.svg)} characters)"
 
-    def _repr_svg_(self):
+    def _repr_svg_(self) -> str:
         return self.svg
 
-    def save(self, path) -> None:
+    def save(self, path: str | os.PathLike[str]) -> None:
+        """Write the SVG to ``path``."""
         with open(path, "w", encoding="utf-8") as f:
             f.write(self.svg)
 
 
-def animate(motion, *, frames=48, seconds=4.0) -> Animation:
+def animate(motion: Motion, *, frames: int = 48, seconds: float = 4.0) -> Animation:
     """The motion animated, for a notebook (``chaingraph.animate(motion)``).
 
     Examples
@@ -132,7 +160,7 @@ def animate(motion, *, frames=48, seconds=4.0) -> Animation:
 
 
 #: the rich display of each result, by the result's class name: (MIME type, function)
-DISPLAYS = {"Chain": ("image/svg+xml", chain_svg),
+DISPLAYS: dict[str, tuple[str, Callable[[Any], str]]] = {"Chain": ("image/svg+xml", chain_svg),
             "Classification": ("text/html", classification_html),
             "Inversions": ("text/html", inversions_html),
             "Motion": ("text/html", motion_html),
@@ -142,7 +170,7 @@ DISPLAYS = {"Chain": ("image/svg+xml", chain_svg),
             "SweepForces": ("text/html", sweep_forces_html)}
 
 
-def register(classes, shell=None) -> bool:
+def register(classes: Iterable[type], shell: Any = None) -> bool:
     """Register the rich displays of ``classes`` (the results named in :data:`DISPLAYS`;
     ``chaingraph`` passes its own) with an IPython shell's display formatters (the running
     one by default); returns whether there was a shell to register with.

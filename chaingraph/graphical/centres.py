@@ -25,13 +25,15 @@ from __future__ import annotations
 
 import itertools
 import math
+from collections.abc import Iterable, Mapping, Sequence
 from dataclasses import dataclass
 from typing import Any
 
 import numpy as np
 
-from chaingraph.geometry import normalised, perp
+from chaingraph.geometry import Vec, normalised, perp
 from chaingraph.kinematics.pose import AtOneValue, PoseMotion, pose_motion
+from chaingraph.model.chain import Chain
 
 #: a line of Kennedy's theorem: the two link pairs whose centres it passes through
 Line = tuple[tuple[str, str], tuple[str, str]]
@@ -55,12 +57,12 @@ class Centre:
     each a pair of link pairs (the centres it passes through), or ``"velocities"``
     (where Kennedy's theorem leaves it indeterminate), or ``"indeterminate"``."""
 
-    links: tuple
-    numbers: tuple
-    at: tuple | None
+    links: tuple[str, str]
+    numbers: tuple[int, int]
+    at: tuple[float, float] | None
     direction: float | None
     found: str | tuple[Line, Line]
-    homogeneous: tuple        # (x, y, w) in the plan's frame scaled by the size, unit norm
+    homogeneous: tuple[float, float, float]   # (x, y, w) in the plan's frame scaled by the size, unit norm
 
     @property
     def name(self) -> str:
@@ -70,19 +72,21 @@ class Centre:
 
     @property
     def primary(self) -> bool:
+        """Whether a joint gives it."""
         return isinstance(self.found, str) and self.found.startswith("joint ")
 
     @property
     def at_infinity(self) -> bool:
+        """Whether it lies at infinity (then ``direction`` says where)."""
         return self.at is None and self.direction is not None
 
-    def found_text(self, numbers=None) -> str:
+    def found_text(self, numbers: Mapping[str, int] | None = None) -> str:
         """How it was found, in words: "joint B", or with the links' ``numbers``
         "I12-I23 x I14-I34" (the two lines of Kennedy's theorem that met)."""
         if isinstance(self.found, str):
             return self.found
 
-        def centre(pair):
+        def centre(pair: tuple[str, str]) -> str:
             if numbers is None:
                 return "(" + ", ".join(pair) + ")"
             a, b = sorted(numbers[x] for x in pair)
@@ -90,8 +94,9 @@ class Centre:
         (p, q), (r, s) = self.found
         return f"{centre(p)}-{centre(q)} x {centre(r)}-{centre(s)}"
 
-    def to_dict(self) -> dict:
-        found = self.found if isinstance(self.found, str) else \
+    def to_dict(self) -> dict[str, Any]:
+        """The centre in ``chaingraph centres --json``."""
+        found: str | list[list[list[str]]] = self.found if isinstance(self.found, str) else \
             [[list(p), list(q)] for p, q in self.found]
         return {"links": list(self.links), "name": self.name,
                 "at": None if self.at is None else [self.at[0], self.at[1]],
@@ -116,13 +121,13 @@ class InstantCentres(AtOneValue):
         The solved pose (the solver's velocities, to compare).
     """
 
-    centres: tuple
-    numbers: dict
-    angular_velocities: dict
-    translations: dict
+    centres: tuple[Centre, ...]
+    numbers: dict[str, int]
+    angular_velocities: dict[str, float | None]
+    translations: dict[str, tuple[float, float]]
     state: PoseMotion
 
-    def centre(self, a, b) -> Centre:
+    def centre(self, a: str, b: str) -> Centre:
         """The centre of links ``a`` and ``b`` (names, either order)."""
         key = frozenset((a, b))
         for c in self.centres:
@@ -130,7 +135,7 @@ class InstantCentres(AtOneValue):
                 return c
         raise KeyError(f"no instantaneous centre of {a!r} and {b!r}")
 
-    def velocity(self, name):
+    def velocity(self, name: str) -> tuple[float, float] | None:
         """A joint's or point's velocity found through the centres: its link's angular
         velocity times its distance from the link's centre relative to the fixed link,
         perpendicular to the line to that centre (a translating link's, the common
@@ -149,11 +154,11 @@ class InstantCentres(AtOneValue):
         r = (p[0] - centre.at[0], p[1] - centre.at[1])
         return (-w * r[1], w * r[0])
 
-    def rows(self) -> list:
+    def rows(self) -> list[list[str]]:
         """The centres as text rows: name, links, x, y, how found (for tables)."""
         size = self.state.plan.size
 
-        def coordinate(value):
+        def coordinate(value: float) -> str:
             return "0" if abs(value) < 1e-12 * size else f"{value:.6g}"
         out = []
         for c in self.centres:
@@ -166,9 +171,9 @@ class InstantCentres(AtOneValue):
             out.append([c.name, ", ".join(c.links), *where, c.found_text(self.numbers)])
         return out
 
-    def to_dict(self) -> dict:
+    def to_dict(self) -> dict[str, Any]:
         """The JSON of ``chaingraph centres --json``."""
-        out = {"name": self.state.name, "fixed": self.state.fixed,
+        out: dict[str, Any] = {"name": self.state.name, "fixed": self.state.fixed,
                "input": self.state.input}
         if self.state.inputs:
             out["inputs"] = [{"joint": j, "value": v} for j, v in self.state.inputs.items()]
@@ -179,7 +184,7 @@ class InstantCentres(AtOneValue):
 
 
 
-def link_numbers(chain, fixed, inputs=()) -> dict:
+def link_numbers(chain: Chain, fixed: str, inputs: Iterable[str] = ()) -> dict[str, int]:
     """The textbook's numbering: the fixed link 1, then the input links (``inputs``: the
     moving links the inputs turn or slide), then the rest along the chain (breadth
     first from the inputs, ties in the file's order); but a link whose name ends in a
@@ -199,7 +204,7 @@ def link_numbers(chain, fixed, inputs=()) -> dict:
     {'frame': 1, 'crank': 2, 'coupler': 3, 'rocker': 4, 'link 5': 5, 'link 6': 6}
     """
     count = len(chain.links)
-    own = {}
+    own: dict[str, int] = {}
     for link in chain.links:
         word = link.split()[-1] if link.split() else ""
         if word.isdigit() and 1 <= int(word) <= count:
@@ -225,7 +230,8 @@ def link_numbers(chain, fixed, inputs=()) -> dict:
 
 
 
-def _finish(h, state):
+def _finish(h: np.ndarray, state: PoseMotion,
+            ) -> tuple[tuple[float, float] | None, float | None]:
     """(at, direction) of a homogeneous point in the scaled frame."""
     plan = state.plan
     x, y, w = h
@@ -236,13 +242,13 @@ def _finish(h, state):
     return (float(x / w * plan.size + ox), float(y / w * plan.size + oy)), None
 
 
-def _scaled(state, p):
+def _scaled(state: PoseMotion, p: Vec) -> tuple[float, float]:
     """A point in the construction's frame: the plan's, over the mechanism's size."""
     plan = state.plan
     return ((p[0] - plan.origin[0]) / plan.size, (p[1] - plan.origin[1]) / plan.size)
 
 
-def _field(state, link):
+def _field(state: PoseMotion, link: str) -> tuple[np.ndarray, float]:
     """A link's velocity field v(p) = c + omega k x p in the scaled frame: (c, omega)."""
     plan = state.plan
     m = state.links[link]
@@ -252,7 +258,7 @@ def _field(state, link):
     return np.array(c), m.omega
 
 
-def _from_velocities(state, a, b):
+def _from_velocities(state: PoseMotion, a: str, b: str) -> np.ndarray | None:
     """The centre of a and b from their velocity fields: where c_a + w_a k x p equals
     c_b + w_b k x p, i.e. (k x (c_a - c_b), w_a - w_b) in homogeneous coordinates."""
     ca, wa = _field(state, a)
@@ -270,7 +276,7 @@ def _primary(state):
     known: dict[Any, Any] = {}
     for j in state.chain.joints:
         if j.kind == "R":
-            h = normalised((*_scaled(state, state.positions[j.id]), 1.0))
+            h = normalised(np.array((*_scaled(state, state.positions[j.id]), 1.0)))
         else:
             u = state.slides[j.id].axis
             h = np.array([-u[1], u[0], 0.0])
@@ -387,8 +393,10 @@ def _angular_velocities(state, centres, numbers):
     return omegas, translations
 
 
-def instant_centres(chain, *, at=None, fixed=None, driver=None, inputs=None,
-                    omega=None) -> InstantCentres:
+def instant_centres(chain: Chain, *, at: float | Sequence[float] | None = None,
+                    fixed: str | None = None, driver: str | None = None,
+                    inputs: Sequence[Any] | None = None, omega: float | None = None,
+                    ) -> InstantCentres:
     """All the instantaneous centres of a mechanism at one input value.
 
     Parameters
@@ -464,7 +472,7 @@ def centres_of(state: PoseMotion) -> InstantCentres:
             how = tuple(tuple(tuple(sorted(p, key=numbers.__getitem__)) for p in line)
                         for line in how)
         centres[pair] = Centre((a, b), (numbers[a], numbers[b]), at, direction, how,
-                               tuple(float(v) for v in h))
+                               (float(h[0]), float(h[1]), float(h[2])))
     omegas, translations = _angular_velocities(state, centres, numbers)
     if omegas is None:
         omegas = {link: None for link in links}

@@ -21,6 +21,7 @@ zero (``loops`` gives each loop and how closely it closes).
 from __future__ import annotations
 
 import math
+from collections.abc import Sequence
 from dataclasses import dataclass
 from typing import Any
 
@@ -28,13 +29,19 @@ import numpy as np
 
 from chaingraph.geometry import direction_deg, perp
 from chaingraph.kinematics.pose import AtOneValue, PoseMotion, pose_motion
+from chaingraph.model.chain import Chain
 
 __all__ = ["Component", "Relative", "Image", "Polygons", "velocity_polygon"]
 
 
 
 
-def _vector(x, y):
+def _floats(v: Sequence[float] | np.ndarray) -> tuple[float, float]:
+    """A 2-vector as a pair of plain floats."""
+    return (float(v[0]), float(v[1]))
+
+
+def _vector(x: float, y: float) -> tuple[float, float]:
     """A vector of plain floats (no -0.0)."""
     return (float(x) + 0.0, float(y) + 0.0)
 
@@ -45,10 +52,11 @@ class Component:
     "centripetal", "tangential", "sliding" or "Coriolis"."""
 
     kind: str
-    vector: tuple
+    vector: tuple[float, float]
 
     @property
     def magnitude(self) -> float:
+        """Its length."""
         return math.hypot(*self.vector)
 
     @property
@@ -56,7 +64,8 @@ class Component:
         """Degrees CCW from +x in [0, 360) (None for a zero vector)."""
         return direction_deg(self.vector)
 
-    def to_dict(self) -> dict:
+    def to_dict(self) -> dict[str, Any]:
+        """The component in ``chaingraph polygons --json``."""
         return {"kind": self.kind, "vector": list(self.vector),
                 "magnitude": self.magnitude, "direction": self.direction}
 
@@ -71,18 +80,22 @@ class Relative:
     to: str
     link: str | None
     joint: str | None
-    velocity: tuple
-    acceleration: tuple
+    velocity: tuple[Component, ...]
+    acceleration: tuple[Component, ...]
 
     @property
-    def velocity_vector(self):
-        return tuple(map(float, np.sum([c.vector for c in self.velocity], axis=0)))
+    def velocity_vector(self) -> tuple[float, float]:
+        """The relative velocity: its components summed."""
+        return _floats(np.sum([c.vector for c in self.velocity], axis=0))
 
     @property
-    def acceleration_vector(self):
-        return tuple(map(float, np.sum([c.vector for c in self.acceleration], axis=0)))
+    def acceleration_vector(self) -> tuple[float, float]:
+        """The relative acceleration: its components summed."""
+        return _floats(np.sum([c.vector for c in self.acceleration], axis=0))
 
-    def to_dict(self, which) -> dict:
+    def to_dict(self, which: str) -> dict[str, Any]:
+        """The vector in ``chaingraph polygons --json``: ``which`` is ``"velocity"`` or
+        ``"acceleration"``."""
         components = self.velocity if which == "velocity" else self.acceleration
         total = self.velocity_vector if which == "velocity" else self.acceleration_vector
         out: dict[str, Any] = {"from": self.start, "to": self.to}
@@ -102,11 +115,12 @@ class Image:
 
     name: str
     link: str
-    at: tuple
-    velocity: tuple
-    acceleration: tuple
+    at: tuple[float, float]
+    velocity: tuple[float, float]
+    acceleration: tuple[float, float]
 
-    def to_dict(self) -> dict:
+    def to_dict(self) -> dict[str, Any]:
+        """The image in ``chaingraph polygons --json``."""
         return {"name": self.name, "link": self.link, "at": list(self.at),
                 "velocity": list(self.velocity), "acceleration": list(self.acceleration)}
 
@@ -120,53 +134,53 @@ class Polygons(AtOneValue):
     velocities around it, the sum of the relative accelerations), both zero vectors up
     to rounding."""
 
-    images: dict
-    relatives: tuple
-    loops: tuple
+    images: dict[str, Image]
+    relatives: tuple[Relative, ...]
+    loops: tuple[tuple[tuple[str, ...], tuple[float, float], tuple[float, float]], ...]
     state: PoseMotion
 
-    def relative(self, start, to) -> Relative:
+    def relative(self, start: str, to: str) -> Relative:
         """The relative vector from image ``start`` to image ``to`` (either way round:
         reversed, its components change sign)."""
         for r in self.relatives:
             if (r.start, r.to) == (start, to):
                 return r
             if (r.start, r.to) == (to, start):
-                def neg(cs):
+                def neg(cs: Sequence[Component]) -> tuple[Component, ...]:
                     return tuple(Component(c.kind, (-c.vector[0], -c.vector[1])) for c in cs)
                 return Relative(start, to, r.link, r.joint, neg(r.velocity),
                                 neg(r.acceleration))
         raise KeyError(f"no relative vector between {start!r} and {to!r}")
 
     @property
-    def closure(self) -> dict:
+    def closure(self) -> dict[str, float]:
         """The largest loop sum of each polygon (0 when there is no loop)."""
         return {"velocity": max((math.hypot(*v) for _, v, _ in self.loops), default=0.0),
                 "acceleration": max((math.hypot(*a) for _, _, a in self.loops), default=0.0)}
 
-    def image_rows(self) -> list:
+    def image_rows(self) -> list[list[str]]:
         """Each image as a text row: point, link, vx, vy, |v|, ax, ay, |a|."""
-        def num(v):
+        def num(v: float) -> str:
             return f"{v:.6g}"
         return [[im.name, im.link, *map(num, im.velocity), num(math.hypot(*im.velocity)),
                  *map(num, im.acceleration), num(math.hypot(*im.acceleration))]
                 for im in self.images.values()]
 
-    def vector_rows(self) -> list:
+    def vector_rows(self) -> list[list[str]]:
         """Each component of each relative vector as a text row: vector, on (link or
         joint), component, magnitude, direction (degrees)."""
-        out = []
+        out: list[list[str]] = []
         for r in self.relatives:
-            on = r.link if r.joint is None else f"joint {r.joint}"
+            on = str(r.link) if r.joint is None else f"joint {r.joint}"   # a link's own
             for c in (*r.velocity, *r.acceleration):
                 out.append([f"{r.to} rel. {r.start}", on, c.kind, f"{c.magnitude:.6g}",
                             "-" if c.direction is None else f"{c.direction:.6g}"])
         return out
 
-    def to_dict(self) -> dict:
+    def to_dict(self) -> dict[str, Any]:
         """The JSON of ``chaingraph polygons --json``."""
         s = self.state
-        out = {"name": s.name, "fixed": s.fixed, "input": s.input}
+        out: dict[str, Any] = {"name": s.name, "fixed": s.fixed, "input": s.input}
         if s.inputs:
             out["inputs"] = [{"joint": j, "value": v} for j, v in s.inputs.items()]
         out["omega"] = s.omega
@@ -290,13 +304,12 @@ def polygons_of(state: PoseMotion) -> Polygons:
         da = np.array(r.acceleration_vector)
         (vs, as_), (vt, at) = known[r.start], known[r.to]
         # around the loop: from the pole to start, the vector, back from to to the pole
-        loops.append((tuple(path), tuple(map(float, np.add(vs, dv) - np.array(vt))),
-                      tuple(map(float, np.add(as_, da) - np.array(at)))))
-    out = {}
+        loops.append((tuple(path), _floats(np.add(vs, dv) - np.array(vt)),
+                      _floats(np.add(as_, da) - np.array(at))))
+    out: dict[str, Image] = {}
     for name, (link, at) in images.items():
         v, a = known.get(name, ((math.nan, math.nan), (math.nan, math.nan)))
-        out[name] = Image(name, link, tuple(map(float, at)), tuple(map(float, v)),
-                          tuple(map(float, a)))
+        out[name] = Image(name, link, _floats(at), _floats(v), _floats(a))
     return Polygons(images=out, relatives=tuple(relatives), loops=tuple(loops), state=state)
 
 
@@ -316,8 +329,10 @@ def _path(parent, start, end):
     return b[:b.index(common) + 1] + a[:a.index(common)][::-1] + [end]
 
 
-def velocity_polygon(chain, *, at=None, fixed=None, driver=None, inputs=None,
-                     omega=None) -> Polygons:
+def velocity_polygon(chain: Chain, *, at: float | Sequence[float] | None = None,
+                     fixed: str | None = None, driver: str | None = None,
+                     inputs: Sequence[Any] | None = None, omega: float | None = None,
+                     ) -> Polygons:
     """The velocity and acceleration polygons of a mechanism at one input value.
 
     Parameters are those of :func:`chaingraph.instant_centres`. With several inputs

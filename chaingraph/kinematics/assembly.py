@@ -31,7 +31,9 @@ from __future__ import annotations
 
 import math
 import warnings
+from collections.abc import Sequence
 from dataclasses import dataclass, replace
+from typing import Any, NoReturn
 
 import numpy as np
 
@@ -39,6 +41,8 @@ from chaingraph._util.disjoint import DisjointSets
 from chaingraph.errors import DimensionError, PoseAdjustedWarning
 from chaingraph.geometry import (
     FIXED,
+    PoseEntry,
+    Vec,
     apply,
     compose,
     cross,
@@ -66,7 +70,13 @@ from chaingraph.kinematics.plan import Constraint, Step, build_plan
 from chaingraph.kinematics.sweep import feasible_range
 from chaingraph.model.chain import Chain, Joint, Point, chosen_inputs, line_direction
 from chaingraph.model.chainfile import parse_document, toml_text
-from chaingraph.model.dimensions import MODE_WORDS, LineSpec, link_features, link_shape
+from chaingraph.model.dimensions import (
+    MODE_WORDS,
+    Dimensions,
+    LineSpec,
+    link_features,
+    link_shape,
+)
 from chaingraph.model.snap import ROUNDING, SILENT, feature_label, size_of
 
 __all__ = ["Assembly", "Mode", "assemble", "measure", "measured_document"]
@@ -94,13 +104,13 @@ class Assembly:
     ``links`` each link's pose entry ``(x, y, phi, cos phi, sin phi)``: the motion
     from the link's own frame (the one its lengths are drawn in) to the world."""
 
-    joints: dict
-    axes: dict
-    points: dict
-    modes: tuple
-    groups: tuple
+    joints: dict[str, tuple[float, float]]
+    axes: dict[str, float]
+    points: dict[str, tuple[float, float]]
+    modes: tuple[Mode, ...]
+    groups: tuple[tuple[str, ...], ...]
     size: float
-    links: dict
+    links: dict[str, PoseEntry]
 
 
 class _DoesNotClose(Exception):
@@ -318,7 +328,7 @@ class _Solver:
         """Weld links by the inputs; ``self.body[link] = (body, transform in body)``."""
         model = self.model
         body = {model.fixed: (model.fixed, (0.0, 0.0, 0.0))}
-        welds = {}
+        welds: dict[str, list[tuple[Joint, str, str, float]]] = {}
         for (j, a, b, _), value in zip(model.inputs, self.values):
             welds.setdefault(a, []).append((j, a, b, value))
             welds.setdefault(b, []).append((j, a, b, value))
@@ -383,8 +393,8 @@ class _Solver:
         (ba, ta), (bb, tb) = self.body[a], self.body[b]
         (pa, la), (pb, lb) = self.model.frames[a], self.model.frames[b]
         if joint.kind == "R":
-            return Constraint("R", joint.id, ba, bb, apply(ta, pa[joint.id]),
-                              point_b=apply(tb, pb[joint.id]))
+            return Constraint("R", joint.id, ba, bb, _xy(apply(ta, pa[joint.id])),
+                              point_b=_xy(apply(tb, pb[joint.id])))
         (ga, ea), (gb, eb) = line_in(ta, la[joint.id]), line_in(tb, lb[joint.id])
         # each body's point on the line: its foot from the body's origin
         return Constraint("P", joint.id, ba, bb, (ea * normal(ga)[0], ea * normal(ga)[1]),
@@ -408,7 +418,8 @@ class _Solver:
 
     def _place(self, placed):
         for body, entry in placed.items():
-            self.pose[body] = tuple(float(v) for v in entry)
+            self.pose[body] = (float(entry[0]), float(entry[1]), float(entry[2]),
+                               float(entry[3]), float(entry[4]))
             self.angle[body] = self.pose[body][2]
 
     # the solve
@@ -718,7 +729,7 @@ def _off_line(c, body, p):
 
 
 # -- the public functions ----------------------------------------------------------------
-def assemble(chain, points, dims):
+def assemble(chain: Chain, points: Sequence[tuple[str, str]], dims: Dimensions) -> Assembly:
     """The drawn pose of a mechanism given by its dimensions.
 
     Parameters
@@ -782,7 +793,7 @@ def assemble(chain, points, dims):
     >>> [round(v, 6) for v in chain.joint("C").at]
     [113.538447, 78.846119]
     """
-    def fail(problem, where=None):
+    def fail(problem: str, where: str | None = None) -> NoReturn:
         raise DimensionError(problem, source=chain.source, where=where)
 
     model = _Model(chain, points, dims, fail)
@@ -886,7 +897,7 @@ def _unassemblable(model, values, error):
             runs.append((start, k - 1))
             start = None
     # each run of the grid where it assembles: the solver's range from a pose in it
-    ranges = []
+    ranges: list[tuple[float, float]] = []
     for s, e in runs:
         v = float(grid[(s + e) // 2])
         found = _solver_range(model, [v] + values[1:])
@@ -957,13 +968,14 @@ def _pose(model, solver):
     pts = {pid: _xy(solver.world_point(link, pid)) for pid, link in model.points}
     size = size_of({**joints, **pts})
     modes = tuple(model.shape_modes) + tuple(solver.modes)
-    links = {link: make_pose(*world(solver.pose, body, (t[1], t[2])),
-                             solver.pose[body][2] + t[0])
-             for link, (body, t) in solver.body.items()}
+    links: dict[str, PoseEntry] = {}
+    for link, (body, t) in solver.body.items():
+        w = world(solver.pose, body, (t[1], t[2]))
+        links[link] = make_pose(w[0], w[1], solver.pose[body][2] + t[0])
     return Assembly(joints, axes, pts, modes, tuple(solver.groups), size, links)
 
 
-def _xy(p):
+def _xy(p: Vec) -> tuple[float, float]:
     return (float(p[0]), float(p[1]))
 
 
@@ -1066,7 +1078,7 @@ def _frame_of(chain, link, fixed):
     return origin, first
 
 
-def measure(chain):
+def measure(chain: Chain) -> str:
     """The dimensions of a drawn mechanism, as the text of a chain file with
     ``[lengths]`` that assembles to the same pose.
 
@@ -1104,13 +1116,13 @@ class _Measures:
     left is the default), ``lines`` each P joint's angle and offset on its moving links,
     ``values`` each input's value (``None`` for the driver)."""
 
-    lengths: dict
-    sides: dict
-    lines: dict
-    values: dict
+    lengths: dict[str, float | dict[tuple[str, str], float]]
+    sides: dict[str, dict[str, str]]
+    lines: dict[str, dict[str, float]]
+    values: dict[str | None, float]
 
 
-def measured_document(chain) -> dict:
+def measured_document(chain: Chain) -> dict[str, Any]:
     """The document (a dict, as a chain file reads) that :func:`measure` writes: the
     mechanism by its lengths, sliding lines, inputs' values and assembly modes."""
     if chain.mechanism is None:
@@ -1120,7 +1132,9 @@ def measured_document(chain) -> dict:
         raise DimensionError("measuring needs the drawn pose ('at' of every joint)",
                              source=chain.source)
     fixed = chain.mechanism.fixed
-    where = {j.id: j.at for j in chain.joints} | {p.id: p.at for p in chain.points}
+    # (every joint has its 'at': the chain has its drawn pose)
+    where = {j.id: j.at for j in chain.joints if j.at is not None} | \
+        {p.id: p.at for p in chain.points if p.at is not None}
     lengths, sides = _measured_lengths(chain, fixed, where)
     frames = {link: _frame_of(chain, link, fixed) for link in chain.links}
     measures = _Measures(lengths, sides, _measured_lines(chain, fixed, frames, where),
@@ -1133,6 +1147,7 @@ def measured_document(chain) -> dict:
         warnings.simplefilter("ignore")
         written = parse_document(_document(chain, measures, set(), moving, {}),
                                  source=chain.source or "<measure>")
+        assert written.dimensions is not None          # a document with [lengths]
         pose = assemble(written.chain, [(p.id, p.link) for p in written.points],
                         written.dimensions)
     points = [(p.id, p.link) for p in chain.points]
@@ -1141,7 +1156,7 @@ def measured_document(chain) -> dict:
     modes = {mode.part: mode.word for mode in pose.modes
              if ":" not in mode.part and not mode.part.startswith("group ")}
     extra = {j.id for j in chain.joints if j.kind == "P" and fixed not in j.links
-             and math.dist(pose.joints[j.id], j.at) > 1e-9 * pose.size}
+             and math.dist(pose.joints[j.id], where[j.id]) > 1e-9 * pose.size}
     return _document(chain, measures, extra, near, modes)
 
 
@@ -1149,7 +1164,8 @@ def _measured_lengths(chain, fixed, where):
     """Every moving link's lengths (one number for two joints or points, else the
     distances from the first two to each other one) and the sides of the others."""
     points = [(p.id, p.link) for p in chain.points]
-    lengths, sides = {}, {}
+    lengths: dict[str, float | dict[tuple[str, str], float]] = {}
+    sides: dict[str, dict[str, str]] = {}
     for link in chain.links:
         if link == fixed:
             continue
@@ -1179,7 +1195,7 @@ def _measured_lengths(chain, fixed, where):
 def _measured_lines(chain, fixed, frames, where):
     """Each P joint's sliding line on its moving links: its angle and offset in the
     link's frame (the block's as ``block_angle``, ``block_offset``), where not zero."""
-    out = {}
+    out: dict[str, dict[str, float]] = {}
     for j in chain.joints:
         if j.kind != "P":
             continue

@@ -9,11 +9,16 @@ modes where the discriminant is positive.
 from __future__ import annotations
 
 import math
+from collections.abc import Callable
+from typing import TypeAlias
 
 import numpy as np
 
 from chaingraph.geometry import (
     DISC_TOL,
+    PoseEntry,
+    Scalar,
+    Vec,
     circle_circle,
     circle_line,
     clamp_disc,
@@ -28,9 +33,15 @@ from chaingraph.geometry import (
     unit_deg,
     world,
 )
+from chaingraph.kinematics.equations import Pose
+from chaingraph.kinematics.plan import Constraint, Step
+
+#: a dyad's modes: (keys, build, ok, disc), as :func:`dyad_roots` returns them
+Roots: TypeAlias = tuple["tuple[np.ndarray, np.ndarray] | None",
+                         Callable[[Scalar], dict[str, PoseEntry]], Scalar, Scalar]
 
 
-def carried(c, entry, link) -> tuple:
+def carried(c: Constraint, entry: PoseEntry, link: str) -> PoseEntry:
     """The rotation of ``link`` across the P joint ``c`` from the other link's pose
     entry: the same (a drawn chain's links turn together), or turned by ``c.turn``
     (links drawn each in its own frame, as the assembly from lengths places them)."""
@@ -39,13 +50,14 @@ def carried(c, entry, link) -> tuple:
     return make_pose(entry[0], entry[1], entry[2] + (c.turn if link == c.b else -c.turn))
 
 
-def _known_point(pose, c, unknown):
+def _known_point(pose: Pose, c: Constraint, unknown: str) -> Vec:
     """Where the known link of constraint ``c`` puts the joint's point."""
     other = c.other(unknown)
     return world(pose, other, c.at(other))
 
 
-def line_of(pose, attach, unknown, through) -> tuple:
+def line_of(pose: Pose, attach: Constraint, unknown: str, through: Vec,
+            ) -> tuple[Vec, Vec, PoseEntry]:
     """The line on which the unknown link's drawn point ``through`` must stay, for a P
     attachment to a known link: (base point, direction, the unknown link's rotation)."""
     other = attach.other(unknown)
@@ -59,7 +71,7 @@ def line_of(pose, attach, unknown, through) -> tuple:
 
 
 # -- closed-form steps ---------------------------------------------------------------
-def single_link(step, pose) -> dict:
+def single_link(step: Step, pose: Pose) -> dict[str, PoseEntry]:
     """The pose of a single link's step: welded by an input, or placed from two
     attachments to known links (RR, RP, PP)."""
     u = step.links[0]
@@ -75,11 +87,12 @@ def single_link(step, pose) -> dict:
     return {u: _two_lines(pose, u, c1, c2)}
 
 
-def _welded(pose, u, c):
+def _welded(pose: Pose, u: str, c: Constraint) -> PoseEntry:
     """Pose of link u welded to a known link by input joint c at the input's value: an
     R joint turned by delta (the second link relative to the first), or a P joint's
     block slid by delta along the guide."""
     known = pose[c.other(u)]
+    assert c.drive is not None                    # an input's joint
     delta = pose[c.drive][2]
     sign = 1.0 if u == c.b else -1.0
     w = _known_point(pose, c, u)
@@ -90,10 +103,11 @@ def _welded(pose, u, c):
                       (w[0] + sign * delta * t[0], w[1] + sign * delta * t[1]))
 
 
-def _two_lines(pose, u, c1, c2):
+def _two_lines(pose: Pose, u: str, c1: Constraint, c2: Constraint) -> PoseEntry:
     """Pose of link u with two P attachments to known links (its rotation from c1)."""
     turn = carried(c1, pose[c1.other(u)], u)
-    rows, rhs = [], []
+    rows: list[tuple[Scalar, Scalar]] = []
+    rhs: list[Scalar] = []
     for c in (c1, c2):
         base, dirn, _ = line_of(pose, c, u, c.at(u))
         nx_, ny_ = -dirn[1], dirn[0]
@@ -107,7 +121,7 @@ def _two_lines(pose, u, c1, c2):
     return make_pose(x, y, turn[2], turn[3], turn[4])
 
 
-def dyad_roots(step, pose, scale, *, double=False) -> tuple:
+def dyad_roots(step: Step, pose: Pose, scale: float, *, double: Scalar = False) -> Roots:
     """A dyad's assembly modes.
 
     ``double`` (a bool, or a bool per point) takes the discriminant as exactly zero:
@@ -147,7 +161,9 @@ def dyad_roots(step, pose, scale, *, double=False) -> tuple:
     raise ValueError(f"no closed form for a {pattern} dyad")
 
 
-def _circle_roots(pattern, links, constraints, pose, scale, double):
+def _circle_roots(pattern: str, links: tuple[str, str],
+                  constraints: tuple[Constraint, Constraint, Constraint], pose: Pose,
+                  scale: float, double: Scalar) -> Roots:
     """An RRR dyad (two circles) or an RRP dyad (a circle and the line the second link
     slides on): the joint between the links at their crossing."""
     (a, b), (ca, cb, cj) = links, constraints
@@ -170,7 +186,7 @@ def _circle_roots(pattern, links, constraints, pose, scale, double):
     keys = (np.stack((mid[0] + off[0], mid[1] + off[1]), axis=-1),
             np.stack((mid[0] - off[0], mid[1] - off[1]), axis=-1))
 
-    def build(sign):
+    def build(sign: Scalar) -> dict[str, PoseEntry]:
         x, y = mid[0] + sign * off[0], mid[1] + sign * off[1]
         pa = fit_two_points(ca.at(a), wa, qa, (x, y))
         if pattern == "RRR":
@@ -179,7 +195,8 @@ def _circle_roots(pattern, links, constraints, pose, scale, double):
     return keys, build, ok, raw / norm
 
 
-def _rpr_offset(links, constraints, n):
+def _rpr_offset(links: tuple[str, str],
+                constraints: tuple[Constraint, Constraint, Constraint], n: Vec) -> Scalar:
     """``c`` such that the sliding line's normal in the world, ``n_w``, has
     ``n_w . (wb - wa) = c`` (``wa``, ``wb`` where the links turn, ``n`` the line's
     normal on the guide): the line passes through both links' points on it."""
@@ -195,7 +212,8 @@ def _rpr_offset(links, constraints, n):
     return c if g == a else -c
 
 
-def _rpr_roots(links, constraints, pose, double):
+def _rpr_roots(links: tuple[str, str], constraints: tuple[Constraint, Constraint, Constraint],
+               pose: Pose, double: Scalar) -> Roots:
     """An RPR dyad: two links turning about known points, one sliding on the other;
     the sliding line at the distances from both points (its two tangents)."""
     (a, b), (ca, cb, cj) = links, constraints
@@ -210,12 +228,12 @@ def _rpr_roots(links, constraints, pose, double):
     cst, snt = cs0 * cn + sn0 * sn, sn0 * cn - cs0 * sn   # start = delta - nu
     root = np.sqrt(disc)
 
-    def turn(sign):
+    def turn(sign: Scalar) -> tuple[Scalar, Scalar]:
         c1, s1 = cst * ratio - snt * sign * root, snt * ratio + cst * sign * root
         return c1, s1
-    keys = tuple(np.stack(turn(sg), axis=-1) for sg in (1.0, -1.0))
+    keys = (np.stack(turn(1.0), axis=-1), np.stack(turn(-1.0), axis=-1))
 
-    def build(sign):
+    def build(sign: Scalar) -> dict[str, PoseEntry]:
         c1, s1 = turn(sign)
         guide = make_pose(0.0, 0.0, np.arctan2(s1, c1), c1, s1)
         rotation = {cj.a: guide, cj.b: carried(cj, guide, cj.b)}
@@ -224,7 +242,8 @@ def _rpr_roots(links, constraints, pose, double):
     return keys, build, ok, raw
 
 
-def _prp_roots(links, constraints, pose):
+def _prp_roots(links: tuple[str, str], constraints: tuple[Constraint, Constraint, Constraint],
+               pose: Pose) -> Roots:
     """A PRP dyad: two links sliding on known lines, pinned where the lines cross."""
     (a, b), (ca, cb, cj) = links, constraints
     qa, qb = cj.at(a), cj.at(b)
@@ -235,12 +254,13 @@ def _prp_roots(links, constraints, pose):
     s_ = (rx * -dir_b[1] + dir_b[0] * ry) / det
     x, y = base_a[0] + s_ * dir_a[0], base_a[1] + s_ * dir_a[1]
 
-    def build(sign):
+    def build(sign: Scalar) -> dict[str, PoseEntry]:
         return {a: from_point(turn_a, qa, (x, y)), b: from_point(turn_b, qb, (x, y))}
     return None, build, np.isfinite(x), None
 
 
-def _rpp_roots(links, constraints, pose):
+def _rpp_roots(links: tuple[str, str], constraints: tuple[Constraint, Constraint, Constraint],
+               pose: Pose) -> Roots:
     """An RPP dyad: a link turning about a known point slides on a link that slides on
     a known line: both turn with that line."""
     (a, b), (ca, cb, cj) = links, constraints
@@ -248,14 +268,14 @@ def _rpp_roots(links, constraints, pose):
     turn_b = carried(cb, pose[cb.other(b)], b)
     pa = from_point(carried(cj, turn_b, a), ca.at(a), wa)
 
-    def build(sign):
+    def build(sign: Scalar) -> dict[str, PoseEntry]:
         known = dict(pose)
         known[a] = pa
         return {a: pa, b: _two_lines(known, b, cb, cj)}
     return None, build, np.isfinite(wa[0]), None
 
 
-def initial_sign(keys, drawn) -> float:
+def initial_sign(keys: tuple[np.ndarray, np.ndarray], drawn: Vec) -> float:
     """The mode of the drawn pose: the one whose first point is nearest the drawing."""
     kp, km = keys
     dp = np.hypot(kp[0, 0] - drawn[0], kp[0, 1] - drawn[1])

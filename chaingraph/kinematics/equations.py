@@ -9,11 +9,16 @@ guide's line; an input joint adds the prescribed relative rotation (R) or slide 
 from __future__ import annotations
 
 import math
+from collections.abc import Mapping, Sequence
+from typing import TypeAlias
 
 import numpy as np
 
 from chaingraph.errors import AssemblyError
 from chaingraph.geometry import (
+    PoseEntry,
+    Scalar,
+    Vec,
     fit_two_points,
     make_pose,
     perp,
@@ -21,13 +26,24 @@ from chaingraph.geometry import (
     unit_deg,
     world,
 )
+from chaingraph.kinematics.plan import Constraint, Plan, Step
 
 __all__ = ["residuals", "check_poses", "newton_step", "constraint_residuals",
            "place_translations"]
 
+#: a pose: each link's entry (x, y, phi, cos phi, sin phi), one point or a batch
+Pose: TypeAlias = Mapping[str, PoseEntry]
+#: each link's rates (vx, vy, omega), or accelerations (ax, ay, alpha)
+Rates: TypeAlias = Mapping[str, tuple[Scalar, Scalar, Scalar]]
+#: a row of the constraint Jacobian: link -> (cx, cy, cphi)
+Row: TypeAlias = dict[str, tuple[Scalar, Scalar, Scalar]]
+#: what a constraint's rows share: the arms on both links, and for a P joint the
+#: guide's (normal, direction) and the block's offset from the guide's point
+Geometry: TypeAlias = tuple[Vec, Vec, "tuple[Vec, Vec] | None", "Vec | None"]
+
 
 # -- constraint rows (Jacobian and quadratic velocity terms) ------------------------
-def constraint_geometry(c, pose):
+def constraint_geometry(c: Constraint, pose: Pose) -> Geometry:
     """What a constraint's rows and acceleration terms share, computed once: the
     constraint point's arms on both links and, for a P joint, the guide's normal and
     the block's offset from the guide's point (and the guide's direction when the
@@ -41,7 +57,7 @@ def constraint_geometry(c, pose):
     return ra, rb, (perp(u), u), d
 
 
-def _along_row(g, b, n, ra, rb, d):
+def _along_row(g: str, b: str, n: Vec, ra: Vec, rb: Vec, d: Vec) -> Row:
     """The row of n . d (d the block's offset from the guide's point, n turning with the
     guide): the guide's normal keeps the block on its line; its direction, for a P
     input, measures the slide."""
@@ -51,7 +67,7 @@ def _along_row(g, b, n, ra, rb, d):
             g: (-n[0], -n[1], pn[0] * d[0] + pn[1] * d[1] - (n[0] * prg[0] + n[1] * prg[1]))}
 
 
-def _along_gamma(g, b, n, ra, rb, d, vel):
+def _along_gamma(g: str, b: str, n: Vec, ra: Vec, rb: Vec, d: Vec, vel: Rates) -> Scalar:
     """The acceleration equation's velocity terms for the row of n . d."""
     rg = ra
     pn = perp(n)
@@ -64,7 +80,7 @@ def _along_gamma(g, b, n, ra, rb, d, vel):
             + n[1] * (wb_ ** 2 * rb[1] - wg_ ** 2 * rg[1]))
 
 
-def constraint_rows(c, pose, geom=None):
+def constraint_rows(c: Constraint, pose: Pose, geom: Geometry | None = None) -> list[Row]:
     """Rows of the constraint Jacobian, each {link: (cx, cy, cphi)} (constant entries as
     Python floats). An input joint's prescribed value is one more row, whose known
     part is the input's rate (its table entry, the rate in the rotation's place)."""
@@ -76,6 +92,7 @@ def constraint_rows(c, pose, geom=None):
             rows.append({c.b: (0.0, 0.0, 1.0), c.a: (0.0, 0.0, -1.0), c.drive: (0.0, 0.0, -1.0)})
         return rows
     g, b = c.a, c.b
+    assert frame is not None and d is not None          # a P joint's
     n, u = frame
     rows = [{b: (0.0, 0.0, 1.0), g: (0.0, 0.0, -1.0)}, _along_row(g, b, n, ra, rb, d)]
     if c.drive is not None:              # u . d = delta
@@ -83,7 +100,8 @@ def constraint_rows(c, pose, geom=None):
     return rows
 
 
-def constraint_gammas(c, pose, vel, geom=None):
+def constraint_gammas(c: Constraint, pose: Pose, vel: Rates, geom: Geometry | None = None,
+                      ) -> list[Scalar]:
     """Right-hand sides of the acceleration equations from the velocities alone (the
     inputs' accelerations are zero: they move at constant rates)."""
     ra, rb, frame, d = geom or constraint_geometry(c, pose)
@@ -91,6 +109,7 @@ def constraint_gammas(c, pose, vel, geom=None):
         wa2, wb2 = vel[c.a][2] ** 2, vel[c.b][2] ** 2
         return [wa2 * ra[0] - wb2 * rb[0], wa2 * ra[1] - wb2 * rb[1]] + \
             ([0.0] if c.drive is not None else [])
+    assert frame is not None and d is not None          # a P joint's
     n, u = frame
     out = [0.0, _along_gamma(c.a, c.b, n, ra, rb, d, vel)]
     if c.drive is not None:
@@ -98,7 +117,7 @@ def constraint_gammas(c, pose, vel, geom=None):
     return out
 
 
-def constraint_residuals(c, pose) -> list:
+def constraint_residuals(c: Constraint, pose: Pose) -> list[Scalar]:
     """The constraint's equations at the pose: lengths, and rotations in radians."""
     wa, wb = world(pose, c.a, c.point), world(pose, c.b, c.at(c.b))
     dphi = np.remainder(pose[c.b][2] - pose[c.a][2] - c.turn + np.pi, 2 * np.pi) - np.pi
@@ -115,7 +134,7 @@ def constraint_residuals(c, pose) -> list:
     return out
 
 
-def residuals(plan, pose):
+def residuals(plan: Plan, pose: Pose) -> Scalar:
     """Largest constraint residual at every point (lengths; rotations times the size)."""
     worst = None
     for c in plan.constraints:
@@ -132,7 +151,7 @@ def residuals(plan, pose):
     return worst
 
 
-def dot3(c, v):
+def dot3(c: Sequence[Scalar], v: Sequence[Scalar]) -> Scalar:
     """c . v for three-vectors whose entries may be constant Python floats."""
     total = 0.0
     for ci, vi in zip(c, v):
@@ -148,7 +167,8 @@ def dot3(c, v):
 
 
 
-def times(a, b):
+def times(a: Scalar, b: Scalar) -> Scalar:
+    """a * b, skipping the product where a constant factor is 0 or 1."""
     if isinstance(a, float) and a == 0.0 or isinstance(b, float) and b == 0.0:
         return 0.0
     if isinstance(a, float) and a == 1.0:
@@ -158,7 +178,8 @@ def times(a, b):
     return a * b
 
 
-def plus(a, b):
+def plus(a: Scalar, b: Scalar) -> Scalar:
+    """a + b, skipping the sum where a constant term is 0."""
     if isinstance(a, float) and a == 0.0:
         return b
     if isinstance(b, float) and b == 0.0:
@@ -166,13 +187,17 @@ def plus(a, b):
     return a + b
 
 
-def minus(a, b):
+def minus(a: Scalar, b: Scalar) -> Scalar:
+    """a - b, skipping the difference where the constant ``b`` is 0."""
     if isinstance(b, float) and b == 0.0:
         return a
     return a - b
 
 
-def group_matrix(links, rows, n):
+def group_matrix(links: Sequence[str], rows: Sequence[tuple[Row, Scalar]], n: int,
+                 ) -> tuple[np.ndarray, np.ndarray]:
+    """The stacked matrices (n, rows, 3 links) of Jacobian ``rows`` over ``links``
+    and their right-hand sides (n, rows)."""
     col = {link: 3 * k for k, link in enumerate(links)}
     size = 3 * len(links)
     # only a row's own links' entries are set: a group's rows are sparse (a joint
@@ -200,7 +225,7 @@ class _GroupForm:
     Stephenson's third inversion this turns 12 unknowns into 3.)
     """
 
-    def __init__(self, step):
+    def __init__(self, step: Step) -> None:
         links = set(step.links)
         touching = {x: [c for c in step.constraints if x in (c.a, c.b)] for x in links}
         candidates = {x for x, cs in touching.items()
@@ -211,7 +236,8 @@ class _GroupForm:
         self.bodies = tuple(x for x in step.links if x not in bars)
         if not self.bodies:                        # nothing to reduce onto
             bars, self.bodies = set(), tuple(step.links)
-        self.bars = []
+        self.bars: list[tuple[str, str, tuple[float, float], str, tuple[float, float], float,
+                              tuple[float, float], tuple[float, float]]] = []
         for x in step.links:
             if x in bars:
                 c1, c2 = touching[x]
@@ -223,7 +249,7 @@ class _GroupForm:
         self.others = tuple(c for c in step.constraints if c.a not in bars and c.b not in bars)
         self.size = 3 * len(self.bodies)
 
-    def residual(self, pose):
+    def residual(self, pose: Pose) -> np.ndarray:
         out = list(_group_residual_of(self.others, pose).T) if self.others else []
         for _, x, px, y, py, length, _, _ in self.bars:
             wx, wy = world(pose, x, px), world(pose, y, py)
@@ -231,7 +257,7 @@ class _GroupForm:
             out.append((d2 - length * length) / (2 * length))
         return np.stack(np.broadcast_arrays(*out), axis=-1)
 
-    def rows(self, pose):
+    def rows(self, pose: Pose) -> list[Row]:
         rows = [coef for c in self.others for coef in constraint_rows(c, pose)]
         for _, x, px, y, py, length, _, _ in self.bars:
             rx, ry_ = turn_by(pose[x], px), turn_by(pose[y], py)
@@ -246,7 +272,7 @@ class _GroupForm:
             rows.append(row)
         return rows
 
-    def gammas(self, pose, vel):
+    def gammas(self, pose: Pose, vel: Rates) -> list[Scalar]:
         out = [g for c in self.others for g in constraint_gammas(c, pose, vel)]
         for _, x, px, y, py, length, _, _ in self.bars:
             rx, ry_ = turn_by(pose[x], px), turn_by(pose[y], py)
@@ -259,21 +285,22 @@ class _GroupForm:
                         - dd[0] * dd[0] - dd[1] * dd[1]) / length)
         return out
 
-    def set_bodies(self, pose, q):
+    def set_bodies(self, pose: Pose, q: np.ndarray) -> dict[str, PoseEntry]:
         full = dict(pose)
         for k, link in enumerate(self.bodies):
             full[link] = make_pose(q[:, 3 * k], q[:, 3 * k + 1], q[:, 3 * k + 2])
         return full
 
-    def complete(self, pose):
+    def complete(self, pose: dict[str, PoseEntry]) -> dict[str, PoseEntry]:
         """Add the bars' poses (each fitted to its two pins)."""
         for bar, x, px, y, py, _, bx, by in self.bars:
             pose[bar] = fit_two_points(bx, world(pose, x, px), by, world(pose, y, py))
         return pose
 
-    def bar_rates(self, pose, vel, acc=None):
+    def bar_rates(self, pose: Pose, vel: Rates, acc: Rates | None = None,
+                  ) -> dict[str, tuple[Scalar, Scalar, Scalar]]:
         """The bars' velocities (or, with ``acc``, accelerations) from their pins'."""
-        out = {}
+        out: dict[str, tuple[Scalar, Scalar, Scalar]] = {}
         for bar, x, px, y, py, _, bx, by in self.bars:
             r1, r2 = turn_by(pose[bar], bx), turn_by(pose[bar], by)
             d = (r2[0] - r1[0], r2[1] - r1[1])
@@ -292,19 +319,21 @@ class _GroupForm:
         return out
 
 
-def _point_rate(rate, r):
+def _point_rate(rate: tuple[Scalar, Scalar, Scalar], r: Vec) -> tuple[Scalar, Scalar]:
     return rate[0] - rate[2] * r[1], rate[1] + rate[2] * r[0]
 
 
-def _point_accel(acc, vel, r):
+def _point_accel(acc: tuple[Scalar, Scalar, Scalar], vel: tuple[Scalar, Scalar, Scalar],
+                 r: Vec) -> tuple[Scalar, Scalar]:
     w2 = vel[2] * vel[2]
     return acc[0] - acc[2] * r[1] - w2 * r[0], acc[1] + acc[2] * r[0] - w2 * r[1]
 
 
-_FORMS: dict = {}
+_FORMS: dict[Step, _GroupForm] = {}
 
 
-def group_form(step):
+def group_form(step: Step) -> _GroupForm:
+    """A group's equations in reduced coordinates (cached by step)."""
     form = _FORMS.get(step)
     if form is None:
         if len(_FORMS) >= 4096:     # every assembly from lengths has its own steps
@@ -314,19 +343,22 @@ def group_form(step):
 
 
 # -- Newton's method for groups ------------------------------------------------------
-def _group_residual_of(constraints, pose):
+def _group_residual_of(constraints: Sequence[Constraint], pose: Pose) -> np.ndarray:
     return np.stack([e for c in constraints for e in constraint_residuals(c, pose)], axis=-1)
 
 
-def with_group(pose, step, q):
+def with_group(pose: Pose, step: Step, q: np.ndarray) -> dict[str, PoseEntry]:
+    """The pose with the group's bodies at the reduced coordinates ``q`` (n, 3 bodies)."""
     return group_form(step).set_bodies(pose, q)
 
 
-def group_residual(step, pose):
+def group_residual(step: Step, pose: Pose) -> np.ndarray:
+    """The group's equations at the pose (n, equations)."""
     return group_form(step).residual(pose)
 
 
-def group_jacobian(step, pose, n):
+def group_jacobian(step: Step, pose: Pose, n: int) -> np.ndarray:
+    """The group's Jacobian in its reduced coordinates (n, equations, 3 bodies)."""
     form = group_form(step)
     rows = [({k: v for k, v in coef.items() if k in form.bodies}, 0.0)
             for coef in form.rows(pose)]
@@ -334,7 +366,7 @@ def group_jacobian(step, pose, n):
 
 
 
-def batched_inverse(mat):
+def batched_inverse(mat: np.ndarray) -> np.ndarray:
     """Stacked inverses; a singular matrix gets its pseudo-inverse, a matrix with
     non-finite entries (an earlier step that failed) NaN."""
     out = np.full(mat.shape[:1] + mat.shape[:0:-1], np.nan)
@@ -348,7 +380,7 @@ def batched_inverse(mat):
     return out
 
 
-def newton_step(mat, r):
+def newton_step(mat: np.ndarray, r: np.ndarray) -> np.ndarray:
     """Newton's step ``dx`` for stacked systems ``J dx = -r``: a square ``J`` solved
     (at a fold, the least-squares step), more equations than unknowns by the normal
     equations. The one Newton step: the solver's groups and the assembly use it.
@@ -363,7 +395,8 @@ def newton_step(mat, r):
     return batched_solve(mat, -r)
 
 
-def place_translations(links, constraints, pose) -> dict | None:
+def place_translations(links: Sequence[str], constraints: Sequence[Constraint], pose: Pose,
+                       ) -> dict[str, PoseEntry] | None:
     """Links whose rotations are known, placed by their translations.
 
     ``pose`` holds each of ``links`` at its rotation (at any translation) beside the
@@ -389,7 +422,7 @@ def place_translations(links, constraints, pose) -> dict | None:
             for k, link in enumerate(links)}
 
 
-def batched_solve(mat, rhs):
+def batched_solve(mat: np.ndarray, rhs: np.ndarray) -> np.ndarray:
     """Solve stacked systems; a singular one (at a fold) gets its least-squares step,
     one with non-finite entries NaN."""
     out = np.full(rhs.shape, np.nan)
@@ -403,13 +436,16 @@ def batched_solve(mat, rhs):
     return out
 
 
-def slice(pose, idx):
-    return {k: tuple(v if isinstance(v, float) else np.asarray(v)[idx] for v in p)
+def slice(pose: Pose, idx: int | np.ndarray) -> dict[str, PoseEntry]:
+    """The pose at the points ``idx`` of a batch (its constant entries kept)."""
+    def pick(v: Scalar) -> Scalar:
+        return v if isinstance(v, float) else np.asarray(v)[idx]
+    return {k: (pick(p[0]), pick(p[1]), pick(p[2]), pick(p[3]), pick(p[4]))
             for k, p in pose.items()}
 
 
 
-def check_poses(plan, pose, feasible):
+def check_poses(plan: Plan, pose: Pose, feasible: np.ndarray) -> np.ndarray:
     """Raise AssemblyError where a returned pose does not close its loops."""
     res = residuals(plan, pose)
     bad = feasible & ~(res <= 1e-9 * plan.size)
@@ -425,7 +461,7 @@ def check_poses(plan, pose, feasible):
     return res
 
 
-def _undefined_at(plan, pose, i):
+def _undefined_at(plan: Plan, pose: Pose, i: int) -> str:
     """What is undefined at point i of a pose whose residual there is not a number: the
     first joint whose equations are not (a link placed from two joints that meet, a
     sliding pair whose line or direction is undefined)."""

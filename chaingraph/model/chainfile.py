@@ -16,13 +16,14 @@ import math
 import os
 import re
 import tomllib
+from collections.abc import Sequence
 from dataclasses import dataclass
-from typing import Any
+from typing import Any, NoReturn
 
 from chaingraph.errors import ChainFileError
 from chaingraph.model.chain import Chain, Input, Joint, LinkMass, Load, Mechanism, Point
 from chaingraph.model.dimensions import Dimensions, parse_dimensions
-from chaingraph.model.values import LARGEST, number, shown, type_name
+from chaingraph.model.values import LARGEST, Fail, number, shown, type_name
 
 __all__ = ["Document", "parse_file", "parse_text", "parse_document", "dumps", "save",
            "toml_text", "chain_document"]
@@ -50,11 +51,11 @@ class Document:
 
     chain: Chain
     dimensions: Dimensions | None = None
-    joints: tuple = ()
-    points: tuple = ()
+    joints: tuple[Joint, ...] = ()
+    points: tuple[Point, ...] = ()
 
 
-def parse_file(path) -> Document:
+def parse_file(path: str | os.PathLike[str]) -> Document:
     """The :class:`Document` of a chain file (reads, checks; solves nothing)."""
     source = os.fspath(path)
     try:
@@ -82,7 +83,7 @@ def parse_text(text: str, *, source: str = "<string>") -> Document:
     return parse_document(_parse_toml(text.removeprefix("\ufeff"), source), source=source)
 
 
-def _parse_toml(text, source):
+def _parse_toml(text: str, source: str) -> dict[str, Any]:
     try:
         doc = tomllib.loads(text)
     except tomllib.TOMLDecodeError as e:
@@ -105,10 +106,10 @@ def _parse_toml(text, source):
     return doc
 
 
-def parse_document(doc, *, source: str = "<document>") -> Document:
+def parse_document(doc: dict[str, Any], *, source: str = "<document>") -> Document:
     """The :class:`Document` of a parsed TOML document (a dict): every key checked,
     nothing solved."""
-    def fail(problem, where=None):
+    def fail(problem: str, where: str | None = None) -> NoReturn:
         raise ChainFileError(problem, source=source, where=where)
 
     if not isinstance(doc, dict):
@@ -150,7 +151,8 @@ def parse_document(doc, *, source: str = "<document>") -> Document:
     return Document(Chain(joints=joints, points=points, mechanism=mechanism, **meta))
 
 
-def _dimensioned(doc, joints, points, mechanism, meta, fail):
+def _dimensioned(doc: dict[str, Any], joints: tuple[Joint, ...], points: tuple[Point, ...],
+                 mechanism: Mechanism | None, meta: dict[str, Any], fail: Fail) -> Document:
     """The document of a chain given by its dimensions: its structure and dimensions."""
     bare = tuple(Joint(j.id, j.kind, j.links, closure=j.closure, friction=j.friction)
                  for j in joints)
@@ -180,26 +182,27 @@ def _dimensioned(doc, joints, points, mechanism, meta, fail):
     return Document(structure, dims, joints, points)
 
 
-def _no_unknown_keys(table, allowed, where, fail):
+def _no_unknown_keys(table: dict[str, Any], allowed: Sequence[str], where: str | None,
+                     fail: Fail) -> None:
     for key in table:
         if key not in allowed:
             fail(f"unknown key {key!r} (allowed: {', '.join(allowed)})",
                  where or f"key {key!r}")
 
 
-def _string(value, where, fail):
+def _string(value: object, where: str, fail: Fail) -> str:
     if not isinstance(value, str):
         fail(f"must be a string, got {type_name(value)}", where)
     return value
 
 
-def _optional_string(table, key, where, fail):
+def _optional_string(table: dict[str, Any], key: str, where: str, fail: Fail) -> str | None:
     return _string(table[key], where, fail) if key in table else None
 
 
 #: the largest number a chain file may hold (a coordinate, a length, an angle, a speed):
 #: beyond it, squares and products overflow or a float cannot hold a thousandth
-def _coordinates(value, where, fail):
+def _coordinates(value: object, where: str, fail: Fail) -> tuple[float, float]:
     if (not isinstance(value, list) or len(value) != 2
             or any(isinstance(v, bool) or not isinstance(v, (int, float)) for v in value)):
         fail(f"'at' must be two finite numbers [x, y], got {shown(value)}", where)
@@ -208,7 +211,7 @@ def _coordinates(value, where, fail):
     return (number(value[0], where + " 'at' x", fail), number(value[1], where + " 'at' y", fail))
 
 
-def _tables(value, key, fail):
+def _tables(value: object, key: str, fail: Fail) -> list[dict[str, Any]]:
     if isinstance(value, dict):
         fail(f"'{key}' must be an array of tables: write [[{key}]] for each entry",
              f"key '{key}'")
@@ -218,7 +221,7 @@ def _tables(value, key, fail):
     return value
 
 
-def _joint(table, index, fail, dimensioned=False):
+def _joint(table: dict[str, Any], index: int, fail: Fail, dimensioned: bool = False) -> Joint:
     label = f"joint #{index + 1}"
     if "id" in table and isinstance(table["id"], str) and table["id"]:
         label = f"joint {table['id']!r}"
@@ -248,7 +251,7 @@ def _joint(table, index, fail, dimensioned=False):
                  closure=closure, friction=friction)
 
 
-def _pair(value, key, where, fail, unit):
+def _pair(value: object, key: str, where: str, fail: Fail, unit: str) -> tuple[float, float]:
     if (not isinstance(value, list) or len(value) != 2
             or any(isinstance(v, bool) or not isinstance(v, (int, float)) for v in value)
             or any(isinstance(v, float) and not math.isfinite(v) for v in value)):
@@ -257,7 +260,7 @@ def _pair(value, key, where, fail, unit):
             number(value[1], f"{where} '{key}' y", fail))
 
 
-def _masses_and_loads(doc, fail):
+def _masses_and_loads(doc: dict[str, Any], fail: Fail) -> dict[str, Any]:
     """``[[links]]``, ``[forces]`` and ``[[loads]]``: the Chain's masses, gravity, loads
     (their meaning, such as a link that exists, is checked by the Chain)."""
     masses = []
@@ -297,7 +300,7 @@ def _masses_and_loads(doc, fail):
     return {"masses": tuple(masses), "gravity": gravity, "loads": tuple(loads)}
 
 
-def _point(table, index, fail, dimensioned=False):
+def _point(table: dict[str, Any], index: int, fail: Fail, dimensioned: bool = False) -> Point:
     label = f"point #{index + 1}"
     if "id" in table and isinstance(table["id"], str) and table["id"]:
         label = f"point {table['id']!r}"
@@ -315,7 +318,7 @@ def _point(table, index, fail, dimensioned=False):
     return Point(id=point_id, link=link, at=at)
 
 
-def _mechanism(table, fail, dimensioned=False):
+def _mechanism(table: object, fail: Fail, dimensioned: bool = False) -> Mechanism:
     where = "[mechanism]"
     if not isinstance(table, dict):
         fail(f"'mechanism' must be a table ([mechanism]), got {type_name(table)}", where)
@@ -334,7 +337,7 @@ def _mechanism(table, fail, dimensioned=False):
     return Mechanism(fixed=fixed, driver=driver, omega=omega, output=output, inputs=inputs)
 
 
-def _inputs(value, fail, dimensioned=False):
+def _inputs(value: object, fail: Fail, dimensioned: bool = False) -> tuple[Input, ...]:
     """``inputs = ["A", {joint = "E", from = 110.0, to = 50.0}, ...]``"""
     where = "[mechanism] key 'inputs'"
     if not isinstance(value, list) or not value:
@@ -379,7 +382,7 @@ def toml_key(name: str) -> str:
     return name if bare else toml_string(name)
 
 
-def _toml_value(value) -> str:
+def _toml_value(value: Any) -> str:
     if isinstance(value, str):
         return toml_string(value)
     if isinstance(value, bool):
@@ -392,7 +395,7 @@ def _toml_value(value) -> str:
     return "[" + ", ".join(_toml_value(v) for v in value) + "]"
 
 
-def toml_text(document: dict) -> str:
+def toml_text(document: dict[str, Any]) -> str:
     """The one TOML writer: a chain file's document (a dict as :mod:`tomllib` reads
     one) as text, keys in the document's order. A dict value is a table (``[name]``), a
     list of dicts an array of tables (``[[name]]``), anything else a value; inside
@@ -413,7 +416,7 @@ def toml_text(document: dict) -> str:
     at = [0.0, 1.0]
     <BLANKLINE>
     """
-    def table(d):
+    def table(d: dict[str, Any]) -> list[str]:
         return [f"{toml_key(k)} = {_toml_value(v)}" for k, v in d.items()]
     top = {k: v for k, v in document.items() if not _is_table(v)}
     lines = table(top)
@@ -426,12 +429,12 @@ def toml_text(document: dict) -> str:
     return "\n".join(lines) + "\n"
 
 
-def _is_table(value):
+def _is_table(value: object) -> bool:
     return isinstance(value, dict) or (isinstance(value, (list, tuple)) and bool(value)
                                        and all(isinstance(v, dict) for v in value))
 
 
-def chain_document(chain: Chain) -> dict:
+def chain_document(chain: Chain) -> dict[str, Any]:
     """The chain as a chain file's document (the dict :func:`toml_text` writes)."""
     doc: dict[str, Any] = {"name": chain.name}
     for key in ("family", "units", "notes", "naming"):
@@ -454,7 +457,9 @@ def chain_document(chain: Chain) -> dict:
     if joints:
         doc["joints"] = joints
     if chain.points:
-        doc["points"] = [{"id": p.id, "link": p.link, "at": list(p.at)} for p in chain.points]
+        doc["points"] = [{"id": p.id, "link": p.link,
+                          **({"at": list(p.at)} if p.at is not None else {})}
+                         for p in chain.points]
     m = chain.mechanism
     if m is not None:
         mech: dict[str, Any] = {"fixed": m.fixed}
@@ -504,10 +509,10 @@ def dumps(chain: Chain) -> str:
     return toml_text(chain_document(chain))
 
 
-def _input_entry(item):
+def _input_entry(item: Input) -> str | dict[str, Any]:
     if item.start is None and item.at is None:
         return item.joint
-    entry = {"joint": item.joint}
+    entry: dict[str, Any] = {"joint": item.joint}
     if item.start is not None:
         entry.update({"from": item.start, "to": item.stop})
     if item.at is not None:
@@ -515,7 +520,7 @@ def _input_entry(item):
     return entry
 
 
-def save(chain: Chain, path) -> None:
+def save(chain: Chain, path: str | os.PathLike[str]) -> None:
     """Write the chain to a TOML file (see :func:`dumps`)."""
     with open(path, "w", encoding="utf-8") as f:
         f.write(dumps(chain))

@@ -18,11 +18,13 @@ from __future__ import annotations
 
 import difflib
 import math
+from collections.abc import Callable, Collection, Iterable, Sequence
 from dataclasses import dataclass, field
-from typing import Any
+from typing import Any, NoReturn
 
-from chaingraph.geometry import rotate, sub
-from chaingraph.model.values import number
+from chaingraph.geometry import Vec, rotate, sub
+from chaingraph.model.chain import Joint
+from chaingraph.model.values import Fail, number
 
 __all__ = ["Dimensions", "LineSpec", "link_features", "link_shape", "parse_dimensions",
            "MODE_WORDS", "split_key"]
@@ -72,17 +74,18 @@ class Dimensions:
         ``{joint or point: (x, y)}``: rough positions that choose the assembly.
     """
 
-    lengths: dict = field(default_factory=dict)
-    directions: dict = field(default_factory=dict)
-    lines: dict = field(default_factory=dict)
-    modes: dict = field(default_factory=dict)
-    values: dict = field(default_factory=dict)
-    typed: dict = field(default_factory=dict)
-    axes: dict = field(default_factory=dict)
-    near: dict = field(default_factory=dict)
+    lengths: dict[str, dict[tuple[str, ...], float]] = field(default_factory=dict)
+    directions: dict[str, float] = field(default_factory=dict)
+    lines: dict[tuple[str, str], LineSpec] = field(default_factory=dict)
+    modes: dict[str, str | dict[str, str]] = field(default_factory=dict)
+    values: dict[str | None, float] = field(default_factory=dict)
+    typed: dict[str, tuple[float, float]] = field(default_factory=dict)
+    axes: dict[str, float] = field(default_factory=dict)
+    near: dict[str, tuple[float, float]] = field(default_factory=dict)
 
 
-def link_features(joints, points, link):
+def link_features(joints: Iterable[Joint], points: Iterable[tuple[str, str]], link: str,
+                  ) -> list[str]:
     """The ids of the R joints and points on ``link``, in id order (the order that
     fixes the link's frame)."""
     ids = [j.id for j in joints if j.kind == "R" and link in j.links]
@@ -90,7 +93,7 @@ def link_features(joints, points, link):
     return sorted(ids)
 
 
-def split_key(key, features):
+def split_key(key: str, features: Collection[str]) -> tuple[str, ...] | None:
     """The joints a ``[lengths]`` key names: ``"A-B"`` (a distance) or ``"A-B-C"`` (the
     angle at B), split where every part is one of ``features``; None when no split or
     more than one works.
@@ -105,9 +108,9 @@ def split_key(key, features):
     ('C', 'B', 'E')
     """
     parts = key.split("-")
-    found = []
+    found: list[tuple[str, ...]] = []
 
-    def walk(i, names):
+    def walk(i: int, names: list[str]) -> None:
         if i == len(parts):
             if len(names) in (2, 3):
                 found.append(tuple(names))
@@ -121,11 +124,12 @@ def split_key(key, features):
     return found[0] if len(found) == 1 else None
 
 
-def _single_joint(link, joint, joints, points):
+def _single_joint(link: str, joint: str, joints: Iterable[Joint],
+                  points: Iterable[tuple[str, str]]) -> str:
     """Why one number cannot be the length of ``link``, which has a single joint or
     point, and the likely cause: another link of a single joint whose name looks like
     this one (a misspelling in some joint's ``links`` makes a link of its own)."""
-    count: dict[Any, Any] = {}
+    count: dict[str, list[str]] = {}
     for j in joints:
         for x in j.links:
             count.setdefault(x, []).append(j.id)
@@ -144,13 +148,15 @@ def _single_joint(link, joint, joints, points):
     return text
 
 
-def parse_dimensions(doc, joints, points, fail):
+def parse_dimensions(doc: dict[str, Any], joints: Sequence[Joint],
+                     points: Sequence[tuple[str, str]], fail: Fail) -> Dimensions:
     """Read the dimension keys of ``doc`` (a parsed chain document that has a
     ``[lengths]`` table). ``joints`` are the parsed joints (without coordinates),
     ``points`` ``(id, link)`` pairs; ``fail(problem, where)`` raises the file's error."""
     links = sorted({x for j in joints for x in j.links})
     point_ids = {pid for pid, _ in points}
-    lengths, directions = {}, {}
+    lengths: dict[str, dict[tuple[str, ...], float]] = {}
+    directions: dict[str, float] = {}
     table = doc["lengths"]
     if not isinstance(table, dict):
         fail("'lengths' must be a table ([lengths]) of links", "[lengths]")
@@ -160,7 +166,7 @@ def parse_dimensions(doc, joints, points, fail):
             fail(f"names no link of the chain (links: {', '.join(links)})", where)
         features = link_features(joints, points, link)
         if isinstance(value, dict):
-            entries = {}
+            entries: dict[tuple[str, ...], float] = {}
             for key, x in value.items():
                 if key == "direction":
                     directions[link] = number(x, f"{where} key 'direction'", fail)
@@ -195,7 +201,7 @@ def parse_dimensions(doc, joints, points, fail):
                      if features else f"{link!r} has no R joint or point to measure",
                      where)
             lengths[link] = {tuple(features): number(value, where, fail, positive=True)}
-    lines = {}
+    lines: dict[tuple[str, str], LineSpec] = {}
     for t, j in zip(doc.get("joints", []), joints):
         where = f"joint {j.id!r}"
         for key, role in (("offset", 0), ("angle", 0), ("block_offset", 1),
@@ -215,18 +221,18 @@ def parse_dimensions(doc, joints, points, fail):
                       values=values)
 
 
-def _modes(table, fail):
+def _modes(table: object, fail: Fail) -> dict[str, str | dict[str, str]]:
     where = "[assembly]"
     if not isinstance(table, dict):
         fail("'assembly' must be a table ([assembly]) of modes", where)
 
-    def word(value, here):
+    def word(value: object, here: str) -> str:
         if not isinstance(value, str) or value not in MODE_WORDS:
             fail(f"an assembly mode is one of {', '.join(map(repr, MODE_WORDS))}, "
                  f"got {value!r}", here)
         return value
 
-    modes = {}
+    modes: dict[str, str | dict[str, str]] = {}
     for key, value in table.items():
         here = f"{where} {key!r}"
         if isinstance(value, dict):
@@ -236,8 +242,8 @@ def _modes(table, fail):
     return modes
 
 
-def _values(table, fail):
-    values: dict[Any, Any] = {}
+def _values(table: object, fail: Fail) -> dict[str | None, float]:
+    values: dict[str | None, float] = {}
     if not isinstance(table, dict):
         return values
     if "at" in table:
@@ -252,11 +258,13 @@ def _values(table, fail):
 
 
 # -- one link's shape ----------------------------------------------------------------
-def _side_word(side):
+def _side_word(side: int) -> str:
     return "left" if side > 0 else "right"
 
 
-def link_shape(link, features, entries, sides, fail):
+def link_shape(link: str, features: Sequence[str], entries: dict[tuple[str, ...], float],
+               sides: dict[str, int], fail: Callable[[str], NoReturn],
+               ) -> tuple[dict[str, Vec], dict[str, tuple[str, str, int]]]:
     """The positions of ``link``'s joints and points in its own frame (origin at the
     first feature, reference line toward the second), from its lengths.
 
@@ -280,10 +288,11 @@ def link_shape(link, features, entries, sides, fail):
     dist = {frozenset(k): v for k, v in entries.items() if len(k) == 2}
     angles = {k: v for k, v in entries.items() if len(k) == 3}
 
-    def d(a, b):
+    def d(a: str, b: str) -> float | None:
         return dist.get(frozenset((a, b)))
 
-    seed = (features[0], features[1]) if d(features[0], features[1]) else None
+    seed: tuple[str, ...] | None = ((features[0], features[1])
+                                     if d(features[0], features[1]) else None)
     if seed is None:
         pairs = sorted(tuple(sorted(k)) for k in dist)
         if not pairs:
@@ -291,8 +300,9 @@ def link_shape(link, features, entries, sides, fail):
                  f"{', '.join(features)}): write its distances under [lengths], e.g. "
                  f"{_quote(link)} = {{{features[0]}-{features[1]} = ...}}")
         seed = pairs[0]
-    pos = {seed[0]: (0.0, 0.0), seed[1]: (d(*seed), 0.0)}
-    placed = {}
+    pos: dict[str, tuple[float, float]] = {seed[0]: (0.0, 0.0),
+                                           seed[1]: (dist[frozenset(seed)], 0.0)}
+    placed: dict[str, tuple[str, str, int]] = {}
     while len(pos) < len(features):
         for f in features:
             if f in pos:
@@ -305,7 +315,8 @@ def link_shape(link, features, entries, sides, fail):
             if len(known) >= 2:
                 a, b = known[0], known[1]
                 side = sides.get(f, 1)
-                pos[f] = _triangle(link, f, a, b, pos, d(a, f), d(b, f), side, fail)
+                pos[f] = _triangle(link, f, a, b, pos, dist[frozenset((a, f))],
+                                   dist[frozenset((b, f))], side, fail)
                 placed[f] = (a, b, side)
                 break
         else:
@@ -333,16 +344,18 @@ def link_shape(link, features, entries, sides, fail):
     return {f: rotate(sub(p, origin), turn) for f, p in pos.items()}, placed
 
 
-def _quote(name):
+def _quote(name: str) -> str:
     return name if name.replace("_", "").replace("-", "").isalnum() else f'"{name}"'
 
 
-def _angle_at(pos, a, m, c):
+def _angle_at(pos: dict[str, tuple[float, float]], a: str, m: str, c: str) -> float:
     u, v = sub(pos[a], pos[m]), sub(pos[c], pos[m])
     return math.degrees(math.atan2(u[0] * v[1] - u[1] * v[0], u[0] * v[0] + u[1] * v[1]))
 
 
-def _by_angle(f, pos, angles, d):
+def _by_angle(f: str, pos: dict[str, tuple[float, float]],
+              angles: dict[tuple[str, str, str], float], d: Callable[[str, str], float | None],
+              ) -> tuple[float, float] | None:
     """Place ``f`` from an angle 'x-m-f' (or 'f-m-x') at a placed ``m`` with a placed
     ``x`` and the distance m-f; None when no such angle is given."""
     for (a, m, c), angle in angles.items():
@@ -363,7 +376,9 @@ def _by_angle(f, pos, angles, d):
     return None
 
 
-def _triangle(link, f, a, b, pos, ra, rb, side, fail):
+def _triangle(link: str, f: str, a: str, b: str, pos: dict[str, tuple[float, float]],
+              ra: float, rb: float, side: int, fail: Callable[[str], NoReturn],
+              ) -> tuple[float, float]:
     """``f`` at distance ``ra`` from ``a`` and ``rb`` from ``b``, on ``side`` of a->b."""
     base = sub(pos[b], pos[a])
     ab = math.hypot(*base)

@@ -13,13 +13,16 @@ largest), is taken. The mapping is the isomorphism behind the name given.
 from __future__ import annotations
 
 import math
+from collections.abc import Mapping, Sequence
 from dataclasses import dataclass, field
 from pathlib import Path
+from typing import Any
 
 from chaingraph.kinematics.behaviour import behaviour
 from chaingraph.model.chain import Chain, Joint
 from chaingraph.naming.catalog import bundled_catalog, catalog_dir
 from chaingraph.naming.inversion_classes import (
+    Match,
     catalog_matches,
     naming_matches,
     require_connected,
@@ -42,15 +45,16 @@ class Identification:
     joint_kinds: str = "respected"     # or "ignored": found with every joint as an R joint
     note: str | None = None            # e.g. why no inversion is named
 
-    def to_dict(self):
+    def to_dict(self) -> dict[str, Any]:
+        """The JSON object of ``chaingraph identify --json``."""
         return {"chain": self.chain, "inversion": self.inversion, "mapping": dict(self.mapping),
                 "orientation": self.orientation, "joint_kinds": self.joint_kinds,
                 "note": self.note}
 
 
-def _lengths(chain):
+def _lengths(chain: Chain) -> dict[str, list[float]]:
     """Each link's sorted joint-to-joint distances, over the chain's largest one."""
-    out = {}
+    out: dict[str, list[float]] = {}
     for link in chain.links:
         pts = [j.at for j in chain.joints_of(link) if j.at is not None]
         out[link] = sorted(math.dist(a, b) for i, a in enumerate(pts) for b in pts[i + 1:])
@@ -58,7 +62,7 @@ def _lengths(chain):
     return {k: [v / top for v in d] for k, d in out.items()}
 
 
-def _proportion_distance(chain, entry, mapping):
+def _proportion_distance(chain: Chain, entry: Chain, mapping: Mapping[str, str]) -> float:
     """How far the chain's proportions are from the entry's, links matched by mapping."""
     if not (chain.has_pose and entry.has_pose):
         return math.inf
@@ -72,7 +76,7 @@ def _proportion_distance(chain, entry, mapping):
     return total
 
 
-def identify(chain, *, catalog=None) -> Identification:
+def identify(chain: Chain, *, catalog: Sequence[Chain] | None = None) -> Identification:
     """Which catalog chain ``chain`` is and, for a mechanism, which catalog inversion.
 
     Parameters
@@ -126,7 +130,7 @@ def identify(chain, *, catalog=None) -> Identification:
             # the behaviour's own name first, then the corresponding driver and output,
             # then the nearest proportions (the file itself, when it is a catalog entry)
             # a worked example's name only for the example itself: a general name first
-            def rank(x):
+            def rank(x: Match) -> tuple[bool, bool, float, float]:
                 distance = _proportion_distance(chain, x.entry, x.mapping)
                 return (x.alike is not True, x.entry.naming == "example" and distance > 1e-9,
                         -x.score, distance)
@@ -149,7 +153,7 @@ def identify(chain, *, catalog=None) -> Identification:
                           orientation=orientation, joint_kinds=kinds, note=note)
 
 
-def _shown(source):
+def _shown(source: str | None) -> str | None:
     """A catalog file as ``catalog/NAME.toml`` (where it is installed is no concern of
     the reader's); any other file as it was given."""
     if source is None:
@@ -163,7 +167,7 @@ def _shown(source):
     return str(source)
 
 
-def _as_turning_pairs(chain):
+def _as_turning_pairs(chain: Chain) -> Chain:
     """The chain's structure with every joint an R joint (no pose): a sliding pair is a
     turning pair whose centre is at infinity."""
     return Chain(chain.name, tuple(Joint(j.id, "R", j.links) for j in chain.joints))

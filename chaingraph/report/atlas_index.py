@@ -13,6 +13,8 @@ links) stays light.
 from __future__ import annotations
 
 import html
+import os
+from collections.abc import Iterable, Sequence
 from importlib import resources
 from pathlib import Path
 from typing import Any
@@ -22,6 +24,7 @@ from chaingraph._util.text import counted
 from chaingraph.drawing.mechanism import skeleton_svg
 from chaingraph.model.chain import Chain, Joint
 from chaingraph.naming.atlas import atlas_names
+from chaingraph.structure.atlas.sliding import SlidingAtlas, SlidingEntry
 from chaingraph.structure.classification import order_name
 
 __all__ = ["THUMBNAIL_WIDTH", "thumbnail_svg", "base_chain", "base_labels", "where_text",
@@ -29,6 +32,10 @@ __all__ = ["THUMBNAIL_WIDTH", "thumbnail_svg", "base_chain", "base_labels", "whe
 
 #: the width of a thumbnail, in pixels
 THUMBNAIL_WIDTH = 200
+
+#: one chain of the index: its entry, its catalog names (as
+#: :func:`~chaingraph.naming.atlas.atlas_names` gives them) and its thumbnail's SVG
+Card = tuple[SlidingEntry, dict[str, Any], str]
 
 _STYLE = ("body{font-family:sans-serif;margin:1.5em;max-width:75em}"
           "table{border-collapse:collapse;margin:.6em 0;width:100%;table-layout:fixed}"
@@ -44,12 +51,12 @@ _STYLE = ("body{font-family:sans-serif;margin:1.5em;max-width:75em}"
           "#filter output{margin-left:auto;font-weight:bold}")
 
 
-def thumbnail_svg(chain) -> str:
+def thumbnail_svg(chain: Chain) -> str:
     """The skeleton of a posed atlas chain, small: the SVG document of its thumbnail."""
     return skeleton_svg(chain, width=THUMBNAIL_WIDTH, labels=False)
 
 
-def base_chain(entry) -> Chain:
+def base_chain(entry: SlidingEntry) -> Chain:
     """The chain of turning pairs that an atlas entry (a
     :class:`~chaingraph.structure.atlas.sliding.SlidingEntry`) comes from: every sliding
     pair made a turning pair, a multiple joint kept as it is.
@@ -67,11 +74,11 @@ def base_chain(entry) -> Chain:
     return Chain(f"base chain {entry.base}", joints, family="atlas")
 
 
-def base_labels(result) -> dict:
+def base_labels(result: Iterable[SlidingEntry]) -> dict[int, str]:
     """``{base id: label}`` of the base chains of ``result``'s entries: the catalog's
     names of the base chain (``"Watt six-bar chain"``), else ``"turning-pair chain N"``,
     N its number in the atlas of turning pairs (with multiple joints: in that atlas)."""
-    out = {}
+    out: dict[int, str] = {}
     for e in result:
         if e.base not in out:
             names = atlas_names(base_chain(e))["chain"]
@@ -79,7 +86,7 @@ def base_labels(result) -> dict:
     return out
 
 
-def where_text(entry, *, oriented=False) -> list:
+def where_text(entry: SlidingEntry, *, oriented: bool = False) -> list[str]:
     """Where an entry's sliding pairs and multiple joints are, in words, one item each:
     ``"sliding pair J3 between binary L1 and ternary L4"`` (``oriented``: ``"sliding
     pair J3: ternary L4 on a guide on binary L1"``), ``"multiple joint J2 joining L2,
@@ -93,7 +100,7 @@ def where_text(entry, *, oriented=False) -> list:
     ['sliding pair J1 between binary L1 and binary L2']
     """
     order = [order_name(sum(x in j for j in entry.edges)) for x in range(entry.links)]
-    out = []
+    out: list[str] = []
     for i, (links, kind) in enumerate(zip(entry.edges, entry.kinds)):
         names = [f"{order[x]} L{x + 1}" for x in links]
         if kind == "P":
@@ -106,21 +113,22 @@ def where_text(entry, *, oriented=False) -> list:
     return out
 
 
-def _alternatives(items):
+def _alternatives(items: Sequence[str]) -> str:
     """``"L1, L2 or L3"``."""
     return items[0] if len(items) == 1 else ", ".join(items[:-1]) + " or " + items[-1]
 
 
-def _esc(x):
+def _esc(x: object) -> str:
     return html.escape(str(x), quote=True)
 
 
-def _script():
+def _script() -> str:
     return resources.files("chaingraph.report").joinpath("atlas-index.js").read_text(
         encoding="utf-8")
 
 
-def _row(entry, names, base, base_page, *, oriented):
+def _row(entry: SlidingEntry, names: dict[str, Any], base: str, base_page: str | None, *,
+         oriented: bool) -> str:
     """One chain's row of the index, with its filter's data attributes."""
     multiple = sum(len(j) > 2 for j in entry.edges)
     named = [(n, c["links"]) for c in names["inversions"] for n in c["names"]]
@@ -146,14 +154,14 @@ def _row(entry, names, base, base_page, *, oriented):
             f'<td>{where_cell}</td><td>{inversions}</td></tr>')
 
 
-def _filter(rows, labels):
+def _filter(rows: Sequence[Card], labels: dict[int, str]) -> str:
     """The filter's form: base chain, sliding pairs, multiple joints, named, text."""
-    def select(id_, title, values):
+    def select(id_: str, title: str, values: Iterable[tuple[object, object]]) -> str:
         options = "".join(f'<option value="{_esc(v)}">{_esc(text)}</option>'
                           for v, text in values)
         return (f'<label>{title} <select id="{id_}"><option value="">any</option>'
                 f"{options}</select></label>")
-    bases: dict[Any, Any] = {}
+    bases: dict[int, int] = {}
     for e, *_ in rows:
         bases[e.base] = bases.get(e.base, 0) + 1
     sliding = sorted({e.prismatic for e, *_ in rows})
@@ -170,7 +178,7 @@ def _filter(rows, labels):
     return '<form id="filter" hidden onsubmit="return false">' + "".join(parts) + "</form>"
 
 
-def index_page(result, cards) -> str:
+def index_page(result: SlidingAtlas, cards: Sequence[Card]) -> str:
     """The index of an illustrated atlas: ``cards``, one per entry of ``result`` in
     order, are ``(entry, names, thumbnail)`` with the entry's catalog names as
     :func:`~chaingraph.naming.atlas.atlas_names` gives them (its thumbnail is not used
@@ -194,7 +202,7 @@ def index_page(result, cards) -> str:
             _filter(cards, labels)]
     headers = ("<tr><th>skeleton</th><th>chain</th><th>base chain</th>"
                "<th>sliding pairs and multiple joints</th><th>inversions</th></tr>")
-    groups: dict[Any, Any] = {}
+    groups: dict[tuple[int, int], list[Card]] = {}
     for card in cards:
         e = card[0]
         groups.setdefault((e.prismatic, sum(len(j) > 2 for j in e.edges)), []).append(card)
@@ -213,7 +221,8 @@ def index_page(result, cards) -> str:
             + "\n".join(body) + f"\n<script>\n{_script()}</script></body></html>\n")
 
 
-def write_index(result, out_dir, cards) -> Path:
+def write_index(result: SlidingAtlas, out_dir: str | os.PathLike[str],
+                cards: Sequence[Card]) -> Path:
     """Write ``DIR/index.html`` (:func:`index_page`) and each chain's thumbnail,
     ``DIR/thumbs/chain-N.svg``; returns the index's path."""
     out = Path(out_dir)

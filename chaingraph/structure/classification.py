@@ -24,9 +24,11 @@ from __future__ import annotations
 from collections import Counter
 from dataclasses import dataclass, field
 from fractions import Fraction
+from typing import Any
 
 import networkx as nx
 
+from chaingraph.model.chain import Chain
 from chaingraph.structure.rigidity import rigid_parts
 
 __all__ = ["Check", "Classification", "classify", "order_name", "verdict_for"]
@@ -40,7 +42,7 @@ def order_name(k: int) -> str:
     return _ORDER_NAMES.get(k, f"{k}-ary")
 
 
-def verdict_for(lhs, rhs) -> str:
+def verdict_for(lhs: Fraction | float, rhs: Fraction | float) -> str:
     """The textbook's verdict on a check: locked, kinematic or unconstrained chain."""
     if lhs > rhs:
         return "locked chain"
@@ -49,7 +51,7 @@ def verdict_for(lhs, rhs) -> str:
     return "unconstrained chain"
 
 
-def _num(x: Fraction):
+def _num(x: Fraction) -> int | float:
     return int(x) if x.denominator == 1 else float(x)
 
 
@@ -64,7 +66,8 @@ class Check:
     verdict: str | None
     note: str
 
-    def to_dict(self) -> dict:
+    def to_dict(self) -> dict[str, Any]:
+        """The check as the contract's JSON object."""
         return {"rule": self.rule, "lhs": self.lhs, "rhs": self.rhs,
                 "applicable": self.applicable, "verdict": self.verdict, "note": self.note}
 
@@ -78,9 +81,9 @@ class Classification:
     pairs: int
     joint_equivalents: int
     higher_pairs: int
-    joint_orders: dict
-    link_orders: dict
-    pair_kinds: dict
+    joint_orders: dict[str, int]
+    link_orders: dict[str, int]
+    pair_kinds: dict[str, int]
     loops: int
     mobility: int
     checks: tuple[Check, ...]
@@ -96,12 +99,12 @@ class Classification:
     rigid_subchains_complete: bool = True
     rigid_regions: tuple[tuple[str, ...], ...] = ()
 
-    def __repr__(self):
+    def __repr__(self) -> str:
         return (f"Classification({self.name!r}, links={self.links}, pairs={self.pairs}, "
                 f"mobility={self.mobility}, verdict={self.verdict!r}, "
                 f"degenerate={self.degenerate})")
 
-    def rows(self) -> list[tuple[str, object, str | None]]:
+    def rows(self) -> list[tuple[str, int | str, str | None]]:
         """The facts as (what, value, detail) rows in the textbook's words, as the
         command line, the report and a notebook show them.
 
@@ -113,15 +116,15 @@ class Classification:
         >>> rows[0], rows[-2]
         (('links L', 4, 'binary 4'), ('verdict', 'kinematic chain', ''))
         """
-        def counts(d):
+        def counts(d: dict[str, int]) -> str:
             return ", ".join(f"{k} {v}" for k, v in d.items() if v) or "none"
 
-        def sides(check):
-            if not check.applicable:
+        def sides(check: Check) -> str:
+            if not check.applicable or check.lhs is None or check.rhs is None:
                 return "n/a"
             sign = "=" if check.lhs == check.rhs else (">" if check.lhs > check.rhs else "<")
             return f"{check.lhs} {sign} {check.rhs}"
-        rows: list[tuple[str, object, str | None]] = [
+        rows: list[tuple[str, int | str, str | None]] = [
             ("links L", self.links, counts(self.link_orders)),
             ("pairs P", self.pairs, counts(self.pair_kinds)),
             ("joint equivalents J", self.joint_equivalents,
@@ -169,7 +172,7 @@ class Classification:
                        "search stopped at its bound; more may exist")
         return odd
 
-    def to_dict(self) -> dict:
+    def to_dict(self) -> dict[str, Any]:
         """The JSON object of ``chaingraph classify --json``: the contract's keys first."""
         return {
             "name": self.name,
@@ -197,12 +200,12 @@ class Classification:
         }
 
 
-def _orders(counts: Counter, *, always=(2, 3, 4)) -> dict:
+def _orders(counts: Counter[int], *, always: tuple[int, ...] = (2, 3, 4)) -> dict[str, int]:
     keys = sorted(set(always) | {k for k, n in counts.items() if n})
     return {order_name(k): counts.get(k, 0) for k in keys}
 
 
-def _separators(chain):
+def _separators(chain: Chain) -> tuple[tuple[str, ...], tuple[str, ...]]:
     """Links and multiple joints whose removal leaves two or more closed parts.
 
     For each articulation point v of the link-joint graph, each piece of the graph
@@ -240,7 +243,7 @@ def _separators(chain):
     return tuple(sorted(links, key=order.__getitem__)), tuple(sorted(joints))
 
 
-def classify(chain) -> Classification:
+def classify(chain: Chain) -> Classification:
     """Classify a chain: counts, orders, loops, mobility, checks, degeneracy.
 
     Parameters
@@ -299,7 +302,8 @@ def classify(chain) -> Classification:
         rigid_regions=rigid.regions)
 
 
-def _two_p_check(chain, n_links, n_pairs, link_degree, H) -> Check:
+def _two_p_check(chain: Chain, n_links: int, n_pairs: int, link_degree: Counter[int],
+                 H: int) -> Check:
     rule = "L = 2P - 4"
     lhs, rhs = n_links, 2 * n_pairs - 4
     if chain.space != "planar":
@@ -320,14 +324,15 @@ def _two_p_check(chain, n_links, n_pairs, link_degree, H) -> Check:
                  "J = 3L/2 - 2 reads L = 2P - 4")
 
 
-def _j_check(chain, n_links, J, H) -> Check:
+def _j_check(chain: Chain, n_links: int, J: int, H: int) -> Check:
     rule = "J + H/2 = 3L/2 - 2"
     if chain.space != "planar":
         return Check(rule, None, None, False, None,
                      "a check for planar chains; this chain is spatial (see mobility)")
     # each pair counts (3 - f)/2 binary equivalents: 1 for a lower or rolling pair,
     # 1/2 for a cam or gear pair
-    lhs = sum(Fraction(3 - j.pair.planar_freedom, 2) * (j.order - 1) for j in chain.joints)
+    lhs = sum((Fraction(3 - j.pair.planar_freedom, 2) * (j.order - 1) for j in chain.joints),
+              Fraction(0))
     rhs = Fraction(3 * n_links, 2) - 2
     rolling = sum(1 for j in chain.joints if j.kind == "rolling")
     note = "Grübler's criterion for constrained motion, from F = 3(L - 1) - 2J - H = 1"

@@ -14,7 +14,7 @@ __all__ = ["random_chain"]
 
 
 def random_chain(links: int, joints: int | None = None, *, ternary: int = 0,
-                 sliding: int = 0, seed=None) -> Chain:
+                 sliding: int = 0, seed: int | random.Random | None = None) -> Chain:
     """A random connected chain of R and P joints.
 
     Parameters

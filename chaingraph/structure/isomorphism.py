@@ -23,13 +23,23 @@ from __future__ import annotations
 import importlib.util
 from dataclasses import dataclass
 from functools import lru_cache
+from collections.abc import Callable, Iterable, Sequence
 from typing import Any
 
 from chaingraph._util.disjoint import DisjointSets
 from chaingraph.errors import ChainStructureError
+from chaingraph.model.chain import Chain
 
 __all__ = ["Canon", "canonical", "canonical_form", "is_isomorphic", "isomorphism",
            "automorphism_orbits", "automorphism_generators", "pair_orbits"]
+
+#: a node of the link-joint graph: ("link", name) or ("joint", id)
+_Node = tuple[str, str]
+#: a search's certificate: the sorted (position, position, edge label) list
+_Certificate = tuple[tuple[int, int, int], ...]
+#: the nodes' labels, each ("link",) or ("joint", kind); their adjacency lists
+_Labels = list[tuple[str, ...]]
+_Adjacency = Sequence[Sequence[tuple[int, int]]]
 
 _EDGE = {"pin": 0, "guide": 1, "block": 2}
 
@@ -51,16 +61,16 @@ class Canon:
         Order of the automorphism group.
     """
 
-    form: tuple
-    order: tuple
-    generators: tuple
+    form: tuple[tuple[tuple[str, ...], ...], tuple[tuple[int, int, int], ...]]
+    order: tuple[tuple[str, str], ...]
+    generators: tuple[dict[tuple[str, str], tuple[str, str]], ...]
     group_size: int
 
 
-def _structure(chain, oriented):
+def _structure(chain: Chain, oriented: bool) -> tuple[list[_Node], _Labels, _Adjacency]:
     nodes = list(chain.graph.nodes)
     index = {n: i for i, n in enumerate(nodes)}
-    labels = []
+    labels: _Labels = []
     for n in nodes:
         data = chain.graph.nodes[n]
         labels.append(("link",) if n[0] == "link" else ("joint", data["kind"]))
@@ -72,7 +82,7 @@ def _structure(chain, oriented):
     return nodes, labels, adj
 
 
-def _refine(colors, adj):
+def _refine(colors: list[int], adj: _Adjacency) -> list[int]:
     """Colour refinement to the coarsest equitable partition finer than ``colors``."""
     n_colors = len(set(colors))
     while True:
@@ -85,13 +95,16 @@ def _refine(colors, adj):
         colors, n_colors = new, len(ranks)
 
 
-def _individualize(colors, v):
+def _individualize(colors: list[int], v: int) -> list[int]:
     keyed = [(c, 0 if u == v else 1) for u, c in enumerate(colors)]
     ranks = {k: i for i, k in enumerate(sorted(set(keyed)))}
     return [ranks[k] for k in keyed]
 
 
-def orbits_of(generators, n, fixing=()):
+def orbits_of(generators: Iterable[Sequence[int]], n: int,
+              fixing: Iterable[int] = ()) -> list[int]:
+    """Each of the ``n`` nodes' orbit (a representative) under the permutations of
+    ``generators`` that fix every node of ``fixing``."""
     blocks = DisjointSets(n)
     for g in generators:
         if all(g[p] == p for p in fixing):
@@ -100,20 +113,24 @@ def orbits_of(generators, n, fixing=()):
     return [blocks.find(x) for x in range(n)]
 
 
-def refine_search(labels, adj):
+def refine_search(labels: Sequence[Any], adj: _Adjacency,
+                  ) -> tuple[_Certificate, list[int], list[list[int]], int]:
+    """Canonical labelling by individualization and refinement: the least
+    certificate, the nodes in canonical order, generators of the automorphisms (as
+    permutations of node indices) and the group's order."""
     n = len(labels)
     label_rank = {lab: i for i, lab in enumerate(sorted(set(labels)))}
     root = _refine([label_rank[lab] for lab in labels], adj)
     state: dict[str, Any] = {"first": None, "best": None}
-    generators: list[Any] = []
-    first_path = []
+    generators: list[list[int]] = []
+    first_path: list[int] = []
 
-    def certificate(colors):
+    def certificate(colors: list[int]) -> _Certificate:
         edges = sorted((min(colors[v], colors[u]), max(colors[v], colors[u]), e)
                        for v in range(n) for u, e in adj[v] if v < u)
         return tuple(edges)
 
-    def leaf(colors, path):
+    def leaf(colors: list[int], path: list[int]) -> int | None:
         cert = certificate(colors)
         perm = colors  # node -> position
         if state["first"] is None:
@@ -138,14 +155,14 @@ def refine_search(labels, adj):
             state["best"] = (cert, perm)
         return None
 
-    def dfs(colors, path):
-        cells: dict[Any, Any] = {}
+    def dfs(colors: list[int], path: list[int]) -> int | None:
+        cells: dict[int, list[int]] = {}
         for v, c in enumerate(colors):
             cells.setdefault(c, []).append(v)
         if len(cells) == n:
             return leaf(colors, path)
         target = min((len(vs), c) for c, vs in cells.items() if len(vs) > 1)[1]
-        explored: list[Any] = []
+        explored: list[int] = []
         for v in cells[target]:
             if explored:
                 orbit = orbits_of(generators, n, fixing=path)
@@ -170,7 +187,7 @@ def refine_search(labels, adj):
     return best_cert, order, generators, size
 
 
-def canonical(chain, *, oriented: bool = True) -> Canon:
+def canonical(chain: Chain, *, oriented: bool = True) -> Canon:
     """Canonical labelling of a chain's link-joint graph; see :class:`Canon`.
 
     Examples
@@ -199,7 +216,8 @@ MAX_LINKS = 2000
 NAUTY_FROM = 160
 
 
-def _search_nauty(labels, adj):
+def _search_nauty(labels: Sequence[Any], adj: _Adjacency,
+                  ) -> tuple[_Certificate, list[int], list[list[int]], int]:
     """:func:`refine_search` by nauty. Edges of the most common label join their ends
     directly; an edge of another label becomes a node of its own colour between its
     ends. The colour classes are ordered by label, the graph's nodes first, so the
@@ -209,7 +227,7 @@ def _search_nauty(labels, adj):
     n = len(labels)
     kinds = sorted(set(labels))
     edges = [(v, u, e) for v in range(n) for u, e in adj[v] if v < u]
-    counts: dict[Any, Any] = {}
+    counts: dict[int, int] = {}
     for _, _, e in edges:
         counts[e] = counts.get(e, 0) + 1
     common = max(sorted(counts), key=counts.__getitem__) if counts else 0
@@ -236,7 +254,8 @@ def _search_nauty(labels, adj):
 
 
 @lru_cache(maxsize=4096)
-def canonical_cached(chain, oriented):
+def canonical_cached(chain: Chain, oriented: bool) -> Canon:
+    """:func:`canonical` without the size check, cached by chain."""
     nodes, labels, adj = _structure(chain, oriented)
     search = refine_search
     if len(nodes) > NAUTY_FROM:
@@ -249,7 +268,8 @@ def canonical_cached(chain, oriented):
                  group_size=size)
 
 
-def canonical_form(chain, *, oriented: bool = True) -> tuple:
+def canonical_form(chain: Chain, *, oriented: bool = True,
+                   ) -> tuple[tuple[tuple[str, ...], ...], tuple[tuple[int, int, int], ...]]:
     """A hashable form, equal for two chains exactly when they are isomorphic.
 
     Link and joint names, the order of the joints and the drawn pose play no part;
@@ -270,7 +290,7 @@ def canonical_form(chain, *, oriented: bool = True) -> tuple:
     return canonical(chain, oriented=oriented).form
 
 
-def is_isomorphic(a, b, *, oriented: bool = True) -> bool:
+def is_isomorphic(a: Chain, b: Chain, *, oriented: bool = True) -> bool:
     """True when chains ``a`` and ``b`` are the same by structure.
 
     Examples
@@ -285,7 +305,7 @@ def is_isomorphic(a, b, *, oriented: bool = True) -> bool:
     return canonical_form(a, oriented=oriented) == canonical_form(b, oriented=oriented)
 
 
-def isomorphism(a, b, *, oriented: bool = True) -> dict | None:
+def isomorphism(a: Chain, b: Chain, *, oriented: bool = True) -> dict[str, str] | None:
     """A mapping of ``a``'s links to ``b``'s links that is an isomorphism, or None."""
     ca, cb = canonical(a, oriented=oriented), canonical(b, oriented=oriented)
     if ca.form != cb.form:
@@ -293,12 +313,13 @@ def isomorphism(a, b, *, oriented: bool = True) -> dict | None:
     return {x[1]: y[1] for x, y in zip(ca.order, cb.order) if x[0] == "link"}
 
 
-def automorphism_generators(chain, *, oriented: bool = True) -> tuple:
+def automorphism_generators(chain: Chain, *, oriented: bool = True,
+                            ) -> tuple[dict[tuple[str, str], tuple[str, str]], ...]:
     """Generators of the automorphism group, each a dict of link-joint graph nodes."""
     return canonical(chain, oriented=oriented).generators
 
 
-def automorphism_orbits(chain, *, oriented: bool = True) -> list[tuple[str, ...]]:
+def automorphism_orbits(chain: Chain, *, oriented: bool = True) -> list[tuple[str, ...]]:
     """The orbits of links under the chain's automorphisms.
 
     Links in one orbit give the same inversion by structure. Orbits are listed in the
@@ -316,7 +337,7 @@ def automorphism_orbits(chain, *, oriented: bool = True) -> list[tuple[str, ...]
     return _group([("link", x) for x in links], gens, key=lambda n: n[1])
 
 
-def pair_orbits(chain, pairs, *, oriented: bool = True) -> list[tuple[tuple[str, str], ...]]:
+def pair_orbits(chain: Chain, pairs: Iterable[tuple[str, str]], *, oriented: bool = True) -> list[tuple[tuple[str, str], ...]]:
     """Orbits of ordered link pairs (for example (fixed, input)) under the automorphisms."""
     gens = automorphism_generators(chain, oriented=oriented)
     items = [(("link", a), ("link", b)) for a, b in pairs]
@@ -324,7 +345,9 @@ def pair_orbits(chain, pairs, *, oriented: bool = True) -> list[tuple[tuple[str,
                   act=lambda g, p: (g[p[0]], g[p[1]]))
 
 
-def _group(items, generators, *, key, act=None):
+def _group(items: Sequence[Any], generators: Iterable[dict[_Node, _Node]], *,
+           key: Callable[[Any], Any],
+           act: Callable[[dict[_Node, _Node], Any], Any] | None = None) -> list[tuple[Any, ...]]:
     act = act or (lambda g, x: g[x])
     index = {x: i for i, x in enumerate(items)}
     blocks = DisjointSets(len(items))
@@ -333,7 +356,7 @@ def _group(items, generators, *, key, act=None):
             j = index.get(act(g, x))
             if j is not None:
                 blocks.join(i, j)
-    groups: dict[Any, Any] = {}
+    groups: dict[int, list[Any]] = {}
     for x, i in index.items():
         groups.setdefault(blocks.find(i), []).append(key(x))
     return [tuple(g) for _, g in sorted(groups.items())]

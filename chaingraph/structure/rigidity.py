@@ -133,12 +133,14 @@ links.
 from __future__ import annotations
 
 from collections import deque
+from collections.abc import Iterable
 from dataclasses import dataclass
 from typing import Any
 
 import numpy as np
 
 from chaingraph.errors import ChainStructureError
+from chaingraph.model.chain import Chain
 
 __all__ = ["RigidParts", "rigid_parts", "rigid_subchains", "one_rigid_subchain",
            "rigid_regions", "rigid_subchains_by_subsets", "subchain_mobility",
@@ -159,19 +161,19 @@ SCAN_CELLS = 1 << 16
 _DEAD, _SPARSE, _MINIMAL = 0, 1, 2
 
 
-def _incidence(chain):
+def _incidence(chain: Chain) -> tuple[dict[str, int], int, dict[int, int]]:
     """Link index, d, and the joints as (link mask, constraint weight), joints that join
     the same links merged (their weights add: a bundle of parallel joints costs one)."""
     index = {name: i for i, name in enumerate(chain.links)}
     d = 3 if chain.space == "planar" else 6
-    merged: dict[Any, Any] = {}
+    merged: dict[int, int] = {}
     for j in chain.joints:
         mask = sum(1 << index[x] for x in j.links)
         merged[mask] = merged.get(mask, 0) + d - j.pair.freedom(chain.space)
     return index, d, merged
 
 
-def subchain_mobility(chain, links) -> int:
+def subchain_mobility(chain: Chain, links: Iterable[str]) -> int:
     """Kutzbach mobility of the sub-chain made of ``links`` and the joints among them.
 
     Examples
@@ -186,7 +188,7 @@ def subchain_mobility(chain, links) -> int:
     return _Links(len(index), d, merged).mobility(sum(1 << index[x] for x in links))
 
 
-def _bits(mask):
+def _bits(mask: int) -> list[int]:
     """The indices of the set bits of ``mask``, lowest first."""
     out = []
     while mask:
@@ -551,7 +553,7 @@ class RigidParts:
     regions: tuple[tuple[str, ...], ...]
 
 
-def rigid_parts(chain, *, budget: int | None = SEARCH_BUDGET) -> RigidParts:
+def rigid_parts(chain: Chain, *, budget: int | None = SEARCH_BUDGET) -> RigidParts:
     """Whether a chain is degenerate, its smallest rigid sub-chains and its rigid
     regions (the module's text says how, and why each is right).
 
@@ -605,7 +607,7 @@ def _rigid_parts(chain, budget, *, scan):
         complete=complete, regions=tuple(names(r) for r in regions))
 
 
-def rigid_subchains(chain) -> list[tuple[str, ...]]:
+def rigid_subchains(chain: Chain) -> list[tuple[str, ...]]:
     """The smallest rigid proper sub-chains of a chain: all of them, however long the
     search (:func:`rigid_parts` bounds it).
 
@@ -636,7 +638,7 @@ def rigid_subchains(chain) -> list[tuple[str, ...]]:
     return list(_rigid_parts(chain, None, scan=False).smallest)
 
 
-def one_rigid_subchain(chain) -> tuple[str, ...] | None:
+def one_rigid_subchain(chain: Chain) -> tuple[str, ...] | None:
     """One smallest rigid proper sub-chain, or None when the chain is not degenerate:
     a few maximum flows per link (facts 5 and 6 of the module's text).
 
@@ -657,7 +659,7 @@ def one_rigid_subchain(chain) -> tuple[str, ...] | None:
     return tuple(chain.links[i] for i in _bits(witness)) or None
 
 
-def rigid_regions(chain) -> list[tuple[str, ...]]:
+def rigid_regions(chain: Chain) -> list[tuple[str, ...]]:
     """The rigid regions of a chain: the largest sets of links (two or more) that are
     rigid as one body however they are cut (fact 7 of the module's text); they share no
     link, and every smallest rigid sub-chain lies in one. The whole chain is one when it
@@ -686,7 +688,7 @@ def _mobility(subsets, d, masks, weights):
     return d * (size - 1) - constraint
 
 
-def rigid_subchains_by_subsets(chain) -> list[tuple[str, ...]]:
+def rigid_subchains_by_subsets(chain: Chain) -> list[tuple[str, ...]]:
     """:func:`rigid_subchains` by evaluating every set of links: the reference.
 
     Every subset of links is a bit mask; all ``2**L`` masks are evaluated at once with

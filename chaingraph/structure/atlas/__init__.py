@@ -122,9 +122,10 @@ def atlas(*, links: int, dof: int = 1, workers: int = 1,
     [2, 2, 3, 3]
     """
     wanted = prismatic_counts(links, dof, joints_for(links, dof), prismatic, oriented)
-    base: Atlas | MultipleAtlas = atlas_graphs(links, dof, workers=workers)
+    simple = atlas_graphs(links, dof, workers=workers)
+    base: Atlas | MultipleAtlas = simple
     if multiple:
-        base, wanted = multiple_atlas(base), wanted or (0,)
+        base, wanted = multiple_atlas(simple), wanted or (0,)
     if wanted is None:
         for entry in base:
             yield entry.chain(dof)

@@ -35,6 +35,11 @@ be a proof; none is made to those sizes.
 
 from __future__ import annotations
 
+from collections.abc import Sequence
+
+import numpy as np
+import numpy.typing as npt
+
 from chaingraph._util.disjoint import DisjointSets
 from chaingraph._util.text import freedom
 from chaingraph.errors import ChainStructureError
@@ -57,7 +62,7 @@ DRAWS = 4
 _UNDECIDED = "undecided"
 
 
-def admissible(links, edges, kinds):
+def admissible(links: int, edges: Sequence[Sequence[int]], kinds: Sequence[str]) -> str | None:
     """What the structure of the P joints alone says of an assignment of ``kinds``
     ("R"/"P") to the joints ``edges``: ``"mobility"`` for a loop of P joints only,
     ``"locked"`` for an R joint whose links are joined by P joints, else None (then
@@ -79,7 +84,8 @@ def admissible(links, edges, kinds):
     return None
 
 
-def decide(links, joints, kinds=None, *, independent=False):
+def decide(links: int, joints: Sequence[Sequence[int]], kinds: Sequence[str] | None = None,
+           *, independent: bool = False) -> str | None:
     """The proven verdict on a chain (``joints``: tuples of links; ``kinds``: "R"/"P"
     per joint) by forests and counts: None (admissible), ``"mobility"`` or
     ``"locked"``; ``"undecided"`` where neither bound proves a chain with pins and
@@ -97,8 +103,8 @@ def decide(links, joints, kinds=None, *, independent=False):
     kinds = kinds or "R" * len(joints)
     pins, sliding = any(len(j) > 2 for j in joints), "P" in kinds
     if pins and not sliding:                             # Whiteley's count: a theorem
-        dependent, locked = pin_verdicts(links, [joints])
-        return "mobility" if dependent[0] else "locked" if locked[0] else None
+        dependent, stuck = pin_verdicts(links, [joints])
+        return "mobility" if dependent[0] else "locked" if stuck[0] else None
     rank, locked = forest_verdicts(links, joints, kinds)
     rows = 2 * sum(len(j) - 1 for j in joints)
     if not pins:                                         # forests: a theorem
@@ -111,7 +117,10 @@ def decide(links, joints, kinds=None, *, independent=False):
     return _UNDECIDED
 
 
-def verdicts(links, candidates, *, kinds=None, dof, drawn=None):
+def verdicts(links: int, candidates: Sequence[Sequence[Sequence[int]]], *,
+             kinds: Sequence[Sequence[str] | None] | None = None, dof: int,
+             drawn: tuple[npt.NDArray[np.int64], npt.NDArray[np.bool_]] | None = None,
+             ) -> list[str | None]:
     """For each candidate (a tuple of joints, each a tuple of links, as many as ``dof``
     degrees of freedom allow; ``kinds``: each one's joint kinds, all R by default),
     None when it is admissible, else its reason (a key of :data:`REASONS`). ``drawn``:
@@ -125,14 +134,15 @@ def verdicts(links, candidates, *, kinds=None, dof, drawn=None):
     [None, None, 'locked', 'mobility']
     """
     count = len(candidates)
-    kinds = [k or "R" * len(c) for k, c in zip(kinds or [None] * count, candidates)]
+    each: list[Sequence[str]] = [k or "R" * len(c)
+                                 for k, c in zip(kinds or [None] * count, candidates)]
     for c in candidates:
         counted = 3 * (links - 1) - 2 * sum(len(j) - 1 for j in c)
         if counted != dof:
             raise ChainStructureError(f"the joints {list(c)} on {links} links leave "
                                       f"{freedom(counted)} by their count, not "
                                       f"{dof}")
-    out = [admissible(links, c, k) for c, k in zip(candidates, kinds)]
+    out = [admissible(links, c, k) for c, k in zip(candidates, each)]
     todo = [i for i in range(count) if out[i] is None]
     for draw in range(DRAWS):
         if not todo:
@@ -141,13 +151,13 @@ def verdicts(links, candidates, *, kinds=None, dof, drawn=None):
             mobility, locked = (drawn[0][todo], drawn[1][todo])
         else:
             mobility, locked = joint_verdicts(links, [candidates[i] for i in todo],
-                                              kinds=[kinds[i] for i in todo], draw=draw)
+                                              kinds=[each[i] for i in todo], draw=draw)
         left = []
         for i, free, stuck in zip(todo, mobility, locked):
             if free == dof and not stuck:
                 out[i] = None                             # proven by the evaluation
                 continue
-            reason = decide(links, candidates[i], kinds[i], independent=free == dof)
+            reason = decide(links, candidates[i], each[i], independent=free == dof)
             if reason == _UNDECIDED:
                 left.append(i)
                 # what every evaluation so far says, should none admit it

@@ -8,7 +8,7 @@ string that leaves a link and comes back to it), with the links' orders as degre
 
 from __future__ import annotations
 
-from typing import Any
+from collections.abc import Hashable, Sequence
 
 from chaingraph._util.text import freedom
 from chaingraph.errors import AtlasSizeError
@@ -44,7 +44,7 @@ def joints_for(links: int, dof: int) -> int:
     return joints
 
 
-def assortments(links: int, joints: int):
+def assortments(links: int, joints: int) -> list[tuple[int, ...]]:
     """Link assortments: tuples (n2, n3, ...) with sum n = links, sum k n_k = 2 joints.
 
     Examples
@@ -56,9 +56,9 @@ def assortments(links: int, joints: int):
     # by the loops of a fractionated chain has order twice their number)
     loops = joints - links + 1
     top = min(links - 1, 2 * loops)
-    out = []
+    out: list[tuple[int, ...]] = []
 
-    def rec(order, left_links, left_ends, acc):
+    def rec(order: int, left_links: int, left_ends: int, acc: list[int]) -> None:
         if order > top:
             if left_links == 0 and left_ends == 0:
                 out.append(tuple(acc))
@@ -71,7 +71,8 @@ def assortments(links: int, joints: int):
     return out
 
 
-def contracted_graphs(degrees, *, backend="nauty"):
+def contracted_graphs(degrees: Sequence[int], *, backend: str = "nauty",
+                      ) -> list[tuple[tuple[int, int], ...]]:
     """Connected multigraphs with loops on nodes of the given degrees (non-increasing),
     up to isomorphism, each as a sorted tuple of edges ``(i, j)``, ``i <= j``, in the
     order they are first met.
@@ -82,11 +83,11 @@ def contracted_graphs(degrees, *, backend="nauty"):
     [((0, 0), (0, 1), (1, 1)), ((0, 1), (0, 1), (0, 1))]
     """
     k = len(degrees)
-    found = {}
+    found: dict[Hashable, tuple[tuple[int, int], ...]] = {}
     remaining = list(degrees)
-    edges: list[Any] = []
+    edges: list[tuple[int, int]] = []
 
-    def rec(i):
+    def rec(i: int) -> None:
         if i == k:
             if _connected(k, edges):
                 key = multigraph_key(k, edges, backend=backend)
@@ -125,7 +126,7 @@ def contracted_graphs(degrees, *, backend="nauty"):
     return sorted(found.values())
 
 
-def _connected(k, edges):
+def _connected(k: int, edges: Sequence[tuple[int, int]]) -> bool:
     """Whether the multigraph on ``k`` nodes is connected (bit masks)."""
     neighbours = [1 << v for v in range(k)]
     for a, b in edges:

@@ -5,9 +5,8 @@ from __future__ import annotations
 
 import json
 from dataclasses import dataclass
-from typing import Any
-
 import numpy as np
+import numpy.typing as npt
 
 from chaingraph.model.chain import Chain, Joint
 from chaingraph.structure.classification import order_name
@@ -20,16 +19,17 @@ class AtlasEntry:
     """One chain of the atlas: its link graph in canonical labels."""
 
     id: int
-    edges: tuple
+    edges: tuple[tuple[int, int], ...]
     links: int
     inversion_classes: int
     fractionated: bool = False
 
     @property
-    def link_orders(self) -> dict:
+    def link_orders(self) -> dict[str, int]:
+        """How many links of each order (``{"binary": 4, ...}``)."""
         return order_counts(self.edges, self.links)
 
-    def chain(self, dof=None):
+    def chain(self, dof: int | None = None) -> Chain:
         """The chain as a :class:`~chaingraph.model.chain.Chain` (links L1..LN, joints J1..)."""
         joints = tuple(Joint(f"J{i + 1}", "R", (f"L{a + 1}", f"L{b + 1}"))
                        for i, (a, b) in enumerate(self.edges))
@@ -37,7 +37,7 @@ class AtlasEntry:
         return Chain(name, joints, family="atlas")
 
 
-def graph6_line(n, edges) -> bytes:
+def graph6_line(n: int, edges: npt.ArrayLike) -> bytes:
     """One graph6 line (with its newline) of a graph on ``n <= 62`` nodes.
 
     Examples
@@ -48,7 +48,7 @@ def graph6_line(n, edges) -> bytes:
     return graph6_lines(n, np.asarray(edges, dtype=np.int64).reshape(1, -1, 2))
 
 
-def graph6_lines(n, edges) -> bytes:
+def graph6_lines(n: int, edges: npt.ArrayLike) -> bytes:
     """The graph6 lines of many graphs on ``n <= 62`` nodes at once: ``edges`` is an
     array (m, J, 2); one line per graph, in order."""
     edges = np.asarray(edges, dtype=np.int64)
@@ -67,11 +67,14 @@ def graph6_lines(n, edges) -> bytes:
     return line.tobytes()
 
 
-def encode_chains(links, edges, orbits, fractionated, *, block=8192):
+def encode_chains(links: int, edges: npt.NDArray[np.integer], orbits: npt.NDArray[np.integer],
+                  fractionated: npt.NDArray[np.bool_], *, block: int = 8192,
+                  ) -> tuple[bytes, str]:
     """A shard's chains as graph6 lines (bytes) and JSON lines (str), the JSON line of a
     chain being its record in atlas.json without the id. Encoded in blocks of rows, so
     that the working arrays stay small however many chains a shard holds."""
-    g6, lines = [], []
+    g6: list[bytes] = []
+    lines: list[str] = []
     for s in range(0, len(orbits), block):
         part = edges[s:s + block]
         orders = orders_rows(part, links)
@@ -84,7 +87,7 @@ def encode_chains(links, edges, orbits, fractionated, *, block=8192):
     return b"".join(g6), "".join(lines)
 
 
-def orders_rows(edges, links):
+def orders_rows(edges: npt.NDArray[np.integer], links: int) -> list[str]:
     """The link_orders JSON text of each chain (chains of one assortment share it)."""
     if not len(edges):
         return []
@@ -92,8 +95,8 @@ def orders_rows(edges, links):
     rows = np.repeat(np.arange(len(edges)), edges.shape[1] * 2)
     np.add.at(degree, (rows, np.asarray(edges, dtype=np.int64).reshape(len(edges), -1).ravel()), 1)
     degree.sort(axis=1)
-    cache = {}
-    out = []
+    cache: dict[bytes, str] = {}
+    out: list[str] = []
     for row in map(bytes, degree.astype(np.uint8)):
         if row not in cache:
             cache[row] = json.dumps(_orders_of_degrees(list(row)))
@@ -101,13 +104,14 @@ def orders_rows(edges, links):
     return out
 
 
-def order_counts(edges, links):
+def order_counts(edges: npt.ArrayLike, links: int) -> dict[str, int]:
+    """How many links of each order the chain of link graph ``edges`` has."""
     degree = np.bincount(np.asarray(edges, dtype=np.int64).ravel(), minlength=links)
     return _orders_of_degrees(degree.tolist())
 
 
-def _orders_of_degrees(degrees):
-    counts: dict[Any, Any] = {}
+def _orders_of_degrees(degrees: list[int]) -> dict[str, int]:
+    counts: dict[str, int] = {}
     for d in sorted(degrees):
         counts[order_name(d)] = counts.get(order_name(d), 0) + 1
     return counts

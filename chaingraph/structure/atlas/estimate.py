@@ -21,6 +21,7 @@ costs its own time per turning-pair chain.
 from __future__ import annotations
 
 import math
+from collections.abc import Iterable
 from dataclasses import dataclass
 from math import comb
 
@@ -58,16 +59,20 @@ class Estimate:
 
     @property
     def chains(self) -> float:
+        """The number of chains (capped at 1e300)."""
         return 10 ** min(self.log10_chains, 300)
 
     @property
     def cpu_seconds(self) -> float:
+        """The CPU seconds (capped at 1e300)."""
         return 10 ** min(self.log10_cpu_seconds, 300)
 
     def wall_seconds(self, cores: int) -> float:
+        """The seconds on ``cores`` processes."""
         return self.cpu_seconds / max(1, cores)
 
-    def describe(self, cores=None) -> str:
+    def describe(self, cores: int | None = None) -> str:
+        """The estimate in words (on ``cores`` processes, when given)."""
         chains = (f"{round(self.chains):,} chains" if self.published else
                   f"about {_big(self.log10_chains)} chains")
         text = f"{chains}, about {_duration(self.log10_cpu_seconds)} of CPU"
@@ -77,7 +82,7 @@ class Estimate:
         return text
 
 
-def _big(log10):
+def _big(log10: float) -> str:
     if log10 < 6:
         return f"{round(10 ** log10):,}"
     if log10 < 15:
@@ -85,7 +90,7 @@ def _big(log10):
     return f"10^{log10:.0f}"
 
 
-def _duration(log10_seconds):
+def _duration(log10_seconds: float) -> str:
     if log10_seconds > 13.5:
         return f"10^{log10_seconds - math.log10(3.156e7):.0f} years"
     s = 10 ** log10_seconds
@@ -96,7 +101,7 @@ def _duration(log10_seconds):
     return f"{s:.0f} s" if s >= 1 else "under a second"
 
 
-def _about(log10_seconds):
+def _about(log10_seconds: float) -> str:
     duration = _duration(log10_seconds)
     return duration if duration.startswith("under") else f"about {duration}"
 
@@ -124,7 +129,8 @@ def estimate(links: int, dof: int = 1) -> Estimate:
 
 
 def check_size(links: int, dof: int, *, cores: int, cluster: bool, hours: float = LOCAL_HOURS,
-               prismatic=None, oriented: bool = False, multiple: bool = False):
+               prismatic: tuple[int, ...] | None = None, oriented: bool = False,
+               multiple: bool = False) -> Estimate | SlidingEstimate:
     """Refuse, with the estimate and what to do instead, a size that cannot finish in
     reasonable time: over ``hours`` (:data:`LOCAL_HOURS` unless asked) on ``cores``
     local processes, or over :data:`CLUSTER_CORE_HOURS` on a cluster. With sliding
@@ -161,7 +167,7 @@ def check_size(links: int, dof: int, *, cores: int, cluster: bool, hours: float 
     return e
 
 
-def _hours(hours):
+def _hours(hours: float) -> str:
     return f"{hours:g} hour{'s' if hours != 1 else ''}"
 
 
@@ -171,7 +177,9 @@ def _hours(hours):
 MULTIPLE_MEASURED_LINKS = 10
 
 
-def _check_sliding(links, dof, *, cores, hours, prismatic, oriented, multiple):
+def _check_sliding(links: int, dof: int, *, cores: int, hours: float,
+                   prismatic: tuple[int, ...], oriented: bool, multiple: bool,
+                   ) -> SlidingEstimate:
     """check_size of an atlas with sliding pairs or multiple joints: refused over
     ``hours`` with the estimate, and the parameter that allows it named."""
     if multiple and links > MULTIPLE_MEASURED_LINKS:
@@ -208,7 +216,7 @@ SLIDING_FIT = {"chain": (-2.794, 0.057), "assignment": (-5.883, 0.155),
                "multiple_chains": (-0.874, 0.190)}
 
 
-def _fitted(name, links):
+def _fitted(name: str, links: int) -> float:
     a, b = SLIDING_FIT[name]
     return a + b * links
 
@@ -222,7 +230,7 @@ class SlidingEstimate:
 
     base: Estimate
     joints: int
-    prismatic: tuple
+    prismatic: tuple[int, ...]
     oriented: bool
     multiple: bool
     log10_chains_tried: float
@@ -230,9 +238,11 @@ class SlidingEstimate:
     log10_seconds: float
 
     def wall_seconds(self, cores: int) -> float:
+        """The seconds on ``cores`` processes: the turning-pair atlas's, then this."""
         return self.base.wall_seconds(cores) + 10 ** min(self.log10_seconds, 300)
 
-    def describe(self, cores=None) -> str:
+    def describe(self, cores: int | None = None) -> str:
+        """The estimate in words (on ``cores`` processes, when given)."""
         base = self.base
         chains = (f"the {round(base.chains):,} turning-pair chains" if base.published else
                   f"about {_big(base.log10_chains)} turning-pair chains")
@@ -257,8 +267,8 @@ class SlidingEstimate:
         return text
 
 
-def sliding_estimate(links: int, dof: int = 1, *, prismatic=(0,), oriented=False,
-                     multiple=False) -> SlidingEstimate:
+def sliding_estimate(links: int, dof: int = 1, *, prismatic: Iterable[int] = (0,),
+                     oriented: bool = False, multiple: bool = False) -> SlidingEstimate:
     """The estimated CPU time of an atlas with sliding pairs (``prismatic``: the numbers
     of sliding pairs asked for) and, with ``multiple``, multiple joints.
 

@@ -34,6 +34,7 @@ What the atlas asks follows:
 from __future__ import annotations
 
 from collections import deque
+from collections.abc import Sequence
 from typing import Any
 
 __all__ = ["Forests", "forest_verdicts"]
@@ -51,19 +52,21 @@ class Forests:
     [True, True, True, False]
     """
 
-    def __init__(self, links):
+    def __init__(self, links: int) -> None:
         self.links = links
-        self.rows = []              # (a, b, allowed)
-        self.where = []             # the forest each kept row is in (-1: not kept)
+        self.rows: list[tuple[int, int, int]] = []      # (a, b, allowed)
+        self.where: list[int] = []  # the forest each kept row is in (-1: not kept)
         self.rank = 0
-        self._up = [None] * 3       # each forest rooted, until a row joins or leaves it
+        # each forest rooted, until a row joins or leaves it
+        self._up: list[list[Any] | None] = [None] * 3
 
-    def _rooted_now(self, k):
-        if self._up[k] is None:
-            self._up[k] = self._rooted(k)
-        return self._up[k]
+    def _rooted_now(self, k: int) -> list[Any]:
+        up = self._up[k]
+        if up is None:
+            up = self._up[k] = self._rooted(k)
+        return up
 
-    def _rooted(self, k):
+    def _rooted(self, k: int) -> list[Any]:
         """Forest ``k`` rooted: each link's (parent link, row to it, depth, root)."""
         adjacent: list[list[tuple[int, int]]] = [[] for _ in range(self.links)]
         for i, w in enumerate(self.where):
@@ -87,7 +90,7 @@ class Forests:
         return up
 
     @staticmethod
-    def _path(up, a, b):
+    def _path(up: list[Any], a: int, b: int) -> list[int] | None:
         """The rows on a rooted forest's path from ``a`` to ``b``, or None when they
         are not joined."""
         if up[a][3] != up[b][3]:
@@ -102,7 +105,7 @@ class Forests:
                 b = up[b][0]
         return out
 
-    def add(self, a, b, allowed=ANY) -> bool:
+    def add(self, a: int, b: int, allowed: int = ANY) -> bool:
         """Add a row; whether it raised the rank (False: it depends on the rows kept,
         and it is not kept)."""
         s = len(self.rows)
@@ -138,7 +141,7 @@ class Forests:
                         todo.append(r)
         return False
 
-    def adds(self, a, b, allowed=ANY) -> bool:
+    def adds(self, a: int, b: int, allowed: int = ANY) -> bool:
         """Whether one more row would raise the rank (the forests are left as they
         are)."""
         trial = Forests(self.links)
@@ -147,7 +150,8 @@ class Forests:
         return trial.add(a, b, allowed)
 
 
-def forest_verdicts(links, joints, kinds=None):
+def forest_verdicts(links: int, joints: Sequence[Sequence[int]],
+                   kinds: Sequence[str] | None = None) -> tuple[int, bool]:
     """The rank of a chain's velocity rows and whether a joint is locked, by forests:
     ``(rank, locked)``. ``joints`` are tuples of links, ``kinds`` "R"/"P" per joint.
 
@@ -166,7 +170,8 @@ def forest_verdicts(links, joints, kinds=None):
     """
     kinds = kinds or "R" * len(joints)
     forests = Forests(links + sum(len(j) > 2 for j in joints))
-    pin, rates = links, []
+    pin = links
+    rates: list[tuple[int, int, int]] = []
     for j, kind in zip(joints, kinds):
         if len(j) > 2:
             for x in j:

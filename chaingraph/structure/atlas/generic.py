@@ -16,8 +16,13 @@ proves rejections by forests and counts.
 from __future__ import annotations
 
 import random
+from collections.abc import Sequence
 
 import numpy as np
+import numpy.typing as npt
+
+#: int64 arrays of residues modulo PRIME
+_Residues = npt.NDArray[np.int64]
 
 __all__ = ["PRIME", "reduce_mod", "in_row_space", "generic_verdicts", "joint_verdicts"]
 
@@ -25,7 +30,7 @@ __all__ = ["PRIME", "reduce_mod", "in_row_space", "generic_verdicts", "joint_ver
 PRIME = (1 << 31) - 1          # products of two residues fit in int64
 
 
-def _modular_inverse(v):
+def _modular_inverse(v: _Residues) -> _Residues:
     """Inverses modulo PRIME of an int64 array (Fermat: v ** (PRIME - 2))."""
     out = np.ones_like(v)
     base, e = v % PRIME, PRIME - 2
@@ -37,7 +42,7 @@ def _modular_inverse(v):
     return out
 
 
-def reduce_mod(mats):
+def reduce_mod(mats: _Residues) -> tuple[_Residues, _Residues]:
     """Each stacked matrix (int64, entries modulo PRIME) in reduced row echelon form, and
     its rank.
 
@@ -67,7 +72,8 @@ def reduce_mod(mats):
     return m, rank
 
 
-def in_row_space(reduced, rank, vectors):
+def in_row_space(reduced: _Residues, rank: _Residues, vectors: _Residues,
+                 ) -> npt.NDArray[np.bool_]:
     """Whether each of ``vectors`` (count, k, cols) lies in the row space of its
     matrix, given in reduced row echelon form with its rank.
 
@@ -85,16 +91,18 @@ def in_row_space(reduced, rank, vectors):
     return (v == span).all(axis=2)
 
 
-def _verdicts(rows, rates, valid=None):
+def _verdicts(rows: _Residues, rates: _Residues, valid: npt.NDArray[np.bool_] | None = None,
+              ) -> tuple[_Residues, npt.NDArray[np.bool_]]:
     """(rank, any joint locked) of each stacked system of velocity equations ``rows``,
     a joint's rate being locked when it lies in their row space (``valid`` marks the
     rates that are joints', where candidates have different numbers of them)."""
     reduced, rank = reduce_mod(rows)
     found = in_row_space(reduced, rank, rates)
-    return rank, (found if valid is None else found & valid).any(axis=1)
+    return rank, np.asarray((found if valid is None else found & valid).any(axis=1))
 
 
-def generic_verdicts(links, edges, masks, *, draw=0):
+def generic_verdicts(links: int, edges: Sequence[Sequence[int]], masks: npt.ArrayLike, *,
+                     draw: int = 0) -> tuple[_Residues, npt.NDArray[np.bool_]]:
     """For each assignment (a bit mask over ``edges``: P where set), the mobility of
     the chain (the first link fixed) and whether a joint is locked, by the rank of its
     velocity equations at the pose ``draw`` (pseudo-random pins and sliding
@@ -120,23 +128,24 @@ def generic_verdicts(links, edges, masks, *, draw=0):
     >>> [v.tolist() for v in generic_verdicts(4, fan, [0b0000, 0b1000])]
     [[0, 0], [True, True]]
     """
-    masks = np.asarray(masks, dtype=np.int64)
+    bits = np.asarray(masks, dtype=np.int64)
     cols = 3 * (links - 1)
     rnd = random.Random(f"{draw}:{links}:{edges}")
     values = [[rnd.randrange(1, PRIME) for _ in range(4)] for _ in edges]
-    count = masks.size
+    count = bits.size
     rows = np.zeros((count, sum(2 * (len(j) - 1) for j in edges), cols), dtype=np.int64)
     rates = np.zeros((count, sum(len(j) * (len(j) - 1) // 2 for j in edges), cols),
                      dtype=np.int64)
 
-    def put(target, index, row, link, coefficients, sign):
+    def put(target: _Residues, index: npt.NDArray[np.int64], row: int, link: int,
+            coefficients: Sequence[int], sign: int) -> None:
         if link:
             for k, v in enumerate(coefficients):
                 target[index, row, 3 * (link - 1) + k] += sign * v
     everything = np.arange(count)
     row = rate = 0
     for i, (joint, (x, y, nx, ny)) in enumerate(zip(edges, values)):
-        sliding = (masks >> i & 1).astype(bool)
+        sliding = (bits >> i & 1).astype(bool)
         r, s = everything[~sliding], everything[sliding]
         if len(joint) == 2:
             a, b = joint
@@ -160,7 +169,9 @@ def generic_verdicts(links, edges, masks, *, draw=0):
     return cols - rank, locked
 
 
-def joint_verdicts(links, candidates, *, kinds=None, draw=0):
+def joint_verdicts(links: int, candidates: Sequence[Sequence[Sequence[int]]], *,
+                   kinds: Sequence[Sequence[str] | None] | None = None, draw: int = 0,
+                   ) -> tuple[_Residues, npt.NDArray[np.bool_]]:
     """For each candidate (a tuple of joints, each a tuple of links), the mobility with
     the first link fixed and whether a joint is locked (two links of a turning pair
     that cannot turn relative to each other, or a sliding pair that cannot slide), by
@@ -179,18 +190,20 @@ def joint_verdicts(links, candidates, *, kinds=None, draw=0):
     """
     cols = 3 * (links - 1)
     count = len(candidates)
-    kinds = [k or "R" * len(c) for k, c in zip(kinds or [None] * count, candidates)]
+    each: list[Sequence[str]] = [k or "R" * len(c)
+                                 for k, c in zip(kinds or [None] * count, candidates)]
     rows_needed = max(2 * sum(len(j) - 1 for j in c) for c in candidates)
     pairs_needed = max(sum(len(j) * (len(j) - 1) // 2 for j in c) for c in candidates)
 
-    def put(target, n, r, link, values, sign):
+    def put(target: _Residues, n: int, r: int, link: int, values: Sequence[int],
+            sign: int) -> None:
         if link:
             target[n, r, 3 * (link - 1):3 * link] += [sign * v for v in values]
     rnd = random.Random(f"{draw}:{links}")
     rows = np.zeros((count, rows_needed, cols), dtype=np.int64)
     rates = np.zeros((count, pairs_needed, cols), dtype=np.int64)
     valid = np.zeros((count, pairs_needed), dtype=bool)
-    for n, (joints, kind) in enumerate(zip(candidates, kinds)):
+    for n, (joints, kind) in enumerate(zip(candidates, each)):
         r = p = 0
         for j, k in zip(joints, kind):
             x, y = rnd.randrange(PRIME), rnd.randrange(PRIME)

@@ -16,16 +16,19 @@ from __future__ import annotations
 
 import math
 import random
+from collections.abc import Iterable, Mapping
 
 import networkx as nx
 import numpy as np
 
 from chaingraph.model.chain import Chain, Input, Joint, Mechanism
 
+_Point = tuple[float, float]
+
 __all__ = ["generic_pose", "natural_input", "inversion_mechanism", "link_layout"]
 
 
-def link_layout(chain):
+def link_layout(chain: Chain) -> dict[str, _Point]:
     """Positions of the chain's links (a dict), about 100 units across."""
     g = nx.Graph()
     g.add_nodes_from(chain.links)
@@ -49,7 +52,7 @@ def link_layout(chain):
     return {x: (float(p[0]), float(p[1])) for x, p in zip(chain.links, xy)}
 
 
-def _crossings(g, pos):
+def _crossings(g: nx.Graph, pos: Mapping[str, _Point]) -> int:
     """How many pairs of the graph's edges cross in the layout ``pos``."""
     edges = list(g.edges)
     count = 0
@@ -60,13 +63,13 @@ def _crossings(g, pos):
     return count
 
 
-def _segments_cross(p, q, r, s):
-    def side(a, b, c):
+def _segments_cross(p: _Point, q: _Point, r: _Point, s: _Point) -> bool:
+    def side(a: _Point, b: _Point, c: _Point) -> float:
         return (b[0] - a[0]) * (c[1] - a[1]) - (b[1] - a[1]) * (c[0] - a[0])
     return side(p, q, r) * side(p, q, s) < 0 and side(r, s, p) * side(r, s, q) < 0
 
 
-def generic_pose(chain, *, seed=0) -> Chain:
+def generic_pose(chain: Chain, *, seed: int = 0) -> Chain:
     """The chain with a drawn pose: every joint at the middle of its links' places in
     :func:`link_layout`, moved off by up to 6 units (a fixed pseudo-random amount, one
     per ``seed``), P joints along the line from the guide's link to the block's; no
@@ -102,20 +105,23 @@ def generic_pose(chain, *, seed=0) -> Chain:
 CLEARANCE = 0.02
 
 
-def _clear_of_lines(joints):
+def _clear_of_lines(joints: Iterable[Joint]) -> list[Joint]:
     """The joints with every turning pair that lies near a sliding line of its links
     (within :data:`CLEARANCE` of the size) moved off it, across the line, to that
     distance (a few passes: a move may bring it near another line)."""
     joints = list(joints)
-    size = max(max(j.at[0] for j in joints) - min(j.at[0] for j in joints),
-               max(j.at[1] for j in joints) - min(j.at[1] for j in joints))
+    at = [j.at for j in joints if j.at is not None]
+    size = max(max(p[0] for p in at) - min(p[0] for p in at),
+               max(p[1] for p in at) - min(p[1] for p in at))
     clear = CLEARANCE * size
     for _ in range(4):
         moved = False
         for p in [j for j in joints if j.kind == "P"]:
+            if p.axis is None or p.at is None:          # every joint is posed here
+                continue
             n = (-math.sin(math.radians(p.axis)), math.cos(math.radians(p.axis)))
             for i, j in enumerate(joints):
-                if j.kind != "R" or not set(j.links) & set(p.links):
+                if j.kind != "R" or j.at is None or not set(j.links) & set(p.links):
                     continue
                 d = n[0] * (j.at[0] - p.at[0]) + n[1] * (j.at[1] - p.at[1])
                 if abs(d) < clear:
@@ -128,16 +134,18 @@ def _clear_of_lines(joints):
     return joints
 
 
-def natural_input(chain, fixed):
+def natural_input(chain: Chain, fixed: str) -> Joint | None:
     """The joint a mechanism with ``fixed`` fixed is naturally driven by: a turning pair
     of two links on the fixed link, else a sliding pair on it; None when it has neither.
     """
     on = [j for j in chain.joints if fixed in j.links and len(j.links) == 2]
     turning = [j for j in on if j.kind == "R"]
-    return (turning or [j for j in on if j.kind == "P"] or [None])[0]
+    natural = turning or [j for j in on if j.kind == "P"]
+    return natural[0] if natural else None
 
 
-def inversion_mechanism(chain, fixed, *, name=None, slide=None):
+def inversion_mechanism(chain: Chain, fixed: str, *, name: str | None = None,
+                        slide: float | None = None) -> Chain | None:
     """The posed chain as a mechanism with ``fixed`` fixed, driven by its natural input
     (None when it has none). ``slide``: a sliding input's sweep, from ``-slide`` to
     ``slide`` about the drawn pose (for a slide without limits, whose whole range

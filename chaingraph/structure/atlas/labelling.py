@@ -11,9 +11,10 @@ other through the project's own canonical form.
 
 from __future__ import annotations
 
-from typing import Any
+from collections.abc import Hashable, Iterable, Sequence
 
 import numpy as np
+import numpy.typing as npt
 
 from chaingraph.structure.isomorphism import orbits_of, refine_search
 
@@ -34,14 +35,15 @@ def default_backend() -> str:
     return "nauty" if _nauty is not None else "own"
 
 
-def _check(backend):
+def _check(backend: str) -> None:
     if backend not in BACKENDS:
         raise ValueError(f"unknown labelling {backend!r}: one of {', '.join(BACKENDS)}")
     if backend == "nauty" and _nauty is None:
         raise ImportError("the nauty labelling needs the pynauty package")
 
 
-def graph_form(n, edges, *, backend="nauty"):
+def graph_form(n: int, edges: Iterable[tuple[int, int]], *, backend: str = "nauty",
+               ) -> tuple[tuple[tuple[int, int], ...], int]:
     """Canonical edge list and link orbit count of a simple graph on ``n`` nodes.
 
     Returns ``(edges, orbits)``: the edges as sorted pairs ``(i, j)``, ``i < j``, in the
@@ -57,7 +59,8 @@ def graph_form(n, edges, *, backend="nauty"):
     return tuple(map(tuple, canonical[0].tolist())), int(orbits[0])
 
 
-def graph_forms(n, edges, *, backend="nauty"):
+def graph_forms(n: int, edges: npt.ArrayLike, *, backend: str = "nauty",
+                ) -> tuple[npt.NDArray[np.uint8], npt.NDArray[np.int32]]:
     """:func:`graph_form` of many graphs at once: ``edges`` an integer array (m, J, 2).
 
     Returns ``(canonical, orbits)``: an array (m, J, 2) of uint8 (each graph's edges in
@@ -88,7 +91,7 @@ def graph_forms(n, edges, *, backend="nauty"):
     else:
         for i, chain in enumerate(edges.tolist()):
             labels = [("link",)] * n
-            adj: list[list[int]] = [[] for _ in range(n)]
+            adj: list[list[tuple[int, int]]] = [[] for _ in range(n)]
             for a, b in chain:
                 adj[a].append((b, 0))
                 adj[b].append((a, 0))
@@ -104,7 +107,7 @@ def graph_forms(n, edges, *, backend="nauty"):
     return canonical, orbits
 
 
-def _incidence(k, edges):
+def _incidence(k: int, edges: Sequence[Sequence[int]]) -> dict[int, list[int]]:
     """The multigraph as a simple coloured graph: its nodes, then one node per edge
     joined to the edge's ends (a loop's node to its one end)."""
     adjacency: dict[int, list[int]] = {v: [] for v in range(k + len(edges))}
@@ -115,7 +118,8 @@ def _incidence(k, edges):
     return adjacency
 
 
-def multigraph_key(k, edges, *, backend="nauty"):
+def multigraph_key(k: int, edges: Sequence[Sequence[int]], *, backend: str = "nauty",
+                  ) -> Hashable:
     """A key equal for two multigraphs (loops allowed) on ``k`` nodes exactly when they
     are isomorphic."""
     _check(backend)
@@ -128,7 +132,8 @@ def multigraph_key(k, edges, *, backend="nauty"):
     return (tuple(labels[v] for v in order), cert)
 
 
-def _weighted(k, edges):
+def _weighted(k: int, edges: Iterable[Sequence[int]],
+              ) -> tuple[list[tuple[str, int, int]], list[list[tuple[int, int]]]]:
     """A multigraph as a labelled simple graph: a node's label is its degree and number
     of loops, an edge's label its multiplicity."""
     loops, degree = [0] * k, [0] * k
@@ -148,7 +153,8 @@ def _weighted(k, edges):
     return labels, adj
 
 
-def multigraph_automorphisms(k, edges, *, backend="nauty"):
+def multigraph_automorphisms(k: int, edges: Sequence[Sequence[int]], *,
+                             backend: str = "nauty") -> list[tuple[int, ...]]:
     """Every automorphism of a multigraph as a permutation of its nodes (a tuple ``p``:
     node ``v`` goes to ``p[v]``), the identity included.
 
@@ -179,7 +185,8 @@ def multigraph_automorphisms(k, edges, *, backend="nauty"):
     return sorted(group)
 
 
-def _link_joint_adjacency(n, joints, members=None):
+def _link_joint_adjacency(n: int, joints: Iterable[int],
+                          members: dict[int, list[int]] | None = None) -> dict[int, list[int]]:
     """A link-joint graph's adjacency: links 0..n-1, then one node per joint (a bit mask
     of its links) joined to its links (``members``: a dict of masks' links, filled as
     it goes, for many graphs)."""
@@ -193,11 +200,12 @@ def _link_joint_adjacency(n, joints, members=None):
     return adjacency
 
 
-def _own_link_joint(n, joints):
+def _own_link_joint(n: int, joints: Sequence[int],
+                    ) -> tuple[Hashable, list[int], list[list[int]]]:
     """:func:`refine_search` of a link-joint graph: its certificate, node order and
     automorphism generators."""
     adjacency = _link_joint_adjacency(n, joints)
-    adj: list[list[int]] = [[] for _ in adjacency]
+    adj: list[list[tuple[int, int]]] = [[] for _ in adjacency]
     for v, ends in adjacency.items():
         for x in ends:
             adj[v].append((x, 0))
@@ -207,7 +215,8 @@ def _own_link_joint(n, joints):
     return (tuple(labels[v] for v in order), cert), order, generators
 
 
-def link_joint_keys(n, graphs, *, backend="nauty"):
+def link_joint_keys(n: int, graphs: Iterable[Sequence[int]], *, backend: str = "nauty",
+                    ) -> list[Hashable]:
     """A key for each link-joint graph of ``graphs``, equal for two graphs on ``n``
     links with as many joints exactly when they are isomorphic (links to links, joints
     to joints). Each graph is a sequence of joints, each a bit mask of its links (bit
@@ -224,8 +233,8 @@ def link_joint_keys(n, graphs, *, backend="nauty"):
     _check(backend)
     if backend == "own":
         return [_own_link_joint(n, joints)[0] for joints in graphs]
-    keys: list[bytes] = []
-    members: dict[Any, Any] = {}
+    keys: list[Hashable] = []
+    members: dict[int, list[int]] = {}
     g = None
     for joints in graphs:
         nodes = n + len(joints)
@@ -236,7 +245,8 @@ def link_joint_keys(n, graphs, *, backend="nauty"):
     return keys
 
 
-def link_joint_form(n, joints, *, backend="nauty"):
+def link_joint_form(n: int, joints: Sequence[int], *, backend: str = "nauty",
+                    ) -> tuple[tuple[tuple[int, ...], ...], int]:
     """A link-joint graph's joints in canonical labels, and its link orbits.
 
     Returns ``(joints, orbits)``: each joint (``joints`` as in :func:`link_joint_keys`)

@@ -37,6 +37,7 @@ from __future__ import annotations
 
 import functools
 import itertools
+from collections.abc import Hashable, Sequence
 from dataclasses import dataclass
 from typing import Any
 
@@ -51,6 +52,7 @@ from chaingraph.structure.atlas.labelling import (
     link_joint_form,
     link_joint_keys,
 )
+from chaingraph.structure.atlas.run import Atlas
 from chaingraph.structure.atlas.sliding import Entries
 
 __all__ = ["MultipleEntry", "MultipleAtlas", "multiple_atlas", "joint_patterns",
@@ -65,29 +67,32 @@ class MultipleEntry:
     its joints join three links or more."""
 
     id: int
-    joints: tuple
+    joints: tuple[tuple[int, ...], ...]
     links: int
     inversion_classes: int
     fractionated: bool = False
 
     @property
     def multiple(self) -> int:
+        """How many of its joints join three links or more."""
         return sum(len(j) > 2 for j in self.joints)
 
     @property
-    def degrees(self) -> tuple:
+    def degrees(self) -> tuple[int, ...]:
         """How many links each multiple joint joins, largest first."""
         return tuple(sorted((len(j) for j in self.joints if len(j) > 2), reverse=True))
 
-    def chain(self, dof=None) -> Chain:
+    def chain(self, dof: int | None = None) -> Chain:
+        """The chain (links L1..LN, joints J1..)."""
         joints = tuple(Joint(f"J{i + 1}", "R", tuple(f"L{x + 1}" for x in links))
                        for i, links in enumerate(self.joints))
         name = (f"chain {self.id} of {self.links} links" + (f", {dof} dof" if dof else "")
                 + f", {self.multiple} multiple joint{'s' if self.multiple != 1 else ''}")
         return Chain(name, joints, family="atlas")
 
-    def to_dict(self) -> dict:
-        orders: dict[Any, Any] = {}
+    def to_dict(self) -> dict[str, Any]:
+        """The chain's record in the atlas's JSON."""
+        orders: dict[int, int] = {}
         for x in range(self.links):
             k = sum(x in j for j in self.joints)
             orders[k] = orders.get(k, 0) + 1
@@ -104,28 +109,28 @@ class MultipleAtlas(Entries):
 
     links: int
     dof: int
-    entries: tuple
-    rejected: dict
+    entries: tuple[MultipleEntry, ...]
+    rejected: dict[str, int]
 
     @property
-    def count_by_multiple(self) -> dict:
+    def count_by_multiple(self) -> dict[int, int]:
         """Chains by how many of their joints join three links or more."""
-        out: dict[Any, Any] = {}
+        out: dict[int, int] = {}
         for e in self.entries:
             out[e.multiple] = out.get(e.multiple, 0) + 1
         return dict(sorted(out.items()))
 
     @property
-    def count_by_degrees(self) -> dict:
+    def count_by_degrees(self) -> dict[tuple[int, ...], int]:
         """Chains by the degrees of their multiple joints (a tuple, largest first;
         ``()`` for simple joints only)."""
-        out: dict[Any, Any] = {}
+        out: dict[tuple[int, ...], int] = {}
         for e in self.entries:
             out[e.degrees] = out.get(e.degrees, 0) + 1
         return dict(sorted(out.items(), key=lambda kv: (len(kv[0]), [-d for d in kv[0]])))
 
 
-def joint_patterns(links: int, dof: int) -> list:
+def joint_patterns(links: int, dof: int) -> list[tuple[int, ...]]:
     """The joint patterns of chains of ``links`` links and ``dof`` degrees of freedom:
     each the degrees of its joints, largest first, with the Kutzbach count of ``dof``
     and at least two joints per link by count (sum of the degrees >= 2 links).
@@ -138,9 +143,9 @@ def joint_patterns(links: int, dof: int) -> list:
     rows = 3 * (links - 1) - dof
     if rows < 0 or rows % 2:
         return []
-    out = []
+    out: list[tuple[int, ...]] = []
 
-    def grow(pattern, left):
+    def grow(pattern: list[int], left: int) -> None:
         if not left:
             if sum(pattern) >= 2 * links:
                 out.append(tuple(pattern))
@@ -152,7 +157,7 @@ def joint_patterns(links: int, dof: int) -> list:
 
 
 @functools.lru_cache(maxsize=64)
-def _candidates(links, degree):
+def _candidates(links: int, degree: int) -> tuple[list[int], np.ndarray]:
     """Every joint of ``degree`` links on ``links`` links (bit masks), and the rows it
     puts on each set of links (a row per set, sets as bit masks): 2 (d_S - 1) for the
     d_S links of S it holds."""
@@ -164,14 +169,14 @@ def _candidates(links, degree):
 
 
 @functools.lru_cache(maxsize=16)
-def _capacity(links):
+def _capacity(links: int) -> np.ndarray:
     """The rows each set S of links may hold without a rigid or overbraced set:
     3 |S| - 4 for two links or more (no bound for fewer)."""
     size = np.array([s.bit_count() for s in range(1 << links)])
     return np.where(size >= 2, 3 * size - 4, np.iinfo(np.int16).max).astype(np.int16)
 
 
-def _fractionated(links, joints):
+def _fractionated(links: int, joints: Sequence[int]) -> bool:
     """Whether a link or a joint (a bit mask of links) separates the link-joint graph
     (every side of it then closed: its every node is on two others or more)."""
     g = nx.Graph((links + k, x) for k, mask in enumerate(joints)
@@ -179,7 +184,7 @@ def _fractionated(links, joints):
     return not nx.is_biconnected(g)
 
 
-def _connected(links, joints):
+def _connected(links: int, joints: Sequence[int]) -> bool:
     parts = DisjointSets(links)
     for mask in joints:
         members = [x for x in range(links) if mask >> x & 1]
@@ -188,7 +193,8 @@ def _connected(links, joints):
     return parts.count == 1
 
 
-def link_joint_graphs(links: int, pattern, *, backend=None) -> list:
+def link_joint_graphs(links: int, pattern: Sequence[int], *, backend: str | None = None,
+                      ) -> list[tuple[int, ...]]:
     """Every connected link-joint graph on ``links`` links with joints of the degrees
     ``pattern`` (largest first) whose every link is on two joints or more and no set S
     of two links or more holds 3 |S| - 3 rows (module text), once up to isomorphism:
@@ -203,21 +209,22 @@ def link_joint_graphs(links: int, pattern, *, backend=None) -> list:
     backend = backend or default_backend()
     capacity = _capacity(links)
     spare = sum(pattern) - 2 * links                 # joints beyond two, over all links
-    rows_of: dict[Any, Any] = {}                                     # a joint's rows on each set of links
+    rows_of: dict[int, np.ndarray] = {}         # a joint's rows on each set of links
     # a set of joints: (joints, links on a joint, links on two joints or more, joints
     # beyond two over all links); its rows are summed where it is extended
     level: list[tuple[tuple[int, ...], int, int, int]] = [((), 0, 0, 0)]
     for degree in pattern:
         masks, rows = _candidates(links, degree)
         rows_of.update(zip(masks, rows))
-        children, made = [], []
+        children: list[tuple[int, ...]] = []
+        made: list[int] = []
         for k, (joints, once, twice, beyond) in enumerate(level):
             free = capacity - sum((rows_of[m] for m in joints), np.zeros_like(capacity))
             for i in np.nonzero((rows <= free).all(axis=1))[0].tolist():
                 if beyond + (masks[i] & twice).bit_count() <= spare:
                     children.append(joints + (masks[i],))
                     made.append(k)
-        kept: dict[Any, tuple[tuple[int, ...], int, int, int]] = {}
+        kept: dict[Hashable, tuple[tuple[int, ...], int, int, int]] = {}
         for key, child, k in zip(link_joint_keys(links, children, backend=backend),
                                  children, made):
             if key not in kept:
@@ -229,7 +236,7 @@ def link_joint_graphs(links: int, pattern, *, backend=None) -> list:
     return [joints for joints, *_ in level if _connected(links, joints)]
 
 
-def multiple_atlas(base) -> MultipleAtlas:
+def multiple_atlas(base: Atlas) -> MultipleAtlas:
     """The chains with multiple joints of the size of ``base`` (an
     :class:`~chaingraph.structure.atlas.run.Atlas`: the chains of simple joints, which
     come first), the chains with a multiple joint then by their number, their degrees

@@ -8,14 +8,15 @@ import html as _html
 import json
 import math
 import os
+from collections.abc import Iterator, Sequence
 from pathlib import Path
-from typing import Any
+from typing import IO, Any
 
 from chaingraph._util.atomic import withdraw
 from chaingraph._util.text import freedom
 from chaingraph.geometry import segment_distance
 from chaingraph.structure.atlas.entry import AtlasEntry, encode_chains, order_counts
-from chaingraph.structure.atlas.run import ring_of
+from chaingraph.structure.atlas.run import Atlas, AtlasCounts, ring_of
 
 __all__ = ["atlas_dict", "write_atlas", "chains_of", "CHAIN_FILES_UP_TO",
            "FIGURES_UP_TO"]
@@ -25,8 +26,11 @@ CHAIN_FILES_UP_TO = 10_000
 #: the HTML index draws at most this many chains (all are in atlas.json and graph6)
 FIGURES_UP_TO = 1_000
 
+_Point = tuple[float, float]
 
-def chains_of(atlas, *, no_fractionated=False):
+
+def chains_of(atlas: Atlas, *, no_fractionated: bool = False,
+              ) -> Iterator[tuple[list[list[int]], int, bool]]:
     """The chains of an in-memory :class:`~chaingraph.structure.atlas.run.Atlas` in order, as
     ``(edges, inversion_classes, fractionated)``."""
     for e, o, x in zip(atlas.edges, atlas.inversion_classes, atlas.fractionated):
@@ -34,15 +38,26 @@ def chains_of(atlas, *, no_fractionated=False):
             yield e.tolist(), int(o), bool(x)
 
 
-def _records(atlas, shard_dir, no_fractionated, block=4096):
+def _in_memory(atlas: Atlas | AtlasCounts) -> Atlas:
+    """``atlas`` itself, when its chains are held (an :class:`Atlas`, not counts)."""
+    if not isinstance(atlas, Atlas):
+        raise TypeError("the chains of an atlas whose chains were not kept in memory "
+                        "are read from its shards: give shard_dir")
+    return atlas
+
+
+def _records(atlas: Atlas | AtlasCounts, shard_dir: str | os.PathLike[str] | None,
+             no_fractionated: bool, block: int = 4096,
+             ) -> Iterator[tuple[str, bytes, dict[str, Any]]]:
     """Each chain in order as ``(json_line, graph6_line, record)``: encoded from memory,
     or read back from the shard files of a run (after the single loop, if any)."""
-    def pairs():
+    def pairs() -> Iterator[tuple[str, bytes]]:
         if shard_dir is None:
-            for s in range(0, len(atlas), block):
-                g6, text = encode_chains(atlas.links, atlas.edges[s:s + block],
-                                         atlas.inversion_classes[s:s + block],
-                                         atlas.fractionated[s:s + block])
+            held = _in_memory(atlas)
+            for s in range(0, len(held), block):
+                g6, text = encode_chains(held.links, held.edges[s:s + block],
+                                         held.inversion_classes[s:s + block],
+                                         held.fractionated[s:s + block])
                 yield from zip(text.splitlines(True), g6.splitlines(True))
             return
         if atlas.links == atlas.dof + 3:
@@ -50,15 +65,15 @@ def _records(atlas, shard_dir, no_fractionated, block=4096):
             yield text, g6
         for path in sorted(Path(shard_dir).glob("shard-*.jsonl")):
             with open(path, encoding="utf-8") as lines, \
-                    open(path.with_suffix(".g6"), "rb") as g6:
-                yield from zip(lines, g6)
+                    open(path.with_suffix(".g6"), "rb") as graphs:
+                yield from zip(lines, graphs)
     for line, g6 in pairs():
         record = json.loads(line)
         if not (no_fractionated and record["fractionated"]):
             yield line, g6, record
 
 
-def _header(atlas, no_fractionated):
+def _header(atlas: Atlas | AtlasCounts, no_fractionated: bool) -> dict[str, Any]:
     """The counts that open atlas.json (``distinct_inversions`` is added by the caller:
     streamed, it is known only at the end)."""
     count = atlas.count_non_fractionated if no_fractionated else atlas.count
@@ -66,7 +81,8 @@ def _header(atlas, no_fractionated):
             "count_non_fractionated": atlas.count_non_fractionated}
 
 
-def atlas_dict(atlas, *, no_fractionated=False, chains=True) -> dict:
+def atlas_dict(atlas: Atlas | AtlasCounts, *, no_fractionated: bool = False,
+               chains: bool = True) -> dict[str, Any]:
     """The JSON object of ``chaingraph atlas --json`` (``chains=False``: ``--summary``).
 
     Examples
@@ -82,23 +98,26 @@ def atlas_dict(atlas, *, no_fractionated=False, chains=True) -> dict:
     if chains:
         out["chains"] = [_chain_record(i + 1, edges, orbits, fractionated, atlas.links)
                          for i, (edges, orbits, fractionated) in enumerate(
-                             chains_of(atlas, no_fractionated=no_fractionated))]
+                             chains_of(_in_memory(atlas), no_fractionated=no_fractionated))]
     return out
 
 
-def _chain_record(id_, edges, orbits, fractionated, links):
+def _chain_record(id_: int, edges: list[list[int]], orbits: int, fractionated: bool,
+                  links: int) -> dict[str, Any]:
     return {"id": id_, "edges": [list(e) for e in edges], "link_orders": order_counts(edges, links),
             "inversion_classes": orbits, "fractionated": fractionated}
 
 
-def _open_for_writing(path, mode="w"):
+def _open_for_writing(path: Path, mode: str = "w") -> tuple[Path, IO[Any]]:
     """A temporary file beside ``path``, renamed onto it by :func:`_finish`."""
     tmp = path.with_name(path.name + ".tmp")
     return tmp, open(tmp, mode, encoding=None if "b" in mode else "utf-8")
 
 
-def write_atlas(atlas, out_dir, *, shard_dir=None, no_fractionated=False,
-                chain_files=None) -> dict:
+def write_atlas(atlas: Atlas | AtlasCounts, out_dir: str | os.PathLike[str], *,
+                shard_dir: str | os.PathLike[str] | None = None,
+                no_fractionated: bool = False, chain_files: bool | None = None,
+                ) -> dict[str, Any]:
     """Write ``atlas.json``, ``atlas-N-links-F-dof.g6``, ``index.html`` and, when
     ``chain_files`` is true (by default up to :data:`CHAIN_FILES_UP_TO` chains), one
     TOML file per chain under ``chains/``, into ``out_dir``; returns the paths by kind.
@@ -121,8 +140,8 @@ def write_atlas(atlas, out_dir, *, shard_dir=None, no_fractionated=False,
     header = _header(atlas, no_fractionated)
     json_tmp, json_file = _open_for_writing(paths["json"])
     g6_tmp, g6_file = _open_for_writing(paths["graph6"], "wb")
-    by_assortment: dict[Any, Any] = {}
-    figures: list[Any] = []
+    by_assortment: dict[str, list[int]] = {}
+    figures: list[AtlasEntry] = []
     total = 0
     width = len(str(count))
     with json_file, g6_file:
@@ -158,7 +177,7 @@ def write_atlas(atlas, out_dir, *, shard_dir=None, no_fractionated=False,
     return paths
 
 
-def chain_text(entry, dof=None) -> str:
+def chain_text(entry: AtlasEntry, dof: int | None = None) -> str:
     """The chain file of an atlas entry, as :func:`chaingraph.dumps` writes it (made
     directly: an atlas writes thousands).
 
@@ -179,14 +198,14 @@ def chain_text(entry, dof=None) -> str:
     return "".join(parts)
 
 
-def atlas_svg(entry, size=170):
+def atlas_svg(entry: AtlasEntry, size: int = 170) -> str:
     """A small SVG of one chain's link-joint graph: links as numbered circles on a ring
     (ordered to follow the chain; L1 is link 1 of the chain file, edge 0 of atlas.json's
     ``edges``), joints as squares on the bars between them, each placed where no other
     bar crosses (a square at a crossing would read as a multiple joint)."""
     n = entry.links
     order = _ring_order(n, entry.edges)
-    place = {}
+    place: dict[int, _Point] = {}
     for i, v in enumerate(order):
         a = 2 * math.pi * i / n - math.pi / 2
         place[v] = (size / 2 + 0.38 * size * math.cos(a), size / 2 + 0.38 * size * math.sin(a))
@@ -200,7 +219,7 @@ def atlas_svg(entry, size=170):
     for (x1, y1), (x2, y2) in bars:
         parts.append(f'<line x1="{x1:.1f}" y1="{y1:.1f}" x2="{x2:.1f}" y2="{y2:.1f}" '
                      'stroke="#444" stroke-width="1.3"/>')
-    squares: list[Any] = []
+    squares: list[_Point] = []
     for k, bar in enumerate(bars):
         mx, my = _joint_place(bar, [b for i, b in enumerate(bars) if i != k], squares)
         squares.append((mx, my))
@@ -218,11 +237,12 @@ def atlas_svg(entry, size=170):
     return "".join(parts)
 
 
-def _joint_place(bar, others, squares, clear=5.0):
+def _joint_place(bar: tuple[_Point, _Point], others: Sequence[tuple[_Point, _Point]],
+                 squares: Sequence[_Point], clear: float = 5.0) -> _Point:
     """Where on ``bar`` to draw its joint: the point nearest its middle that is at least
     ``clear`` from every other bar and square (else the clearest point tried)."""
     (x1, y1), (x2, y2) = bar
-    best, best_gap = None, -1.0
+    best, best_gap = (x1, y1), -1.0         # the first point tried replaces it
     for t in (0.5, 0.4, 0.6, 0.32, 0.68, 0.26, 0.74, 0.45, 0.55, 0.36, 0.64, 0.3, 0.7):
         p = (x1 + t * (x2 - x1), y1 + t * (y2 - y1))
         gap = min([segment_distance(p, a, b) for a, b in others]
@@ -234,13 +254,15 @@ def _joint_place(bar, others, squares, clear=5.0):
     return best
 
 
-def _ring_order(n, edges):
+def _ring_order(n: int, edges: Sequence[tuple[int, int]]) -> list[int]:
     """Links in an order that follows the chain (a depth-first walk), for drawing."""
     adj: dict[int, list[int]] = {v: [] for v in range(n)}
     for a, b in edges:
         adj[a].append(b)
         adj[b].append(a)
-    seen, order, stack = set(), [], [max(range(n), key=lambda v: len(adj[v]))]
+    seen: set[int] = set()
+    order: list[int] = []
+    stack = [max(range(n), key=lambda v: len(adj[v]))]
     while stack:
         v = stack.pop()
         if v in seen:
@@ -251,9 +273,11 @@ def _ring_order(n, edges):
     return order + [v for v in range(n) if v not in seen]
 
 
-def _atlas_page(atlas, figures, by_assortment, count, total, no_fractionated):
+def _atlas_page(atlas: Atlas | AtlasCounts, figures: Sequence[AtlasEntry],
+                by_assortment: dict[str, list[int]], count: int, total: int,
+                no_fractionated: bool) -> str:
     links, dof = atlas.links, atlas.dof
-    cells = []
+    cells: list[str] = []
     for e in figures:
         orders = ", ".join(f"{v} {k}" for k, v in e.link_orders.items())
         cells.append(f'<figure id="chain-{e.id}">{atlas_svg(e)}<figcaption><b>{e.id}</b>: '

@@ -31,10 +31,11 @@ as numpy arrays:
 from __future__ import annotations
 
 import math
-from typing import Any
+from collections.abc import Iterator, Sequence
 
 import networkx as nx
 import numpy as np
+import numpy.typing as npt
 
 from chaingraph.structure.atlas.labelling import graph_forms, multigraph_automorphisms
 
@@ -42,6 +43,11 @@ __all__ = ["piece", "piece_work", "Piece"]
 
 #: rows of distributions handled at once (bounds a piece's memory)
 BLOCK = 1 << 16
+
+#: a piece's job: its contracted graph's node degrees, its sorted edges, the binary links
+_Job = tuple[Sequence[int], Sequence[Sequence[int]], int]
+_Edge = tuple[int, ...]
+_Rows = npt.NDArray[np.int16]
 
 
 class Piece:
@@ -51,14 +57,15 @@ class Piece:
 
     __slots__ = ("edges", "orbits", "fractionated")
 
-    def __init__(self, edges, orbits, fractionated):
+    def __init__(self, edges: npt.NDArray[np.uint8], orbits: npt.NDArray[np.int32],
+                 fractionated: bool) -> None:
         self.edges, self.orbits, self.fractionated = edges, orbits, fractionated
 
-    def __len__(self):
+    def __len__(self) -> int:
         return len(self.orbits)
 
 
-def piece_work(job) -> int:
+def piece_work(job: _Job) -> int:
     """The number of distributions a piece looks at (its share of the work)."""
     degrees, edges, binaries = job
     spare = binaries - 3 * sum(a == b for a, b in edges)
@@ -67,12 +74,12 @@ def piece_work(job) -> int:
     return math.comb(spare + len(edges) - 1, len(edges) - 1) + 1
 
 
-_CACHE: dict[Any, Any] = {}
+_CACHE: dict[tuple[int, int], _Rows] = {}
 #: compositions kept for reuse: small tables only (bounds a worker's memory)
 _CACHE_ROWS = 4096
 
 
-def _compositions(total, parts):
+def _compositions(total: int, parts: int) -> _Rows:
     """Every way to write ``total`` as ``parts`` ordered non-negative parts, as rows."""
     key = (total, parts)
     if key in _CACHE:
@@ -91,7 +98,7 @@ def _compositions(total, parts):
     return out
 
 
-def _distribution_blocks(total, parts, limit=BLOCK):
+def _distribution_blocks(total: int, parts: int, limit: int = BLOCK) -> Iterator[_Rows]:
     """The compositions of :func:`_compositions` in blocks of about ``limit`` rows."""
     if parts == 1 or math.comb(total + parts - 1, parts - 1) <= limit:
         yield _compositions(total, parts)
@@ -101,9 +108,10 @@ def _distribution_blocks(total, parts, limit=BLOCK):
             yield np.hstack([np.full((len(rest), 1), first, dtype=np.int16), rest])
 
 
-def _bundles(edges):
+def _bundles(edges: Sequence[_Edge]) -> list[tuple[_Edge, int, int]]:
     """Runs of equal edges (parallel edges, or loops at one node) in the sorted list."""
-    runs, start = [], 0
+    runs: list[tuple[_Edge, int, int]] = []
+    start = 0
     for e in range(1, len(edges) + 1):
         if e == len(edges) or edges[e] != edges[start]:
             runs.append((edges[start], start, e))
@@ -111,7 +119,8 @@ def _bundles(edges):
     return runs
 
 
-def _images(k, edges, automorphisms):
+def _images(k: int, edges: Sequence[_Edge], automorphisms: Sequence[tuple[int, ...]],
+            ) -> list[npt.NDArray[np.intp]]:
     """For each automorphism but the identity, the column order that maps a
     distribution to its image (bundles carried onto bundles, order kept inside)."""
     runs = _bundles(edges)
@@ -129,7 +138,7 @@ def _images(k, edges, automorphisms):
     return images
 
 
-def _candidate_sets(k, edges):
+def _candidate_sets(k: int, edges: Sequence[_Edge]) -> tuple[_Rows, _Rows]:
     """Sets of two or more contracted nodes that hold enough edges to be rigid, as a
     0/1 matrix over the (non-loop) edges, with their ``3 |T| - 3``."""
     masks = np.arange(1, 1 << k)
@@ -142,7 +151,8 @@ def _candidate_sets(k, edges):
     return inside[possible].astype(np.int16), base[possible].astype(np.int16)
 
 
-def _keep(block, runs, images, inside, base):
+def _keep(block: _Rows, runs: Sequence[tuple[_Edge, int, int]],
+          images: Sequence[npt.NDArray[np.intp]], inside: _Rows, base: _Rows) -> _Rows:
     """Rows of ``block`` (distributions) that are orbit representatives and rigid-free."""
     keep = np.ones(len(block), dtype=bool)
     for (a, b), start, stop in runs:
@@ -172,7 +182,7 @@ def _keep(block, runs, images, inside, base):
     return rows
 
 
-def _expand(k, edges, counts):
+def _expand(k: int, edges: Sequence[_Edge], counts: npt.ArrayLike) -> npt.NDArray[np.int64]:
     """The link graphs of many distributions at once: contracted nodes 0..k-1, then the
     binary links edge by edge; ``counts`` (R, E) gives an integer array (R, J, 2)."""
     counts = np.asarray(counts, dtype=np.int64)
@@ -192,14 +202,14 @@ def _expand(k, edges, counts):
     return np.stack([tail, head], axis=1).reshape(rows, joints, 2)
 
 
-def _fractionated(n, edges):
+def _fractionated(n: int, edges: list[list[int]]) -> bool:
     """Whether a link graph has a separating link (cut vertex) or joint (bridge)."""
     g = nx.Graph(edges)
     g.add_nodes_from(range(n))
     return not nx.is_biconnected(g)
 
 
-def piece(job, *, backend="nauty") -> Piece:
+def piece(job: _Job, *, backend: str = "nauty") -> Piece:
     """Every chain of one contracted graph, as canonical link graphs.
 
     Parameters
@@ -218,14 +228,14 @@ def piece(job, *, backend="nauty") -> Piece:
     >>> len(p), p.orbits.tolist(), p.fractionated
     (2, [2, 3], False)
     """
-    degrees, edges, binaries = job
-    edges = [tuple(e) for e in edges]
+    degrees, given, binaries = job
+    edges = [tuple(e) for e in given]
     k = len(degrees)
     minimum = np.array([3 if a == b else 0 for a, b in edges], dtype=np.int16)
     spare = binaries - int(minimum.sum())
     joints = len(edges) + binaries
-    found_edges: list[Any] = []
-    found_orbits: list[Any] = []
+    found_edges: list[npt.NDArray[np.uint8]] = []
+    found_orbits: list[npt.NDArray[np.int32]] = []
     fractionated = False
     if spare >= 0:
         runs = _bundles(edges)

@@ -34,14 +34,18 @@ known to be the whole story (:mod:`~chaingraph.structure.atlas.admissibility`).
 
 from __future__ import annotations
 
+from collections.abc import Sequence
+
 import numpy as np
+import numpy.typing as npt
 
 from chaingraph._util.disjoint import DisjointSets
 
 __all__ = ["overbraced", "weld", "pin_verdicts"]
 
 
-def overbraced(links, joints, kinds=None) -> int:
+def overbraced(links: int, joints: Sequence[Sequence[int]], kinds: Sequence[str] | None = None,
+               ) -> int:
     """The least set of links (a bit mask) on which ``joints`` (tuples of links; ``kinds``
     "R"/"P" per joint, the P joints a forest) put more rows than ``3 |S| - 3``, a path
     of P joints between two of its links through links outside it counting one row (see
@@ -81,7 +85,8 @@ def overbraced(links, joints, kinds=None) -> int:
     return int(over[0]) if over.size else 0
 
 
-def weld(joints, kinds, a, b):
+def weld(joints: Sequence[Sequence[int]], kinds: Sequence[str] | None, a: int, b: int,
+         ) -> tuple[list[tuple[int, ...]], list[str]]:
     """The chain with links ``a`` and ``b`` made one (``b`` becomes ``a``; the links
     above ``b`` move down by one): the joints that keep two links or more, and their
     kinds.
@@ -89,10 +94,11 @@ def weld(joints, kinds, a, b):
     >>> weld([(0, 1, 2), (1, 3), (2, 3)], "RRR", 1, 2)
     ([(0, 1), (1, 2), (1, 2)], ['R', 'R', 'R'])
     """
-    def new(x):
+    def new(x: int) -> int:
         x = a if x == b else x
         return x - 1 if x > b else x
-    out, out_kinds = [], []
+    out: list[tuple[int, ...]] = []
+    out_kinds: list[str] = []
     for j, k in zip(joints, kinds or "R" * len(joints)):
         held = tuple(sorted({new(x) for x in j}))
         if len(held) > 1:
@@ -101,7 +107,9 @@ def weld(joints, kinds, a, b):
     return out, out_kinds
 
 
-def pin_verdicts(links, candidates, *, kinds=None):
+def pin_verdicts(links: int, candidates: Sequence[Sequence[Sequence[int]]], *,
+                 kinds: Sequence[Sequence[str] | None] | None = None,
+                 ) -> tuple[npt.NDArray[np.bool_], npt.NDArray[np.bool_]]:
     """For each candidate (a tuple of joints, each a tuple of links; ``kinds`` gives
     each candidate's joint kinds, all R by default), whether its rows are dependent
     (an overbraced set: a freedom more than its joints allow) and whether a joint is
@@ -116,10 +124,11 @@ def pin_verdicts(links, candidates, *, kinds=None):
     >>> dependent.tolist(), locked.tolist()
     ([False, True], [False, False])
     """
-    kinds = [k or "R" * len(c) for k, c in zip(kinds or [None] * len(candidates),
-                                               candidates)]
-    dependent, locked = [], []
-    for joints, kind in zip(candidates, kinds):
+    each: list[Sequence[str]] = [k or "R" * len(c) for k, c in zip(
+        kinds or [None] * len(candidates), candidates)]
+    dependent: list[bool] = []
+    locked: list[bool] = []
+    for joints, kind in zip(candidates, each):
         dependent.append(bool(overbraced(links, joints, kind)))
         pairs = {(a, b) for j in joints for i, a in enumerate(j) for b in j[i + 1:]}
         locked.append(not dependent[-1] and any(

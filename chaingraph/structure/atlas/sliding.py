@@ -30,8 +30,9 @@ automorphisms, so each chain is counted once without a canonical form per candid
 
 from __future__ import annotations
 
-from collections.abc import Sequence
-from typing import Any
+import os
+from collections.abc import Callable, Iterable, Iterator, Sequence
+from typing import TYPE_CHECKING, Any, Literal, overload
 
 import json
 from dataclasses import dataclass
@@ -51,6 +52,10 @@ from chaingraph.structure.isomorphism import (
     automorphism_generators,
 )
 
+if TYPE_CHECKING:       # the atlas with multiple joints builds on this module's Entries
+    from chaingraph.structure.atlas.multiple import MultipleAtlas
+    from chaingraph.structure.atlas.run import Atlas
+
 __all__ = ["SlidingEntry", "SlidingAtlas", "SlidingCounts", "sliding_atlas",
            "sliding_chains", "prismatic_counts", "sliding_dict", "write_sliding"]
 
@@ -63,8 +68,8 @@ class SlidingEntry:
     fractionated, and ``base``, the id of the turning-pair chain it comes from."""
 
     id: int
-    edges: tuple
-    kinds: tuple
+    edges: tuple[tuple[int, ...], ...]
+    kinds: tuple[str, ...]
     links: int
     inversion_classes: int
     fractionated: bool
@@ -78,12 +83,13 @@ class SlidingEntry:
         return self.kinds.count("P")
 
     @property
-    def link_orders(self) -> dict:
+    def link_orders(self) -> dict[str, int]:
+        """How many links of each order (``{"binary": 4, ...}``)."""
         if self.multiple:
             return _orders([sum(x in j for j in self.edges) for x in range(self.links)])
         return order_counts(self.edges, self.links)
 
-    def chain(self, dof=None) -> Chain:
+    def chain(self, dof: int | None = None) -> Chain:
         """The chain (links L1..LN, joints J1..; a P joint's first link carries its
         guide)."""
         joints = tuple(Joint(f"J{i + 1}", k, tuple(f"L{x + 1}" for x in links))
@@ -92,7 +98,8 @@ class SlidingEntry:
                 + f", {self.prismatic} sliding pair{'s' if self.prismatic != 1 else ''}")
         return Chain(name, joints, family="atlas")
 
-    def to_dict(self) -> dict:
+    def to_dict(self) -> dict[str, Any]:
+        """The chain's record in the atlas's JSON."""
         return {"id": self.id, ("joints" if self.multiple else "edges"):
                 [list(e) for e in self.edges],
                 "kinds": list(self.kinds), "link_orders": self.link_orders,
@@ -106,14 +113,15 @@ class Entries:
 
     entries: Sequence[Any]
 
-    def __len__(self):
+    def __len__(self) -> int:
         return len(self.entries)
 
-    def __iter__(self):
+    def __iter__(self) -> Iterator[Any]:
         return iter(self.entries)
 
     @property
     def distinct_inversions(self) -> int:
+        """The inversion classes of every chain, summed."""
         return sum(e.inversion_classes for e in self.entries)
 
 
@@ -125,13 +133,17 @@ class SlidingAtlas(Entries):
 
     links: int
     dof: int
-    prismatic: tuple
+    prismatic: tuple[int, ...]
     oriented: bool
-    entries: tuple
-    rejected: dict
+    entries: tuple[SlidingEntry, ...]
+    rejected: dict[str, int]
+
+    def __iter__(self) -> Iterator[SlidingEntry]:
+        return iter(self.entries)
 
     @property
-    def count_by_prismatic(self) -> dict:
+    def count_by_prismatic(self) -> dict[int, int]:
+        """Chains by their number of sliding pairs (every number asked for)."""
         out = {k: 0 for k in self.prismatic}
         for e in self.entries:
             out[e.prismatic] += 1
@@ -139,21 +151,23 @@ class SlidingAtlas(Entries):
 
     @property
     def count_non_fractionated(self) -> int:
+        """The chains that are not fractionated."""
         return sum(1 for e in self.entries if not e.fractionated)
 
     @property
-    def count_by_multiple(self):
+    def count_by_multiple(self) -> dict[int, int] | None:
         """Chains by how many of their joints join three links or more; None when no
         chain comes from the atlas with multiple joints."""
         if not any(e.multiple for e in self.entries):
             return None
-        out: dict[Any, Any] = {}
+        out: dict[int, int] = {}
         for e in self.entries:
             k = _multiple_joints(e)
             out[k] = out.get(k, 0) + 1
         return dict(sorted(out.items()))
 
-    def without_fractionated(self):
+    def without_fractionated(self) -> SlidingAtlas:
+        """The non-fractionated chains alone (ids kept)."""
         return SlidingAtlas(self.links, self.dof, self.prismatic, self.oriented,
                             tuple(e for e in self.entries if not e.fractionated),
                             dict(self.rejected))
@@ -174,48 +188,56 @@ class SlidingCounts:
     True
     """
 
-    def __init__(self, links, dof, prismatic, oriented, rejected):
+    def __init__(self, links: int, dof: int, prismatic: tuple[int, ...], oriented: bool,
+                 rejected: dict[str, int]) -> None:
         self.links, self.dof, self.prismatic, self.oriented = links, dof, prismatic, oriented
         self.rejected = rejected
         # (fractionated, K, multiple joints) -> [chains, distinct inversions]
-        self.tally = {}
+        self.tally: dict[tuple[bool, int, int], list[int]] = {}
         self.multiple = False
 
-    def add(self, entry) -> None:
+    def add(self, entry: SlidingEntry) -> None:
+        """Count one more chain."""
         key = (entry.fractionated, entry.prismatic, _multiple_joints(entry))
         row = self.tally.setdefault(key, [0, 0])
         row[0] += 1
         row[1] += entry.inversion_classes
         self.multiple = self.multiple or entry.multiple
 
-    def __len__(self):
+    def __len__(self) -> int:
         return sum(row[0] for row in self.tally.values())
 
     @property
     def distinct_inversions(self) -> int:
+        """The inversion classes of every chain counted, summed."""
         return sum(row[1] for row in self.tally.values())
 
     @property
     def count_non_fractionated(self) -> int:
+        """The chains counted that are not fractionated."""
         return sum(row[0] for key, row in self.tally.items() if not key[0])
 
     @property
-    def count_by_prismatic(self) -> dict:
+    def count_by_prismatic(self) -> dict[int, int]:
+        """Chains by their number of sliding pairs (every number asked for)."""
         out = {k: 0 for k in self.prismatic}
         for (_, k, _), row in self.tally.items():
             out[k] += row[0]
         return out
 
     @property
-    def count_by_multiple(self):
+    def count_by_multiple(self) -> dict[int, int] | None:
+        """Chains by how many of their joints join three links or more; None when no
+        chain comes from the atlas with multiple joints."""
         if not self.multiple:
             return None
-        out: dict[Any, Any] = {}
+        out: dict[int, int] = {}
         for (_, _, k), row in self.tally.items():
             out[k] = out.get(k, 0) + row[0]
         return dict(sorted(out.items()))
 
-    def without_fractionated(self) -> "SlidingCounts":
+    def without_fractionated(self) -> SlidingCounts:
+        """The counts of the non-fractionated chains alone."""
         out = SlidingCounts(self.links, self.dof, self.prismatic, self.oriented,
                             dict(self.rejected))
         out.tally = {key: list(row) for key, row in self.tally.items() if not key[0]}
@@ -223,12 +245,14 @@ class SlidingCounts:
         return out
 
 
-def _multiple_joints(entry) -> int:
+def _multiple_joints(entry: SlidingEntry) -> int:
     """How many of a chain's joints join three links or more."""
     return sum(len(j) > 2 for j in entry.edges)
 
 
-def prismatic_counts(links, dof, joints, prismatic, oriented=False):
+def prismatic_counts(links: int, dof: int, joints: int,
+                     prismatic: int | Sequence[int] | str | None, oriented: bool = False,
+                     ) -> tuple[int, ...] | None:
     """The numbers of sliding pairs asked for (``prismatic``: a number, a sequence of
     them, or "all") as a tuple, for chains of ``joints`` joints; AtlasSizeError naming
     the parameter for a number that is not one.
@@ -248,7 +272,8 @@ def prismatic_counts(links, dof, joints, prismatic, oriented=False):
         return None
     if prismatic == "all":
         return tuple(range(joints + 1))
-    asked = (prismatic,) if not isinstance(prismatic, (list, tuple, range)) else prismatic
+    asked: Sequence[Any] = ((prismatic,) if not isinstance(prismatic, (list, tuple, range))
+                            else prismatic)    # each checked below
     for k in asked:
         if isinstance(k, bool) or not isinstance(k, int) or k < 0:
             raise AtlasSizeError(f"prismatic must be a whole number of sliding pairs, 0 or "
@@ -301,7 +326,7 @@ def _orbit_representatives(states, act):
     return sorted(orbits.blocks())
 
 
-def _permute_mask(mask, eperm):
+def _permute_mask(mask: int, eperm: Sequence[int]) -> int:
     out = 0
     for i, j in enumerate(eperm):
         if mask >> i & 1:
@@ -309,7 +334,7 @@ def _permute_mask(mask, eperm):
     return out
 
 
-def _link_orbits(n, elements):
+def _link_orbits(n: int, elements: Iterable[tuple[Sequence[int], Sequence[int]]]) -> int:
     """How many orbits the links fall into under ``elements``."""
     orbits = DisjointSets(n)
     for perm, _ in elements:
@@ -318,7 +343,23 @@ def _link_orbits(n, elements):
     return orbits.count
 
 
-def sliding_atlas(base, *, prismatic, oriented=False, keep=True):
+@overload
+def sliding_atlas(base: Atlas | MultipleAtlas, *, prismatic: int | Iterable[int],
+                  oriented: bool = ..., keep: Literal[True] = ...) -> SlidingAtlas: ...
+
+
+@overload
+def sliding_atlas(base: Atlas | MultipleAtlas, *, prismatic: int | Iterable[int],
+                  oriented: bool = ..., keep: Literal[False]) -> SlidingCounts: ...
+
+
+@overload
+def sliding_atlas(base: Atlas | MultipleAtlas, *, prismatic: int | Iterable[int],
+                  oriented: bool = ..., keep: bool) -> SlidingAtlas | SlidingCounts: ...
+
+
+def sliding_atlas(base: Atlas | MultipleAtlas, *, prismatic: int | Iterable[int],
+                  oriented: bool = False, keep: bool = True) -> SlidingAtlas | SlidingCounts:
     """The chains with sliding pairs made from the turning-pair chains of ``base`` (an
     :class:`~chaingraph.structure.atlas.run.Atlas`), with ``prismatic`` sliding pairs
     (an int, or a sequence of them).
@@ -352,7 +393,9 @@ def sliding_atlas(base, *, prismatic, oriented=False, keep=True):
     return counts
 
 
-def sliding_chains(base, *, prismatic, oriented=False, rejected=None):
+def sliding_chains(base: Atlas | MultipleAtlas, *, prismatic: int | Iterable[int],
+                   oriented: bool = False, rejected: dict[str, int] | None = None,
+                   ) -> Iterator[SlidingEntry]:
     """Yield the chains of :func:`sliding_atlas` one by one, in its order, adding the
     assignments rejected (one per orbit) to ``rejected`` (a dict by reason) as it goes.
 
@@ -412,16 +455,16 @@ def _chain_assignments(base, base_id, entry, wanted, oriented, rejected):
                    oriented, multiple)
 
 
-def _orders(degree):
+def _orders(degree: Iterable[int]) -> dict[str, int]:
     """The link orders' counts (as the atlas words them) of links with these numbers of
     joints."""
-    counts: dict[Any, Any] = {}
+    counts: dict[str, int] = {}
     for d in sorted(degree):
         counts[order_name(d)] = counts.get(order_name(d), 0) + 1
     return counts
 
 
-def _kinds(mask, m):
+def _kinds(mask: int, m: int) -> tuple[str, ...]:
     return tuple("P" if mask >> i & 1 else "R" for i in range(m))
 
 
@@ -456,7 +499,9 @@ def _orientations(edges, kinds, own, oriented):
     return out
 
 
-def sliding_dict(result, *, prismatic=None, chains=True, names=None) -> dict:
+def sliding_dict(result: SlidingAtlas | SlidingCounts, *,
+                 prismatic: int | Sequence[int] | str | None = None, chains: bool = True,
+                 names: Callable[[Chain], Any] | None = None) -> dict[str, Any]:
     """The JSON object of ``chaingraph atlas --prismatic K`` (``chains=False``:
     ``--summary``, of a :class:`SlidingAtlas` or :class:`SlidingCounts`): the counts, the rejected assignments by reason, the count by K
     when every K was asked for (``prismatic="all"``), and each chain with ``"kinds"``
@@ -469,19 +514,22 @@ def sliding_dict(result, *, prismatic=None, chains=True, names=None) -> dict:
     >>> d["count"], d["rejected"], d["chains"][0]["kinds"]
     (1, {'mobility': 0, 'locked': 0}, ['P', 'R', 'R', 'R'])
     """
-    out = {"links": result.links, "dof": result.dof,
+    by_multiple = result.count_by_multiple
+    out: dict[str, Any] = {"links": result.links, "dof": result.dof,
            "prismatic": prismatic if prismatic is not None else (
                result.prismatic[0] if len(result.prismatic) == 1 else list(result.prismatic)),
            "oriented": result.oriented, "count": len(result),
            **({"multiple": True, "count_by_multiple": {
-               str(k): v for k, v in result.count_by_multiple.items()}}
-              if result.count_by_multiple is not None else {}),
+               str(k): v for k, v in by_multiple.items()}}
+              if by_multiple is not None else {}),
            "count_non_fractionated": result.count_non_fractionated,
            "distinct_inversions": result.distinct_inversions,
            "rejected": dict(result.rejected)}
     if prismatic == "all" or len(result.prismatic) > 1:
         out["count_by_prismatic"] = {str(k): v for k, v in result.count_by_prismatic.items()}
     if chains:
+        if not isinstance(result, SlidingAtlas):
+            raise TypeError("the chains of counts were not kept: give chains=False")
         out["chains"] = [e.to_dict() for e in result]
         if names is not None:
             for record, e in zip(out["chains"], result):
@@ -489,7 +537,9 @@ def sliding_dict(result, *, prismatic=None, chains=True, names=None) -> dict:
     return out
 
 
-def write_sliding(result, out_dir, *, record=None, chain_files_up_to=10_000) -> dict:
+def write_sliding(result: SlidingAtlas, out_dir: str | os.PathLike[str], *,
+                  record: dict[str, Any] | None = None, chain_files_up_to: int = 10_000,
+                  ) -> dict[str, Any]:
     """Write ``atlas.json`` (``record``, else :func:`sliding_dict`) and, up to
     ``chain_files_up_to`` chains, one chain file per chain under ``chains/``. An
     ``index.html`` of earlier pages is removed first (the pages, when drawn, write a
@@ -500,7 +550,7 @@ def write_sliding(result, out_dir, *, record=None, chain_files_up_to=10_000) -> 
     path = write_atomic(out / "atlas.json",
                         json.dumps(record or sliding_dict(result), indent=1) + "\n")
     chain_dir = out / "chains"
-    written = []
+    written: list[Path] = []
     if len(result) <= chain_files_up_to:
         chain_dir.mkdir(exist_ok=True)
         width = len(str(len(result)))
