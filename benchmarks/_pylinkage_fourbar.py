@@ -1,11 +1,18 @@
 """Time pylinkage on the crank-rocker four-bar (run inside pylinkage's own venv).
 
-Prints one JSON line: milliseconds for 3,600 steps with velocity and acceleration by the
-numba path (step_fast_with_kinematics), and by the pure-Python path
-(step_with_derivatives), and the rocker's extreme positions as a sanity check.
+Without arguments past the step count, prints one JSON line: milliseconds for 3,600
+steps with velocity and acceleration by the numba path (step_fast_with_kinematics) and
+by the pure-Python path (step_with_derivatives), each the median of several runs, and
+the rocker's extreme positions as a sanity check.
+
+With ``--serve``, it compiles the numba path, prints ``ready`` and then, for each line
+``N`` read from its standard input, times N runs of the numba path and prints their
+milliseconds as one JSON list: the caller interleaves these rounds with its own, so
+that both sides are measured under the same load.
 """
 import json
 import math
+import statistics
 import sys
 import time
 
@@ -26,20 +33,31 @@ def build():
     return linkage, crank
 
 
-def best_of(fn, repeats):
-    best = math.inf
+def times_ms(fn, repeats):
+    out = []
     for _ in range(repeats):
         start = time.perf_counter()
         fn()
-        best = min(best, time.perf_counter() - start)
-    return best * 1000.0
+        out.append(1000.0 * (time.perf_counter() - start))
+    return out
 
 
 linkage, crank = build()
-linkage.step_fast_with_kinematics(iterations=STEPS)   # compile (numba)
-fast = best_of(lambda: linkage.step_fast_with_kinematics(iterations=STEPS), 30)
-slow = best_of(lambda: list(linkage.step_with_derivatives(iterations=STEPS)), 3)
-positions, _, _ = linkage.step_fast_with_kinematics(iterations=STEPS)
+
+
+def fast():
+    return linkage.step_fast_with_kinematics(iterations=STEPS)
+
+
+fast()                                                 # compile (numba)
+if "--serve" in sys.argv:
+    print("ready", flush=True)
+    for line in sys.stdin:
+        print(json.dumps(times_ms(fast, int(line))), flush=True)
+    sys.exit(0)
+fast_ms = statistics.median(times_ms(fast, 30))
+slow_ms = statistics.median(times_ms(lambda: list(linkage.step_with_derivatives(iterations=STEPS)), 3))
+positions, _, _ = fast()
 xs = [row[-1][0] for row in positions]
-print(json.dumps({"numba_ms": fast, "python_ms": slow, "steps": STEPS,
+print(json.dumps({"numba_ms": fast_ms, "python_ms": slow_ms, "steps": STEPS,
                   "c_x_min": min(xs), "c_x_max": max(xs)}))

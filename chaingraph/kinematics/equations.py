@@ -120,12 +120,13 @@ def constraint_gammas(c: Constraint, pose: Pose, vel: Rates, geom: Geometry | No
 def constraint_residuals(c: Constraint, pose: Pose) -> list[Scalar]:
     """The constraint's equations at the pose: lengths, and rotations in radians."""
     wa, wb = world(pose, c.a, c.point), world(pose, c.b, c.at(c.b))
+    if c.kind == "R" and c.drive is None:     # (no rotation to compare: np.remainder is dear)
+        return [wa[0] - wb[0], wa[1] - wb[1]]
     dphi = np.remainder(pose[c.b][2] - pose[c.a][2] - c.turn + np.pi, 2 * np.pi) - np.pi
     if c.kind == "R":
-        out = [wa[0] - wb[0], wa[1] - wb[1]]
-        if c.drive is not None:
-            out.append(np.remainder(dphi - pose[c.drive][2] + np.pi, 2 * np.pi) - np.pi)
-        return out
+        assert c.drive is not None            # (an R pair without an input returned above)
+        return [wa[0] - wb[0], wa[1] - wb[1],
+                np.remainder(dphi - pose[c.drive][2] + np.pi, 2 * np.pi) - np.pi]
     n = turn_by(pose[c.a], perp(unit_deg(c.axis)))
     out = [dphi, n[0] * (wb[0] - wa[0]) + n[1] * (wb[1] - wa[1])]
     if c.drive is not None:

@@ -81,12 +81,16 @@ def newton_path(plan, step, pose, theta, q0, coarse_deg=10.0, *, head):
     (the input turns back: the path cannot go on); every point is then corrected at
     once by batched Newton from Hermite-interpolated guesses. Points past where the
     trace ends are infeasible.
+
+    Returns (q, ok, fold): ``fold`` is the fold the trace found, (input degrees, q) on
+    the arc to the bisection's precision, or None; a limit of the range is solved
+    from it (:func:`fold_point`), not traced again on ever shorter paths.
     """
     n = theta.size
     q0 = np.asarray(q0, dtype=float)
     if n == 1:
         q, ok = newton(plan, step, pose, q0[None])
-        return q, ok
+        return q, ok, None
     span = theta[-1] - theta[0]
     direction = 1.0 if span >= 0 else -1.0
     h = min(coarse_deg, max(abs(span) / 8.0, 1e-9))
@@ -94,7 +98,7 @@ def newton_path(plan, step, pose, theta, q0, coarse_deg=10.0, *, head):
     known = _known_along(plan, step, pose, theta, np.array([t]), head)
     qi, ok = newton(plan, step, known, q0[None])
     if not ok[0]:
-        return np.zeros((n, q0.size)), np.zeros(n, dtype=bool)
+        return np.zeros((n, q0.size)), np.zeros(n, dtype=bool), None
     ts, qs, dqs, fold = _trace(plan, step, pose, theta, head, qi[0], t, float(theta[-1]),
                                direction, h)
     tc, qc, dqc = np.array(ts), np.array(qs), np.array(dqs)
@@ -134,7 +138,7 @@ def newton_path(plan, step, pose, theta, q0, coarse_deg=10.0, *, head):
         if qi is None:
             break
         q[i], ok[i] = qi, True
-    return q, ok
+    return q, ok, fold
 
 
 class _Branch:

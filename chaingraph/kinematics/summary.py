@@ -512,7 +512,9 @@ def _cubic_roots(t0, t1, f0, f1, g0, g1):
     with np.errstate(divide="ignore", invalid="ignore"):
         s = f0 / (f0 - f1)
         for _ in range(6):
-            s = np.clip(s - cubic(s) / (a1 + s * (2 * a2 + 3 * s * a3)), 0.0, 1.0)
+            last, s = s, np.clip(s - cubic(s) / (a1 + s * (2 * a2 + 3 * s * a3)), 0.0, 1.0)
+            if np.array_equal(s, last):       # settled: the steps left would change nothing
+                break
     settled = np.isfinite(s) & (np.abs(cubic(s)) <= 1e-13 * (np.abs(f0) + np.abs(f1)))
     if not settled.all():                   # bisection, where Newton's did not settle
         lo, hi = np.zeros_like(h), np.ones_like(h)

@@ -22,7 +22,7 @@ from chaingraph.kinematics.tracking import (
     failing_step,
 )
 
-__all__ = ["Cycle", "Anchor", "cycle", "anchor", "feasible_range"]
+__all__ = ["Cycle", "Anchor", "cycle", "anchor", "feasible_range", "merged_path"]
 
 
 # -- the cycle and the sweep -----------------------------------------------------------
@@ -148,6 +148,13 @@ def _limit(plan, ev, k, bad):
     evaluation at that angle)."""
     good, state, at = float(ev.theta[k]), ev.at(k), ev.take(np.array([k]))
     far = bad
+    traced = _traced_fold(ev, good, bad)
+    if traced is not None:
+        # a group's fold that the path's trace found: solved from there, once, not
+        # traced again on ever shorter paths
+        limit = _fold(plan, at, good, bad, far, traced=traced)
+        if limit[0] != good:
+            return limit
     for tolerance in (_NEAR, _FINEST):
         for _ in range(16):
             if abs(bad - good) < tolerance:
@@ -170,10 +177,20 @@ def _limit(plan, ev, k, bad):
     return limit
 
 
+def _traced_fold(ev, good, bad):
+    """(step index, input degrees, q) of the first group whose fold the evaluation's
+    trace found between ``good`` and ``bad``, or None."""
+    for i in sorted(ev.folds):
+        t, q = ev.folds[i]
+        if (t - good) * (t - bad) <= 0:
+            return i, t, q
+    return None
+
+
 _AT_FOLD = 1e-12     # a dyad's discriminant (dimensionless) this small: a fold
 
 
-def _fold(plan, at, good, bad, far):
+def _fold(plan, at, good, bad, far, *, traced=None):
     """The limit between ``good`` (assembled; ``at`` its evaluation) and ``bad`` (not)
     exactly, as a fold of the step that fails there: a dyad's at its discriminant's root,
     where it takes its double root; a group's by Newton's method on the extended system
@@ -182,11 +199,16 @@ def _fold(plan, at, good, bad, far):
     failed (a group's Newton's method near its fold depends on where it starts: ``bad``
     may assemble from ``good`` where the path found it did not). A dyad that
     degenerates there (no sign change of its discriminant) is no fold: the limit stays
-    at ``good``. Returns (angle, the evaluation there)."""
+    at ``good``. ``traced``: (step index, input degrees, q), a group's fold as its
+    trace found it, where that group's Newton's method starts. Returns (angle, the
+    evaluation there)."""
     ref = at.reference(np.array([0]))
-    i = failing_step(plan, np.array([bad]), ref)
-    if i is None:
-        i = failing_step(plan, np.array([far]), ref)
+    if traced is not None:
+        i = traced[0]
+    else:
+        i = failing_step(plan, np.array([bad]), ref)
+        if i is None:
+            i = failing_step(plan, np.array([far]), ref)
     if i is None:
         return good, at
     step = plan.steps[i]
@@ -209,7 +231,8 @@ def _fold(plan, at, good, bad, far):
             return good, at
         double = (i,)
     else:
-        found = groups.fold_point(plan, step, at, at.group_q[i][0], good)
+        start = (at.group_q[i][0], good) if traced is None else traced[2:0:-1]
+        found = groups.fold_point(plan, step, at, *start)
         # the fold lies between the last point assembled and ``bad`` (a point a
         # hair past the fold may count as assembled: Newton's method stalls there)
         if found is None or (found[0] - good) * (found[0] - far) > 0 and \
@@ -293,12 +316,60 @@ def _along(plan, end, targets):
     t0 = home.tau
     span = end - t0
     n = max(1, int(math.ceil(abs(span) / _GRID_DEG)))
-    grid = np.concatenate([t0 + span * np.arange(n + 1) / n, targets])
     sign = 1.0 if span >= 0 else -1.0
-    grid = sign * np.unique(sign * grid)      # in path order
-    ev = evaluate(plan, grid, start=home.state)
-    idx = np.searchsorted(sign * grid, sign * targets)
-    return ev.take(idx)
+    path, idx = merged_path(sign * (t0 + span * np.arange(n + 1) / n), sign * targets)
+    ev = evaluate(plan, sign * path, start=home.state)    # in path order
+    return ev if idx is None else ev.take(idx)
+
+
+def merged_path(grid, targets):
+    """The sorted union of ``grid`` (increasing) and ``targets``, and where each target
+    is in it (None when the union is the targets themselves, in their order).
+
+    The same as ``np.unique`` of both and ``np.searchsorted`` of the targets in it, in
+    far fewer operations when the targets are already in order (a sweep's are) and
+    hold most of the grid: the grid's points are merged in, not sorted with them.
+
+    >>> path, idx = merged_path(np.array([0.0, 1.0, 2.0]), np.array([2.0, 0.5, 0.5, 1.0]))
+    >>> path.tolist(), idx.tolist()
+    ([0.0, 0.5, 1.0, 2.0], [3, 1, 1, 2])
+    """
+    grid = np.asarray(grid, dtype=float)
+    targets = np.asarray(targets, dtype=float)
+    if targets.size == 0 or not (np.isfinite(targets).all() and np.all(grid[1:] > grid[:-1])):
+        path = np.unique(np.concatenate([grid, targets]))
+        return path, np.searchsorted(path, targets)
+    order = None
+    if not np.all(targets[1:] >= targets[:-1]):
+        order = np.argsort(targets, kind="stable")
+    ordered = targets if order is None else targets[order]
+    first = np.r_[True, ordered[1:] != ordered[:-1]]         # each value's first
+    distinct = ordered if first.all() else ordered[first]
+    at = np.searchsorted(distinct, grid)
+    found = distinct[np.minimum(at, distinct.size - 1)] == grid
+    if found.all():
+        path, where = distinct, None
+    else:
+        # the grid's points not among the targets, each before the targets' point it
+        # was found before (after the grid's points inserted before it)
+        extra = at[~found] + np.arange(np.count_nonzero(~found))
+        kept = np.ones(distinct.size + extra.size, dtype=bool)
+        kept[extra] = False
+        path = np.empty(kept.size)
+        path[kept] = distinct
+        path[extra] = grid[~found]
+        where = np.flatnonzero(kept)
+    if order is None and where is None and distinct is ordered:
+        return path, None
+    if where is None:
+        where = np.arange(distinct.size)
+    if distinct is not ordered:
+        where = where[np.cumsum(first) - 1]
+    if order is None:
+        return path, where
+    idx = np.empty(targets.size, dtype=np.intp)
+    idx[order] = where
+    return path, idx
 
 
 def evaluate_near(plan, theta):
@@ -331,7 +402,13 @@ def evaluate_sweep(plan, theta):
     c = cycle(plan)
     t0 = anchor(plan).tau
     if c.full_turn:
-        phase = t0 + np.mod(theta - t0, c.period)
+        turned = theta - t0
+        if turned.size and turned.min() >= 0.0 and turned.max() <= c.period:
+            # within one period from the anchor (a sweep from it): np.mod's result
+            # without its cost
+            phase = t0 + np.where(turned < c.period, turned, 0.0)
+        else:
+            phase = t0 + np.mod(turned, c.period)
         ev = _along(plan, t0 + c.period, phase)
         ev.theta = theta
         return ev

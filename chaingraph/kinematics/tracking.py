@@ -100,13 +100,15 @@ def _evaluate_at(plan, theta, ref, upto, double):
 class Evaluation:
     """Poses of every link along a path of input angles, with what the next needs."""
 
-    def __init__(self, theta, pose, feasible, signs, group_q, switches):
+    def __init__(self, theta, pose, feasible, signs, group_q, switches, folds=None):
         self.theta = theta            # degrees, (N,)
         self.pose = pose              # link -> (x, y, phi) arrays
         self.feasible = feasible      # (N,) bool
         self.signs = signs            # step index -> (N,) branch signs
         self.group_q = group_q        # step index -> (N, 3k) group coordinates
         self.switches = switches      # step index -> angles where the mode label changes
+        # step index -> (input degrees, q): a group's fold its trace found on the path
+        self.folds = {} if folds is None else folds
 
     def at(self, k):
         """The state at point k, to continue a new path from (its first angle)."""
@@ -131,7 +133,8 @@ class Evaluation:
         return Evaluation(self.theta[k], {x: tuple(pick(v) for v in p)
                                           for x, p in self.pose.items()},
                           self.feasible[k], {i: v[k] for i, v in self.signs.items()},
-                          {i: q[k] for i, q in self.group_q.items()}, self.switches)
+                          {i: q[k] for i, q in self.group_q.items()}, self.switches,
+                          self.folds)
 
 
 class _Start:
@@ -167,7 +170,7 @@ _SWITCH_STEP = 1e-4       # degrees either side of a touch, to see which label c
 def _evaluate(plan, theta, start):
     pose = _known_poses(plan, theta)
     feasible = np.ones(theta.size, dtype=bool)
-    signs, group_q, switches = {}, {}, {}
+    signs, group_q, switches, folds = {}, {}, {}, {}
     # a path from the drawn pose has it, as drawn, at its own value: the closed forms
     # would give it only to rounding, and at a drawn dead centre to its square root
     at_drawn = theta == plan.theta0 if start is None and plan.theta0 is not None else None
@@ -199,7 +202,9 @@ def _evaluate(plan, theta, start):
             continue
         q0 = start.group_q[i] if start is not None else np.zeros(group_form(step).size)
         head = Evaluation(theta, pose, feasible, signs, group_q, switches)
-        q, ok = newton_path(plan, step, pose, theta, q0, head=head)
+        q, ok, fold = newton_path(plan, step, pose, theta, q0, head=head)
+        if fold is not None:
+            folds[i] = fold
         feasible &= ok
         group_q[i] = q
         pose.update(group_form(step).complete(group_form(step).set_bodies(pose, q)))
@@ -208,7 +213,7 @@ def _evaluate(plan, theta, start):
     if not feasible.all():
         first_bad = int(np.argmin(feasible))
         feasible[first_bad:] = False
-    return Evaluation(theta, pose, feasible, signs, group_q, switches)
+    return Evaluation(theta, pose, feasible, signs, group_q, switches, folds)
 
 
 def _as_drawn(pose, links, drawn, q=None):
@@ -216,8 +221,12 @@ def _as_drawn(pose, links, drawn, q=None):
     group's coordinates ``q`` (its bodies' motions) to zero there."""
     shape = drawn.shape
     for link in links:
-        pose[link] = tuple(np.where(drawn, rest, np.broadcast_to(v, shape))
-                           for v, rest in zip(pose[link], (0.0, 0.0, 0.0, 1.0, 0.0)))
+        entry = []
+        for v, rest in zip(pose[link], (0.0, 0.0, 0.0, 1.0, 0.0)):
+            v = np.array(np.broadcast_to(v, shape), dtype=float)   # a copy: v may be shared
+            v[drawn] = rest
+            entry.append(v)
+        pose[link] = tuple(entry)
     if q is not None:
         q[drawn] = 0.0
 
