@@ -27,7 +27,7 @@ __all__ = ["Document", "parse_file", "parse_text", "parse_document", "dumps", "s
            "toml_text", "chain_document"]
 
 TOP_KEYS = ("name", "family", "units", "space", "notes", "naming", "joints", "points",
-            "mechanism", "lengths", "assembly", "links", "forces", "loads")
+            "mechanism", "lengths", "assembly", "links", "forces", "loads", "task")
 JOINT_KEYS = ("id", "kind", "links", "at", "axis", "closure", "friction")
 LINK_KEYS = ("name", "mass", "centre", "inertia")
 FORCES_KEYS = ("gravity",)
@@ -132,7 +132,8 @@ def parse_document(doc, *, source: str = "<document>") -> Document:
     if "mechanism" in doc:
         mechanism = _mechanism(doc["mechanism"], fail, dimensioned="lengths" in doc)
     meta = dict(name=name, family=family, units=units, space=space, notes=notes,
-                source=source, naming=naming, **_masses_and_loads(doc, fail))
+                source=source, naming=naming, task=_task(doc, fail),
+                **_masses_and_loads(doc, fail))
     if mechanism is not None and not dimensioned:
         kinds = {j.id: j.kind for j in joints}
         for i, item in enumerate(mechanism.inputs):
@@ -177,6 +178,21 @@ def _dimensioned(doc, joints, points, mechanism, meta, fail):
                 dims.near[t["id"]] = _coordinates(t["near"], f"{kind} {t['id']!r} key 'near'",
                                                   fail)
     return Document(structure, dims, joints, points)
+
+
+def _task(doc, fail):
+    """The ``[task]`` table, kept as read: what a synthesised mechanism was designed to
+    do (``kind`` and its targets, see :mod:`chaingraph.synthesis`); nothing solves it."""
+    if "task" not in doc:
+        return None
+    task = doc["task"]
+    if not isinstance(task, dict):
+        fail(f"[task] must be a table, not {type_name(task)}", "[task]")
+    kind = task.get("kind")
+    if not isinstance(kind, str) or not kind:
+        fail("[task] needs 'kind', the kind of task (\"function\", \"path\" or "
+             "\"motion\")", "[task]")
+    return task
 
 
 def _no_unknown_keys(table, allowed, where, fail):
@@ -477,6 +493,8 @@ def chain_document(chain: Chain) -> dict:
         doc["loads"] = [{"on": x.on, **({"at": x.at} if x.at is not None else {}),
                          **({"force": list(x.force)} if x.force is not None else {}),
                          **({"torque": x.torque} if x.torque else {})} for x in chain.loads]
+    if chain.task is not None:
+        doc["task"] = chain.task
     return doc
 
 
