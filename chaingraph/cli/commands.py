@@ -30,6 +30,7 @@ from chaingraph.drawing.constructions import draw_centres, draw_polygons
 from chaingraph.drawing.limits import limits_svg
 from chaingraph.drawing.forces import force_polygon_svg, free_body_svg, plot_turning_moment
 from chaingraph.drawing.mechanism import mechanism_svg
+from chaingraph.drawing.synthesis import draw_synthesis
 from chaingraph.drawing.plots import (
     draw_mechanism,  # PNG and the other raster formats
     plot_motion,
@@ -72,10 +73,11 @@ from chaingraph.structure.atlas.sliding import (
     write_sliding,
 )
 from chaingraph.structure.classify import classify
+from chaingraph import synthesis
 from chaingraph.synthesis.design import KINDS
 from chaingraph._util.text import freedom
 
-__all__ = ['cmd_classify', 'cmd_inversions', 'cmd_identify', 'cmd_solve', 'cmd_centres', 'cmd_polygons', 'cmd_assemble', 'cmd_measure', 'cmd_report', 'cmd_atlas', 'cmd_design']
+__all__ = ['cmd_classify', 'cmd_inversions', 'cmd_identify', 'cmd_solve', 'cmd_centres', 'cmd_polygons', 'cmd_assemble', 'cmd_measure', 'cmd_report', 'cmd_atlas', 'cmd_design', 'cmd_design_function']
 
 
 def cmd_classify(args) -> int:
@@ -482,6 +484,61 @@ def cmd_design(args) -> int:
     print(table(rows, ["", ""]).split("\n", 2)[2])
     if args.out:
         print(f"mechanism written to {args.out} (chaingraph solve {args.out} reproduces it)")
+    return 0
+
+
+def cmd_design_function(args) -> int:
+    """``chaingraph design function``: certified function generators, best first."""
+    if args.out:
+        output_folder(args.out, what="solutions")
+    if args.draw:
+        svg_file(args.draw, what="solution and its error")
+    found = synthesis.function(
+        function=args.function, x=args.x, swing=args.swing, start=args.start,
+        points=args.points, spacing=args.spacing, kind=args.mechanism,
+        solutions=args.solutions, units=args.units, min_transmission=args.min_transmission)
+    return _synthesis_output(args, found)
+
+
+def _synthesis_output(args, found) -> int:
+    """A synthesis's files, drawing and text or JSON; exit 1 when nothing is certified."""
+    rejected = ", ".join(f"{k} {v}" for k, v in found.rejected.items()) or "none"
+    if not found.solutions:
+        print(f"chaingraph: error: design {found.task.kind}: no certified solution of "
+              f"{found.searched.candidates} candidates (rejected: {rejected})",
+              file=sys.stderr)
+        return 1
+    if args.out:
+        for s in found.solutions:
+            target = Path(args.out) / f"solution-{s.rank}.toml"
+            with Writing(target):
+                save(s.mechanism, target)
+    if args.draw:
+        best = found.solutions[0]
+        task = best.mechanism.task or {}
+        sweep = None
+        if "swing" in task and "start" in task:
+            sweep = (task["start"][0], task["start"][0] + task["swing"][0])
+        with Writing(args.draw):
+            draw_synthesis(best.mechanism, at=best.reached_at[0], sweep=sweep,
+                           curve=best.curve, path=args.draw)
+    if args.json:
+        print_json(found.to_dict())
+        return 0
+    t = found.task.to_dict()
+    print(f"{t['kind']} generator: y = {t['function']} for {t['x'][0]:g} <= x <= "
+          f"{t['x'][1]:g}, {t['mechanism']}, {t['points']} {t['spacing']} points")
+    rows = [[s.rank, figure(s.error.max), figure(s.error.rms),
+             "-" if s.transmission_angle is None else
+             f"{s.transmission_angle[0]:.1f}..{s.transmission_angle[1]:.1f}", s.input,
+             ", ".join(f"{k.replace('_', ' ')} {figure(v)}" for k, v in s.dimensions.items())]
+            for s in found.solutions]
+    print(table(rows, ["rank", "error max", "error rms", "transmission", "input",
+                       "dimensions"]))
+    print(f"rejected: {rejected}; searched {found.searched.candidates} candidates")
+    if args.out:
+        print(f"written: solution-1.toml .. solution-{len(found.solutions)}.toml in "
+              f"{args.out} (chaingraph solve reproduces each)")
     return 0
 
 

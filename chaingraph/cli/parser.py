@@ -12,6 +12,7 @@ from chaingraph.cli.commands import (
     cmd_centres,
     cmd_classify,
     cmd_design,
+    cmd_design_function,
     cmd_forces,
     cmd_identify,
     cmd_inversions,
@@ -313,20 +314,69 @@ def _atlas_command(sub) -> None:
 
 
 def _design_command(sub) -> None:
-    """The arguments of ``chaingraph design``."""
-    p = sub.add_parser("design", help="dimensional synthesis of quick return drives",
-                       description="From a time ratio, crank and stroke to the centre "
-                                   "distance and lever (slotted-lever: the ram's line through "
-                                   "the lever end's extremes; whitworth: through the lever's "
-                                   "pivot).")
-    p.add_argument("kind", choices=["slotted-lever", "whitworth"])
-    p.add_argument("--time-ratio", type=float, required=True, metavar="R")
-    p.add_argument("--crank", type=float, required=True, metavar="C")
-    p.add_argument("--stroke", type=float, required=True, metavar="S")
-    p.add_argument("--json", action="store_true", help="print JSON")
-    p.add_argument("--out", type=path_argument, metavar="FILE",
-                   help="write the designed mechanism (TOML)")
-    p.set_defaults(run=cmd_design)
+    """The arguments of ``chaingraph design``: a parser per kind of design."""
+    p = sub.add_parser("design", help="dimensional synthesis: quick return drives, "
+                                      "function generators",
+                       description="Dimensional synthesis: quick return drives from a time "
+                                   "ratio, crank and stroke; function generators from a "
+                                   "function (every solution certified by the solver).")
+    kinds = p.add_subparsers(dest="kind", required=True, metavar="KIND",
+                             parser_class=_Parser)
+    for kind, where in (("slotted-lever", "the ram's line through the lever end's extremes"),
+                        ("whitworth", "the ram's line through the lever's pivot")):
+        q = kinds.add_parser(kind, help=f"a quick return drive ({where})",
+                             description="From a time ratio, crank and stroke to the centre "
+                                         f"distance and lever ({where}).")
+        q.add_argument("--time-ratio", type=float, required=True, metavar="R")
+        q.add_argument("--crank", type=float, required=True, metavar="C")
+        q.add_argument("--stroke", type=float, required=True, metavar="S")
+        q.add_argument("--json", action="store_true", help="print JSON")
+        q.add_argument("--out", type=path_argument, metavar="FILE",
+                       help="write the designed mechanism (TOML)")
+        q.set_defaults(run=cmd_design)
+    _design_function_command(kinds)
+
+
+def _design_function_command(kinds) -> None:
+    """The arguments of ``chaingraph design function``."""
+    q = kinds.add_parser(
+        "function", help="a function generator (four-bar or slider crank)",
+        description="A four-bar (input crank, output rocker) or slider crank (input crank, "
+                    "output slide) whose output follows y = EXPR(x): three precision points "
+                    "exactly (Freudenstein's equation), more fitted over the whole range; "
+                    "every solution certified by the solver from its written chain file.")
+    q.add_argument("--function", required=True, metavar="EXPR",
+                   help="y in x: + - * / **, sqrt exp log log10 sin cos tan (radians), pi")
+    q.add_argument("--x", required=True, type=pair_argument, metavar="A:B",
+                   help="the range of x")
+    q.add_argument("--swing", required=True, type=pair_argument, metavar="IN:OUT",
+                   help="the input's turn (degrees) and the output's (degrees, or a "
+                        "slide's travel in file units) over the range")
+    q.add_argument("--start", type=pair_argument, metavar="IN0:OUT0",
+                   help="the input's and output's values at x = A (default: searched)")
+    q.add_argument("--points", type=int, default=3, metavar="N",
+                   help="precision points (default 3, matched exactly; more are fitted)")
+    q.add_argument("--spacing", default="chebyshev", metavar="chebyshev|even",
+                   help="the precision points' spacing (default chebyshev)")
+    q.add_argument("--kind", dest="mechanism", default="four-bar",
+                   metavar="four-bar|slider-crank", help="the mechanism (default four-bar)")
+    _synthesis_arguments(q)
+    q.set_defaults(run=cmd_design_function)
+
+
+def _synthesis_arguments(q) -> None:
+    """The options every synthesis takes."""
+    q.add_argument("--solutions", type=int, default=5, metavar="K",
+                   help="list at most K certified solutions (default 5)")
+    q.add_argument("--units", default="mm", metavar="U", help="length unit (default mm)")
+    q.add_argument("--min-transmission", dest="min_transmission", type=float, default=30.0,
+                   metavar="DEG", help="the transmission angle stays within [DEG, 180 - DEG] "
+                                       "between the first target and the last (default 30)")
+    q.add_argument("--json", action="store_true", help="print JSON")
+    q.add_argument("--out", type=path_argument, metavar="DIR",
+                   help="write solution-K.toml for each solution")
+    q.add_argument("--draw", type=path_argument, metavar="PATH.svg",
+                   help="draw the best solution and its error (SVG)")
 
 
 def _version() -> str:
@@ -363,6 +413,17 @@ def positive_number(text):
     if not (value > 0 and value < float("inf")):
         raise argparse.ArgumentTypeError(f"must be a number above 0, got {text}")
     return value
+
+
+def pair_argument(text):
+    """Two numbers written A:B (the library checks that they are finite)."""
+    parts = text.split(":")
+    try:
+        if len(parts) != 2:
+            raise ValueError
+        return float(parts[0]), float(parts[1])
+    except ValueError:
+        raise argparse.ArgumentTypeError(f"two numbers A:B, got {text!r}") from None
 
 
 def whole_number(text):

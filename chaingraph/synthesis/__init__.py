@@ -1,1 +1,29 @@
-"""Dimensional synthesis: quick-return drives (:mod:`.design`)."""
+"""Dimensional synthesis: from a task to certified mechanisms.
+
+* :func:`function` function generation (four-bar, slider crank), :mod:`.function`;
+* :mod:`.certify` every candidate written as a chain file, read back, solved by
+  chaingraph's own solver and checked (circuit, branch and order defects, the
+  transmission angle, the error recomputed);
+* :mod:`.result` the :class:`Synthesis` and its :class:`Solution` list, ``to_dict()`` the
+  JSON; :mod:`.task` the tasks; :mod:`.expression` a function of x, read safely;
+* :mod:`.design` the quick return drives (``slotted_lever``, ``whitworth``).
+"""
+
+from chaingraph.synthesis.certify import (
+    REASONS,
+    Certified,
+    FunctionTargets,
+    PointTargets,
+    PoseTargets,
+    Rejected,
+    certify,
+)
+from chaingraph.synthesis.design import Design, slotted_lever, whitworth
+from chaingraph.synthesis.function import function
+from chaingraph.synthesis.result import Curve, Error, Searched, Solution, Synthesis
+from chaingraph.synthesis.task import FunctionTask, function_task
+
+__all__ = ["function", "Synthesis", "Solution", "Error", "Curve", "Searched", "certify",
+           "Certified", "Rejected", "FunctionTargets", "PointTargets", "PoseTargets",
+           "REASONS", "FunctionTask", "function_task", "Design", "slotted_lever",
+           "whitworth"]

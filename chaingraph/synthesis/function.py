@@ -457,9 +457,13 @@ def _solution(task, design, certified: Certified):
     unit = "degrees" if design.kind == "four-bar" else task.units
     curve = Curve(x, err, "x", f"structural error ({unit})",
                   tuple(float(v) for v in task.precision_x()))
+    names = (("crank", "coupler", "rocker", "frame") if design.kind == "four-bar"
+             else ("crank", "rod", "offset"))
+    dimensions = dict(zip(names, design.lengths))
+    dimensions.update(input_start=design.start[0], output_start=design.start[1])
     return Solution(0, certified.chain, Error(certified.error_max, certified.error_rms),
                     certified.reached_at, certified.transmission_angle, certified.grashof,
-                    certified.input, _names(certified.chain), None, curve)
+                    certified.input, _names(certified.chain), None, curve, dimensions)
 
 
 def function(*, function: str, x, swing, start=None, points: int = 3,

@@ -55,8 +55,9 @@ class Solution:
     ``(min, max)`` between the first target and the last (None where the mechanism has
     no four-link loop at its output), ``grashof`` (a four-bar's Grashof words, else
     None), ``input`` (``"turns fully"`` or ``"rocks"``), ``names`` (catalog names of its
-    structure), ``atlas`` (where a type synthesis found it, else None) and ``curve``
-    (what its drawing plots)."""
+    structure), ``atlas`` (where a type synthesis found it, else None), ``curve``
+    (what its drawing plots) and ``dimensions`` (its lengths and starting values by
+    name; not in the JSON, whose ``mechanism`` holds them all)."""
 
     rank: int
     mechanism: Chain
@@ -68,6 +69,7 @@ class Solution:
     names: tuple[str, ...] = ()
     atlas: dict | None = None
     curve: Curve | None = field(default=None, repr=False)
+    dimensions: dict[str, float] = field(default_factory=dict)
 
     def to_dict(self) -> dict:
         ta = self.transmission_angle
