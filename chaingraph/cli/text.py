@@ -60,7 +60,16 @@ def exit_status(error) -> int:
     be assembled), 2 for bad input."""
     return 1 if isinstance(error, AssemblyError) else 2
 
+# a synthesis's parameters (``design function | path | motion``)
+SYNTHESIS_FLAGS = {"function": "--function EXPR", "x": "--x A:B", "swing": "--swing IN:OUT",
+                   "start": "--start IN0:OUT0", "points": "--points N",
+                   "spacing": "--spacing chebyshev|even",
+                   "kind": "--kind four-bar|slider-crank", "solutions": "--solutions K",
+                   "min_transmission": "--min-transmission DEG", "units": "--units U"}
+SYNTHESES = ("function", "path", "motion")
+
 def error_text(error) -> str:
     """The error's message, with the flag of the parameter at fault."""
-    flag = FLAGS.get(getattr(error, "parameter", None))
+    flags = SYNTHESIS_FLAGS if getattr(error, "kind", None) in SYNTHESES else FLAGS
+    flag = flags.get(getattr(error, "parameter", None))
     return f"{error}" if flag is None else f"{error}; on the command line: {flag}"

@@ -1,6 +1,6 @@
 """Dimensional synthesis: from a task to certified mechanisms.
 
-* :func:`function` function generation (four-bar, slider crank), :mod:`.function`;
+* :func:`function` function generation (four-bar, slider crank), :mod:`.function_generation`;
 * :mod:`.certify` every candidate written as a chain file, read back, solved by
   chaingraph's own solver and checked (circuit, branch and order defects, the
   transmission angle, the error recomputed);
@@ -19,7 +19,7 @@ from chaingraph.synthesis.certify import (
     certify,
 )
 from chaingraph.synthesis.design import Design, slotted_lever, whitworth
-from chaingraph.synthesis.function import function
+from chaingraph.synthesis.function_generation import function
 from chaingraph.synthesis.result import Curve, Error, Searched, Solution, Synthesis
 from chaingraph.synthesis.task import FunctionTask, function_task
 

@@ -215,18 +215,23 @@ def _traced(chain, t):
 
 
 def _refined(chain, point, target, theta, k):
-    """(input, distance) of the tracer's closest approach to ``target`` near step k."""
-    lo, hi = theta[max(k - 1, 0)], theta[min(k + 1, theta.size - 1)]
+    """(input, distance) of the tracer's closest approach to ``target`` near step k:
+    the squared distance (smooth) minimised over the input's offset from step k (small,
+    so that the minimiser's relative tolerance does not hide the last digits)."""
+    here = float(theta[k])
+    lo = float(theta[max(k - 1, 0)]) - here
+    hi = float(theta[min(k + 1, theta.size - 1)]) - here
 
-    def distance(v):
+    def squared(u):
+        v = here + u
         m = solve(chain, start=v, stop=v, steps=1, summary=False)
-        return math.hypot(float(m[f"x:{point}"][0]) - target[0],
-                          float(m[f"y:{point}"][0]) - target[1])
+        return ((float(m[f"x:{point}"][0]) - target[0]) ** 2
+                + (float(m[f"y:{point}"][0]) - target[1]) ** 2)
     if lo == hi:
-        return float(lo), distance(lo)
-    found = minimize_scalar(distance, bounds=(min(lo, hi), max(lo, hi)), method="bounded",
-                            options={"xatol": 1e-10})
-    return float(found.x), float(found.fun)
+        return here, math.sqrt(squared(0.0))
+    found = minimize_scalar(squared, bounds=(min(lo, hi), max(lo, hi)), method="bounded",
+                            options={"xatol": 1e-12})
+    return here + float(found.x), math.sqrt(max(float(found.fun), 0.0))
 
 
 def reached_in_order(candidates, theta, full_turn):

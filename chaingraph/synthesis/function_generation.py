@@ -358,7 +358,20 @@ def _candidates(task, rejected):
     if task.points > 3:
         designs = [_fit(task, dsg) for dsg in designs[:_FITTED_SEEDS]] + designs[_FITTED_SEEDS:]
     designs.sort(key=lambda dsg: dsg.predicted)
-    return _distinct(designs, None), tried
+    return [_normalised(task, dsg) for dsg in _distinct(designs, None)], tried
+
+
+def _normalised(task, design):
+    """The design with its start turned by whole turns so that the input's angle at
+    the first precision point is in (-180, 180], as the drawing gives it to the solver
+    (and a four-bar's output likewise)."""
+    x1 = task.precision_x()[0]
+    first = design.start[0] + float(task.input_at(x1))
+    out = design.start[1]
+    if design.kind == "four-bar":
+        out -= 360.0 * math.floor((out + float(task.output_at(x1)) + 180.0) / 360.0)
+    turn = 360.0 * math.floor((first + 180.0) / 360.0)
+    return replace(design, start=(design.start[0] - turn, out))
 
 
 def _distinct(designs, limit, *, apart=None):
