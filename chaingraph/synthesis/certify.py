@@ -18,10 +18,11 @@ there), :class:`PointTargets` (points a tracer passes through) and
 from __future__ import annotations
 
 import math
+from collections.abc import Callable
 from dataclasses import dataclass
 
 import numpy as np
-from scipy.optimize import minimize_scalar
+from scipy.optimize import minimize_scalar  # type: ignore[import-untyped]
 
 from chaingraph.errors import AssemblyError
 from chaingraph.files import dumps, loads
@@ -61,7 +62,7 @@ class FunctionTargets:
     outputs: tuple[float, ...]
     output: str
     span: tuple[float, float]
-    wanted: object
+    wanted: Callable[[np.ndarray], np.ndarray]
 
 
 @dataclass(frozen=True)
@@ -127,6 +128,8 @@ def certify(candidate: Chain, targets, *, min_transmission: float = 30.0):
     -------
     Certified or Rejected
     """
+    if candidate.mechanism is None or candidate.mechanism.driver is None:
+        raise ValueError(f"the candidate {candidate.name!r} needs a [mechanism] with a driver")
     chain = loads(dumps(candidate), source=f"<{candidate.name}>")
     try:
         if isinstance(targets, FunctionTargets):
@@ -141,7 +144,7 @@ def certify(candidate: Chain, targets, *, min_transmission: float = 30.0):
     ta = transmission_angles(chain, rows)
     if ta is not None and (ta[0] < min_transmission or ta[1] > 180.0 - min_transmission):
         return Rejected("transmission angle", f"{ta[0]:.4g} to {ta[1]:.4g} degrees")
-    m = chain.mechanism
+    m = candidate.mechanism
     turning = turning_links(chain, m.fixed)
     four = four_link_loop(chain)
     grashof = (behaviour(chain, m.fixed) if four is not None

@@ -33,7 +33,7 @@ from collections import Counter
 from dataclasses import dataclass, replace
 
 import numpy as np
-from scipy.optimize import minimize
+from scipy.optimize import minimize  # type: ignore[import-untyped]
 
 from chaingraph.errors import DesignError
 from chaingraph.geometry import circle_circle, circle_line
@@ -170,10 +170,11 @@ def design_error(task: FunctionTask, kind, lengths, start, mode, xs=None):
     wanted = out0 + task.output_at(xs)
     with np.errstate(all="ignore"):
         if kind == "four-bar":
-            got, mu = _four_bar_output(*lengths, theta, mode)
+            got, mu = _four_bar_output(lengths[0], lengths[1], lengths[2], lengths[3],
+                                       theta, mode)
             err = _wrap(np.degrees(got) - wanted)
         else:
-            got, mu = _slider_output(*lengths, theta, mode)
+            got, mu = _slider_output(lengths[0], lengths[1], lengths[2], theta, mode)
             err = got - wanted
     return err, mu
 
@@ -291,7 +292,7 @@ def _refine_start(task, design):
     return best
 
 
-def _fit(task, seed):
+def _minimax_fit(task, seed):
     """More than three points: the lengths (and, without a task's start, the start)
     fitted so that the largest structural error over the whole range is small: the
     minimax as a smooth problem (minimise t with -t <= error(x_k) <= t at every sample,
@@ -356,12 +357,12 @@ def _candidates(task, rejected):
         designs = [_refine_start(task, dsg) if task.points == 3 else dsg
                    for dsg in _distinct(designs, _REFINED, apart=apart)]
     if task.points > 3:
-        designs = [_fit(task, dsg) for dsg in designs[:_FITTED_SEEDS]] + designs[_FITTED_SEEDS:]
+        designs = [_minimax_fit(task, dsg) for dsg in designs[:_FITTED_SEEDS]] + designs[_FITTED_SEEDS:]
     designs.sort(key=lambda dsg: dsg.predicted)
-    return [_normalised(task, dsg) for dsg in _distinct(designs, None)], tried
+    return [_in_solver_range(task, dsg) for dsg in _distinct(designs, None)], tried
 
 
-def _normalised(task, design):
+def _in_solver_range(task, design):
     """The design with its start turned by whole turns so that the input's angle at
     the first precision point is in (-180, 180], as the drawing gives it to the solver
     (and a four-bar's output likewise)."""
@@ -396,11 +397,6 @@ def _distinct(designs, limit, *, apart=None):
 
 
 # -- the mechanism, its certification and the result -----------------------------------
-def _joint(joint_id, kind, links, at, axis=None):
-    return Joint(joint_id, kind, tuple(links), at=(float(at[0]), float(at[1])),
-                 axis=None if axis is None else float(axis))
-
-
 def _chain(task, design, table):
     """The designed mechanism drawn at the first precision point, with its task."""
     x1 = float(task.precision_x()[0])
@@ -412,21 +408,21 @@ def _chain(task, design, table):
     if design.kind == "four-bar":
         a, b, c, d = design.lengths
         psi = math.radians(out)
-        joints = (_joint("A", "R", ("frame", "crank"), (0.0, 0.0)),
-                  _joint("B", "R", ("crank", "coupler"), (a * math.cos(theta),
-                                                          a * math.sin(theta))),
-                  _joint("C", "R", ("coupler", "rocker"), (d + c * math.cos(psi),
-                                                           c * math.sin(psi))),
-                  _joint("D", "R", ("rocker", "frame"), (d, 0.0)))
+        joints = (Joint("A", "R", ("frame", "crank"), at=(0.0, 0.0)),
+                  Joint("B", "R", ("crank", "coupler"), at=(a * math.cos(theta),
+                                                             a * math.sin(theta))),
+                  Joint("C", "R", ("coupler", "rocker"), at=(d + c * math.cos(psi),
+                                                              c * math.sin(psi))),
+                  Joint("D", "R", ("rocker", "frame"), at=(d, 0.0)))
         sizes = f"crank {a:.6g}, coupler {b:.6g}, rocker {c:.6g}, frame {d:.6g}"
         output, family = "rocker", "four-bar chain"
     else:
         r, l, e = design.lengths
-        joints = (_joint("A", "R", ("frame", "crank"), (0.0, 0.0)),
-                  _joint("B", "R", ("crank", "rod"), (r * math.cos(theta),
-                                                      r * math.sin(theta))),
-                  _joint("C", "R", ("rod", "slider"), (out, e)),
-                  _joint("S", "P", ("frame", "slider"), (out, e), axis=0.0))
+        joints = (Joint("A", "R", ("frame", "crank"), at=(0.0, 0.0)),
+                  Joint("B", "R", ("crank", "rod"), at=(r * math.cos(theta),
+                                                         r * math.sin(theta))),
+                  Joint("C", "R", ("rod", "slider"), at=(out, e)),
+                  Joint("S", "P", ("frame", "slider"), at=(out, e), axis=0.0))
         sizes = f"crank {r:.6g}, rod {l:.6g}, offset {e:.6g}"
         output, family = "slider", "single slider crank chain"
     return Chain(f"Function generator: {title}", joints, family=family, units=task.units,
@@ -536,7 +532,7 @@ def function(*, function: str, x, swing, start=None, points: int = 3,
                   kind="function")
     rejected: Counter = Counter()
     designs, tried = _candidates(task, rejected)
-    found = []
+    found: list[Solution] = []
     for design in designs[:_CERTIFIED * solutions]:
         if len(found) >= solutions:
             break
