@@ -64,6 +64,7 @@ RESULTS = (Chain, Classification, Inversions, Motion, InstantCentres, Polygons, 
 # pynauty) nor the drawing modules: name -> (module, attribute or None for the module)
 _LAZY = {"atlas": ("chaingraph.structure.atlas", "atlas"),
          "design": ("chaingraph.synthesis.design", None),
+         "synthesis": ("chaingraph.synthesis", None),
          "animate": ("chaingraph.drawing.notebook", "animate")}
 
 
