@@ -53,7 +53,7 @@ from collections.abc import Iterable, Sequence
 from dataclasses import dataclass
 
 import numpy as np
-from numpy.polynomial import polynomial as P
+from numpy.polynomial import Polynomial
 
 from chaingraph.errors import DesignError
 from chaingraph.geometry import direction_deg, normalised, perp
@@ -94,6 +94,15 @@ class Dyad:
     circle: tuple[float, float] | None
     guide: tuple[float, float] | None = None
 
+    def __post_init__(self):
+        needs = {"RR": ("centre", "circle"), "PR": ("circle", "guide"),
+                 "RP": ("centre", "guide")}
+        if self.kind not in needs:
+            _fail(f"a dyad's kind is 'RR', 'PR' or 'RP', got {self.kind!r}", "dyad")
+        for name in needs[self.kind]:
+            if getattr(self, name) is None:
+                _fail(f"an {self.kind} dyad needs its {name}", "dyad")
+
     def swapped(self) -> "Dyad":
         """The dyad of the inverted poses: centre and circle points swapped (a PR
         becomes an RP)."""
@@ -101,8 +110,15 @@ class Dyad:
         return Dyad(kind, self.circle, self.centre, self.guide)
 
 
-def _fail(problem: str):
-    raise DesignError(problem, kind=_KIND, parameter="poses")
+def _fail(problem: str, parameter: str = "poses"):
+    raise DesignError(problem, kind=_KIND, parameter=parameter)
+
+
+def _given(p: tuple[float, float] | None) -> tuple[float, float]:
+    """A dyad's point or guide that its kind has (:class:`Dyad` checks it)."""
+    if p is None:
+        raise TypeError("a point or guide that the dyad's kind has is None")
+    return p
 
 
 def _xy(p) -> tuple[float, float]:
@@ -110,9 +126,10 @@ def _xy(p) -> tuple[float, float]:
 
 
 def _line(v) -> tuple[float, float]:
-    """A unit direction turned to [0, 180) degrees (a line's, either way along it)."""
+    """A unit direction turned to [0, 180) degrees (a line's, either way along it; a
+    line within rounding of the x axis points along +x)."""
     u = normalised(v)
-    if u[1] < 0 or (u[1] == 0 and u[0] < 0):
+    if u[1] < -1e-12 or (abs(u[1]) <= 1e-12 and u[0] < 0):
         u = -u
     return _xy(u)
 
@@ -248,7 +265,7 @@ def circle_point(poses: Sequence[Sequence[float]], centre: Sequence[float], *,
 
 def _through(poses, point, offset, what) -> Dyad:
     at = [np.array(moved(poses, point, j)) for j in range(len(poses))]
-    scale = max(task_size(poses), max(np.linalg.norm(p - at[0]) for p in at), 1e-300)
+    scale = max(task_size(poses), max(float(np.linalg.norm(p - at[0])) for p in at), 1e-300)
     for i in range(len(at)):
         for j in range(i + 1, len(at)):
             if np.linalg.norm(at[j] - at[i]) <= SAME * scale:
@@ -282,24 +299,27 @@ def _base(s: _System) -> int:
     return k
 
 
+def _base_point(s: _System, k: int) -> np.ndarray:
+    """The pole of the first pose and pose ``k + 1`` (finite: :func:`_base` chose it)."""
+    return np.asarray(_given(pole(s.poses, 0, k + 1).at))
+
+
 def _det(r0, r1, r2):
-    """The determinant of three rows whose entries are polynomials (coefficient arrays,
-    lowest first) or numbers."""
-    def term(i, j, k):
-        return P.polymul(r0[i], P.polysub(P.polymul(r1[j], r2[k]), P.polymul(r1[k], r2[j])))
-    return P.polyadd(P.polysub(term(0, 1, 2), term(1, 0, 2)), term(2, 0, 1))
+    """The determinant of three rows whose entries are numbers or polynomials
+    (:class:`numpy.polynomial.Polynomial`)."""
+    return (r0[0] * (r1[1] * r2[2] - r1[2] * r2[1]) - r0[1] * (r1[0] * r2[2] - r1[2] * r2[0])
+            + r0[2] * (r1[0] * r2[1] - r1[1] * r2[0]))
 
 
 def _quadratic(base, way, rows):
     """The coefficients (lowest first) of ``det(M(base + s way)) / s``, the Burmester
     cubic of the three ``rows`` (``B`` matrices, the first the base's) on the line
-    from the base point along ``way``; each entry of ``way`` a number or a polynomial
-    (then so is each coefficient)."""
+    from the base point along ``way``; the entries of ``way`` numbers or polynomials
+    (then so are the coefficients)."""
     fixed = [np.zeros(3)] + [b @ np.append(base, 1.0) for b in rows[1:]]   # base: a pole
-    along = [[P.polyadd(b[i, 0] * np.atleast_1d(way[0]), b[i, 1] * np.atleast_1d(way[1]))
-              for i in range(3)] for b in rows]
+    along = [[b[i, 0] * way[0] + b[i, 1] * way[1] for i in range(3)] for b in rows]
     c1 = _det(along[0], fixed[1], fixed[2])
-    c2 = P.polyadd(_det(along[0], along[1], fixed[2]), _det(along[0], fixed[1], along[2]))
+    c2 = _det(along[0], along[1], fixed[2]) + _det(along[0], fixed[1], along[2])
     c3 = _det(along[0], along[1], along[2])
     return c1, c2, c3
 
@@ -401,10 +421,10 @@ def _others(s: _System, k: int) -> list[int]:
 
 
 def _on_line(s: _System, k: int, direction: float) -> list[Dyad | None]:
-    base = np.asarray(pole(s.poses, 0, k + 1).at)
+    base = _base_point(s, k)
     way = np.array([math.cos(direction), math.sin(direction)])
     rows = [s.B[k]] + [s.B[j] for j in _others(s, k)]
-    c1, c2, c3 = (float(c[0]) for c in _quadratic(base, way, rows))
+    c1, c2, c3 = (float(c) for c in _quadratic(base, way, rows))
     out = []
     for t in _real_roots(c1, c2, c3):
         a = np.append(base + t * way, 1.0)
@@ -414,7 +434,7 @@ def _on_line(s: _System, k: int, direction: float) -> list[Dyad | None]:
 
 
 def _at_base(s: _System, k: int) -> Dyad | None:
-    a = np.append(pole(s.poses, 0, k + 1).at, 1.0)
+    a = np.append(_base_point(s, k), 1.0)
     return s.dyad(a, _kernel([s.B[j] @ a for j in _others(s, k)]))
 
 
@@ -452,7 +472,7 @@ def burmester_points(poses: Sequence[Sequence[float]]) -> tuple[Dyad, ...]:
     poses = checked_poses(poses, counts=(5,), method="the Burmester points")
     found = _side_points(_system(poses))
     found += [d.swapped() for d in _side_points(_system(inverted(poses)))]
-    return _distinct(found, task_size(poses) or 1.0)
+    return _distinct(found, _system(poses))
 
 
 def _side_points(s: _System) -> list[Dyad]:
@@ -460,7 +480,7 @@ def _side_points(s: _System) -> list[Dyad]:
     two circle-point cubics (rows k, m, p and k, m, q) on the lines through the pole
     ``P_1k``, polished."""
     k = _base(s)
-    base = np.asarray(pole(s.poses, 0, k + 1).at)
+    base = _base_point(s, k)
     m = max(_others(s, k), key=lambda j: abs(math.sin(0.5 * displacement(s.poses, 0, j + 1)[0])))
     p, q = (j for j in _others(s, k) if j != m)
     # the lines through the base are e1 + t e2, with e2 towards the pole P_1m: both
@@ -470,13 +490,11 @@ def _side_points(s: _System) -> list[Dyad]:
     if e2 is None or not np.all(np.isfinite(e2)):
         e2 = np.array([1.0, 0.0])
     e1 = np.array(perp(e2))
-    way = [np.array([e1[i], e2[i]]) for i in range(2)]
+    way = [Polynomial([e1[i], e2[i]]) for i in range(2)]
     a0, a1, a2 = _quadratic(base, way, [s.B[k], s.B[m], s.B[p]])
     b0, b1, b2 = _quadratic(base, way, [s.B[k], s.B[m], s.B[q]])
-    cross = [P.polysub(P.polymul(x1, y2), P.polymul(x2, y1))
-             for x1, x2, y1, y2 in ((a2, b2, a0, b0), (a2, b2, a1, b1), (a1, b1, a0, b0))]
-    res = P.polysub(P.polymul(cross[0], cross[0]), P.polymul(cross[1], cross[2]))
-    res = np.pad(res, (0, 9))[:8]                     # the t^8 term is zero: drop it
+    res = (a2 * b0 - a0 * b2) ** 2 - (a2 * b1 - a1 * b2) * (a1 * b0 - a0 * b1)
+    res = np.pad(res.coef, (0, 9))[:8]                # the t^8 term is zero: drop it
     nonzero = np.flatnonzero(res)
     ts = list(np.roots(res[: nonzero[-1] + 1][::-1])) if nonzero.size else []
     found = []
@@ -493,8 +511,8 @@ def _side_points(s: _System) -> list[Dyad]:
 def _candidates_on(base, u, bk, rest) -> list[np.ndarray]:
     """The circle points on the line ``base + s u`` where one of the two cubics
     vanishes, or both by elimination."""
-    q1 = [float(c[0]) for c in _quadratic(base, u, [bk, rest[0], rest[1]])]
-    q2 = [float(c[0]) for c in _quadratic(base, u, [bk, rest[0], rest[2]])]
+    q1 = [float(c) for c in _quadratic(base, u, [bk, rest[0], rest[1]])]
+    q2 = [float(c) for c in _quadratic(base, u, [bk, rest[0], rest[2]])]
     ss = _real_roots(*q1) + _real_roots(*q2)
     den = q1[1] * q2[2] - q1[2] * q2[1]
     if den != 0:
@@ -504,47 +522,51 @@ def _candidates_on(base, u, bk, rest) -> list[np.ndarray]:
 
 def _polish(s: _System, a: np.ndarray) -> Dyad | None:
     """Newton's method on the equations ``c^T B_j a = 0`` (and ``n . c = 1``) from the
-    circle point ``a``; the dyad when it converges to a fit, else None."""
+    circle point ``a``, when the equations nearly hold there; the dyad when it converges
+    to a fit, else None."""
     a = np.array(a, dtype=float)
     if not np.all(np.isfinite(a)) or np.linalg.norm(a) >= AT_INFINITY:
         return None
-    c = _kernel([b @ np.append(a, 1.0) for b in s.B])
-    n = c.copy()
-    for _ in range(60):
+    bs = np.array(s.B)
+    sv = np.linalg.svd(bs @ np.append(a, 1.0), compute_uv=False)
+    if sv[-1] > 1e-2 * sv[0]:                 # not near a solution (a spurious root)
+        return None
+    c = _kernel(bs @ np.append(a, 1.0))
+    n, last = c.copy(), math.inf
+    for _ in range(30):
         ah = np.append(a, 1.0)
-        f = np.array([c @ b @ ah for b in s.B] + [n @ c - 1.0])
-        jac = np.array([np.concatenate([(b.T @ c)[:2], b @ ah]) for b in s.B]
-                       + [np.concatenate([[0.0, 0.0], n])])
+        f = np.append(np.einsum("i,jik,k->j", c, bs, ah), n @ c - 1.0)
+        jac = np.vstack([np.hstack([np.einsum("i,jik->jk", c, bs)[:, :2], bs @ ah]),
+                         np.append([0.0, 0.0], n)])
         step = np.linalg.lstsq(jac, -f, rcond=None)[0]
         a, c = a + step[:2], c + step[2:]
-        if np.linalg.norm(step) <= 1e-15 * (1 + np.linalg.norm(a)):
+        size = float(np.linalg.norm(step))
+        if size <= 1e-15 * (1 + np.linalg.norm(a)) or size >= last:   # done, or at rounding
             break
+        last = size
     ah = np.append(a, 1.0)
     ah, c = ah / np.linalg.norm(ah), c / np.linalg.norm(c)
-    if not np.all(np.isfinite(ah)) or max(abs(c @ b @ ah) for b in s.B) > FITS:
+    if not np.all(np.isfinite(ah)) or np.max(np.abs(np.einsum("i,jik,k->j", c, bs, ah))) > FITS:
         return None
     return s.dyad(ah, c)
 
 
-def _distinct(dyads: Iterable[Dyad | None], size: float) -> tuple[Dyad, ...]:
-    """The dyads without repeats (the same kind, points within 1e-7 of the size and
-    guides within 1e-7 radians)."""
+def _distinct(dyads: Iterable[Dyad | None], s: _System) -> tuple[Dyad, ...]:
+    """The dyads without repeats: the same kind, and circle and centre points whose unit
+    homogeneous vectors (:func:`_homogeneous`) are within 1e-7 (a far point's rounding
+    grows with its distance), either way along a line at infinity."""
     out: list[Dyad] = []
+    seen: list[tuple[np.ndarray, np.ndarray]] = []
     for d in dyads:
-        if d is not None and not any(_same(d, e, size) for e in out):
+        if d is None:
+            continue
+        h = _homogeneous(s, d)
+        if not any(e.kind == d.kind and all(min(np.linalg.norm(x - y), np.linalg.norm(x + y))
+                                            <= 1e-7 for x, y in zip(h, g))
+                   for e, g in zip(out, seen)):
             out.append(d)
+            seen.append(h)
     return tuple(out)
-
-
-def _same(d: Dyad, e: Dyad, size: float) -> bool:
-    if d.kind != e.kind:
-        return False
-    for p, q in ((d.centre, e.centre), (d.circle, e.circle)):
-        if (p is None) != (q is None) or (p is not None and math.dist(p, q) > 1e-7 * size):
-            return False
-    if d.guide is not None and abs(d.guide[0] * e.guide[1] - d.guide[1] * e.guide[0]) > 1e-7:
-        return False
-    return True
 
 
 # -- two dyads: a mechanism ------------------------------------------------------------
@@ -560,15 +582,15 @@ def dyad_inputs(poses: Sequence[Sequence[float]], dyad: Dyad) -> tuple[float, ..
     """
     poses = checked_poses(poses)
     if dyad.kind == "PR":
-        g = dyad.guide
-        return tuple((p[0] - dyad.circle[0]) * g[0] + (p[1] - dyad.circle[1]) * g[1]
-                     for p in (moved(poses, dyad.circle, j) for j in range(len(poses))))
+        a, g = _given(dyad.circle), _given(dyad.guide)
+        return tuple((p[0] - a[0]) * g[0] + (p[1] - a[1]) * g[1]
+                     for p in (moved(poses, a, j) for j in range(len(poses))))
     if dyad.kind == "RP":
-        first = direction_deg(dyad.guide)
+        first = direction_deg(_given(dyad.guide))
         turns = [displacement(poses, 0, j)[0] for j in range(len(poses))]
     else:
-        c = dyad.centre
-        at = [moved(poses, dyad.circle, j) for j in range(len(poses))]
+        c = _given(dyad.centre)
+        at = [moved(poses, _given(dyad.circle), j) for j in range(len(poses))]
         angles = [math.atan2(p[1] - c[1], p[0] - c[0]) for p in at]
         first = math.degrees(angles[0])
         turns = [math.remainder(a - angles[0], 2 * math.pi) for a in angles]
@@ -657,7 +679,7 @@ def _dyad_joints(d: Dyad, link: str, ids: tuple[str, str]) -> tuple[Joint, ...]:
 def _check_pair(d: Dyad, e: Dyad, size: float) -> None:
     near = SAME * 1e3 * size
     for x in (d, e):
-        if x.kind == "RR" and math.dist(x.centre, x.circle) <= near:
+        if x.kind == "RR" and math.dist(_given(x.centre), _given(x.circle)) <= near:
             _fail(f"the dyad's centre point {x.centre} is its circle point: a link of no "
                   "length")
     if d.circle is not None and e.circle is not None and math.dist(d.circle, e.circle) <= near:
@@ -680,7 +702,7 @@ def candidates(poses: Sequence[Sequence[float]], dyads: Iterable[Dyad], *,
     True
     """
     poses = checked_poses(poses)
-    dyads = _distinct(dyads, task_size(poses) or 1.0)
+    dyads = _distinct(dyads, _system(poses))
     out = []
     for i in range(len(dyads)):
         for j in range(i + 1, len(dyads)):

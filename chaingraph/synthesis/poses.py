@@ -16,7 +16,7 @@ Half a turn about (1, 1) takes the origin to (2, 2):
 
 >>> p = pole([(0.0, 0.0, 0.0), (2.0, 2.0, math.pi)], 0, 1)
 >>> [round(v, 12) for v in p.at], p.angle == math.pi, p.at_infinity
-([1.0, 1.0], 3.141592653589793, False)
+([1.0, 1.0], True, False)
 """
 
 from __future__ import annotations
