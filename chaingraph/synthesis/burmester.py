@@ -29,8 +29,10 @@ circle point, which is the same as the circle point of the inverted poses
   (a slider);
 * five poses: the centre-point curves of poses 1234 and 1235 meet in the *Burmester
   points* (0, 2 or 4 real dyads, :func:`burmester_points`), found here as the real
-  roots of a polynomial of degree 7 in one unknown (the direction from the pole
-  ``P_1k``), each polished by Newton's method on the five equations.
+  roots of the resultant of two circle-point cubics through the pole ``P_1k``, a
+  polynomial of degree 7 in the direction from that pole, each polished by Newton's
+  method on the five equations; the same on the inverted poses finds the dyads whose
+  circle point is at infinity.
 
 Two dyads make a four-bar (two RR), a slider crank (an RR and a PR, or an RP) or a
 double slider (:func:`mechanism`, :func:`candidates`), drawn at the first pose.
@@ -151,8 +153,8 @@ class _System:
         h = np.asarray(h, dtype=float)
         if abs(h[2]) * AT_INFINITY <= math.hypot(h[0], h[1]):
             return None, _xy(normalised(h[:2]))
-        return (self.origin[0] + self.size * h[0] / h[2],
-                self.origin[1] + self.size * h[1] / h[2]), None
+        return _xy((self.origin[0] + self.size * h[0] / h[2],
+                    self.origin[1] + self.size * h[1] / h[2])), None
 
     def local(self, p) -> np.ndarray:
         """A point of the world as a homogeneous point of the system."""
@@ -486,8 +488,8 @@ def _side_points(s: _System) -> list[Dyad]:
     # the lines through the base are e1 + t e2, with e2 towards the pole P_1m: both
     # cubics pass through that pole, so t = infinity is a root and the degree drops to 7
     far = pole(s.poses, 0, m + 1)
-    e2 = np.asarray(far.direction if far.at is None else normalised(np.subtract(far.at, base)))
-    if e2 is None or not np.all(np.isfinite(e2)):
+    e2 = normalised(far.direction if far.at is None else np.subtract(far.at, base))
+    if e2 is None:                           # the two poles at one point: any line will do
         e2 = np.array([1.0, 0.0])
     e1 = np.array(perp(e2))
     way = [Polynomial([e1[i], e2[i]]) for i in range(2)]

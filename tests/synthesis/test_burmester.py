@@ -334,6 +334,33 @@ def test_rotating_translating_and_scaling_the_task_moves_the_results(four_bar, t
         assert _among(got, dyad(d), tol * reach ** 2)
 
 
+def test_relabelling_the_poses_never_matters(four_bar):
+    """The same dyads whatever the order of the poses: with the first kept, the same
+    points; with another first, the same centre points, the circle points moved to
+    where that pose puts them."""
+    rng = np.random.default_rng(7)
+    tasks = [four_bar[0]] + [[tuple(map(float, (x, y, a))) for x, y, a in zip(
+        rng.uniform(-50, 50, 5), rng.uniform(-50, 50, 5), rng.uniform(-1.5, 1.5, 5))]
+        for _ in range(3)]
+    for poses in tasks:
+        tol = 1e-8 * task_size(poses)
+        found = burmester_points(poses)
+        for order in ((0, 3, 1, 4, 2), (0, 4, 3, 2, 1)):
+            again = burmester_points([poses[i] for i in order])
+            assert len(again) == len(found) and all(_among(again, d, tol) for d in found)
+        again = burmester_points([poses[i] for i in (2, 0, 1, 3, 4)])
+        assert len(again) == len(found)
+        turn = displacement(poses, 0, 2)[0]
+        for d in found:
+            if d.kind == "RP":      # its guide is the guided link's: it turns with it
+                g = (math.cos(turn) * d.guide[0] - math.sin(turn) * d.guide[1],
+                     math.sin(turn) * d.guide[0] + math.cos(turn) * d.guide[1])
+                d = replace(d, guide=g)
+            if d.circle is not None:
+                d = replace(d, circle=moved(poses, d.circle, 2))
+            assert _among(again, d, tol)
+
+
 # -- bad tasks ------------------------------------------------------------------------------------
 def test_two_equal_poses_are_named(four_bar):
     poses = list(four_bar[0])
