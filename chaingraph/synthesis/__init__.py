@@ -1,6 +1,8 @@
 """Dimensional synthesis: from a task to certified mechanisms.
 
 * :func:`function` function generation (four-bar, slider crank), :mod:`.function_generation`;
+* :func:`path` path generation (four-bar), :mod:`.path_generation`, by the optimiser of
+  :mod:`.optimiser` over a mechanism family of :mod:`.family`;
 * :mod:`.certify` every candidate written as a chain file, read back, solved by
   chaingraph's own solver and checked (circuit, branch and order defects, the
   transmission angle, the error recomputed);
@@ -20,10 +22,11 @@ from chaingraph.synthesis.certify import (
 )
 from chaingraph.synthesis.design import Design, slotted_lever, whitworth
 from chaingraph.synthesis.function_generation import function
+from chaingraph.synthesis.path_generation import path
 from chaingraph.synthesis.result import Curve, Error, Searched, Solution, Synthesis
-from chaingraph.synthesis.task import FunctionTask, function_task
+from chaingraph.synthesis.task import FunctionTask, PathTask, function_task, path_task
 
-__all__ = ["function", "Synthesis", "Solution", "Error", "Curve", "Searched", "certify",
+__all__ = ["function", "path", "Synthesis", "Solution", "Error", "Curve", "Searched", "certify",
            "Certified", "Rejected", "FunctionTargets", "PointTargets", "PoseTargets",
-           "REASONS", "FunctionTask", "function_task", "Design", "slotted_lever",
+           "REASONS", "FunctionTask", "function_task", "PathTask", "path_task", "Design", "slotted_lever",
            "whitworth"]

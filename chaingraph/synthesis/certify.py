@@ -44,6 +44,7 @@ REASONS = {
     "branch defect": "the input meets a limit between the targets",
     "order defect": "the targets are not reached in order as the input moves one way",
     "transmission angle": "the transmission angle leaves [min, 180 - min]",
+    "timing": "the targets are not met at the timing's input values",
 }
 _SWEEP = 720          # steps over a function's range
 _CYCLE = 1440         # steps over a cycle, for points and poses
@@ -193,6 +194,9 @@ def _traced(chain, t):
     xs, ys = whole[f"x:{t.point}"], whole[f"y:{t.point}"]
     size = _size(chain)
     full = abs(theta[-1] - theta[0]) >= 360.0 - 1e-9
+    if getattr(t, "closed", False) and not full:
+        return Rejected("branch defect", "the input does not turn fully: no closed curve "
+                        "over its turn")
     candidates = []
     for target in t.points:
         d = np.hypot(xs - target[0], ys - target[1])

@@ -22,7 +22,8 @@ from chaingraph.model.values import LARGEST
 from chaingraph.synthesis.expression import Expression, parse_expression
 
 __all__ = ["FunctionTask", "function_task", "SPACINGS", "FUNCTION_KINDS", "MOST_POINTS",
-           "check_options", "precision_x"]
+           "check_options", "precision_x", "PathTask", "path_task", "PATH_KINDS",
+           "EXACT_POINTS", "MOST_TARGETS"]
 
 #: the spacings of precision points
 SPACINGS = ("chebyshev", "even")
@@ -201,3 +202,120 @@ def _check_finite(expr, a, b, kind):
         raise DesignError(f"the function {expr.text!r} is not finite over the range "
                           f"{a:g}:{b:g} (at x = {at:.6g} it is {float(ys[np.argmax(bad)])})",
                           kind=kind, parameter="function")
+
+
+# -- path generation ------------------------------------------------------------------
+#: the mechanisms a path generator can be (for now)
+PATH_KINDS = ("four-bar",)
+#: the most points a path task passes exactly; more are fitted
+EXACT_POINTS = 5
+#: the most points a path task may give
+MOST_TARGETS = 500
+
+
+@dataclass(frozen=True)
+class PathTask:
+    """A path generator's task: a point of one link passes through ``points`` in the
+    given order; ``timing`` the input's value (degrees) at each point, or None (chosen:
+    only the input's turn between points is fixed by a timing, see
+    :func:`chaingraph.synthesis.path`); ``closed`` the points lie on a closed curve
+    traced over a full turn of the input; ``seed`` makes the search repeatable."""
+
+    points: tuple[tuple[float, float], ...]
+    timing: tuple[float, ...] | None = None
+    closed: bool = False
+    mechanism: str = "four-bar"
+    seed: int | None = None
+    units: str = "mm"
+    min_transmission: float = 30.0
+    kind: str = "path"
+
+    @property
+    def exact(self) -> bool:
+        """True when the points are passed exactly (at most :data:`EXACT_POINTS`, and not
+        a closed curve); otherwise they are fitted."""
+        return len(self.points) <= EXACT_POINTS and not self.closed
+
+    @property
+    def size(self) -> float:
+        """The task's size: the largest distance between two points."""
+        p = np.asarray(self.points)
+        return float(np.max(np.hypot(*(p[:, None, :] - p[None, :, :]).transpose(2, 0, 1))))
+
+    def to_dict(self) -> dict:
+        """The JSON's ``"task"``."""
+        return {"kind": self.kind, "targets": [list(p) for p in self.points],
+                "timing": None if self.timing is None else list(self.timing),
+                "closed": self.closed, "mechanism": self.mechanism, "seed": self.seed,
+                "units": self.units, "min_transmission": self.min_transmission}
+
+
+def path_task(*, points, timing=None, closed=False, kind="four-bar", seed=None,
+              units="mm", min_transmission=30.0) -> PathTask:
+    """Check a path generator's task (see :func:`chaingraph.synthesis.path`)."""
+    what = "path"
+    if kind not in PATH_KINDS:
+        raise DesignError(f"unknown kind {kind!r} (expected one of {', '.join(PATH_KINDS)})",
+                          kind=what, parameter="kind")
+    if seed is not None and (isinstance(seed, bool) or not isinstance(seed, int) or seed < 0):
+        raise DesignError(f"seed must be a whole number, 0 or more, got {seed!r}", kind=what,
+                          parameter="seed")
+    mt = check_options(solutions=1, min_transmission=min_transmission, units=units,
+                       kind=what)
+    try:
+        given = list(points)
+    except TypeError:
+        raise DesignError(f"points must be a list of (x, y), got {points!r}", kind=what,
+                          parameter="points") from None
+    targets = tuple(_point(p, k, what) for k, p in enumerate(given, 1))
+    fewest = 3 if closed else 2
+    if len(targets) < fewest:
+        raise DesignError(f"too few points: {len(targets)} (a "
+                          f"{'closed curve' if closed else 'path'} needs {fewest} or more)",
+                          kind=what, parameter="points")
+    if len(targets) > MOST_TARGETS:
+        raise DesignError(f"too many points: {len(targets)} (at most {MOST_TARGETS})",
+                          kind=what, parameter="points")
+    size = max(math.dist(p, q) for p in targets for q in targets)
+    for i, p in enumerate(targets):
+        for j in range(i + 1, len(targets)):
+            if math.dist(p, targets[j]) <= 1e-12 * size:
+                raise DesignError(f"points {i + 1} and {j + 1} are the same point "
+                                  f"({p[0]:g}, {p[1]:g}): a path needs distinct points",
+                                  kind=what, parameter="points")
+    turns = None if timing is None else _timing(timing, len(targets), what)
+    return PathTask(targets, turns, bool(closed), kind, seed, units, mt)
+
+
+def _point(p, k, what):
+    """Point k (from 1) as two finite numbers."""
+    try:
+        x, y = p
+    except (TypeError, ValueError):
+        raise DesignError(f"point {k} must be two numbers (x, y), got {p!r}", kind=what,
+                          parameter="points") from None
+    return (_number(x, "points", f"point {k}'s x", what),
+            _number(y, "points", f"point {k}'s y", what))
+
+
+def _timing(timing, count, what):
+    """The input's values at the points: as many as the points, finite, all moving one
+    way, less than a turn (a whole turn at most for a closed curve) from first to last."""
+    try:
+        values = list(timing)
+    except TypeError:
+        raise DesignError(f"timing must be a list of angles, got {timing!r}", kind=what,
+                          parameter="timing") from None
+    out = tuple(_number(v, "timing", f"timing {k}", what) for k, v in enumerate(values, 1))
+    if len(out) != count:
+        raise DesignError(f"timing gives {len(out)} input values for {count} points (one per "
+                          "point)", kind=what, parameter="timing")
+    steps = np.diff(out)
+    if not (np.all(steps > 0) or np.all(steps < 0)):
+        raise DesignError("timing must move one way (every value above the one before, or "
+                          f"every value below), got {'; '.join(f'{v:g}' for v in out)}",
+                          kind=what, parameter="timing")
+    if abs(out[-1] - out[0]) >= 360.0:
+        raise DesignError(f"timing spans {abs(out[-1] - out[0]):g} degrees: the points are "
+                          "met within one turn of the input", kind=what, parameter="timing")
+    return out
