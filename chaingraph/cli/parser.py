@@ -13,6 +13,7 @@ from chaingraph.cli.commands import (
     cmd_classify,
     cmd_design,
     cmd_design_function,
+    cmd_design_path,
     cmd_forces,
     cmd_identify,
     cmd_inversions,
@@ -335,6 +336,7 @@ def _design_command(sub) -> None:
                        help="write the designed mechanism (TOML)")
         q.set_defaults(run=cmd_design)
     _design_function_command(kinds)
+    _design_path_command(kinds)
 
 
 def _design_function_command(kinds) -> None:
@@ -362,6 +364,61 @@ def _design_function_command(kinds) -> None:
                    metavar="four-bar|slider-crank", help="the mechanism (default four-bar)")
     _synthesis_arguments(q)
     q.set_defaults(run=cmd_design_function)
+
+
+def _design_path_command(kinds) -> None:
+    """The arguments of ``chaingraph design path``."""
+    q = kinds.add_parser(
+        "path", help="a path generator (four-bar): a coupler point through points",
+        description="A four-bar whose coupler point passes through the points in order: up "
+                    "to five exactly (least squares from a coarse search), more or a closed "
+                    "curve fitted (differential evolution, then least squares); every "
+                    "solution certified by the solver from its written chain file.")
+    given = q.add_mutually_exclusive_group(required=True)
+    given.add_argument("--points", type=points_argument, metavar='"X,Y; X,Y; ..."',
+                       help="the targets, in order")
+    given.add_argument("--points-file", dest="points_file", type=path_argument,
+                       metavar="CSV", help="the targets, one x,y per line (a header line "
+                                           "allowed)")
+    q.add_argument("--timing", type=numbers_argument, metavar='"DEG; DEG; ..."',
+                   help="the input's value at each target (its turn between targets is "
+                        "kept; its value at the first is chosen)")
+    q.add_argument("--closed", action="store_true",
+                   help="the targets lie on a closed curve traced over a full turn")
+    q.add_argument("--links", type=int, default=4, metavar="4",
+                   help="the mechanism's links (4: the four-bar; type synthesis over 6 and "
+                        "8 is not built yet)")
+    q.add_argument("--seed", type=int, metavar="S",
+                   help="the random search's seed (the same seed, the same solutions)")
+    _synthesis_arguments(q)
+    q.set_defaults(run=cmd_design_path)
+
+
+def points_argument(text):
+    """Points written "X,Y; X,Y; ..." (the library checks that they are finite)."""
+    out = []
+    for k, part in enumerate(text.split(";"), 1):
+        fields = part.split(",")
+        try:
+            if len(fields) != 2:
+                raise ValueError
+            out.append((float(fields[0]), float(fields[1])))
+        except ValueError:
+            raise argparse.ArgumentTypeError(f"point {k} is not two numbers X,Y: "
+                                             f"{part.strip()!r}") from None
+    return out
+
+
+def numbers_argument(text):
+    """Numbers written "A; B; ..." (the library checks them)."""
+    out = []
+    for k, part in enumerate(text.split(";"), 1):
+        try:
+            out.append(float(part))
+        except ValueError:
+            raise argparse.ArgumentTypeError(f"value {k} is not a number: "
+                                             f"{part.strip()!r}") from None
+    return out
 
 
 def _synthesis_arguments(q) -> None:

@@ -67,9 +67,16 @@ SYNTHESIS_FLAGS = {"function": "--function EXPR", "x": "--x A:B", "swing": "--sw
                    "kind": "--kind four-bar|slider-crank", "solutions": "--solutions K",
                    "min_transmission": "--min-transmission DEG", "units": "--units U"}
 SYNTHESES = ("function", "path", "motion")
+# where a path task's parameter has its own flag
+PATH_FLAGS = {"points": '--points "X,Y; ..."', "points_file": "--points-file CSV",
+              "timing": '--timing "DEG; ..."', "seed": "--seed S", "links": "--links 4",
+              "kind": None}
 
 def error_text(error) -> str:
     """The error's message, with the flag of the parameter at fault."""
-    flags = SYNTHESIS_FLAGS if getattr(error, "kind", None) in SYNTHESES else FLAGS
+    kind = getattr(error, "kind", None)
+    flags = SYNTHESIS_FLAGS if kind in SYNTHESES else FLAGS
+    if kind == "path":
+        flags = {**flags, **PATH_FLAGS}
     flag = flags.get(getattr(error, "parameter", None))
     return f"{error}" if flag is None else f"{error}; on the command line: {flag}"

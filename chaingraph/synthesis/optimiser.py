@@ -235,7 +235,7 @@ def coarse_search(family: Family, targets, rng: np.random.Generator, *, count: i
 
 
 def global_search(family: Family, targets, seeds, rng: np.random.Generator, *, steps: int,
-                  min_transmission: float, timing=None, generations: int = 150):
+                  min_transmission: float, timing=None, generations: int = 100):
     """Differential evolution on :func:`objective` from the population ``seeds`` (rows of
     parameters; at least five), within a box about them; the best parameters found."""
     seeds = np.asarray(seeds, dtype=float)
@@ -263,14 +263,18 @@ class Fit:
 
 
 def least_squares_fit(family: Family, targets, params, inputs, *, timing=None,
-                      exact: bool) -> Fit | None:
+                      exact: bool, min_transmission: float | None = None,
+                      closed: bool = False) -> Fit | None:
     """Solve ``position(params, theta_i) = target_i`` by least squares from ``params``
     and ``inputs`` (radians at each target, running one way; the first is the drawn
     pose's); to rounding when ``exact`` (else the least squares of the distances). The
     inputs' steps from target to target are unknowns kept positive the way they run
     (their logarithms are solved for, so the targets stay in order), or with ``timing``
-    the given turns from the first. None when the fit leaves the family (a mechanism
-    that cannot be assembled at a target)."""
+    the given turns from the first. A fit that is not exact also keeps (softly, by
+    further residuals) its link ratio within :data:`MAX_RATIO` and, with
+    ``min_transmission``, its transmission angle within bounds from the first target to
+    the last (over the whole turn when ``closed``). None when the fit leaves the family
+    (a mechanism that cannot be assembled at a target)."""
     targets = np.asarray(targets, dtype=float)
     size = family.size
     free_inputs = timing is None
@@ -288,6 +292,9 @@ def least_squares_fit(family: Family, targets, params, inputs, *, timing=None,
         th = np.concatenate([first, first + ahead], axis=1)
         x, y = family.positions(p, th)
         r = np.stack([x - targets[:, 0], y - targets[:, 1]], axis=2).reshape(len(z), -1)
+        if not exact:
+            r = np.concatenate([r, _penalties(family, p, th, min_transmission, closed)],
+                               axis=1)
         return np.where(np.isfinite(r), r, 10.0), th
 
     def jacobian(z):            # central differences, every column in one call
@@ -300,15 +307,34 @@ def least_squares_fit(family: Family, targets, params, inputs, *, timing=None,
         z0 = np.concatenate([params, np.log(gaps)])
     else:
         z0 = np.asarray(params, dtype=float)
-    tol = 1e-15 if exact else 1e-10
+    tol = 1e-15 if exact else 1e-9
     found = least_squares(lambda z: residuals(z[None, :])[0][0], z0, jac=jacobian,
                           method="dogbox", x_scale="jac", xtol=tol, ftol=tol, gtol=tol,
-                          max_nfev=50 if exact else 20 * len(z0))
+                          max_nfev=50 if exact else 100)
     r, th = residuals(found.x[None, :])
+    r = r[:, :2 * len(targets)]
     if np.any(np.abs(r) >= 10.0):
         return None
     dist = np.hypot(r[0, 0::2], r[0, 1::2])
     return Fit(found.x[:size], th[0], float(np.max(dist)))
+
+
+def _penalties(family, params, inputs, min_transmission, closed, samples: int = 24):
+    """Residuals (R, samples + 1) that are 0 within bounds: the link ratio's excess over
+    0.95 :data:`MAX_RATIO` (the fit then stays inside the hard bound), and the transmission angle's excess (over 90 degrees) beyond
+    ``[min, 180 - min]`` at samples from the first target's input to the last's (a
+    whole turn when ``closed``)."""
+    ratio = np.maximum(family.link_ratio(params) / (0.95 * MAX_RATIO) - 1.0, 0.0)[:, None]
+    if min_transmission is None:
+        return ratio
+    end = inputs[:, :1] + 2 * math.pi * np.sign(inputs[:, -1:] - inputs[:, :1]) \
+        if closed else inputs[:, -1:]
+    theta = inputs[:, :1] + (end - inputs[:, :1]) * np.linspace(0.0, 1.0, samples)
+    with np.errstate(all="ignore"):
+        mu = family.transmission(params, theta)
+    excess = np.maximum(np.maximum(min_transmission - mu, mu - 180.0 + min_transmission),
+                        0.0) / 90.0
+    return np.concatenate([ratio, np.where(np.isfinite(excess), excess, 1.0)], axis=1)
 
 
 def fit_start(family: Family, params, targets, *, steps: int, timing=None):

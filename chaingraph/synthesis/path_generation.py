@@ -52,9 +52,9 @@ __all__ = ["path", "EXACT", "synthesise_path"]
 
 #: a fit passes its points exactly when every distance is within this of the task's size
 EXACT = 1e-9
-_SAMPLES = {True: 2500, False: 5000}     # random mechanisms in the coarse search
+_SAMPLES = {True: 2500, False: 4000}     # random mechanisms in the coarse search
 _STARTS = {True: 40, False: 60}          # least-squares starts (exact; and DE's population)
-_STEPS = {True: 96, False: 144}          # samples of a path over a turn
+_STEPS = {True: 96, False: 96}           # samples of a path over a turn
 _FITTED = 8                              # fitted starts certified from, without exactness
 _CERTIFIED = 3                           # candidates certified per solution asked for
 _TIMING = 1e-6                           # degrees: a target's input against its timing
@@ -135,7 +135,9 @@ def synthesise_path(task: PathTask, family: Family, *, solutions: int) -> Synthe
     for p, th in zip(posed, inputs):
         if not np.all(np.isfinite(p)):
             continue
-        fit = least_squares_fit(family, targets, p, th, timing=turns, exact=exact)
+        fit = least_squares_fit(family, targets, p, th, timing=turns, exact=exact,
+                                min_transmission=task.min_transmission,
+                                closed=task.closed)
         if fit is not None and (not exact or fit.residual <= EXACT / 10):
             fits.append(fit)
     rejected: Counter = Counter()
