@@ -175,18 +175,18 @@ class FourBar(Family):
         in either assembly, at a random crank angle, the coupler point anywhere within
         about the coupler's length of it, turned and scaled so that the point's path is
         about unit size about the origin."""
-        frame = np.ones(count)
-        crank = rng.uniform(0.08, 0.6, count)
-        coupler = rng.uniform(0.3, 2.5, count)
-        rocker = rng.uniform(0.3, 2.5, count)
+        drawn = 4 * count + 16
+        frame = np.ones(drawn)
+        coupler = rng.uniform(0.3, 2.5, drawn)
+        rocker = rng.uniform(0.3, 2.5, drawn)
+        crank = rng.uniform(0.08, 0.8, drawn) * np.minimum(np.minimum(coupler, rocker), 1.0)
         longest = np.maximum(np.maximum(frame, coupler), rocker)
-        others = frame + coupler + rocker - longest
-        # Grashof with the crank shortest: s + l <= p + q; pull the longest in if not
-        short = crank + longest > others
-        scale = np.where(short, (others - crank) / longest * rng.uniform(0.8, 0.98, count),
-                         1.0)
-        coupler, rocker, frame = (np.where(longest == v, v * scale, v)
-                                  for v in (coupler, rocker, frame))
+        # Grashof, the crank shortest (s + l < p + q): its input turns fully
+        ok = (crank + 2 * longest < frame + coupler + rocker - 1e-3) & (longest <= 15 * crank)
+        keep = np.nonzero(ok)[0][:count]
+        while keep.size < count:        # (about a third pass; never in practice)
+            keep = np.concatenate([keep, keep[:count - keep.size]])
+        crank, coupler, rocker, frame = (v[keep] for v in (crank, coupler, rocker, frame))
         theta = rng.uniform(0.0, 2 * math.pi, count)
         mode = rng.choice([-1.0, 1.0], count)
         a = np.zeros((2, count))

@@ -34,7 +34,7 @@ from chaingraph.synthesis.family import Family
 
 __all__ = ["TaskFrame", "MAX_RATIO", "curve", "ordered_distance", "objective",
            "coarse_search", "global_search", "fit_start", "least_squares_fit", "Fit",
-           "predicted_defect"]
+           "predicted_defect", "BETWEEN"]
 
 #: the longest link over the shortest, at most
 MAX_RATIO = 20.0
@@ -293,8 +293,8 @@ def least_squares_fit(family: Family, targets, params, inputs, *, timing=None,
         x, y = family.positions(p, th)
         r = np.stack([x - targets[:, 0], y - targets[:, 1]], axis=2).reshape(len(z), -1)
         if not exact:
-            r = np.concatenate([r, _penalties(family, p, th, min_transmission, closed)],
-                               axis=1)
+            r = np.concatenate([r, _penalties(family, p, th, min_transmission, closed),
+                                _between(family, p, th, targets, closed)], axis=1)
         return np.where(np.isfinite(r), r, 10.0), th
 
     def jacobian(z):            # central differences, every column in one call
@@ -317,6 +317,33 @@ def least_squares_fit(family: Family, targets, params, inputs, *, timing=None,
         return None
     dist = np.hypot(r[0, 0::2], r[0, 1::2])
     return Fit(found.x[:size], th[0], float(np.max(dist)))
+
+
+#: the weight of the path's distance from the chords between targets, in a fit
+BETWEEN = 0.1
+
+
+def _between(family, params, inputs, targets, closed, samples: int = 3):
+    """Residuals (R, gaps * samples): the path's distance, at inputs between each
+    target's and the next's, from the chord joining the two targets, times
+    :data:`BETWEEN` (so that a fit does not loop away between its targets)."""
+    first, last = inputs, np.roll(inputs, -1, axis=1)
+    a, b = targets, np.roll(targets, -1, axis=0)
+    if closed:
+        turn = 2 * math.pi * np.sign(inputs[:, -1] - inputs[:, 0])
+        last = last.copy()
+        last[:, -1] = inputs[:, 0] + turn
+    else:
+        first, last, a, b = first[:, :-1], last[:, :-1], a[:-1], b[:-1]
+    u = np.linspace(0.0, 1.0, samples + 2)[1:-1]
+    theta = first[:, :, None] + (last - first)[:, :, None] * u
+    x, y = family.positions(params, theta.reshape(len(params), -1))
+    x, y = x.reshape(theta.shape), y.reshape(theta.shape)
+    vx, vy = (b - a)[:, 0][None, :, None], (b - a)[:, 1][None, :, None]
+    ax, ay = a[:, 0][None, :, None], a[:, 1][None, :, None]
+    t = np.clip(((x - ax) * vx + (y - ay) * vy) / (vx * vx + vy * vy), 0.0, 1.0)
+    d = np.hypot(ax + t * vx - x, ay + t * vy - y)
+    return BETWEEN * d.reshape(len(params), -1)
 
 
 def _penalties(family, params, inputs, min_transmission, closed, samples: int = 24):
