@@ -75,6 +75,7 @@ from chaingraph.structure.atlas.sliding import (
 from chaingraph.structure.classify import classify
 from chaingraph import synthesis
 from chaingraph.synthesis.design import KINDS
+from chaingraph.synthesis.path_generation import EXACT
 from chaingraph._util.text import freedom
 
 __all__ = ['cmd_classify', 'cmd_inversions', 'cmd_identify', 'cmd_solve', 'cmd_centres', 'cmd_polygons', 'cmd_assemble', 'cmd_measure', 'cmd_report', 'cmd_atlas', 'cmd_design', 'cmd_design_function',
@@ -576,7 +577,12 @@ def _synthesis_output(args, found) -> int:
               f"{t['x'][1]:g}, {t['mechanism']}, {t['points']} {t['spacing']} points")
     else:
         print(synthesis_heading(found.task))
-    rows = [[s.rank, figure(s.error.max), figure(s.error.rms),
+    exact = getattr(found.task, "exact", False)
+    bound = EXACT * found.task.size if exact else 0.0
+
+    def error(value):             # an exact path's error is rounding: not printed
+        return "exact" if exact and value <= bound else figure(value)
+    rows = [[s.rank, error(s.error.max), error(s.error.rms),
              "-" if s.transmission_angle is None else
              f"{s.transmission_angle[0]:.1f}..{s.transmission_angle[1]:.1f}", s.input,
              ", ".join(f"{k.replace('_', ' ')} {figure(v)}" for k, v in s.dimensions.items())]

@@ -135,7 +135,7 @@ def ordered_distance(x, y, targets, *, assign: bool = False, timed=None):
         at = np.floor(step).astype(int) % k
         total = np.take_along_axis(d2, at[:, :, None], 2)[..., 0].mean(axis=1)
         return (total, step, np.ones(m)) if assign else total
-    best_cost, best_steps, best_way = None, None, None
+    best_cost, best_steps, best_way = np.full(m, np.inf), np.zeros((m, n)), np.ones(m)
     for way in (1, -1):
         order = (first[:, None] + way * np.arange(k)[None, :]) % k      # (M, K)
         dd = np.take_along_axis(d2, np.broadcast_to(order[:, None, :], (m, n, k)), 2)
@@ -158,16 +158,11 @@ def ordered_distance(x, y, targets, *, assign: bool = False, timed=None):
                 steps[:, i] = seg + along
                 if i > 0:
                     at = args[i - 1][np.arange(m), at]
-        better = total if best_cost is None else np.minimum(best_cost, total)
-        if best_cost is None:
-            best_cost, best_way = total, np.full(m, way)
-            best_steps = steps if assign else None
-        else:
-            take = total < best_cost
-            best_way = np.where(take, way, best_way)
-            if assign:
-                best_steps = np.where(take[:, None], steps, best_steps)
-            best_cost = better
+        take = total < best_cost
+        best_way = np.where(take, way, best_way)
+        if assign:
+            best_steps = np.where(take[:, None], steps, best_steps)
+        best_cost = np.where(take, total, best_cost)
     return (best_cost, best_steps, best_way) if assign else best_cost
 
 

@@ -30,6 +30,7 @@ recomputed: the largest and rms distance from the targets to the solved path).
 from __future__ import annotations
 
 from collections import Counter
+from typing import Any
 
 import numpy as np
 
@@ -124,7 +125,8 @@ def synthesise_path(task: PathTask, family: Family, *, solutions: int) -> Synthe
     steps = _STEPS[exact]
     turns = (None if task.timing is None
              else np.radians(np.asarray(task.timing) - task.timing[0]))
-    common = dict(steps=steps, min_transmission=task.min_transmission, timing=turns)
+    common: dict[str, Any] = dict(steps=steps, min_transmission=task.min_transmission,
+                                  timing=turns)
     starts, _ = coarse_search(family, targets, rng, count=_SAMPLES[exact],
                               keep=_STARTS[exact], **common)
     if not exact:
