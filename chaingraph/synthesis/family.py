@@ -200,7 +200,7 @@ class FourBar(Family):
         across = rng.uniform(-1.0, 1.0, count) * coupler
         pt = b + along * e + across * np.stack([-e[1], e[0]])
         params = np.concatenate([a, b, c, d, pt]).T
-        return _normalised(self, params)
+        return _centred_unit(self, params)
 
     def dimensions(self, params):
         a, d, crank, coupler, rocker, _, along, across = self._unpack(np.atleast_2d(params))
@@ -216,7 +216,7 @@ FOUR_BAR = FourBar()
 _CURVE = 64       # samples of the tracing point's path when sampling a family
 
 
-def _normalised(family: Family, params: np.ndarray) -> np.ndarray:
+def _centred_unit(family: Family, params: np.ndarray) -> np.ndarray:
     """Mechanisms moved and scaled so that their tracing point's path (over a turn of
     the input) is centred on the origin, its largest extent 1."""
     theta = family.first_input(params)[:, None] + np.linspace(0, 2 * math.pi, _CURVE,
