@@ -39,7 +39,7 @@ from chaingraph.drawing import (
     plot_variation,
 )
 from chaingraph.dynamics import forces
-from chaingraph.errors import ChainGraphError, OutputError
+from chaingraph.errors import ChainGraphError, DesignError, OutputError
 from chaingraph.files import dumps, load, read_file, save
 from chaingraph.graphical import instant_centres, velocity_polygon
 from chaingraph.kinematics import measure, solve, summary_rows
@@ -69,10 +69,14 @@ from chaingraph.structure.atlas import (
     write_atlas,
     write_sliding,
 )
+from chaingraph import synthesis
+from chaingraph.drawing.synthesis import draw_synthesis
 from chaingraph.synthesis import KINDS
+from chaingraph.synthesis.path_generation import EXACT
 from chaingraph.variation import length_values, vary
 
-__all__ = ['cmd_classify', 'cmd_inversions', 'cmd_identify', 'cmd_solve', 'cmd_centres', 'cmd_polygons', 'cmd_assemble', 'cmd_measure', 'cmd_report', 'cmd_atlas', 'cmd_design']
+__all__ = ['cmd_classify', 'cmd_inversions', 'cmd_identify', 'cmd_solve', 'cmd_centres', 'cmd_polygons', 'cmd_assemble', 'cmd_measure', 'cmd_report', 'cmd_atlas', 'cmd_design', 'cmd_design_function',
+           'cmd_design_path']
 
 
 def cmd_classify(args) -> int:
@@ -480,6 +484,122 @@ def cmd_design(args) -> int:
     if args.out:
         print(f"mechanism written to {args.out} (chaingraph solve {args.out} reproduces it)")
     return 0
+
+
+def cmd_design_function(args) -> int:
+    """``chaingraph design function``: certified function generators, best first."""
+    if args.out:
+        output_folder(args.out, what="solutions")
+    if args.draw:
+        svg_file(args.draw, what="solution and its error")
+    found = synthesis.function(
+        function=args.function, x=args.x, swing=args.swing, start=args.start,
+        points=args.points, spacing=args.spacing, kind=args.mechanism,
+        solutions=args.solutions, units=args.units, min_transmission=args.min_transmission)
+    return _synthesis_output(args, found)
+
+
+def cmd_design_path(args) -> int:
+    """``chaingraph design path``: certified path generators, best first."""
+    if args.links != 4:
+        raise DesignError(f"links must be 4 (the four-bar; type synthesis over 6 and 8 links "
+                          f"is not built yet), got {args.links}", kind="path",
+                          parameter="links")
+    if args.out:
+        output_folder(args.out, what="solutions")
+    if args.draw:
+        svg_file(args.draw, what="solution and its path")
+    points = args.points if args.points is not None else points_file(args.points_file)
+    found = synthesis.path(points=points, timing=args.timing, closed=args.closed,
+                           solutions=args.solutions, seed=args.seed, units=args.units,
+                           min_transmission=args.min_transmission)
+    return _synthesis_output(args, found)
+
+
+def points_file(path) -> list[tuple[float, float]]:
+    """The targets of a CSV file: one ``x,y`` per line, a first line of names allowed,
+    blank lines skipped; a bad line is a DesignError naming it."""
+    try:
+        text = Path(path).read_text(encoding="utf-8")
+    except (OSError, UnicodeDecodeError) as e:
+        raise DesignError(f"cannot read {path}: {getattr(e, 'strerror', None) or e}",
+                          kind="path", parameter="points_file") from None
+    out = []
+    for n, line in enumerate(text.splitlines(), 1):
+        fields = [f.strip() for f in line.split(",")]
+        if not line.strip():
+            continue
+        try:
+            if len(fields) != 2:
+                raise ValueError
+            out.append((float(fields[0]), float(fields[1])))
+        except ValueError:
+            if n == 1 and len(fields) == 2 and not out:
+                continue             # a header: x,y
+            raise DesignError(f"{path}, line {n}: expected two numbers x,y, got "
+                              f"{line.strip()!r}", kind="path",
+                              parameter="points_file") from None
+    return out
+
+
+def _synthesis_output(args, found) -> int:
+    """A synthesis's files, drawing and text or JSON; exit 1 when nothing is certified."""
+    rejected = ", ".join(f"{k} {v}" for k, v in found.rejected.items()) or "none"
+    if not found.solutions:
+        print(f"chaingraph: error: design {found.task.kind}: no certified solution of "
+              f"{found.searched.candidates} candidates (rejected: {rejected})",
+              file=sys.stderr)
+        return 1
+    if args.out:
+        for s in found.solutions:
+            target = Path(args.out) / f"solution-{s.rank}.toml"
+            with Writing(target):
+                save(s.mechanism, target)
+    if args.draw:
+        best = found.solutions[0]
+        task = best.mechanism.task or {}
+        sweep = None
+        if "swing" in task and "start" in task:
+            sweep = (task["start"][0], task["start"][0] + task["swing"][0])
+        with Writing(args.draw):
+            draw_synthesis(best.mechanism, at=best.reached_at[0], sweep=sweep,
+                           curve=best.curve, targets=task.get("targets", ()),
+                           path=args.draw)
+    if args.json:
+        print_json(found.to_dict())
+        return 0
+    t = found.task.to_dict()
+    if t["kind"] == "function":
+        print(f"{t['kind']} generator: y = {t['function']} for {t['x'][0]:g} <= x <= "
+              f"{t['x'][1]:g}, {t['mechanism']}, {t['points']} {t['spacing']} points")
+    else:
+        print(synthesis_heading(found.task))
+    exact = getattr(found.task, "exact", False)
+    bound = EXACT * found.task.size if exact else 0.0
+
+    def error(value):             # an exact path's error is rounding: not printed
+        return "exact" if exact and value <= bound else figure(value)
+    rows = [[s.rank, error(s.error.max), error(s.error.rms),
+             "-" if s.transmission_angle is None else
+             f"{s.transmission_angle[0]:.1f}..{s.transmission_angle[1]:.1f}", s.input,
+             ", ".join(f"{k.replace('_', ' ')} {figure(v)}" for k, v in s.dimensions.items())]
+            for s in found.solutions]
+    print(table(rows, ["rank", "error max", "error rms", "transmission", "input",
+                       "dimensions"]))
+    print(f"rejected: {rejected}; searched {found.searched.candidates} candidates")
+    if args.out:
+        print(f"written: solution-1.toml .. solution-{len(found.solutions)}.toml in "
+              f"{args.out} (chaingraph solve reproduces each)")
+    return 0
+
+
+def synthesis_heading(task) -> str:
+    """The first line of a path synthesis's text."""
+    n = len(task.points)
+    how = (f"{n} points on a closed curve" if task.closed else f"{n} points")
+    fit = "passed exactly" if task.exact else "fitted"
+    timing = ", with timing" if task.timing is not None else ""
+    return f"path generator: {task.mechanism}, {how}{timing}, {fit} (seed {task.seed})"
 
 
 def _sliding(args, wanted) -> int:

@@ -13,6 +13,8 @@ from chaingraph.cli.commands import (
     cmd_centres,
     cmd_classify,
     cmd_design,
+    cmd_design_function,
+    cmd_design_path,
     cmd_forces,
     cmd_identify,
     cmd_inversions,
@@ -317,20 +319,125 @@ def _atlas_command(sub) -> None:
 
 
 def _design_command(sub) -> None:
-    """The arguments of ``chaingraph design``."""
-    p = sub.add_parser("design", help="dimensional synthesis of quick return drives",
-                       description="From a time ratio, crank and stroke to the centre "
-                                   "distance and lever (slotted-lever: the ram's line through "
-                                   "the lever end's extremes; whitworth: through the lever's "
-                                   "pivot).")
-    p.add_argument("kind", choices=["slotted-lever", "whitworth"])
-    p.add_argument("--time-ratio", type=float, required=True, metavar="R")
-    p.add_argument("--crank", type=float, required=True, metavar="C")
-    p.add_argument("--stroke", type=float, required=True, metavar="S")
-    p.add_argument("--json", action="store_true", help="print JSON")
-    p.add_argument("--out", type=path_argument, metavar="FILE",
-                   help="write the designed mechanism (TOML)")
-    p.set_defaults(run=cmd_design)
+    """The arguments of ``chaingraph design``: a parser per kind of design."""
+    p = sub.add_parser("design", help="dimensional synthesis: quick return drives, "
+                                      "function generators",
+                       description="Dimensional synthesis: quick return drives from a time "
+                                   "ratio, crank and stroke; function generators from a "
+                                   "function (every solution certified by the solver).")
+    kinds = p.add_subparsers(dest="kind", required=True, metavar="KIND",
+                             parser_class=_Parser)
+    for kind, where in (("slotted-lever", "the ram's line through the lever end's extremes"),
+                        ("whitworth", "the ram's line through the lever's pivot")):
+        q = kinds.add_parser(kind, help=f"a quick return drive ({where})",
+                             description="From a time ratio, crank and stroke to the centre "
+                                         f"distance and lever ({where}).")
+        q.add_argument("--time-ratio", type=float, required=True, metavar="R")
+        q.add_argument("--crank", type=float, required=True, metavar="C")
+        q.add_argument("--stroke", type=float, required=True, metavar="S")
+        q.add_argument("--json", action="store_true", help="print JSON")
+        q.add_argument("--out", type=path_argument, metavar="FILE",
+                       help="write the designed mechanism (TOML)")
+        q.set_defaults(run=cmd_design)
+    _design_function_command(kinds)
+    _design_path_command(kinds)
+
+
+def _design_function_command(kinds) -> None:
+    """The arguments of ``chaingraph design function``."""
+    q = kinds.add_parser(
+        "function", help="a function generator (four-bar or slider crank)",
+        description="A four-bar (input crank, output rocker) or slider crank (input crank, "
+                    "output slide) whose output follows y = EXPR(x): three precision points "
+                    "exactly (Freudenstein's equation), more fitted over the whole range; "
+                    "every solution certified by the solver from its written chain file.")
+    q.add_argument("--function", required=True, metavar="EXPR",
+                   help="y in x: + - * / **, sqrt exp log log10 sin cos tan (radians), pi")
+    q.add_argument("--x", required=True, type=pair_argument, metavar="A:B",
+                   help="the range of x")
+    q.add_argument("--swing", required=True, type=pair_argument, metavar="IN:OUT",
+                   help="the input's turn (degrees) and the output's (degrees, or a "
+                        "slide's travel in file units) over the range")
+    q.add_argument("--start", type=pair_argument, metavar="IN0:OUT0",
+                   help="the input's and output's values at x = A (default: searched)")
+    q.add_argument("--points", type=int, default=3, metavar="N",
+                   help="precision points (default 3, matched exactly; more are fitted)")
+    q.add_argument("--spacing", default="chebyshev", metavar="chebyshev|even",
+                   help="the precision points' spacing (default chebyshev)")
+    q.add_argument("--kind", dest="mechanism", default="four-bar",
+                   metavar="four-bar|slider-crank", help="the mechanism (default four-bar)")
+    _synthesis_arguments(q)
+    q.set_defaults(run=cmd_design_function)
+
+
+def _design_path_command(kinds) -> None:
+    """The arguments of ``chaingraph design path``."""
+    q = kinds.add_parser(
+        "path", help="a path generator (four-bar): a coupler point through points",
+        description="A four-bar whose coupler point passes through the points in order: up "
+                    "to five exactly (least squares from a coarse search), more or a closed "
+                    "curve fitted (differential evolution, then least squares); every "
+                    "solution certified by the solver from its written chain file.")
+    given = q.add_mutually_exclusive_group(required=True)
+    given.add_argument("--points", type=points_argument, metavar='"X,Y; X,Y; ..."',
+                       help="the targets, in order")
+    given.add_argument("--points-file", dest="points_file", type=path_argument,
+                       metavar="CSV", help="the targets, one x,y per line (a header line "
+                                           "allowed)")
+    q.add_argument("--timing", type=numbers_argument, metavar='"DEG; DEG; ..."',
+                   help="the input's value at each target (its turn between targets is "
+                        "kept; its value at the first is chosen)")
+    q.add_argument("--closed", action="store_true",
+                   help="the targets lie on a closed curve traced over a full turn")
+    q.add_argument("--links", type=int, default=4, metavar="4",
+                   help="the mechanism's links (4: the four-bar; type synthesis over 6 and "
+                        "8 is not built yet)")
+    q.add_argument("--seed", type=int, metavar="S",
+                   help="the random search's seed (the same seed, the same solutions)")
+    _synthesis_arguments(q)
+    q.set_defaults(run=cmd_design_path)
+
+
+def points_argument(text):
+    """Points written "X,Y; X,Y; ..." (the library checks that they are finite)."""
+    out = []
+    for k, part in enumerate(text.split(";"), 1):
+        fields = part.split(",")
+        try:
+            if len(fields) != 2:
+                raise ValueError
+            out.append((float(fields[0]), float(fields[1])))
+        except ValueError:
+            raise argparse.ArgumentTypeError(f"point {k} is not two numbers X,Y: "
+                                             f"{part.strip()!r}") from None
+    return out
+
+
+def numbers_argument(text):
+    """Numbers written "A; B; ..." (the library checks them)."""
+    out = []
+    for k, part in enumerate(text.split(";"), 1):
+        try:
+            out.append(float(part))
+        except ValueError:
+            raise argparse.ArgumentTypeError(f"value {k} is not a number: "
+                                             f"{part.strip()!r}") from None
+    return out
+
+
+def _synthesis_arguments(q) -> None:
+    """The options every synthesis takes."""
+    q.add_argument("--solutions", type=int, default=5, metavar="K",
+                   help="list at most K certified solutions (default 5)")
+    q.add_argument("--units", default="mm", metavar="U", help="length unit (default mm)")
+    q.add_argument("--min-transmission", dest="min_transmission", type=float, default=30.0,
+                   metavar="DEG", help="the transmission angle stays within [DEG, 180 - DEG] "
+                                       "between the first target and the last (default 30)")
+    q.add_argument("--json", action="store_true", help="print JSON")
+    q.add_argument("--out", type=path_argument, metavar="DIR",
+                   help="write solution-K.toml for each solution")
+    q.add_argument("--draw", type=path_argument, metavar="PATH.svg",
+                   help="draw the best solution and its error (SVG)")
 
 
 def _version() -> str:
@@ -367,6 +474,17 @@ def positive_number(text: str) -> float:
     if not (value > 0 and value < float("inf")):
         raise argparse.ArgumentTypeError(f"must be a number above 0, got {text}")
     return value
+
+
+def pair_argument(text: str) -> tuple[float, float]:
+    """Two numbers written A:B (the library checks that they are finite)."""
+    parts = text.split(":")
+    try:
+        if len(parts) != 2:
+            raise ValueError
+        return float(parts[0]), float(parts[1])
+    except ValueError:
+        raise argparse.ArgumentTypeError(f"two numbers A:B, got {text!r}") from None
 
 
 def whole_number(text: str) -> int:

@@ -70,8 +70,25 @@ def exit_status(error: BaseException) -> int:
     be assembled), 2 for bad input."""
     return 1 if isinstance(error, AssemblyError) else 2
 
+# a synthesis's parameters (``design function | path | motion``)
+SYNTHESIS_FLAGS = {"function": "--function EXPR", "x": "--x A:B", "swing": "--swing IN:OUT",
+                   "start": "--start IN0:OUT0", "points": "--points N",
+                   "spacing": "--spacing chebyshev|even",
+                   "kind": "--kind four-bar|slider-crank", "solutions": "--solutions K",
+                   "min_transmission": "--min-transmission DEG", "units": "--units U"}
+SYNTHESES = ("function", "path", "motion")
+# where a path task's parameter has its own flag
+PATH_FLAGS = {"points": '--points "X,Y; ..."', "points_file": "--points-file CSV",
+              "timing": '--timing "DEG; ..."', "seed": "--seed S", "links": "--links 4",
+              "kind": None}
+
+
 def error_text(error: BaseException) -> str:
     """The error's message, with the flag of the parameter at fault."""
+    kind = getattr(error, "kind", None)
+    flags = SYNTHESIS_FLAGS if kind in SYNTHESES else FLAGS
+    if kind == "path":
+        flags = {**flags, **PATH_FLAGS}
     parameter = getattr(error, "parameter", None)
-    flag = FLAGS.get(parameter) if parameter is not None else None
+    flag = flags.get(parameter) if parameter is not None else None
     return f"{error}" if flag is None else f"{error}; on the command line: {flag}"

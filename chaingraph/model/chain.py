@@ -199,6 +199,9 @@ class Chain:
     masses: tuple[LinkMass, ...] = ()           # [[links]]: the links that have mass
     gravity: tuple[float, float] | None = None  # [forces] gravity, m/s^2
     loads: tuple[Load, ...] = ()                # [[loads]]
+    # [task]: what a synthesised mechanism was designed to do (kept, written back, shown
+    # by the drawings and the report; the solver ignores it)
+    task: dict | None = field(default=None, compare=False)
 
     def __post_init__(self):
         object.__setattr__(self, "joints", tuple(self.joints))

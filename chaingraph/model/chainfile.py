@@ -29,7 +29,7 @@ __all__ = ["Document", "parse_file", "parse_text", "parse_document", "dumps", "s
            "toml_text", "chain_document"]
 
 TOP_KEYS = ("name", "family", "units", "space", "notes", "naming", "joints", "points",
-            "mechanism", "lengths", "assembly", "links", "forces", "loads")
+            "mechanism", "lengths", "assembly", "links", "forces", "loads", "task")
 JOINT_KEYS = ("id", "kind", "links", "at", "axis", "closure", "friction")
 LINK_KEYS = ("name", "mass", "centre", "inertia")
 FORCES_KEYS = ("gravity",)
@@ -134,7 +134,8 @@ def parse_document(doc: dict[str, Any], *, source: str = "<document>") -> Docume
     if "mechanism" in doc:
         mechanism = _mechanism(doc["mechanism"], fail, dimensioned="lengths" in doc)
     meta = dict(name=name, family=family, units=units, space=space, notes=notes,
-                source=source, naming=naming, **_masses_and_loads(doc, fail))
+                source=source, naming=naming, task=_task(doc, fail),
+                **_masses_and_loads(doc, fail))
     if mechanism is not None and not dimensioned:
         kinds = {j.id: j.kind for j in joints}
         for i, item in enumerate(mechanism.inputs):
@@ -180,6 +181,21 @@ def _dimensioned(doc: dict[str, Any], joints: tuple[Joint, ...], points: tuple[P
                 dims.near[t["id"]] = _coordinates(t["near"], f"{kind} {t['id']!r} key 'near'",
                                                   fail)
     return Document(structure, dims, joints, points)
+
+
+def _task(doc: dict[str, Any], fail: Fail) -> dict[str, Any] | None:
+    """The ``[task]`` table, kept as read: what a synthesised mechanism was designed to
+    do (``kind`` and its targets, see :mod:`chaingraph.synthesis`); nothing solves it."""
+    if "task" not in doc:
+        return None
+    task = doc["task"]
+    if not isinstance(task, dict):
+        fail(f"[task] must be a table, not {type_name(task)}", "[task]")
+    kind = task.get("kind")
+    if not isinstance(kind, str) or not kind:
+        fail("[task] needs 'kind', the kind of task (\"function\", \"path\" or "
+             "\"motion\")", "[task]")
+    return task
 
 
 def _no_unknown_keys(table: dict[str, Any], allowed: Sequence[str], where: str | None,
@@ -483,6 +499,8 @@ def chain_document(chain: Chain) -> dict[str, Any]:
         doc["loads"] = [{"on": x.on, **({"at": x.at} if x.at is not None else {}),
                          **({"force": list(x.force)} if x.force is not None else {}),
                          **({"torque": x.torque} if x.torque else {})} for x in chain.loads]
+    if chain.task is not None:
+        doc["task"] = chain.task
     return doc
 
 

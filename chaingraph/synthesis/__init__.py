@@ -1,6 +1,32 @@
-"""Dimensional synthesis: quick-return drives from a time ratio and a stroke
-(:mod:`.design`: the crank and slotted lever, Whitworth's drive)."""
+"""Dimensional synthesis: from a task to certified mechanisms.
 
+* :func:`function` function generation (four-bar, slider crank), :mod:`.function_generation`;
+* :func:`path` path generation (four-bar), :mod:`.path_generation`, by the optimiser of
+  :mod:`.optimiser` over a mechanism family of :mod:`.family`;
+* :mod:`.certification` every candidate written as a chain file, read back, solved by
+  chaingraph's own solver and checked (circuit, branch and order defects, the
+  transmission angle, the error recomputed);
+* :mod:`.result` the :class:`Synthesis` and its :class:`Solution` list, ``to_dict()`` the
+  JSON; :mod:`.task` the tasks; :mod:`.expression` a function of x, read safely;
+* :mod:`.design` the quick return drives (``slotted_lever``, ``whitworth``).
+"""
+
+from chaingraph.synthesis.certification import (
+    REASONS,
+    Certified,
+    FunctionTargets,
+    PointTargets,
+    PoseTargets,
+    Rejected,
+    certify,
+)
 from chaingraph.synthesis.design import KINDS, Design, slotted_lever, whitworth
+from chaingraph.synthesis.function_generation import function
+from chaingraph.synthesis.path_generation import path
+from chaingraph.synthesis.result import Curve, Error, Searched, Solution, Synthesis
+from chaingraph.synthesis.task import FunctionTask, PathTask, function_task, path_task
 
-__all__ = ["Design", "slotted_lever", "whitworth", "KINDS"]
+__all__ = ["function", "path", "Synthesis", "Solution", "Error", "Curve", "Searched", "certify",
+           "Certified", "Rejected", "FunctionTargets", "PointTargets", "PoseTargets",
+           "REASONS", "FunctionTask", "function_task", "PathTask", "path_task", "Design", "slotted_lever",
+           "whitworth", "KINDS"]

@@ -1,0 +1,82 @@
+"""A synthesised mechanism's picture: the mechanism at its first target, drawn by the
+shared scene (:mod:`chaingraph.drawing.scene`) with its paths over the task's sweep,
+the targets marked, and beside it the plot of its error (a function generator's
+structural error over the range, the precision points marked). matplotlib, so the one
+picture is written as SVG or PNG, or returned as a figure for a notebook.
+"""
+
+from __future__ import annotations
+
+import numpy as np
+
+from chaingraph.drawing.plots import finish, plain_text, pyplot_module
+from chaingraph.drawing.scene import Scene, draw_shapes, frame_shapes, path_shapes
+from chaingraph.kinematics import solve
+from chaingraph.model.chain import Chain
+
+__all__ = ["draw_synthesis"]
+
+
+@plain_text
+def draw_synthesis(mechanism: Chain, *, at: float, sweep: tuple[float, float] | None = None,
+                   curve=None, targets=(), title: str | None = None, path=None):
+    """Draw a synthesised mechanism and its error.
+
+    Parameters
+    ----------
+    mechanism : Chain
+        The solution's mechanism, drawn at its first target.
+    at : float
+        The input's value at the first target (the pose drawn).
+    sweep : (float, float), optional
+        The input's values over which the paths are drawn (default: its whole cycle).
+    curve : optional
+        What to plot beside it: an object with ``x``, ``y`` (arrays), ``x_label``,
+        ``y_label`` and ``marks`` (x values marked, the precision points), such as a
+        :class:`chaingraph.synthesis.Curve`; None for the mechanism alone.
+    targets : sequence of (x, y)
+        Points marked on the mechanism's picture (a path's targets).
+    title : str, optional
+    path : str or os.PathLike, optional
+        Write SVG (or PNG, by the ending); without it, return the matplotlib Figure.
+    """
+    plt = pyplot_module()
+    if sweep is None:
+        motion = solve(mechanism, steps=360, summary=False)
+    else:
+        motion = solve(mechanism, start=sweep[0], stop=sweep[1], steps=240, summary=False)
+    pose = solve(mechanism, start=at, stop=at, steps=1, summary=False)
+    scene = Scene.of_motion(motion, also=pose)
+    columns = 2 if curve is not None else 1
+    fig, axes = plt.subplots(1, columns, figsize=(6.0 * columns, 5.0),
+                             gridspec_kw={"width_ratios": [1.0, 1.0][:columns]})
+    axes = np.atleast_1d(axes)
+    ax = axes[0]
+    ax.set_axis_off()
+    ax.set_title(title or mechanism.name, fontsize=10)
+    fig.tight_layout()
+    draw_shapes(ax, scene, path_shapes(scene, steps=motion.theta.size)
+                + frame_shapes(scene, motion.theta.size))
+    if len(targets):
+        xs, ys = zip(*targets)
+        ax.plot(xs, ys, "x", color="#b2182b", markersize=8, zorder=5, label="targets")
+    if curve is not None:
+        _error_plot(axes[1], curve)
+        fig.tight_layout()
+    return finish(plt, fig, path)
+
+
+def _error_plot(ax, curve):
+    ax.plot(curve.x, curve.y, color="#2166ac", linewidth=1.5)
+    ax.axhline(0.0, color="#888888", linewidth=0.8)
+    marks = np.asarray(curve.marks, dtype=float)
+    if marks.size:
+        ax.plot(marks, np.interp(marks, curve.x, curve.y) if curve.x[0] < curve.x[-1]
+                else np.interp(marks, curve.x[::-1], curve.y[::-1]), "o", color="#b2182b",
+                label="precision points")
+        ax.legend(loc="best", fontsize=8)
+    ax.set_xlabel(curve.x_label)
+    ax.set_ylabel(curve.y_label)
+    ax.grid(True, color="#dddddd", linewidth=0.6)
+    worst = float(np.max(np.abs(curve.y))) if len(curve.y) else 0.0
+    ax.set_title(f"structural error: largest {worst:.4g}", fontsize=10)

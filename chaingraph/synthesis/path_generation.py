@@ -1,0 +1,227 @@
+"""Path generation: a four-bar whose coupler point passes through given points, in order.
+
+The unknowns are the mechanism's drawn pose at the first target (its pivots, its moving
+joints and the coupler point: so its lengths, the coupler point's place and the input
+there) and the input's value at every other target; each target gives two equations,
+``position(theta_i) = target_i`` (:mod:`chaingraph.synthesis.optimiser`, in the task's
+own frame).
+
+* Up to five points (not ``closed``) are passed **exactly**: fewer equations than
+  unknowns (ten for five points, fourteen unknowns), so each start converges to a
+  nearby solution. Starts come from a coarse search (random crank-rockers, turned and
+  scaled onto the task, the best by their in-order distance to the targets), each
+  solved by least squares (scipy's ``least_squares``, a finite-difference Jacobian) to
+  rounding. With a ``timing`` the inputs are not unknowns: the input turns by the
+  timing's steps from the first target to each other (its value at the first target is
+  chosen, as in the textbooks' standard form), so five points with timing are ten
+  equations in ten unknowns, solved directly the same way (not reduced to motion
+  generation).
+* More points, or a ``closed`` curve (the input turns fully and the path closes over its
+  turn), are **fitted**: differential evolution (scipy, seeded from the coarse search,
+  repeatable from ``seed``) on the in-order distance from each target to the traced
+  path, then least squares from its best and from the coarse search's.
+
+Every candidate is then written as a chain file and certified by
+:func:`~chaingraph.synthesis.certification.certify` (assembled at every target, one circuit,
+the targets in order as the input moves one way, the transmission angle, the error
+recomputed: the largest and rms distance from the targets to the solved path).
+"""
+
+from __future__ import annotations
+
+from collections import Counter
+from typing import Any
+
+import numpy as np
+
+from chaingraph.naming import identify
+from chaingraph.synthesis.certification import Certified, PointTargets, Rejected, certify
+from chaingraph.synthesis.family import FOUR_BAR, Family
+from chaingraph.synthesis.optimiser import (
+    MAX_RATIO,
+    TaskFrame,
+    coarse_search,
+    fit_start,
+    global_search,
+    least_squares_fit,
+    predicted_defect,
+)
+from chaingraph.synthesis.result import Error, Searched, Solution, Synthesis, ranked
+from chaingraph.synthesis.task import PathTask, check_options, path_task
+
+__all__ = ["path", "EXACT", "synthesise_path"]
+
+#: a fit passes its points exactly when every distance is within this of the task's size
+EXACT = 1e-9
+_SAMPLES = {True: 2500, False: 4000}     # random mechanisms in the coarse search
+_STARTS = {True: 40, False: 60}          # least-squares starts (exact; and DE's population)
+_STEPS = {True: 96, False: 96}           # samples of a path over a turn
+_FITTED = 8                              # fitted starts certified from, without exactness
+_CERTIFIED = 3                           # candidates certified per solution asked for
+_TIMING = 1e-6                           # degrees: a target's input against its timing
+
+
+def path(*, points, timing=None, closed: bool = False, kind: str = "four-bar",
+         solutions: int = 5, seed: int | None = None, units: str = "mm",
+         min_transmission: float = 30.0) -> Synthesis:
+    """Synthesise a path generator: a four-bar whose coupler point passes through
+    ``points`` in order.
+
+    Parameters
+    ----------
+    points : sequence of (x, y)
+        The targets, in order (two or more; three or more for a closed curve).
+    timing : sequence of float, optional
+        The input's value (degrees) at each target; the input's turn between targets is
+        kept, its value at the first target is chosen (so ``reached_at`` may differ from
+        the timing by one constant).
+    closed : bool
+        The targets lie on a closed curve traced over a full turn of the input.
+    kind : {"four-bar"}
+    solutions : int
+        At most this many certified solutions, best first.
+    seed : int, optional
+        The random search's seed (the same seed, the same solutions); by default one is
+        drawn and given in the task (``task.seed``).
+    units : str
+    min_transmission : float
+        The transmission angle stays within [min, 180 - min] degrees between the first
+        target and the last.
+
+    Returns
+    -------
+    Synthesis
+        Up to five points (not closed) passed exactly (to :data:`EXACT` of the task's
+        size); more, or a closed curve, fitted; certified solutions best first.
+
+    Raises
+    ------
+    DesignError
+        For a bad task (``parameter`` names it).
+
+    Examples
+    --------
+    >>> s = path(points=[(0, 0), (10, 4), (18, 12), (20, 22), (14, 30)], seed=1,
+    ...          solutions=1)
+    >>> s.solutions[0].error.max < 1e-9 * 36
+    True
+    """
+    if seed is None:
+        seed = int(np.random.default_rng().integers(0, 2 ** 31))
+    task = path_task(points=points, timing=timing, closed=closed, kind=kind, seed=seed,
+                     units=units, min_transmission=min_transmission)
+    check_options(solutions=solutions, min_transmission=min_transmission, units=units,
+                  kind="path")
+    return synthesise_path(task, FOUR_BAR, solutions=solutions)
+
+
+def synthesise_path(task: PathTask, family: Family, *, solutions: int) -> Synthesis:
+    """Path synthesis of a checked task over one mechanism family (the optimiser is the
+    family's: see :mod:`chaingraph.synthesis.family`)."""
+    frame = TaskFrame.of(task.points)
+    targets = frame.to_task(task.points)
+    rng = np.random.default_rng(task.seed)
+    exact = task.exact
+    steps = _STEPS[exact]
+    turns = (None if task.timing is None
+             else np.radians(np.asarray(task.timing) - task.timing[0]))
+    common: dict[str, Any] = dict(steps=steps, min_transmission=task.min_transmission,
+                                  timing=turns)
+    starts, _ = coarse_search(family, targets, rng, count=_SAMPLES[exact],
+                              keep=_STARTS[exact], **common)
+    if not exact:
+        best, _ = global_search(family, targets, starts, rng, **common)
+        starts = np.concatenate([best[None, :], starts[:_FITTED - 1]])
+    posed, inputs = fit_start(family, starts, targets, steps=steps, timing=turns)
+    fits = []
+    for p, th in zip(posed, inputs):
+        if not np.all(np.isfinite(p)):
+            continue
+        fit = least_squares_fit(family, targets, p, th, timing=turns, exact=exact,
+                                min_transmission=task.min_transmission,
+                                closed=task.closed)
+        if fit is not None and (not exact or fit.residual <= EXACT / 10):
+            fits.append(fit)
+    rejected: Counter = Counter()
+    kept = []
+    for f in _distinct(fits):
+        defect = predicted_defect(family, f)
+        if defect is None:
+            kept.append(f)
+        else:
+            rejected[defect] += 1
+    fits = kept
+    if exact:
+        fits.sort(key=lambda f: -_least_transmission(family, f))
+    else:
+        fits.sort(key=lambda f: f.residual)
+    found: list[Solution] = []
+    for fit in fits[:_CERTIFIED * solutions]:
+        if len(found) >= solutions:
+            break
+        outcome = _certified(task, family, frame, fit)
+        if isinstance(outcome, Rejected):
+            rejected[outcome.reason] += 1
+        else:
+            found.append(outcome)
+    size = task.size
+    return Synthesis(task, ranked(found, solutions,
+                                  tolerance=EXACT * size if exact else 0.0),
+                     dict(sorted(rejected.items())), Searched(1, 1, _SAMPLES[exact]))
+
+
+def _distinct(fits):
+    """The fits, repeats dropped (parameters within 1e-6 of the task's size)."""
+    out = []
+    for f in fits:
+        if not any(np.max(np.abs(f.params - g.params)) <= 1e-6 for g in out):
+            out.append(f)
+    return out
+
+
+def _least_transmission(family, fit) -> float:
+    """The transmission angle's worst (the least of mu and 180 - mu) between the first
+    target and the last, by the family's own kinematics; -1 where unassembled."""
+    lo, hi = fit.inputs[0], fit.inputs[-1]
+    theta = np.linspace(lo, hi, 181)[None, :]
+    mu = family.transmission(fit.params[None, :], theta)
+    worst = np.minimum(mu, 180.0 - mu)
+    return float(np.nanmin(worst)) if np.all(np.isfinite(worst)) else -1.0
+
+
+def _certified(task, family, frame, fit):
+    """Write, read back, solve and check one fitted mechanism; a Solution or Rejected."""
+    world = frame.to_world(fit.params)
+    if family.link_ratio(world[None, :])[0] > MAX_RATIO:
+        return Rejected("link ratio")
+    n = len(task.points)
+    how = ("closed curve through" if task.closed else "path through") + f" {n} points"
+    table = {k: v for k, v in task.to_dict().items() if v is not None}
+    dims = family.dimensions(world)
+    sizes = ", ".join(f"{k} {v:.6g}" for k, v in dims.items())
+    chain = family.chain(world, name=f"{family.name.capitalize()}: {how}", units=task.units,
+                         notes=f"Designed by chaingraph (path generation, {family.name}): "
+                               f"{sizes}; drawn at the first target; the coupler point "
+                               f"{family.point} passes the targets in order.", task=table)
+    result = certify(chain, PointTargets(task.points, family.point, task.closed),
+                     min_transmission=task.min_transmission)
+    if isinstance(result, Rejected):
+        return result
+    if task.timing is not None and not _on_time(task, result):
+        return Rejected("timing", "the targets are not met at the timing's input values")
+    return _solution(result, dims)
+
+
+def _on_time(task, c: Certified) -> bool:
+    got = np.asarray(c.reached_at) - c.reached_at[0]
+    want = np.asarray(task.timing) - task.timing[0]
+    tol = _TIMING if task.exact else 1.0    # a fit meets its targets near its timing
+    return bool(np.all(np.abs((got - want + 180.0) % 360.0 - 180.0) <= tol))
+
+
+def _solution(c: Certified, dims) -> Solution:
+    found = identify(c.chain)
+    names = tuple(n for n in (found.chain, found.inversion) if n)
+    return Solution(0, c.chain, Error(c.error_max, c.error_rms), c.reached_at,
+                    c.transmission_angle, c.grashof, c.input, names, None, None, dims)
+

@@ -1,0 +1,267 @@
+"""Function generation: precision points matched by the written file, solved by solve;
+the structural error recomputed independently; certification's defects; bad tasks."""
+
+import dataclasses
+import json
+import math
+
+import numpy as np
+import pytest
+
+import chaingraph
+from chaingraph import DesignError
+from chaingraph.files import dumps, loads
+from chaingraph.geometry import circle_circle
+from chaingraph.model.chain import Chain, Joint, Mechanism, Point
+from chaingraph.synthesis import (
+    FunctionTargets,
+    PointTargets,
+    Rejected,
+    certify,
+    function,
+)
+from chaingraph.synthesis.expression import parse_expression
+from chaingraph.synthesis.function_generation import freudenstein, slider_crank_closed_form
+from chaingraph.synthesis.task import precision_x
+
+from ..conftest import run_cli
+
+LOG = dict(function="log10(x)", x=(1.0, 2.0), swing=(60.0, 90.0))
+
+
+def _task_angles(table, xs):
+    """(input, output) the task asks for at xs, from a solution file's [task]."""
+    f = parse_expression(table["function"])
+    (a, b), (turn, out), (t0, o0) = table["x"], table["swing"], table["start"]
+    ya, yb = float(f(a)), float(f(b))
+    xs = np.asarray(xs, dtype=float)
+    return t0 + turn * (xs - a) / (b - a), o0 + out * (f(xs) - ya) / (yb - ya)
+
+
+def _rocker(motion):
+    """The rocker's angle, D to C, unwrapped (degrees)."""
+    return np.degrees(np.unwrap(np.arctan2(motion["y:C"] - motion["y:D"],
+                                           motion["x:C"] - motion["x:D"])))
+
+
+def _near(angle, want):
+    return angle + 360.0 * np.round((want - angle) / 360.0)
+
+
+@pytest.fixture(scope="module")
+def log_files(tmp_path_factory):
+    """design function for log10 (60 and 90 degrees of swing), written with --out."""
+    out = tmp_path_factory.mktemp("log10")
+    code, stdout, err = run_cli("design", "function", "--function", "log10(x)", "--x", "1:2",
+                                "--swing", "60:90", "--json", "--out", out)
+    assert code == 0, err
+    return json.loads(stdout), out
+
+
+def test_log10_three_chebyshev_points_hit_by_the_written_file(log_files):
+    result, out = log_files
+    assert result["solutions"] and result["task"]["spacing"] == "chebyshev"
+    xs = precision_x((1.0, 2.0), 3, "chebyshev")
+    for sol in result["solutions"]:
+        chain = chaingraph.load(out / f"solution-{sol['rank']}.toml")
+        assert chain.task["kind"] == "function"
+        thetas, wanted = _task_angles(chain.task, xs)
+        assert sol["reached_at"] == pytest.approx(list(thetas), abs=1e-12)
+        for theta, psi in zip(thetas, wanted):
+            m = chaingraph.solve(chain, start=float(theta), stop=float(theta), steps=1,
+                                 summary=False)
+            got = _rocker(m)[0]
+            assert abs(_near(got, psi) - psi) < 1e-9
+
+
+def test_log10_structural_error_sampled_independently(log_files):
+    result, out = log_files
+    for sol in result["solutions"][:2]:
+        chain = chaingraph.load(out / f"solution-{sol['rank']}.toml")
+        (t0, _), turn = chain.task["start"], chain.task["swing"][0]
+        m = chaingraph.solve(chain, start=t0, stop=t0 + turn, steps=5000, summary=False)
+        xs = 1.0 + (m["theta"] - t0) / turn
+        _, wanted = _task_angles(chain.task, xs)
+        got = _rocker(m)
+        err = _near(got[0], wanted[0]) - got[0] + got - wanted
+        assert float(np.max(np.abs(err))) == pytest.approx(sol["error"]["max"], rel=1e-4)
+        assert float(np.sqrt(np.mean(err ** 2))) == pytest.approx(sol["error"]["rms"],
+                                                                 rel=1e-2)
+        lo, hi = sol["transmission_angle"]
+        assert 30.0 <= lo <= hi <= 150.0
+
+
+def test_ranked_best_first_with_the_contract_keys(log_files):
+    result, _ = log_files
+    errors = [s["error"]["max"] for s in result["solutions"]]
+    assert errors == sorted(errors)
+    assert [s["rank"] for s in result["solutions"]] == list(range(1, len(errors) + 1))
+    assert set(result) == {"task", "solutions", "rejected", "searched"}
+    assert set(result["solutions"][0]) == {"rank", "names", "atlas", "mechanism", "error",
+                                           "reached_at", "transmission_angle", "grashof",
+                                           "input"}
+    assert "Four-bar chain" in result["solutions"][0]["names"]
+    doc = result["solutions"][0]["mechanism"]
+    assert chaingraph.files.from_document(doc).task == doc["task"]
+
+
+def test_freudenstein_gives_back_a_known_four_bar():
+    """Three poses of a four-bar (a 40, b 120, c 80, d 100), by the circle intersection:
+    the linear solve gives d/a, d/c and R3, hence the lengths."""
+    a, b, c, d = 40.0, 120.0, 80.0, 100.0
+    t = np.radians([20.0, 75.0, 130.0])
+    (mx, my), (nx, ny), raw = circle_circle((a * np.cos(t), a * np.sin(t)), b, (d, 0.0), c)
+    psi = np.arctan2(my + np.sqrt(raw) * ny, mx + np.sqrt(raw) * nx - d)
+    r1, r2, r3 = freudenstein(t, psi)
+    assert (d / r1, d / r2) == pytest.approx((a, c), rel=1e-12)
+    assert math.sqrt(a * a + c * c + d * d - 2 * a * c * r3) == pytest.approx(b, rel=1e-12)
+
+
+def test_slider_crank_three_points_exact(tmp_path):
+    found = function(function="x**2", x=(0, 1), swing=(90, 40), kind="slider-crank")
+    assert found.solutions
+    for sol in found.solutions:
+        path = tmp_path / f"s{sol.rank}.toml"
+        chaingraph.save(sol.mechanism, path)
+        chain = chaingraph.load(path)
+        xs = precision_x((0, 1), 3, "chebyshev")
+        thetas, wanted = _task_angles(chain.task, xs)
+        size = max(sol.dimensions["crank"], sol.dimensions["rod"])
+        for theta, s in zip(thetas, wanted):
+            m = chaingraph.solve(chain, start=float(theta), stop=float(theta), steps=1,
+                                 summary=False)
+            assert abs(float(m["x:C"][0]) - s) < 1e-9 * size
+        # the closed form gives back the lengths from the three poses
+        r, l2, e = slider_crank_closed_form(np.radians(thetas), wanted)
+        assert (r, math.sqrt(l2), e) == pytest.approx(
+            (sol.dimensions["crank"], sol.dimensions["rod"], sol.dimensions["offset"]),
+            rel=1e-9, abs=1e-9 * size)
+
+
+def test_slider_crank_scales_with_the_slide():
+    """Invariance: the task's slide scaled by k scales the slider crank and its error."""
+    one = function(function="sqrt(x)", x=(1, 4), swing=(120, 30), kind="slider-crank",
+                   solutions=1)
+    three = function(function="sqrt(x)", x=(1, 4), swing=(120, 90), kind="slider-crank",
+                     solutions=1)
+    a, b = one.solutions[0], three.solutions[0]
+    for key in ("crank", "rod", "offset", "output_start"):
+        assert b.dimensions[key] == pytest.approx(3 * a.dimensions[key], rel=1e-9, abs=1e-9)
+    assert b.dimensions["input_start"] == pytest.approx(a.dimensions["input_start"])
+    assert b.error.max == pytest.approx(3 * a.error.max, rel=1e-6)
+
+
+def test_more_points_fit_the_whole_range_better_than_three():
+    three = function(**LOG, solutions=1)
+    start = (three.solutions[0].dimensions["input_start"],
+             three.solutions[0].dimensions["output_start"])
+    fixed3 = function(**LOG, start=start, solutions=1)
+    fitted = function(**LOG, start=start, points=6, solutions=1)
+    assert fitted.solutions[0].error.max < fixed3.solutions[0].error.max
+    assert len(fitted.solutions[0].reached_at) == 6
+
+
+def _four_bar(theta, mode, point=None):
+    """The four-bar a 40, b 120, c 80, d 100 drawn at crank angle theta, its coupler's
+    pin C in ``mode``; with a coupler point P at ``point`` (in B's frame along BC)."""
+    t = math.radians(theta)
+    bx, by = 40 * math.cos(t), 40 * math.sin(t)
+    (mx, my), (nx, ny), raw = circle_circle((bx, by), 120.0, (100.0, 0.0), 80.0)
+    c = (mx + mode * math.sqrt(raw) * nx, my + mode * math.sqrt(raw) * ny)
+    points = ()
+    if point is not None:
+        ux, uy = (c[0] - bx) / 120, (c[1] - by) / 120
+        points = (Point("P", "coupler", (bx + point[0] * ux - point[1] * uy,
+                                         by + point[0] * uy + point[1] * ux)),)
+    return Chain("four-bar", (Joint("A", "R", ("frame", "crank"), at=(0.0, 0.0)),
+                              Joint("B", "R", ("crank", "coupler"), at=(bx, by)),
+                              Joint("C", "R", ("coupler", "rocker"), at=c),
+                              Joint("D", "R", ("rocker", "frame"), at=(100.0, 0.0))),
+                 points=points, units="mm", mechanism=Mechanism("frame", "crank", 1.0, "rocker"))
+
+
+def _rocker_at(theta, mode):
+    c = _four_bar(theta, mode).joint("C").at
+    return math.degrees(math.atan2(c[1], c[0] - 100.0))
+
+
+def test_certification_rejects_a_circuit_defect():
+    """Targets 2 and 3 on the other circuit from the first: the solver, tracking the
+    drawn pose's circuit, does not meet them."""
+    inputs = (30.0, 60.0, 90.0)
+    outputs = (_rocker_at(30, 1), _rocker_at(60, -1), _rocker_at(90, -1))
+    targets = FunctionTargets(inputs, outputs, "rocker", (30.0, 90.0), lambda t: t * 0)
+    found = certify(_four_bar(30, 1), targets)
+    assert isinstance(found, Rejected) and found.reason == "circuit defect"
+    assert "target 2" in found.detail
+    same = FunctionTargets(inputs, tuple(_rocker_at(t, 1) for t in inputs), "rocker",
+                           (30.0, 90.0), lambda t: t * 0)
+    assert not isinstance(certify(_four_bar(30, 1), same, min_transmission=0), Rejected)
+
+
+def test_certification_rejects_an_order_defect():
+    """Four points of a crank's coupler curve, given out of order: passed, but not in
+    order as the crank turns one way."""
+    chain = _four_bar(0, 1, point=(60.0, 30.0))
+
+    def at(theta):
+        m = chaingraph.solve(chain, start=theta, stop=theta, steps=1, summary=False)
+        return float(m["x:P"][0]), float(m["y:P"][0])
+    in_order = PointTargets(tuple(at(t) for t in (0.0, 90.0, 180.0, 270.0)), "P")
+    good = certify(chain, in_order, min_transmission=0)
+    assert not isinstance(good, Rejected)
+    assert good.reached_at == pytest.approx((0.0, 90.0, 180.0, 270.0), abs=1e-6)
+    assert good.error_max < 1e-9 * 200
+    shuffled = PointTargets(tuple(at(t) for t in (0.0, 180.0, 90.0, 270.0)), "P")
+    found = certify(chain, shuffled, min_transmission=0)
+    assert isinstance(found, Rejected) and found.reason == "order defect"
+
+
+def test_the_task_table_is_kept_and_ignored_by_solve():
+    chain = _four_bar(30, 1)
+    task = {"kind": "function", "function": "log10(x)", "x": [1.0, 2.0]}
+    with_task = loads(dumps(dataclasses.replace(chain, task=task)))
+    assert with_task.task == task and "[task]" in dumps(with_task)
+    a = chaingraph.solve(with_task, steps=8)
+    b = chaingraph.solve(chain, steps=8)
+    assert np.array_equal(a["x:C"], b["x:C"])
+    with pytest.raises(chaingraph.ChainFileError, match=r"\[task\]"):
+        loads(dumps(chain) + "\n[task]\nfunction = 'x'\n")
+
+
+@pytest.mark.parametrize("args, names", [
+    (["--points", "2"], "--points"),
+    (["--x", "0:2"], "--function"),
+    (["--function", "__import__('os').system('x')"], "--function"),
+    (["--function", "x % 2"], "--function"),
+    (["--function", "log10(y)"], "--function"),
+    (["--swing", "0:90"], "--swing"),
+    (["--swing", "60:400"], "--swing"),
+    (["--swing", "60:nan"], "--swing"),
+    (["--x", "1:inf"], "--x"),
+    (["--x", "2:2"], "--x"),
+    (["--kind", "six-bar"], "--kind"),
+    (["--spacing", "random"], "--spacing"),
+    (["--solutions", "0"], "--solutions"),
+])
+def test_a_bad_task_exits_2_in_one_line(args, names):
+    base = {"--function": "log10(x)", "--x": "1:2", "--swing": "60:90"}
+    given = dict(zip(args[::2], args[1::2]))
+    words = [w for k, v in {**base, **given}.items() for w in (k, v)]
+    code, out, err = run_cli("design", "function", *words)
+    assert code == 2 and out == ""
+    assert err.count("\n") == 1 and names in err and "Traceback" not in err, err
+
+
+def test_nothing_certified_exits_1_with_the_reasons():
+    code, out, err = run_cli("design", "function", "--function", "log10(x)", "--x", "1:2",
+                             "--swing", "60:90", "--start", "45:135")
+    assert code == 1 and out == ""
+    assert err.count("\n") == 1 and "no certified solution" in err
+    assert "negative length 1" in err
+
+
+def test_the_library_names_the_parameter():
+    with pytest.raises(DesignError) as e:
+        function(function="sqrt(x)", x=(-1, 1), swing=(60, 90))
+    assert e.value.parameter == "function" and "not finite" in str(e.value)
