@@ -77,7 +77,7 @@ from chaingraph import synthesis
 from chaingraph.synthesis.design import KINDS
 from chaingraph._util.text import freedom
 
-__all__ = ['cmd_classify', 'cmd_inversions', 'cmd_identify', 'cmd_solve', 'cmd_centres', 'cmd_polygons', 'cmd_assemble', 'cmd_measure', 'cmd_report', 'cmd_atlas', 'cmd_design', 'cmd_design_function']
+__all__ = ['cmd_classify', 'cmd_inversions', 'cmd_identify', 'cmd_solve', 'cmd_centres', 'cmd_polygons', 'cmd_assemble', 'cmd_measure', 'cmd_report', 'cmd_atlas', 'cmd_design', 'cmd_design_function', 'cmd_design_motion']
 
 
 def cmd_classify(args) -> int:
@@ -500,6 +500,26 @@ def cmd_design_function(args) -> int:
     return _synthesis_output(args, found)
 
 
+def cmd_design_motion(args) -> int:
+    """``chaingraph design motion``: certified motion generators, best first."""
+    if args.out:
+        output_folder(args.out, what="solutions")
+    if args.draw:
+        svg_file(args.draw, what="solution and its poses")
+    found = synthesis.motion(poses=args.poses, solutions=args.solutions, units=args.units,
+                             min_transmission=args.min_transmission)
+    return _synthesis_output(args, found)
+
+
+def _task_line(t) -> str:
+    """The first line of a synthesis's text: its task."""
+    if t["kind"] == "motion":
+        return (f"motion generator: {len(t['poses'])} poses (x, y, degrees) "
+                + "; ".join(", ".join(f"{v:g}" for v in p) for p in t["poses"]))
+    return (f"{t['kind']} generator: y = {t['function']} for {t['x'][0]:g} <= x <= "
+            f"{t['x'][1]:g}, {t['mechanism']}, {t['points']} {t['spacing']} points")
+
+
 def _synthesis_output(args, found) -> int:
     """A synthesis's files, drawing and text or JSON; exit 1 when nothing is certified."""
     rejected = ", ".join(f"{k} {v}" for k, v in found.rejected.items()) or "none"
@@ -519,22 +539,27 @@ def _synthesis_output(args, found) -> int:
         sweep = None
         if "swing" in task and "start" in task:
             sweep = (task["start"][0], task["start"][0] + task["swing"][0])
+        poses = task.get("poses", ())
         with Writing(args.draw):
             draw_synthesis(best.mechanism, at=best.reached_at[0], sweep=sweep,
-                           curve=best.curve, path=args.draw)
+                           curve=None if poses else best.curve, poses=poses,
+                           path=args.draw)
     if args.json:
         print_json(found.to_dict())
         return 0
-    t = found.task.to_dict()
-    print(f"{t['kind']} generator: y = {t['function']} for {t['x'][0]:g} <= x <= "
-          f"{t['x'][1]:g}, {t['mechanism']}, {t['points']} {t['spacing']} points")
-    rows = [[s.rank, figure(s.error.max), figure(s.error.rms),
+    print(_task_line(found.task.to_dict()))
+    angles = any(s.error.angle is not None for s in found.solutions)
+
+    def error(v):           # poses' errors: rounding (below 1e-9) is shown as 0
+        return figure(round(v, 9) if angles else v)
+    rows = [[s.rank, error(s.error.max), error(s.error.rms)]
+            + ([error(s.error.angle or 0.0)] if angles else []) + [
              "-" if s.transmission_angle is None else
              f"{s.transmission_angle[0]:.1f}..{s.transmission_angle[1]:.1f}", s.input,
              ", ".join(f"{k.replace('_', ' ')} {figure(v)}" for k, v in s.dimensions.items())]
             for s in found.solutions]
-    print(table(rows, ["rank", "error max", "error rms", "transmission", "input",
-                       "dimensions"]))
+    print(table(rows, ["rank", "error max", "error rms"] + (["angle error"] if angles else [])
+                + ["transmission", "input", "dimensions"]))
     print(f"rejected: {rejected}; searched {found.searched.candidates} candidates")
     if args.out:
         print(f"written: solution-1.toml .. solution-{len(found.solutions)}.toml in "

@@ -1,6 +1,9 @@
 """Dimensional synthesis: from a task to certified mechanisms.
 
 * :func:`function` function generation (four-bar, slider crank), :mod:`.function_generation`;
+* :func:`motion` motion generation (four-bar, slider crank through 2 to 5 poses),
+  :mod:`.motion_generation`, on the Burmester geometry of :mod:`.poses` and
+  :mod:`.burmester`;
 * :mod:`.certify` every candidate written as a chain file, read back, solved by
   chaingraph's own solver and checked (circuit, branch and order defects, the
   transmission angle, the error recomputed);
@@ -20,10 +23,11 @@ from chaingraph.synthesis.certify import (
 )
 from chaingraph.synthesis.design import Design, slotted_lever, whitworth
 from chaingraph.synthesis.function_generation import function
+from chaingraph.synthesis.motion_generation import motion
 from chaingraph.synthesis.result import Curve, Error, Searched, Solution, Synthesis
-from chaingraph.synthesis.task import FunctionTask, function_task
+from chaingraph.synthesis.task import FunctionTask, MotionTask, function_task, motion_task
 
-__all__ = ["function", "Synthesis", "Solution", "Error", "Curve", "Searched", "certify",
+__all__ = ["function", "motion", "MotionTask", "motion_task", "Synthesis", "Solution", "Error", "Curve", "Searched", "certify",
            "Certified", "Rejected", "FunctionTargets", "PointTargets", "PoseTargets",
            "REASONS", "FunctionTask", "function_task", "Design", "slotted_lever",
            "whitworth"]
