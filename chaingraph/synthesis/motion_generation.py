@@ -11,7 +11,8 @@ The dyads (:mod:`chaingraph.synthesis.burmester`) that can guide the coupler:
   three positions are collinear (on a circle of the moving plane), and centre points
   whose three positions seen from the coupler are (the blocks of an inverted slider
   crank);
-* four poses: the centre-point curve sampled along lines through its pole, and its
+* four poses: the centre-point curve sampled along :data:`LINES` lines through its
+  pole (from the first pose's angle, so that the sample moves with the task), and its
   slider at infinity, with the circle-point curve's;
 * five poses: the Burmester points.
 
@@ -96,12 +97,14 @@ def _scale(poses) -> float:
 
 def _grid(poses, count: int) -> list[tuple[float, float]]:
     """count x count points over a square of twice the task's size about the poses'
-    centre."""
+    centre, its sides along and square to the first pose's angle (so the grid moves
+    with the task)."""
     cx = float(np.mean([p[0] for p in poses]))
     cy = float(np.mean([p[1] for p in poses]))
     s = _scale(poses)
+    c, n = math.cos(poses[0][2]), math.sin(poses[0][2])
     steps = np.linspace(-s, s, count)
-    return [(cx + u, cy + v) for v in steps for u in steps]
+    return [(cx + u * c - v * n, cy + u * n + v * c) for v in steps for u in steps]
 
 
 def _slider_circle(poses, count: int) -> list[tuple[float, float]]:
@@ -168,9 +171,11 @@ def _four(poses, points) -> list[Dyad]:
     points, the dyads of the circle-point curve on the line from its pole through each,
     the nearest."""
     if points is None:
-        found = list(centre_point_curve(poses).sample(LINES))
-        far = circle_point_curve(poses).at_infinity
-        return found + ([far] if far is not None else [])
+        curve = centre_point_curve(poses)
+        found = [d for n in range(LINES)
+                 for d in curve.dyads(poses[0][2] + math.pi * n / LINES)]
+        far = [curve.at_infinity, circle_point_curve(poses).at_infinity]
+        return found + [d for d in far if d is not None]
     curve = circle_point_curve(poses)
     out = []
     for a in points:
@@ -283,10 +288,46 @@ def _circuit_slider(r, l, e, rod, crank, g):
                     np.where(second, np.sign(_dot(crank, g)), 1.0))
 
 
-def _lifted(value, slides):
-    """The input's values at the poses as it moves one way from the first (a turn:
-    each step taken the way of travel, the whole under a turn; the shorter way for two
-    poses), NaN rows where there is none."""
+def _gaps(kind, moving, fixed, guide, d, f):
+    """The middle of the angles the input cannot take (degrees), where it rocks; NaN
+    where it turns fully (or slides). An RR crank AB with an RR follower DC: it cannot
+    point at D when |a - AD| < |b - c|, else not away from D when a + AD > b + c; with a
+    PR follower (the pin C on a fixed line at h from A): not square to the line towards
+    the side h + a > l, else the other; with an RP follower (a block about T, the guide
+    at e from B): not at T when |AT - a| < |e|. An RP block driving an RR follower (the
+    pin C at h from the guide, the rocker c about D): the guide's normal cannot point
+    at D when |DT| - h > c, else away when |DT| + h > c."""
+    kd, kf = kind[d], kind[f]
+    A, B0 = fixed[d], moving[d][:, 0]
+    D, C0 = fixed[f], moving[f][:, 0]
+    gd, gf = guide[d][:, 0], guide[f][:, 0]
+    def norm(v):
+        return np.hypot(v[:, 0], v[:, 1])
+    def direction(v):
+        return np.degrees(np.arctan2(v[:, 1], v[:, 0]))
+    a, b, c, ad = norm(B0 - A), norm(C0 - B0), norm(C0 - D), norm(D - A)
+    at_d, away = direction(D - A), direction(D - A) + 180.0
+    four = np.where(np.abs(a - ad) < np.abs(b - c), at_d,
+                    np.where(a + ad > b + c, away, np.nan))
+    h = _cross(gf, A - C0)                         # A from the PR's line
+    line = direction(gf)
+    pr = np.where(np.abs(h) + a <= b, np.nan, np.where(h + a > b, line + 90.0, line - 90.0))
+    e = _cross(gf, D - B0)                         # B from the RP's guide (through T = D)
+    rp = np.where(np.abs(norm(D - A) - a) < np.abs(e), direction(D - A), np.nan)
+    hc = _cross(gd, C0 - A)                        # C from the driving block's guide
+    dt = norm(D - A)
+    block = np.where(dt + np.abs(hc) <= c, np.nan,
+                     np.where(dt - hc > c, direction(D - A) - 90.0, direction(D - A) + 90.0))
+    return np.select([(kd == 0) & (kf == 0), (kd == 0) & (kf == 1), (kd == 0) & (kf == 2),
+                      kd == 2], [four, pr, rp, block], np.nan)
+
+
+def _lifted(value, slides, gap):
+    """The input's values at the poses as it moves one way from the first, NaN rows
+    where there is none: a slide's as they are; an input that rocks, each within its
+    range (the arc that holds the first, clear of the ``gap``); one that turns fully,
+    each step taken the way of travel, the whole under a turn (for two poses the
+    shorter way)."""
     steps = np.diff(value, axis=1)
     out = np.full(value.shape, np.nan)
     travel = np.full(len(value), np.inf)
@@ -297,6 +338,13 @@ def _lifted(value, slides):
                                                     np.cumsum(s, axis=1)], axis=1)
         out[ok] = lift[ok]
         travel[ok] = s.sum(axis=1)[ok]
+    g = gap[:, None]
+    arc = value[:, :1] + np.mod(value - g, 360.0) - np.mod(value[:, :1] - g, 360.0)
+    out = np.where(np.isnan(g), out, arc)
+    steps = np.diff(out, axis=1)
+    monotone = np.all(steps > 0, axis=1) | np.all(steps < 0, axis=1)
+    out = np.where(monotone[:, None], out, np.nan)
+    steps = np.diff(value, axis=1)
     monotone = np.all(steps > 0, axis=1) | np.all(steps < 0, axis=1)
     return np.where(slides[:, None], np.where(monotone[:, None], value, np.nan), out)
 
@@ -324,7 +372,7 @@ def _screen(poses, dyads, min_transmission):
                         _to_normal(B - D, gf)])
         chi, lengths, off = _circuits(kind, moving, fixed, guide, d, f)
         kd, kf = kd[:, 0], kf[:, 0]
-        lifted = _lifted(value[d], kd == 1)
+        lifted = _lifted(value[d], kd == 1, _gaps(kind, moving, fixed, guide, d, f))
         worst = np.minimum(mu.min(axis=1), 180.0 - mu.max(axis=1))
         ratio = lengths.max(axis=1) / lengths.min(axis=1)
         centre = np.mean(np.asarray(poses)[:, :2], axis=0)
