@@ -180,9 +180,10 @@ def _four(poses, points) -> list[Dyad]:
     out = []
     for a in points:
         way = math.atan2(a[1] - curve.base[1], a[0] - curve.base[0])
-        near = [d for d in curve.dyads(way) if d.circle is not None]
+        near = [(math.dist(d.circle, a), k, d) for k, d in enumerate(curve.dyads(way))
+                if d.circle is not None]
         if near:
-            out.append(min(near, key=lambda d: math.dist(d.circle, a)))
+            out.append(min(near)[2])
     return out
 
 
