@@ -460,19 +460,21 @@ def _repeats(chosen, dyads, d, f, size) -> bool:
 
 
 def _dimensions(chain) -> dict[str, float]:
-    """The lengths of the links between two turning pairs, and a slider's offset (its
-    pin from the crank's pivot, square to the guide)."""
+    """The lengths of the links between two turning pairs, and a slider's offset: the
+    turning pair that is off its sliding line (the crank's pivot off a fixed guide, the
+    crank's pin off a guide in the coupler), its signed distance from the line."""
     out = {}
     for link in chain.links:
         pins = [j for j in chain.joints_of(link) if j.kind == "R"]
         if len(pins) == 2 and all(j.at is not None for j in pins):
             out[link] = math.dist(pins[0].at, pins[1].at)
     for j in chain.joints:
-        if j.kind == "P" and "frame" in j.links:
-            pivot = next(p for p in chain.joints if p.kind == "R" and "frame" in p.links)
+        if j.kind == "P" and j.at is not None and j.axis is not None:
             a = math.radians(j.axis)
-            out["offset"] = ((j.at[1] - pivot.at[1]) * math.cos(a)
-                             - (j.at[0] - pivot.at[0]) * math.sin(a))
+            off = [(p.at[1] - j.at[1]) * math.cos(a) - (p.at[0] - j.at[0]) * math.sin(a)
+                   for link in j.links for p in chain.joints_of(link)
+                   if p.kind == "R" and p.at is not None]
+            out["offset"] = max(off, key=abs)
     return out
 
 
