@@ -50,6 +50,7 @@ from dataclasses import replace
 import numpy as np
 
 from chaingraph.errors import DesignError
+from chaingraph.geometry import cross, dot
 from chaingraph.model.snap import ROUNDING
 from chaingraph.naming.identify import identify
 from chaingraph.synthesis.burmester import (
@@ -244,23 +245,25 @@ def _arrays(poses, dyads):
     return kind, moving, fixed, guide, value
 
 
-def _cross(u, v):
-    return u[..., 0] * v[..., 1] - u[..., 1] * v[..., 0]
+def _crosses(u, v):
+    """:func:`~chaingraph.geometry.cross` of arrays of vectors (x, y on the last axis)."""
+    return cross(np.moveaxis(u, -1, 0), np.moveaxis(v, -1, 0))
 
 
-def _dot(u, v):
-    return u[..., 0] * v[..., 0] + u[..., 1] * v[..., 1]
+def _dots(u, v):
+    """:func:`~chaingraph.geometry.dot` of arrays of vectors (x, y on the last axis)."""
+    return dot(np.moveaxis(u, -1, 0), np.moveaxis(v, -1, 0))
 
 
 def _angle(u, v):
     """The angle between u and v, degrees in [0, 180]."""
-    return np.degrees(np.arctan2(np.abs(_cross(u, v)), _dot(u, v)))
+    return np.degrees(np.arctan2(np.abs(_crosses(u, v)), _dots(u, v)))
 
 
 def _to_normal(u, g):
     """The angle between u and the normal of the guide g, degrees in [0, 90]."""
     n = np.stack([-g[..., 1], g[..., 0]], axis=-1)
-    return np.degrees(np.arccos(np.clip(np.abs(_dot(u, n)) / np.hypot(u[..., 0], u[..., 1]),
+    return np.degrees(np.arccos(np.clip(np.abs(_dots(u, n)) / np.hypot(u[..., 0], u[..., 1]),
                                         0.0, 1.0)))
 
 
@@ -276,7 +279,7 @@ def _circuit_four_bar(a, b, c, d, joints):
     here = joints[m, :, k]
     before = joints[m, :, (k - 1) % 4]
     after = joints[m, :, (k + 1) % 4]
-    turn = np.sign(_cross(before - here, after - here))
+    turn = np.sign(_crosses(before - here, after - here))
     return np.where(grashof[:, None], turn, 1.0)
 
 
@@ -285,8 +288,8 @@ def _circuit_slider(r, l, e, rod, crank, g):
     (crank . guide) when l + |e| < r, else 1."""
     first = (r + np.abs(e) < l)[:, None]
     second = (l + np.abs(e) < r)[:, None]
-    return np.where(first, np.sign(_dot(rod, g)),
-                    np.where(second, np.sign(_dot(crank, g)), 1.0))
+    return np.where(first, np.sign(_dots(rod, g)),
+                    np.where(second, np.sign(_dots(crank, g)), 1.0))
 
 
 def _gaps(kind, moving, fixed, guide, d, f):
@@ -302,23 +305,24 @@ def _gaps(kind, moving, fixed, guide, d, f):
     A, B0 = fixed[d], moving[d][:, 0]
     D, C0 = fixed[f], moving[f][:, 0]
     gd, gf = guide[d][:, 0], guide[f][:, 0]
-    def norm(v):
+    def length(v):
         return np.hypot(v[:, 0], v[:, 1])
-    def direction(v):
+
+    def towards(v):
         return np.degrees(np.arctan2(v[:, 1], v[:, 0]))
-    a, b, c, ad = norm(B0 - A), norm(C0 - B0), norm(C0 - D), norm(D - A)
-    at_d, away = direction(D - A), direction(D - A) + 180.0
+    a, b, c, ad = length(B0 - A), length(C0 - B0), length(C0 - D), length(D - A)
+    at_d, away = towards(D - A), towards(D - A) + 180.0
     four = np.where(np.abs(a - ad) < np.abs(b - c), at_d,
                     np.where(a + ad > b + c, away, np.nan))
-    h = _cross(gf, A - C0)                         # A from the PR's line
-    line = direction(gf)
+    h = _crosses(gf, A - C0)                         # A from the PR's line
+    line = towards(gf)
     pr = np.where(np.abs(h) + a <= b, np.nan, np.where(h + a > b, line + 90.0, line - 90.0))
-    e = _cross(gf, D - B0)                         # B from the RP's guide (through T = D)
-    rp = np.where(np.abs(norm(D - A) - a) < np.abs(e), direction(D - A), np.nan)
-    hc = _cross(gd, C0 - A)                        # C from the driving block's guide
-    dt = norm(D - A)
+    e = _crosses(gf, D - B0)                         # B from the RP's guide (through T = D)
+    rp = np.where(np.abs(length(D - A) - a) < np.abs(e), towards(D - A), np.nan)
+    hc = _crosses(gd, C0 - A)                        # C from the driving block's guide
+    dt = length(D - A)
     block = np.where(dt + np.abs(hc) <= c, np.nan,
-                     np.where(dt - hc > c, direction(D - A) - 90.0, direction(D - A) + 90.0))
+                     np.where(dt - hc > c, towards(D - A) - 90.0, towards(D - A) + 90.0))
     return np.select([(kd == 0) & (kf == 0), (kd == 0) & (kf == 1), (kd == 0) & (kf == 2),
                       kd == 2], [four, pr, rp, block], np.nan)
 
@@ -366,8 +370,8 @@ def _screen(poses, dyads, min_transmission):
     with np.errstate(all="ignore"):
         kd, kf = kd[:, None], kf[:, None]
         sigma = np.select([kf == 0, kf == 1, kf == 2],
-                          [np.where(kd == 2, _dot(C - D, gd), _cross(C - B, D - C)),
-                           _dot(C - B, gf), _dot(B - D, gf)])
+                          [np.where(kd == 2, _dots(C - D, gd), _crosses(C - B, D - C)),
+                           _dots(C - B, gf), _dots(B - D, gf)])
         mu = np.select([(kf == 0) & (kd < 2), kf == 0, kf == 1, kf == 2],
                        [_angle(B - C, D - C), _to_normal(D - C, gd), _to_normal(B - C, gf),
                         _to_normal(B - D, gf)])
@@ -385,7 +389,7 @@ def _screen(poses, dyads, min_transmission):
         span = np.maximum(np.nanmax(every[..., 0], axis=1) - np.nanmin(every[..., 0], axis=1),
                           np.nanmax(every[..., 1], axis=1) - np.nanmin(every[..., 1], axis=1))
         rp = np.where(kd == 2, d, np.where(kf == 2, f, -1))
-        off_p = np.where(rp >= 0, np.abs(_cross(guide[rp, 0], point - fixed[rp])), np.nan)
+        off_p = np.where(rp >= 0, np.abs(_crosses(guide[rp, 0], point - fixed[rp])), np.nan)
         rounding = np.fmin(np.where(off > 1e-12 * span, off, np.nan),
                            np.where(off_p > 1e-12 * span, off_p, np.nan)) <= 2 * ROUNDING * span
     checks = [("circuit defect", ~np.all(chi == chi[:, :1], axis=1) | np.any(chi == 0, axis=1)),
@@ -429,7 +433,7 @@ def _circuits(kind, moving, fixed, guide, d, f):
     # the frame; e from B to the guide through D)
     pr = ko == 1
     l = np.where(pr, b, frame)
-    e = np.where(pr, _cross(g[:, 0], C[:, 0] - A), _cross(g[:, 0], D - B[:, 0]))
+    e = np.where(pr, _crosses(g[:, 0], C[:, 0] - A), _crosses(g[:, 0], D - B[:, 0]))
     rod = np.where(pr[:, None, None], C - B, (D - A)[:, None, :])
     crank = np.where(pr[:, None, None], B - A[:, None, :], A[:, None, :] - B)
     slider = _circuit_slider(a, l, e, rod, crank, g)
@@ -438,7 +442,7 @@ def _circuits(kind, moving, fixed, guide, d, f):
                        np.stack([a, l, a, l], axis=1))
     # a pin drawn off its sliding line: the crank's pivot off a PR's guide, the crank's
     # pin or the point P off an RP's
-    off = np.where(pr, np.abs(e), np.abs(_cross(g[:, 0], B[:, 0] - D)))
+    off = np.where(pr, np.abs(e), np.abs(_crosses(g[:, 0], B[:, 0] - D)))
     return chi, lengths, np.where(ko == 0, np.nan, off)
 
 
