@@ -75,8 +75,7 @@ from chaingraph.synthesis import KINDS
 from chaingraph.synthesis.path_generation import EXACT
 from chaingraph.variation import length_values, vary
 
-__all__ = ['cmd_classify', 'cmd_inversions', 'cmd_identify', 'cmd_solve', 'cmd_centres', 'cmd_polygons', 'cmd_assemble', 'cmd_measure', 'cmd_report', 'cmd_atlas', 'cmd_design', 'cmd_design_function',
-           'cmd_design_path']
+__all__ = ['cmd_classify', 'cmd_inversions', 'cmd_identify', 'cmd_solve', 'cmd_centres', 'cmd_polygons', 'cmd_assemble', 'cmd_measure', 'cmd_report', 'cmd_atlas', 'cmd_design', 'cmd_design_function', 'cmd_design_motion']
 
 
 def cmd_classify(args) -> int:
@@ -540,6 +539,27 @@ def points_file(path) -> list[tuple[float, float]]:
                               f"{line.strip()!r}", kind="path",
                               parameter="points_file") from None
     return out
+def cmd_design_motion(args) -> int:
+    """``chaingraph design motion``: certified motion generators, best first."""
+    if args.out:
+        output_folder(args.out, what="solutions")
+    if args.draw:
+        svg_file(args.draw, what="solution and its poses")
+    found = synthesis.motion(poses=args.poses, solutions=args.solutions, units=args.units,
+                             min_transmission=args.min_transmission)
+    return _synthesis_output(args, found)
+
+
+def _task_line(task) -> str:
+    """The first line of a synthesis's text: its task."""
+    if task.kind == "path":
+        return synthesis_heading(task)
+    t = task.to_dict()
+    if t["kind"] == "motion":
+        return (f"motion generator: {len(t['poses'])} poses (x, y, degrees) "
+                + "; ".join(", ".join(f"{v:g}" for v in p) for p in t["poses"]))
+    return (f"{t['kind']} generator: y = {t['function']} for {t['x'][0]:g} <= x <= "
+            f"{t['x'][1]:g}, {t['mechanism']}, {t['points']} {t['spacing']} points")
 
 
 def _synthesis_output(args, found) -> int:
@@ -561,36 +581,42 @@ def _synthesis_output(args, found) -> int:
         sweep = None
         if "swing" in task and "start" in task:
             sweep = (task["start"][0], task["start"][0] + task["swing"][0])
+        poses = task.get("poses", ())
         with Writing(args.draw):
             draw_synthesis(best.mechanism, at=best.reached_at[0], sweep=sweep,
-                           curve=best.curve, targets=task.get("targets", ()),
+                           curve=None if poses else best.curve,
+                           targets=task.get("targets", ()), poses=poses,
                            path=args.draw)
     if args.json:
         print_json(found.to_dict())
         return 0
-    t = found.task.to_dict()
-    if t["kind"] == "function":
-        print(f"{t['kind']} generator: y = {t['function']} for {t['x'][0]:g} <= x <= "
-              f"{t['x'][1]:g}, {t['mechanism']}, {t['points']} {t['spacing']} points")
-    else:
-        print(synthesis_heading(found.task))
-    exact = getattr(found.task, "exact", False)
-    bound = EXACT * found.task.size if exact else 0.0
-
-    def error(value):             # an exact path's error is rounding: not printed
-        return "exact" if exact and value <= bound else figure(value)
-    rows = [[s.rank, error(s.error.max), error(s.error.rms),
+    print(_task_line(found.task))
+    error = _error_text(found)
+    angles = any(s.error.angle is not None for s in found.solutions)
+    rows = [[s.rank, error(s.error.max), error(s.error.rms)]
+            + ([error(s.error.angle or 0.0)] if angles else []) + [
              "-" if s.transmission_angle is None else
              f"{s.transmission_angle[0]:.1f}..{s.transmission_angle[1]:.1f}", s.input,
              ", ".join(f"{k.replace('_', ' ')} {figure(v)}" for k, v in s.dimensions.items())]
             for s in found.solutions]
-    print(table(rows, ["rank", "error max", "error rms", "transmission", "input",
-                       "dimensions"]))
+    print(table(rows, ["rank", "error max", "error rms"] + (["angle error"] if angles else [])
+                + ["transmission", "input", "dimensions"]))
     print(f"rejected: {rejected}; searched {found.searched.candidates} candidates")
     if args.out:
         print(f"written: solution-1.toml .. solution-{len(found.solutions)}.toml in "
               f"{args.out} (chaingraph solve reproduces each)")
     return 0
+
+
+def _error_text(found):
+    """How a synthesis's errors are printed: an exact path's error is rounding ("exact");
+    a motion's errors below 1e-9 are rounding (0); else the figure."""
+    if getattr(found.task, "exact", False):
+        bound = EXACT * found.task.size
+        return lambda v: "exact" if v <= bound else figure(v)
+    if any(s.error.angle is not None for s in found.solutions):
+        return lambda v: figure(round(v, 9))
+    return figure
 
 
 def synthesis_heading(task) -> str:

@@ -15,6 +15,7 @@ from chaingraph.cli.commands import (
     cmd_design,
     cmd_design_function,
     cmd_design_path,
+    cmd_design_motion,
     cmd_forces,
     cmd_identify,
     cmd_inversions,
@@ -341,6 +342,7 @@ def _design_command(sub) -> None:
         q.set_defaults(run=cmd_design)
     _design_function_command(kinds)
     _design_path_command(kinds)
+    _design_motion_command(kinds)
 
 
 def _design_function_command(kinds) -> None:
@@ -398,7 +400,7 @@ def _design_path_command(kinds) -> None:
     q.set_defaults(run=cmd_design_path)
 
 
-def points_argument(text):
+def points_argument(text: str) -> list[tuple[float, float]]:
     """Points written "X,Y; X,Y; ..." (the library checks that they are finite)."""
     out = []
     for k, part in enumerate(text.split(";"), 1):
@@ -413,7 +415,7 @@ def points_argument(text):
     return out
 
 
-def numbers_argument(text):
+def numbers_argument(text: str) -> list[float]:
     """Numbers written "A; B; ..." (the library checks them)."""
     out = []
     for k, part in enumerate(text.split(";"), 1):
@@ -423,6 +425,36 @@ def numbers_argument(text):
             raise argparse.ArgumentTypeError(f"value {k} is not a number: "
                                              f"{part.strip()!r}") from None
     return out
+
+
+def _design_motion_command(kinds) -> None:
+    """The arguments of ``chaingraph design motion``."""
+    q = kinds.add_parser(
+        "motion", help="a motion generator (four-bar or slider crank) through 2 to 5 poses",
+        description="A four-bar or slider crank whose coupler passes through the poses in "
+                    "order: two and three poses by the classical constructions, four and "
+                    "five by Burmester theory; every pair of dyads tried, each driving; "
+                    "every solution certified by the solver from its written chain file.")
+    q.add_argument("--poses", required=True, type=poses_argument, metavar='"X,Y,DEG; ..."',
+                   help="the coupler's poses in order: its point P at X,Y and its angle DEG")
+    _synthesis_arguments(q)
+    q.set_defaults(run=cmd_design_motion)
+
+
+def poses_argument(text: str) -> list[tuple[float, float, float]]:
+    """Poses written X,Y,DEG; X,Y,DEG; ... (the library checks that they are finite)."""
+    poses = []
+    parts = text.split(";")
+    if len(parts) > 1 and not parts[-1].strip():
+        parts.pop()                                     # a trailing ';'
+    for part in parts:
+        try:
+            x, y, a = (float(v) for v in part.split(","))
+        except ValueError:
+            raise argparse.ArgumentTypeError(f"poses X,Y,DEG; X,Y,DEG; ..., got {part.strip()!r} "
+                                             f"in {text!r}") from None
+        poses.append((x, y, a))
+    return poses
 
 
 def _synthesis_arguments(q) -> None:

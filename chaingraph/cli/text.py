@@ -75,7 +75,8 @@ SYNTHESIS_FLAGS = {"function": "--function EXPR", "x": "--x A:B", "swing": "--sw
                    "start": "--start IN0:OUT0", "points": "--points N",
                    "spacing": "--spacing chebyshev|even",
                    "kind": "--kind four-bar|slider-crank", "solutions": "--solutions K",
-                   "min_transmission": "--min-transmission DEG", "units": "--units U"}
+                   "min_transmission": "--min-transmission DEG", "units": "--units U",
+                   "poses": "--poses \"X,Y,DEG; ...\""}
 SYNTHESES = ("function", "path", "motion")
 # where a path task's parameter has its own flag
 PATH_FLAGS = {"points": '--points "X,Y; ..."', "points_file": "--points-file CSV",

@@ -19,7 +19,7 @@ __all__ = ["draw_synthesis"]
 
 @plain_text
 def draw_synthesis(mechanism: Chain, *, at: float, sweep: tuple[float, float] | None = None,
-                   curve=None, targets=(), title: str | None = None, path=None):
+                   curve=None, targets=(), poses=(), title: str | None = None, path=None):
     """Draw a synthesised mechanism and its error.
 
     Parameters
@@ -36,6 +36,9 @@ def draw_synthesis(mechanism: Chain, *, at: float, sweep: tuple[float, float] | 
         :class:`chaingraph.synthesis.Curve`; None for the mechanism alone.
     targets : sequence of (x, y)
         Points marked on the mechanism's picture (a path's targets).
+    poses : sequence of (x, y, degrees)
+        Poses marked on it as small frames, numbered (a motion's targets): an arrow
+        along the pose's angle from its point, and a shorter tick square to it.
     title : str, optional
     path : str or os.PathLike, optional
         Write SVG (or PNG, by the ending); without it, return the matplotlib Figure.
@@ -60,10 +63,29 @@ def draw_synthesis(mechanism: Chain, *, at: float, sweep: tuple[float, float] | 
     if len(targets):
         xs, ys = zip(*targets)
         ax.plot(xs, ys, "x", color="#b2182b", markersize=8, zorder=5, label="targets")
+    _pose_frames(ax, poses, scene.span)
     if curve is not None:
         _error_plot(axes[1], curve)
         fig.tight_layout()
     return finish(plt, fig, path)
+
+
+def _pose_frames(ax, poses, span):
+    """Each pose as a small frame: an arrow along its angle, a tick square to it, its
+    number beside."""
+    size = 0.07 * span
+    for k, (x, y, deg) in enumerate(poses, 1):
+        a = np.radians(deg)
+        u, v = np.array([np.cos(a), np.sin(a)]), np.array([-np.sin(a), np.cos(a)])
+        ax.annotate("", xy=(x + size * u[0], y + size * u[1]), xytext=(x, y), zorder=6,
+                    arrowprops={"arrowstyle": "-|>", "color": "#b2182b", "lw": 1.4,
+                                "shrinkA": 0, "shrinkB": 0, "mutation_scale": 10})
+        ax.plot([x, x + 0.5 * size * v[0]], [y, y + 0.5 * size * v[1]], color="#b2182b",
+                linewidth=1.4, zorder=6)
+        ax.plot([x], [y], "o", color="#b2182b", markersize=3.5, zorder=6)
+        ax.annotate(str(k), (x, y), xytext=(-6 * (u[0] + v[0]), -6 * (u[1] + v[1])),
+                    textcoords="offset points", ha="center", va="center", fontsize=8,
+                    color="#b2182b", zorder=6)
 
 
 def _error_plot(ax, curve):

@@ -3,6 +3,9 @@
 * :func:`function` function generation (four-bar, slider crank), :mod:`.function_generation`;
 * :func:`path` path generation (four-bar), :mod:`.path_generation`, by the optimiser of
   :mod:`.optimiser` over a mechanism family of :mod:`.family`;
+* :func:`motion` motion generation (four-bar, slider crank through 2 to 5 poses),
+  :mod:`.motion_generation`, on the Burmester geometry of :mod:`.poses` and
+  :mod:`.burmester`;
 * :mod:`.certification` every candidate written as a chain file, read back, solved by
   chaingraph's own solver and checked (circuit, branch and order defects, the
   transmission angle, the error recomputed);
@@ -22,11 +25,19 @@ from chaingraph.synthesis.certification import (
 )
 from chaingraph.synthesis.design import KINDS, Design, slotted_lever, whitworth
 from chaingraph.synthesis.function_generation import function
+from chaingraph.synthesis.motion_generation import motion
 from chaingraph.synthesis.path_generation import path
 from chaingraph.synthesis.result import Curve, Error, Searched, Solution, Synthesis
-from chaingraph.synthesis.task import FunctionTask, PathTask, function_task, path_task
+from chaingraph.synthesis.task import (
+    FunctionTask,
+    MotionTask,
+    PathTask,
+    function_task,
+    motion_task,
+    path_task,
+)
 
-__all__ = ["function", "path", "Synthesis", "Solution", "Error", "Curve", "Searched", "certify",
+__all__ = ["function", "path", "motion", "MotionTask", "motion_task", "Synthesis", "Solution", "Error", "Curve", "Searched", "certify",
            "Certified", "Rejected", "FunctionTargets", "PointTargets", "PoseTargets",
            "REASONS", "FunctionTask", "function_task", "PathTask", "path_task", "Design", "slotted_lever",
            "whitworth", "KINDS"]

@@ -39,6 +39,8 @@ REASONS = {
     "impossible length": "no real length fits (a coupler's squared length not positive)",
     "singular": "the targets give no unique mechanism",
     "link ratio": "the longest link over the shortest is too large",
+    "offset at rounding": "a pin or point off a sliding line by drawing-level rounding (a "
+                          "chain file would put it on the line)",
     "does not assemble": "the mechanism cannot be assembled at a target",
     "circuit defect": "a target lies on the other circuit from the first",
     "branch defect": "the input meets a limit between the targets",
@@ -78,12 +80,16 @@ class PointTargets:
 @dataclass(frozen=True)
 class PoseTargets:
     """Poses of a link: its tracer ``point`` at ``points`` and the link's angle (the
-    solver's ``angle:LINK``, degrees) ``angles`` there, in order."""
+    solver's ``angle:LINK``, degrees) ``angles`` there, in order. ``inputs``, when
+    given, are the input's values at the poses as the design claims them (exact
+    synthesis): the solver is then asked there, instead of searching the whole cycle
+    for where the tracer passes."""
 
     points: tuple[tuple[float, float], ...]
     angles: tuple[float, ...]
     point: str
     link: str
+    inputs: tuple[float, ...] | None = None
 
 
 @dataclass(frozen=True, eq=False)
@@ -129,12 +135,16 @@ def certify(candidate: Chain, targets, *, min_transmission: float = 30.0):
     -------
     Certified or Rejected
     """
-    if candidate.mechanism is None or candidate.mechanism.driver is None:
-        raise ValueError(f"the candidate {candidate.name!r} needs a [mechanism] with a driver")
+    if candidate.mechanism is None or (candidate.mechanism.driver is None
+                                       and not candidate.mechanism.inputs):
+        raise ValueError(f"the candidate {candidate.name!r} needs a [mechanism] with a "
+                         "driver or an input")
     chain = loads(dumps(candidate), source=f"<{candidate.name}>")
     try:
         if isinstance(targets, FunctionTargets):
             found = _function(chain, targets)
+        elif isinstance(targets, PoseTargets) and targets.inputs is not None:
+            found = _posed(chain, targets)
         else:
             found = _traced(chain, targets)
     except AssemblyError as e:
@@ -185,6 +195,40 @@ def _function(chain, t: FunctionTargets):
     out = output_values(chain, whole, t.output, near=t.outputs[0])
     error = out - t.wanted(theta)
     return (tuple(t.inputs), np.abs(error), (theta, error), [inner] + at_targets, None)
+
+
+def _posed(chain, t: PoseTargets):
+    """Solve at the input's claimed value at each pose; the poses met there, on the
+    drawn pose's circuit, in order as the input moves one way, with no limit between
+    the first and the last."""
+    assert t.inputs is not None
+    tol = 1e-6 * _size(chain)
+    rows = [solve(chain, start=v, stop=v, steps=1, summary=False) for v in t.inputs]
+    dist = np.array([math.hypot(float(m[f"x:{t.point}"][0]) - p[0],
+                                float(m[f"y:{t.point}"][0]) - p[1])
+                     for m, p in zip(rows, t.points)])
+    turn = np.array([float(m[f"angle:{t.link}"][0]) for m in rows]) - np.asarray(t.angles)
+    turn = np.abs((turn + 180.0) % 360.0 - 180.0)
+    missed = [k + 1 for k in range(len(rows)) if not (dist[k] <= tol and turn[k] <= 1e-6)]
+    steps = np.diff(t.inputs)
+    one_way = bool(np.all(steps > 0) or np.all(steps < 0))
+    if not one_way:
+        k = int(np.argmax(np.sign(steps[1:]) != np.sign(steps[0]))) + 2
+        return Rejected("branch defect" if missed else "order defect",
+                        f"the input turns back at target {k} "
+                        f"({', '.join(f'{v:.6g}' for v in t.inputs)})")
+    if missed:
+        return Rejected("circuit defect", f"target {missed[0]}: the solver's pose there is "
+                        f"{dist[missed[0] - 1]:.3g} and {turn[missed[0] - 1]:.3g} degrees "
+                        "from the design's")
+    first, last = t.inputs[0], t.inputs[-1]
+    try:
+        inner = solve(chain, start=first, stop=last, summary=False,
+                      steps=max(2, min(720, int(abs(last - first) * 2))))
+    except AssemblyError as e:
+        return Rejected("branch defect", str(e))
+    return (tuple(t.inputs), dist, (inner[f"x:{t.point}"], inner[f"y:{t.point}"]),
+            [inner] + rows, float(np.max(turn)))
 
 
 def _traced(chain, t):
@@ -293,36 +337,72 @@ def output_values(chain, motion, output, *, near=None) -> np.ndarray:
 def transmission_angles(chain, motions) -> tuple[float, float] | None:
     """The transmission angle's range (degrees) over the rows of ``motions``, at the
     output dyad of a four-link loop (the joint between the two links that are neither
-    fixed nor the driver): the angle between the coupler and the rocker (four-bar), or
-    between the coupler and the normal to a fixed guide (slider crank, within [0, 90]);
-    None for other mechanisms."""
+    fixed nor the input link, a driver or the link its input joint moves): the angle
+    between the coupler and the rocker (four-bar); where a sliding pair makes the dyad,
+    within [0, 90], the angle to the normal of the guide: of the coupler, for a block on
+    a fixed guide (slider crank); of the line from the block's fixed pivot to the
+    coupler's pin, for a coupler sliding in a block that turns about a fixed pivot; of
+    the rocker, for a coupler sliding in the input link (each 0 where the input meets a
+    limit); None for other mechanisms."""
     m = chain.mechanism
     loop = four_link_loop(chain)
-    if loop is None or m is None or m.driver is None:
+    lead = _input_link(chain)
+    if loop is None or lead is None:
         return None
-    free = [x for x in loop[0] if x not in (m.fixed, m.driver)]
+    free = [x for x in loop[0] if x not in (m.fixed, lead)]
     joint = next(j for j in chain.joints if set(j.links) == set(free))
-    coupler = next(x for x in free if any(m.driver in j.links for j in chain.joints_of(x)))
+    coupler = next(x for x in free if any(lead in j.links for j in chain.joints_of(x)))
     rocker = next(x for x in free if x != coupler)
     back = next(j for j in chain.joints_of(coupler) if j.id != joint.id)
     ahead = next(j for j in chain.joints_of(rocker) if j.id != joint.id)
     values = []
     for motion in motions:
-        cx, cy = motion[f"x:{joint.id}"], motion[f"y:{joint.id}"]
-        ux, uy = motion[f"x:{back.id}"] - cx, motion[f"y:{back.id}"] - cy
-        if ahead.kind == "R":
-            vx, vy = motion[f"x:{ahead.id}"] - cx, motion[f"y:{ahead.id}"] - cy
+        def xy(j):
+            return motion[f"x:{j.id}"], motion[f"y:{j.id}"]
+        if joint.kind == "R" and back.kind == "R" and ahead.kind == "R":
+            (cx, cy), (bx, by), (ax, ay) = xy(joint), xy(back), xy(ahead)
+            ux, uy, vx, vy = bx - cx, by - cy, ax - cx, ay - cy
             mu = np.degrees(np.arctan2(np.abs(ux * vy - uy * vx), ux * vx + uy * vy))
-        elif m.fixed in ahead.links:
-            a = math.radians(ahead.axis)
-            n = (-math.sin(a), math.cos(a))
-            cos = np.abs(ux * n[0] + uy * n[1]) / np.hypot(ux, uy)
-            mu = np.degrees(np.arccos(np.clip(cos, 0.0, 1.0)))
+        elif joint.kind == "R" and ahead.kind == "P" and m.fixed in ahead.links:
+            mu = _to_normal(np.subtract(xy(back), xy(joint)), _guide(chain, motion, ahead))
+        elif joint.kind == "P" and ahead.kind == "R" and m.fixed in ahead.links:
+            mu = _to_normal(np.subtract(xy(back), xy(ahead)), _guide(chain, motion, joint))
+        elif joint.kind == "R" and back.kind == "P" and ahead.kind == "R":
+            mu = _to_normal(np.subtract(xy(ahead), xy(joint)), _guide(chain, motion, back))
         else:
             return None
-        values.append(np.asarray(mu, dtype=float))
+        values.append(np.asarray(mu, dtype=float).reshape(-1))
     mu = np.concatenate(values)
     return float(np.min(mu)), float(np.max(mu))
+
+
+def _input_link(chain) -> str | None:
+    """The link the input moves: the driver, or the moving link of the first input
+    joint."""
+    m = chain.mechanism
+    if m is None:
+        return None
+    if m.driver is not None:
+        return m.driver
+    if not m.inputs:
+        return None
+    links = chain.joint(m.inputs[0].joint).links
+    return next((x for x in links if x != m.fixed), None)
+
+
+def _guide(chain, motion, joint) -> np.ndarray:
+    """A sliding pair's guide direction (radians) over a solved motion."""
+    link = joint.links[0]
+    turn = motion[f"angle:{link}"] - chain.reference_direction(link)
+    return np.radians(joint.axis + np.asarray(turn, dtype=float))
+
+
+def _to_normal(u, guide) -> np.ndarray:
+    """The angle (degrees, [0, 90]) between the vectors ``u`` (rows x, y) and the
+    normal of the guide at ``guide`` radians."""
+    nx, ny = -np.sin(guide), np.cos(guide)
+    cos = np.abs(u[0] * nx + u[1] * ny) / np.hypot(u[0], u[1])
+    return np.degrees(np.arccos(np.clip(cos, 0.0, 1.0)))
 
 
 def _size(chain):

@@ -115,13 +115,15 @@ class Synthesis:
                 f"rejected={dict(self.rejected)})")
 
 
-def ranked(solutions, limit: int, *, tolerance: float = 0.0) -> tuple[Solution, ...]:
-    """Best first (smallest error, then largest least transmission angle), ranked 1, 2...
-    and cut to ``limit``; errors within ``tolerance`` count as equal (every exact
-    solution's error is rounding)."""
-    def key(s):
+def ranked(solutions, limit: int, *, tolerance: float = 0.0,
+           key=None) -> tuple[Solution, ...]:
+    """Best first (smallest error, then largest least transmission angle; or by
+    ``key``, a sort key of a solution, that refines this order), ranked 1, 2... and cut
+    to ``limit``; errors within ``tolerance`` count as equal (every exact solution's
+    error is rounding)."""
+    def default(s):
         ta = s.transmission_angle
         worst = 0.0 if ta is None else min(ta[0], 180.0 - ta[1])
         return (max(s.error.max, tolerance), -worst)
-    out = sorted(solutions, key=key)[:limit]
+    out = sorted(solutions, key=key or default)[:limit]
     return tuple(Solution(**{**s.__dict__, "rank": k + 1}) for k, s in enumerate(out))

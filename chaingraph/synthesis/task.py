@@ -20,10 +20,11 @@ import numpy as np
 from chaingraph.errors import DesignError
 from chaingraph.model.values import LARGEST
 from chaingraph.synthesis.expression import Expression, parse_expression
+from chaingraph.synthesis.poses import checked_poses
 
 __all__ = ["FunctionTask", "function_task", "SPACINGS", "FUNCTION_KINDS", "MOST_POINTS",
            "check_options", "precision_x", "PathTask", "path_task", "PATH_KINDS",
-           "EXACT_POINTS", "MOST_TARGETS"]
+           "EXACT_POINTS", "MOST_TARGETS", "MotionTask", "motion_task", "POSE_COUNTS"]
 
 #: the spacings of precision points
 SPACINGS = ("chebyshev", "even")
@@ -319,3 +320,56 @@ def _timing(timing, count, what):
         raise DesignError(f"timing spans {abs(out[-1] - out[0]):g} degrees: the points are "
                           "met within one turn of the input", kind=what, parameter="timing")
     return out
+#: how many poses motion generation takes (two and three by the classical constructions,
+#: four and five by Burmester theory)
+POSE_COUNTS = (2, 3, 4, 5)
+
+
+@dataclass(frozen=True)
+class MotionTask:
+    """A motion generator's task: a link passes through ``poses``, ``(x, y, degrees)``
+    each (a point of it at x, y, the link turned by the angle), in order."""
+
+    poses: tuple[tuple[float, float, float], ...]
+    units: str = "mm"
+    min_transmission: float = 30.0
+    kind: str = "motion"
+
+    def radians(self) -> tuple[tuple[float, float, float], ...]:
+        """The poses with their angles in radians (:mod:`chaingraph.synthesis.poses`)."""
+        return tuple((x, y, math.radians(a)) for x, y, a in self.poses)
+
+    def to_dict(self) -> dict:
+        """The JSON's ``"task"``."""
+        return {"kind": self.kind, "poses": [list(p) for p in self.poses],
+                "units": self.units, "min_transmission": self.min_transmission}
+
+
+def motion_task(*, poses, units="mm", min_transmission=30.0) -> MotionTask:
+    """Check a motion generator's task (see :func:`chaingraph.synthesis.motion`): 2 to 5
+    poses of three finite numbers (x, y, degrees), no two the same."""
+    what = "motion"
+    mt = check_options(solutions=1, min_transmission=min_transmission, units=units,
+                       kind=what)
+    if isinstance(poses, (str, bytes)):
+        raise DesignError(f"poses must be a sequence of (x, y, degrees), got {poses!r}",
+                          kind=what, parameter="poses")
+    try:
+        given = list(poses)
+    except TypeError:
+        raise DesignError(f"poses must be a sequence of (x, y, degrees), got {poses!r}",
+                          kind=what, parameter="poses") from None
+    out = []
+    for n, pose in enumerate(given, 1):
+        try:
+            x, y, a = pose
+        except (TypeError, ValueError):
+            raise DesignError(f"pose {n} must be three numbers (x, y, degrees), got "
+                              f"{pose!r}", kind=what, parameter="poses") from None
+        out.append(tuple(_number(v, "poses", f"pose {n}'s {name}", what)
+                         for v, name in zip((x, y, a), ("x", "y", "angle"))))
+    if len(out) not in POSE_COUNTS:
+        raise DesignError(f"motion generation needs {POSE_COUNTS[0]} to {POSE_COUNTS[-1]} "
+                          f"poses, got {len(out)}", kind=what, parameter="poses")
+    checked_poses([(x, y, math.radians(a)) for x, y, a in out])
+    return MotionTask(tuple(out), units, mt)  # type: ignore[arg-type]
