@@ -15,7 +15,7 @@ from chaingraph.graphical.polygons import (
            Relative,
            velocity_polygon,
 )
-from chaingraph.kinematics.pose import LinkMotion, PoseMotion, pose_motion
+from chaingraph.kinematics.pose import LinkState, PoseMotion, pose_motion
 
 __all__ = ["instant_centres", "InstantCentres", "Centre", "velocity_polygon", "Polygons",
-           "Image", "Relative", "Component", "pose_motion", "PoseMotion", "LinkMotion"]
+           "Image", "Relative", "Component", "pose_motion", "PoseMotion", "LinkState"]

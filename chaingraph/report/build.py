@@ -17,7 +17,7 @@ import os
 import re
 import sys
 import warnings
-from dataclasses import dataclass, field
+from dataclasses import dataclass, field, replace
 from importlib import resources
 from pathlib import Path
 
@@ -38,7 +38,6 @@ from chaingraph.files import load
 from chaingraph.graphical.centres import centres_of
 from chaingraph.graphical.polygons import polygons_of
 from chaingraph.kinematics import solve, summary_rows
-from chaingraph.kinematics.motion import Motion
 from chaingraph.kinematics.pose import pose_motion
 from chaingraph.model.chain import Input
 from chaingraph.naming.inversions import inversions
@@ -264,7 +263,7 @@ def input_grid(chain, motion, *, size=13):
     some pair of values cannot be assembled."""
     if len(motion.inputs) != 2 or motion.plan.moving_inputs != 2:
         return None
-    first, second = (np.asarray(motion["input:" + i.joint]) for i in motion.inputs)
+    first, second = (np.asarray(motion.values[i.joint]) for i in motion.inputs)
     rows = []
     for value in np.linspace(second[0], second[-1], size):
         try:
@@ -275,11 +274,9 @@ def input_grid(chain, motion, *, size=13):
                               steps=size - 1, summary=False))
         except ChainGraphError:
             return None
-    columns = {key: np.concatenate([np.broadcast_to(r[key], (size,)) for r in rows])
-               for key in rows[0].columns}
-    return Motion(name=motion.name, fixed=motion.fixed, driver=None, omega=motion.omega,
-                  columns=columns, summary=None, units=motion.units, plan=rows[0].plan,
-                  inputs=motion.inputs)
+    return replace(rows[0].joined(*rows[1:]), name=motion.name, fixed=motion.fixed,
+                   driver=None, omega=motion.omega, summary=None, units=motion.units,
+                   inputs=motion.inputs)
 
 
 # -- images ----------------------------------------------------------------------------
@@ -522,7 +519,7 @@ def _player(e):
     picks = list(range(m.theta.size)) if grid else frame_steps(m, e.frames)
     drawing = mechanism_svg(m, frames=len(picks), width=480, paths=not grid).split("?>", 1)[-1]
     if m.inputs:
-        inputs = [(i.joint, m["input:" + i.joint]) for i in m.inputs]
+        inputs = [(i.joint, m.values[i.joint]) for i in m.inputs]
     else:
         inputs = [("\u03b8 (degrees)", m.theta)]
     label, u, *_ = output_series(m)

@@ -585,12 +585,21 @@ def test_rounding_noise_is_not_printed_as_a_figure():
 
 def test_a_motion_has_typed_accessors_over_its_columns():
     engine = chaingraph.solve(chaingraph.load(catalog_path("reciprocating-engine")), steps=8)
-    crank, pin, slide = engine.link("crank"), engine.point("A"), engine.slide("S")
-    assert crank.angle is engine["angle:crank"] and crank.omega is engine["omega:crank"]
-    assert pin.x is engine["x:A"] and pin.ay is engine["ay:A"]
+    crank, pin, slide = engine.link("crank"), engine.joint("A"), engine.slide("S")
+    # radians inside, degrees where the name says so (the CSV's angle column)
+    assert np.array_equal(crank.angle_deg, engine["angle:crank"])
+    assert np.allclose(crank.angle, np.radians(engine["angle:crank"]), rtol=0, atol=1e-15)
+    assert crank.angle[0] == pytest.approx(-2 * math.pi / 3)          # drawn at -120 degrees
+    assert crank.omega is engine["omega:crank"] and crank.alpha is engine["alpha:crank"]
+    assert pin.x is engine["x:A"] and pin.ay is engine["ay:A"] and engine.point("A") is pin
     assert slide.s is engine["s:S"] and slide.a is engine["a:S"]
+    assert engine.links["crank"] is crank and engine.slides["S"] is slide
     with pytest.raises(KeyError, match="'rod' is no link"):
         engine.link("rod")
+    with pytest.raises(KeyError, match="'P' is no joint"):
+        engine.joint("P")
+    with pytest.raises(KeyError):
+        engine["x:nowhere"]
 
 
 def test_where_a_slide_runs_off_to_infinity_the_range_ends_on_every_path_alike():
