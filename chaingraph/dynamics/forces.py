@@ -15,6 +15,7 @@ from __future__ import annotations
 import io
 import math
 from dataclasses import dataclass, field
+from typing import Any
 
 import numpy as np
 
@@ -183,7 +184,7 @@ class ForcesSummary:
     mean_speed: float | None = None
 
     def to_dict(self) -> dict:
-        out = {"efforts": {k: v.to_dict() for k, v in self.efforts.items()},
+        out: dict[str, Any] = {"efforts": {k: v.to_dict() for k, v in self.efforts.items()},
                "reactions": {k: {"max": v} for k, v in self.reactions.items()}}
         if self.energy_fluctuation is not None:
             out["energy_fluctuation"] = self.energy_fluctuation
@@ -240,10 +241,10 @@ class SweepForces:
     reactions: tuple[ReactionSeries, ...] = field(repr=False)
     efforts: tuple[EffortSeries, ...] = field(repr=False)
     summary: ForcesSummary = field(repr=False)
+    motion: Motion = field(repr=False)
+    solution: Solution = field(repr=False)       # the force solve's own, every step
+    chain: Chain = field(repr=False)
     notes: tuple[str, ...] = ()
-    motion: Motion | None = field(default=None, repr=False)
-    solution: Solution | None = field(default=None, repr=False)
-    chain: Chain | None = field(default=None, repr=False)
 
     def __repr__(self):
         return (f"SweepForces({self.name!r}, inputs={list(self.inputs)!r}, "
@@ -252,13 +253,13 @@ class SweepForces:
     @property
     def columns(self) -> dict[str, np.ndarray]:
         """The CSV's columns, in its order."""
-        out = {} if self.motion is None else {
-            k: v for k, v in self.motion.columns.items() if k == "theta" or k.startswith("input:")}
+        out = {f"input:{joint}": v for joint, v in self.motion.values.items()}
+        out["theta"] = self.motion.theta
         for r in self.reactions:
             name = f"{r.joint}:{r.on}" if len(r.by) > 1 else r.joint
             out[f"Fx:{name}"], out[f"Fy:{name}"] = r.fx, r.fy
         for r in self.reactions:
-            if r.normal is not None:
+            if r.normal is not None and r.couple is not None:
                 out[f"N:{r.joint}"], out[f"M:{r.joint}"] = r.normal, r.couple
         out.update((f"effort:{e.joint}", e.value) for e in self.efforts)
         return out
@@ -338,7 +339,7 @@ def _metres(chain):
     return UNIT_METRES[chain.units]
 
 
-def _kinematic_state(plan: Plan, states: LinkStates, omega, metres, *,
+def _kinematic_state(chain: Chain, plan: Plan, states: LinkStates, omega, metres, *,
                      rates_known) -> KinematicState:
     """The :class:`KinematicState` of the solver's ``states`` at input speed ``omega``,
     in SI units: what the force solve needs, taken from the motion as it was solved."""
@@ -351,7 +352,7 @@ def _kinematic_state(plan: Plan, states: LinkStates, omega, metres, *,
     def arr(v, scale=1.0):
         return np.broadcast_to(np.asarray(v, dtype=float) * scale, (n,)).copy()
     links = {}
-    for link in plan.chain.links:
+    for link in chain.links:
         p, v, a = pose[link], vel[link], acc[link]
         links[link] = LinkState(link, (arr(p[0], metres), arr(p[1], metres)), arr(p[2]),
                                 (arr(v[0], metres), arr(v[1], metres)), arr(v[2]),
@@ -468,7 +469,9 @@ def _forces_at(chain, state: PoseMotion, *, static, metres) -> PoseForces:
     """The forces at the solved pose ``state`` (its poses and rates as solved)."""
     plan = state.plan
     _check_masses(chain)
-    kin = _kinematic_state(plan, state.states, state.omega, metres, rates_known=False)
+    assert state.states is not None               # (pose_motion keeps them)
+    kin = _kinematic_state(chain, plan, state.states, state.omega, metres,
+                           rates_known=False)
     sol = solve_equilibrium(chain, plan, kin, static=static, metres=metres)
     values = tuple(state.inputs.values()) if state.inputs else (state.input,)
     return _pose_forces(chain, plan, sol, 0, values, static)
@@ -478,11 +481,13 @@ def _forces_over(chain, motion: Motion, *, static, metres, speed_fluctuation) ->
     """The forces over the solved sweep ``motion`` (its poses and rates as solved)."""
     plan = motion.plan
     _check_masses(chain)
-    kin = _kinematic_state(plan, motion.states, motion.omega, metres, rates_known=True)
+    assert motion.states is not None              # (solve keeps them)
+    kin = _kinematic_state(chain, plan, motion.states, motion.omega, metres,
+                           rates_known=True)
     sol = solve_equilibrium(chain, plan, kin, static=static, metres=metres)
     reactions = tuple(
         ReactionSeries(j.id, link, tuple(x for x in j.links if x != link),
-                       *sol.forces[(j.id, link)],
+                       sol.forces[(j.id, link)][0], sol.forces[(j.id, link)][1],
                        sol.normal[j.id] if j.kind == "P" else None,
                        sol.couple[j.id] if j.kind == "P" else None)
         for j in chain.joints for link in _on_links(j))

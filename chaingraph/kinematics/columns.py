@@ -179,8 +179,10 @@ class Trajectories:
 
     def _each(self, change) -> Self:
         """A copy whose links, joints, points and slides are each ``change(item)``."""
-        return replace(self, **{group: {k: change(v) for k, v in getattr(self, group).items()}
-                                for group in ("links", "joints", "points", "slides")})
+        def each(group):
+            return {k: change(v) for k, v in group.items()}
+        return replace(self, links=each(self.links), joints=each(self.joints),
+                       points=each(self.points), slides=each(self.slides))
 
     def scaled(self, omega: float) -> Self:
         """The trajectories at input speed ``omega``, from these at unit speed."""
@@ -208,18 +210,20 @@ class Trajectories:
     def joined(self, *others: Trajectories) -> Self:
         """These trajectories' steps followed by each of ``others``' (of the same
         mechanism); a subclass's other fields are this one's."""
-        parts = (self, *others)
+        parts: tuple[Trajectories, ...] = (self, *others)
 
-        def join(key, group):
-            items = [getattr(p, group)[key] for p in parts]
-            return replace(items[0], **{f.name: np.concatenate([getattr(i, f.name)
-                                                                for i in items])
-                                        for f in fields(items[0]) if f.name != "name"})
+        def join(group):
+            def one(key):
+                items = [getattr(p, group)[key] for p in parts]
+                return replace(items[0], **{f.name: np.concatenate([getattr(i, f.name)
+                                                                    for i in items])
+                                            for f in fields(items[0]) if f.name != "name"})
+            return {key: one(key) for key in getattr(self, group)}
         return replace(self, theta=np.concatenate([p.theta for p in parts]),
                        values={k: np.concatenate([p.values[k] for p in parts])
                                for k in self.values},
-                       **{group: {k: join(k, group) for k in getattr(self, group)}
-                          for group in ("links", "joints", "points", "slides")})
+                       links=join("links"), joints=join("joints"), points=join("points"),
+                       slides=join("slides"))
 
 
 def csv_columns(plan, theta, pose, vel, acc) -> dict[str, np.ndarray]:

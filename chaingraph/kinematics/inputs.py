@@ -167,7 +167,7 @@ def pose_drive(chain: Chain, *, at=None, fixed=None, driver=None, inputs=None,
     fixed, driver, items, omega = _chosen(chain, fixed, driver, inputs, omega, name)
     if items:
         plan = plan_of(chain, fixed, None, items)
-        if at is None or len(values) > 1:
+        if values is None or len(values) > 1:
             plan = plan_of(chain, fixed, None, _items_at(plan, values))
     else:
         if not driver and not fixed:

@@ -11,6 +11,7 @@ from __future__ import annotations
 import io
 import math
 from dataclasses import dataclass, field, replace
+from typing import Any
 
 import numpy as np
 
@@ -25,11 +26,11 @@ from chaingraph.kinematics.columns import (
 )
 from chaingraph.kinematics.equations import check_poses
 from chaingraph.kinematics.inputs import Drive, plan_of, sweep_drive
-from chaingraph.kinematics.plan import Plan
+from chaingraph.kinematics.plan import InputJoint, Plan
 from chaingraph.kinematics.rates import rates
 from chaingraph.kinematics.summary import Summary, cycle_theta, motion_summary, straightness
 from chaingraph.kinematics.sweep import Cycle, cycle, evaluate_near, evaluate_sweep
-from chaingraph.model.chain import Chain, Input
+from chaingraph.model.chain import Chain
 
 __all__ = ["Motion", "LinkMotion", "PointMotion", "SlideMotion", "LinkStates", "solve",
            "full_turns", "full_turns_cost", "full_turns_drivers"]
@@ -65,9 +66,9 @@ class Motion(Trajectories):
     driver: str | None
     omega: float
     summary: Summary | None
+    plan: Plan = field(repr=False)
     units: str | None = None
-    plan: Plan | None = field(default=None, repr=False)
-    inputs: tuple[Input, ...] = ()     # the input joints, when not given as a driver
+    inputs: tuple[InputJoint, ...] = ()    # the input joints, when not given as a driver
     states: LinkStates | None = field(default=None, repr=False)   # the solver's own
 
     def __repr__(self):
@@ -168,7 +169,7 @@ class Motion(Trajectories):
 
     def to_dict(self) -> dict:
         """The JSON of ``chaingraph solve --json``."""
-        out = {"name": self.name, "fixed": self.fixed, "driver": self.driver}
+        out: dict[str, Any] = {"name": self.name, "fixed": self.fixed, "driver": self.driver}
         if self.inputs:
             out["inputs"] = [
                 {"joint": i.joint, "kind": i.kind, "from": float(self.values[i.joint][0]),
@@ -250,7 +251,7 @@ def solve(mechanism: Chain, *, fixed=None, driver=None, inputs=None, start=None,
                             driver=plan.driver, omega=drive.omega, summary=None,
                             units=chain.units, plan=plan, states=states,
                             inputs=() if plan.from_driver else plan.inputs)
-    motion = _as_asked(unit.scaled(drive.omega), drive, c, steps)
+    motion = _as_asked(unit.scaled(drive.omega), drive, c, theta)
     if not summary:
         return motion
     return replace(motion, summary=_summary(unit, output, c, ev, measure))
@@ -271,39 +272,41 @@ def _output(chain, output):
 def _swept(drive: Drive, steps, summary):
     """(the cycle, or None when not needed or there is none; the path parameters of the
     sweep; its evaluation, checked)."""
-    plan = drive.plan
-    explicit = drive.start is not None and drive.stop is not None
+    plan, start, stop = drive.plan, drive.start, drive.stop
     c = None
-    if summary or not explicit:
+    if summary or start is None or stop is None:
         try:
             c = cycle(plan)
         except UnboundedRangeError:
-            if not explicit:
+            if start is None or stop is None:
                 raise
             # no whole cycle: the summary is of the sweep asked for
-    lo = c.low if drive.start is None else plan.tau(drive.start)
-    if drive.stop is not None:
-        theta = np.linspace(lo, plan.tau(drive.stop), steps + 1)
-    elif c.full_turn:
-        theta = lo + 360.0 * np.arange(steps + 1) / steps    # as the summary's grid
+    if c is None:
+        theta = np.linspace(plan.tau(start), plan.tau(stop), steps + 1)
     else:
-        theta = np.linspace(lo, c.high, steps + 1)   # both ends exact (a rocker's limits)
+        lo = c.low if start is None else plan.tau(start)
+        if stop is not None:
+            theta = np.linspace(lo, plan.tau(stop), steps + 1)
+        elif c.full_turn:
+            theta = lo + 360.0 * np.arange(steps + 1) / steps    # as the summary's grid
+        else:
+            theta = np.linspace(lo, c.high, steps + 1)   # both ends exact (a rocker's limits)
     ev = evaluate_sweep(plan, theta) if c is not None else evaluate_near(plan, theta)
     check_poses(plan, ev.pose, ev.feasible)
     return c, theta, ev
 
 
-def _as_asked(motion: Motion, drive: Drive, c, steps) -> Motion:
+def _as_asked(motion: Motion, drive: Drive, c, theta) -> Motion:
     """The motion with the inputs' values exactly as asked for, and no rates at a
     limit of the range."""
-    plan, theta = drive.plan, motion.states.tau
-    if drive.start is not None and drive.stop is not None and not plan.from_driver:
+    plan, start, stop = drive.plan, drive.start, drive.stop
+    if start is not None and stop is not None and not plan.from_driver:
         # the values asked for, exactly (tau carries them to the last bit or so)
         values = dict(motion.values)
         for n, item in enumerate(plan.inputs):
-            ends = (drive.start, drive.stop) if n == plan.lead else item.sweep
+            ends = (start, stop) if n == plan.lead else item.sweep
             if ends is not None and (n == plan.lead or plan.line[n][1] != 0):
-                values[item.joint] = np.linspace(ends[0], ends[1], steps + 1)
+                values[item.joint] = np.linspace(ends[0], ends[1], theta.size)
         motion = replace(motion, values=values, theta=values[plan.inputs[plan.lead].joint])
     if c is not None and not c.full_turn:
         # a limit of the range is a fold: the inputs do not determine the rates there
@@ -316,7 +319,7 @@ def _as_asked(motion: Motion, drive: Drive, c, steps) -> Motion:
 def _summary(unit: Motion, output, c, ev, measure) -> Summary:
     """The summary of the motion ``unit`` (at unit input speed) over the cycle ``c``, or
     over its own sweep when the cycle is not one input's (None: there is none)."""
-    plan, theta = unit.plan, unit.states.tau
+    plan, theta = unit.plan, ev.theta
     lo, hi = float(theta[0]), float(theta[-1])
     if plan.moving_inputs > 1 or c is None:          # summarize the sweep
         c = Cycle(None, min(lo, hi), max(lo, hi), ends="sweep")
