@@ -14,8 +14,10 @@ from __future__ import annotations
 
 import io
 import math
+import os
+from collections.abc import Sequence
 from dataclasses import dataclass, field
-from typing import Any
+from typing import Any, overload
 
 import numpy as np
 
@@ -30,6 +32,7 @@ from chaingraph.dynamics.equilibrium import (
 from chaingraph.errors import MechanismError
 from chaingraph.kinematics import solve
 from chaingraph.kinematics.columns import LinkStates
+from chaingraph.kinematics.inputs import InputsGiven
 from chaingraph.kinematics.motion import Motion
 from chaingraph.kinematics.plan import Plan
 from chaingraph.kinematics.pose import LinkState, PoseMotion, pose_motion
@@ -124,12 +127,12 @@ class PoseForces:
     couples: tuple[AppliedCouple, ...] = field(default=(), repr=False)
     chain: object = field(default=None, repr=False, compare=False)
 
-    def effort(self, joint=None) -> float | None:
+    def effort(self, joint: str | None = None) -> float | None:
         """The effort of input ``joint`` (default: the first input)."""
         joint = joint or self.inputs[0]
         return next(e.value for e in self.efforts if e.joint == joint)
 
-    def reaction(self, joint, on=None) -> Reaction:
+    def reaction(self, joint: str, on: str | None = None) -> Reaction:
         """The reaction of ``joint`` on link ``on`` (default: its first link)."""
         return next(r for r in self.reactions if r.joint == joint and (on is None or r.on == on))
 
@@ -290,7 +293,7 @@ class SweepForces:
                 "static": self.static, "steps": self.steps,
                 "summary": self.summary.to_dict(), "notes": list(self.notes)}
 
-    def to_csv(self, path=None) -> str | None:
+    def to_csv(self, path: str | os.PathLike | None = None) -> str | None:
         """Write the CSV (one row per step); returns the text when ``path`` is None."""
         if path is None:
             buf = io.StringIO()
@@ -300,7 +303,7 @@ class SweepForces:
             write_columns(f, self.columns, self.steps + 1)
         return None
 
-    def to_frame(self):
+    def to_frame(self) -> Any:
         """The CSV's columns as a pandas DataFrame (needs the notebook extra)."""
         try:
             import pandas
@@ -399,8 +402,23 @@ def _check_masses(chain):
                          "with masses, [[loads]] or [forces] gravity", mechanism=name)
 
 
-def forces(mechanism, *, at=None, static=False, fixed=None, driver=None, inputs=None,
-           start=None, stop=None, steps=360, omega=None, speed_fluctuation=None):
+@overload
+def forces(mechanism: Chain, *, at: None = None, static: bool = False,
+           fixed: str | None = None, driver: str | None = None, inputs: InputsGiven = None,
+           start: float | None = None, stop: float | None = None, steps: int = 360,
+           omega: float | None = None, speed_fluctuation: float | None = None
+           ) -> SweepForces: ...
+@overload
+def forces(mechanism: Chain, *, at: float | Sequence[float], static: bool = False,
+           fixed: str | None = None, driver: str | None = None, inputs: InputsGiven = None,
+           start: float | None = None, stop: float | None = None, steps: int = 360,
+           omega: float | None = None, speed_fluctuation: float | None = None
+           ) -> PoseForces: ...
+def forces(mechanism: Chain, *, at: float | Sequence[float] | None = None,
+           static: bool = False, fixed: str | None = None, driver: str | None = None,
+           inputs: InputsGiven = None, start: float | None = None,
+           stop: float | None = None, steps: int = 360, omega: float | None = None,
+           speed_fluctuation: float | None = None) -> PoseForces | SweepForces:
     """The joints' reactions and the inputs' efforts of a mechanism.
 
     Parameters

@@ -12,11 +12,13 @@ from __future__ import annotations
 
 import math
 from dataclasses import dataclass, fields, replace
-from typing import Self
+from typing import Any, Self, cast
 
 import numpy as np
 
 from chaingraph.geometry import turn_by
+from chaingraph.kinematics.plan import Plan
+from chaingraph.model.chain import Chain, Joint
 
 __all__ = ["LinkStates", "LinkMotion", "PointMotion", "SlideMotion", "Trajectories",
            "reference_link", "slide_rates", "csv_columns"]
@@ -109,10 +111,10 @@ class Trajectories:
     slides: dict[str, SlideMotion]
 
     @classmethod
-    def of_states(cls, plan, states: LinkStates, /, **more) -> Self:
+    def of_states(cls, plan: Plan, states: LinkStates, /, **more: Any) -> Self:
         """The trajectories of the solver's ``states`` (``more``: the other fields of a
         subclass)."""
-        chain, theta = plan.chain, states.tau
+        chain, theta = cast(Chain, plan.chain), states.tau
         pose, vel, acc, n = states.pose, states.velocity, states.acceleration, theta.size
         values = {}
         if not plan.from_driver:
@@ -226,7 +228,8 @@ class Trajectories:
                        slides=join("slides"))
 
 
-def csv_columns(plan, theta, pose, vel, acc) -> dict[str, np.ndarray]:
+def csv_columns(plan: Plan, theta: np.ndarray, pose: dict, vel: dict,
+                acc: dict) -> dict[str, np.ndarray]:
     """The CSV's columns at the path parameters ``theta`` from the solver's poses and
     rates (a view of :meth:`Trajectories.of_states`)."""
     return Trajectories.of_states(plan, LinkStates(theta, pose, vel, acc)).columns
@@ -242,15 +245,16 @@ def _point_motion(pose, vel, acc, link, p):
             ax - al * ry - w * w * rx, ay + al * rx - w * w * ry)
 
 
-def reference_link(joint, fixed):
+def reference_link(joint: Joint, fixed: str) -> str:
     """The link whose motion a joint's CSV columns follow: a P joint's block, an R
     joint's fixed link when it has it, else its first link."""
     if joint.kind == "P":
-        return joint.block
+        return joint.links[1]                   # its block
     return fixed if fixed in joint.links else joint.links[0]
 
 
-def slide_rates(pose, vel, acc, joint, at):
+def slide_rates(pose: dict, vel: dict, acc: dict, joint: Joint,
+                at: tuple[float, float]) -> tuple[Any, Any, Any]:
     """A P joint's slide, its rate and acceleration; ``at`` its point in the plan's frame."""
     g, b = joint.links
     pg = _point_motion(pose, vel, acc, g, at)
@@ -259,7 +263,8 @@ def slide_rates(pose, vel, acc, joint, at):
     dd = (pb[2] - pg[2], pb[3] - pg[3])
     ddd = (pb[4] - pg[4], pb[5] - pg[5])
     w, al = vel[g][2], acc[g][2]
-    u = turn_by(pose[g], (math.cos(math.radians(joint.axis)), math.sin(math.radians(joint.axis))))
+    axis = math.radians(joint.axis or 0.0)    # (a P joint's is always given)
+    u = turn_by(pose[g], (math.cos(axis), math.sin(axis)))
     pu = (-u[1], u[0])
     du = (w * pu[0], w * pu[1])
     ddu = (al * pu[0] - w * w * u[0], al * pu[1] - w * w * u[1])

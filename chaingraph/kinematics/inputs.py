@@ -12,16 +12,21 @@ from __future__ import annotations
 
 import math
 import os
+from collections.abc import Sequence
 from dataclasses import dataclass
 from functools import lru_cache
+from typing import TypeAlias
 
 from chaingraph.errors import MechanismError
 from chaingraph.kinematics.plan import Plan, build_plan
 from chaingraph.model.chain import Chain, Input, chosen_inputs
 
 __all__ = ["Drive", "sweep_drive", "pose_drive", "input_items", "check_input_value",
-           "plan_of", "memory_budget", "LARGEST_INPUT"]
+           "plan_of", "memory_budget", "LARGEST_INPUT", "InputsGiven"]
 
+#: inputs as given: a joint id, an Input, or a sequence of them, of ``(joint, from, to)``
+#: tuples or of ``{"joint", "from", "to"}`` dicts
+InputsGiven: TypeAlias = "str | Input | Sequence[str | Input | tuple | dict] | None"
 #: the largest input value a sweep may start or stop at
 LARGEST_INPUT = 1e9
 #: bytes a sweep holds per step and column (the columns and the working arrays, measured)
@@ -42,7 +47,8 @@ class Drive:
     tau: float | None = None
 
 
-def plan_of(chain: Chain, fixed, driver, inputs=None) -> Plan:
+def plan_of(chain: Chain, fixed: str | None, driver: str | None,
+            inputs: tuple[Input, ...] | None = None) -> Plan:
     """The solve plan of ``chain`` with ``fixed`` fixed, moved by ``driver`` or by the
     input joints ``inputs`` (cached)."""
     # the file is part of the key: chains equal but for their file share no plan, whose
@@ -55,7 +61,7 @@ def _cached_plan(chain, source, fixed, driver, inputs):
     return build_plan(chain, fixed, driver, inputs=inputs)
 
 
-def check_input_value(value, what: str, mechanism: str | None) -> None:
+def check_input_value(value: object, what: str, mechanism: str | None) -> None:
     """Refuse an input value (or speed) that is not a finite number or is past
     ``LARGEST_INPUT``; ``what`` names it in the message."""
     if isinstance(value, bool) or not isinstance(value, (int, float)) \
@@ -69,15 +75,14 @@ def check_input_value(value, what: str, mechanism: str | None) -> None:
             mechanism=mechanism)
 
 
-def input_items(inputs, chain: Chain) -> tuple[Input, ...] | None:
+def input_items(inputs: InputsGiven, chain: Chain) -> tuple[Input, ...] | None:
     """Inputs given as joint ids, :class:`Input` items, ``{"joint", "from", "to"}``
     dicts or ``(joint, from, to)`` tuples, as Input items (None when none are given)."""
     if inputs is None:
         return None
-    if isinstance(inputs, (str, Input)):
-        inputs = [inputs]
+    given = [inputs] if isinstance(inputs, (str, Input)) else inputs
     out = []
-    for item in inputs:
+    for item in given:
         if isinstance(item, Input):
             out.append(item)
         elif isinstance(item, str):
@@ -110,8 +115,10 @@ def _chosen(chain, fixed, driver, inputs, omega, name):
     return (*chosen_inputs(chain, fixed, driver, input_items(inputs, chain)), omega)
 
 
-def sweep_drive(chain: Chain, *, fixed=None, driver=None, inputs=None, start=None,
-                stop=None, steps=360, omega=None) -> Drive:
+def sweep_drive(chain: Chain, *, fixed: str | None = None, driver: str | None = None,
+                inputs: InputsGiven = None, start: float | None = None,
+                stop: float | None = None, steps: int = 360,
+                omega: float | None = None) -> Drive:
     """The inputs of a sweep of ``steps`` steps, as :func:`chaingraph.solve` takes them:
     the first input's ``start`` and ``stop`` given here take the place of its own
     sweep's; a sweep that would not fit in memory is refused."""
@@ -146,8 +153,9 @@ def sweep_drive(chain: Chain, *, fixed=None, driver=None, inputs=None, start=Non
     return Drive(plan, omega, start=start, stop=stop)
 
 
-def pose_drive(chain: Chain, *, at=None, fixed=None, driver=None, inputs=None,
-               omega=None) -> Drive:
+def pose_drive(chain: Chain, *, at: float | Sequence[float] | None = None,
+               fixed: str | None = None, driver: str | None = None,
+               inputs: InputsGiven = None, omega: float | None = None) -> Drive:
     """The inputs at one pose, as :func:`~chaingraph.kinematics.pose.pose_motion` takes
     them: ``at`` the lead input's value, or one value per input (None: the drawn
     pose). With several inputs they move at the rates of their sweeps (an input

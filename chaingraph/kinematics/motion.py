@@ -10,6 +10,8 @@ from __future__ import annotations
 
 import io
 import math
+import os
+from collections.abc import Sequence
 from dataclasses import dataclass, field, replace
 from typing import Any
 
@@ -25,7 +27,7 @@ from chaingraph.kinematics.columns import (
     Trajectories,
 )
 from chaingraph.kinematics.equations import check_poses
-from chaingraph.kinematics.inputs import Drive, plan_of, sweep_drive
+from chaingraph.kinematics.inputs import Drive, InputsGiven, plan_of, sweep_drive
 from chaingraph.kinematics.plan import InputJoint, Plan
 from chaingraph.kinematics.rates import rates
 from chaingraph.kinematics.summary import Summary, cycle_theta, motion_summary, straightness
@@ -143,7 +145,7 @@ class Motion(Trajectories):
                    for v in self.columns.values()]
         return list(zip(*columns))
 
-    def to_frame(self):
+    def to_frame(self) -> Any:
         """The CSV's columns as a pandas DataFrame, one row per step (needs pandas:
         ``pip install chaingraph[notebook]``)."""
         try:
@@ -153,7 +155,7 @@ class Motion(Trajectories):
                               "'chaingraph[notebook]' (or pandas)") from None
         return pandas.DataFrame({name: np.asarray(v) for name, v in self.columns.items()})
 
-    def to_csv(self, path=None) -> str | None:
+    def to_csv(self, path: str | os.PathLike | None = None) -> str | None:
         """Write the CSV (one row per step); returns the text when ``path`` is None.
 
         Numbers are written as Python writes them (the shortest text that reads back to
@@ -178,8 +180,10 @@ class Motion(Trajectories):
         return out
 
 
-def solve(mechanism: Chain, *, fixed=None, driver=None, inputs=None, start=None,
-          stop=None, steps=360, omega=None, summary=True, output=None) -> Motion:
+def solve(mechanism: Chain, *, fixed: str | None = None, driver: str | None = None,
+          inputs: InputsGiven = None, start: float | None = None, stop: float | None = None,
+          steps: int = 360, omega: float | None = None, summary: bool = True,
+          output: str | None = None) -> Motion:
     """Solve a mechanism's motion over an input sweep.
 
     Parameters
@@ -334,7 +338,7 @@ def _summary(unit: Motion, output, c, ev, measure) -> Summary:
     return summary
 
 
-def full_turns_drivers(chain, fixed):
+def full_turns_drivers(chain: Chain, fixed: str) -> list[str]:
     """The drivers :func:`full_turns` tries, in order."""
     m = chain.mechanism
     if m is not None and m.fixed == fixed and m.driver:
@@ -343,7 +347,8 @@ def full_turns_drivers(chain, fixed):
         j.kind == "R" and fixed in j.links and x in j.links for j in chain.joints)]
 
 
-def full_turns_cost(chain, fixed, *, drivers=None) -> float:
+def full_turns_cost(chain: Chain, fixed: str, *,
+                    drivers: Sequence[str] | None = None) -> float:
     """An estimate, in seconds of one core, of :func:`full_turns` with ``fixed`` fixed:
     every candidate driver's cycle and sweep, from its plan (measured on 4- to 30-link
     chains of dyads and a rotary engine: a closed-form step about 15 ms; a group of
@@ -365,7 +370,7 @@ def full_turns_cost(chain, fixed, *, drivers=None) -> float:
     return total
 
 
-def full_turns(chain, fixed):
+def full_turns(chain: Chain, fixed: str) -> tuple[frozenset[str], str] | None:
     """The links that make full turns relative to ``fixed``, from a solved cycle.
 
     The driver is the chain's own when its mechanism fixes ``fixed``, else each link

@@ -11,6 +11,7 @@ and acceleration of any point of the link follow.
 from __future__ import annotations
 
 import math
+from collections.abc import Sequence
 from dataclasses import dataclass, field
 
 import numpy as np
@@ -19,7 +20,7 @@ from chaingraph.errors import AssemblyError
 from chaingraph.geometry import rotate, turn_by
 from chaingraph.kinematics.columns import LinkStates, Trajectories, reference_link
 from chaingraph.kinematics.equations import check_poses
-from chaingraph.kinematics.inputs import Drive, pose_drive
+from chaingraph.kinematics.inputs import Drive, InputsGiven, pose_drive
 from chaingraph.kinematics.plan import Plan
 from chaingraph.kinematics.rates import rates
 from chaingraph.kinematics.sweep import evaluate_near
@@ -46,18 +47,18 @@ class LinkState:
     acceleration: tuple[float, float]
     alpha: float
 
-    def moved(self, offset):
+    def moved(self, offset: tuple[float, float]) -> tuple[float, float]:
         """Where the link's point is now that was drawn at ``offset`` from where
         ``point`` was drawn: point + R(angle) offset."""
         r = rotate(offset, self.angle)
         return (self.point[0] + r[0], self.point[1] + r[1])
 
-    def velocity_at(self, p):
+    def velocity_at(self, p: tuple[float, float]) -> tuple[float, float]:
         """Velocity of the link's point now at ``p``: v_O + omega k x (p - O)."""
         r = (p[0] - self.point[0], p[1] - self.point[1])
         return (self.velocity[0] - self.omega * r[1], self.velocity[1] + self.omega * r[0])
 
-    def acceleration_at(self, p):
+    def acceleration_at(self, p: tuple[float, float]) -> tuple[float, float]:
         """Acceleration of the link's point now at ``p``:
         a_O + alpha k x (p - O) - omega^2 (p - O)."""
         r = (p[0] - self.point[0], p[1] - self.point[1])
@@ -127,7 +128,7 @@ class PoseMotion:
     plan: Plan
     states: LinkStates | None = field(default=None, repr=False)
 
-    def input_text(self, symbol="theta", unit=" degrees") -> str:
+    def input_text(self, symbol: str = "theta", unit: str = " degrees") -> str:
         """The input's value in words: "theta = 60 degrees", or each input's
         "A = 80, E = 100"."""
         if self.inputs:
@@ -142,18 +143,18 @@ class PoseMotion:
         who = self.driver if self.driver and not self.inputs else lead.joint
         return f"{who} at {self.omega:g} {unit}"
 
-    def link_of(self, name):
+    def link_of(self, name: str) -> str:
         """The link whose motion a joint's or point's CSV columns follow."""
         chain = self.chain
         if name in {j.id for j in chain.joints}:
             return reference_link(chain.joint(name), self.fixed)
         return chain.point(name).link
 
-    def velocity(self, name):
+    def velocity(self, name: str) -> tuple[float, float]:
         """A joint's or point's velocity (the solver's)."""
         return self.links[self.link_of(name)].velocity_at(self.positions[name])
 
-    def acceleration(self, name):
+    def acceleration(self, name: str) -> tuple[float, float]:
         """A joint's or point's acceleration (the solver's)."""
         return self.links[self.link_of(name)].acceleration_at(self.positions[name])
 
@@ -161,13 +162,15 @@ class PoseMotion:
 class AtOneValue:
     """What the results at one input value share: they keep their solved ``state``."""
 
+    state: PoseMotion
+
     @property
-    def name(self):
+    def name(self) -> str:
         """The mechanism's name."""
         return self.state.name
 
     @property
-    def input(self):
+    def input(self) -> float:
         """The lead input's value."""
         return self.state.input
 
@@ -177,8 +180,9 @@ def _first(value) -> float:
     return float(np.asarray(value).reshape(-1)[0])
 
 
-def pose_motion(chain, *, at=None, fixed=None, driver=None, inputs=None,
-                omega=None) -> PoseMotion:
+def pose_motion(chain: Chain, *, at: float | Sequence[float] | None = None,
+                fixed: str | None = None, driver: str | None = None,
+                inputs: InputsGiven = None, omega: float | None = None) -> PoseMotion:
     """Solve a mechanism at one input value, keeping every link's motion.
 
     Parameters
@@ -232,10 +236,11 @@ def pose_motion(chain, *, at=None, fixed=None, driver=None, inputs=None,
     slides = {}
     for j in chain.joints:
         if j.kind == "P":                         # the solver's slide rates (the CSV's)
-            u = turn_by(tuple(map(_first, ev.pose[j.guide])),
-                        (math.cos(math.radians(j.axis)), math.sin(math.radians(j.axis))))
+            guide, block = j.links
+            axis = math.radians(j.axis or 0.0)    # (a P joint's is always given)
+            u = turn_by(tuple(map(_first, ev.pose[guide])), (math.cos(axis), math.sin(axis)))
             s = now.slides[j.id]
-            slides[j.id] = Slide(j.id, j.guide, j.block, positions[j.id], u, _first(s.v),
+            slides[j.id] = Slide(j.id, guide, block, positions[j.id], u, _first(s.v),
                                  _first(s.a), _first(s.s))
     finite = all(math.isfinite(c) for m in links.values()
                  for c in (*m.velocity, m.omega, *m.acceleration, m.alpha))
