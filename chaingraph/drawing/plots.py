@@ -49,6 +49,8 @@ def output_series(motion):
         output = motion.driver or motion.plan.inputs[motion.plan.lead].b
     # (the motion reads its CSV's columns from its typed fields, without building them)
     signal = output_signal(motion.plan, output, motion)
+    if signal is None:                 # (there is always an output here)
+        raise ValueError(f"{motion.name!r} has no output to plot")
     u, v, a = signal.values(motion)
     return signal.label, u, v, a, signal.unit or "length"
 

@@ -251,7 +251,7 @@ class SweepForces:
 
     def __repr__(self):
         return (f"SweepForces({self.name!r}, inputs={list(self.inputs)!r}, "
-                f"steps={self.steps}, columns={short_list(self.columns)})")
+                f"steps={self.steps}, columns={short_list(list(self.columns))})")
 
     @property
     def columns(self) -> dict[str, np.ndarray]:

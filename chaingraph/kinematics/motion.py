@@ -77,7 +77,7 @@ class Motion(Trajectories):
         given = (f"inputs={[i.joint for i in self.inputs]!r}" if self.inputs
                  else f"driver={self.driver!r}")
         return (f"Motion({self.name!r}, fixed={self.fixed!r}, {given}, steps={self.steps}, "
-                f"columns={short_list(self.columns)})")
+                f"columns={short_list(list(self.columns))})")
 
     @property
     def steps(self) -> int:

@@ -238,10 +238,11 @@ def pose_motion(chain: Chain, *, at: float | Sequence[float] | None = None,
         if j.kind == "P":                         # the solver's slide rates (the CSV's)
             guide, block = j.links
             axis = math.radians(j.axis or 0.0)    # (a P joint's is always given)
-            u = turn_by(tuple(map(_first, ev.pose[guide])), (math.cos(axis), math.sin(axis)))
+            x, y, phi, c, sin = map(_first, ev.pose[guide])
+            ux, uy = turn_by((x, y, phi, c, sin), (math.cos(axis), math.sin(axis)))
             s = now.slides[j.id]
-            slides[j.id] = Slide(j.id, guide, block, positions[j.id], u, _first(s.v),
-                                 _first(s.a), _first(s.s))
+            slides[j.id] = Slide(j.id, guide, block, positions[j.id], (float(ux), float(uy)),
+                                 _first(s.v), _first(s.a), _first(s.s))
     finite = all(math.isfinite(c) for m in links.values()
                  for c in (*m.velocity, m.omega, *m.acceleration, m.alpha))
     return PoseMotion(name=chain.name, fixed=plan.fixed, driver=plan.driver,
