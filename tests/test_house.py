@@ -232,12 +232,8 @@ NOT_YET_ANNOTATED = {
     "chaingraph/drawing/plots.py",  # being rewritten by another part of issue 36
     "chaingraph/drawing/scene.py",  # being rewritten by another part of issue 36
     "chaingraph/dynamics/equilibrium.py",  # being rewritten by another part of issue 36
-    "chaingraph/dynamics/reactions.py",  # being rewritten by another part of issue 36
-    "chaingraph/kinematics/columns.py",  # being rewritten by another part of issue 36
     "chaingraph/kinematics/groups.py",  # being rewritten by another part of issue 36
-    "chaingraph/kinematics/motion.py",  # being rewritten by another part of issue 36
     "chaingraph/kinematics/plan.py",  # being rewritten by another part of issue 36
-    "chaingraph/kinematics/pose.py",  # being rewritten by another part of issue 36
     "chaingraph/kinematics/rates.py",  # being rewritten by another part of issue 36
     "chaingraph/kinematics/summary.py",  # being rewritten by another part of issue 36
     "chaingraph/kinematics/sweep.py",  # being rewritten by another part of issue 36

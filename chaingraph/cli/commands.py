@@ -242,10 +242,8 @@ def cmd_forces(args) -> int:
             with Writing(args.plot):
                 plot_turning_moment(result, args.plot)
     if args.draw or args.polygon:
-        if at:
-            pose = result
-        else:                                   # the sweep's first pose
-            pose = forces(chain, at=result.motion.input_values(0), **common)
+        # the pose solved, or the sweep's first, as solved: nothing is solved again
+        pose = result if at else result.pose(0)
         if args.draw:
             write_text(args.draw, free_body_svg(pose))
         if args.polygon:

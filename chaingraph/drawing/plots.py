@@ -47,8 +47,11 @@ def output_series(motion):
         output = motion.plan.chain.mechanism.output
     if output is None:
         output = motion.driver or motion.plan.inputs[motion.plan.lead].b
-    signal = output_signal(motion.plan, output, motion.columns)
-    u, v, a = signal.values(motion.columns)
+    # (the motion reads its CSV's columns from its typed fields, without building them)
+    signal = output_signal(motion.plan, output, motion)
+    if signal is None:                 # (there is always an output here)
+        raise ValueError(f"{motion.name!r} has no output to plot")
+    u, v, a = signal.values(motion)
     return signal.label, u, v, a, signal.unit or "length"
 
 

@@ -160,17 +160,20 @@ class Scene(View):
         motions = [motion] if also is None else [motion, also]
         keep = slice(None) if rows is None else np.asarray(rows, dtype=int)
 
-        def column(key):
-            return np.concatenate([np.asarray(m[key], dtype=float).reshape(-1)
-                                   for m in motions])[keep]
-        xy = {name: (column(f"x:{name}"), column(f"y:{name}")) for name in names}
+        def series(values):
+            return np.concatenate([np.asarray(v, dtype=float).reshape(-1)
+                                   for v in values])[keep]
+        xy = {name: (series(m.point(name).x for m in motions),
+                     series(m.point(name).y for m in motions)) for name in names}
         angle, slide = {}, {}
         for j in chain.joints:
             if j.kind == "P":
+                # the sliding line turns with its guide from the drawn pose
                 guide = j.links[0]
-                turn = np.radians(column(f"angle:{guide}") - chain.reference_direction(guide))
+                turn = (series(m.link(guide).angle for m in motions)
+                        - math.radians(chain.reference_direction(guide)))
                 angle[j.id] = math.radians(j.axis) + turn
-                slide[j.id] = column(f"s:{j.id}")
+                slide[j.id] = series(m.slide(j.id).s for m in motions)
         return cls(chain, motion.fixed, xy, angle, slide)
 
     @classmethod

@@ -38,7 +38,7 @@ _SINGULAR = 1e-10
 @dataclass(frozen=True)
 class KinematicState:
     """What the force solve needs of the motion at n steps, in SI units: each link's
-    :class:`~chaingraph.kinematics.pose.LinkMotion` with arrays for fields (its frame
+    :class:`~chaingraph.kinematics.pose.LinkState` with arrays for fields (its frame
     origin about the plan's origin in m, its rotation from the drawn pose, their
     rates), and each input's rate ``rates[joint]`` (rad/s or m/s); ``rates_known``
     when the rates are the solver's own, NaN at its dead centres."""

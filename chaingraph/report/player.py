@@ -35,7 +35,7 @@ def player_html(e: Entry) -> list[str]:
     picks = list(range(m.theta.size)) if grid else frame_steps(m, e.frames)
     drawing = mechanism_svg(m, frames=len(picks), width=480, paths=not grid).split("?>", 1)[-1]
     if m.inputs:
-        inputs = [(i.joint, m["input:" + i.joint]) for i in m.inputs]
+        inputs = [(i.joint, m.values[i.joint]) for i in m.inputs]
     else:
         inputs = [("\u03b8 (degrees)", m.theta)]
     label, u, *_ = output_series(m)
