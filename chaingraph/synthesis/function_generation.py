@@ -30,9 +30,11 @@ from __future__ import annotations
 
 import math
 from collections import Counter
+from collections.abc import Sequence
 from dataclasses import dataclass, replace
 
 import numpy as np
+import numpy.typing as npt
 from scipy.optimize import minimize  # type: ignore[import-untyped]
 
 from chaingraph.errors import DesignError
@@ -76,7 +78,7 @@ class FunctionDesign:
     predicted: float
 
 
-def freudenstein(theta, psi) -> np.ndarray:
+def freudenstein(theta: npt.ArrayLike, psi: npt.ArrayLike) -> np.ndarray:
     """R1, R2, R3 of Freudenstein's equation through three (theta, psi) pairs (radians,
     arrays of shape (..., 3)); NaN where the three give no unique solution.
 
@@ -103,7 +105,7 @@ def freudenstein(theta, psi) -> np.ndarray:
     return np.where(ok[..., None], r, np.nan)
 
 
-def slider_crank_closed_form(theta, s) -> np.ndarray:
+def slider_crank_closed_form(theta: npt.ArrayLike, s: npt.ArrayLike) -> np.ndarray:
     """(r, l squared, e) of the slider crank through three (theta, s) pairs (theta in
     radians, s the block's pin along the guide; arrays of shape (..., 3)); NaN where the
     three give no unique solution.
@@ -157,24 +159,26 @@ def _wrap(deg):
     return (deg + 180.0) % 360.0 - 180.0
 
 
-def design_error(task: FunctionTask, kind, lengths, start, mode, xs=None):
+def design_error(task: FunctionTask, kind: str, lengths: Sequence[npt.ArrayLike],
+                 start: Sequence[npt.ArrayLike], mode: npt.ArrayLike,
+                 xs: npt.ArrayLike | None = None) -> tuple[np.ndarray, np.ndarray]:
     """The structural error (output's units) of a design at ``xs`` (default: the
     range, densely) and its transmission angles there (degrees), by the design's closed
     form. ``lengths``, ``start`` and ``mode`` may hold one value or arrays of M designs
     (the results are then (M, len(xs)))."""
-    xs = np.linspace(*task.x, _SAMPLES) if xs is None else np.asarray(xs, dtype=float)
-    lengths = [np.asarray(v, dtype=float)[..., None] for v in lengths]
+    at = (np.linspace(task.x[0], task.x[1], _SAMPLES) if xs is None
+          else np.asarray(xs, dtype=float))
+    sizes = [np.asarray(v, dtype=float)[..., None] for v in lengths]
     first, out0 = (np.asarray(v, dtype=float)[..., None] for v in start)
-    mode = np.asarray(mode)[..., None]
-    theta = np.radians(first + task.input_at(xs))
-    wanted = out0 + task.output_at(xs)
+    modes = np.asarray(mode)[..., None]
+    theta = np.radians(first + task.input_at(at))
+    wanted = out0 + task.output_at(at)
     with np.errstate(all="ignore"):
         if kind == "four-bar":
-            got, mu = _four_bar_output(lengths[0], lengths[1], lengths[2], lengths[3],
-                                       theta, mode)
+            got, mu = _four_bar_output(sizes[0], sizes[1], sizes[2], sizes[3], theta, modes)
             err = _wrap(np.degrees(got) - wanted)
         else:
-            got, mu = _slider_output(lengths[0], lengths[1], lengths[2], theta, mode)
+            got, mu = _slider_output(sizes[0], sizes[1], sizes[2], theta, modes)
             err = got - wanted
     return err, mu
 
@@ -188,7 +192,7 @@ def _scores(task, lengths, starts, modes, xs_targets):
     at, _ = design_error(task, task.mechanism, lengths.T, starts.T, modes, xs_targets)
     reasons = np.full(len(starts), None, dtype=object)
     lo, hi = min(xs_targets[0], xs_targets[-1]), max(xs_targets[0], xs_targets[-1])
-    xs = np.linspace(*task.x, _SAMPLES)
+    xs = np.linspace(task.x[0], task.x[1], _SAMPLES)
     inside = mu[:, (xs >= lo) & (xs <= hi)]
     mt = task.min_transmission
     reasons[np.any((inside < mt) | (inside > 180 - mt), axis=1)] = "transmission angle"
@@ -302,17 +306,16 @@ def _minimax_fit(task, seed):
     free_start = task.start is None
     xs = task.precision_x()
     lo, hi = min(xs[0], xs[-1]), max(xs[0], xs[-1])
-    grid = np.linspace(*task.x, _FITTED)
+    grid = np.linspace(task.x[0], task.x[1], _FITTED)
     inside = np.zeros(grid.size, dtype=bool)
     inside[::4] = True                 # the transmission angle, more coarsely
     inside &= (grid >= lo) & (grid <= hi)
     mt = task.min_transmission
 
     def unpack(p):
-        if four:
-            lengths = (float(np.exp(np.clip(p[0], -30.0, 30.0))), float(np.exp(np.clip(p[1], -30.0, 30.0))), float(np.exp(np.clip(p[2], -30.0, 30.0))), FRAME)
-        else:
-            lengths = (float(np.exp(np.clip(p[0], -30.0, 30.0))) * scale, float(np.exp(np.clip(p[1], -30.0, 30.0))) * scale, p[2] * scale)
+        size = [float(np.exp(np.clip(v, -30.0, 30.0))) for v in p[:3]]
+        lengths: tuple[float, ...] = ((size[0], size[1], size[2], FRAME) if four else
+                                      (size[0] * scale, size[1] * scale, float(p[2]) * scale))
         start = ((p[3], p[4] * scale) if free_start else task.start)
         return lengths, start
 
@@ -379,7 +382,7 @@ def _distinct(designs, limit, *, apart=None):
     """The designs, near-repeats dropped (the same mode and lengths within 1e-3, or,
     with ``apart``, starts closer than that in degrees or in the output's units); the
     first ``limit`` of them."""
-    out = []
+    out: list[FunctionDesign] = []
     for dsg in designs:
         if apart is not None:
             same = [o for o in out if o.mode == dsg.mode and abs(_wrap(
@@ -475,7 +478,8 @@ def _solution(task, design, certified: Certified):
                     certified.input, _names(certified.chain), None, curve, dimensions)
 
 
-def function(*, function: str, x, swing, start=None, points: int = 3,
+def function(*, function: str, x: tuple[float, float], swing: tuple[float, float],
+             start: tuple[float, float] | None = None, points: int = 3,
              spacing: str = "chebyshev", kind: str = "four-bar", solutions: int = 5,
              units: str = "mm", min_transmission: float = 30.0) -> Synthesis:
     """Synthesise a function generator: a four-bar (input crank, output rocker) or a
