@@ -208,7 +208,14 @@ def _scores(task, lengths, starts, modes, xs_targets):
 # -- three points, exactly -----------------------------------------------------------
 def _three_points(task, xs, starts):
     """Designs through the precision points ``xs`` (three) for each start (rows of
-    ``starts``, degrees): (lengths (M, 3 or 4), modes (M,), reasons (M,) or None)."""
+    ``starts``, degrees): (lengths (M, 3 or 4), starts (M, 2), modes (M,), reasons (M,)
+    or None).
+
+    A negative crank or rocker out of the equations is the link pointing the other way
+    along its line (the textbooks' reading of the sign: an angle is a line's, the sign
+    of a length says which way along it): the link's length is made positive and its
+    start turned by half a turn; the mechanism is the same."""
+    starts = np.array(starts, dtype=float)
     theta = np.radians(starts[:, :1] + task.input_at(xs)[None, :])
     out = starts[:, 1:] + task.output_at(xs)[None, :]
     reasons = np.full(len(starts), None, dtype=object)
@@ -219,29 +226,30 @@ def _three_points(task, xs, starts):
             d = FRAME
             a, c = d / r[:, 0], d / r[:, 1]
             b2 = a * a + c * c + d * d - 2 * a * c * r[:, 2]
-            lengths = np.stack([a, np.sqrt(np.abs(b2)), c, np.full_like(a, d)], axis=1)
             bx, by = a * np.cos(theta[:, 0]), a * np.sin(theta[:, 0])
             cx, cy = d + c * np.cos(psi[:, 0]), c * np.sin(psi[:, 0])
             modes = np.where((d - bx) * (cy - by) - (0 - by) * (cx - bx) >= 0, 1, -1)
-            negative = (a <= 0) | (c <= 0)
+            starts[:, 0] += np.where(a < 0, 180.0, 0.0)
+            starts[:, 1] += np.where(c < 0, 180.0, 0.0)
+            lengths = np.stack([np.abs(a), np.sqrt(np.abs(b2)), np.abs(c),
+                                np.full_like(a, d)], axis=1)
             impossible = b2 <= 0
         else:
             k = slider_crank_closed_form(theta, out)
             r, l2, e = k[:, 0], k[:, 1], k[:, 2]
-            lengths = np.stack([r, np.sqrt(np.abs(l2)), e], axis=1)
             foot = r * np.cos(theta[:, 0])
             modes = np.where(out[:, 0] - foot >= 0, 1, -1)
-            negative = r <= 0
+            starts[:, 0] += np.where(r < 0, 180.0, 0.0)
+            lengths = np.stack([np.abs(r), np.sqrt(np.abs(l2)), e], axis=1)
             impossible = l2 <= 0
     singular = ~np.all(np.isfinite(lengths), axis=1)
     reasons[impossible] = "impossible length"
-    reasons[negative] = "negative length"
     reasons[singular] = "singular"
     positive = np.abs(lengths[:, :4 if task.mechanism == "four-bar" else 2])
     with np.errstate(all="ignore"):
         ratio = positive.max(axis=1) / positive.min(axis=1)
     reasons[(reasons == None) & ~(ratio <= MAX_RATIO)] = "link ratio"  # noqa: E711
-    return lengths, modes, reasons
+    return lengths, starts, modes, reasons
 
 
 def _grid_starts(task):
@@ -257,7 +265,7 @@ def _designs_at(task, starts, rejected):
     """Three-point designs at Chebyshev's (or the task's) points for each start, the
     failures counted in ``rejected``; [(predicted, FunctionDesign)] in the grid's order."""
     xs = task.precision_x() if task.points == 3 else precision_x(task.x, 3, "chebyshev")
-    lengths, modes, reasons = _three_points(task, xs, starts)
+    lengths, starts, modes, reasons = _three_points(task, xs, starts)
     ok = reasons == None  # noqa: E711
     score, why = _scores(task, lengths[ok], starts[ok], modes[ok], task.precision_x())
     reasons[ok] = why
@@ -282,7 +290,7 @@ def _refine_start(task, design):
     for _ in range(_ZOOMS):
         starts = np.array([(best.start[0] + u * step[0], best.start[1] + v * step[1])
                            for u in offsets for v in offsets])
-        lengths, modes, reasons = _three_points(task, xs, starts)
+        lengths, starts, modes, reasons = _three_points(task, xs, starts)
         ok = (reasons == None) & (modes == best.mode)  # noqa: E711
         if ok.any():
             score, _ = _scores(task, lengths[ok], starts[ok], modes[ok], xs)
@@ -524,10 +532,16 @@ def function(*, function: str, x: tuple[float, float], swing: tuple[float, float
 
     Examples
     --------
-    >>> s = function(function="log10(x)", x=(1, 2), swing=(60, 90), start=(45, 135))
+    The textbooks' task, from their starting angles (a least transmission angle of
+    25.8 degrees: below the default bound):
+
+    >>> s = function(function="log10(x)", x=(1, 2), swing=(60, 90), start=(45, 135),
+    ...              min_transmission=25)
     >>> best = s.solutions[0]
     >>> best.mechanism.mechanism.output, best.input, len(best.reached_at)
     ('rocker', 'rocks', 3)
+    >>> [round(best.dimensions[k] / 100, 4) for k in ("crank", "coupler", "rocker")]
+    [1.8509, 2.868, 1.9205]
     """
     task = function_task(function=function, x=x, swing=swing, start=start, points=points,
                          spacing=spacing, kind=kind, units=units,
