@@ -41,12 +41,18 @@ from chaingraph.errors import DesignError
 from chaingraph.geometry import circle_circle, circle_line
 from chaingraph.model.chain import Chain, Joint, Mechanism
 from chaingraph.naming import identify
-from chaingraph.synthesis.certification import Certified, FunctionTargets, certify
+from chaingraph.kinematics import solve
+from chaingraph.synthesis.certification import (
+    Certified,
+    FunctionTargets,
+    certify,
+    output_values,
+)
 from chaingraph.synthesis.result import Curve, Error, Searched, Solution, Synthesis, ranked
 from chaingraph.synthesis.task import FunctionTask, check_options, function_task, precision_x
 
 __all__ = ["function", "FRAME", "MAX_RATIO", "FunctionDesign", "freudenstein",
-           "slider_crank_closed_form", "design_error"]
+           "slider_crank_closed_form", "design_error", "structural_error"]
 
 #: the four-bar's frame length (file units); a function generator's size is free
 FRAME = 100.0
@@ -563,3 +569,47 @@ def function(*, function: str, x: tuple[float, float], swing: tuple[float, float
             rejected[result.reason] += 1
     return Synthesis(task, ranked(found, solutions), dict(sorted(rejected.items())),
                      Searched(1, 1, tried))
+
+
+def structural_error(chain: Chain, *, steps: int = 720) -> Curve:
+    """A function generator's structural error over its task's range, from its file:
+    the chain (as ``design function --out`` writes it, with its ``[task]``: ``function``,
+    ``x``, ``swing``, the ``start`` chosen, ``precision_x``) solved by chaingraph's
+    solver over the input's swing, its output set against the task's, in the output's
+    units; the precision points marked.
+
+    Raises
+    ------
+    DesignError
+        A chain whose ``[task]`` is not a function generator's, or is not a good task.
+
+    Examples
+    --------
+    >>> from chaingraph.naming.catalog import catalog_path
+    >>> import chaingraph
+    >>> c = structural_error(chaingraph.load(catalog_path("log10-function-generator")))
+    >>> round(float(abs(c.y).max()), 4), [round(v, 3) for v in c.marks]
+    (0.0901, [1.067, 1.5, 1.933])
+    """
+    table = chain.task or {}
+    if table.get("kind") != "function" or "start" not in table or chain.mechanism is None \
+            or chain.mechanism.output is None:
+        raise DesignError(f"{chain.name!r} has no function generator's [task] (kind, "
+                          "function, x, swing, start) and output", kind="function",
+                          parameter="task")
+    task = function_task(function=table.get("function", ""), x=table.get("x", ()),
+                         swing=table.get("swing", ()), start=table["start"],
+                         points=int(table.get("points", 3)),   # TOML writes 3.0
+                         spacing=table.get("spacing", "chebyshev"),
+                         kind=table.get("mechanism", "four-bar"))
+    assert task.start is not None
+    t0, o0 = task.start
+    motion = solve(chain, start=t0, stop=t0 + task.swing[0], steps=steps, summary=False)
+    a, b = task.x
+    x = a + (motion["theta"] - t0) / task.swing[0] * (b - a)
+    wanted = o0 + task.output_at(x)
+    got = output_values(chain, motion, chain.mechanism.output, near=float(wanted[0]))
+    unit = "degrees" if task.mechanism == "four-bar" else (chain.units or "file units")
+    marks = table.get("precision_x") or [float(v) for v in task.precision_x()]
+    return Curve(np.asarray(x, dtype=float), np.asarray(got - wanted, dtype=float), "x",
+                 f"structural error ({unit})", tuple(float(v) for v in marks))
