@@ -21,7 +21,7 @@ from chaingraph.model.chain import Chain
 if TYPE_CHECKING:                   # matplotlib is imported only when a picture is drawn
     from matplotlib.figure import Figure
 
-__all__ = ["draw_synthesis", "ErrorCurve"]
+__all__ = ["draw_synthesis", "draw_solution", "ErrorCurve", "DrawnSolution"]
 
 
 class ErrorCurve(Protocol):
@@ -134,3 +134,34 @@ def _error_plot(ax, curve: ErrorCurve) -> None:
     ax.grid(True, color="#dddddd", linewidth=0.6)
     worst = float(np.max(np.abs(curve.y))) if len(curve.y) else 0.0
     ax.set_title(f"structural error: largest {worst:.4g}", fontsize=10)
+
+
+class DrawnSolution(Protocol):
+    """What :func:`draw_solution` reads of a synthesis's ``Solution``: its mechanism
+    (with its ``[task]``), the input at each target and its error curve."""
+
+    @property
+    def mechanism(self) -> Chain: ...
+
+    @property
+    def reached_at(self) -> tuple[float, ...]: ...
+
+    @property
+    def curve(self) -> ErrorCurve | None: ...
+
+
+def draw_solution(solution: DrawnSolution, *,
+                  path: str | os.PathLike[str] | None = None) -> Figure | None:
+    """A synthesis's solution drawn as ``design ... --draw`` draws it: the mechanism at
+    its first target, its paths over the task's sweep (a function's input swing, else
+    the whole cycle), its targets (points, or poses as frames) and, for a function, its
+    structural error beside it."""
+    task = solution.mechanism.task or {}
+    sweep = None
+    if "swing" in task and "start" in task:
+        sweep = (float(task["start"][0]), float(task["start"][0]) + float(task["swing"][0]))
+    poses = [tuple(p) for p in task.get("poses", ())]
+    return draw_synthesis(solution.mechanism, at=solution.reached_at[0], sweep=sweep,
+                          curve=None if poses else solution.curve,
+                          targets=[tuple(p) for p in task.get("targets", ())],
+                          poses=poses, path=path)
