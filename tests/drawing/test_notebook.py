@@ -106,8 +106,7 @@ def test_a_synthesis_shows_its_solutions_and_the_best_one_drawn():
 def test_the_synthesis_display_is_registered_with_ipython_by_name():
     """With a real IPython shell: the formatter holds the display by module and name, and
     uses it for a synthesis once its module is loaded."""
-    pytest.importorskip("IPython")
-    from IPython.core.formatters import HTMLFormatter
+    from IPython.core.formatters import HTMLFormatter          # the notebook extra's
     from chaingraph.synthesis import motion
 
     class Shell:
