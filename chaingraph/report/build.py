@@ -19,6 +19,7 @@ import sys
 import warnings
 from dataclasses import dataclass, field
 from pathlib import Path
+from typing import Any
 
 from chaingraph._util.atomic import staged, write_atomic
 from chaingraph._util.parallel import process_runner
@@ -29,6 +30,7 @@ from chaingraph.drawing.graph import draw_link_joint_graph
 from chaingraph.drawing.limits import limits_svg
 from chaingraph.drawing.mechanism import mechanism_svg, skeleton_svg
 from chaingraph.drawing.plots import plot_motion
+from chaingraph.drawing.synthesis import draw_synthesis
 from chaingraph.dynamics import forces
 from chaingraph.errors import ChainGraphError
 from chaingraph.files import load
@@ -40,6 +42,7 @@ from chaingraph.kinematics.pose import pose_motion
 from chaingraph.naming.inversion_classes import inversions
 from chaingraph.report.pages import entry_page, index_page
 from chaingraph.structure.classification import classify
+from chaingraph.synthesis.function_generation import structural_error
 
 __all__ = ["Report", "build_report", "chain_paths"]
 
@@ -63,6 +66,7 @@ class Entry:
     limits: bool = False          # a time ratio: its limit positions drawn
     forces: object = None         # with masses or loads: the forces over the sweep
     pose_forces: object = None    # and at the sweep's first pose (the free bodies)
+    task: object = None           # a synthesised mechanism's [task], drawn (task_drawing)
 
 
 @dataclass
@@ -239,6 +243,33 @@ def _analyse(entry, steps):
                     entry.pose_forces = forces(chain, at=entry.motion.input_values(0))
                 except ChainGraphError as e:
                     entry.warnings.append(f"forces not found: {e}")
+            if chain.task:
+                entry.task = _task_drawing(entry)
+
+
+def _task_drawing(entry):
+    """What a synthesised mechanism's [task] asks, as the synthesis draws it: the input's
+    value at the drawn pose (its first target), the sweep, the targets or poses, and a
+    function generator's structural error over its range (None where it cannot be
+    worked out: the task is then only listed)."""
+    task = entry.chain.task
+    try:                                    # a synthesis draws its file at the first target
+        at = float(pose_motion(entry.chain).input)
+    except ChainGraphError as e:
+        entry.warnings.append(f"the task not drawn: {e}")
+        return None
+    drawn: dict[str, Any] = {"at": at, "sweep": None, "curve": None,
+                             "targets": [tuple(p) for p in task.get("targets", ())],
+                             "poses": [tuple(p) for p in task.get("poses", ())]}
+    if task.get("kind") == "function":
+        try:
+            drawn["curve"] = structural_error(entry.chain)
+        except ChainGraphError as e:
+            entry.warnings.append(f"the task's structural error not found: {e}")
+            return None
+        t0 = float(task["start"][0])
+        drawn["sweep"] = (t0, t0 + float(task["swing"][0]))
+    return drawn
 
 
 # -- images ----------------------------------------------------------------------------
@@ -267,6 +298,9 @@ def _write_images(entry, out, frames):
             (img / f"{entry.slug}-force-polygons.svg").write_text(polygons, encoding="utf-8")
         if len(entry.forces.inputs) == 1:
             plot_turning_moment(entry.forces, img / f"{entry.slug}-turning-moment.svg")
+    if entry.task is not None:
+        draw_synthesis(entry.chain, **entry.task, title=entry.chain.name,
+                       path=img / f"{entry.slug}-task.svg")
     if entry.centres is not None:
         draw_centres(entry.centres, img / f"{entry.slug}-centres.svg")
         draw_polygons(entry.polygons, img / f"{entry.slug}-polygons.svg")

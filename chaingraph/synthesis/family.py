@@ -29,6 +29,7 @@ import math
 from abc import ABC, abstractmethod
 
 import numpy as np
+import numpy.typing as npt
 
 from chaingraph.geometry import circle_circle
 from chaingraph.model.chain import Chain, Joint, Mechanism, Point
@@ -95,11 +96,11 @@ class Family(ABC):
         with np.errstate(all="ignore"):
             return s.max(axis=1) / s.min(axis=1)
 
-    def chain(self, params, *, name: str, units: str, notes: str,
+    def chain(self, params: npt.ArrayLike, *, name: str, units: str, notes: str,
               task: dict | None = None) -> Chain:
         """The mechanism of one row of parameters, drawn at its pose, its output the
         tracing point."""
-        p = [float(v) for v in params]
+        p = [float(v) for v in np.asarray(params, dtype=float)]
         joints = tuple(Joint(j.id, j.kind, j.links, at=(p[2 * k], p[2 * k + 1]))
                        for k, j in enumerate(self.template))
         return Chain(name, joints, family=self.family_name, units=units, notes=notes,
@@ -108,7 +109,7 @@ class Family(ABC):
                      task=task)
 
     @abstractmethod
-    def dimensions(self, params) -> dict[str, float]:
+    def dimensions(self, params: np.ndarray) -> dict[str, float]:
         """One mechanism's lengths (and the tracing point's place on its link) by name."""
 
 
@@ -148,29 +149,30 @@ class FourBar(Family):
         cx, cy = mx + root * nx, my + root * ny
         return (bx, by), (cx, cy), d, coupler, along, across
 
-    def positions(self, params, theta):
+    def positions(self, params: np.ndarray, theta: np.ndarray) -> tuple[np.ndarray,
+                                                                         np.ndarray]:
         (bx, by), (cx, cy), _, coupler, along, across = self._joints(params, theta)
         with np.errstate(all="ignore"):
             ex, ey = (cx - bx) / coupler, (cy - by) / coupler
         return bx + along * ex - across * ey, by + along * ey + across * ex
 
-    def transmission(self, params, theta):
+    def transmission(self, params: np.ndarray, theta: np.ndarray) -> np.ndarray:
         (bx, by), (cx, cy), d, _, _, _ = self._joints(params, theta)
         ux, uy, vx, vy = bx - cx, by - cy, d[0] - cx, d[1] - cy
         return np.degrees(np.arctan2(np.abs(ux * vy - uy * vx), ux * vx + uy * vy))
 
-    def posed(self, params, theta):
+    def posed(self, params: np.ndarray, theta: np.ndarray) -> np.ndarray:
         p = np.asarray(params, dtype=float)
         th = np.asarray(theta, dtype=float)[:, None]
         (bx, by), (cx, cy), _, _, _, _ = self._joints(p, th)
         x, y = self.positions(p, th)
         return np.concatenate([p[:, 0:2], bx, by, cx, cy, p[:, 6:8], x, y], axis=1)
 
-    def first_input(self, params):
+    def first_input(self, params: np.ndarray) -> np.ndarray:
         p = np.asarray(params, dtype=float)
         return np.arctan2(p[:, 3] - p[:, 1], p[:, 2] - p[:, 0])
 
-    def sample(self, rng, count):
+    def sample(self, rng: np.random.Generator, count: int) -> np.ndarray:
         """Grashof crank-rockers (the crank the shortest link, so that it turns fully),
         in either assembly, at a random crank angle, the coupler point anywhere within
         about the coupler's length of it, turned and scaled so that the point's path is
@@ -202,7 +204,7 @@ class FourBar(Family):
         params = np.concatenate([a, b, c, d, pt]).T
         return _centred_unit(self, params)
 
-    def dimensions(self, params):
+    def dimensions(self, params: np.ndarray) -> dict[str, float]:
         a, d, crank, coupler, rocker, _, along, across = self._unpack(np.atleast_2d(params))
         frame = np.hypot(d[0] - a[0], d[1] - a[1])
         return {"crank": float(crank[0, 0]), "coupler": float(coupler[0, 0]),

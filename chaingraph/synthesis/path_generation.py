@@ -30,6 +30,7 @@ recomputed: the largest and rms distance from the targets to the solved path).
 from __future__ import annotations
 
 from collections import Counter
+from collections.abc import Iterable
 from typing import Any
 
 import numpy as np
@@ -39,6 +40,7 @@ from chaingraph.synthesis.certification import Certified, PointTargets, Rejected
 from chaingraph.synthesis.family import FOUR_BAR, Family
 from chaingraph.synthesis.optimiser import (
     MAX_RATIO,
+    Fit,
     TaskFrame,
     coarse_search,
     fit_start,
@@ -61,7 +63,8 @@ _CERTIFIED = 3                           # candidates certified per solution ask
 _TIMING = 1e-6                           # degrees: a target's input against its timing
 
 
-def path(*, points, timing=None, closed: bool = False, kind: str = "four-bar",
+def path(*, points: Iterable[tuple[float, float]],
+         timing: Iterable[float] | None = None, closed: bool = False, kind: str = "four-bar",
          solutions: int = 5, seed: int | None = None, units: str = "mm",
          min_transmission: float = 30.0) -> Synthesis:
     """Synthesise a path generator: a four-bar whose coupler point passes through
@@ -172,7 +175,7 @@ def synthesise_path(task: PathTask, family: Family, *, solutions: int) -> Synthe
 
 def _distinct(fits):
     """The fits, repeats dropped (parameters within 1e-6 of the task's size)."""
-    out = []
+    out: list[Fit] = []
     for f in fits:
         if not any(np.max(np.abs(f.params - g.params)) <= 1e-6 for g in out):
             out.append(f)
