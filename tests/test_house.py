@@ -322,3 +322,18 @@ def test_dyads_and_newton_steps_are_the_kernel_s_alone():
             found += [f"{path.relative_to(package.parent)}:{node.lineno} {n}"
                       for n in names if n in solvers]
     assert found == []
+
+
+def test_no_function_is_over_80_lines():
+    """Small functions: none in the package over 80 lines (docstring included); a longer
+    one is several steps that want their own names."""
+    package = Path(sys.modules["chaingraph"].__file__).parent
+    long = []
+    for path in sorted(package.rglob("*.py")):
+        for node in ast.walk(ast.parse(path.read_text(encoding="utf-8"))):
+            if isinstance(node, (ast.FunctionDef, ast.AsyncFunctionDef)):
+                lines = node.end_lineno - node.lineno + 1
+                if lines > 80:
+                    long.append(f"{path.relative_to(package.parent)}:{node.lineno} "
+                                f"{node.name} ({lines} lines)")
+    assert long == []

@@ -220,20 +220,20 @@ BEHAVIOUR_LINKS = 40
 BEHAVIOUR_SECONDS = 8.0
 
 
-def _behaviours_solved(chain, needed):
+def _behaviours_solved(chain, needed, *, budget=BEHAVIOUR_SECONDS):
     """The fixed links whose behaviour :func:`inversions` solves: those in ``needed``
     (a catalog name needs it), and the others, the cheapest first, while the least
     each takes (:func:`behaviour_cost`: its first driver's cycle) keeps the estimated
-    seconds spent (counted as each is solved, every driver it tried) within
-    :data:`BEHAVIOUR_SECONDS` (so past it by one inversion's drivers at most); and each
-    unsolved one's least estimate."""
+    seconds spent (counted as each is solved, every driver it tried) within ``budget``
+    (so past it by one inversion's drivers at most); and each unsolved one's least
+    estimate."""
     if len(chain.links) > BEHAVIOUR_LINKS:
         return set(needed), {}
     least = {x: behaviour_cost(chain, x) for x in chain.links}
     solved, spent = set(), 0.0
     for x in list(needed) + sorted(chain.links, key=lambda x: (least[x],
                                                                 chain.links.index(x))):
-        if x in solved or (x not in needed and spent + least[x] > BEHAVIOUR_SECONDS):
+        if x in solved or (x not in needed and spent + least[x] > budget):
             continue
         behaviour(chain, x)
         spent += behaviour_cost(chain, x, spent=True)
@@ -340,7 +340,8 @@ def naming_matches(matches):
     return []
 
 
-def inversions(chain, *, with_input: bool = False, catalog=None) -> Inversions:
+def inversions(chain, *, with_input: bool = False, catalog=None,
+               behaviour_seconds: float = BEHAVIOUR_SECONDS) -> Inversions:
     """Every inversion of a chain, grouped by structure and named from the catalog.
 
     Parameters
@@ -351,6 +352,11 @@ def inversions(chain, *, with_input: bool = False, catalog=None) -> Inversions:
         with the classes of (fixed, input) pairs.
     catalog : sequence of Chain, optional
         Where names come from; the bundled catalog by default.
+    behaviour_seconds : float
+        The estimated seconds of one core that the behaviours of the inversions no
+        catalog name needs may take in all (:data:`BEHAVIOUR_SECONDS` by default): the
+        cheapest are solved first, past the budget by one inversion at most; the
+        others' notes say what each would take.
 
     Returns
     -------
@@ -380,46 +386,56 @@ def inversions(chain, *, with_input: bool = False, catalog=None) -> Inversions:
         catalog = bundled_catalog()
     orbits = automorphism_orbits(chain)
     class_of = {x: i + 1 for i, orbit in enumerate(orbits) for x in orbit}
-    drivers = {}
-    if with_input:
-        for fixed in chain.links:
-            drivers[fixed] = [x for x in chain.links if x != fixed and any(
-                j.kind == "R" and fixed in j.links and x in j.links for j in chain.joints)]
-        pairs = [(f, d) for f in chain.links for d in drivers[f]]
-        pair_class = {p: i + 1 for i, orbit in enumerate(pair_orbits(chain, pairs)) for p in orbit}
-    order = {x: i for i, x in enumerate(chain.links)}
     found = {fixed: catalog_matches(chain, fixed, catalog) for fixed in chain.links}
-    solvable, cost = _behaviours_solved(chain, [x for x in chain.links if found[x]])
-    result = []
-    for fixed in chain.links:
-        matches = found[fixed]
-        named = naming_matches(matches)
-        names = tuple(dict.fromkeys(x.entry.name for x in named))
-        differ = [x.entry.name for x in matches if x.alike is False and x.oriented
-                  and x.entry.name not in names]
-        solved = fixed in solvable
-        how = behaviour(chain, fixed) if solved else None
-        note = None
-        if differ:
-            note = (f"as dimensioned ({how or 'its own behaviour'}) it is not the catalog's "
-                    + ", ".join(dict.fromkeys(differ)) + ", whose names need that behaviour")
-        elif not names:
-            note = "the catalog names no inversion of this structure with this link fixed"
-        if not solved and chain.has_pose and fixed in cost:
-            note += (f"; its behaviour is not solved (its cycles would take "
-                     f"{cost[fixed]:.2g} s or more, past the {BEHAVIOUR_SECONDS:.0f} s "
-                     "the inversions' behaviours take in all; solve the inversion for it)")
-        elif not solved and chain.has_pose:
-            note += (f"; its behaviour is not solved (over {BEHAVIOUR_LINKS} links, every "
-                     "inversion's whole cycle; solve the inversion for it)")
-        turning = turning_links(chain, fixed) if solved else None
-        inputs = None
-        if with_input:
-            inputs = tuple(InputClass(d, pair_class[(fixed, d)]) for d in drivers[fixed])
-        result.append(Inversion(
-            fixed=fixed, class_=class_of[fixed], names=names, behaviour=how, note=note,
-            full_turns=None if turning is None else tuple(sorted(turning, key=order.get)),
-            inputs=inputs))
+    solvable, cost = _behaviours_solved(chain, [x for x in chain.links if found[x]],
+                                        budget=behaviour_seconds)
+    inputs = _input_classes(chain) if with_input else None
+    result = tuple(_inversion(chain, fixed, class_of[fixed], found[fixed],
+                              solved=fixed in solvable, cost=cost.get(fixed),
+                              budget=behaviour_seconds,
+                              inputs=None if inputs is None else inputs[fixed])
+                   for fixed in chain.links)
     return Inversions(name=chain.name, links=len(chain.links), classes=len(orbits),
-                      inversions=tuple(result),
-                      classes_with_input=len(set(pair_class.values())) if with_input else None)
+                      inversions=result,
+                      classes_with_input=None if inputs is None else len(
+                          {i.class_ for x in inputs.values() for i in x}))
+
+
+def _input_classes(chain) -> dict[str, tuple[InputClass, ...]]:
+    """For each fixed link, its inputs (every link joined to it by an R joint) with the
+    classes of the (fixed, input) pairs."""
+    drivers = {fixed: [x for x in chain.links if x != fixed and any(
+        j.kind == "R" and fixed in j.links and x in j.links for j in chain.joints)]
+        for fixed in chain.links}
+    pairs = [(f, d) for f in chain.links for d in drivers[f]]
+    pair_class = {p: i + 1 for i, orbit in enumerate(pair_orbits(chain, pairs)) for p in orbit}
+    return {f: tuple(InputClass(d, pair_class[(f, d)]) for d in drivers[f])
+            for f in chain.links}
+
+
+def _inversion(chain, fixed, class_, matches, *, solved, cost, budget, inputs) -> Inversion:
+    """The inversion with ``fixed`` fixed: its names from the catalog ``matches``, its
+    behaviour where ``solved`` (else ``cost``, its least estimate, or None over
+    :data:`BEHAVIOUR_LINKS` links, said in its note)."""
+    named = naming_matches(matches)
+    names = tuple(dict.fromkeys(x.entry.name for x in named))
+    differ = [x.entry.name for x in matches if x.alike is False and x.oriented
+              and x.entry.name not in names]
+    how = behaviour(chain, fixed) if solved else None
+    note = None
+    if differ:
+        note = (f"as dimensioned ({how or 'its own behaviour'}) it is not the catalog's "
+                + ", ".join(dict.fromkeys(differ)) + ", whose names need that behaviour")
+    elif not names:
+        note = "the catalog names no inversion of this structure with this link fixed"
+    if not solved and chain.has_pose:        # (a name needs its behaviour: it is solved)
+        why = (f"its cycles would take {cost:.2g} s or more, past the {budget:g} s the "
+               "inversions' behaviours take in all" if cost is not None else
+               f"over {BEHAVIOUR_LINKS} links, every inversion's whole cycle")
+        note = f"{note}; its behaviour is not solved ({why}; solve the inversion for it)"
+    turning = turning_links(chain, fixed) if solved else None
+    order = {x: i for i, x in enumerate(chain.links)}
+    return Inversion(
+        fixed=fixed, class_=class_, names=names, behaviour=how, note=note,
+        full_turns=None if turning is None else tuple(sorted(turning, key=order.__getitem__)),
+        inputs=inputs)
