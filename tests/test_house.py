@@ -233,18 +233,14 @@ NOT_YET_ANNOTATED = {
     "chaingraph/drawing/scene.py",  # being rewritten by another part of issue 36
     "chaingraph/dynamics/equilibrium.py",  # being rewritten by another part of issue 36
     "chaingraph/kinematics/groups.py",  # being rewritten by another part of issue 36
-    "chaingraph/kinematics/plan.py",  # being rewritten by another part of issue 36
     "chaingraph/kinematics/rates.py",  # being rewritten by another part of issue 36
     "chaingraph/kinematics/summary.py",  # being rewritten by another part of issue 36
     "chaingraph/kinematics/sweep.py",  # being rewritten by another part of issue 36
     "chaingraph/kinematics/tracking.py",  # being rewritten by another part of issue 36
-    "chaingraph/model/chain.py",  # being rewritten by another part of issue 36
-    "chaingraph/model/snap.py",  # being rewritten by another part of issue 36
     "chaingraph/naming/atlas.py",
     "chaingraph/naming/inversion_classes.py",  # being rewritten by another part of issue 36
     "chaingraph/report/animation.py",
     "chaingraph/report/atlas.py",  # being rewritten by another part of issue 36
-    "chaingraph/report/build.py",  # being rewritten by another part of issue 36
     "chaingraph/structure/atlas/run.py",  # being rewritten by another part of issue 36
 }
 

@@ -341,7 +341,7 @@ def cmd_assemble(args) -> int:
         out = {"name": chain.name, "file": args.file,
                "joints": {j.id: None if j.at is None else list(j.at) for j in chain.joints},
                "axes": {j.id: j.axis for j in chain.joints if j.kind == "P"},
-               "points": {p.id: list(p.at) for p in chain.points},
+               "points": {p.id: None if p.at is None else list(p.at) for p in chain.points},
                "modes": [{"part": m.part, "mode": m.word, "reference": m.reference,
                           "source": m.source} for m in assembly.modes] if assembly else [],
                "groups": [list(g) for g in assembly.groups] if assembly else []}
