@@ -56,6 +56,7 @@ from chaingraph.structure.atlas import (
     REASONS,
     DaskRunner,
     SlidingCounts,
+    SlidingEntry,
     atlas_dict,
     check_size,
     joints_for,
@@ -637,9 +638,8 @@ def _sliding(args, wanted) -> int:
     if args.out:
         output_folder(args.out, what="atlas")
     start = time.perf_counter()
-    base = run_atlas(args.links, args.dof, runner=process_runner(workers))
-    if args.multiple:
-        base = multiple_atlas(base)
+    simple = run_atlas(args.links, args.dof, runner=process_runner(workers))
+    base = multiple_atlas(simple) if args.multiple else simple
     def names(chain):
         return atlas_names(chain, oriented=args.oriented)
     if args.out or (args.json and not args.summary):
@@ -710,7 +710,7 @@ def _counted(base, wanted, args):
     """The counts of the chains with sliding pairs, counted as they are found, and the
     chains themselves when there are few enough to list (else None)."""
     counts = SlidingCounts(base.links, base.dof, wanted, args.oriented, {})
-    first = []
+    first: list[SlidingEntry] = []
     for entry in sliding_chains(base, prismatic=wanted, oriented=args.oriented,
                                 rejected=counts.rejected):
         if args.no_fractionated and entry.fractionated:

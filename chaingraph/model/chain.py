@@ -225,6 +225,13 @@ class Chain:
         """The joint called ``joint_id``."""
         return self._joint_index[joint_id]
 
+    def freedom(self, joint: Joint) -> int:
+        """A joint's relative freedom in the chain's space (validation refuses a pair
+        that has no form in it)."""
+        f = joint.pair.freedom(self.space)
+        assert f is not None, f"a {joint.kind} pair has no {self.space} form"
+        return f
+
     def point(self, point_id: str) -> Point:
         """The tracer point called ``point_id``."""
         return {p.id: p for p in self.points}[point_id]

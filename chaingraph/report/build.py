@@ -304,6 +304,6 @@ def _write_images(entry: Entry, out: Path, frames: int) -> None:
     if entry.task is not None:
         draw_synthesis(entry.chain, **entry.task, title=entry.chain.name,
                        path=img / f"{entry.slug}-task.svg")
-    if entry.centres is not None:
+    if entry.centres is not None and entry.polygons is not None:
         draw_centres(entry.centres, img / f"{entry.slug}-centres.svg")
         draw_polygons(entry.polygons, img / f"{entry.slug}-polygons.svg")
