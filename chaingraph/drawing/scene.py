@@ -228,7 +228,7 @@ class Scene(View):
         away from it, the second from one side only, is a cylinder and its rod."""
         chain, fixed = self.chain, self.fixed
         s = s if s.size else np.zeros(1)
-        pts = [x.at for x in chain.joints] + [p.at for p in chain.points]
+        pts = list(chain.positions().values())
         extent = max(max(p[0] for p in pts) - min(p[0] for p in pts),
                      max(p[1] for p in pts) - min(p[1] for p in pts), 1e-9)
         tol = 0.035 * extent

@@ -164,7 +164,6 @@ def _window(motion, mechanism, n, full):
 
 def _distance_to_drawn(xs, ys, mechanism, names):
     """Over the steps, how far the joints and points are from their drawn places."""
-    where = {j.id: j.at for j in mechanism.joints}
-    where.update({p.id: p.at for p in mechanism.points})
+    where = mechanism.positions()
     at = np.array([where[x] for x in names])
     return ((xs - at[:, :1]) ** 2 + (ys - at[:, 1:]) ** 2).sum(axis=0)
