@@ -122,10 +122,11 @@ class PoseForces:
     notes: tuple[str, ...] = ()
     units: str | None = None
     dyads: tuple[tuple[str, str], ...] = ()   # the solver's dyads, for the force polygons
-    points: dict = field(default_factory=dict, repr=False, compare=False)
+    points: dict[str, tuple[float, float]] = field(default_factory=dict, repr=False,
+                                                   compare=False)
     applied: tuple[AppliedForce, ...] = field(default=(), repr=False)
     couples: tuple[AppliedCouple, ...] = field(default=(), repr=False)
-    chain: object = field(default=None, repr=False, compare=False)
+    chain: Chain = field(kw_only=True, repr=False, compare=False)   # the mechanism solved
 
     def effort(self, joint: str | None = None) -> float | None:
         """The effort of input ``joint`` (default: the first input)."""

@@ -517,7 +517,7 @@ def _solution(found: Certified) -> Solution:
 
 def _extent(s: Solution, size: float) -> float:
     pts = [j.at for j in s.mechanism.joints if j.at is not None]
-    centre = np.mean([p.at for p in s.mechanism.points], axis=0)
+    centre = np.mean([p.at for p in s.mechanism.points if p.at is not None], axis=0)
     return max(math.dist(p, centre) for p in pts) / size
 
 
