@@ -26,6 +26,7 @@ from networkx.algorithms.isomorphism import GraphMatcher
 
 from chaingraph._util.text import short_list
 from chaingraph.errors import ChainStructureError
+from chaingraph.model.chain import Chain
 from chaingraph.kinematics.behaviour import (
     behaviour,
     behaviour_cost,
@@ -87,12 +88,11 @@ class Inversions:
     inversions: tuple[Inversion, ...]
     classes_with_input: int | None = None
 
-    def __repr__(self):
+    def __repr__(self) -> str:
         return (f"Inversions({self.name!r}, links={self.links}, classes={self.classes}, "
-                f"fixed={short_list(i.fixed for i in self.inversions)})")
+                f"fixed={short_list([i.fixed for i in self.inversions])})")
 
-
-    def rows(self) -> list[tuple]:
+    def rows(self) -> list[tuple[str | int, ...]]:
         """The inversions as table rows, the first the header: fixed link, class, (the
         inputs and their classes, where designated), behaviour, names ("-" for none), as
         the command line, the report and a notebook show them.
@@ -108,9 +108,9 @@ class Inversions:
         designated = self.classes_with_input is not None
         header = ("fixed", "class") + (("inputs (class)",) if designated else ()) + (
             "behaviour", "names")
-        rows = [header]
+        rows: list[tuple[str | int, ...]] = [header]
         for i in self.inversions:
-            inputs = ((", ".join(f"{x.driver} ({x.class_})" for x in i.inputs) or "-",)
+            inputs = ((", ".join(f"{x.driver} ({x.class_})" for x in i.inputs or ()) or "-",)
                       if designated else ())
             rows.append((i.fixed, i.class_) + inputs
                         + (i.behaviour or "-", "; ".join(i.names) or "-"))
@@ -196,8 +196,8 @@ class Match:
     behave alike, False when they behave differently, None when either has none."""
 
     score: int
-    entry: object
-    mapping: dict
+    entry: Chain
+    mapping: dict[str, str]
     oriented: bool
     alike: bool | None
 
