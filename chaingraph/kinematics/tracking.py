@@ -128,12 +128,26 @@ class Evaluation:
 
     def take(self, k):
         """The evaluation at the points ``k`` only (an index array)."""
-        def pick(v):
-            return v if np.ndim(v) == 0 else v[k]
-        return Evaluation(self.theta[k], {x: tuple(pick(v) for v in p)
-                                          for x, p in self.pose.items()},
-                          self.feasible[k], {i: v[k] for i, v in self.signs.items()},
-                          {i: q[k] for i, q in self.group_q.items()}, self.switches,
+        n = self.theta.size
+        moved = np.flatnonzero(k != np.arange(n)) if k.size == n else None
+        if moved is not None and moved.size <= n // 16:
+            # nearly every point in place (a crank's last point, its first again):
+            # copies patched where they differ, cheaper than indexing every array
+            source = k[moved]
+
+            def pick(v):
+                if np.ndim(v) == 0:
+                    return v
+                out = v.copy()
+                out[moved] = v[source]
+                return out
+        else:
+            def pick(v):
+                return v if np.ndim(v) == 0 else v[k]
+        return Evaluation(pick(self.theta), {x: tuple(pick(v) for v in p)
+                                             for x, p in self.pose.items()},
+                          pick(self.feasible), {i: pick(v) for i, v in self.signs.items()},
+                          {i: pick(q) for i, q in self.group_q.items()}, self.switches,
                           self.folds)
 
 
