@@ -21,7 +21,8 @@ from chaingraph.kinematics.plan import Plan
 from chaingraph.model.chain import Chain, Joint
 
 __all__ = ["LinkStates", "LinkMotion", "PointMotion", "SlideMotion", "Trajectories",
-           "reference_link", "slide_rates", "csv_columns"]
+           "reference_link", "slide_rates", "csv_columns", "link_of_states",
+           "point_of_states", "slide_of_states"]
 
 
 @dataclass(frozen=True)
@@ -115,31 +116,18 @@ class Trajectories:
         """The trajectories of the solver's ``states`` (``more``: the other fields of a
         subclass)."""
         chain, theta = cast(Chain, plan.chain), states.tau
-        pose, vel, acc, n = states.pose, states.velocity, states.acceleration, theta.size
         values = {}
         if not plan.from_driver:
             for item, value in zip(plan.inputs, plan.values(theta)):
                 values[item.joint] = np.array(np.broadcast_to(value, theta.shape), dtype=float)
-        links = {}
-        for link in chain.links:
-            direction = math.radians(chain.reference_direction(link)) + pose[link][2]
-            links[link] = LinkMotion(link, _continuous(direction, n), _array(vel[link][2], n),
-                                     _array(acc[link][2], n))
-
-        def point(name, link, at):
-            if link == plan.fixed:
-                return PointMotion(name, *(_array(v, n) for v in (at[0], at[1], 0, 0, 0, 0)))
-            x, y, *rest = _point_motion(pose, vel, acc, link, plan.local(at))
-            ox, oy = plan.origin
-            return PointMotion(name, *(_array(v, n) for v in (x + ox, y + oy, *rest)))
         return cls(
             theta=theta if plan.from_driver else np.asarray(plan.value(theta), dtype=float),
-            values=values, links=links,
-            joints={j.id: point(j.id, reference_link(j, plan.fixed), j.at)
-                    for j in chain.joints},
-            points={p.id: point(p.id, p.link, p.at) for p in chain.points},
-            slides={j.id: SlideMotion(j.id, *(_array(v, n) for v in slide_rates(
-                pose, vel, acc, j, plan.local(j.at)))) for j in chain.joints if j.kind == "P"},
+            values=values,
+            links={x: link_of_states(plan, states, x) for x in chain.links},
+            joints={j.id: point_of_states(plan, states, j.id) for j in chain.joints},
+            points={p.id: point_of_states(plan, states, p.id) for p in chain.points},
+            slides={j.id: slide_of_states(plan, states, j.id)
+                    for j in chain.joints if j.kind == "P"},
             **more)
 
     @property
@@ -236,6 +224,39 @@ def csv_columns(plan: Plan, theta: np.ndarray, pose: dict, vel: dict,
 
 
 # -- from the solver's poses -----------------------------------------------------------
+def link_of_states(plan: Plan, states: LinkStates, link: str) -> LinkMotion:
+    """One link's :class:`LinkMotion` from the solver's ``states`` (what
+    :meth:`Trajectories.of_states` holds for it, alone)."""
+    chain, pose, n = cast(Chain, plan.chain), states.pose, states.tau.size
+    direction = math.radians(chain.reference_direction(link)) + pose[link][2]
+    return LinkMotion(link, _continuous(direction, n), _array(states.velocity[link][2], n),
+                      _array(states.acceleration[link][2], n))
+
+
+def point_of_states(plan: Plan, states: LinkStates, name: str) -> PointMotion:
+    """One joint's or point's :class:`PointMotion` from the solver's ``states``."""
+    chain, n = cast(Chain, plan.chain), states.tau.size
+    try:
+        joint = chain.joint(name)
+        link, at = reference_link(joint, plan.fixed), joint.at
+    except KeyError:
+        point = chain.point(name)
+        link, at = point.link, point.at
+    if link == plan.fixed:
+        return PointMotion(name, *(_array(v, n) for v in (at[0], at[1], 0, 0, 0, 0)))
+    x, y, *rest = _point_motion(states.pose, states.velocity, states.acceleration, link,
+                                plan.local(at))
+    ox, oy = plan.origin
+    return PointMotion(name, *(_array(v, n) for v in (x + ox, y + oy, *rest)))
+
+
+def slide_of_states(plan: Plan, states: LinkStates, joint: str) -> SlideMotion:
+    """One P joint's :class:`SlideMotion` from the solver's ``states``."""
+    j, n = cast(Chain, plan.chain).joint(joint), states.tau.size
+    return SlideMotion(joint, *(_array(v, n) for v in slide_rates(
+        states.pose, states.velocity, states.acceleration, j, plan.local(j.at))))
+
+
 def _point_motion(pose, vel, acc, link, p):
     x, y = pose[link][:2]
     vx, vy, w = vel[link]
@@ -280,12 +301,16 @@ def _continuous(phi, n):
     value in (-pi, pi]."""
     if np.ndim(phi) == 0:
         return np.full(n, math.remainder(float(phi), 2 * math.pi))
-    step = np.diff(phi)
-    step -= 2 * math.pi * np.round(step / (2 * math.pi))
-    out = np.empty(n)
-    out[0] = math.remainder(float(phi[0]), 2 * math.pi)
-    np.cumsum(step, out=out[1:])
-    out[1:] += out[0]
+    first = math.remainder(float(phi[0]), 2 * math.pi)
+    turns = np.round(np.diff(phi) * (1 / (2 * math.pi)))    # a jump's whole turns
+    jumps = np.flatnonzero(turns)
+    out = phi + (first - float(phi[0]))
+    out[0] = first
+    if jumps.size > 16:             # (np.cumsum is dear: only for many jumps)
+        out[1:] -= (2 * math.pi) * np.cumsum(turns)
+    else:
+        for j in jumps:
+            out[j + 1:] -= (2 * math.pi) * turns[j]
     return out
 
 

@@ -329,7 +329,7 @@ def _summary(unit: Motion, output, c, ev, measure) -> Summary:
         c = Cycle(None, min(lo, hi), max(lo, hi), ends="sweep")
     reuse = None
     if c.ends == "limits" and np.array_equal(theta, cycle_theta(plan, c)):
-        reuse = (ev, measure, unit.columns)
+        reuse = (ev, measure, unit)
     summary = motion_summary(plan, output, unit.omega, c, sweep=reuse)
     if output is not None and output not in unit.links and output not in unit.slides:
         # a point's path: how straight it is over the sweep asked for

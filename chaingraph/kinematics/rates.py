@@ -43,8 +43,8 @@ def _column_free_det(p11, p12, p21, p22):
     error, so rates are refused (NaN) below ``_SINGULAR``, not at zero only: near a
     tangency a position error e becomes about e / d in velocities and e / d**3 in
     accelerations, for the normalized determinant d.)"""
-    return (p11 * p22 - p12 * p21) / ((np.hypot(p11, p21) + 1e-300) *
-                                       (np.hypot(p12, p22) + 1e-300))
+    return (p11 * p22 - p12 * p21) / ((np.sqrt(p11 * p11 + p21 * p21) + 1e-300) *
+                                       (np.sqrt(p12 * p12 + p22 * p22) + 1e-300))
 
 
 class _PointDyad:

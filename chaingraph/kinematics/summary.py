@@ -13,7 +13,13 @@ import numpy as np
 from chaingraph._util.numbers import tidy
 from chaingraph.errors import UnboundedRangeError
 from chaingraph.geometry import turn_by
-from chaingraph.kinematics.columns import csv_columns
+from chaingraph.kinematics.columns import (
+    LinkStates,
+    Trajectories,
+    link_of_states,
+    point_of_states,
+    slide_of_states,
+)
 from chaingraph.kinematics.rates import rates
 from chaingraph.kinematics.roots import bracketed_roots
 from chaingraph.kinematics.sweep import cycle, evaluate_near, evaluate_sweep
@@ -226,16 +232,29 @@ class OutputSignal:
     def values(self, columns):
         """(u, du/dt, d2u/dt2) along the sweep, from its columns (at unit input speed:
         per degree or length unit of the input, as the columns are)."""
-        cols = columns
+        return self._of(lambda kind: columns[f"{kind}:{self.name}"])
+
+    def of_states(self, plan, states: LinkStates):
+        """(u, du/dt, d2u/dt2) from the solver's ``states`` (:class:`LinkStates`):
+        :meth:`values` of their columns, working out the output's alone."""
         if self.kind == "slide":
-            return cols[f"s:{self.name}"], cols[f"v:{self.name}"], cols[f"a:{self.name}"]
+            item = slide_of_states(plan, states, self.name)
+        elif self.kind == "angle":
+            item = link_of_states(plan, states, self.name)
+        else:
+            item = point_of_states(plan, states, self.name)
+        fields = {"angle": "angle_deg", "omega": "omega", "alpha": "alpha"}
+        return self._of(lambda kind: getattr(item, fields.get(kind, kind)))
+
+    def _of(self, column):
+        """(u, du/dt, d2u/dt2) from ``column(kind)``, the output's column of that kind."""
+        if self.kind == "slide":
+            return column("s"), column("v"), column("a")
         if self.kind == "angle":
-            return (cols[f"angle:{self.name}"], np.degrees(cols[f"omega:{self.name}"]),
-                    np.degrees(cols[f"alpha:{self.name}"]))
+            return column("angle"), np.degrees(column("omega")), np.degrees(column("alpha"))
         ux, uy = self.direction
-        return (cols[f"x:{self.name}"] * ux + cols[f"y:{self.name}"] * uy,
-                cols[f"vx:{self.name}"] * ux + cols[f"vy:{self.name}"] * uy,
-                cols[f"ax:{self.name}"] * ux + cols[f"ay:{self.name}"] * uy)
+        return (column("x") * ux + column("y") * uy, column("vx") * ux + column("vy") * uy,
+                column("ax") * ux + column("ay") * uy)
 
     @property
     def label(self) -> str:
@@ -317,16 +336,18 @@ def cycle_theta(plan, c, steps_per_turn=3600):
     return theta
 
 
-def _pointwise(plan, ev, k, t):
-    """Columns and step measures at angles ``t``, each continued from ev's point k."""
+def _pointwise(plan, ev, k, t, *, measures=False):
+    """The solver's states (:class:`LinkStates`) at angles ``t``, each continued from
+    ev's point k, or with ``measures`` the step measures there (and no accelerations)."""
     pose, feasible, _ = evaluate_at(plan, t, ev.reference(k))
-    vel, acc, measure = rates(plan, pose, 1.0, t.size)
-    return csv_columns(plan, t, pose, vel, acc), measure, feasible
+    vel, acc, measure = rates(plan, pose, 1.0, t.size, measure=measures,
+                              accelerations=not measures)
+    return LinkStates(t, pose, vel, acc), measure, feasible
 
 
 def motion_summary(plan, output, omega, c, *, sweep=None) -> Summary:
     """The :class:`Summary` over the cycle ``c``; ``sweep`` is (evaluation, step
-    measures, columns at unit input speed) on the cycle's own grid when the caller has
+    measures, columns at unit input speed, or the :class:`Trajectories`) on the cycle's own grid when the caller has
     them. Figures within rounding of a round number are that number (:func:`tidy`)."""
     s = _raw_summary(plan, output, omega, c, sweep=sweep)
     length = plan.size
@@ -361,7 +382,7 @@ def _raw_summary(plan, output, omega, c, *, sweep=None):
         except UnboundedRangeError:            # a sweep of a slide without limits
             ev = evaluate_near(plan, theta)
         vel, acc, measure = rates(plan, ev.pose, 1.0, theta.size)
-        cols = csv_columns(plan, theta, ev.pose, vel, acc)
+        cols = Trajectories.of_states(plan, LinkStates(theta, ev.pose, vel, acc))
     else:
         ev, measure, cols = sweep
         theta = ev.theta
@@ -465,8 +486,8 @@ def _output_extremes(plan, ev, signal, u, du, ddu, scale, c):
         ta = theta[ka]
         slope_a, slope_b = ddu[ka] * plan.rate_scale, ddu[kb] * plan.rate_scale
         guess = _cubic_roots(ta, tb, du[ka], du[kb], slope_a, slope_b)
-        cols, _, _ = _pointwise(plan, ev, ka, guess)
-        at_guess, rate, second = signal.values(cols)
+        states, _, _ = _pointwise(plan, ev, ka, guess)
+        at_guess, rate, second = signal.of_states(plan, states)
         with np.errstate(divide="ignore", invalid="ignore"):   # (checked below)
             step = -rate / (second * plan.rate_scale)
             t = guess + step
@@ -481,7 +502,7 @@ def _output_extremes(plan, ev, signal, u, du, ddu, scale, c):
                 lambda tt: _rate_and_slope(plan, ev, kbad, tt, signal),
                 ta[bad], tb[bad], du[kbad], du[kb[bad]], newton=True)
             redo, _, _ = _pointwise(plan, ev, kbad, t[bad])
-            value[bad] = signal.values(redo)[0]
+            value[bad] = signal.of_states(plan, redo)[0]
         if signal.kind == "angle":      # the same turn as the sweep's own values
             value = u[ka] + np.remainder(value - u[ka] + 180.0, 360.0) - 180.0
         found = [{"input": float(ti), "value": float(vi), "kind": "max" if sign[k] > 0 else "min"}
@@ -528,8 +549,8 @@ def _cubic_roots(t0, t1, f0, f1, g0, g1):
 
 def _rate_and_slope(plan, ev, k, t, signal):
     """The output's rate and its derivative per degree of input at angles t."""
-    cols, _, _ = _pointwise(plan, ev, k, t)
-    _, d1, d2 = signal.values(cols)
+    states, _, _ = _pointwise(plan, ev, k, t)
+    _, d1, d2 = signal.of_states(plan, states)
     return d1, d2 * plan.rate_scale        # d2 per unit of input squared, t in tau
 
 
@@ -595,7 +616,7 @@ def _dead_centres(plan, ev, measure, c):
         roots += [float(theta[k]) for k in np.nonzero(inner & (m == 0))[0]]
         if ka.size:
             def f(t, ka=ka, i=i):
-                _, mm, _ = _pointwise(plan, ev, ka, t)
+                _, mm, _ = _pointwise(plan, ev, ka, t, measures=True)
                 return mm[i]
             roots += list(bracketed_roots(f, theta[ka], theta[kb], m[ka], m[kb]))
     found = exact + [t for t in roots if all(abs(t - x) > 1e-5 for x in exact)]

@@ -128,12 +128,26 @@ class Evaluation:
 
     def take(self, k):
         """The evaluation at the points ``k`` only (an index array)."""
-        def pick(v):
-            return v if np.ndim(v) == 0 else v[k]
-        return Evaluation(self.theta[k], {x: tuple(pick(v) for v in p)
-                                          for x, p in self.pose.items()},
-                          self.feasible[k], {i: v[k] for i, v in self.signs.items()},
-                          {i: q[k] for i, q in self.group_q.items()}, self.switches,
+        n = self.theta.size
+        moved = np.flatnonzero(k != np.arange(n)) if k.size == n else None
+        if moved is not None and moved.size <= n // 16:
+            # nearly every point in place (a crank's last point, its first again):
+            # copies patched where they differ, cheaper than indexing every array
+            source = k[moved]
+
+            def pick(v):
+                if np.ndim(v) == 0:
+                    return v
+                out = v.copy()
+                out[moved] = v[source]
+                return out
+        else:
+            def pick(v):
+                return v if np.ndim(v) == 0 else v[k]
+        return Evaluation(pick(self.theta), {x: tuple(pick(v) for v in p)
+                                             for x, p in self.pose.items()},
+                          pick(self.feasible), {i: pick(v) for i, v in self.signs.items()},
+                          {i: pick(q) for i, q in self.group_q.items()}, self.switches,
                           self.folds)
 
 
@@ -173,12 +187,15 @@ def _evaluate(plan, theta, start):
     signs, group_q, switches, folds = {}, {}, {}, {}
     # a path from the drawn pose has it, as drawn, at its own value: the closed forms
     # would give it only to rounding, and at a drawn dead centre to its square root
-    at_drawn = theta == plan.theta0 if start is None and plan.theta0 is not None else None
-    if at_drawn is not None and not at_drawn.any():
-        at_drawn = None
+    at_drawn = None
+    if start is None and plan.theta0 is not None:
+        at_drawn = np.flatnonzero(theta == plan.theta0)
+        if not at_drawn.size:
+            at_drawn = None
     for i, step in enumerate(plan.steps):
         if at_drawn is not None and i:
-            _as_drawn(pose, plan.steps[i - 1].links, at_drawn, group_q.get(i - 1))
+            _as_drawn(pose, plan.steps[i - 1].links, at_drawn, theta.shape,
+                      group_q.get(i - 1))
         if step.kind == "single":
             pose.update(single_link(step, pose))
             continue
@@ -209,21 +226,25 @@ def _evaluate(plan, theta, start):
         group_q[i] = q
         pose.update(group_form(step).complete(group_form(step).set_bodies(pose, q)))
     if at_drawn is not None and plan.steps:
-        _as_drawn(pose, plan.steps[-1].links, at_drawn, group_q.get(len(plan.steps) - 1))
+        _as_drawn(pose, plan.steps[-1].links, at_drawn, theta.shape,
+                  group_q.get(len(plan.steps) - 1))
     if not feasible.all():
         first_bad = int(np.argmin(feasible))
         feasible[first_bad:] = False
     return Evaluation(theta, pose, feasible, signs, group_q, switches, folds)
 
 
-def _as_drawn(pose, links, drawn, q=None):
-    """Put ``links`` in their drawn pose (no motion) at the points ``drawn``, and a
-    group's coordinates ``q`` (its bodies' motions) to zero there."""
-    shape = drawn.shape
+def _as_drawn(pose, links, drawn, shape, q=None):
+    """Put ``links`` in their drawn pose (no motion) at the points ``drawn`` (indices
+    into a path of ``shape``), and a group's coordinates ``q`` (its bodies' motions)
+    to zero there."""
     for link in links:
         entry = []
         for v, rest in zip(pose[link], (0.0, 0.0, 0.0, 1.0, 0.0)):
-            v = np.array(np.broadcast_to(v, shape), dtype=float)   # a copy: v may be shared
+            if isinstance(v, np.ndarray) and v.shape == shape and v.dtype == float:
+                v = v.copy()                      # a copy: v may be shared
+            else:
+                v = np.array(np.broadcast_to(v, shape), dtype=float)
             v[drawn] = rest
             entry.append(v)
         pose[link] = tuple(entry)
