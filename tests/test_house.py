@@ -226,10 +226,7 @@ def test_every_name_the_docs_use_imports():
 #: the test fails for a file listed that passes, so that the list only shrinks)
 NOT_YET_ANNOTATED = {
     "chaingraph/kinematics/groups.py",  # being rewritten by another part of issue 36
-    "chaingraph/kinematics/rates.py",  # being rewritten by another part of issue 36
     "chaingraph/kinematics/summary.py",  # being rewritten by another part of issue 36
-    "chaingraph/kinematics/sweep.py",  # being rewritten by another part of issue 36
-    "chaingraph/kinematics/tracking.py",  # being rewritten by another part of issue 36
     "chaingraph/naming/inversion_classes.py",  # being rewritten by another part of issue 36
     "chaingraph/report/atlas.py",  # being rewritten by another part of issue 36
 }

@@ -12,13 +12,13 @@ from __future__ import annotations
 
 import math
 from dataclasses import dataclass, fields, replace
-from typing import Any, Self, cast
+from typing import Any, Self
 
 import numpy as np
 
 from chaingraph.geometry import turn_by
 from chaingraph.kinematics.plan import Plan
-from chaingraph.model.chain import Chain, Joint
+from chaingraph.model.chain import Joint
 
 __all__ = ["LinkStates", "LinkMotion", "PointMotion", "SlideMotion", "Trajectories",
            "reference_link", "slide_rates", "csv_columns", "link_of_states",
@@ -115,7 +115,7 @@ class Trajectories:
     def of_states(cls, plan: Plan, states: LinkStates, /, **more: Any) -> Self:
         """The trajectories of the solver's ``states`` (``more``: the other fields of a
         subclass)."""
-        chain, theta = cast(Chain, plan.chain), states.tau
+        chain, theta = plan.chain, states.tau
         values = {}
         if not plan.from_driver:
             for item, value in zip(plan.inputs, plan.values(theta)):
@@ -227,7 +227,7 @@ def csv_columns(plan: Plan, theta: np.ndarray, pose: dict, vel: dict,
 def link_of_states(plan: Plan, states: LinkStates, link: str) -> LinkMotion:
     """One link's :class:`LinkMotion` from the solver's ``states`` (what
     :meth:`Trajectories.of_states` holds for it, alone)."""
-    chain, pose, n = cast(Chain, plan.chain), states.pose, states.tau.size
+    chain, pose, n = plan.chain, states.pose, states.tau.size
     direction = math.radians(chain.reference_direction(link)) + pose[link][2]
     return LinkMotion(link, _continuous(direction, n), _array(states.velocity[link][2], n),
                       _array(states.acceleration[link][2], n))
@@ -235,13 +235,16 @@ def link_of_states(plan: Plan, states: LinkStates, link: str) -> LinkMotion:
 
 def point_of_states(plan: Plan, states: LinkStates, name: str) -> PointMotion:
     """One joint's or point's :class:`PointMotion` from the solver's ``states``."""
-    chain, n = cast(Chain, plan.chain), states.tau.size
+    chain, n = plan.chain, states.tau.size
     try:
         joint = chain.joint(name)
         link, at = reference_link(joint, plan.fixed), joint.at
     except KeyError:
         point = chain.point(name)
         link, at = point.link, point.at
+    # a plan's chain has a drawn pose (build_plan refuses one with a joint unplaced, and
+    # a file by its lengths places its points with its joints)
+    assert at is not None, f"{name!r} has a position in a solved chain's pose"
     if link == plan.fixed:
         return PointMotion(name, *(_array(v, n) for v in (at[0], at[1], 0, 0, 0, 0)))
     x, y, *rest = _point_motion(states.pose, states.velocity, states.acceleration, link,
@@ -252,7 +255,8 @@ def point_of_states(plan: Plan, states: LinkStates, name: str) -> PointMotion:
 
 def slide_of_states(plan: Plan, states: LinkStates, joint: str) -> SlideMotion:
     """One P joint's :class:`SlideMotion` from the solver's ``states``."""
-    j, n = cast(Chain, plan.chain).joint(joint), states.tau.size
+    j, n = plan.chain.joint(joint), states.tau.size
+    assert j.at is not None, "build_plan refuses a chain with a joint unplaced"
     return SlideMotion(joint, *(_array(v, n) for v in slide_rates(
         states.pose, states.velocity, states.acceleration, j, plan.local(j.at))))
 

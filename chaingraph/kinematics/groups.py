@@ -318,7 +318,8 @@ def _trace(plan, step, pose, theta, head, q, t, end, direction, h_deg,
             fold = _fold(branch, z, tau, ds, direction)
             break
         z, tau = x, tau_new
-        ts.append(math.degrees(z[-1])), qs.append(branch.scale * z[:-1])
+        ts.append(math.degrees(z[-1]))
+        qs.append(branch.scale * z[:-1])
         dqs.append(branch.dq(tau))
         ds = min(h_here, 1.5 * ds)
     return ts, qs, dqs, fold

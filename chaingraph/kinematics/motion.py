@@ -286,6 +286,8 @@ def _swept(drive: Drive, steps, summary):
                 raise
             # no whole cycle: the summary is of the sweep asked for
     if c is None:
+        # no cycle was asked for or found: only when both ends of the sweep are given
+        assert start is not None and stop is not None, "a sweep without a cycle has ends"
         theta = np.linspace(plan.tau(start), plan.tau(stop), steps + 1)
     else:
         lo = c.low if start is None else plan.tau(start)

@@ -6,7 +6,9 @@ the sweep (not read off its grid).
 from __future__ import annotations
 
 import math
+from collections.abc import Callable
 from dataclasses import dataclass
+from typing import Any
 
 import numpy as np
 
@@ -14,7 +16,10 @@ from chaingraph._util.numbers import tidy
 from chaingraph.errors import UnboundedRangeError
 from chaingraph.geometry import turn_by
 from chaingraph.kinematics.columns import (
+    LinkMotion,
     LinkStates,
+    PointMotion,
+    SlideMotion,
     Trajectories,
     link_of_states,
     point_of_states,
@@ -237,6 +242,7 @@ class OutputSignal:
     def of_states(self, plan, states: LinkStates):
         """(u, du/dt, d2u/dt2) from the solver's ``states`` (:class:`LinkStates`):
         :meth:`values` of their columns, working out the output's alone."""
+        item: SlideMotion | LinkMotion | PointMotion
         if self.kind == "slide":
             item = slide_of_states(plan, states, self.name)
         elif self.kind == "angle":
@@ -246,12 +252,14 @@ class OutputSignal:
         fields = {"angle": "angle_deg", "omega": "omega", "alpha": "alpha"}
         return self._of(lambda kind: getattr(item, fields.get(kind, kind)))
 
-    def _of(self, column):
+    def _of(self, column: Callable[[str], Any]) -> tuple[Any, Any, Any]:
         """(u, du/dt, d2u/dt2) from ``column(kind)``, the output's column of that kind."""
         if self.kind == "slide":
             return column("s"), column("v"), column("a")
         if self.kind == "angle":
             return column("angle"), np.degrees(column("omega")), np.degrees(column("alpha"))
+        # output_signal gives every point's output its path's direction
+        assert self.direction is not None, "a point's output has its path's direction"
         ux, uy = self.direction
         return (column("x") * ux + column("y") * uy, column("vx") * ux + column("vy") * uy,
                 column("ax") * ux + column("ay") * uy)
@@ -450,7 +458,8 @@ def _input_range(plan, theta, c):
             whole = cycle(plan)
         except UnboundedRangeError:
             return [None, None]                  # no limit either way
-        ends = (whole.low, whole.low + whole.period) if whole.full_turn else (whole.low, whole.high)
+        ends = ((whole.low, whole.low + whole.period) if whole.period is not None  # a turn
+                else (whole.low, whole.high))
         return [float(plan.value(t)) for t in ends]
     return [float(plan.value(theta[0])), float(plan.value(theta[-1]))]
 

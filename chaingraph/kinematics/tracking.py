@@ -11,22 +11,25 @@ an input value therefore do not depend on how finely the path is sampled.
 from __future__ import annotations
 
 import math
+from collections.abc import Container, Mapping
 
 import numpy as np
+from numpy.typing import ArrayLike
 
-from chaingraph.geometry import DISC_TOL, FIXED
+from chaingraph.geometry import DISC_TOL, FIXED, PoseEntry, Scalar
 from chaingraph.kinematics.closed_form import dyad_roots, initial_sign, single_link
 from chaingraph.kinematics.equations import group_form
 from chaingraph.kinematics.groups import newton, newton_path
+from chaingraph.kinematics.plan import Plan
 
-__all__ = ["Evaluation", "Reference", "evaluate", "evaluate_at", "failing_step"]
+__all__ = ["Evaluation", "Reference", "Start", "evaluate", "evaluate_at", "failing_step"]
 
 
 # -- the sweep -----------------------------------------------------------------------
 def _known_poses(plan, theta):
     """The fixed link, and each input's value (its delta, in the rotation's place) at
     the path parameters ``theta``: everything else is found from these."""
-    pose = {plan.fixed: FIXED}
+    pose: dict[str, PoseEntry] = {plan.fixed: FIXED}
     for item, delta in zip(plan.inputs, plan.deltas(theta)):
         pose[item.key] = (0.0, 0.0, np.broadcast_to(delta, theta.shape), 1.0, 0.0)
     return pose
@@ -38,13 +41,15 @@ class Reference:
     dyad's modes change label (``switches``: its two modes meet there and the motion
     continues smoothly into the other label)."""
 
-    def __init__(self, theta, signs, group_q, switches):
+    def __init__(self, theta: ArrayLike, signs: Mapping[int, Scalar],
+                 group_q: Mapping[int, np.ndarray],
+                 switches: Mapping[int, list[float]]) -> None:
         self.theta = np.asarray(theta, dtype=float)
         self.signs = signs
         self.group_q = group_q
         self.switches = switches
 
-    def sign(self, i, theta):
+    def sign(self, i: int, theta: np.ndarray) -> np.ndarray:
         """Step i's mode sign at ``theta``, from the reference's across its switches."""
         s = np.broadcast_to(self.signs[i], self.theta.shape).astype(float)
         for t in self.switches.get(i, ()):
@@ -52,7 +57,9 @@ class Reference:
         return s
 
 
-def evaluate_at(plan, theta, ref, *, upto=None, double=()):
+def evaluate_at(plan: Plan, theta: ArrayLike, ref: Reference, *, upto: int | None = None,
+                double: Container[int] = ()
+                ) -> tuple[dict[str, PoseEntry], np.ndarray, dict[int, np.ndarray]]:
     """Poses at the angles ``theta`` (degrees, shape (M,)), each point continued from
     the same point of ``ref`` (a :class:`Reference` of M points, close by) without
     tracking: the modes are the reference's, across its switches; groups are solved by
@@ -66,7 +73,7 @@ def evaluate_at(plan, theta, ref, *, upto=None, double=()):
     return pose, feasible, group_q
 
 
-def failing_step(plan, theta, ref):
+def failing_step(plan: Plan, theta: ArrayLike, ref: Reference) -> int | None:
     """The index of the first step of the plan that cannot be assembled at any of the
     angles ``theta`` (continued from ``ref`` as by :func:`evaluate_at`), or None."""
     return _evaluate_at(plan, theta, ref, None, ())[3]
@@ -74,11 +81,11 @@ def failing_step(plan, theta, ref):
 
 def _evaluate_at(plan, theta, ref, upto, double):
     theta = np.asarray(theta, dtype=float)
-    first_bad = None
+    first_bad: int | None = None
     with np.errstate(divide="ignore", invalid="ignore", over="ignore"):
         pose = _known_poses(plan, theta)
         feasible = np.ones(theta.size, dtype=bool)
-        group_q = {}
+        group_q: dict[int, np.ndarray] = {}
         for i, step in enumerate(plan.steps[:upto]):
             if step.kind == "single":
                 pose.update(single_link(step, pose))
@@ -100,7 +107,10 @@ def _evaluate_at(plan, theta, ref, upto, double):
 class Evaluation:
     """Poses of every link along a path of input angles, with what the next needs."""
 
-    def __init__(self, theta, pose, feasible, signs, group_q, switches, folds=None):
+    def __init__(self, theta: np.ndarray, pose: dict[str, PoseEntry], feasible: np.ndarray,
+                 signs: Mapping[int, np.ndarray], group_q: Mapping[int, np.ndarray],
+                 switches: Mapping[int, list[float]],
+                 folds: dict[int, tuple[float, np.ndarray]] | None = None) -> None:
         self.theta = theta            # degrees, (N,)
         self.pose = pose              # link -> (x, y, phi) arrays
         self.feasible = feasible      # (N,) bool
@@ -110,23 +120,24 @@ class Evaluation:
         # step index -> (input degrees, q): a group's fold its trace found on the path
         self.folds = {} if folds is None else folds
 
-    def at(self, k):
+    def at(self, k: int) -> Start:
         """The state at point k, to continue a new path from (its first angle)."""
-        return _Start({i: float(v[k]) for i, v in self.signs.items()},
+        return Start({i: float(v[k]) for i, v in self.signs.items()},
                       {i: q[k] for i, q in self.group_q.items()})
 
-    def poses_at(self, plan, theta, k, *, upto=None):
+    def poses_at(self, plan: Plan, theta: ArrayLike, k: int, *,
+                 upto: int | None = None) -> dict[str, PoseEntry]:
         """The poses at the angles ``theta``, each continued from this evaluation's
         point ``k`` (the first ``upto`` steps of the plan): :func:`evaluate_at`."""
         return evaluate_at(plan, theta, self.reference(k), upto=upto)[0]
 
-    def reference(self, k):
+    def reference(self, k: ArrayLike) -> Reference:
         """A :class:`Reference` for pointwise evaluations near the points ``k`` (array)."""
         k = np.asarray(k)
         return Reference(self.theta[k], {i: v[k] for i, v in self.signs.items()},
                          {i: q[k] for i, q in self.group_q.items()}, self.switches)
 
-    def take(self, k):
+    def take(self, k: np.ndarray) -> Evaluation:
         """The evaluation at the points ``k`` only (an index array)."""
         n = self.theta.size
         moved = np.flatnonzero(k != np.arange(n)) if k.size == n else None
@@ -151,13 +162,16 @@ class Evaluation:
                           self.folds)
 
 
-class _Start:
-    def __init__(self, signs, group_q):
+class Start:
+    """Where a path continues from: each dyad step's mode sign and each group step's
+    coordinates at one point (:meth:`Evaluation.at`), by step index."""
+
+    def __init__(self, signs: dict[int, float], group_q: dict[int, np.ndarray]) -> None:
         self.signs = signs
         self.group_q = group_q
 
 
-def evaluate(plan, theta, *, start=None) -> Evaluation:
+def evaluate(plan: Plan, theta: ArrayLike, *, start: Start | None = None) -> Evaluation:
     """Poses along a path of input angles (degrees), continued from ``start`` (an
     Evaluation's state at the path's first point), else from the drawn pose, which
     must then be the path's first point.
@@ -184,7 +198,10 @@ _SWITCH_STEP = 1e-4       # degrees either side of a touch, to see which label c
 def _evaluate(plan, theta, start):
     pose = _known_poses(plan, theta)
     feasible = np.ones(theta.size, dtype=bool)
-    signs, group_q, switches, folds = {}, {}, {}, {}
+    signs: dict[int, np.ndarray] = {}
+    group_q: dict[int, np.ndarray] = {}
+    switches: dict[int, list[float]] = {}
+    folds: dict[int, tuple[float, np.ndarray]] = {}
     # a path from the drawn pose has it, as drawn, at its own value: the closed forms
     # would give it only to rounding, and at a drawn dead centre to its square root
     at_drawn = None
@@ -268,7 +285,7 @@ def _track(plan, i, step, head, disc, sign0):
     ok = disc >= -DISC_TOL
     last = n if ok.all() else int(np.argmin(ok))
     direction = 1.0 if n < 2 or theta[-1] >= theta[0] else -1.0
-    found = []
+    found: list[float] = []
     touching = np.zeros(n, dtype=bool)
     if last >= 2:
         d = disc[:last]

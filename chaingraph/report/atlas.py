@@ -10,6 +10,7 @@ from __future__ import annotations
 import html
 from dataclasses import dataclass
 from pathlib import Path
+from typing import Any, TypeAlias
 
 from chaingraph._util.atomic import withdraw
 from chaingraph._util.parallel import process_runner
@@ -105,7 +106,13 @@ class _Figure:
     failed: str | None = None
 
 
-def _page_job(task):
+#: one chain's page as a worker computes it: (html, chain files (name, text), how many
+#: inversions were animated, those that failed (link, why), its catalog names, its thumbnail)
+PageJob: TypeAlias = tuple[str, list[tuple[str, str]], int, tuple[tuple[str, str], ...],
+                           dict[str, list[Any]], str]
+
+
+def _page_job(task: tuple[Any, ...]) -> PageJob:
     """Everything of one chain's page, computed in a worker: (html, chain files, how many
     inversions were animated, those that failed, its catalog names, its thumbnail)."""
     entry, dof, oriented, animate, frames = task
@@ -252,7 +259,7 @@ def write_illustrated(result, out_dir, *, animate=None, frames=24, workers=1) ->
     animate = (animated_by_default(result, workers=workers) if animate is None
                else bool(animate))
     tasks = [(e, result.dof, result.oriented, animate, frames) for e in result]
-    done = {}
+    done: dict[int, PageJob] = {}
     process_runner(workers)(_page_job, tasks, done.__setitem__)
     pages, cards = [], []
     for i, e in enumerate(result):
