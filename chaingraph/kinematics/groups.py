@@ -9,10 +9,13 @@ is then corrected at once by batched Newton from Hermite-interpolated guesses.
 from __future__ import annotations
 
 import math
+from typing import TYPE_CHECKING, Protocol
 
 import numpy as np
+from numpy.typing import ArrayLike
 
 from chaingraph.kinematics.equations import (
+    Pose,
     batched_inverse,
     group_form,
     group_jacobian,
@@ -21,7 +24,19 @@ from chaingraph.kinematics.equations import (
     slice,
     with_group,
 )
+from chaingraph.kinematics.plan import Plan, Step
 from chaingraph.kinematics.rates import Factor, rates
+
+if TYPE_CHECKING:                       # tracking imports this module
+    from chaingraph.kinematics.tracking import Evaluation
+
+
+class Scaled(Protocol):
+    """What Newton's method reads of a plan: the size its tolerances are relative to
+    (a :class:`Plan`, or the assembly's stand-in for one)."""
+
+    @property
+    def size(self) -> float: ...
 
 
 def _chord(plan, step, known, q, iterations=8):
@@ -43,7 +58,8 @@ def _chord(plan, step, known, q, iterations=8):
     return q, err <= 1e-9 * plan.size
 
 
-def newton(plan, step, known, q, iterations=40, tol_rel=1e-12):
+def newton(plan: Scaled, step: Step, known: Pose, q: np.ndarray, iterations: int = 40,
+           tol_rel: float = 1e-12) -> tuple[np.ndarray, np.ndarray]:
     """Batched Newton's method on the group's loop-closure equations; each point
     iterates until its residual is below 1e-12 of the size (linear convergence at a
     fold needs more iterations than elsewhere, so only unconverged points go on).
@@ -72,7 +88,9 @@ def newton(plan, step, known, q, iterations=40, tol_rel=1e-12):
 
 
 
-def newton_path(plan, step, pose, theta, q0, coarse_deg=10.0, *, head):
+def newton_path(plan: Plan, step: Step, pose: Pose, theta: np.ndarray, q0: ArrayLike,
+                coarse_deg: float = 10.0, *, head: Evaluation
+                ) -> tuple[np.ndarray, np.ndarray, tuple[float, np.ndarray] | None]:
     """Group coordinates along the path, from q0 at its first point.
 
     A coarse trace of the group's branch by pseudo-arclength continuation (steps of
@@ -342,7 +360,8 @@ def _fold(branch, z, tau, ds, direction):
     return best
 
 
-def fold_point(plan, step, head, q, t, iterations=25):
+def fold_point(plan: Plan, step: Step, head: Evaluation, q: ArrayLike, t: float,
+               iterations: int = 25) -> tuple[float, np.ndarray] | None:
     """The fold of the group's branch near (``t``, ``q``): where the input turns back,
     the loop-closure equations R(q, t) = 0 together with the Jacobian's null vector,
     R_q v = 0 with c . v = 1, solved by Newton's method on that extended system, which

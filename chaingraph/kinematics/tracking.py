@@ -86,6 +86,7 @@ def _evaluate_at(plan, theta, ref, upto, double):
         pose = _known_poses(plan, theta)
         feasible = np.ones(theta.size, dtype=bool)
         group_q: dict[int, np.ndarray] = {}
+        ok: bool | np.ndarray           # where each step assembles (a single link: all)
         for i, step in enumerate(plan.steps[:upto]):
             if step.kind == "single":
                 pose.update(single_link(step, pose))
