@@ -8,9 +8,10 @@ from __future__ import annotations
 import math
 from collections.abc import Callable
 from dataclasses import dataclass
-from typing import Any
+from typing import TYPE_CHECKING, Any, Protocol
 
 import numpy as np
+from numpy.typing import ArrayLike
 
 from chaingraph._util.numbers import tidy
 from chaingraph.errors import UnboundedRangeError
@@ -28,7 +29,19 @@ from chaingraph.kinematics.columns import (
 from chaingraph.kinematics.rates import rates
 from chaingraph.kinematics.roots import bracketed_roots
 from chaingraph.kinematics.sweep import cycle, evaluate_near, evaluate_sweep
-from chaingraph.kinematics.tracking import evaluate_at
+from chaingraph.kinematics.plan import Plan
+from chaingraph.kinematics.sweep import Cycle
+from chaingraph.kinematics.tracking import Evaluation, evaluate_at
+
+if TYPE_CHECKING:                       # motion imports this module
+    from chaingraph.kinematics.motion import Motion
+
+
+class Columns(Protocol):
+    """A sweep's columns by the CSV's names (``"x:B"``): a mapping, or the
+    :class:`Trajectories` (a motion)."""
+
+    def __getitem__(self, key: str, /) -> np.ndarray: ...
 
 __all__ = ["Summary", "ExtremePosition", "Straightness", "straightness", "summary_rows", "path_direction", "output_signal",
            "OutputSignal"]
@@ -155,7 +168,7 @@ class Summary:
         return rows
 
 
-def summary_rows(motion):
+def summary_rows(motion: Motion) -> list[tuple[str, str]]:
     """A motion's summary as (label, text) rows, for the command line, the report and
     the notebook: the fixed link and the inputs, then :meth:`Summary.rows`.
 
@@ -168,6 +181,7 @@ def summary_rows(motion):
     '1.0466'
     """
     s = motion.summary
+    assert s is not None, "summary_rows is of a motion solved with its summary"
     plan = motion.plan
     how = "  (turns fully)" if s.full_turn else "  (rocks)"
     if motion.inputs and plan.moving_inputs > 1:
@@ -178,6 +192,7 @@ def summary_rows(motion):
         said = ("inputs", ", ".join(f"{i.joint} ({i.kind})" for i in motion.inputs)
                 + (f"; {lead.joint} leads" if len(motion.inputs) > 1 else "") + how)
     else:
+        assert motion.driver is not None, "a motion without inputs has its driver"
         said = ("driver", motion.driver + how)
     return [("fixed link", motion.fixed), said, *s.rows()]
 
@@ -198,7 +213,7 @@ class Straightness:
         return {"deviation": self.deviation, "length": self.length}
 
 
-def straightness(x, y) -> Straightness | None:
+def straightness(x: ArrayLike, y: ArrayLike) -> Straightness | None:
     """The :class:`Straightness` of the path through the points (x, y) (the finite
     ones); None for fewer than two.
 
@@ -234,12 +249,12 @@ class OutputSignal:
     unit: str | None
     direction: tuple | None = None
 
-    def values(self, columns):
+    def values(self, columns: Columns) -> tuple[Any, Any, Any]:
         """(u, du/dt, d2u/dt2) along the sweep, from its columns (at unit input speed:
         per degree or length unit of the input, as the columns are)."""
         return self._of(lambda kind: columns[f"{kind}:{self.name}"])
 
-    def of_states(self, plan, states: LinkStates):
+    def of_states(self, plan: Plan, states: LinkStates) -> tuple[Any, Any, Any]:
         """(u, du/dt, d2u/dt2) from the solver's ``states`` (:class:`LinkStates`):
         :meth:`values` of their columns, working out the output's alone."""
         item: SlideMotion | LinkMotion | PointMotion
@@ -274,7 +289,8 @@ class OutputSignal:
         return f"{self.output} (slide of joint {self.name})"
 
 
-def output_signal(plan, output, columns, *, closed=False) -> OutputSignal | None:
+def output_signal(plan: Plan, output: str | None, columns: Columns, *,
+                  closed: bool = False) -> OutputSignal | None:
     """How ``output`` (a link, point or joint, or None) moves along the sweep whose
     ``columns`` are given: the one definition the summary and the plots share (a P
     joint's is its slide, the block's travel along its guide; an R joint's its path). ``closed``: the
@@ -311,7 +327,8 @@ def output_signal(plan, output, columns, *, closed=False) -> OutputSignal | None
                         path_direction(columns, name, closed=closed))
 
 
-def path_direction(cols, name, *, closed=False):
+def path_direction(cols: Columns, name: str, *,
+                   closed: bool = False) -> tuple[float, float]:
     """The main direction of point ``name``'s path (a unit vector), along which its
     stroke is measured: its sign points towards the path's point farthest from the
     path's mean, so that it turns with the drawing and does not depend on its frame.
@@ -333,10 +350,10 @@ def path_direction(cols, name, *, closed=False):
     return float(d[0]), float(d[1])
 
 
-def cycle_theta(plan, c, steps_per_turn=3600):
+def cycle_theta(plan: Plan, c: Cycle, steps_per_turn: int = 3600) -> np.ndarray:
     """The summary's grid: one period of a crank from the drawn pose, or a rocker's
     whole range, limits included exactly."""
-    if c.full_turn:
+    if c.period is not None:                   # a full turn
         n = int(round(steps_per_turn * c.period / 360.0))
         return c.low + c.period * np.arange(n + 1) / n
     theta = np.linspace(c.low, c.high, steps_per_turn + 1)
@@ -353,7 +370,8 @@ def _pointwise(plan, ev, k, t, *, measures=False):
     return LinkStates(t, pose, vel, acc), measure, feasible
 
 
-def motion_summary(plan, output, omega, c, *, sweep=None) -> Summary:
+def motion_summary(plan: Plan, output: str | None, omega: float, c: Cycle, *,
+                   sweep: tuple[Evaluation, Any, Any] | None = None) -> Summary:
     """The :class:`Summary` over the cycle ``c``; ``sweep`` is (evaluation, step
     measures, columns at unit input speed, or the :class:`Trajectories`) on the cycle's own grid when the caller has
     them. Figures within rounding of a round number are that number (:func:`tidy`)."""
