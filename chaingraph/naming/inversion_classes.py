@@ -19,20 +19,22 @@ motion is the same whichever link carries the guide), the full turns deciding.
 from __future__ import annotations
 
 import itertools
+from collections.abc import Iterator, Sequence
 from dataclasses import dataclass
+from typing import Any
 
 import networkx as nx
 from networkx.algorithms.isomorphism import GraphMatcher
 
 from chaingraph._util.text import short_list
 from chaingraph.errors import ChainStructureError
-from chaingraph.model.chain import Chain
 from chaingraph.kinematics.behaviour import (
     behaviour,
     behaviour_cost,
     behaviour_key,
     turning_links,
 )
+from chaingraph.model.chain import Chain
 from chaingraph.naming.catalog import bundled_catalog
 from chaingraph.structure.isomorphism import (
     automorphism_orbits,
@@ -52,7 +54,7 @@ class InputClass:
     driver: str
     class_: int
 
-    def to_dict(self):
+    def to_dict(self) -> dict[str, Any]:
         return {"driver": self.driver, "class": self.class_}
 
 
@@ -68,8 +70,8 @@ class Inversion:
     inputs: tuple[InputClass, ...] | None = None
     note: str | None = None    # why a catalog name is missing, where one is
 
-    def to_dict(self):
-        d = {"fixed": self.fixed, "class": self.class_, "names": list(self.names),
+    def to_dict(self) -> dict[str, Any]:
+        d: dict[str, Any] = {"fixed": self.fixed, "class": self.class_, "names": list(self.names),
              "behaviour": self.behaviour,
              "full_turns": None if self.full_turns is None else list(self.full_turns),
              "note": self.note}
@@ -120,15 +122,15 @@ class Inversions:
         """The inversion with ``fixed`` fixed."""
         return next(i for i in self.inversions if i.fixed == fixed)
 
-    def to_dict(self):
-        d = {"name": self.name, "links": self.links, "classes": self.classes,
+    def to_dict(self) -> dict[str, Any]:
+        d: dict[str, Any] = {"name": self.name, "links": self.links, "classes": self.classes,
              "inversions": [i.to_dict() for i in self.inversions]}
         if self.classes_with_input is not None:
             d["classes_with_input"] = self.classes_with_input
         return d
 
 
-def require_connected(chain) -> None:
+def require_connected(chain: Chain) -> None:
     """Raise ChainStructureError unless the chain is one connected piece."""
     if len(chain.pieces) > 1:
         pieces = "; ".join("{" + ", ".join(p) + "}" for p in chain.pieces)
@@ -149,7 +151,9 @@ def _labelled(chain, oriented, marks):
     return g
 
 
-def link_isomorphisms(a, b, *, oriented=True, marks_a=None, marks_b=None):
+def link_isomorphisms(a: Chain, b: Chain, *, oriented: bool = True,
+                      marks_a: dict[str, str] | None = None,
+                      marks_b: dict[str, str] | None = None) -> Iterator[dict[str, str]]:
     """Every isomorphism of chain ``a`` onto chain ``b``, as dicts of links.
 
     ``marks_a`` and ``marks_b`` tag links (for example ``{fixed: "fixed"}``) that only
@@ -247,7 +251,8 @@ def _behaviours_solved(chain, needed, *, budget=BEHAVIOUR_SECONDS):
 MAX_MAPPINGS = 720
 
 
-def catalog_matches(chain, fixed, catalog, *, driver=None, output=None):
+def catalog_matches(chain: Chain, fixed: str, catalog: Sequence[Chain], *,
+                    driver: str | None = None, output: str | None = None) -> list[Match]:
     """The catalog mechanisms that are this chain with ``fixed`` fixed, by structure.
 
     Each entry is matched with P orientation respected, else with it forgotten (a
@@ -323,7 +328,7 @@ def _marks(chain, fixed, driver, output):
     return marks
 
 
-def naming_matches(matches):
+def naming_matches(matches: Sequence[Match]) -> list[Match]:
     """Which catalog matches name the inversion: those that behave alike (where both
     have dimensions); failing those, the names of structure (Watt I, the slider crank's
     inversions: they hold whatever the dimensions) and the names that cannot be
@@ -340,7 +345,8 @@ def naming_matches(matches):
     return []
 
 
-def inversions(chain, *, with_input: bool = False, catalog=None,
+def inversions(chain: Chain, *, with_input: bool = False,
+               catalog: Sequence[Chain] | None = None,
                behaviour_seconds: float = BEHAVIOUR_SECONDS) -> Inversions:
     """Every inversion of a chain, grouped by structure and named from the catalog.
 
