@@ -12,7 +12,6 @@ a :class:`PoseForces` (:meth:`SweepForces.pose`).
 
 from __future__ import annotations
 
-import io
 import math
 import os
 from collections.abc import Sequence
@@ -22,7 +21,7 @@ from typing import Any, overload
 import numpy as np
 
 from chaingraph._util.numbers import tidy
-from chaingraph._util.text import short_list, write_columns
+from chaingraph._util.text import csv_text, short_list
 from chaingraph.dynamics.equilibrium import (
     UNIT_METRES,
     KinematicState,
@@ -296,13 +295,7 @@ class SweepForces:
 
     def to_csv(self, path: str | os.PathLike | None = None) -> str | None:
         """Write the CSV (one row per step); returns the text when ``path`` is None."""
-        if path is None:
-            buf = io.StringIO()
-            write_columns(buf, self.columns, self.steps + 1)
-            return buf.getvalue()
-        with open(path, "w", encoding="utf-8", newline="") as f:
-            write_columns(f, self.columns, self.steps + 1)
-        return None
+        return csv_text(self.columns, self.steps + 1, path)
 
     def to_frame(self) -> Any:
         """The CSV's columns as a pandas DataFrame (needs the notebook extra)."""

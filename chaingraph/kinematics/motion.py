@@ -8,7 +8,6 @@ driver's whole feasible range.
 
 from __future__ import annotations
 
-import io
 import math
 import os
 from collections.abc import Sequence
@@ -17,7 +16,7 @@ from typing import Any
 
 import numpy as np
 
-from chaingraph._util.text import short_list, write_columns
+from chaingraph._util.text import csv_text, short_list
 from chaingraph.errors import AssemblyError, MechanismError, UnboundedRangeError
 from chaingraph.kinematics.columns import (
     LinkMotion,
@@ -161,13 +160,7 @@ class Motion(Trajectories):
         Numbers are written as Python writes them (the shortest text that reads back to
         the same float), ``nan`` where there is no value; the file is written in blocks
         of rows, so memory does not grow with the sweep."""
-        if path is None:
-            buf = io.StringIO()
-            write_columns(buf, self.columns, self.steps + 1)
-            return buf.getvalue()
-        with open(path, "w", encoding="utf-8", newline="") as f:
-            write_columns(f, self.columns, self.steps + 1)
-        return None
+        return csv_text(self.columns, self.steps + 1, path)
 
     def to_dict(self) -> dict:
         """The JSON of ``chaingraph solve --json``."""
