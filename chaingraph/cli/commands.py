@@ -603,8 +603,10 @@ def _synthesis_output(args, found) -> int:
                 + ["transmission", "input", "dimensions"]))
     print(f"rejected: {rejected}; searched {found.searched.candidates} candidates")
     if args.out:
-        print(f"written: solution-1.toml .. solution-{len(found.solutions)}.toml in "
-              f"{args.out} (chaingraph solve reproduces each)")
+        n = len(found.solutions)
+        files = "solution-1.toml" if n == 1 else f"solution-1.toml .. solution-{n}.toml"
+        print(f"written: {files} in {args.out} (chaingraph solve reproduces "
+              f"{'it' if n == 1 else 'each'})")
     return 0
 
 
