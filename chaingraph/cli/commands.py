@@ -72,7 +72,7 @@ from chaingraph.structure.atlas import (
     write_sliding,
 )
 from chaingraph import synthesis
-from chaingraph.drawing.synthesis import draw_synthesis
+from chaingraph.drawing.synthesis import draw_solution
 from chaingraph.synthesis import KINDS, PathTask
 from chaingraph.synthesis.path_generation import EXACT
 from chaingraph.variation import length_values, vary
@@ -576,17 +576,8 @@ def _synthesis_output(args, found) -> int:
             with Writing(target):
                 save(s.mechanism, target)
     if args.draw:
-        best = found.solutions[0]
-        task = best.mechanism.task or {}
-        sweep = None
-        if "swing" in task and "start" in task:
-            sweep = (task["start"][0], task["start"][0] + task["swing"][0])
-        poses = task.get("poses", ())
         with Writing(args.draw):
-            draw_synthesis(best.mechanism, at=best.reached_at[0], sweep=sweep,
-                           curve=None if poses else best.curve,
-                           targets=task.get("targets", ()), poses=poses,
-                           path=args.draw)
+            draw_solution(found.solutions[0], path=args.draw)
     if args.json:
         print_json(found.to_dict())
         return 0
