@@ -49,6 +49,7 @@ def prepare_worker(parent: int) -> None:
     worker with its parent (Linux), and a watch thread checks the parent every quarter
     second everywhere (also where the kernel's request does not apply)."""
     ignore_interrupts()
+    _unblock(_STOPS)                             # blocked by the main process as it forked
     try:
         libc = ctypes.CDLL(None, use_errno=True)
         libc.prctl(1, signal.SIGKILL)            # PR_SET_PDEATHSIG
@@ -62,6 +63,39 @@ def prepare_worker(parent: int) -> None:
     if os.getppid() != parent:                   # gone before the request was made
         os._exit(1)
     threading.Thread(target=watch, name="chaingraph-parent-watch", daemon=True).start()
+
+
+#: the signals that stop a run
+_STOPS = {signal.SIGINT, signal.SIGTERM}
+
+
+def _block(signals: set[signal.Signals]) -> set[signal.Signals] | None:
+    """Hold ``signals`` in this thread (where the platform can); the mask before."""
+    if not hasattr(signal, "pthread_sigmask"):
+        return None
+    return set(signal.pthread_sigmask(signal.SIG_BLOCK, signals))
+
+
+def _unblock(signals: set[signal.Signals]) -> None:
+    if hasattr(signal, "pthread_sigmask"):
+        signal.pthread_sigmask(signal.SIG_UNBLOCK, signals)
+
+
+def _restore(mask: set[signal.Signals] | None) -> None:
+    if mask is not None:
+        signal.pthread_sigmask(signal.SIG_SETMASK, mask)
+
+
+def _stop(pool: ProcessPoolExecutor) -> None:
+    """Ctrl-C or a failure: stop every worker now, leave nothing running."""
+    for process in list(getattr(pool, "_processes", {}).values()):
+        process.terminate()
+    try:
+        pool.shutdown(wait=True, cancel_futures=True)
+    except RuntimeError:
+        # interrupted while the pool started its manager thread: nothing to join, and
+        # the interruption is what the caller must see
+        pass
 
 
 def process_runner(workers: int) -> Runner:
@@ -78,24 +112,24 @@ def process_runner(workers: int) -> Runner:
             on_result: Callable[[int, Any], None]) -> None:
         if workers <= 1 or len(tasks) <= 1:
             return serial(fn, tasks, on_result)
-        pool = ProcessPoolExecutor(max_workers=min(workers, len(tasks)),
-                                   initializer=prepare_worker, initargs=(os.getpid(),))
+        # Ctrl-C and SIGTERM are held while the workers are forked: one that came
+        # before a worker set its own handlers would run the main process's in it
+        # (a traceback of the worker's); the worker takes them up once it is ready
+        pool = None
+        held = _block(_STOPS)
         try:
+            pool = ProcessPoolExecutor(max_workers=min(workers, len(tasks)),
+                                       initializer=prepare_worker, initargs=(os.getpid(),))
             pending = {pool.submit(fn, task): i for i, task in enumerate(tasks)}
+            _restore(held)
             while pending:
                 done, _ = wait(pending, return_when=FIRST_COMPLETED)
                 for future in done:
                     on_result(pending.pop(future), future.result())
         except BaseException:
-            # Ctrl-C or a failure: stop every worker now, leave nothing running
-            for process in list(getattr(pool, "_processes", {}).values()):
-                process.terminate()
-            try:
-                pool.shutdown(wait=True, cancel_futures=True)
-            except RuntimeError:
-                # interrupted while the pool started its manager thread: nothing to join,
-                # and the interruption is what the caller must see
-                pass
+            if pool is not None:
+                _stop(pool)
+            _restore(held)
             raise
         pool.shutdown()
     return run

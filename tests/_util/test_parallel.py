@@ -40,3 +40,41 @@ def test_workers_end_when_the_main_process_is_killed(tmp_path, argv):
             [w for w in workers if alive(w)]
     finally:
         proc.kill()
+
+
+_SLOW_TO_START = """
+import signal, sys, time
+from chaingraph._util import parallel
+
+def said(*_):
+    sys.stderr.write("the main process's handler ran\\n")
+    sys.exit(3)
+
+signal.signal(signal.SIGTERM, said)
+ready = parallel.prepare_worker
+
+def slow(parent):            # a worker slow to set its own handlers
+    time.sleep(1.0)
+    ready(parent)
+
+parallel.prepare_worker = slow
+parallel.process_runner(2)(time.sleep, [30, 30], lambda *_: None)
+"""
+
+
+@pytest.mark.skipif(not hasattr(signal, "pthread_sigmask"), reason="POSIX signal masks")
+def test_a_sigterm_before_a_worker_is_ready_runs_no_handler_of_the_main_process_in_it():
+    """SIGTERM to the group (``timeout``, CI) while the workers were still starting ran
+    the command line's handler in them: a traceback of a worker's under the one line.
+    The signals are held while the workers are forked, and taken up when they are ready."""
+    proc = subprocess.Popen([sys.executable, "-c", _SLOW_TO_START], stderr=subprocess.PIPE,
+                            text=True, start_new_session=True)
+    try:
+        assert wait_for(lambda: len(children(proc.pid)) >= 2, 60), "no workers started"
+        os.killpg(proc.pid, signal.SIGTERM)
+        _, err = proc.communicate(timeout=60)
+    finally:
+        proc.kill()
+    # the main process's handler ran once: in the main process, not in a worker
+    assert err.count("the main process's handler ran") == 1, err
+    assert proc.returncode == 3
