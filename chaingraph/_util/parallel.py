@@ -69,7 +69,7 @@ def prepare_worker(parent: int) -> None:
 _STOPS = {signal.SIGINT, signal.SIGTERM}
 
 
-def _block(signals: set[signal.Signals]) -> set[signal.Signals] | None:
+def _block(signals: set[signal.Signals]) -> set[int | signal.Signals] | None:
     """Hold ``signals`` in this thread (where the platform can); the mask before."""
     if not hasattr(signal, "pthread_sigmask"):
         return None
@@ -81,7 +81,7 @@ def _unblock(signals: set[signal.Signals]) -> None:
         signal.pthread_sigmask(signal.SIG_UNBLOCK, signals)
 
 
-def _restore(mask: set[signal.Signals] | None) -> None:
+def _restore(mask: set[int | signal.Signals] | None) -> None:
     if mask is not None:
         signal.pthread_sigmask(signal.SIG_SETMASK, mask)
 
