@@ -342,7 +342,10 @@ def test_ctrl_c_leaves_no_worker_and_a_resumable_folder(tmp_path):
     import time
 
     out = tmp_path / "run"
-    proc = subprocess.Popen([sys.executable, "-m", "chaingraph", "atlas", "--links", "14",
+    # 13 links with 2 degrees of freedom: hundreds of shards in seconds (14 links with 1
+    # took half a minute to resume)
+    size = ["--links", "13", "--dof", "2"]
+    proc = subprocess.Popen([sys.executable, "-m", "chaingraph", "atlas", *size,
                              "--workers", "2", "--out", str(out), "-q"],
                             stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True,
                             start_new_session=True, preexec_fn=interruptible)
@@ -363,10 +366,16 @@ def test_ctrl_c_leaves_no_worker_and_a_resumable_folder(tmp_path):
             pass
     assert not left                                  # no worker process behind
     assert not list(out.glob("shards/*.tmp"))
-    code, stdout, err = run_cli("atlas", "--links", "14", "--workers", "2", "--out", out,
-                                "--resume", "--summary", "-q")
+    done = {f.name: f.stat().st_mtime_ns for f in out.glob("shards/*.jsonl")}
+    code, resumed, err = run_cli("atlas", *size, "--workers", "2", "--out", out,
+                                 "--resume", "--summary", "-q")
     assert code == 0, err
-    assert json.loads(stdout)["distinct_inversions"] == 4274510
+    code, whole, err = run_cli("atlas", *size, "--out", tmp_path / "whole", "--summary", "-q")
+    assert code == 0, err
+    # the resumed run is the uninterrupted one, and it kept the shards already written
+    assert json.loads(resumed) == json.loads(whole)
+    assert json.loads(resumed)["count"] > 0 and done
+    assert {f: (out / "shards" / f).stat().st_mtime_ns for f in done} == done
 
 
 def test_the_atlas_page_draws_no_joint_at_a_crossing_and_numbers_links_as_the_files():
