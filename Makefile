@@ -27,11 +27,12 @@ report: $(VENV)/.installed
 
 # the layers first (import-linter, contract in pyproject.toml), the types (mypy, its
 # settings in pyproject.toml), then the whole suite on both cores (pytest-xdist; a file's
-# tests on one worker, so its fixtures are built once)
+# tests on one worker, so its fixtures are built once; the files in the order
+# tests/conftest.py gives, the longest first, not xdist's order by number of tests)
 test: $(VENV)/.installed-test
 	$(BIN)/lint-imports --no-cache
 	$(BIN)/python -m mypy chaingraph
-	$(BIN)/python -m pytest -n 2 --dist loadfile
+	$(BIN)/python -m pytest -n 2 --dist loadfile --no-loadscope-reorder
 
 benchmark: $(VENV)/.installed
 	$(BIN)/python benchmarks/classify.py

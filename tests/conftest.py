@@ -19,6 +19,31 @@ settings.load_profile(os.environ.get("HYPOTHESIS_PROFILE", "derandomized"))
 from chaingraph.naming.catalog import catalog_files, catalog_path  # noqa: F401  (used by the tests)
 from chaingraph.cli.main import main
 
+#: the test files that take longest, longest first (``pytest --durations=0``, summed by
+#: file): `make test` runs them first, each on one worker (``--dist loadfile
+#: --no-loadscope-reorder``), so that no long file starts last while the other worker
+#: has nothing left to do; a scheduling order only, nothing is left out
+LONGEST_FIRST = (
+    "tests/report/test_atlas_pages.py",
+    "tests/report/test_report.py",
+    "tests/structure/test_sliding.py",
+    "tests/kinematics/test_inputs.py",
+    "tests/structure/test_atlas.py",
+    "tests/naming/test_bounded_behaviour.py",
+    "tests/kinematics/test_no_silent_wrong.py",
+    "tests/test_house.py",
+    "tests/cli/test_errors.py",
+    "tests/kinematics/test_dead_centres.py",
+    "tests/structure/test_rigidity.py",
+    "tests/synthesis/test_path.py",
+)
+
+
+def pytest_collection_modifyitems(config, items):
+    """The longest files first (:data:`LONGEST_FIRST`), the rest in their order."""
+    rank = {name: i for i, name in enumerate(LONGEST_FIRST)}
+    items.sort(key=lambda item: rank.get(item.nodeid.split("::", 1)[0], len(rank)))
+
 
 @pytest.fixture
 def write(tmp_path):
