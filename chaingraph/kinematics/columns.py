@@ -114,20 +114,27 @@ class Trajectories:
     @classmethod
     def of_states(cls, plan: Plan, states: LinkStates, /, **more: Any) -> Self:
         """The trajectories of the solver's ``states`` (``more``: the other fields of a
-        subclass)."""
+        subclass).
+
+        The positions and rates of the joints and points, the links' angles and the
+        slides are worked out straight into the rows of one block (one allocation, and
+        no temporary per result array); each field is a row of it."""
         chain, theta = plan.chain, states.tau
         values = {}
         if not plan.from_driver:
             for item, value in zip(plan.inputs, plan.values(theta)):
                 values[item.joint] = np.array(np.broadcast_to(value, theta.shape), dtype=float)
+        slides = [j.id for j in chain.joints if j.kind == "P"]
+        rows = _new_rows(theta.size)
         return cls(
             theta=theta if plan.from_driver else np.asarray(plan.value(theta), dtype=float),
             values=values,
-            links={x: link_of_states(plan, states, x) for x in chain.links},
-            joints={j.id: point_of_states(plan, states, j.id) for j in chain.joints},
-            points={p.id: point_of_states(plan, states, p.id) for p in chain.points},
-            slides={j.id: slide_of_states(plan, states, j.id)
-                    for j in chain.joints if j.kind == "P"},
+            links={x: link_of_states(plan, states, x, out=next(rows)) for x in chain.links},
+            joints={j.id: point_of_states(plan, states, j.id, out=_rows(rows, 6))
+                    for j in chain.joints},
+            points={p.id: point_of_states(plan, states, p.id, out=_rows(rows, 6))
+                    for p in chain.points},
+            slides={j: slide_of_states(plan, states, j, out=_rows(rows, 3)) for j in slides},
             **more)
 
     @property
@@ -224,17 +231,32 @@ def csv_columns(plan: Plan, theta: np.ndarray, pose: dict, vel: dict,
 
 
 # -- from the solver's poses -----------------------------------------------------------
-def link_of_states(plan: Plan, states: LinkStates, link: str) -> LinkMotion:
+def _new_rows(n):
+    """New arrays of n values, one at each ``next``."""
+    while True:
+        yield np.empty(n)
+
+
+def _rows(rows, k):
+    """The next k rows (an iterator over arrays)."""
+    return [next(rows) for _ in range(k)]
+
+
+def link_of_states(plan: Plan, states: LinkStates, link: str, *,
+                   out: np.ndarray | None = None) -> LinkMotion:
     """One link's :class:`LinkMotion` from the solver's ``states`` (what
-    :meth:`Trajectories.of_states` holds for it, alone)."""
+    :meth:`Trajectories.of_states` holds for it, alone); its angle written into ``out``
+    when given."""
     chain, pose, n = plan.chain, states.pose, states.tau.size
     direction = math.radians(chain.reference_direction(link)) + pose[link][2]
-    return LinkMotion(link, _continuous(direction, n), _array(states.velocity[link][2], n),
+    return LinkMotion(link, _continuous(direction, n, out), _array(states.velocity[link][2], n),
                       _array(states.acceleration[link][2], n))
 
 
-def point_of_states(plan: Plan, states: LinkStates, name: str) -> PointMotion:
-    """One joint's or point's :class:`PointMotion` from the solver's ``states``."""
+def point_of_states(plan: Plan, states: LinkStates, name: str, *,
+                    out: list[np.ndarray] | None = None) -> PointMotion:
+    """One joint's or point's :class:`PointMotion` from the solver's ``states``; its six
+    arrays written into the six rows ``out`` when given."""
     chain, n = plan.chain, states.tau.size
     try:
         joint = chain.joint(name)
@@ -245,29 +267,62 @@ def point_of_states(plan: Plan, states: LinkStates, name: str) -> PointMotion:
     # a plan's chain has a drawn pose (build_plan refuses one with a joint unplaced, and
     # a file by its lengths places its points with its joints)
     assert at is not None, f"{name!r} has a position in a solved chain's pose"
+    if out is None:
+        out = list(np.empty((6, n)))
     if link == plan.fixed:
-        return PointMotion(name, *(_array(v, n) for v in (at[0], at[1], 0, 0, 0, 0)))
-    x, y, *rest = _point_motion(states.pose, states.velocity, states.acceleration, link,
-                                plan.local(at))
-    ox, oy = plan.origin
-    return PointMotion(name, *(_array(v, n) for v in (x + ox, y + oy, *rest)))
+        for row, v in zip(out, (at[0], at[1], 0.0, 0.0, 0.0, 0.0)):
+            row.fill(v)
+        return PointMotion(name, *out)
+    _point_motion(states.pose, states.velocity, states.acceleration, link, plan.local(at),
+                  out=out, origin=plan.origin)
+    return PointMotion(name, *out)
 
 
-def slide_of_states(plan: Plan, states: LinkStates, joint: str) -> SlideMotion:
-    """One P joint's :class:`SlideMotion` from the solver's ``states``."""
+def slide_of_states(plan: Plan, states: LinkStates, joint: str, *,
+                    out: list[np.ndarray] | None = None) -> SlideMotion:
+    """One P joint's :class:`SlideMotion` from the solver's ``states``; written into
+    the three rows ``out`` when given."""
     j, n = plan.chain.joint(joint), states.tau.size
     assert j.at is not None, "build_plan refuses a chain with a joint unplaced"
-    return SlideMotion(joint, *(_array(v, n) for v in slide_rates(
-        states.pose, states.velocity, states.acceleration, j, plan.local(j.at))))
+    if out is None:
+        out = list(np.empty((3, n)))
+    for row, v in zip(out, slide_rates(states.pose, states.velocity, states.acceleration, j,
+                                       plan.local(j.at))):
+        row[...] = v
+    return SlideMotion(joint, *out)
 
 
-def _point_motion(pose, vel, acc, link, p):
+def _point_motion(pose, vel, acc, link, p, *, out=None, origin=None):
+    """The point ``p`` (drawn, in the plan's frame) of ``link``: its x, y, velocity and
+    acceleration; written into the six arrays ``out`` (each of the sweep's length, x
+    and y offset by ``origin``) when given, else new arrays."""
     x, y = pose[link][:2]
     vx, vy, w = vel[link]
     ax, ay, al = acc[link]
     rx, ry = turn_by(pose[link], p)
-    return (rx + x, ry + y, vx - w * ry, vy + w * rx,
-            ax - al * ry - w * w * rx, ay + al * rx - w * w * ry)
+    if out is None:
+        return (rx + x, ry + y, vx - w * ry, vy + w * rx,
+                ax - al * ry - w * w * rx, ay + al * rx - w * w * ry)
+    ox, oy, ovx, ovy, oax, oay = out
+    np.add(rx, x, out=ox)
+    np.add(ry, y, out=oy)
+    if origin is not None:
+        ox += origin[0]
+        oy += origin[1]
+    np.multiply(w, ry, out=ovx)
+    np.subtract(vx, ovx, out=ovx)
+    np.multiply(w, rx, out=ovy)
+    np.add(vy, ovy, out=ovy)
+    w2 = w * w
+    centripetal = w2 * rx
+    np.multiply(al, ry, out=oax)
+    np.subtract(ax, oax, out=oax)
+    oax -= centripetal
+    np.multiply(w2, ry, out=centripetal)
+    np.multiply(al, rx, out=oay)
+    np.add(ay, oay, out=oay)
+    oay -= centripetal
+    return out
 
 
 def reference_link(joint: Joint, fixed: str) -> str:
@@ -300,15 +355,18 @@ def slide_rates(pose: dict, vel: dict, acc: dict, joint: Joint,
     return s, v, a
 
 
-def _continuous(phi, n):
+def _continuous(phi, n, out=None):
     """Radians (possibly a constant) along the sweep, without jumps of a turn, the first
-    value in (-pi, pi]."""
+    value in (-pi, pi]; written into ``out`` when given."""
     if np.ndim(phi) == 0:
-        return np.full(n, math.remainder(float(phi), 2 * math.pi))
+        if out is None:
+            return np.full(n, math.remainder(float(phi), 2 * math.pi))
+        out.fill(math.remainder(float(phi), 2 * math.pi))
+        return out
     first = math.remainder(float(phi[0]), 2 * math.pi)
     turns = np.round(np.diff(phi) * (1 / (2 * math.pi)))    # a jump's whole turns
     jumps = np.flatnonzero(turns)
-    out = phi + (first - float(phi[0]))
+    out = np.add(phi, first - float(phi[0]), out=out)
     out[0] = first
     if jumps.size > 16:             # (np.cumsum is dear: only for many jumps)
         out[1:] -= (2 * math.pi) * np.cumsum(turns)
