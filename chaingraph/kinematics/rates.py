@@ -76,25 +76,32 @@ class _PointDyad:
         x = (self.rq[a][0] + pose[a][0], self.rq[a][1] + pose[a][1])
         self.ua = (x[0] - wa[0], x[1] - wa[1])
         self.ub = (x[0] - wb[0], x[1] - wb[1])
-        det = self.ua[0] * self.ub[1] - self.ua[1] * self.ub[0]
-        self.ra2 = self.ua[0] ** 2 + self.ua[1] ** 2
-        self.rb2 = self.ub[0] ** 2 + self.ub[1] ** 2
+        (ua0, ua1), (ub0, ub1) = self.ua, self.ub
+        det = ua0 * ub1 - ua1 * ub0
+        self.ra2 = ua0 * ua0 + ua1 * ua1
+        self.rb2 = ub0 * ub0 + ub1 * ub1
         self.singular = det * det <= _SINGULAR ** 2 * self.ra2 * self.rb2
-        self.det = np.where(self.singular, 1.0, det)
+        # (np.where only where a pose is singular: most sweeps have none)
+        self.any_singular = bool(np.any(self.singular))
+        self.det = np.where(self.singular, 1.0, det) if self.any_singular else det
         self._det = det
+        self._measure: Scalar | None = None
 
     @property
     def measure(self):
-        return self._det / np.sqrt(self.ra2 * self.rb2)
+        if self._measure is None:
+            self._measure = self._det / np.sqrt(self.ra2 * self.rb2)
+        return self._measure
 
-    def _known_point(self, table, link, r, second=None):
+    @staticmethod
+    def _known_point(table, link, r, second=None):
         v = table[link]
         if second is None:      # velocity of the point: v + w perp(R p)
-            return plus(v[0], times(-1.0, times(v[2], r[1]))), plus(v[1], times(v[2], r[0]))
+            return minus(v[0], times(v[2], r[1])), plus(v[1], times(v[2], r[0]))
         w = second[link][2]     # acceleration: a + alpha perp(R p) - w^2 R p
         w2 = times(w, w)
-        return (plus(plus(v[0], times(-1.0, times(v[2], r[1]))), times(-1.0, times(w2, r[0]))),
-                plus(plus(v[1], times(v[2], r[0])), times(-1.0, times(w2, r[1]))))
+        return (minus(minus(v[0], times(v[2], r[1])), times(w2, r[0])),
+                minus(plus(v[1], times(v[2], r[0])), times(w2, r[1])))
 
     def solve_velocity(self, vel):
         dwa = self._known_point(vel, self.ka, self.ra_k)
@@ -108,16 +115,18 @@ class _PointDyad:
         return self._solve(dwa, dwb, ga, gb, second=True, vel=vel)
 
     def _solve(self, dwa, dwb, ga, gb, *, second, vel=None):
-        ua, ub = self.ua, self.ub
-        ca = ua[0] * dwa[0] + ua[1] * dwa[1] - ga
-        cb = ub[0] * dwb[0] + ub[1] * dwb[1] - gb
-        dx = (ca * ub[1] - ua[1] * cb) / self.det
-        dy = (ua[0] * cb - ca * ub[0]) / self.det
-        dx = np.where(self.singular, np.nan, dx)
+        # (``times``, ``plus`` and ``minus`` skip the terms of a known joint at rest)
+        (ua0, ua1), (ub0, ub1) = self.ua, self.ub
+        ca = minus(plus(times(ua0, dwa[0]), times(ua1, dwa[1])), ga)
+        cb = minus(plus(times(ub0, dwb[0]), times(ub1, dwb[1])), gb)
+        dx = minus(times(ca, ub1), times(ua1, cb)) / self.det
+        dy = minus(times(ua0, cb), times(ca, ub0)) / self.det
+        if self.any_singular:
+            dx = np.where(self.singular, np.nan, dx)
         a, b = self.step.links
         out = {}
-        for link, u, dw, r2 in ((a, ua, dwa, self.ra2), (b, ub, dwb, self.rb2)):
-            rel = (dx - dw[0], dy - dw[1])
+        for link, u, dw, r2 in ((a, self.ua, dwa, self.ra2), (b, self.ub, dwb, self.rb2)):
+            rel = (minus(dx, dw[0]), minus(dy, dw[1]))
             w = (u[0] * rel[1] - u[1] * rel[0]) / r2
             rq = self.rq[link]
             if not second:
@@ -125,8 +134,8 @@ class _PointDyad:
                 out[link] = (dx + w * rq[1], dy - w * rq[0], w)
             else:
                 w0 = vel[link][2]
-                out[link] = (dx + w * rq[1] + w0 * w0 * rq[0],
-                             dy - w * rq[0] + w0 * w0 * rq[1], w)
+                w02 = w0 * w0
+                out[link] = (dx + w * rq[1] + w02 * rq[0], dy - w * rq[0] + w02 * rq[1], w)
         return out
 
 

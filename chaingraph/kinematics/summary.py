@@ -15,7 +15,6 @@ from numpy.typing import ArrayLike
 
 from chaingraph._util.numbers import tidy
 from chaingraph.errors import UnboundedRangeError
-from chaingraph.geometry import turn_by
 from chaingraph.kinematics.columns import (
     LinkMotion,
     LinkStates,
@@ -415,7 +414,7 @@ def _raw_summary(plan, output, omega, c, *, sweep=None):
     summary = {"output": output, "stroke": None, "stroke_unit": None, "time_ratio": None,
                "forward_deg": None, "return_deg": None, "extremes": None,
                "extreme_positions": None,
-               "transmission_angle": _transmission(plan, ev, theta, output),
+               "transmission_angle": _transmission(plan, cols, output),
                "dead_centres": _dead_centres(plan, ev, measure, c),
                "input_range": _input_range(plan, theta, c),
                "full_turn": c.full_turn,
@@ -545,11 +544,18 @@ def _output_extremes(plan, ev, signal, u, du, ddu, scale, c):
                       "kind": "min"}]
 
 
+_FEW_BRACKETS = 8     # up to so many brackets, the cubics are solved one by one in floats
+
+
 def _cubic_roots(t0, t1, f0, f1, g0, g1):
     """The root in each bracket [t0, t1] (f0, f1 of opposite signs) of the cubic with
     values f and slopes g at its ends (Hermite): Newton's method from the secant's
     root, and bisection where it does not settle inside the bracket. No evaluation of
-    the mechanism, only of the cubic."""
+    the mechanism, only of the cubic. (A few brackets, as a cycle has, are solved in
+    Python floats, the same operations without an array's cost per operation.)"""
+    if np.size(t0) <= _FEW_BRACKETS:
+        return np.array([_cubic_root(*(float(x) for x in v))
+                         for v in zip(t0, t1, f0, f1, g0, g1)], dtype=float)
     h = t1 - t0
     a0, a1 = f0, g0 * h                       # p(s) = a0 + a1 s + a2 s^2 + a3 s^3
     a2 = 3 * (f1 - f0) - (2 * g0 + g1) * h
@@ -574,6 +580,41 @@ def _cubic_roots(t0, t1, f0, f1, g0, g1):
     return t0 + s * h
 
 
+def _ratio(a, b):
+    """a / b as numpy divides floats: infinite or NaN where b is 0."""
+    if b != 0.0:
+        return a / b
+    return math.nan if a == 0.0 or a != a else math.copysign(math.inf, a) * math.copysign(1.0, b)
+
+
+def _cubic_root(t0, t1, f0, f1, g0, g1):
+    """:func:`_cubic_roots` of one bracket, in floats."""
+    h = t1 - t0
+    a0, a1 = f0, g0 * h                       # p(s) = a0 + a1 s + a2 s^2 + a3 s^3
+    a2 = 3 * (f1 - f0) - (2 * g0 + g1) * h
+    a3 = 2 * (f0 - f1) + (g0 + g1) * h
+
+    def cubic(s):
+        return a0 + s * (a1 + s * (a2 + s * a3))
+    s = _ratio(f0, f0 - f1)
+    for _ in range(6):
+        last = s
+        s = min(max(s - _ratio(cubic(s), a1 + s * (2 * a2 + 3 * s * a3)), 0.0), 1.0)
+        if s == last:                         # settled (never for NaN, as np.array_equal)
+            break
+    if not (math.isfinite(s) and abs(cubic(s)) <= 1e-13 * (abs(f0) + abs(f1))):
+        lo, hi = 0.0, 1.0                     # bisection, where Newton's did not settle
+        for _ in range(60):
+            mid = 0.5 * (lo + hi)
+            v = cubic(mid)
+            if ((v > 0) - (v < 0)) == ((f0 > 0) - (f0 < 0)) and v == v:
+                lo = mid
+            else:
+                hi = mid
+        s = 0.5 * (lo + hi)
+    return t0 + s * h
+
+
 def _rate_and_slope(plan, ev, k, t, signal):
     """The output's rate and its derivative per degree of input at angles t."""
     states, _, _ = _pointwise(plan, ev, k, t)
@@ -581,25 +622,17 @@ def _rate_and_slope(plan, ev, k, t, signal):
     return d1, d2 * plan.rate_scale        # d2 per unit of input squared, t in tau
 
 
-def _transmission(plan, ev, theta, out):
+def _transmission(plan, cols, out):
     """Transmission angle range of the four-bar loop (RRR dyad) at the output ``out``
-    (else the first such loop), if any."""
+    (else the first such loop), if any, from the sweep's joint positions ``cols``."""
     dyads = [s for s in plan.steps if s.kind == "dyad" and s.pattern == "RRR"]
     if not dyads:
         return None
     step = next((s for s in dyads if out in s.links), dyads[0])
-    a, b = step.links
     ca, cb, cj = step.constraints
-    pose = ev.pose
-
-    def world(link, p):
-        rx, ry = turn_by(pose[link], p)
-        return rx + pose[link][0], ry + pose[link][1]
-    x = world(a, cj.point)
-    pa = world(a, ca.point)
-    pb = world(b, cb.point)
-    v1 = (pa[0] - x[0], pa[1] - x[1])
-    v2 = (pb[0] - x[0], pb[1] - x[1])
+    x = cols[f"x:{cj.joint}"], cols[f"y:{cj.joint}"]        # the joint between the two
+    v1 = (cols[f"x:{ca.joint}"] - x[0], cols[f"y:{ca.joint}"] - x[1])
+    v2 = (cols[f"x:{cb.joint}"] - x[0], cols[f"y:{cb.joint}"] - x[1])
     mu = np.degrees(np.arctan2(np.abs(v1[0] * v2[1] - v1[1] * v2[0]),
                                v1[0] * v2[0] + v1[1] * v2[1]))
     return {"min": _refined_extreme(mu, np.argmin(mu)),
@@ -637,10 +670,16 @@ def _dead_centres(plan, ev, measure, c):
     roots = []
     for i, m in enumerate(measure):
         m = np.asarray(m, dtype=float)
-        idx = np.nonzero(inner & np.isfinite(m) & (m != 0))[0]
-        change = np.sign(m[idx[:-1]]) != np.sign(m[idx[1:]])
-        ka, kb = idx[:-1][change], idx[1:][change]
-        roots += [float(theta[k]) for k in np.nonzero(inner & (m == 0))[0]]
+        valid = inner & np.isfinite(m) & (m != 0)
+        if valid.all():                  # (as below, without gathering the samples)
+            negative = m < 0
+            ka = np.flatnonzero(negative[1:] != negative[:-1])
+            kb = ka + 1
+        else:
+            idx = np.nonzero(valid)[0]
+            change = np.sign(m[idx[:-1]]) != np.sign(m[idx[1:]])
+            ka, kb = idx[:-1][change], idx[1:][change]
+            roots += [float(theta[k]) for k in np.nonzero(inner & (m == 0))[0]]
         if ka.size:
             def f(t, ka=ka, i=i):
                 _, mm, _ = _pointwise(plan, ev, ka, t, measures=True)
