@@ -55,6 +55,12 @@ class ModeKeys(Sequence[np.ndarray]):
     def __len__(self) -> int:
         return 2
 
+    def first(self) -> tuple[Vec, Vec]:
+        """The two keys at the first point only (``self[0][0]``, ``self[1][0]``)."""
+        (mx, my), (ox, oy) = (tuple(float(np.ravel(v)[0]) for v in part)
+                              for part in self._parts)
+        return (mx + ox, my + oy), (mx - ox, my - oy)
+
     @overload
     def __getitem__(self, i: int) -> np.ndarray: ...
 
@@ -363,8 +369,11 @@ def _rpp_roots(links: tuple[str, str], constraints: tuple[Constraint, Constraint
 
 def initial_sign(keys: Sequence[np.ndarray], drawn: Vec) -> float:
     """The mode of the drawn pose: the one whose first point is nearest the drawing."""
-    kp, km = keys
-    dp = np.hypot(kp[0, 0] - drawn[0], kp[0, 1] - drawn[1])
-    dm = np.hypot(km[0, 0] - drawn[0], km[0, 1] - drawn[1])
+    if isinstance(keys, ModeKeys):
+        kp, km = keys.first()
+    else:
+        kp, km = tuple(keys[0][0]), tuple(keys[1][0])
+    dp = np.hypot(kp[0] - drawn[0], kp[1] - drawn[1])
+    dm = np.hypot(km[0] - drawn[0], km[1] - drawn[1])
     return 1.0 if dp <= dm else -1.0
 

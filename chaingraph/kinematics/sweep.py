@@ -338,7 +338,9 @@ def _along(plan, end, targets, *, home=None):
     ev = evaluate(plan, sign * path, start=start.state)    # in path order
     if home is not None and home.any():
         # the grid's first point is the anchor (every target is past it)
-        idx = np.where(home, 0, np.arange(targets.size) if idx is None else idx)
+        if idx is None:                 # the path is the targets: ev is this call's own
+            return ev.repeat_first(np.flatnonzero(home))
+        idx = np.where(home, 0, idx)
     return ev if idx is None else ev.take(idx)
 
 

@@ -163,6 +163,26 @@ class Evaluation:
                           self.folds)
 
 
+    def repeat_first(self, at: np.ndarray) -> Evaluation:
+        """This evaluation with its first point's values also at the points ``at``
+        (indices), in place: what :meth:`take` of its points, with those points
+        pointing at the first, returns, without copying every array (an array that
+        cannot be written, a broadcast input, is copied first)."""
+        def patched(v):
+            if np.ndim(v) == 0:
+                return v
+            if not v.flags.writeable:
+                v = v.copy()
+            v[at] = v[0]
+            return v
+        self.theta = patched(self.theta)
+        self.pose = {x: tuple(patched(v) for v in p) for x, p in self.pose.items()}
+        self.feasible = patched(self.feasible)
+        self.signs = {i: patched(v) for i, v in self.signs.items()}
+        self.group_q = {i: patched(q) for i, q in self.group_q.items()}
+        return self
+
+
 class Start:
     """Where a path continues from: each dyad step's mode sign and each group step's
     coordinates at one point (:meth:`Evaluation.at`), by step index."""
