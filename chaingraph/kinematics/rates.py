@@ -135,7 +135,8 @@ class _PointDyad:
             else:
                 w0 = vel[link][2]
                 w02 = w0 * w0
-                out[link] = (dx + w * rq[1] + w02 * rq[0], dy - w * rq[0] + w02 * rq[1], w)
+                out[link] = (dx + w * rq[1] + w02 * rq[0],
+                             dy - w * rq[0] + w02 * rq[1], w)
         return out
 
 

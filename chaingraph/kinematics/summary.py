@@ -42,7 +42,7 @@ class Columns(Protocol):
 
     def __getitem__(self, key: str, /) -> np.ndarray: ...
 
-__all__ = ["Summary", "ExtremePosition", "Straightness", "straightness", "summary_rows", "path_direction", "output_signal",
+__all__ = ["CYCLE_STEPS", "Summary", "ExtremePosition", "Straightness", "straightness", "summary_rows", "path_direction", "output_signal",
            "OutputSignal"]
 
 
@@ -349,7 +349,11 @@ def path_direction(cols: Columns, name: str, *,
     return float(d[0]), float(d[1])
 
 
-def cycle_theta(plan: Plan, c: Cycle, steps_per_turn: int = 3600) -> np.ndarray:
+#: the summary's grid: steps per turn of :func:`cycle_theta`
+CYCLE_STEPS = 3600
+
+
+def cycle_theta(plan: Plan, c: Cycle, steps_per_turn: int = CYCLE_STEPS) -> np.ndarray:
     """The summary's grid: one period of a crank from the drawn pose, or a rocker's
     whole range, limits included exactly."""
     if c.period is not None:                   # a full turn

@@ -169,7 +169,7 @@ class Evaluation:
         pointing at the first, returns, without copying every array (an array that
         cannot be written, a broadcast input, is copied first)."""
         def patched(v):
-            if np.ndim(v) == 0:
+            if not isinstance(v, np.ndarray) or v.ndim == 0:
                 return v
             if not v.flags.writeable:
                 v = v.copy()
