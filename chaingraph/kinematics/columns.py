@@ -247,8 +247,8 @@ def link_of_states(plan: Plan, states: LinkStates, link: str, *,
     """One link's :class:`LinkMotion` from the solver's ``states`` (what
     :meth:`Trajectories.of_states` holds for it, alone); its angle written into ``out``
     when given."""
-    chain, pose, n = plan.chain, states.pose, states.tau.size
-    direction = math.radians(chain.reference_direction(link)) + pose[link][2]
+    pose, n = states.pose, states.tau.size
+    direction = plan.reference_radians(link) + pose[link][2]
     return LinkMotion(link, _continuous(direction, n, out), _array(states.velocity[link][2], n),
                       _array(states.acceleration[link][2], n))
 

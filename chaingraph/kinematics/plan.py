@@ -134,6 +134,15 @@ class Plan:
             object.__setattr__(self, "_hash", found)
         return found
 
+    def reference_radians(self, link: str) -> float:
+        """The drawn direction (radians) a link's angle is measured by
+        (:meth:`Chain.reference_direction`), worked out once per plan and link."""
+        known = self.__dict__.setdefault("_reference_radians", {})
+        found = known.get(link)
+        if found is None:
+            found = known[link] = math.radians(self.chain.reference_direction(link))
+        return found
+
     def __getstate__(self) -> dict:
         # (a string's hash differs from one process to the next: not pickled)
         return {k: v for k, v in self.__dict__.items() if k != "_hash"}
