@@ -122,63 +122,6 @@ def single_link(step: Step, pose: Pose) -> dict[str, PoseEntry]:
     return {u: _two_lines(pose, u, c1, c2)}
 
 
-#: cos_sin's table: the cosines and sines of 1024 angles a turn apart, and that step
-#: split in two (its first part, a float32's 24 significant bits, times any whole number
-#: below 2**29 is exact)
-_TURN_STEPS = 1024
-_STEP = 2 * math.pi / _TURN_STEPS
-_STEP_HI = float(np.float32(_STEP))
-_STEP_LO = _STEP - _STEP_HI
-_TABLE_COS = np.cos(_STEP * np.arange(_TURN_STEPS))
-_TABLE_SIN = np.sin(_STEP * np.arange(_TURN_STEPS))
-_COS_SIN_MIN = 64            # shorter arrays: np.cos and np.sin (the table's set-up costs more)
-_COS_SIN_MAX = 16 * math.pi  # eight turns
-
-
-def cos_sin(phi: Scalar) -> tuple[Scalar, Scalar]:
-    """``(np.cos(phi), np.sin(phi))`` to a rounding or two, in about a third of their
-    time for a sweep's angles (numpy's are the C library's, one value at a time): phi is
-    split into a multiple of a 1024th of a turn, whose cosine and sine come from a
-    table, and a remainder of at most half that step, whose cosine and sine are their
-    Taylor polynomials (the first terms left out are below 1e-18 of them); the two are
-    combined by the angle-sum formulas. Angles beyond eight turns either way (where the
-    rounding of the table's turn would add up) and short arrays go to numpy.
-
-    >>> phi = np.linspace(-50.0, 50.0, 1001)
-    >>> c, s = cos_sin(phi)
-    >>> bool(np.abs(c - np.cos(phi)).max() < 4e-15 and np.abs(s - np.sin(phi)).max() < 4e-15)
-    True
-    """
-    if np.ndim(phi) == 0 or np.size(phi) < _COS_SIN_MIN or \
-            not np.abs(phi).max() <= _COS_SIN_MAX:        # (False for NaN)
-        return np.cos(phi), np.sin(phi)
-    m = phi * (1 / _STEP)
-    np.rint(m, out=m)
-    k = m.astype(np.intp)
-    k &= _TURN_STEPS - 1
-    r = phi - m * _STEP_HI                      # exact
-    m *= _STEP_LO
-    r -= m                                      # |r| <= _STEP / 2 (+ rounding)
-    r2 = r * r
-    sin_r = r2 * (1 / 120)
-    sin_r -= 1 / 6
-    sin_r *= r2
-    sin_r *= r
-    sin_r += r                                  # r - r^3/6 + r^5/120
-    cos_r = r2 * (1 / 24)
-    cos_r -= 0.5
-    cos_r *= r2
-    cos_r += 1.0                                # 1 - r^2/2 + r^4/24
-    c, s = _TABLE_COS[k], _TABLE_SIN[k]
-    c_sin_r = c * sin_r
-    sin_r *= s
-    c *= cos_r
-    c -= sin_r                                  # cos(a + r) = cos a cos r - sin a sin r
-    s *= cos_r
-    s += c_sin_r                                # sin(a + r) = sin a cos r + cos a sin r
-    return c, s
-
-
 def _welded(pose: Pose, u: str, c: Constraint) -> PoseEntry:
     """Pose of link u welded to a known link by input joint c at the input's value: an
     R joint turned by delta (the second link relative to the first), or a P joint's
@@ -189,8 +132,7 @@ def _welded(pose: Pose, u: str, c: Constraint) -> PoseEntry:
     sign = 1.0 if u == c.b else -1.0
     w = _known_point(pose, c, u)
     if c.kind == "R":
-        phi = known[2] + sign * delta
-        return from_point(make_pose(0.0, 0.0, phi, *cos_sin(phi)), c.at(u), w)
+        return from_point(make_pose(0.0, 0.0, known[2] + sign * delta), c.at(u), w)
     t = turn_by(known if c.other(u) == c.a else carried(c, known, u), unit_deg(c.axis))
     return from_point(carried(c, known, u), c.at(u),
                       (w[0] + sign * delta * t[0], w[1] + sign * delta * t[1]))

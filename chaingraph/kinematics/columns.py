@@ -11,7 +11,7 @@ column names (``"angle:crank"`` in degrees, ``"x:B"``...), their order and their
 from __future__ import annotations
 
 import math
-from dataclasses import dataclass, fields, replace
+from dataclasses import dataclass, field, fields, replace
 from typing import Any, Self
 
 import numpy as np
@@ -31,13 +31,18 @@ class LinkStates:
     path parameters ``tau``, ``pose`` (link -> (x, y, phi, cos, sin) about the plan's
     origin), and ``velocity`` and ``acceleration`` (link -> (vx, vy, omega), (ax, ay,
     alpha) of its frame's origin; each input's rate under its key) at the input speed
-    ``speed`` (1 for a sweep's: they scale with omega and omega squared)."""
+    ``speed`` (1 for a sweep's: they scale with omega and omega squared).
+
+    ``points``: the points the rates' solve went through, by (link, point in the plan's
+    frame): (x, y, vx, vy, ax, ay) about the plan's origin (a dyad's joints), so that a
+    joint's motion is not worked out twice (:func:`chaingraph.kinematics.rates.rates`)."""
 
     tau: np.ndarray
     pose: dict
     velocity: dict
     acceleration: dict
     speed: float = 1.0
+    points: dict = field(default_factory=dict, compare=False, repr=False)
 
 
 @dataclass(frozen=True, eq=False)
@@ -114,27 +119,20 @@ class Trajectories:
     @classmethod
     def of_states(cls, plan: Plan, states: LinkStates, /, **more: Any) -> Self:
         """The trajectories of the solver's ``states`` (``more``: the other fields of a
-        subclass).
-
-        The positions and rates of the joints and points, the links' angles and the
-        slides are worked out straight into the rows of one block (one allocation, and
-        no temporary per result array); each field is a row of it."""
+        subclass)."""
         chain, theta = plan.chain, states.tau
         values = {}
         if not plan.from_driver:
             for item, value in zip(plan.inputs, plan.values(theta)):
                 values[item.joint] = np.array(np.broadcast_to(value, theta.shape), dtype=float)
-        slides = [j.id for j in chain.joints if j.kind == "P"]
-        rows = _new_rows(theta.size)
         return cls(
             theta=theta if plan.from_driver else np.asarray(plan.value(theta), dtype=float),
             values=values,
-            links={x: link_of_states(plan, states, x, out=next(rows)) for x in chain.links},
-            joints={j.id: point_of_states(plan, states, j.id, out=_rows(rows, 6))
-                    for j in chain.joints},
-            points={p.id: point_of_states(plan, states, p.id, out=_rows(rows, 6))
-                    for p in chain.points},
-            slides={j: slide_of_states(plan, states, j, out=_rows(rows, 3)) for j in slides},
+            links={x: link_of_states(plan, states, x) for x in chain.links},
+            joints={j.id: point_of_states(plan, states, j.id) for j in chain.joints},
+            points={p.id: point_of_states(plan, states, p.id) for p in chain.points},
+            slides={j.id: slide_of_states(plan, states, j.id)
+                    for j in chain.joints if j.kind == "P"},
             **more)
 
     @property
@@ -231,32 +229,18 @@ def csv_columns(plan: Plan, theta: np.ndarray, pose: dict, vel: dict,
 
 
 # -- from the solver's poses -----------------------------------------------------------
-def _new_rows(n):
-    """New arrays of n values, one at each ``next``."""
-    while True:
-        yield np.empty(n)
-
-
-def _rows(rows, k):
-    """The next k rows (an iterator over arrays)."""
-    return [next(rows) for _ in range(k)]
-
-
-def link_of_states(plan: Plan, states: LinkStates, link: str, *,
-                   out: np.ndarray | None = None) -> LinkMotion:
+def link_of_states(plan: Plan, states: LinkStates, link: str) -> LinkMotion:
     """One link's :class:`LinkMotion` from the solver's ``states`` (what
-    :meth:`Trajectories.of_states` holds for it, alone); its angle written into ``out``
-    when given."""
+    :meth:`Trajectories.of_states` holds for it, alone)."""
     pose, n = states.pose, states.tau.size
     direction = plan.reference_radians(link) + pose[link][2]
-    return LinkMotion(link, _continuous(direction, n, out), _array(states.velocity[link][2], n),
+    return LinkMotion(link, _continuous(direction, n), _array(states.velocity[link][2], n),
                       _array(states.acceleration[link][2], n))
 
 
-def point_of_states(plan: Plan, states: LinkStates, name: str, *,
-                    out: list[np.ndarray] | None = None) -> PointMotion:
-    """One joint's or point's :class:`PointMotion` from the solver's ``states``; its six
-    arrays written into the six rows ``out`` when given."""
+def point_of_states(plan: Plan, states: LinkStates, name: str) -> PointMotion:
+    """One joint's or point's :class:`PointMotion` from the solver's ``states``: as the
+    rates' solve found it when it went through it, else from its link's motion."""
     chain, n = plan.chain, states.tau.size
     try:
         joint = chain.joint(name)
@@ -267,29 +251,26 @@ def point_of_states(plan: Plan, states: LinkStates, name: str, *,
     # a plan's chain has a drawn pose (build_plan refuses one with a joint unplaced, and
     # a file by its lengths places its points with its joints)
     assert at is not None, f"{name!r} has a position in a solved chain's pose"
-    if out is None:
-        out = list(np.empty((6, n)))
     if link == plan.fixed:
-        for row, v in zip(out, (at[0], at[1], 0.0, 0.0, 0.0, 0.0)):
-            row.fill(v)
-        return PointMotion(name, *out)
-    _point_motion(states.pose, states.velocity, states.acceleration, link, plan.local(at),
-                  out=out, origin=plan.origin)
+        return PointMotion(name, *(np.full(n, v) for v in (at[0], at[1], 0.0, 0.0, 0.0, 0.0)))
+    p = plan.local(at)
+    ox, oy = plan.origin
+    solved = states.points.get((link, p))
+    if solved is not None and all(np.shape(v) == (n,) for v in solved):
+        x, y, *rates = solved
+        return PointMotion(name, x + ox, y + oy, *rates)
+    out = [np.empty(n) for _ in range(6)]
+    _point_motion(states.pose, states.velocity, states.acceleration, link, p, out=out,
+                  origin=(ox, oy))
     return PointMotion(name, *out)
 
 
-def slide_of_states(plan: Plan, states: LinkStates, joint: str, *,
-                    out: list[np.ndarray] | None = None) -> SlideMotion:
-    """One P joint's :class:`SlideMotion` from the solver's ``states``; written into
-    the three rows ``out`` when given."""
+def slide_of_states(plan: Plan, states: LinkStates, joint: str) -> SlideMotion:
+    """One P joint's :class:`SlideMotion` from the solver's ``states``."""
     j, n = plan.chain.joint(joint), states.tau.size
     assert j.at is not None, "build_plan refuses a chain with a joint unplaced"
-    if out is None:
-        out = list(np.empty((3, n)))
-    for row, v in zip(out, slide_rates(states.pose, states.velocity, states.acceleration, j,
-                                       plan.local(j.at))):
-        row[...] = v
-    return SlideMotion(joint, *out)
+    return SlideMotion(joint, *(_array(v, n) for v in slide_rates(
+        states.pose, states.velocity, states.acceleration, j, plan.local(j.at))))
 
 
 def _point_motion(pose, vel, acc, link, p, *, out=None, origin=None):
@@ -355,18 +336,15 @@ def slide_rates(pose: dict, vel: dict, acc: dict, joint: Joint,
     return s, v, a
 
 
-def _continuous(phi, n, out=None):
+def _continuous(phi, n):
     """Radians (possibly a constant) along the sweep, without jumps of a turn, the first
-    value in (-pi, pi]; written into ``out`` when given."""
+    value in (-pi, pi]."""
     if np.ndim(phi) == 0:
-        if out is None:
-            return np.full(n, math.remainder(float(phi), 2 * math.pi))
-        out.fill(math.remainder(float(phi), 2 * math.pi))
-        return out
+        return np.full(n, math.remainder(float(phi), 2 * math.pi))
     first = math.remainder(float(phi[0]), 2 * math.pi)
     turns = np.round(np.diff(phi) * (1 / (2 * math.pi)))    # a jump's whole turns
     jumps = np.flatnonzero(turns)
-    out = np.add(phi, first - float(phi[0]), out=out)
+    out = phi + (first - float(phi[0]))
     out[0] = first
     if jumps.size > 16:             # (np.cumsum is dear: only for many jumps)
         out[1:] -= (2 * math.pi) * np.cumsum(turns)

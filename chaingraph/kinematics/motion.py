@@ -248,8 +248,9 @@ def solve(mechanism: Chain, *, fixed: str | None = None, driver: str | None = No
     c, theta, ev, on_grid = _swept(drive, steps, summary)
     # rates at unit input speed, scaled to omega: the summary can then use this sweep
     # when it is the summary's own grid
-    vel, acc, measure = rates(plan, ev.pose, 1.0, theta.size, measure=summary)
-    states = LinkStates(theta, ev.pose, vel, acc)
+    points: dict = {}
+    vel, acc, measure = rates(plan, ev.pose, 1.0, theta.size, measure=summary, points=points)
+    states = LinkStates(theta, ev.pose, vel, acc, points=points)
     unit = Motion.of_states(plan, states, name=chain.name, fixed=plan.fixed,
                             driver=plan.driver, omega=drive.omega, summary=None,
                             units=chain.units, plan=plan, states=states,

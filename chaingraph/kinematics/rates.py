@@ -74,6 +74,7 @@ class _PointDyad:
         wb = (self.rb_k[0] + pose[self.kb][0], self.rb_k[1] + pose[self.kb][1])
         self.rq = {a: turn_by(pose[a], self.q), b: turn_by(pose[b], self.q)}
         x = (self.rq[a][0] + pose[a][0], self.rq[a][1] + pose[a][1])
+        self.wa, self.x = wa, x
         self.ua = (x[0] - wa[0], x[1] - wa[1])
         self.ub = (x[0] - wb[0], x[1] - wb[1])
         (ua0, ua1), (ub0, ub1) = self.ua, self.ub
@@ -106,13 +107,30 @@ class _PointDyad:
     def solve_velocity(self, vel):
         dwa = self._known_point(vel, self.ka, self.ra_k)
         dwb = self._known_point(vel, self.kb, self.rb_k)
+        self._found = [dwa]
         return self._solve(dwa, dwb, 0.0, 0.0, second=False)
 
     def solve_acceleration(self, acc, vel):
         dwa = self._known_point(acc, self.ka, self.ra_k, vel)
         dwb = self._known_point(acc, self.kb, self.rb_k, vel)
         ga, gb = _sq(self._rel_a), _sq(self._rel_b)
+        self._found.append(dwa)
         return self._solve(dwa, dwb, ga, gb, second=True, vel=vel)
+
+    def points(self, near: Scalar = False) -> dict:
+        """The points the solve went through, after both solves (``near``: where the
+        accelerations are refused): the joint between the two links, on each, and the
+        first link's joint on its known link, by (link, point) as
+        :class:`~chaingraph.kinematics.columns.LinkStates` holds them."""
+        if any(c.point_b is not None for c in self.step.constraints):
+            return {}           # (a link's point of a joint differs from the other's)
+        vwa, vx, awa, ax = self._found
+        if np.any(near):
+            ax = tuple(np.where(near, np.nan, v) for v in ax)
+        a, b = self.step.links
+        at_x = (*self.x, *vx, *ax)
+        return {(a, self.q): at_x, (b, self.q): at_x,
+                (self.ka, self.pa): (*self.wa, *vwa, *awa)}
 
     def _solve(self, dwa, dwb, ga, gb, *, second, vel=None):
         # (``times``, ``plus`` and ``minus`` skip the terms of a known joint at rest)
@@ -123,6 +141,11 @@ class _PointDyad:
         dy = minus(times(ua0, cb), times(ca, ub0)) / self.det
         if self.any_singular:
             dx = np.where(self.singular, np.nan, dx)
+            # (dy stays: it is what the links' rates are worked out from, as before;
+            # the joint's own, as its links' rates give it, is NaN there too)
+            self._found.append((dx, np.where(self.singular, np.nan, dy)))
+        else:
+            self._found.append((dx, dy))
         a, b = self.step.links
         out = {}
         for link, u, dw, r2 in ((a, self.ua, dwa, self.ra2), (b, self.ub, dwb, self.rb2)):
@@ -365,7 +388,7 @@ class _NullSpace:
 
 def rates(plan: Plan, pose: Pose, omega: float, n: int, *,
           steps: Sequence[Step] | None = None, measure: bool = True,
-          accelerations: bool = True
+          accelerations: bool = True, points: dict | None = None
           ) -> tuple[dict[str, tuple[Scalar, Scalar, Scalar]],
                      dict[str, tuple[Scalar, Scalar, Scalar]], np.ndarray | None]:
     """Velocities and accelerations of every link with the inputs at constant rates,
@@ -379,7 +402,10 @@ def rates(plan: Plan, pose: Pose, omega: float, n: int, *,
     singularity : (S, N) array, each step's normalized determinant (0 at a dead
         centre); None unless ``measure``
 
-    With ``accelerations=False`` the accelerations are left out.
+    With ``accelerations=False`` the accelerations are left out. ``points``, a dict,
+    gets the points the solve goes through (an RRR dyad's joints), by (link, point in
+    the plan's frame): (x, y, vx, vy, ax, ay) (see
+    :class:`~chaingraph.kinematics.columns.LinkStates`).
     """
     zero = np.zeros(n)
     tau_rate = omega / plan.rate_scale          # d(tau)/dt, "degrees" per second
@@ -411,7 +437,11 @@ def rates(plan: Plan, pose: Pose, omega: float, n: int, *,
             acc.update(f.solve_acceleration(acc, vel))
             continue
         if isinstance(f, _PointDyad):
-            acc.update(_refuse_near_singular(f, f.solve_acceleration(acc, vel)))
+            found = f.solve_acceleration(acc, vel)
+            near = _near_singular(f)
+            acc.update(_refused(near, found))
+            if points is not None:
+                points.update(f.points(near))
             continue
         if f.step.kind == "group":
             acc.update(f.solve(f.right_hand_sides(acc, f.form.gammas(pose, vel))))
@@ -429,7 +459,16 @@ def _refuse_near_singular(factor, found):
     """NaN accelerations where a dyad is too near a singular pose for them to be exact."""
     if factor.step.kind != "dyad":
         return found
-    near = np.abs(factor.measure) < _SINGULAR_ACC
+    return _refused(_near_singular(factor), found)
+
+
+def _near_singular(factor):
+    """Where a dyad is too near a singular pose for its accelerations to be exact."""
+    return np.abs(factor.measure) < _SINGULAR_ACC
+
+
+def _refused(near, found):
+    """``found`` (link -> rates) with NaN where ``near``."""
     if not np.any(near):
         return found
     return {link: tuple(np.where(near, np.nan, v) for v in values)
