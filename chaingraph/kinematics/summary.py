@@ -503,14 +503,21 @@ def _output_extremes(plan, ev, signal, u, du, ddu, scale, c):
     # the rate's sign changes between significant samples (a dwell's rounding noise and
     # exact zeros on the grid are skipped over, not counted); a crank's cycle closes on
     # itself, so a change across its seam counts too, one period on
-    idx = np.nonzero(sign)[0]
-    ka, kb = idx[:-1], idx[1:]
+    first: int | None
+    if sign.size and sign.all():          # (every sample counts: no gathering)
+        ka = np.flatnonzero(sign[:-1] != sign[1:])
+        kb = ka + 1
+        first, last = 0, sign.size - 1
+    else:
+        idx = np.nonzero(sign)[0]
+        ka, kb = idx[:-1], idx[1:]
+        change = sign[ka] != sign[kb]
+        ka, kb = ka[change], kb[change]
+        first, last = (int(idx[0]), int(idx[-1])) if idx.size else (None, -1)
     tb = theta[kb]
-    if c.full_turn and idx.size and sign[idx[-1]] != sign[idx[0]]:
-        ka, kb = np.append(ka, idx[-1]), np.append(kb, idx[0])
-        tb = np.append(tb, theta[idx[0]] + c.period)
-    change = sign[ka] != sign[kb]
-    ka, kb, tb = ka[change], kb[change], tb[change]
+    if c.full_turn and first is not None and sign[last] != sign[first]:
+        ka, kb = np.append(ka, last), np.append(kb, first)
+        tb = np.append(tb, theta[first] + c.period)
     found = []
     if ka.size:
         ta = theta[ka]
@@ -537,11 +544,11 @@ def _output_extremes(plan, ev, signal, u, du, ddu, scale, c):
             value = u[ka] + np.remainder(value - u[ka] + 180.0, 360.0) - 180.0
         found = [{"input": float(ti), "value": float(vi), "kind": "max" if sign[k] > 0 else "min"}
                  for ti, vi, k in sorted(zip(t, value, ka))]
-    if not c.full_turn and idx.size:
+    if not c.full_turn and first is not None:
         found.insert(0, {"input": float(theta[0]), "value": float(u[0]),
-                         "kind": "min" if sign[idx[0]] > 0 else "max"})
+                         "kind": "min" if sign[first] > 0 else "max"})
         found.append({"input": float(theta[-1]), "value": float(u[-1]),
-                      "kind": "max" if sign[idx[-1]] > 0 else "min"})
+                      "kind": "max" if sign[last] > 0 else "min"})
     return found or [{"input": float(theta[int(np.argmax(u))]), "value": float(np.max(u)),
                       "kind": "max"},
                      {"input": float(theta[int(np.argmin(u))]), "value": float(np.min(u)),
