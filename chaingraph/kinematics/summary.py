@@ -435,7 +435,7 @@ def _raw_summary(plan, output, omega, c, *, sweep=None):
         summary["output_turns_fully"] = True
         summary["note"] = "the output turns fully, so it has no stroke or time ratio"
         return summary
-    scale = np.nanmax(np.abs(du))
+    scale = max(np.nanmax(du), -np.nanmin(du))       # np.nanmax(np.abs(du))
     if not np.isfinite(scale) or np.nanmax(u) - np.nanmin(u) <= 1e-12 * max(
             plan.size if kind != "angle" else 360.0, 1e-300):
         summary.update(stroke=0.0, note="the output does not move")
@@ -495,7 +495,8 @@ def _output_extremes(plan, ev, signal, u, du, ddu, scale, c):
     finishes it; where that step does not land inside the bracket, Newton's method
     safeguarded by bisection takes over."""
     theta = ev.theta
-    sign = np.where(np.abs(du) > 1e-9 * scale, np.sign(du), 0.0)
+    sign = np.sign(du)
+    sign[~(np.abs(du) > 1e-9 * scale)] = 0.0        # (and where NaN)
     if not c.full_turn and sign.size > 2:
         # a limit of the range is a fold, where the rate is infinite and its computed
         # sign means nothing: the samples inside say which way the output goes there
@@ -642,10 +643,16 @@ def _transmission(plan, cols, out):
     step = next((s for s in dyads if out in s.links), dyads[0])
     ca, cb, cj = step.constraints
     x = cols[f"x:{cj.joint}"], cols[f"y:{cj.joint}"]        # the joint between the two
-    v1 = (cols[f"x:{ca.joint}"] - x[0], cols[f"y:{ca.joint}"] - x[1])
-    v2 = (cols[f"x:{cb.joint}"] - x[0], cols[f"y:{cb.joint}"] - x[1])
-    mu = np.degrees(np.arctan2(np.abs(v1[0] * v2[1] - v1[1] * v2[0]),
-                               v1[0] * v2[0] + v1[1] * v2[1]))
+    ax, ay = cols[f"x:{ca.joint}"] - x[0], cols[f"y:{ca.joint}"] - x[1]
+    bx, by = cols[f"x:{cb.joint}"] - x[0], cols[f"y:{cb.joint}"] - x[1]
+    # |a x b| and a . b worked out in place (the fewer temporaries, the less memory a
+    # call takes): a x b = ax by - ay bx, a . b = ax bx + ay by
+    cross = ax * by
+    dot = np.multiply(ax, bx, out=ax)
+    cross -= np.multiply(ay, bx, out=bx)
+    dot += np.multiply(ay, by, out=ay)
+    mu = np.arctan2(np.abs(cross, out=cross), dot, out=by)
+    np.degrees(mu, out=mu)
     return {"min": _refined_extreme(mu, np.argmin(mu)),
             "max": _refined_extreme(mu, np.argmax(mu))}
 
