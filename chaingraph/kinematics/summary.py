@@ -410,8 +410,9 @@ def _raw_summary(plan, output, omega, c, *, sweep=None):
             ev = evaluate_sweep(plan, theta)
         except UnboundedRangeError:            # a sweep of a slide without limits
             ev = evaluate_near(plan, theta)
-        vel, acc, measure = rates(plan, ev.pose, 1.0, theta.size)
-        cols = Trajectories.of_states(plan, LinkStates(theta, ev.pose, vel, acc))
+        points: dict = {}
+        vel, acc, measure = rates(plan, ev.pose, 1.0, theta.size, points=points)
+        cols = Trajectories.of_states(plan, LinkStates(theta, ev.pose, vel, acc, points=points))
     else:
         ev, measure, cols = sweep
         theta = ev.theta
