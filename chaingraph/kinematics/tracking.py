@@ -168,12 +168,14 @@ class Evaluation:
         (indices), in place: what :meth:`take` of its points, with those points
         pointing at the first, returns, without copying every array (an array that
         cannot be written, a broadcast input, is copied first)."""
+        where = int(at[0]) if at.size == 1 else at     # (one point, as a crank's turn has)
+
         def patched(v):
             if not isinstance(v, np.ndarray) or v.ndim == 0:
                 return v
             if not v.flags.writeable:
                 v = v.copy()
-            v[at] = v[0]
+            v[where] = v[0]
             return v
         self.theta = patched(self.theta)
         self.pose = {x: tuple(patched(v) for v in p) for x, p in self.pose.items()}
