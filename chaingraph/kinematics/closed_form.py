@@ -36,6 +36,7 @@ from chaingraph.geometry import (
 from chaingraph.kinematics.equations import Pose
 from chaingraph.kinematics.plan import Constraint, Step
 
+
 class ModeKeys(Sequence[np.ndarray]):
     """A dyad's two modes' keys (each an (N, 2) array: a joint's point, or a rotation as
     a unit vector), ``mid + off`` and ``mid - off``, stacked only when first read (a

@@ -42,8 +42,8 @@ class Columns(Protocol):
 
     def __getitem__(self, key: str, /) -> np.ndarray: ...
 
-__all__ = ["CYCLE_STEPS", "Summary", "ExtremePosition", "Straightness", "straightness", "summary_rows", "path_direction", "output_signal",
-           "OutputSignal"]
+__all__ = ["CYCLE_STEPS", "Summary", "ExtremePosition", "Straightness", "straightness",
+           "summary_rows", "path_direction", "output_signal", "OutputSignal"]
 
 
 @dataclass(frozen=True)

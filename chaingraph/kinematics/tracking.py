@@ -162,7 +162,6 @@ class Evaluation:
                           {i: pick(q) for i, q in self.group_q.items()}, self.switches,
                           self.folds)
 
-
     def repeat_first(self, at: np.ndarray) -> Evaluation:
         """This evaluation with its first point's values also at the points ``at``
         (indices), in place: what :meth:`take` of its points, with those points
