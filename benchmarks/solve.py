@@ -24,6 +24,7 @@ driven through an input joint, and an engine driven by its piston, timed too.
 import argparse
 import json
 import math
+import resource
 import statistics
 import subprocess
 import sys
@@ -118,19 +119,24 @@ def side_by_side(python, rounds, per_round):
                                str(STEPS), "--serve"], stdin=subprocess.PIPE,
                               stdout=subprocess.PIPE, text=True)
     samples = {"bare": [], "summary": [], "pylinkage": []}
+    faults = 0
     try:
         if server.stdout.readline().strip() != "ready":
             raise RuntimeError("pylinkage's timing process did not start")
         for _ in range(rounds):
+            before = resource.getrusage(resource.RUSAGE_SELF).ru_minflt
             samples["bare"] += times_ms(bare, per_round)
             samples["summary"] += times_ms(full, per_round)
+            faults += resource.getrusage(resource.RUSAGE_SELF).ru_minflt - before
             server.stdin.write(f"{per_round}\n")
             server.stdin.flush()
             samples["pylinkage"] += json.loads(server.stdout.readline())
     finally:
         server.stdin.close()
         server.wait()
-    return {k: statistics.median(v) for k, v in samples.items()}
+    medians = {k: statistics.median(v) for k, v in samples.items()}
+    medians["faults"] = faults / (2 * rounds * per_round)
+    return medians
 
 
 def main():
@@ -200,6 +206,9 @@ def compare(args):
     print(f"  chaingraph solve() with its summary:               {m['summary']:7.3f} ms")
     print(f"chaingraph bare sweep / pylinkage numba:    {m['bare'] / fast:.2f}  (target <= 0.7)")
     print(f"chaingraph with summary / pylinkage numba:  {m['summary'] / fast:.2f}  (target <= 1)")
+    # the memory a call takes that the C library gave back to the system after the last
+    # call (glibc trims its heap's top past 128 kB until a larger block has been freed)
+    print(f"chaingraph's minor page faults per call: {m['faults']:.0f}")
 
 
 if __name__ == "__main__":

@@ -9,8 +9,8 @@ modes where the discriminant is positive.
 from __future__ import annotations
 
 import math
-from collections.abc import Callable
-from typing import TypeAlias
+from collections.abc import Callable, Sequence
+from typing import TypeAlias, overload
 
 import numpy as np
 
@@ -36,8 +36,44 @@ from chaingraph.geometry import (
 from chaingraph.kinematics.equations import Pose
 from chaingraph.kinematics.plan import Constraint, Step
 
+
+class ModeKeys(Sequence[np.ndarray]):
+    """A dyad's two modes' keys (each an (N, 2) array: a joint's point, or a rotation as
+    a unit vector), ``mid + off`` and ``mid - off``, stacked only when first read (a
+    sweep reads them at its first point alone, to choose the drawn mode)."""
+
+    def __init__(self, mid: Vec, off: Vec) -> None:
+        self._parts = (mid, off)
+        self._keys: tuple[np.ndarray, np.ndarray] | None = None
+
+    def _stacked(self) -> tuple[np.ndarray, np.ndarray]:
+        if self._keys is None:
+            (mx, my), (ox, oy) = self._parts
+            self._keys = (np.stack((mx + ox, my + oy), axis=-1),
+                          np.stack((mx - ox, my - oy), axis=-1))
+        return self._keys
+
+    def __len__(self) -> int:
+        return 2
+
+    def first(self) -> tuple[Vec, Vec]:
+        """The two keys at the first point only (``self[0][0]``, ``self[1][0]``)."""
+        (mx, my), (ox, oy) = (tuple(float(np.ravel(v)[0]) for v in part)
+                              for part in self._parts)
+        return (mx + ox, my + oy), (mx - ox, my - oy)
+
+    @overload
+    def __getitem__(self, i: int) -> np.ndarray: ...
+
+    @overload
+    def __getitem__(self, i: slice) -> Sequence[np.ndarray]: ...
+
+    def __getitem__(self, i: int | slice) -> np.ndarray | Sequence[np.ndarray]:
+        return self._stacked()[i]
+
+
 #: a dyad's modes: (keys, build, ok, disc), as :func:`dyad_roots` returns them
-Roots: TypeAlias = tuple["tuple[np.ndarray, np.ndarray] | None",
+Roots: TypeAlias = tuple["ModeKeys | None",
                          Callable[[Scalar], dict[str, PoseEntry]], Scalar, Scalar]
 
 
@@ -183,8 +219,7 @@ def _circle_roots(pattern: str, links: tuple[str, str],
     disc, ok = clamp_disc(raw, norm, double)
     h = np.sqrt(disc)
     off = (h * across[0], h * across[1])
-    keys = (np.stack((mid[0] + off[0], mid[1] + off[1]), axis=-1),
-            np.stack((mid[0] - off[0], mid[1] - off[1]), axis=-1))
+    keys = ModeKeys(mid, off)
 
     def build(sign: Scalar) -> dict[str, PoseEntry]:
         x, y = mid[0] + sign * off[0], mid[1] + sign * off[1]
@@ -231,7 +266,7 @@ def _rpr_roots(links: tuple[str, str], constraints: tuple[Constraint, Constraint
     def turn(sign: Scalar) -> tuple[Scalar, Scalar]:
         c1, s1 = cst * ratio - snt * sign * root, snt * ratio + cst * sign * root
         return c1, s1
-    keys = (np.stack(turn(1.0), axis=-1), np.stack(turn(-1.0), axis=-1))
+    keys = ModeKeys((cst * ratio, snt * ratio), (-snt * root, cst * root))
 
     def build(sign: Scalar) -> dict[str, PoseEntry]:
         c1, s1 = turn(sign)
@@ -275,10 +310,13 @@ def _rpp_roots(links: tuple[str, str], constraints: tuple[Constraint, Constraint
     return None, build, np.isfinite(wa[0]), None
 
 
-def initial_sign(keys: tuple[np.ndarray, np.ndarray], drawn: Vec) -> float:
+def initial_sign(keys: Sequence[np.ndarray], drawn: Vec) -> float:
     """The mode of the drawn pose: the one whose first point is nearest the drawing."""
-    kp, km = keys
-    dp = np.hypot(kp[0, 0] - drawn[0], kp[0, 1] - drawn[1])
-    dm = np.hypot(km[0, 0] - drawn[0], km[0, 1] - drawn[1])
+    if isinstance(keys, ModeKeys):
+        kp, km = keys.first()
+    else:
+        kp, km = tuple(keys[0][0]), tuple(keys[1][0])
+    dp = np.hypot(kp[0] - drawn[0], kp[1] - drawn[1])
+    dm = np.hypot(km[0] - drawn[0], km[1] - drawn[1])
     return 1.0 if dp <= dm else -1.0
 

@@ -11,7 +11,7 @@ column names (``"angle:crank"`` in degrees, ``"x:B"``...), their order and their
 from __future__ import annotations
 
 import math
-from dataclasses import dataclass, fields, replace
+from dataclasses import dataclass, field, fields, replace
 from typing import Any, Self
 
 import numpy as np
@@ -31,13 +31,18 @@ class LinkStates:
     path parameters ``tau``, ``pose`` (link -> (x, y, phi, cos, sin) about the plan's
     origin), and ``velocity`` and ``acceleration`` (link -> (vx, vy, omega), (ax, ay,
     alpha) of its frame's origin; each input's rate under its key) at the input speed
-    ``speed`` (1 for a sweep's: they scale with omega and omega squared)."""
+    ``speed`` (1 for a sweep's: they scale with omega and omega squared).
+
+    ``points``: the points the rates' solve went through, by (link, point in the plan's
+    frame): (x, y, vx, vy, ax, ay) about the plan's origin (a dyad's joints), so that a
+    joint's motion is not worked out twice (:func:`chaingraph.kinematics.rates.rates`)."""
 
     tau: np.ndarray
     pose: dict
     velocity: dict
     acceleration: dict
     speed: float = 1.0
+    points: dict = field(default_factory=dict, compare=False, repr=False)
 
 
 @dataclass(frozen=True, eq=False)
@@ -227,14 +232,15 @@ def csv_columns(plan: Plan, theta: np.ndarray, pose: dict, vel: dict,
 def link_of_states(plan: Plan, states: LinkStates, link: str) -> LinkMotion:
     """One link's :class:`LinkMotion` from the solver's ``states`` (what
     :meth:`Trajectories.of_states` holds for it, alone)."""
-    chain, pose, n = plan.chain, states.pose, states.tau.size
-    direction = math.radians(chain.reference_direction(link)) + pose[link][2]
+    pose, n = states.pose, states.tau.size
+    direction = plan.reference_radians(link) + pose[link][2]
     return LinkMotion(link, _continuous(direction, n), _array(states.velocity[link][2], n),
                       _array(states.acceleration[link][2], n))
 
 
 def point_of_states(plan: Plan, states: LinkStates, name: str) -> PointMotion:
-    """One joint's or point's :class:`PointMotion` from the solver's ``states``."""
+    """One joint's or point's :class:`PointMotion` from the solver's ``states``: as the
+    rates' solve found it when it went through it, else from its link's motion."""
     chain, n = plan.chain, states.tau.size
     try:
         joint = chain.joint(name)
@@ -246,11 +252,21 @@ def point_of_states(plan: Plan, states: LinkStates, name: str) -> PointMotion:
     # a file by its lengths places its points with its joints)
     assert at is not None, f"{name!r} has a position in a solved chain's pose"
     if link == plan.fixed:
-        return PointMotion(name, *(_array(v, n) for v in (at[0], at[1], 0, 0, 0, 0)))
-    x, y, *rest = _point_motion(states.pose, states.velocity, states.acceleration, link,
-                                plan.local(at))
+        return PointMotion(name, *(np.full(n, v) for v in (at[0], at[1], 0.0, 0.0, 0.0, 0.0)))
+    p = plan.local(at)
     ox, oy = plan.origin
-    return PointMotion(name, *(_array(v, n) for v in (x + ox, y + oy, *rest)))
+    solved = states.points.get((link, p))
+    if solved is not None and all(np.shape(v) == (n,) for v in solved):
+        x, y, *rates = solved
+        # (a rate the solve passed through unchanged is a link's own array: copied)
+        held = {id(v) for table in (states.velocity, states.acceleration)
+                for entry in table.values() for v in entry}
+        return PointMotion(name, x + ox, y + oy,
+                           *(v.copy() if id(v) in held else v for v in rates))
+    out = [np.empty(n) for _ in range(6)]
+    _point_motion(states.pose, states.velocity, states.acceleration, link, p, out=out,
+                  origin=(ox, oy))
+    return PointMotion(name, *out)
 
 
 def slide_of_states(plan: Plan, states: LinkStates, joint: str) -> SlideMotion:
@@ -261,13 +277,37 @@ def slide_of_states(plan: Plan, states: LinkStates, joint: str) -> SlideMotion:
         states.pose, states.velocity, states.acceleration, j, plan.local(j.at))))
 
 
-def _point_motion(pose, vel, acc, link, p):
+def _point_motion(pose, vel, acc, link, p, *, out=None, origin=None):
+    """The point ``p`` (drawn, in the plan's frame) of ``link``: its x, y, velocity and
+    acceleration; written into the six arrays ``out`` (each of the sweep's length, x
+    and y offset by ``origin``) when given, else new arrays."""
     x, y = pose[link][:2]
     vx, vy, w = vel[link]
     ax, ay, al = acc[link]
     rx, ry = turn_by(pose[link], p)
-    return (rx + x, ry + y, vx - w * ry, vy + w * rx,
-            ax - al * ry - w * w * rx, ay + al * rx - w * w * ry)
+    if out is None:
+        return (rx + x, ry + y, vx - w * ry, vy + w * rx,
+                ax - al * ry - w * w * rx, ay + al * rx - w * w * ry)
+    ox, oy, ovx, ovy, oax, oay = out
+    np.add(rx, x, out=ox)
+    np.add(ry, y, out=oy)
+    if origin is not None:
+        ox += origin[0]
+        oy += origin[1]
+    np.multiply(w, ry, out=ovx)
+    np.subtract(vx, ovx, out=ovx)
+    np.multiply(w, rx, out=ovy)
+    np.add(vy, ovy, out=ovy)
+    w2 = w * w
+    centripetal = w2 * rx
+    np.multiply(al, ry, out=oax)
+    np.subtract(ax, oax, out=oax)
+    oax -= centripetal
+    np.multiply(w2, ry, out=centripetal)
+    np.multiply(al, rx, out=oay)
+    np.add(ay, oay, out=oay)
+    oay -= centripetal
+    return out
 
 
 def reference_link(joint: Joint, fixed: str) -> str:

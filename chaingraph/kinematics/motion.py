@@ -29,7 +29,13 @@ from chaingraph.kinematics.equations import check_poses
 from chaingraph.kinematics.inputs import Drive, InputsGiven, plan_of, sweep_drive
 from chaingraph.kinematics.plan import InputJoint, Plan
 from chaingraph.kinematics.rates import rates
-from chaingraph.kinematics.summary import Summary, cycle_theta, motion_summary, straightness
+from chaingraph.kinematics.summary import (
+    CYCLE_STEPS,
+    Summary,
+    cycle_theta,
+    motion_summary,
+    straightness,
+)
 from chaingraph.kinematics.sweep import Cycle, cycle, evaluate_near, evaluate_sweep
 from chaingraph.model.chain import Chain
 
@@ -239,11 +245,12 @@ def solve(mechanism: Chain, *, fixed: str | None = None, driver: str | None = No
     drive = sweep_drive(chain, fixed=fixed, driver=driver, inputs=inputs, start=start,
                         stop=stop, steps=steps, omega=omega)
     output, plan = _output(chain, output), drive.plan
-    c, theta, ev = _swept(drive, steps, summary)
+    c, theta, ev, on_grid = _swept(drive, steps, summary)
     # rates at unit input speed, scaled to omega: the summary can then use this sweep
     # when it is the summary's own grid
-    vel, acc, measure = rates(plan, ev.pose, 1.0, theta.size, measure=summary)
-    states = LinkStates(theta, ev.pose, vel, acc)
+    points: dict = {}
+    vel, acc, measure = rates(plan, ev.pose, 1.0, theta.size, measure=summary, points=points)
+    states = LinkStates(theta, ev.pose, vel, acc, points=points)
     unit = Motion.of_states(plan, states, name=chain.name, fixed=plan.fixed,
                             driver=plan.driver, omega=drive.omega, summary=None,
                             units=chain.units, plan=plan, states=states,
@@ -251,7 +258,7 @@ def solve(mechanism: Chain, *, fixed: str | None = None, driver: str | None = No
     motion = _as_asked(unit.scaled(drive.omega), drive, c, theta)
     if not summary:
         return motion
-    return replace(motion, summary=_summary(unit, output, c, ev, measure))
+    return replace(motion, summary=_summary(unit, output, c, ev, measure, on_grid))
 
 
 def _output(chain, output):
@@ -268,9 +275,10 @@ def _output(chain, output):
 
 def _swept(drive: Drive, steps, summary):
     """(the cycle, or None when not needed or there is none; the path parameters of the
-    sweep; its evaluation, checked)."""
+    sweep; its evaluation, checked; whether the path parameters are the summary's own
+    grid, :func:`cycle_theta`, by construction: a crank's default turn in 3,600 steps)."""
     plan, start, stop = drive.plan, drive.start, drive.stop
-    c = None
+    c, on_grid = None, False
     if summary or start is None or stop is None:
         try:
             c = cycle(plan)
@@ -288,11 +296,13 @@ def _swept(drive: Drive, steps, summary):
             theta = np.linspace(lo, plan.tau(stop), steps + 1)
         elif c.full_turn:
             theta = lo + 360.0 * np.arange(steps + 1) / steps    # as the summary's grid
+            # (the same operations as cycle_theta's on the same numbers)
+            on_grid = start is None and c.period == 360.0 and steps == CYCLE_STEPS
         else:
             theta = np.linspace(lo, c.high, steps + 1)   # both ends exact (a rocker's limits)
     ev = evaluate_sweep(plan, theta) if c is not None else evaluate_near(plan, theta)
     check_poses(plan, ev.pose, ev.feasible)
-    return c, theta, ev
+    return c, theta, ev, on_grid
 
 
 def _as_asked(motion: Motion, drive: Drive, c, theta) -> Motion:
@@ -315,15 +325,16 @@ def _as_asked(motion: Motion, drive: Drive, c, theta) -> Motion:
     return motion
 
 
-def _summary(unit: Motion, output, c, ev, measure) -> Summary:
+def _summary(unit: Motion, output, c, ev, measure, on_grid=False) -> Summary:
     """The summary of the motion ``unit`` (at unit input speed) over the cycle ``c``, or
-    over its own sweep when the cycle is not one input's (None: there is none)."""
+    over its own sweep when the cycle is not one input's (None: there is none).
+    ``on_grid``: the sweep is the summary's own grid (else it is compared with it)."""
     plan, theta = unit.plan, ev.theta
     lo, hi = float(theta[0]), float(theta[-1])
     if plan.moving_inputs > 1 or c is None:          # summarize the sweep
         c = Cycle(None, min(lo, hi), max(lo, hi), ends="sweep")
     reuse = None
-    if c.ends == "limits" and np.array_equal(theta, cycle_theta(plan, c)):
+    if c.ends == "limits" and (on_grid or np.array_equal(theta, cycle_theta(plan, c))):
         reuse = (ev, measure, unit)
     summary = motion_summary(plan, output, unit.omega, c, sweep=reuse)
     if output is not None and output not in unit.links and output not in unit.slides:

@@ -31,7 +31,7 @@ from __future__ import annotations
 
 import math
 from collections.abc import Sequence
-from dataclasses import dataclass, replace
+from dataclasses import dataclass, fields, replace
 
 import networkx as nx
 import numpy as np
@@ -123,6 +123,29 @@ class Plan:
     numeric_mobility: int     # coordinates minus rank of the joints' constraint Jacobian
     origin: tuple[float, float] = (0.0, 0.0)   # the drawing's centre: see ``local``
     from_driver: bool = False  # given as ``driver = LINK`` (the CSV keeps ``theta`` first)
+
+    def __hash__(self) -> int:
+        """The fields' hash, as the dataclass's, worked out once: the plan keys the
+        caches of its cycle and anchor, looked up several times a solve, and hashing
+        the chain and the steps again each time costs more than the look-up."""
+        found = self.__dict__.get("_hash")
+        if found is None:
+            found = hash(tuple(getattr(self, f.name) for f in fields(self)))
+            object.__setattr__(self, "_hash", found)
+        return found
+
+    def reference_radians(self, link: str) -> float:
+        """The drawn direction (radians) a link's angle is measured by
+        (:meth:`Chain.reference_direction`), worked out once per plan and link."""
+        known = self.__dict__.setdefault("_reference_radians", {})
+        found = known.get(link)
+        if found is None:
+            found = known[link] = math.radians(self.chain.reference_direction(link))
+        return found
+
+    def __getstate__(self) -> dict:
+        # (a string's hash differs from one process to the next: not pickled)
+        return {k: v for k, v in self.__dict__.items() if k != "_hash"}
 
     @property
     def moving(self) -> tuple[str, ...]:

@@ -74,50 +74,82 @@ class _PointDyad:
         wb = (self.rb_k[0] + pose[self.kb][0], self.rb_k[1] + pose[self.kb][1])
         self.rq = {a: turn_by(pose[a], self.q), b: turn_by(pose[b], self.q)}
         x = (self.rq[a][0] + pose[a][0], self.rq[a][1] + pose[a][1])
+        self.wa, self.x = wa, x
         self.ua = (x[0] - wa[0], x[1] - wa[1])
         self.ub = (x[0] - wb[0], x[1] - wb[1])
-        det = self.ua[0] * self.ub[1] - self.ua[1] * self.ub[0]
-        self.ra2 = self.ua[0] ** 2 + self.ua[1] ** 2
-        self.rb2 = self.ub[0] ** 2 + self.ub[1] ** 2
+        (ua0, ua1), (ub0, ub1) = self.ua, self.ub
+        det = ua0 * ub1 - ua1 * ub0
+        self.ra2 = ua0 * ua0 + ua1 * ua1
+        self.rb2 = ub0 * ub0 + ub1 * ub1
         self.singular = det * det <= _SINGULAR ** 2 * self.ra2 * self.rb2
-        self.det = np.where(self.singular, 1.0, det)
+        # (np.where only where a pose is singular: most sweeps have none)
+        self.any_singular = bool(np.any(self.singular))
+        self.det = np.where(self.singular, 1.0, det) if self.any_singular else det
         self._det = det
+        self._measure: Scalar | None = None
 
     @property
     def measure(self):
-        return self._det / np.sqrt(self.ra2 * self.rb2)
+        if self._measure is None:
+            self._measure = self._det / np.sqrt(self.ra2 * self.rb2)
+        return self._measure
 
-    def _known_point(self, table, link, r, second=None):
+    @staticmethod
+    def _known_point(table, link, r, second=None):
         v = table[link]
         if second is None:      # velocity of the point: v + w perp(R p)
-            return plus(v[0], times(-1.0, times(v[2], r[1]))), plus(v[1], times(v[2], r[0]))
+            return minus(v[0], times(v[2], r[1])), plus(v[1], times(v[2], r[0]))
         w = second[link][2]     # acceleration: a + alpha perp(R p) - w^2 R p
         w2 = times(w, w)
-        return (plus(plus(v[0], times(-1.0, times(v[2], r[1]))), times(-1.0, times(w2, r[0]))),
-                plus(plus(v[1], times(v[2], r[0])), times(-1.0, times(w2, r[1]))))
+        return (minus(minus(v[0], times(v[2], r[1])), times(w2, r[0])),
+                minus(plus(v[1], times(v[2], r[0])), times(w2, r[1])))
 
     def solve_velocity(self, vel):
         dwa = self._known_point(vel, self.ka, self.ra_k)
         dwb = self._known_point(vel, self.kb, self.rb_k)
+        self._found = [dwa]
         return self._solve(dwa, dwb, 0.0, 0.0, second=False)
 
     def solve_acceleration(self, acc, vel):
         dwa = self._known_point(acc, self.ka, self.ra_k, vel)
         dwb = self._known_point(acc, self.kb, self.rb_k, vel)
         ga, gb = _sq(self._rel_a), _sq(self._rel_b)
+        self._found.append(dwa)
         return self._solve(dwa, dwb, ga, gb, second=True, vel=vel)
 
+    def points(self, near: Scalar = False) -> dict:
+        """The points the solve went through, after both solves (``near``: where the
+        accelerations are refused): the joint between the two links, on each, and the
+        first link's joint on its known link, by (link, point) as
+        :class:`~chaingraph.kinematics.columns.LinkStates` holds them."""
+        if any(c.point_b is not None for c in self.step.constraints):
+            return {}           # (a link's point of a joint differs from the other's)
+        vwa, vx, awa, ax = self._found
+        if np.any(near):
+            ax = tuple(np.where(near, np.nan, v) for v in ax)
+        a, b = self.step.links
+        at_x = (*self.x, *vx, *ax)
+        return {(a, self.q): at_x, (b, self.q): at_x,
+                (self.ka, self.pa): (*self.wa, *vwa, *awa)}
+
     def _solve(self, dwa, dwb, ga, gb, *, second, vel=None):
-        ua, ub = self.ua, self.ub
-        ca = ua[0] * dwa[0] + ua[1] * dwa[1] - ga
-        cb = ub[0] * dwb[0] + ub[1] * dwb[1] - gb
-        dx = (ca * ub[1] - ua[1] * cb) / self.det
-        dy = (ua[0] * cb - ca * ub[0]) / self.det
-        dx = np.where(self.singular, np.nan, dx)
+        # (``times``, ``plus`` and ``minus`` skip the terms of a known joint at rest)
+        (ua0, ua1), (ub0, ub1) = self.ua, self.ub
+        ca = minus(plus(times(ua0, dwa[0]), times(ua1, dwa[1])), ga)
+        cb = minus(plus(times(ub0, dwb[0]), times(ub1, dwb[1])), gb)
+        dx = minus(times(ca, ub1), times(ua1, cb)) / self.det
+        dy = minus(times(ua0, cb), times(ca, ub0)) / self.det
+        if self.any_singular:
+            dx = np.where(self.singular, np.nan, dx)
+            # (dy stays: it is what the links' rates are worked out from, as before;
+            # the joint's own, as its links' rates give it, is NaN there too)
+            self._found.append((dx, np.where(self.singular, np.nan, dy)))
+        else:
+            self._found.append((dx, dy))
         a, b = self.step.links
         out = {}
-        for link, u, dw, r2 in ((a, ua, dwa, self.ra2), (b, ub, dwb, self.rb2)):
-            rel = (dx - dw[0], dy - dw[1])
+        for link, u, dw, r2 in ((a, self.ua, dwa, self.ra2), (b, self.ub, dwb, self.rb2)):
+            rel = (minus(dx, dw[0]), minus(dy, dw[1]))
             w = (u[0] * rel[1] - u[1] * rel[0]) / r2
             rq = self.rq[link]
             if not second:
@@ -125,8 +157,9 @@ class _PointDyad:
                 out[link] = (dx + w * rq[1], dy - w * rq[0], w)
             else:
                 w0 = vel[link][2]
-                out[link] = (dx + w * rq[1] + w0 * w0 * rq[0],
-                             dy - w * rq[0] + w0 * w0 * rq[1], w)
+                w02 = w0 * w0
+                out[link] = (dx + w * rq[1] + w02 * rq[0],
+                             dy - w * rq[0] + w02 * rq[1], w)
         return out
 
 
@@ -355,7 +388,7 @@ class _NullSpace:
 
 def rates(plan: Plan, pose: Pose, omega: float, n: int, *,
           steps: Sequence[Step] | None = None, measure: bool = True,
-          accelerations: bool = True
+          accelerations: bool = True, points: dict | None = None
           ) -> tuple[dict[str, tuple[Scalar, Scalar, Scalar]],
                      dict[str, tuple[Scalar, Scalar, Scalar]], np.ndarray | None]:
     """Velocities and accelerations of every link with the inputs at constant rates,
@@ -369,7 +402,10 @@ def rates(plan: Plan, pose: Pose, omega: float, n: int, *,
     singularity : (S, N) array, each step's normalized determinant (0 at a dead
         centre); None unless ``measure``
 
-    With ``accelerations=False`` the accelerations are left out.
+    With ``accelerations=False`` the accelerations are left out. ``points``, a dict,
+    gets the points the solve goes through (an RRR dyad's joints), by (link, point in
+    the plan's frame): (x, y, vx, vy, ax, ay) (see
+    :class:`~chaingraph.kinematics.columns.LinkStates`).
     """
     zero = np.zeros(n)
     tau_rate = omega / plan.rate_scale          # d(tau)/dt, "degrees" per second
@@ -401,7 +437,11 @@ def rates(plan: Plan, pose: Pose, omega: float, n: int, *,
             acc.update(f.solve_acceleration(acc, vel))
             continue
         if isinstance(f, _PointDyad):
-            acc.update(_refuse_near_singular(f, f.solve_acceleration(acc, vel)))
+            found = f.solve_acceleration(acc, vel)
+            near = _near_singular(f)
+            acc.update(_refused(near, found))
+            if points is not None:
+                points.update(f.points(near))
             continue
         if f.step.kind == "group":
             acc.update(f.solve(f.right_hand_sides(acc, f.form.gammas(pose, vel))))
@@ -419,7 +459,16 @@ def _refuse_near_singular(factor, found):
     """NaN accelerations where a dyad is too near a singular pose for them to be exact."""
     if factor.step.kind != "dyad":
         return found
-    near = np.abs(factor.measure) < _SINGULAR_ACC
+    return _refused(_near_singular(factor), found)
+
+
+def _near_singular(factor):
+    """Where a dyad is too near a singular pose for its accelerations to be exact."""
+    return np.abs(factor.measure) < _SINGULAR_ACC
+
+
+def _refused(near, found):
+    """``found`` (link -> rates) with NaN where ``near``."""
     if not np.any(near):
         return found
     return {link: tuple(np.where(near, np.nan, v) for v in values)

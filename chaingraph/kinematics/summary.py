@@ -15,7 +15,6 @@ from numpy.typing import ArrayLike
 
 from chaingraph._util.numbers import tidy
 from chaingraph.errors import UnboundedRangeError
-from chaingraph.geometry import turn_by
 from chaingraph.kinematics.columns import (
     LinkMotion,
     LinkStates,
@@ -43,8 +42,8 @@ class Columns(Protocol):
 
     def __getitem__(self, key: str, /) -> np.ndarray: ...
 
-__all__ = ["Summary", "ExtremePosition", "Straightness", "straightness", "summary_rows", "path_direction", "output_signal",
-           "OutputSignal"]
+__all__ = ["CYCLE_STEPS", "Summary", "ExtremePosition", "Straightness", "straightness",
+           "summary_rows", "path_direction", "output_signal", "OutputSignal"]
 
 
 @dataclass(frozen=True)
@@ -350,7 +349,11 @@ def path_direction(cols: Columns, name: str, *,
     return float(d[0]), float(d[1])
 
 
-def cycle_theta(plan: Plan, c: Cycle, steps_per_turn: int = 3600) -> np.ndarray:
+#: the summary's grid: steps per turn of :func:`cycle_theta`
+CYCLE_STEPS = 3600
+
+
+def cycle_theta(plan: Plan, c: Cycle, steps_per_turn: int = CYCLE_STEPS) -> np.ndarray:
     """The summary's grid: one period of a crank from the drawn pose, or a rocker's
     whole range, limits included exactly."""
     if c.period is not None:                   # a full turn
@@ -407,15 +410,16 @@ def _raw_summary(plan, output, omega, c, *, sweep=None):
             ev = evaluate_sweep(plan, theta)
         except UnboundedRangeError:            # a sweep of a slide without limits
             ev = evaluate_near(plan, theta)
-        vel, acc, measure = rates(plan, ev.pose, 1.0, theta.size)
-        cols = Trajectories.of_states(plan, LinkStates(theta, ev.pose, vel, acc))
+        points: dict = {}
+        vel, acc, measure = rates(plan, ev.pose, 1.0, theta.size, points=points)
+        cols = Trajectories.of_states(plan, LinkStates(theta, ev.pose, vel, acc, points=points))
     else:
         ev, measure, cols = sweep
         theta = ev.theta
     summary = {"output": output, "stroke": None, "stroke_unit": None, "time_ratio": None,
                "forward_deg": None, "return_deg": None, "extremes": None,
                "extreme_positions": None,
-               "transmission_angle": _transmission(plan, ev, theta, output),
+               "transmission_angle": _transmission(plan, cols, output),
                "dead_centres": _dead_centres(plan, ev, measure, c),
                "input_range": _input_range(plan, theta, c),
                "full_turn": c.full_turn,
@@ -432,7 +436,7 @@ def _raw_summary(plan, output, omega, c, *, sweep=None):
         summary["output_turns_fully"] = True
         summary["note"] = "the output turns fully, so it has no stroke or time ratio"
         return summary
-    scale = np.nanmax(np.abs(du))
+    scale = max(np.nanmax(du), -np.nanmin(du))       # np.nanmax(np.abs(du))
     if not np.isfinite(scale) or np.nanmax(u) - np.nanmin(u) <= 1e-12 * max(
             plan.size if kind != "angle" else 360.0, 1e-300):
         summary.update(stroke=0.0, note="the output does not move")
@@ -492,7 +496,8 @@ def _output_extremes(plan, ev, signal, u, du, ddu, scale, c):
     finishes it; where that step does not land inside the bracket, Newton's method
     safeguarded by bisection takes over."""
     theta = ev.theta
-    sign = np.where(np.abs(du) > 1e-9 * scale, np.sign(du), 0.0)
+    sign = np.sign(du)
+    sign[~(np.abs(du) > 1e-9 * scale)] = 0.0        # (and where NaN)
     if not c.full_turn and sign.size > 2:
         # a limit of the range is a fold, where the rate is infinite and its computed
         # sign means nothing: the samples inside say which way the output goes there
@@ -500,14 +505,21 @@ def _output_extremes(plan, ev, signal, u, du, ddu, scale, c):
     # the rate's sign changes between significant samples (a dwell's rounding noise and
     # exact zeros on the grid are skipped over, not counted); a crank's cycle closes on
     # itself, so a change across its seam counts too, one period on
-    idx = np.nonzero(sign)[0]
-    ka, kb = idx[:-1], idx[1:]
+    first: int | None
+    if sign.size and sign.all():          # (every sample counts: no gathering)
+        ka = np.flatnonzero(sign[:-1] != sign[1:])
+        kb = ka + 1
+        first, last = 0, sign.size - 1
+    else:
+        idx = np.nonzero(sign)[0]
+        ka, kb = idx[:-1], idx[1:]
+        change = sign[ka] != sign[kb]
+        ka, kb = ka[change], kb[change]
+        first, last = (int(idx[0]), int(idx[-1])) if idx.size else (None, -1)
     tb = theta[kb]
-    if c.full_turn and idx.size and sign[idx[-1]] != sign[idx[0]]:
-        ka, kb = np.append(ka, idx[-1]), np.append(kb, idx[0])
-        tb = np.append(tb, theta[idx[0]] + c.period)
-    change = sign[ka] != sign[kb]
-    ka, kb, tb = ka[change], kb[change], tb[change]
+    if c.full_turn and first is not None and sign[last] != sign[first]:
+        ka, kb = np.append(ka, last), np.append(kb, first)
+        tb = np.append(tb, theta[first] + c.period)
     found = []
     if ka.size:
         ta = theta[ka]
@@ -534,22 +546,29 @@ def _output_extremes(plan, ev, signal, u, du, ddu, scale, c):
             value = u[ka] + np.remainder(value - u[ka] + 180.0, 360.0) - 180.0
         found = [{"input": float(ti), "value": float(vi), "kind": "max" if sign[k] > 0 else "min"}
                  for ti, vi, k in sorted(zip(t, value, ka))]
-    if not c.full_turn and idx.size:
+    if not c.full_turn and first is not None:
         found.insert(0, {"input": float(theta[0]), "value": float(u[0]),
-                         "kind": "min" if sign[idx[0]] > 0 else "max"})
+                         "kind": "min" if sign[first] > 0 else "max"})
         found.append({"input": float(theta[-1]), "value": float(u[-1]),
-                      "kind": "max" if sign[idx[-1]] > 0 else "min"})
+                      "kind": "max" if sign[last] > 0 else "min"})
     return found or [{"input": float(theta[int(np.argmax(u))]), "value": float(np.max(u)),
                       "kind": "max"},
                      {"input": float(theta[int(np.argmin(u))]), "value": float(np.min(u)),
                       "kind": "min"}]
 
 
+_FEW_BRACKETS = 8     # up to so many brackets, the cubics are solved one by one in floats
+
+
 def _cubic_roots(t0, t1, f0, f1, g0, g1):
     """The root in each bracket [t0, t1] (f0, f1 of opposite signs) of the cubic with
     values f and slopes g at its ends (Hermite): Newton's method from the secant's
     root, and bisection where it does not settle inside the bracket. No evaluation of
-    the mechanism, only of the cubic."""
+    the mechanism, only of the cubic. (A few brackets, as a cycle has, are solved in
+    Python floats, the same operations without an array's cost per operation.)"""
+    if np.size(t0) <= _FEW_BRACKETS:
+        return np.array([_cubic_root(*(float(x) for x in v))
+                         for v in zip(t0, t1, f0, f1, g0, g1)], dtype=float)
     h = t1 - t0
     a0, a1 = f0, g0 * h                       # p(s) = a0 + a1 s + a2 s^2 + a3 s^3
     a2 = 3 * (f1 - f0) - (2 * g0 + g1) * h
@@ -574,6 +593,41 @@ def _cubic_roots(t0, t1, f0, f1, g0, g1):
     return t0 + s * h
 
 
+def _ratio(a, b):
+    """a / b as numpy divides floats: infinite or NaN where b is 0."""
+    if b != 0.0:
+        return a / b
+    return math.nan if a == 0.0 or a != a else math.copysign(math.inf, a) * math.copysign(1.0, b)
+
+
+def _cubic_root(t0, t1, f0, f1, g0, g1):
+    """:func:`_cubic_roots` of one bracket, in floats."""
+    h = t1 - t0
+    a0, a1 = f0, g0 * h                       # p(s) = a0 + a1 s + a2 s^2 + a3 s^3
+    a2 = 3 * (f1 - f0) - (2 * g0 + g1) * h
+    a3 = 2 * (f0 - f1) + (g0 + g1) * h
+
+    def cubic(s):
+        return a0 + s * (a1 + s * (a2 + s * a3))
+    s = _ratio(f0, f0 - f1)
+    for _ in range(6):
+        last = s
+        s = min(max(s - _ratio(cubic(s), a1 + s * (2 * a2 + 3 * s * a3)), 0.0), 1.0)
+        if s == last:                         # settled (never for NaN, as np.array_equal)
+            break
+    if not (math.isfinite(s) and abs(cubic(s)) <= 1e-13 * (abs(f0) + abs(f1))):
+        lo, hi = 0.0, 1.0                     # bisection, where Newton's did not settle
+        for _ in range(60):
+            mid = 0.5 * (lo + hi)
+            v = cubic(mid)
+            if ((v > 0) - (v < 0)) == ((f0 > 0) - (f0 < 0)) and v == v:
+                lo = mid
+            else:
+                hi = mid
+        s = 0.5 * (lo + hi)
+    return t0 + s * h
+
+
 def _rate_and_slope(plan, ev, k, t, signal):
     """The output's rate and its derivative per degree of input at angles t."""
     states, _, _ = _pointwise(plan, ev, k, t)
@@ -581,27 +635,25 @@ def _rate_and_slope(plan, ev, k, t, signal):
     return d1, d2 * plan.rate_scale        # d2 per unit of input squared, t in tau
 
 
-def _transmission(plan, ev, theta, out):
+def _transmission(plan, cols, out):
     """Transmission angle range of the four-bar loop (RRR dyad) at the output ``out``
-    (else the first such loop), if any."""
+    (else the first such loop), if any, from the sweep's joint positions ``cols``."""
     dyads = [s for s in plan.steps if s.kind == "dyad" and s.pattern == "RRR"]
     if not dyads:
         return None
     step = next((s for s in dyads if out in s.links), dyads[0])
-    a, b = step.links
     ca, cb, cj = step.constraints
-    pose = ev.pose
-
-    def world(link, p):
-        rx, ry = turn_by(pose[link], p)
-        return rx + pose[link][0], ry + pose[link][1]
-    x = world(a, cj.point)
-    pa = world(a, ca.point)
-    pb = world(b, cb.point)
-    v1 = (pa[0] - x[0], pa[1] - x[1])
-    v2 = (pb[0] - x[0], pb[1] - x[1])
-    mu = np.degrees(np.arctan2(np.abs(v1[0] * v2[1] - v1[1] * v2[0]),
-                               v1[0] * v2[0] + v1[1] * v2[1]))
+    x = cols[f"x:{cj.joint}"], cols[f"y:{cj.joint}"]        # the joint between the two
+    ax, ay = cols[f"x:{ca.joint}"] - x[0], cols[f"y:{ca.joint}"] - x[1]
+    bx, by = cols[f"x:{cb.joint}"] - x[0], cols[f"y:{cb.joint}"] - x[1]
+    # |a x b| and a . b worked out in place (the fewer temporaries, the less memory a
+    # call takes): a x b = ax by - ay bx, a . b = ax bx + ay by
+    cross = ax * by
+    dot = np.multiply(ax, bx, out=ax)
+    cross -= np.multiply(ay, bx, out=bx)
+    dot += np.multiply(ay, by, out=ay)
+    mu = np.arctan2(np.abs(cross, out=cross), dot, out=by)
+    np.degrees(mu, out=mu)
     return {"min": _refined_extreme(mu, np.argmin(mu)),
             "max": _refined_extreme(mu, np.argmax(mu))}
 
@@ -637,10 +689,16 @@ def _dead_centres(plan, ev, measure, c):
     roots = []
     for i, m in enumerate(measure):
         m = np.asarray(m, dtype=float)
-        idx = np.nonzero(inner & np.isfinite(m) & (m != 0))[0]
-        change = np.sign(m[idx[:-1]]) != np.sign(m[idx[1:]])
-        ka, kb = idx[:-1][change], idx[1:][change]
-        roots += [float(theta[k]) for k in np.nonzero(inner & (m == 0))[0]]
+        valid = inner & np.isfinite(m) & (m != 0)
+        if valid.all():                  # (as below, without gathering the samples)
+            negative = m < 0
+            ka = np.flatnonzero(negative[1:] != negative[:-1])
+            kb = ka + 1
+        else:
+            idx = np.nonzero(valid)[0]
+            change = np.sign(m[idx[:-1]]) != np.sign(m[idx[1:]])
+            ka, kb = idx[:-1][change], idx[1:][change]
+            roots += [float(theta[k]) for k in np.nonzero(inner & (m == 0))[0]]
         if ka.size:
             def f(t, ka=ka, i=i):
                 _, mm, _ = _pointwise(plan, ev, ka, t, measures=True)

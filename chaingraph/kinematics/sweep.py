@@ -317,17 +317,30 @@ def _outside(plan, lo, hi):
         mechanism=plan.chain.source or plan.chain.name, feasible_range=rng)
 
 
-def _along(plan, end, targets):
+def _along(plan, end, targets, *, home=None):
     """Poses at ``targets`` (all between the anchor's tau and ``end``), reached by
     continuation from the anchor on the internal grid to ``end`` with the targets
-    inserted, so that they do not depend on which other targets were asked for."""
-    home = anchor(plan)
-    t0 = home.tau
+    inserted, so that they do not depend on which other targets were asked for.
+    ``home``: a mask of the targets that are ``end`` a whole period on from the
+    anchor, whose poses are the anchor's (the path's first) exactly."""
+    start = anchor(plan)
+    t0 = start.tau
     span = end - t0
     n = max(1, int(math.ceil(abs(span) / _GRID_DEG)))
     sign = 1.0 if span >= 0 else -1.0
-    path, idx = merged_path(sign * (t0 + span * np.arange(n + 1) / n), sign * targets)
-    ev = evaluate(plan, sign * path, start=home.state)    # in path order
+    grid = sign * (t0 + span * np.arange(n + 1) / n)
+    if home is not None and home.any():
+        if grid[-1] != sign * end:
+            # the period's end off the grid: the anchor's own value instead
+            return _along(plan, end, np.where(home, t0, targets))
+        targets = np.where(home, end, targets)
+    path, idx = merged_path(grid, sign * targets)
+    ev = evaluate(plan, sign * path, start=start.state)    # in path order
+    if home is not None and home.any():
+        # the grid's first point is the anchor (every target is past it)
+        if idx is None:                 # the path is the targets: ev is this call's own
+            return ev.repeat_first(np.flatnonzero(home))
+        idx = np.where(home, 0, idx)
     return ev if idx is None else ev.take(idx)
 
 
@@ -352,7 +365,9 @@ def merged_path(grid: ArrayLike, targets: ArrayLike) -> tuple[np.ndarray, np.nda
     if not np.all(targets[1:] >= targets[:-1]):
         order = np.argsort(targets, kind="stable")
     ordered = targets if order is None else targets[order]
-    first = np.r_[True, ordered[1:] != ordered[:-1]]         # each value's first
+    first = np.empty(ordered.size, dtype=bool)                # each value's first
+    first[:1] = True
+    np.not_equal(ordered[1:], ordered[:-1], out=first[1:])
     distinct = ordered if first.all() else ordered[first]
     at = np.searchsorted(distinct, grid)
     found = distinct[np.minimum(at, distinct.size - 1)] == grid
@@ -414,11 +429,10 @@ def evaluate_sweep(plan: Plan, theta: ArrayLike) -> Evaluation:
         turned = theta - t0
         if turned.size and turned.min() >= 0.0 and turned.max() <= c.period:
             # within one period from the anchor (a sweep from it): np.mod's result
-            # without its cost
-            phase = t0 + np.where(turned < c.period, turned, 0.0)
+            # without its cost; a whole period on is the anchor's pose again
+            ev = _along(plan, t0 + c.period, t0 + turned, home=turned >= c.period)
         else:
-            phase = t0 + np.mod(turned, c.period)
-        ev = _along(plan, t0 + c.period, phase)
+            ev = _along(plan, t0 + c.period, t0 + np.mod(turned, c.period))
         ev.theta = theta
         return ev
     lo, hi = float(theta.min()), float(theta.max())

@@ -162,6 +162,27 @@ class Evaluation:
                           {i: pick(q) for i, q in self.group_q.items()}, self.switches,
                           self.folds)
 
+    def repeat_first(self, at: np.ndarray) -> Evaluation:
+        """This evaluation with its first point's values also at the points ``at``
+        (indices), in place: what :meth:`take` of its points, with those points
+        pointing at the first, returns, without copying every array (an array that
+        cannot be written, a broadcast input, is copied first)."""
+        where = int(at[0]) if at.size == 1 else at     # (one point, as a crank's turn has)
+
+        def patched(v):
+            if not isinstance(v, np.ndarray) or v.ndim == 0:
+                return v
+            if not v.flags.writeable:
+                v = v.copy()
+            v[where] = v[0]
+            return v
+        self.theta = patched(self.theta)
+        self.pose = {x: tuple(patched(v) for v in p) for x, p in self.pose.items()}
+        self.feasible = patched(self.feasible)
+        self.signs = {i: patched(v) for i, v in self.signs.items()}
+        self.group_q = {i: patched(q) for i, q in self.group_q.items()}
+        return self
+
 
 class Start:
     """Where a path continues from: each dyad step's mode sign and each group step's
@@ -226,8 +247,9 @@ def _evaluate(plan, theta, start):
             drawn = (1.0, 0.0) if step.pattern == "RPR" else step.constraints[2].point
             sign0 = start.signs[i] if start is not None else initial_sign(keys, drawn)
             ref = Evaluation(theta, pose, feasible, signs, group_q, switches)
-            chosen, ok, found, touching = _track(plan, i, step, ref,
-                                                 np.where(feasible, disc, np.nan), sign0)
+            chosen, ok, found, touching = _track(
+                plan, i, step, ref, disc if feasible.all() else np.where(feasible, disc, np.nan),
+                sign0)
             feasible &= ok
             signs[i] = chosen
             switches[i] = found
@@ -290,9 +312,12 @@ def _track(plan, i, step, head, disc, sign0):
     touching = np.zeros(n, dtype=bool)
     if last >= 2:
         d = disc[:last]
-        left = np.r_[np.inf, d[:-1]]
-        right = np.r_[d[1:], np.inf if last == n else -np.inf]
-        candidates = np.nonzero((d <= left) & (d <= right) & (d < _TOUCH_CANDIDATE))[0]
+        low = d < _TOUCH_CANDIDATE
+        candidates = np.zeros(0, dtype=np.intp)
+        if low.any():               # (most dyads stay far from a touch: nothing to look at)
+            left = np.concatenate(([np.inf], d[:-1]))
+            right = np.concatenate((d[1:], [np.inf if last == n else -np.inf]))
+            candidates = np.nonzero((d <= left) & (d <= right) & low)[0]
         for k in candidates:
             lo, hi = theta[max(k - 1, 0)], theta[min(k + 1, last - 1)]
             tstar, dmin = _zoom_minimum(plan, i, step, head, int(k), lo, hi)
