@@ -32,6 +32,7 @@ from __future__ import annotations
 
 import cmath
 from dataclasses import dataclass, replace
+from typing import Any
 
 import numpy as np
 
@@ -90,12 +91,12 @@ class Balance:
         """The ``"balance"`` of ``chaingraph forces --balance --json``."""
         force, moment = self.remaining
         f0, m0 = self.before.largest()
-        out = {"kind": self.kind,
-               "counterweights": [c.to_dict() for c in self.counterweights],
-               "remaining": {"force": force, "moment": moment},
-               "unbalanced": {"force": f0, "moment": m0}}
+        remaining: dict[str, float | None] = {"force": force, "moment": moment}
         if self.kind == "slider crank":
-            out["remaining"].update(secondary=self.secondary, transverse=self.transverse)
+            remaining.update(secondary=self.secondary, transverse=self.transverse)
+        out: dict[str, Any] = {"kind": self.kind,
+               "counterweights": [c.to_dict() for c in self.counterweights],
+               "remaining": remaining, "unbalanced": {"force": f0, "moment": m0}}
         out["notes"] = list(self.notes)
         return out
 
