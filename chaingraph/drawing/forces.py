@@ -82,15 +82,16 @@ def link_turns(result: PoseForces) -> dict[str, float]:
     chain = result.chain
     turn: dict[str, float] = {result.fixed: 0.0}
     for link in chain.links:
-        pins = [j for j in chain.joints if j.kind == "R" and link in j.links]
+        pins = [(j.id, j.at) for j in chain.joints
+                if j.kind == "R" and link in j.links and j.at is not None]
         pairs = [(a, b) for i, a in enumerate(pins) for b in pins[i + 1:]
-                 if math.dist(a.at, b.at) > 0]
+                 if math.dist(a[1], b[1]) > 0]
         if link in turn or not pairs:
             continue
-        a, b = max(pairs, key=lambda e: math.dist(e[0].at, e[1].at))
-        p, q = result.points[a.id], result.points[b.id]
+        (ja, a), (jb, b) = max(pairs, key=lambda e: math.dist(e[0][1], e[1][1]))
+        p, q = result.points[ja], result.points[jb]
         turn[link] = (math.atan2(q[1] - p[1], q[0] - p[0])
-                      - math.atan2(b.at[1] - a.at[1], b.at[0] - a.at[0]))
+                      - math.atan2(b[1] - a[1], b[0] - a[0]))
     for _ in chain.links:
         for j in chain.joints:
             if j.kind == "P":
@@ -118,12 +119,14 @@ def _bodies(result: PoseForces, links: list[str]) -> dict[str, _Body]:
     out = {}
     for link in links:
         pins = [result.points[j.id] for j in chain.joints if j.kind == "R" and link in j.links]
-        members, blocks, slots = list(pins), [], []
+        members = list(pins)
+        blocks: list[tuple[_Point, float]] = []
+        slots: list[tuple[_Point, float]] = []
         for j in chain.joints:
             if j.kind != "P" or link not in j.links:
                 continue
             q = result.points[j.id]
-            angle = math.radians(j.axis) + turn[j.links[0]]
+            angle = math.radians(j.axis or 0.0) + turn[j.links[0]]
             (blocks if j.links[1] == link else slots).append((q, angle))
             members.append(q)
         out[link] = _Body(pins, members, blocks, slots)
