@@ -34,7 +34,8 @@ from chaingraph.geometry import convex_hull, polygon_area
 if TYPE_CHECKING:                   # matplotlib is imported only when a plot is drawn
     from matplotlib.figure import Figure
 
-__all__ = ["free_body_shapes", "free_body_svg", "force_polygon_shapes", "force_polygon_svg",
+__all__ = ["plot_shaking", "cycle_of", "energy_lobes", "link_turns",
+           "free_body_shapes", "free_body_svg", "force_polygon_shapes", "force_polygon_svg",
            "plot_turning_moment"]
 
 #: arrow colours by what the force is
@@ -535,6 +536,47 @@ def free_body_svg(result: PoseForces, *, width: int = 1000) -> str:
                         title=f"{result.name}: free bodies ({kind}) at {at}")
 
 
+def cycle_of(result: SweepForces) -> tuple[np.ndarray, np.ndarray, float | None]:
+    """The sweep's input values and indices ordered over its cycle: for a sweep of whole
+    turns (360 or 720 degrees of an R input), (theta from 0 to the cycle, the steps in
+    that order, the cycle); else the sweep as it is and None."""
+    x = np.asarray(result["theta"], dtype=float)
+    kind = result.motion.plan.inputs[0].kind
+    span = abs(float(x[-1] - x[0]))
+    turns = round(span / 360.0)
+    if kind != "R" or turns < 1 or abs(span - 360.0 * turns) > 1e-6:
+        return x, np.arange(x.size), None
+    cycle = 360.0 * turns
+    k = np.arange(x.size - 1)                   # the last step is the first, a cycle on
+    wrapped = np.mod(x[:-1], cycle)
+    order = k[np.argsort(wrapped, kind="stable")]
+    xs = np.mod(x[order], cycle)
+    return np.append(xs, xs[0] + cycle), np.append(order, order[0]), cycle
+
+
+def energy_lobes(x: np.ndarray, t: np.ndarray, mean: float) -> list[tuple[float, float, float]]:
+    """The loops of the turning moment ``t`` about its ``mean`` against ``x`` (degrees):
+    (start, end, energy J) of each stretch between two crossings of the mean, the
+    energy the area between the curve and the mean (trapezoids; the crossings found
+    by linear interpolation)."""
+    d = t - mean
+    edges = [float(x[0])]
+    for i in range(d.size - 1):
+        if d[i] == 0.0 or d[i] * d[i + 1] < 0:
+            f = 0.0 if d[i] == 0.0 else d[i] / (d[i] - d[i + 1])
+            edges.append(float(x[i] + f * (x[i + 1] - x[i])))
+    edges.append(float(x[-1]))
+    lobes = []
+    for a, b in zip(edges, edges[1:]):
+        if b - a <= 1e-9:
+            continue
+        inside = (x > a) & (x < b)
+        xs = np.concatenate([[a], x[inside], [b]])
+        ds = np.interp(xs, x, d)
+        lobes.append((a, b, float(np.sum(0.5 * (ds[1:] + ds[:-1]) * np.diff(np.radians(xs))))))
+    return lobes
+
+
 @overload
 def plot_turning_moment(result: SweepForces, path: None = None) -> Figure: ...
 
@@ -546,32 +588,117 @@ def plot_turning_moment(result: SweepForces, path: str | os.PathLike[str]) -> No
 def plot_turning_moment(result: SweepForces, path: str | os.PathLike[str] | None = None,
                         ) -> Figure | None:
     """The turning-moment diagram of a :class:`~chaingraph.dynamics.SweepForces` (one
-    input): the effort against the input, its mean, and the largest swing of the
-    energy about the mean shaded between its two extremes. Written to ``path`` (SVG,
-    PNG...) or returned as a matplotlib figure."""
+    input), as the textbook draws it: over the cycle (0 to 360 degrees, or 720 for a
+    sweep of two turns), the turning moment the machine delivers to its input shaft
+    (minus the effort) when its mean effort is negative (an engine), else the effort
+    that drives it; the mean line; each loop between the curve and the mean shaded and
+    marked with its energy (J), and the crank angles of the greatest and least energy
+    with the fluctuation between them. Written to ``path`` (SVG, PNG...) or returned as
+    a matplotlib figure."""
     plt = pyplot_module()
     joint = result.inputs[0]
-    x = np.asarray(result["theta"], dtype=float)
-    e = np.asarray(result[f"effort:{joint}"], dtype=float)
-    kind = result.motion.plan.inputs[0].kind if result.motion is not None else "R"
+    kind = result.motion.plan.inputs[0].kind
     unit = "N m" if kind == "R" else "N"
-    fig, ax = plt.subplots(figsize=(7.5, 3.8))
-    ax.plot(x, e, color="#b2182b", linewidth=1.4, label=f"effort at {joint}")
-    mean = result.summary.efforts[joint].mean
-    if mean is not None:
+    x, order, cycle = cycle_of(result)
+    e = np.asarray(result[f"effort:{joint}"], dtype=float)[order]
+    stats = result.summary.efforts[joint]
+    engine = stats.mean is not None and stats.mean < 0
+    t = -e if engine else e
+    what = (f"turning moment delivered at {joint}" if engine
+            else f"effort at {joint} (to drive it)")
+    fig, ax = plt.subplots(figsize=(8.5, 4.2))
+    ax.plot(x, t, color="#b2182b", linewidth=1.4, label=what)
+    mean = None if stats.mean is None else (-stats.mean if engine else stats.mean)
+    swing = result.summary.energy_fluctuation
+    if mean is not None and np.isfinite(t).all():
         ax.axhline(mean, color="#444444", linewidth=0.9, linestyle="--",
                    label=f"mean {mean:.4g} {unit}")
-        ax.fill_between(x, e, mean, where=np.isfinite(e) & (e >= mean), color="#b2182b",
-                        alpha=0.15, linewidth=0)
-        ax.fill_between(x, e, mean, where=np.isfinite(e) & (e < mean), color="#2166ac",
-                        alpha=0.15, linewidth=0)
-    swing = result.summary.energy_fluctuation
+        ax.fill_between(x, t, mean, where=t >= mean, color="#b2182b", alpha=0.15,
+                        linewidth=0, interpolate=True)
+        ax.fill_between(x, t, mean, where=t < mean, color="#2166ac", alpha=0.15,
+                        linewidth=0, interpolate=True)
+        _mark_lobes(ax, x, t, mean, kind)
     title = f"{result.name}: turning-moment diagram"
     if swing is not None:
-        title += f" (energy fluctuation {swing:.4g} J)"
+        title += f" (fluctuation of energy {swing:.4g} J)"
     ax.set_title(title, fontsize=10)
-    ax.set_xlabel("theta, degrees" if kind == "R" else f"{joint} slide")
-    ax.set_ylabel(f"effort, {unit}")
+    if cycle is not None:
+        ax.set_xlim(0.0, cycle)
+        ax.set_xticks(np.arange(0.0, cycle + 1.0, 90.0 if cycle <= 360 else 180.0))
+    ax.set_xlabel("crank angle, degrees" if kind == "R" else f"{joint} slide")
+    ax.set_ylabel(f"{'turning moment' if engine else 'effort'}, {unit}")
     ax.grid(True, linewidth=0.3)
-    ax.legend(fontsize=8, loc="best")
+    ax.legend(fontsize=8, loc="upper right")
+    return finish(plt, fig, path)
+
+
+def _mark_lobes(ax, x, t, mean, kind):
+    """Each loop's energy (J) at its middle, and the angles of greatest and least
+    energy (the work of the turning moment about its mean, from the start)."""
+    lobes = energy_lobes(x, t, mean)
+    top, bottom = float(np.nanmax(t)), float(np.nanmin(t))
+    height = max(top - bottom, 1e-300)
+    big = [lb for lb in lobes if abs(lb[2]) > 0.02 * max(abs(v[2]) for v in lobes)]
+    for a, b, energy in big:
+        mid = 0.5 * (a + b)
+        ax.annotate(f"{energy:+.3g} J", (mid, mean + (0.06 if energy > 0 else -0.1) * height),
+                    ha="center", fontsize=7, color="#222222")
+    if kind != "R" or len(lobes) < 2:
+        return
+    work = np.cumsum([0.0] + [lb[2] for lb in lobes])
+    where = [lobes[0][0]] + [lb[1] for lb in lobes]
+    hi, lo = int(np.argmax(work)), int(np.argmin(work))
+    for k, label in ((hi, "greatest energy"), (lo, "least energy")):
+        ax.axvline(where[k], color="#555555", linewidth=0.7, linestyle=":")
+        ax.annotate(label, (where[k], bottom + 0.02 * height), rotation=90, fontsize=7,
+                    ha="left", va="bottom", color="#555555", xytext=(2, 0),
+                    textcoords="offset points")
+
+
+@overload
+def plot_shaking(result: SweepForces, path: None = None) -> Figure: ...
+
+
+@overload
+def plot_shaking(result: SweepForces, path: str | os.PathLike[str]) -> None: ...
+
+
+def plot_shaking(result: SweepForces, path: str | os.PathLike[str] | None = None
+                 ) -> Figure | None:
+    """The polar diagram of the shaking force of a :class:`~chaingraph.dynamics.SweepForces`:
+    the path of the tip of the force the moving links put on the frame, drawn from the
+    origin, with the input's value marked along it and its largest value. Written to
+    ``path`` (SVG, PNG...) or returned as a matplotlib figure."""
+    if result.shaking is None:
+        raise ValueError("the sweep has no shaking force")
+    plt = pyplot_module()
+    x, order, cycle = cycle_of(result)
+    fx, fy = result.shaking.fx[order], result.shaking.fy[order]
+    ok = np.isfinite(fx) & np.isfinite(fy)
+    fig, ax = plt.subplots(figsize=(6.2, 6.2))
+    ax.plot(fx[ok], fy[ok], color="#b2182b", linewidth=1.4, label="tip of the shaking force")
+    ax.plot([0.0], [0.0], marker="o", color="#222222", markersize=4)
+    ax.axhline(0.0, color="#999999", linewidth=0.6)
+    ax.axvline(0.0, color="#999999", linewidth=0.6)
+    mags = np.hypot(fx, fy)
+    if ok.any():
+        k = int(np.nanargmax(np.where(ok, mags, -np.inf)))
+        ax.annotate("", (fx[k], fy[k]), (0.0, 0.0),
+                    arrowprops={"arrowstyle": "->", "color": "#2166ac", "linewidth": 1.2})
+        ax.plot([], [], color="#2166ac", linewidth=1.2,
+                label=f"largest, {_newtons((fx[k], fy[k]))} at {x[k]:.4g}\u00b0")
+    step = 30.0 if cycle is None or cycle <= 360 else 60.0
+    marks = np.arange(0.0, (cycle or 0.0) + 1e-9, step) if cycle else x[::max(1, x.size // 12)]
+    for m in marks[:-1] if cycle else marks:
+        k = int(np.argmin(np.abs(x - m)))
+        if ok[k]:
+            ax.plot([fx[k]], [fy[k]], marker=".", color="#222222", markersize=5)
+            ax.annotate(f"{x[k]:.0f}\u00b0", (fx[k], fy[k]), fontsize=7, xytext=(3, -9),
+                        textcoords="offset points", color="#444444")
+    ax.set_aspect("equal", adjustable="datalim")
+    ax.set_xlabel("shaking force Fx, N")
+    ax.set_ylabel("shaking force Fy, N")
+    ax.set_title(f"{result.name}: polar diagram of the shaking force", fontsize=10)
+    ax.grid(True, linewidth=0.3)
+    ax.legend(fontsize=8, loc="lower right")
     return finish(plt, fig, path)
