@@ -36,6 +36,7 @@ from chaingraph.drawing import (
     limits_svg,
     mechanism_svg,
     plot_motion,
+    plot_shaking,
     plot_turning_moment,
     plot_variation,
 )
@@ -222,15 +223,18 @@ def cmd_forces(args: argparse.Namespace) -> int:
             svg_file(path, what=what)
     if args.plot:
         picture_file(args.plot, what="plot")
+    if args.polar:
+        picture_file(args.polar, what="plot")
     at = args.at
     common = dict(static=args.static, fixed=args.fixed, driver=args.driver,
                   inputs=args.inputs, omega=args.omega)
     if at:
         if args.csv or args.start is not None or args.stop is not None or \
-                args.speed_fluctuation is not None or args.plot or args.balance:
+                args.speed_fluctuation is not None or args.plot or args.balance or args.polar:
             flag = ("--csv" if args.csv else "--from/--to" if args.start is not None
                     or args.stop is not None else "--plot" if args.plot
-                    else "--balance" if args.balance else "--speed-fluctuation")
+                    else "--balance" if args.balance else "--polar" if args.polar
+                    else "--speed-fluctuation")
             print(f"chaingraph forces: error: {flag} is for a sweep; --at gives one pose",
                   file=sys.stderr)
             return 2
@@ -244,6 +248,9 @@ def cmd_forces(args: argparse.Namespace) -> int:
         if args.plot:
             with Writing(args.plot):
                 plot_turning_moment(result, args.plot)
+        if args.polar:
+            with Writing(args.polar):
+                plot_shaking(result, args.polar)
     if args.draw or args.polygon:
         # the pose solved, or the sweep's first, as solved: nothing is solved again
         pose = result if at else result.pose(0)
