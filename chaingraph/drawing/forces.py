@@ -22,6 +22,7 @@ from chaingraph.drawing.scene import (
     COLOURS,
     LABEL_DEPTH,
     LABEL_HEIGHT,
+    Scene,
     Shape,
     View,
     label_box,
@@ -111,24 +112,32 @@ class _Body:
     pins: list[_Point]
     members: list[_Point]
     blocks: list[tuple[_Point, float]]
-    slots: list[tuple[_Point, float]]
+    slots: list[tuple[_Point, float, str, str | None]]   # centre, direction, style, cap
 
 
 def _bodies(result: PoseForces, links: list[str]) -> dict[str, _Body]:
+    """Each link's body; a sliding pair's block and guide on the links the mechanism's
+    drawing puts them on (:class:`~chaingraph.drawing.scene.Scene`: a slot in a lever,
+    the barrel of an oscillating cylinder, the block on the other link)."""
     chain = result.chain
     turn = link_turns(result)
+    pairs = Scene.of_chain(chain).pairs
     out = {}
     for link in links:
         pins = [result.points[j.id] for j in chain.joints if j.kind == "R" and link in j.links]
         members = list(pins)
         blocks: list[tuple[_Point, float]] = []
-        slots: list[tuple[_Point, float]] = []
+        slots: list[tuple[_Point, float, str, str | None]] = []
         for j in chain.joints:
             if j.kind != "P" or link not in j.links:
                 continue
             q = result.points[j.id]
             angle = math.radians(j.axis or 0.0) + turn[j.links[0]]
-            (blocks if j.links[1] == link else slots).append((q, angle))
+            pair = pairs[j.id]
+            if pair.block_link == link:
+                blocks.append((q, angle))
+            else:
+                slots.append((q, angle, pair.style, pair.cap))
             members.append(q)
         out[link] = _Body(pins, members, blocks, slots)
     return out
@@ -265,15 +274,21 @@ def _body_shapes(body, at, size, colour, tag):
         shapes.append(Shape("polyline", "bar", ends, tag, stroke=colour, width=1.8 * size,
                             cap="round"))
     w = 3.2 * size
-    for q, angle in body.slots:
+    for q, angle, style, cap in body.slots:
         u, n = (math.cos(angle), math.sin(angle)), (-math.sin(angle), math.cos(angle))
         c = at(q)
-        for side in (-1, 1):
-            a = (c[0] - 2.2 * w * u[0] + side * 0.75 * w * n[0],
-                 c[1] - 2.2 * w * u[1] + side * 0.75 * w * n[1])
-            b = (c[0] + 2.2 * w * u[0] + side * 0.75 * w * n[0],
-                 c[1] + 2.2 * w * u[1] + side * 0.75 * w * n[1])
-            shapes.append(Shape("line", "slot", (a, b), tag, stroke="#444444", width=0.5 * size))
+
+        def on(t, d):
+            return (c[0] + t * w * u[0] + d * w * n[0], c[1] + t * w * u[1] + d * w * n[1])
+        if style == "cylinder":                # a barrel, shut at one end
+            shut, open_ = (-2.6, 2.6) if cap == "lo" else (2.6, -2.6)
+            shapes.append(Shape("polyline", "barrel", (on(open_, -1.0), on(shut, -1.0),
+                                                       on(shut, 1.0), on(open_, 1.0)), tag,
+                                stroke="#333333", width=0.5 * size, join="round"))
+        else:                                  # a slot: its two sides
+            for side in (-0.75, 0.75):
+                shapes.append(Shape("line", "slot", (on(-2.2, side), on(2.2, side)), tag,
+                                    stroke="#444444", width=0.5 * size))
     for q, angle in body.blocks:
         u, n = (math.cos(angle), math.sin(angle)), (-math.sin(angle), math.cos(angle))
         c = at(q)
