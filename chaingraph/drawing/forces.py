@@ -35,7 +35,7 @@ from chaingraph.geometry import convex_hull, polygon_area
 if TYPE_CHECKING:                   # matplotlib is imported only when a plot is drawn
     from matplotlib.figure import Figure
 
-__all__ = ["plot_shaking", "cycle_of", "energy_lobes", "link_turns",
+__all__ = ["plot_shaking", "cycle_of", "closed_cycle", "energy_lobes", "link_turns",
            "free_body_shapes", "free_body_svg", "force_polygon_shapes", "force_polygon_svg",
            "plot_turning_moment"]
 
@@ -569,6 +569,21 @@ def cycle_of(result: SweepForces) -> tuple[np.ndarray, np.ndarray, float | None]
     return np.append(xs, xs[0] + cycle), np.append(order, order[0]), cycle
 
 
+def closed_cycle(x: np.ndarray, values: np.ndarray, cycle: float | None
+                 ) -> tuple[np.ndarray, np.ndarray]:
+    """The values over the cycle from exactly 0 to exactly ``cycle`` (degrees), the
+    ends interpolated linearly between the sweep's last step before the cycle's end and
+    its first after 0 (``x``, ``values`` as :func:`cycle_of` orders them); unchanged
+    without a cycle."""
+    if cycle is None or x.size < 3:
+        return x, values
+    before, after = x[-2] - cycle, x[0]
+    f = 0.0 if after == before else (0.0 - before) / (after - before)
+    start = values[-2] + f * (values[0] - values[-2])
+    return (np.concatenate([[0.0], x[:-1], [cycle]]),
+            np.concatenate([[start], values[:-1], [start]]))
+
+
 def energy_lobes(x: np.ndarray, t: np.ndarray, mean: float) -> list[tuple[float, float, float]]:
     """The loops of the turning moment ``t`` about its ``mean`` against ``x`` (degrees):
     (start, end, energy J) of each stretch between two crossings of the mean, the
@@ -615,7 +630,7 @@ def plot_turning_moment(result: SweepForces, path: str | os.PathLike[str] | None
     kind = result.motion.plan.inputs[0].kind
     unit = "N m" if kind == "R" else "N"
     x, order, cycle = cycle_of(result)
-    e = np.asarray(result[f"effort:{joint}"], dtype=float)[order]
+    x, e = closed_cycle(x, np.asarray(result[f"effort:{joint}"], dtype=float)[order], cycle)
     stats = result.summary.efforts[joint]
     engine = stats.mean is not None and stats.mean < 0
     t = -e if engine else e
@@ -643,7 +658,7 @@ def plot_turning_moment(result: SweepForces, path: str | os.PathLike[str] | None
     ax.set_xlabel("crank angle, degrees" if kind == "R" else f"{joint} slide")
     ax.set_ylabel(f"{'turning moment' if engine else 'effort'}, {unit}")
     ax.grid(True, linewidth=0.3)
-    ax.legend(fontsize=8, loc="upper right")
+    ax.legend(fontsize=8, loc="best")
     return finish(plt, fig, path)
 
 
@@ -671,27 +686,36 @@ def _mark_lobes(ax, x, t, mean, kind):
 
 
 @overload
-def plot_shaking(result: SweepForces, path: None = None) -> Figure: ...
+def plot_shaking(result: SweepForces, path: None = None, *,
+                 balanced: SweepForces | None = None) -> Figure: ...
 
 
 @overload
-def plot_shaking(result: SweepForces, path: str | os.PathLike[str]) -> None: ...
+def plot_shaking(result: SweepForces, path: str | os.PathLike[str], *,
+                 balanced: SweepForces | None = None) -> None: ...
 
 
-def plot_shaking(result: SweepForces, path: str | os.PathLike[str] | None = None
-                 ) -> Figure | None:
+def plot_shaking(result: SweepForces, path: str | os.PathLike[str] | None = None, *,
+                 balanced: SweepForces | None = None) -> Figure | None:
     """The polar diagram of the shaking force of a :class:`~chaingraph.dynamics.SweepForces`:
     the path of the tip of the force the moving links put on the frame, drawn from the
-    origin, with the input's value marked along it and its largest value. Written to
+    origin, with the input's value marked along it and its largest value; with
+    ``balanced`` (the same sweep of the balanced mechanism,
+    :attr:`chaingraph.dynamics.balance.Balance.result`) its path too. Written to
     ``path`` (SVG, PNG...) or returned as a matplotlib figure."""
     if result.shaking is None:
         raise ValueError("the sweep has no shaking force")
     plt = pyplot_module()
     x, order, cycle = cycle_of(result)
-    fx, fy = result.shaking.fx[order], result.shaking.fy[order]
+    _, fx = closed_cycle(x, result.shaking.fx[order], cycle)
+    x, fy = closed_cycle(x, result.shaking.fy[order], cycle)
     ok = np.isfinite(fx) & np.isfinite(fy)
     fig, ax = plt.subplots(figsize=(6.2, 6.2))
     ax.plot(fx[ok], fy[ok], color="#b2182b", linewidth=1.4, label="tip of the shaking force")
+    if balanced is not None and balanced.shaking is not None:
+        _, border, _ = cycle_of(balanced)
+        ax.plot(balanced.shaking.fx[border], balanced.shaking.fy[border], color="#1b7837",
+                linewidth=1.6, marker="o", markersize=2, label="balanced")
     ax.plot([0.0], [0.0], marker="o", color="#222222", markersize=4)
     ax.axhline(0.0, color="#999999", linewidth=0.6)
     ax.axvline(0.0, color="#999999", linewidth=0.6)

@@ -41,6 +41,16 @@ def test_the_sweep_is_laid_over_its_cycle_from_zero():
     assert np.allclose(np.mod(theta[order], 360.0)[:-1], x[:-1])
 
 
+def test_the_cycle_is_closed_at_zero_and_its_end():
+    from chaingraph.drawing.forces import closed_cycle
+    x = np.array([10.0, 130.0, 250.0, 370.0])            # a sweep from 10 degrees, wrapped
+    v = np.array([1.0, 2.0, 3.0, 1.0])
+    xs, vs = closed_cycle(x, v, 360.0)
+    assert list(xs) == [0.0, 10.0, 130.0, 250.0, 360.0]
+    # between 250 (3.0) and 370 (1.0): at 360, 3 - 2 x 110/120
+    assert vs[0] == vs[-1] == pytest.approx(3.0 - 2.0 * 110.0 / 120.0)
+
+
 def test_the_energy_loops_of_a_sine_about_its_mean():
     x = np.linspace(0.0, 360.0, 721)
     t = 10.0 * np.sin(np.radians(x)) + 3.0
@@ -55,7 +65,7 @@ def test_an_engine_s_diagram_is_the_turning_moment_it_delivers():
     fig = plot_turning_moment(f)
     line = fig.axes[0].lines[0]
     _, order, _ = cycle_of(f)
-    assert np.allclose(line.get_ydata(), -np.asarray(f["effort:O"])[order])
+    assert np.allclose(line.get_ydata()[1:-1], -np.asarray(f["effort:O"])[order][:-1])
     assert "delivered" in line.get_label()
     assert fig.axes[0].get_xlim() == (0.0, 360.0)
     # the loops marked add up to nothing over the cycle, the largest swing is the summary's
@@ -79,8 +89,8 @@ def test_the_polar_diagram_is_the_tip_of_the_shaking_force(tmp_path):
     fig = plot_shaking(f)
     line = fig.axes[0].lines[0]
     _, order, _ = cycle_of(f)
-    assert np.allclose(line.get_xdata(), f["shaking:Fx"][order])
-    assert np.allclose(line.get_ydata(), f["shaking:Fy"][order])
+    assert np.allclose(line.get_xdata()[1:-1], f["shaking:Fx"][order][:-1])
+    assert np.allclose(line.get_ydata()[1:-1], f["shaking:Fy"][order][:-1])
     status, out, err = run_cli("forces", catalog_path("reciprocating-engine"), "--steps", "36",
                                "--polar", tmp_path / "p.svg")
     assert status == 0, err
@@ -88,3 +98,14 @@ def test_the_polar_diagram_is_the_tip_of_the_shaking_force(tmp_path):
     status, out, err = run_cli("forces", catalog_path("reciprocating-engine"), "--at", "30",
                                "--polar", tmp_path / "q.svg")
     assert status == 2 and "--polar is for a sweep" in err
+
+
+def test_the_polar_diagram_of_a_balanced_four_bar_draws_both():
+    from chaingraph.dynamics.balance import balance
+
+    from ..dynamics.test_balance import crank_rocker
+    f = chaingraph.forces(crank_rocker(), steps=72, omega=20.0)
+    b = balance(f)
+    fig = plot_shaking(f, balanced=b.result)
+    lines = {line.get_label(): line for line in fig.axes[0].lines}
+    assert np.abs(lines["balanced"].get_xdata()).max() <= 1e-9 * np.abs(f["shaking:Fx"]).max()
