@@ -714,8 +714,10 @@ def plot_shaking(result: SweepForces, path: str | os.PathLike[str] | None = None
     ax.plot(fx[ok], fy[ok], color="#b2182b", linewidth=1.4, label="tip of the shaking force")
     if balanced is not None and balanced.shaking is not None:
         _, border, _ = cycle_of(balanced)
+        # (a ring on each step: a balanced force that stands still is still seen)
         ax.plot(balanced.shaking.fx[border], balanced.shaking.fy[border], color="#1b7837",
-                linewidth=1.6, marker="o", markersize=2, label="balanced")
+                linewidth=1.6, marker="o", markersize=9, markerfacecolor="none", zorder=5,
+                label="balanced")
     ax.plot([0.0], [0.0], marker="o", color="#222222", markersize=4)
     ax.axhline(0.0, color="#999999", linewidth=0.6)
     ax.axvline(0.0, color="#999999", linewidth=0.6)

@@ -36,6 +36,7 @@ from typing import Any
 
 import numpy as np
 
+from chaingraph._util.numbers import tidy
 from chaingraph.dynamics.equilibrium import UNIT_METRES
 from chaingraph.dynamics.reactions import SweepForces, forces
 from chaingraph.dynamics.shaking import Shaking, shaking
@@ -84,8 +85,12 @@ class Balance:
 
     @property
     def remaining(self) -> tuple[float | None, float | None]:
-        """The largest shaking force (N) and moment (N m) left by the counterweights."""
-        return self.after.largest()
+        """The largest shaking force (N) and moment (N m) left by the counterweights
+        (tidied at the scale of the unbalanced ones: rounding shows as 0)."""
+        force, moment = self.after.largest()
+        f0, m0 = self.before.largest()
+        return (tidy(force, max(f0 or 0.0, force or 0.0)),
+                tidy(moment, max(m0 or 0.0, moment or 0.0)))
 
     def to_dict(self) -> dict:
         """The ``"balance"`` of ``chaingraph forces --balance --json``."""
