@@ -248,9 +248,7 @@ def cmd_forces(args: argparse.Namespace) -> int:
         if args.plot:
             with Writing(args.plot):
                 plot_turning_moment(result, args.plot)
-        if args.polar:
-            with Writing(args.polar):
-                plot_shaking(result, args.polar)
+
     if args.draw or args.polygon:
         # the pose solved, or the sweep's first, as solved: nothing is solved again
         pose = result if at else result.pose(0)
@@ -263,6 +261,10 @@ def cmd_forces(args: argparse.Namespace) -> int:
                                                 "both its links to draw a polygon of")
             write_text(args.polygon, svg)
     balanced = balance(result) if args.balance and not at else None
+    if args.polar and not at:                  # with --balance, the balanced one too
+        with Writing(args.polar):
+            plot_shaking(result, args.polar,
+                         balanced=None if balanced is None else balanced.result)
     if args.json:
         data = result.to_dict()
         if balanced is not None:
