@@ -107,12 +107,14 @@ def link_turns(result: PoseForces) -> dict[str, float]:
 @dataclass(frozen=True)
 class _Body:
     """A link's free body at the pose: its pins, the points its outline joins, its
-    blocks (centre, direction) and the slots it carries (centre, direction)."""
+    blocks (centre, direction), the slots it carries (centre, direction, style, a
+    barrel's shut end) and its centre of mass."""
 
     pins: list[_Point]
     members: list[_Point]
     blocks: list[tuple[_Point, float]]
     slots: list[tuple[_Point, float, str, str | None]]   # centre, direction, style, cap
+    centres: list[_Point]                                # its centre of mass, if known
 
 
 def _bodies(result: PoseForces, links: list[str]) -> dict[str, _Body]:
@@ -139,7 +141,10 @@ def _bodies(result: PoseForces, links: list[str]) -> dict[str, _Body]:
             else:
                 slots.append((q, angle, pair.style, pair.cap))
             members.append(q)
-        out[link] = _Body(pins, members, blocks, slots)
+        # the body reaches its centre of mass (a crank's counterweight, a bent lever)
+        centres = [a.at for a in result.applied if a.link == link
+                   and a.what in ("weight", "inertia force")][:1]
+        out[link] = _Body(pins, members + centres, blocks, slots, centres)
     return out
 
 
@@ -300,6 +305,9 @@ def _body_shapes(body, at, size, colour, tag):
     for p in body.pins:
         shapes.append(Shape("circle", "pin", (at(p),), tag, radius=size, fill="white",
                             stroke="#222222", width=0.4 * size))
+    for p in body.centres:
+        shapes.append(Shape("circle", "centre", (at(p),), tag, radius=0.55 * size,
+                            fill="#222222"))
     return shapes
 
 
