@@ -36,10 +36,12 @@ from chaingraph.drawing import (
     limits_svg,
     mechanism_svg,
     plot_motion,
+    plot_shaking,
     plot_turning_moment,
     plot_variation,
 )
 from chaingraph.dynamics import forces
+from chaingraph.dynamics.balance import balance
 from chaingraph.errors import ChainGraphError, DesignError, OutputError
 from chaingraph.files import dumps, load, read_file, save
 from chaingraph.graphical import instant_centres, velocity_polygon
@@ -221,14 +223,17 @@ def cmd_forces(args: argparse.Namespace) -> int:
             svg_file(path, what=what)
     if args.plot:
         picture_file(args.plot, what="plot")
+    if args.polar:
+        picture_file(args.polar, what="plot")
     at = args.at
     common = dict(static=args.static, fixed=args.fixed, driver=args.driver,
                   inputs=args.inputs, omega=args.omega)
     if at:
         if args.csv or args.start is not None or args.stop is not None or \
-                args.speed_fluctuation is not None or args.plot:
+                args.speed_fluctuation is not None or args.plot or args.balance or args.polar:
             flag = ("--csv" if args.csv else "--from/--to" if args.start is not None
                     or args.stop is not None else "--plot" if args.plot
+                    else "--balance" if args.balance else "--polar" if args.polar
                     else "--speed-fluctuation")
             print(f"chaingraph forces: error: {flag} is for a sweep; --at gives one pose",
                   file=sys.stderr)
@@ -243,6 +248,7 @@ def cmd_forces(args: argparse.Namespace) -> int:
         if args.plot:
             with Writing(args.plot):
                 plot_turning_moment(result, args.plot)
+
     if args.draw or args.polygon:
         # the pose solved, or the sweep's first, as solved: nothing is solved again
         pose = result if at else result.pose(0)
@@ -254,8 +260,16 @@ def cmd_forces(args: argparse.Namespace) -> int:
                 raise OutputError(args.polygon, "the mechanism has no dyad with forces on "
                                                 "both its links to draw a polygon of")
             write_text(args.polygon, svg)
+    balanced = balance(result) if args.balance and not at else None
+    if args.polar and not at:                  # with --balance, the balanced one too
+        with Writing(args.polar):
+            plot_shaking(result, args.polar,
+                         balanced=None if balanced is None else balanced.result)
     if args.json:
-        print_json(result.to_dict())
+        data = result.to_dict()
+        if balanced is not None:
+            data["balance"] = balanced.to_dict()
+        print_json(data)
         return 0
     kind = "static" if args.static else "kinetostatic"
     if at:
@@ -272,8 +286,9 @@ def cmd_forces(args: argparse.Namespace) -> int:
             print(f"power balance: {result.power_balance:.3g} W")
     else:
         print(f"Forces ({kind}) of {result.name}, {result.fixed} fixed, {result.steps} steps")
-        print(table(result.rows(), ["", ""]).split("\n", 2)[2])
-    for note in result.notes:
+        rows = result.rows() + (balanced.rows() if balanced is not None else [])
+        print(table(rows, ["", ""]).split("\n", 2)[2])
+    for note in result.notes + (balanced.notes if balanced is not None else ()):
         print(f"note: {note}")
     return 0
 

@@ -189,6 +189,11 @@ def _forces_command(sub) -> None:
                    help="plot the turning-moment diagram of the sweep (one input)")
     p.add_argument("--polygon", type=path_argument, metavar="PATH.svg",
                    help="draw the force polygon of each dyad at the pose of --draw")
+    p.add_argument("--polar", type=path_argument, metavar="PATH.svg",
+                   help="plot the polar diagram of the shaking force over the sweep")
+    p.add_argument("--balance", action="store_true",
+                   help="counterweights that cancel a four-bar's shaking force or a slider "
+                        "crank's primary force, and what remains (a sweep)")
     p.set_defaults(run=cmd_forces)
 
 

@@ -19,6 +19,7 @@ from chaingraph.drawing.forces import (
     force_polygon_svg,
     free_body_shapes,
     free_body_svg,
+    plot_shaking,
     plot_turning_moment,
 )
 from chaingraph.drawing.graph import draw_link_joint_graph
@@ -39,5 +40,6 @@ __all__ = ["mechanism_svg", "skeleton_svg", "frame_steps", "plot_motion", "draw_
            "plot_variation", "output_series", "draw_centres", "draw_polygons", "limits_svg",
            "limit_shapes", "limit_motion", "free_body_svg", "force_polygon_svg",
            "free_body_shapes", "force_polygon_shapes", "plot_turning_moment",
+           "plot_shaking",
            "draw_link_joint_graph", "Scene", "Shape", "View", "svg_document",
            "svg_elements", "draw_shapes", "animate", "Animation", "figure_svg", "register"]

@@ -15,7 +15,7 @@ from __future__ import annotations
 import math
 import os
 from collections.abc import Sequence
-from dataclasses import dataclass, field
+from dataclasses import dataclass, field, replace
 from typing import Any, overload
 
 import numpy as np
@@ -28,6 +28,7 @@ from chaingraph.dynamics.equilibrium import (
     Solution,
     solve_equilibrium,
 )
+from chaingraph.dynamics.shaking import Shaking, shaking
 from chaingraph.errors import MechanismError
 from chaingraph.kinematics import solve
 from chaingraph.kinematics.columns import LinkStates
@@ -185,6 +186,7 @@ class ForcesSummary:
     speed_fluctuation: float | None = None
     flywheel: float | None = None
     mean_speed: float | None = None
+    shaking: tuple[float | None, float | None] | None = None   # largest force N, moment N m
 
     def to_dict(self) -> dict:
         out: dict[str, Any] = {"efforts": {k: v.to_dict() for k, v in self.efforts.items()},
@@ -194,6 +196,9 @@ class ForcesSummary:
         if self.flywheel is not None:
             out["flywheel"] = {"speed_fluctuation": self.speed_fluctuation,
                                "inertia": self.flywheel, "omega": self.mean_speed}
+        if self.shaking is not None:
+            out["shaking"] = {"force": {"max": self.shaking[0]},
+                              "moment": {"max": self.shaking[1]}}
         return out
 
 
@@ -248,6 +253,7 @@ class SweepForces:
     solution: Solution = field(repr=False)       # the force solve's own, every step
     chain: Chain = field(repr=False)
     notes: tuple[str, ...] = ()
+    shaking: Shaking | None = field(default=None, repr=False)   # on the frame, per step
 
     def __repr__(self):
         return (f"SweepForces({self.name!r}, inputs={list(self.inputs)!r}, "
@@ -265,6 +271,9 @@ class SweepForces:
             if r.normal is not None and r.couple is not None:
                 out[f"N:{r.joint}"], out[f"M:{r.joint}"] = r.normal, r.couple
         out.update((f"effort:{e.joint}", e.value) for e in self.efforts)
+        if self.shaking is not None:
+            out.update({"shaking:Fx": self.shaking.fx, "shaking:Fy": self.shaking.fy,
+                        "shaking:M": self.shaking.moment})
         return out
 
     def __getitem__(self, name: str) -> np.ndarray:
@@ -322,6 +331,9 @@ class SweepForces:
         if self.summary.flywheel is not None:
             out.append(("flywheel", f"{self.summary.flywheel:.6g} kg m^2 for a speed "
                                     f"fluctuation of {self.summary.speed_fluctuation:g}"))
+        if self.summary.shaking is not None:
+            for what, v, unit in zip(("force", "moment"), self.summary.shaking, ("N", "N m")):
+                out.append((f"largest shaking {what}", "-" if v is None else f"{v:.6g} {unit}"))
         return out
 
 
@@ -497,6 +509,7 @@ def _forces_over(chain, motion: Motion, *, static, metres, speed_fluctuation) ->
     kin = _kinematic_state(chain, plan, motion.states, motion.omega, metres,
                            rates_known=True)
     sol = solve_equilibrium(chain, plan, kin, static=static, metres=metres)
+    shaken = shaking(sol, kin.n, origin=plan.origin, metres=metres)
     reactions = tuple(
         ReactionSeries(j.id, link, tuple(x for x in j.links if x != link),
                        sol.forces[(j.id, link)][0], sol.forces[(j.id, link)][1],
@@ -508,8 +521,10 @@ def _forces_over(chain, motion: Motion, *, static, metres, speed_fluctuation) ->
     return SweepForces(name=chain.name, fixed=plan.fixed,
                        inputs=tuple(i.joint for i in plan.inputs), static=static,
                        steps=motion.steps, reactions=reactions, efforts=efforts,
-                       summary=_summary(chain, plan, motion, sol, speed_fluctuation),
-                       notes=_notes(sol), motion=motion, solution=sol, chain=chain)
+                       summary=replace(_summary(chain, plan, motion, sol, speed_fluctuation),
+                                       shaking=shaken.largest()),
+                       notes=_notes(sol), motion=motion, solution=sol, chain=chain,
+                       shaking=shaken)
 
 
 def _on_links(joint):

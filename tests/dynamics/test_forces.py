@@ -475,7 +475,7 @@ def test_forces_on_the_command_line_json_and_csv(tmp_path):
     assert set(d["summary"]) >= {"efforts", "reactions", "energy_fluctuation", "flywheel"}
     header = csv_path.read_text().splitlines()[0].split(",")
     assert header == ["theta", "Fx:O", "Fy:O", "Fx:A", "Fy:A", "Fx:B", "Fy:B", "Fx:S", "Fy:S",
-                      "N:S", "M:S", "effort:O"]
+                      "N:S", "M:S", "effort:O", "shaking:Fx", "shaking:Fy", "shaking:M"]
     status, out, err = run_cli("forces", path, "--at", "60")
     assert status == 0 and "effort O" in out and "power balance" in out
 
@@ -587,7 +587,8 @@ def test_forces_of_a_chain_the_solver_refuses_and_the_frame_of_a_sweep(tmp_path)
     assert status == 1 and "can turn only from" in err and "Traceback" not in err
     import pandas                     # the test extra installs it
     frame = chaingraph.forces(engine(), steps=8).to_frame()
-    assert isinstance(frame, pandas.DataFrame) and list(frame.columns)[-1] == "effort:O"
+    assert isinstance(frame, pandas.DataFrame) and list(frame.columns)[-4:] == [
+        "effort:O", "shaking:Fx", "shaking:Fy", "shaking:M"]
 
 
 # -- issue 36: the solved state taken as it is; typed arrays, the CSV a view -------------
@@ -659,7 +660,9 @@ def test_a_sweep_s_forces_are_typed_arrays_and_its_csv_their_view():
     s = chaingraph.forces(chain, steps=12)
     header = s.to_csv().splitlines()[0].split(",")
     assert header == list(s.columns) == ["theta", "Fx:O", "Fy:O", "Fx:A", "Fy:A", "Fx:B",
-                                         "Fy:B", "Fx:S", "Fy:S", "N:S", "M:S", "effort:O"]
+                                         "Fy:B", "Fx:S", "Fy:S", "N:S", "M:S", "effort:O",
+                                         "shaking:Fx", "shaking:Fy", "shaking:M"]
+    assert s.shaking is not None and s["shaking:M"] is s.shaking.moment
     rod_on_crank, guide = s.reaction("A"), s.reaction("S")
     assert (rod_on_crank.on, rod_on_crank.by) == ("crank", ("connecting rod",))
     assert rod_on_crank.fx is s["Fx:A"] and guide.normal is s["N:S"]
