@@ -738,12 +738,21 @@ def plot_shaking(result: SweepForces, path: str | os.PathLike[str] | None = None
                 label=f"largest, {_newtons((fx[k], fy[k]))} at {x[k]:.4g}\u00b0")
     step = 30.0 if cycle is None or cycle <= 360 else 60.0
     marks = np.arange(0.0, (cycle or 0.0) + 1e-9, step) if cycle else x[::max(1, x.size // 12)]
+    # each mark's label outward from the curve's middle; a mark nearer than a
+    # twentieth of the curve's size to one labelled already is left out (they collided)
+    cx, cy = float(np.mean(fx[ok])), float(np.mean(fy[ok]))
+    size = max(float(np.ptp(fx[ok])), float(np.ptp(fy[ok])), 1e-300)
+    labelled: list[tuple[float, float]] = []
     for m in marks[:-1] if cycle else marks:
         k = int(np.argmin(np.abs(x - m)))
-        if ok[k]:
-            ax.plot([fx[k]], [fy[k]], marker=".", color="#222222", markersize=5)
-            ax.annotate(f"{x[k]:.0f}\u00b0", (fx[k], fy[k]), fontsize=7, xytext=(3, -9),
-                        textcoords="offset points", color="#444444")
+        if not ok[k] or any(math.hypot(fx[k] - a, fy[k] - b) < size / 20 for a, b in labelled):
+            continue
+        labelled.append((float(fx[k]), float(fy[k])))
+        out = math.atan2(fy[k] - cy, fx[k] - cx)
+        ax.plot([fx[k]], [fy[k]], marker=".", color="#222222", markersize=5)
+        ax.annotate(f"{x[k]:.0f}\u00b0", (fx[k], fy[k]), fontsize=7,
+                    xytext=(9 * math.cos(out), 9 * math.sin(out)), textcoords="offset points",
+                    ha="center", va="center", color="#444444")
     ax.set_aspect("equal", adjustable="datalim")
     ax.set_xlabel("shaking force Fx, N")
     ax.set_ylabel("shaking force Fy, N")
