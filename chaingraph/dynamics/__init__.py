@@ -11,6 +11,7 @@ from chaingraph.dynamics.reactions import (
     AppliedForce,
     Effort,
     EffortStats,
+    Flywheel,
     ForcesSummary,
     PoseForces,
     Reaction,
@@ -19,4 +20,4 @@ from chaingraph.dynamics.reactions import (
 )
 
 __all__ = ["forces", "PoseForces", "SweepForces", "Reaction", "Effort", "EffortStats",
-           "ForcesSummary", "AppliedForce", "AppliedCouple"]
+           "Flywheel", "ForcesSummary", "AppliedForce", "AppliedCouple"]

@@ -15,10 +15,11 @@ from __future__ import annotations
 import math
 import os
 from collections.abc import Sequence
-from dataclasses import dataclass, field
+from dataclasses import dataclass, field, replace
 from typing import Any, overload
 
 import numpy as np
+from scipy.interpolate import CubicSpline  # type: ignore[import-untyped]
 
 from chaingraph._util.numbers import tidy
 from chaingraph._util.text import csv_text, short_list
@@ -30,7 +31,7 @@ from chaingraph.dynamics.equilibrium import (
 )
 from chaingraph.errors import MechanismError
 from chaingraph.kinematics import solve
-from chaingraph.kinematics.columns import LinkStates
+from chaingraph.kinematics.columns import LinkStates, slide_of_states
 from chaingraph.kinematics.inputs import InputsGiven
 from chaingraph.kinematics.motion import Motion
 from chaingraph.kinematics.plan import Plan
@@ -38,8 +39,8 @@ from chaingraph.kinematics.pose import LinkState, PoseMotion, pose_motion
 from chaingraph.model.chain import Chain
 
 __all__ = ["Reaction", "Effort", "AppliedForce", "AppliedCouple", "PoseForces",
-           "EffortStats", "ForcesSummary", "ReactionSeries", "EffortSeries", "SweepForces",
-           "forces"]
+           "EffortStats", "Flywheel", "ForcesSummary", "ReactionSeries", "EffortSeries",
+           "SweepForces", "forces", "load_cycle", "cycle_mean"]
 
 
 @dataclass(frozen=True)
@@ -172,28 +173,53 @@ class EffortStats:
 
 
 @dataclass(frozen=True)
+class Flywheel:
+    """The flywheel that holds the speed within ``speed_fluctuation`` ((omega_max -
+    omega_min) / omega) at the mean speed ``omega`` (rad/s): its ``inertia`` (kg m^2),
+    I = dE / (omega^2 CS)."""
+
+    speed_fluctuation: float
+    inertia: float
+    omega: float
+
+    def to_dict(self) -> dict:
+        return {"speed_fluctuation": self.speed_fluctuation, "inertia": self.inertia,
+                "omega": self.omega}
+
+
+@dataclass(frozen=True)
 class ForcesSummary:
-    """Over the sweep: ``efforts`` per input (:class:`EffortStats`), ``reactions`` the
-    largest reaction per joint (N), and for a crank turning fully the
-    ``energy_fluctuation`` (J: the largest swing of the work of its effort about the
-    mean over a turn) and, given a ``speed_fluctuation``, the ``flywheel`` inertia
-    (kg m^2) that holds the speed within it."""
+    """Over the sweep's regular poses (the dead centres left out, and listed apart in
+    ``dead_centres``, the lead input's values there): ``efforts`` per input
+    (:class:`EffortStats`), ``reactions`` the largest reaction per joint (N); for a
+    crank turning through its whole cycle (a turn, or a load's ``cycle``) the
+    ``mean_effort`` (the lead input's, N m: its integral over the cycle over the cycle),
+    the ``energy_fluctuation`` (J: the largest swing of the work of its effort about the
+    mean, its extremes found where the effort crosses the mean, on the cubic spline
+    through the sweep's efforts) and, given a speed fluctuation, the ``flywheel``
+    (:class:`Flywheel`)."""
 
     efforts: dict
     reactions: dict
     energy_fluctuation: float | None = None
-    speed_fluctuation: float | None = None
-    flywheel: float | None = None
-    mean_speed: float | None = None
+    flywheel: Flywheel | None = None
+    mean_effort: float | None = None
+    dead_centres: tuple[float, ...] = ()
+
+    @property
+    def speed_fluctuation(self) -> float | None:
+        return None if self.flywheel is None else self.flywheel.speed_fluctuation
 
     def to_dict(self) -> dict:
         out: dict[str, Any] = {"efforts": {k: v.to_dict() for k, v in self.efforts.items()},
-               "reactions": {k: {"max": v} for k, v in self.reactions.items()}}
+               "reactions": {k: {"max": v} for k, v in self.reactions.items()},
+               "dead_centres": list(self.dead_centres)}
+        if self.mean_effort is not None:
+            out["mean_effort"] = self.mean_effort
         if self.energy_fluctuation is not None:
             out["energy_fluctuation"] = self.energy_fluctuation
         if self.flywheel is not None:
-            out["flywheel"] = {"speed_fluctuation": self.speed_fluctuation,
-                               "inertia": self.flywheel, "omega": self.mean_speed}
+            out["flywheel"] = self.flywheel.to_dict()
         return out
 
 
@@ -317,11 +343,18 @@ class SweepForces:
                                              f"mean {f(s.mean, u)}, RMS {f(s.rms, u)}"))
         for joint, v in self.summary.reactions.items():
             out.append((f"largest reaction {joint}", "-" if v is None else f"{v:.6g} N"))
+        if self.summary.mean_effort is not None:
+            unit = self.efforts[0].unit
+            out.append(("mean effort", f"{self.summary.mean_effort:.6g} {unit} over the cycle"))
         if self.summary.energy_fluctuation is not None:
             out.append(("energy fluctuation", f"{self.summary.energy_fluctuation:.6g} J"))
         if self.summary.flywheel is not None:
-            out.append(("flywheel", f"{self.summary.flywheel:.6g} kg m^2 for a speed "
-                                    f"fluctuation of {self.summary.speed_fluctuation:g}"))
+            fw = self.summary.flywheel
+            out.append(("flywheel", f"{fw.inertia:.6g} kg m^2 for a speed fluctuation of "
+                                    f"{fw.speed_fluctuation:g} at {fw.omega:g} rad/s"))
+        if self.summary.dead_centres:
+            out.append(("dead centres", ", ".join(f"{v:g}" for v in self.summary.dead_centres)
+                        + " (left out of the figures above)"))
         return out
 
 
@@ -337,7 +370,7 @@ def _metres(chain):
 
 
 def _kinematic_state(chain: Chain, plan: Plan, states: LinkStates, omega, metres, *,
-                     rates_known) -> KinematicState:
+                     rates_known, angle=None, strokes=None) -> KinematicState:
     """The :class:`KinematicState` of the solver's ``states`` at input speed ``omega``,
     in SI units: what the force solve needs, taken from the motion as it was solved."""
     n = states.tau.size
@@ -356,7 +389,11 @@ def _kinematic_state(chain: Chain, plan: Plan, states: LinkStates, omega, metres
                                 (arr(a[0], metres), arr(a[1], metres)), arr(a[2]))
     input_rates = {item.joint: arr(vel[item.key][2], 1.0 if item.kind == "R" else metres)
                    for item in plan.inputs}
-    return KinematicState(n, links, input_rates, rates_known=rates_known)
+    slides = {load.along: arr(slide_of_states(plan, states, load.along).s)
+              for load in chain.loads if load.along is not None}
+    return KinematicState(n, links, input_rates, rates_known=rates_known, slides=slides,
+                          angle=None if angle is None else arr(angle),
+                          strokes=dict(strokes or {}))
 
 
 def _notes(solution, k=None):
@@ -467,36 +504,171 @@ def forces(mechanism: Chain, *, at: float | Sequence[float] | None = None,
                              f"(such as 0.02), got {speed_fluctuation!r}",
                              mechanism=mechanism.source or mechanism.name,
                              parameter="speed_fluctuation")
+    how: dict[str, Any] = dict(fixed=fixed, driver=driver, inputs=inputs, omega=omega)
     if at is not None:
-        state = pose_motion(mechanism, at=at, fixed=fixed, driver=driver, inputs=inputs,
-                            omega=omega)
-        return _forces_at(mechanism, state, static=static, metres=metres)
-    motion = solve(mechanism, fixed=fixed, driver=driver, inputs=inputs, start=start,
-                   stop=stop, steps=steps, omega=omega, summary=True)
+        state = pose_motion(mechanism, at=at, **how)
+        return _forces_at(mechanism, state, static=static, metres=metres, how=how)
+    cycle = load_cycle(mechanism)
+    if cycle is not None and start is None and stop is None:
+        start, stop = 0.0, cycle          # a load's cycle: swept from 0, as the textbook
+    motion = solve(mechanism, start=start, stop=stop, steps=steps, summary=True, **how)
     return _forces_over(mechanism, motion, static=static, metres=metres,
-                        speed_fluctuation=speed_fluctuation)
+                        speed_fluctuation=speed_fluctuation, how=how)
 
 
-def _forces_at(chain, state: PoseMotion, *, static, metres) -> PoseForces:
+def load_cycle(chain: Chain) -> float | None:
+    """The input's cycle in degrees of the loads tabulated against it with a ``cycle``
+    (720 for a four-stroke engine), or None when none gives one."""
+    cycles = [math.degrees(x.cycle) for x in chain.loads if x.cycle is not None]
+    return float(round(max(cycles), 9)) if cycles else None
+
+
+def _lead_angle(plan: Plan, values) -> np.ndarray | None:
+    """The lead input's value in radians (None for a P input)."""
+    lead = plan.inputs[plan.lead]
+    return np.radians(np.asarray(values, dtype=float)) if lead.kind == "R" else None
+
+
+def _check_loads(chain, plan):
+    """Loads that need what the inputs do not give."""
+    lead = plan.inputs[plan.lead]
+    for load in chain.loads:
+        if load.against == "input" and lead.kind != "R":
+            raise MechanismError(f"the load on {load.on!r} is tabulated against the input's "
+                                 f"value in degrees: it needs an R input (a crank), not the "
+                                 f"P input {lead.joint!r}", mechanism=chain.source or chain.name)
+    if sum(x.mean_torque for x in chain.loads) > 1:
+        raise MechanismError("only one load may be the steady torque equal to the mean "
+                             "effort (torque = \"mean\")", mechanism=chain.source or chain.name)
+
+
+@dataclass(frozen=True)
+class _CycleLoads:
+    """What the loads need of the whole cycle: the direction of each stroke-limited
+    resisting force's stroke (by load index) and the steady mean torque (N m)."""
+
+    strokes: dict
+    mean_torque: float = 0.0
+
+
+def _cycle_loads(chain, plan, metres, static, how, sweep=None) -> _CycleLoads:
+    """The loads' cycle quantities, from ``sweep`` ((motion, state) of the sweep solved)
+    when it is the whole cycle, else from a sweep of the cycle solved here."""
+    limited = [i for i, x in enumerate(chain.loads) if x.resist is not None and x.stroke]
+    mean = any(x.mean_torque for x in chain.loads)
+    if not limited and not mean:
+        return _CycleLoads({})
+    span = load_cycle(chain) or 360.0
+    if sweep is None or not _whole_cycle(sweep[0], span):
+        motion = solve(chain, start=0.0, stop=span, steps=int(round(span)), **how)
+        if not _whole_cycle(motion, span):          # a rocking input: its own range
+            motion = solve(chain, steps=360, **how)
+        sweep = (motion, None)
+    motion, kin = sweep
+    if kin is None:
+        kin = _kinematic_state(chain, plan, motion.states, motion.omega, metres,
+                               rates_known=True, angle=_lead_angle(plan, motion.theta))
+    strokes = {i: _stroke_direction(chain, plan, kin, metres, i) for i in limited}
+    kin = replace(kin, strokes=strokes)
+    if not mean:
+        return _CycleLoads(strokes)
+    return _CycleLoads(strokes, _mean_torque(chain, plan, motion, kin, metres, static))
+
+
+def _whole_cycle(motion, span):
+    s = motion.summary
+    theta = np.asarray(motion.theta, dtype=float)
+    return (s is not None and s.full_turn and theta.size > 1
+            and abs(abs(theta[-1] - theta[0]) - span) < 1e-9)
+
+
+def _stroke_direction(chain, plan, kin, metres, i):
+    """The direction load ``i``'s point moves in during its stroke: the line of its
+    motion (the principal direction of its positions over the cycle), in the sense it
+    moves for the longer part of the input's cycle (the forward stroke), reversed for
+    the return stroke."""
+    load = chain.loads[i]
+    state = kin.links[load.on]
+    origin = plan.origin
+    p = (chain.joint(load.at).at if load.at in {j.id for j in chain.joints}
+         else chain.point(load.at).at)
+    q = state.moved(((p[0] - origin[0]) * metres, (p[1] - origin[1]) * metres))
+    xy = np.column_stack(q)
+    xy = xy - xy.mean(axis=0)
+    d = np.linalg.svd(xy, full_matrices=False)[2][0]
+    v = state.velocity_at(q)
+    u = v[0] * d[0] + v[1] * d[1]
+    sense = 1.0 if np.sum(u > 0) >= np.sum(u < 0) else -1.0
+    if load.stroke == "return":
+        sense = -sense
+    return (float(sense * d[0]), float(sense * d[1]))
+
+
+def _mean_torque(chain, plan, motion, kin, metres, static):
+    """The steady torque of the ``torque = "mean"`` load that makes the lead input's
+    mean effort over the cycle zero (the secant method: exact in one step without
+    friction, where the effort is linear in the torque)."""
+    lead = plan.inputs[plan.lead].joint
+    u = np.radians(np.asarray(motion.theta, dtype=float))
+
+    def mean_effort(tau):
+        sol = solve_equilibrium(chain, plan, kin, static=static, metres=metres, mean_torque=tau)
+        e = _filled(sol.efforts[lead])
+        return cycle_mean(u, e) if np.isfinite(e).all() else math.nan
+    t0, f0 = 0.0, mean_effort(0.0)
+    if not math.isfinite(f0):
+        return math.nan
+    t1 = f0 if f0 else 1.0
+    f1 = mean_effort(t1)
+    for _ in range(30):
+        if not math.isfinite(f1) or f1 == f0:
+            break
+        t0, f0, t1 = t1, f1, t1 - f1 * (t1 - t0) / (f1 - f0)
+        f1 = mean_effort(t1)
+        if abs(f1) <= 1e-13 * max(abs(t1), 1e-300):
+            break
+    return t1
+
+
+def cycle_mean(u: np.ndarray, e: np.ndarray) -> float:
+    """The mean of ``e`` over the input's values ``u`` (radians): the integral of the
+    cubic spline through them over the span."""
+    return float(_spline(u, e).integrate(u[0], u[-1]) / (u[-1] - u[0]))
+
+
+def _spline(u, e):
+    return CubicSpline(u, e) if u.size > 3 else CubicSpline(u, e, bc_type="natural")
+
+
+def _forces_at(chain, state: PoseMotion, *, static, metres, how) -> PoseForces:
     """The forces at the solved pose ``state`` (its poses and rates as solved)."""
     plan = state.plan
     _check_masses(chain)
+    _check_loads(chain, plan)
     assert state.states is not None               # (pose_motion keeps them)
+    cyc = _cycle_loads(chain, plan, metres, static, how)
     kin = _kinematic_state(chain, plan, state.states, state.omega, metres,
-                           rates_known=False)
-    sol = solve_equilibrium(chain, plan, kin, static=static, metres=metres)
+                           rates_known=False, angle=_lead_angle(plan, [state.input]),
+                           strokes=cyc.strokes)
+    sol = solve_equilibrium(chain, plan, kin, static=static, metres=metres,
+                            mean_torque=cyc.mean_torque)
     values = tuple(state.inputs.values()) if state.inputs else (state.input,)
     return _pose_forces(chain, plan, sol, 0, values, static)
 
 
-def _forces_over(chain, motion: Motion, *, static, metres, speed_fluctuation) -> SweepForces:
+def _forces_over(chain, motion: Motion, *, static, metres, speed_fluctuation,
+                 how) -> SweepForces:
     """The forces over the solved sweep ``motion`` (its poses and rates as solved)."""
     plan = motion.plan
     _check_masses(chain)
+    _check_loads(chain, plan)
     assert motion.states is not None              # (solve keeps them)
     kin = _kinematic_state(chain, plan, motion.states, motion.omega, metres,
-                           rates_known=True)
-    sol = solve_equilibrium(chain, plan, kin, static=static, metres=metres)
+                           rates_known=True, angle=_lead_angle(plan, motion.theta))
+    cyc = _cycle_loads(chain, plan, metres, static, how, sweep=(motion, kin))
+    kin = replace(kin, strokes=cyc.strokes)
+    sol = solve_equilibrium(chain, plan, kin, static=static, metres=metres,
+                            mean_torque=cyc.mean_torque)
     reactions = tuple(
         ReactionSeries(j.id, link, tuple(x for x in j.links if x != link),
                        sol.forces[(j.id, link)][0], sol.forces[(j.id, link)][1],
@@ -505,11 +677,12 @@ def _forces_over(chain, motion: Motion, *, static, metres, speed_fluctuation) ->
         for j in chain.joints for link in _on_links(j))
     efforts = tuple(EffortSeries(i.joint, sol.efforts[i.joint], "N m" if i.kind == "R" else "N")
                     for i in plan.inputs)
+    summary, notes = _summary(chain, plan, motion, sol, speed_fluctuation)
     return SweepForces(name=chain.name, fixed=plan.fixed,
                        inputs=tuple(i.joint for i in plan.inputs), static=static,
                        steps=motion.steps, reactions=reactions, efforts=efforts,
-                       summary=_summary(chain, plan, motion, sol, speed_fluctuation),
-                       notes=_notes(sol), motion=motion, solution=sol, chain=chain)
+                       summary=summary, notes=_notes(sol) + notes, motion=motion,
+                       solution=sol, chain=chain)
 
 
 def _on_links(joint):
@@ -564,12 +737,12 @@ def _reactions(chain, sol, k, size):
     return tuple(out)
 
 
-def _stats(v, unbounded):
-    """Over the steps where ``v`` is determined; None throughout when it is unbounded
-    somewhere (a dead centre) or nowhere determined."""
+def _stats(v, regular):
+    """Over the regular steps where ``v`` is determined; None throughout when it is
+    determined at none."""
     v = np.asarray(v, dtype=float)
-    v = v[np.isfinite(v)]
-    if v.size == 0 or unbounded.any():
+    v = v[regular & np.isfinite(v)]
+    if v.size == 0:
         return EffortStats(None, None, None, None)
     scale = float(np.abs(v).max())
     return EffortStats(float(v.min()), float(v.max()), tidy(float(v.mean()), scale),
@@ -587,38 +760,76 @@ def _filled(v):
 
 
 def _summary(chain, plan, motion, sol, speed_fluctuation):
-    unbounded = sol.singular
-    efforts = {i.joint: _stats(sol.efforts[i.joint], unbounded) for i in plan.inputs}
+    """The :class:`ForcesSummary` over the regular poses, and notes on what it leaves
+    out."""
+    regular = ~sol.singular
+    theta = np.asarray(motion.theta, dtype=float)
+    efforts = {i.joint: _stats(sol.efforts[i.joint], regular) for i in plan.inputs}
     reactions = {}
     for j in chain.joints:
         mags = [np.hypot(*sol.forces[(j.id, link)]) for link in _on_links(j)]
         worst = np.max(np.vstack(mags), axis=0)
-        finite = worst[np.isfinite(worst)]
-        reactions[j.id] = (float(finite.max()) if finite.size and not unbounded.any()
-                           else None)
-    energy = flywheel = None
-    s = motion.summary
+        finite = worst[regular & np.isfinite(worst)]
+        reactions[j.id] = float(finite.max()) if finite.size else None
+    dead = tuple(float(v) for v in theta[sol.singular])
+    notes: list[str] = []
+    lead = plan.inputs[plan.lead]
+    span = load_cycle(chain) or 360.0
+    energy = mean = flywheel = None
+    cycle = _one_cycle(plan, motion, span)
+    if isinstance(cycle, str):
+        if speed_fluctuation is not None or (len(plan.inputs) == 1 and lead.kind == "R"
+                                             and motion.summary is not None
+                                             and motion.summary.full_turn):
+            notes.append(cycle)
+    else:
+        e = _filled(sol.efforts[lead.joint][cycle])
+        if np.isfinite(e).all() and not sol.singular[cycle].any():
+            u = np.radians(theta[cycle])
+            spline = _spline(u, e)
+            mean = float(spline.integrate(u[0], u[-1]) / (u[-1] - u[0]))
+            rms = math.sqrt(float(np.sum(0.5 * (e[1:] ** 2 + e[:-1] ** 2) * np.diff(u))
+                                  / (u[-1] - u[0])))
+            old = efforts[lead.joint]
+            scale = float(np.abs(e).max())
+            mean = tidy(mean, scale)
+            efforts[lead.joint] = EffortStats(old.min, old.max, mean, rms)
+            energy = _energy_swing(spline, u, mean)
+            if speed_fluctuation is not None:
+                flywheel = Flywheel(speed_fluctuation,
+                                    energy / (motion.omega ** 2 * speed_fluctuation),
+                                    abs(motion.omega))
+        else:
+            notes.append("the energy fluctuation and flywheel are not determined: the "
+                         "effort is unbounded or not determined over part of the cycle")
+    return (ForcesSummary(efforts, reactions, energy, flywheel, mean, dead), tuple(notes))
+
+
+def _one_cycle(plan, motion, span):
+    """The steps of the sweep's first whole cycle of ``span`` degrees (a slice), or why
+    there is none (a note)."""
     lead = plan.inputs[plan.lead]
     theta = np.asarray(motion.theta, dtype=float)
-    if (len(plan.inputs) == 1 and lead.kind == "R" and s is not None and s.full_turn
-            and abs(abs(theta[-1] - theta[0]) - 360.0) < 1e-9):
-        e = _filled(sol.efforts[lead.joint])
-        if np.isfinite(e).all() and not unbounded.any():
-            u = np.radians(theta)
-            # over the turn, mean and RMS are integrals (the sweep's ends are one pose)
-            span = u[-1] - u[0]
-            mean_e = float(np.sum(0.5 * (e[1:] + e[:-1]) * np.diff(u)) / span)
-            rms_e = math.sqrt(float(np.sum(0.5 * (e[1:] ** 2 + e[:-1] ** 2) * np.diff(u))
-                                    / span))
-            old = efforts[lead.joint]
-            efforts[lead.joint] = EffortStats(old.min, old.max,
-                                              tidy(mean_e, float(np.abs(e).max())), rms_e)
-            # the work of the effort about its mean over the turn (trapezoid rule)
-            work = np.concatenate([[0.0], np.cumsum(0.5 * (e[1:] + e[:-1]) * np.diff(u))])
-            mean = work[-1] / (u[-1] - u[0])
-            swing = work - mean * (u - u[0])
-            energy = float(swing.max() - swing.min())
-            if speed_fluctuation is not None:
-                flywheel = energy / (motion.omega ** 2 * speed_fluctuation)
-    return ForcesSummary(efforts, reactions, energy, speed_fluctuation if flywheel is not None
-                         else None, flywheel, abs(motion.omega) if flywheel is not None else None)
+    s = motion.summary
+    if len(plan.inputs) != 1 or lead.kind != "R" or s is None or not s.full_turn:
+        return ("no energy fluctuation or flywheel: they are for a single crank turning "
+                "fully")
+    swept = abs(theta[-1] - theta[0])
+    turns = swept / span
+    per = (theta.size - 1) / turns if turns else 0.0
+    if turns < 1 - 1e-9 or abs(per - round(per)) > 1e-6:
+        return (f"no energy fluctuation or flywheel: they are over a whole cycle of the "
+                f"input ({span:g} degrees), and the sweep covers {swept:g} degrees"
+                + ("" if turns < 1 else " in steps that do not end a cycle"))
+    return slice(0, int(round(per)) + 1)
+
+
+def _energy_swing(spline, u, mean):
+    """The largest swing of the work of the effort about its mean over the cycle: the
+    work W(u) = int e du - mean (u - u0) at its extremes (where the effort crosses the
+    mean, the spline's roots) and at the cycle's ends."""
+    work = spline.antiderivative()
+    roots = np.asarray(spline.solve(mean, extrapolate=False), dtype=float)
+    at = np.concatenate([[u[0], u[-1]], roots[np.isfinite(roots)]])
+    swing = work(at) - work(u[0]) - mean * (at - u[0])
+    return float(swing.max() - swing.min())

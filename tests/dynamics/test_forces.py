@@ -367,7 +367,7 @@ def test_single_cylinder_engine_turning_moment_and_flywheel_by_the_textbook_meth
     swing = work - mean * u
     de = swing.max() - swing.min()
     assert f.summary.energy_fluctuation == pytest.approx(de, rel=1e-4)
-    assert f.summary.flywheel == pytest.approx(de / (w * w * 0.03), rel=1e-4)
+    assert f.summary.flywheel.inertia == pytest.approx(de / (w * w * 0.03), rel=1e-4)
     assert f.summary.efforts["O"].mean == pytest.approx(mean, abs=1e-6 * abs(torque).max())
 
 
