@@ -19,10 +19,10 @@ from dataclasses import dataclass, field, replace
 from typing import Any, overload
 
 import numpy as np
-from scipy.interpolate import CubicSpline  # type: ignore[import-untyped]
 
 from chaingraph._util.numbers import tidy
 from chaingraph._util.text import csv_text, short_list
+from chaingraph.dynamics.cycle import CycleEfforts, kinematic_state
 from chaingraph.dynamics.equilibrium import (
     UNIT_METRES,
     KinematicState,
@@ -31,16 +31,15 @@ from chaingraph.dynamics.equilibrium import (
 )
 from chaingraph.errors import MechanismError
 from chaingraph.kinematics import solve
-from chaingraph.kinematics.columns import LinkStates, slide_of_states
 from chaingraph.kinematics.inputs import InputsGiven
 from chaingraph.kinematics.motion import Motion
 from chaingraph.kinematics.plan import Plan
-from chaingraph.kinematics.pose import LinkState, PoseMotion, pose_motion
+from chaingraph.kinematics.pose import PoseMotion, pose_motion
 from chaingraph.model.chain import Chain
 
 __all__ = ["Reaction", "Effort", "AppliedForce", "AppliedCouple", "PoseForces",
            "EffortStats", "Flywheel", "ForcesSummary", "ReactionSeries", "EffortSeries",
-           "SweepForces", "forces", "load_cycle", "cycle_mean"]
+           "SweepForces", "forces", "load_cycle"]
 
 
 @dataclass(frozen=True)
@@ -369,33 +368,6 @@ def _metres(chain):
     return UNIT_METRES[chain.units]
 
 
-def _kinematic_state(chain: Chain, plan: Plan, states: LinkStates, omega, metres, *,
-                     rates_known, angle=None, strokes=None) -> KinematicState:
-    """The :class:`KinematicState` of the solver's ``states`` at input speed ``omega``,
-    in SI units: what the force solve needs, taken from the motion as it was solved."""
-    n = states.tau.size
-    w = 1.0 if float(omega) == states.speed else float(omega) / states.speed
-    pose = states.pose
-    vel = {k: tuple(np.asarray(c) * w for c in v) for k, v in states.velocity.items()}
-    acc = {k: tuple(np.asarray(c) * w * w for c in v) for k, v in states.acceleration.items()}
-
-    def arr(v, scale=1.0):
-        return np.broadcast_to(np.asarray(v, dtype=float) * scale, (n,)).copy()
-    links = {}
-    for link in chain.links:
-        p, v, a = pose[link], vel[link], acc[link]
-        links[link] = LinkState(link, (arr(p[0], metres), arr(p[1], metres)), arr(p[2]),
-                                (arr(v[0], metres), arr(v[1], metres)), arr(v[2]),
-                                (arr(a[0], metres), arr(a[1], metres)), arr(a[2]))
-    input_rates = {item.joint: arr(vel[item.key][2], 1.0 if item.kind == "R" else metres)
-                   for item in plan.inputs}
-    slides = {load.along: arr(slide_of_states(plan, states, load.along).s)
-              for load in chain.loads if load.along is not None}
-    return KinematicState(n, links, input_rates, rates_known=rates_known, slides=slides,
-                          angle=None if angle is None else arr(angle),
-                          strokes=dict(strokes or {}))
-
-
 def _notes(solution, k=None):
     """What is not determined (at step k, or at which steps of the sweep)."""
     def hit(mask):
@@ -542,22 +514,15 @@ def _check_loads(chain, plan):
                              "effort (torque = \"mean\")", mechanism=chain.source or chain.name)
 
 
-@dataclass(frozen=True)
-class _CycleLoads:
-    """What the loads need of the whole cycle: the direction of each stroke-limited
-    resisting force's stroke (by load index) and the steady mean torque (N m)."""
-
-    strokes: dict
-    mean_torque: float = 0.0
-
-
-def _cycle_loads(chain, plan, metres, static, how, sweep=None) -> _CycleLoads:
-    """The loads' cycle quantities, from ``sweep`` ((motion, state) of the sweep solved)
-    when it is the whole cycle, else from a sweep of the cycle solved here."""
-    limited = [i for i, x in enumerate(chain.loads) if x.resist is not None and x.stroke]
+def _cycle_loads(chain, plan, metres, static, how, sweep=None) -> CycleEfforts:
+    """The loads' cycle quantities (the strokes' directions, the steady mean torque),
+    from ``sweep`` ((motion, state) of the sweep solved) when it is the whole cycle,
+    else from a sweep of the cycle solved here."""
+    resist = [i for i, x in enumerate(chain.loads) if x.resist is not None]
     mean = any(x.mean_torque for x in chain.loads)
-    if not limited and not mean:
-        return _CycleLoads({})
+    omega = 1.0 if sweep is None else sweep[0].omega
+    if not resist and not mean:
+        return CycleEfforts(chain, plan, metres, static, omega)
     span = load_cycle(chain) or 360.0
     if sweep is None or not _whole_cycle(sweep[0], span):
         motion = solve(chain, start=0.0, stop=span, steps=int(round(span)), **how)
@@ -566,13 +531,18 @@ def _cycle_loads(chain, plan, metres, static, how, sweep=None) -> _CycleLoads:
         sweep = (motion, None)
     motion, kin = sweep
     if kin is None:
-        kin = _kinematic_state(chain, plan, motion.states, motion.omega, metres,
-                               rates_known=True, angle=_lead_angle(plan, motion.theta))
-    strokes = {i: _stroke_direction(chain, plan, kin, metres, i) for i in limited}
-    kin = replace(kin, strokes=strokes)
+        kin = kinematic_state(chain, plan, motion.states, motion.omega, metres,
+                              rates_known=True, angle=_lead_angle(plan, motion.theta))
+    directions = {i: _stroke_direction(chain, plan, kin, metres, i) for i in resist}
+    strokes = {i: d for i, d in directions.items() if chain.loads[i].stroke}
+    efforts = CycleEfforts(chain, plan, metres, static, motion.omega, strokes, directions)
     if not mean:
-        return _CycleLoads(strokes)
-    return _CycleLoads(strokes, _mean_torque(chain, plan, motion, kin, metres, static))
+        return efforts
+    if not _whole_cycle(motion, span):
+        raise MechanismError("a steady torque equal to the mean effort (torque = \"mean\") "
+                             "needs a crank that turns through its whole cycle",
+                             mechanism=chain.source or chain.name)
+    return efforts.with_torque(_mean_torque(efforts, np.asarray(motion.theta, dtype=float)))
 
 
 def _whole_cycle(motion, span):
@@ -604,40 +574,22 @@ def _stroke_direction(chain, plan, kin, metres, i):
     return (float(sense * d[0]), float(sense * d[1]))
 
 
-def _mean_torque(chain, plan, motion, kin, metres, static):
+def _mean_torque(efforts: CycleEfforts, grid: np.ndarray) -> float:
     """The steady torque of the ``torque = "mean"`` load that makes the lead input's
     mean effort over the cycle zero (the secant method: exact in one step without
     friction, where the effort is linear in the torque)."""
-    lead = plan.inputs[plan.lead].joint
-    u = np.radians(np.asarray(motion.theta, dtype=float))
-
-    def mean_effort(tau):
-        sol = solve_equilibrium(chain, plan, kin, static=static, metres=metres, mean_torque=tau)
-        e = _filled(sol.efforts[lead])
-        return cycle_mean(u, e) if np.isfinite(e).all() else math.nan
-    t0, f0 = 0.0, mean_effort(0.0)
+    breaks = efforts.breaks(grid)
+    t0, f0 = 0.0, efforts.mean(breaks)
     if not math.isfinite(f0):
         return math.nan
     t1 = f0 if f0 else 1.0
-    f1 = mean_effort(t1)
+    f1 = efforts.with_torque(t1).mean(breaks)
     for _ in range(30):
-        if not math.isfinite(f1) or f1 == f0:
+        if not math.isfinite(f1) or f1 == f0 or abs(f1) <= 1e-14 * max(abs(t1), 1e-300):
             break
         t0, f0, t1 = t1, f1, t1 - f1 * (t1 - t0) / (f1 - f0)
-        f1 = mean_effort(t1)
-        if abs(f1) <= 1e-13 * max(abs(t1), 1e-300):
-            break
+        f1 = efforts.with_torque(t1).mean(breaks)
     return t1
-
-
-def cycle_mean(u: np.ndarray, e: np.ndarray) -> float:
-    """The mean of ``e`` over the input's values ``u`` (radians): the integral of the
-    cubic spline through them over the span."""
-    return float(_spline(u, e).integrate(u[0], u[-1]) / (u[-1] - u[0]))
-
-
-def _spline(u, e):
-    return CubicSpline(u, e) if u.size > 3 else CubicSpline(u, e, bc_type="natural")
 
 
 def _forces_at(chain, state: PoseMotion, *, static, metres, how) -> PoseForces:
@@ -647,7 +599,7 @@ def _forces_at(chain, state: PoseMotion, *, static, metres, how) -> PoseForces:
     _check_loads(chain, plan)
     assert state.states is not None               # (pose_motion keeps them)
     cyc = _cycle_loads(chain, plan, metres, static, how)
-    kin = _kinematic_state(chain, plan, state.states, state.omega, metres,
+    kin = kinematic_state(chain, plan, state.states, state.omega, metres,
                            rates_known=False, angle=_lead_angle(plan, [state.input]),
                            strokes=cyc.strokes)
     sol = solve_equilibrium(chain, plan, kin, static=static, metres=metres,
@@ -663,7 +615,7 @@ def _forces_over(chain, motion: Motion, *, static, metres, speed_fluctuation,
     _check_masses(chain)
     _check_loads(chain, plan)
     assert motion.states is not None              # (solve keeps them)
-    kin = _kinematic_state(chain, plan, motion.states, motion.omega, metres,
+    kin = kinematic_state(chain, plan, motion.states, motion.omega, metres,
                            rates_known=True, angle=_lead_angle(plan, motion.theta))
     cyc = _cycle_loads(chain, plan, metres, static, how, sweep=(motion, kin))
     kin = replace(kin, strokes=cyc.strokes)
@@ -677,7 +629,11 @@ def _forces_over(chain, motion: Motion, *, static, metres, speed_fluctuation,
         for j in chain.joints for link in _on_links(j))
     efforts = tuple(EffortSeries(i.joint, sol.efforts[i.joint], "N m" if i.kind == "R" else "N")
                     for i in plan.inputs)
-    summary, notes = _summary(chain, plan, motion, sol, speed_fluctuation)
+    summary, notes = _summary(chain, plan, motion, sol, speed_fluctuation, cyc)
+    steady = next((x for x in chain.loads if x.mean_torque), None)
+    if steady is not None:
+        notes = (f"the steady load torque on {steady.on} (torque = \"mean\"), equal to the "
+                 f"mean effort over the cycle: {tidy(cyc.mean_torque, 1.0):.6g} N m",) + notes
     return SweepForces(name=chain.name, fixed=plan.fixed,
                        inputs=tuple(i.joint for i in plan.inputs), static=static,
                        steps=motion.steps, reactions=reactions, efforts=efforts,
@@ -749,19 +705,10 @@ def _stats(v, regular):
                        float(np.sqrt(np.mean(v * v))))
 
 
-def _filled(v):
-    """``v`` with its undetermined steps (a slide at rest, a few steps) filled in
-    linearly from their neighbours, for the work over a turn."""
-    good = np.isfinite(v)
-    if good.all() or good.sum() < 2:
-        return v
-    k = np.arange(v.size)
-    return np.interp(k, k[good], v[good])
-
-
-def _summary(chain, plan, motion, sol, speed_fluctuation):
+def _summary(chain, plan, motion, sol, speed_fluctuation, efforts_at: CycleEfforts):
     """The :class:`ForcesSummary` over the regular poses, and notes on what it leaves
-    out."""
+    out; ``efforts_at`` the lead input's effort anywhere in its cycle, for the integrals
+    over the cycle."""
     regular = ~sol.singular
     theta = np.asarray(motion.theta, dtype=float)
     efforts = {i.joint: _stats(sol.efforts[i.joint], regular) for i in plan.inputs}
@@ -783,18 +730,20 @@ def _summary(chain, plan, motion, sol, speed_fluctuation):
                                              and motion.summary.full_turn):
             notes.append(cycle)
     else:
-        e = _filled(sol.efforts[lead.joint][cycle])
+        e = sol.efforts[lead.joint][cycle]
         if np.isfinite(e).all() and not sol.singular[cycle].any():
+            grid = theta[cycle]
+            if grid[-1] < grid[0]:
+                grid = grid[::-1]
+            breaks = efforts_at.breaks(grid)
+            mean = efforts_at.mean(breaks)
             u = np.radians(theta[cycle])
-            spline = _spline(u, e)
-            mean = float(spline.integrate(u[0], u[-1]) / (u[-1] - u[0]))
-            rms = math.sqrt(float(np.sum(0.5 * (e[1:] ** 2 + e[:-1] ** 2) * np.diff(u))
-                                  / (u[-1] - u[0])))
+            rms = math.sqrt(float(np.sum(0.5 * (e[1:] ** 2 + e[:-1] ** 2) * np.abs(np.diff(u)))
+                                  / abs(u[-1] - u[0])))
             old = efforts[lead.joint]
-            scale = float(np.abs(e).max())
-            mean = tidy(mean, scale)
+            mean = tidy(mean, float(np.abs(e).max()))
             efforts[lead.joint] = EffortStats(old.min, old.max, mean, rms)
-            energy = _energy_swing(spline, u, mean)
+            energy = efforts_at.energy_fluctuation(breaks, mean)
             if speed_fluctuation is not None:
                 flywheel = Flywheel(speed_fluctuation,
                                     energy / (motion.omega ** 2 * speed_fluctuation),
