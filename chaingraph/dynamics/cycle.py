@@ -171,18 +171,19 @@ class CycleEfforts:
         return out[(out >= lo) & (out <= hi)]
 
     # -- the integrals --------------------------------------------------------------------
-    def integrals(self, a: np.ndarray, b: np.ndarray) -> np.ndarray:
-        """The integral of the effort over the input's angle (radians) on each smooth
-        piece [a, b] (degrees), by Gauss-Legendre quadrature."""
+    def integrals(self, a: np.ndarray, b: np.ndarray, *, power: int = 1) -> np.ndarray:
+        """The integral of the effort (to ``power``) over the input's angle (radians)
+        on each smooth piece [a, b] (degrees), by Gauss-Legendre quadrature."""
         a, b = np.asarray(a, dtype=float), np.asarray(b, dtype=float)
         mid, half = 0.5 * (a + b), 0.5 * (b - a)
         t = mid[:, None] + half[:, None] * _NODES[None, :]
         e = self.effort(t.ravel()).reshape(t.shape)
-        return (e @ _WEIGHTS) * np.radians(half)
+        return ((e ** power) @ _WEIGHTS) * np.radians(half)
 
-    def mean(self, breaks: np.ndarray) -> float:
-        """The mean effort over the span of ``breaks`` (degrees, every kink among them)."""
-        total = float(np.sum(self.integrals(breaks[:-1], breaks[1:])))
+    def mean(self, breaks: np.ndarray, *, power: int = 1) -> float:
+        """The mean effort (to ``power``) over the span of ``breaks`` (degrees, every
+        kink among them)."""
+        total = float(np.sum(self.integrals(breaks[:-1], breaks[1:], power=power)))
         return total / math.radians(breaks[-1] - breaks[0])
 
     def energy_fluctuation(self, breaks: np.ndarray, mean: float) -> float:
@@ -191,7 +192,7 @@ class CycleEfforts:
         crosses the mean (found as roots, between the breaks) and at the ends."""
         work = np.concatenate([[0.0], np.cumsum(self.integrals(breaks[:-1], breaks[1:]))])
         swing = work - mean * np.radians(breaks - breaks[0])
-        e = self.effort(breaks) - mean
+        e = _filled(self.effort(breaks) - mean)
         roots = _roots(lambda t: self.effort(t) - mean, breaks, e)
         if roots.size:
             k = np.clip(np.searchsorted(breaks, roots, side="right") - 1, 0, breaks.size - 2)
@@ -202,6 +203,16 @@ class CycleEfforts:
             raise MechanismError("the effort is not determined over the whole cycle",
                                  mechanism=self.chain.source or self.chain.name)
         return float(swing.max() - swing.min())
+
+
+def _filled(v):
+    """``v`` with its undetermined entries (a slide with friction at rest) filled in
+    linearly from their neighbours."""
+    good = np.isfinite(v)
+    if good.all() or good.sum() < 2:
+        return v
+    k = np.arange(v.size)
+    return np.interp(k, k[good], v[good])
 
 
 def _roots(f, grid, values, iterations: int = 60) -> np.ndarray:

@@ -731,15 +731,14 @@ def _summary(chain, plan, motion, sol, speed_fluctuation, efforts_at: CycleEffor
             notes.append(cycle)
     else:
         e = sol.efforts[lead.joint][cycle]
-        if np.isfinite(e).all() and not sol.singular[cycle].any():
+        if not sol.singular[cycle].any() and not sol.jammed[cycle].any():
+            e = e[np.isfinite(e)]
             grid = theta[cycle]
             if grid[-1] < grid[0]:
                 grid = grid[::-1]
             breaks = efforts_at.breaks(grid)
             mean = efforts_at.mean(breaks)
-            u = np.radians(theta[cycle])
-            rms = math.sqrt(float(np.sum(0.5 * (e[1:] ** 2 + e[:-1] ** 2) * np.abs(np.diff(u)))
-                                  / abs(u[-1] - u[0])))
+            rms = math.sqrt(efforts_at.mean(breaks, power=2))
             old = efforts[lead.joint]
             mean = tidy(mean, float(np.abs(e).max()))
             efforts[lead.joint] = EffortStats(old.min, old.max, mean, rms)
