@@ -31,7 +31,7 @@ from chaingraph.dynamics.equilibrium import (
 )
 from chaingraph.errors import MechanismError
 from chaingraph.kinematics import solve
-from chaingraph.kinematics.inputs import InputsGiven
+from chaingraph.kinematics.inputs import InputsGiven, sweep_drive
 from chaingraph.kinematics.motion import Motion
 from chaingraph.kinematics.plan import Plan
 from chaingraph.kinematics.pose import PoseMotion, pose_motion
@@ -481,6 +481,7 @@ def forces(mechanism: Chain, *, at: float | Sequence[float] | None = None,
         state = pose_motion(mechanism, at=at, **how)
         return _forces_at(mechanism, state, static=static, metres=metres, how=how)
     cycle = load_cycle(mechanism)
+    _check_loads(mechanism, sweep_drive(mechanism, steps=steps, **how).plan)
     if cycle is not None and start is None and stop is None:
         start, stop = 0.0, cycle          # a load's cycle: swept from 0, as the textbook
     motion = solve(mechanism, start=start, stop=stop, steps=steps, summary=True, **how)
