@@ -84,14 +84,20 @@ class CycleEfforts:
     strokes: dict = field(default_factory=dict)
     directions: dict = field(default_factory=dict)
     mean_torque: float = 0.0
+    #: the states already solved, by their angles (shared with :meth:`with_torque`'s)
+    solved: dict = field(default_factory=dict, repr=False, compare=False)
 
     def state(self, theta) -> KinematicState:
         """The kinematic state at the lead input's values ``theta`` (degrees)."""
         theta = np.asarray(theta, dtype=float)
-        kin = kinematic_state(self.chain, self.plan, states_at(self.plan, theta),
-                              self.omega, self.metres, rates_known=False,
-                              angle=np.radians(theta), strokes=self.strokes)
-        return kin
+        key = theta.tobytes()
+        if key not in self.solved:
+            if len(self.solved) > 8:
+                self.solved.clear()
+            self.solved[key] = kinematic_state(
+                self.chain, self.plan, states_at(self.plan, theta), self.omega, self.metres,
+                rates_known=False, angle=np.radians(theta), strokes=self.strokes)
+        return self.solved[key]
 
     def effort(self, theta, kin: KinematicState | None = None) -> np.ndarray:
         """The lead input's effort at ``theta`` (degrees)."""

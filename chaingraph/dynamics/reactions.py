@@ -525,7 +525,26 @@ def _cycle_loads(chain, plan, metres, static, how, sweep=None) -> CycleEfforts:
     if not resist and not mean:
         return CycleEfforts(chain, plan, metres, static, omega)
     span = load_cycle(chain) or 360.0
-    if sweep is None or not _whole_cycle(sweep[0], span):
+    key = (chain, chain.source, metres, static, repr(sorted(how.items())))
+    whole = sweep is not None and _whole_cycle(sweep[0], span)
+    if not whole and key in _CYCLES:
+        return _CYCLES[key]
+    efforts = _cycle_efforts(chain, plan, metres, static, how, sweep if whole else None,
+                             span, resist, mean)
+    if len(_CYCLES) > 32:
+        _CYCLES.clear()
+    _CYCLES[key] = efforts
+    return efforts
+
+
+#: the loads' cycle quantities of the mechanisms solved lately (exact, so whatever grid
+#: they were found on), by chain, units, statics and inputs
+_CYCLES: dict = {}
+
+
+def _cycle_efforts(chain, plan, metres, static, how, sweep, span, resist, mean):
+    """:func:`_cycle_loads`'s work, from ``sweep`` (the whole cycle) or solved here."""
+    if sweep is None:
         motion = solve(chain, start=0.0, stop=span, steps=int(round(span)), **how)
         if not _whole_cycle(motion, span):          # a rocking input: its own range
             motion = solve(chain, steps=360, **how)

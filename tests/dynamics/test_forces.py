@@ -492,7 +492,9 @@ def test_the_free_bodies_and_the_turning_moment_diagram(tmp_path):
     labels = [t.text for t in root.findall(".//s:text[@class='label']", ns)]
     assert labels == ["crank", "block", "slotted lever", "link", "ram"]
     arrows = root.findall(".//s:line[@class='force']", ns)
-    assert len(arrows) == len(root.findall(".//s:polygon[@class='arrowhead']", ns)) >= 14
+    # (12: the cutting force against the ram's motion leaves the guide G's reaction and
+    # the ram's inertia force too small to draw at the first pose)
+    assert len(arrows) == len(root.findall(".//s:polygon[@class='arrowhead']", ns)) >= 12
     assert any(a.get("data-force") == "load" for a in arrows)
     assert "<svg" in (tmp_path / "tm.svg").read_text()
     status, out, err = run_cli("forces", path, "--draw", tmp_path / "fb.png")
@@ -607,7 +609,9 @@ def _count_pose_solves(monkeypatch):
 
 @pytest.mark.parametrize("at, inputs", [(60.0, None), (-20.0, ["S"])])
 def test_forces_at_one_value_solves_its_pose_once(monkeypatch, at, inputs):
-    chain = replace(chaingraph.load(catalog_path("reciprocating-engine")), name="once")
+    # (a steady load: the catalog's gas force and mean torque need the whole cycle)
+    chain = replace(chaingraph.load(catalog_path("reciprocating-engine")), name="once",
+                    loads=(Load("crosshead", "B", (-2000.0, 0.0)),))
     calls = _count_pose_solves(monkeypatch)
     f = chaingraph.forces(chain, at=at, inputs=inputs)
     # one evaluation continued from the drawn pose to the value asked for (the anchor,
