@@ -273,6 +273,8 @@ class SweepForces:
     solution: Solution = field(repr=False)       # the force solve's own, every step
     chain: Chain = field(repr=False)
     notes: tuple[str, ...] = ()
+    #: the steady torque of a ``torque = "mean"`` load (N m, on its link), else None
+    load_torque: float | None = None
 
     def __repr__(self):
         return (f"SweepForces({self.name!r}, inputs={list(self.inputs)!r}, "
@@ -282,7 +284,9 @@ class SweepForces:
     def columns(self) -> dict[str, np.ndarray]:
         """The CSV's columns, in its order."""
         out = {f"input:{joint}": v for joint, v in self.motion.values.items()}
-        out["theta"] = self.motion.theta
+        plan = self.motion.plan
+        if plan.inputs[plan.lead].kind == "R" or not out:
+            out["theta"] = self.motion.theta     # (a P input's slide: its input: column)
         for r in self.reactions:
             name = f"{r.joint}:{r.on}" if len(r.by) > 1 else r.joint
             out[f"Fx:{name}"], out[f"Fy:{name}"] = r.fx, r.fy
@@ -658,7 +662,8 @@ def _forces_over(chain, motion: Motion, *, static, metres, speed_fluctuation,
                        inputs=tuple(i.joint for i in plan.inputs), static=static,
                        steps=motion.steps, reactions=reactions, efforts=efforts,
                        summary=summary, notes=_notes(sol) + notes, motion=motion,
-                       solution=sol, chain=chain)
+                       solution=sol, chain=chain,
+                       load_torque=cyc.mean_torque if steady is not None else None)
 
 
 def _on_links(joint):
@@ -788,7 +793,8 @@ def _one_cycle(plan, motion, span):
     if turns < 1 - 1e-9 or abs(per - round(per)) > 1e-6:
         return (f"no energy fluctuation or flywheel: they are over a whole cycle of the "
                 f"input ({span:g} degrees), and the sweep covers {swept:g} degrees"
-                + ("" if turns < 1 else " in steps that do not end a cycle"))
+                + ("" if turns < 1 else ", whose steps do not end a cycle (sweep a whole "
+                                        "number of cycles)"))
     return slice(0, int(round(per)) + 1)
 
 

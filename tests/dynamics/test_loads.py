@@ -94,6 +94,7 @@ def test_the_four_stroke_engine_by_the_textbook_method():
     assert f.motion.theta[0] == 0.0 and f.motion.theta[-1] == cycle   # the load's cycle
     load = next(c for c in f.pose(0).couples if c.what == "load")
     assert load.link == "crank" and -load.value == pytest.approx(t_mean, rel=1e-9)
+    assert f.load_torque == load.value
     # the effort is the load torque minus the engine's turning moment, step by step
     u = np.radians(f.motion.theta)
     want = t_mean - crank_effort(u)
