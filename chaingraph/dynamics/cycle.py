@@ -84,7 +84,8 @@ class CycleEfforts:
     strokes: dict = field(default_factory=dict)
     directions: dict = field(default_factory=dict)
     mean_torque: float = 0.0
-    #: the states already solved, by their angles (shared with :meth:`with_torque`'s)
+    #: the states already solved, by their angles (shared with :meth:`with_torque`'s),
+    #: and what the caller keeps of its integrals
     solved: dict = field(default_factory=dict, repr=False, compare=False)
 
     def state(self, theta) -> KinematicState:
@@ -93,7 +94,8 @@ class CycleEfforts:
         key = theta.tobytes()
         if key not in self.solved:
             if len(self.solved) > 8:
-                self.solved.clear()
+                for k in [k for k in self.solved if isinstance(k, bytes)]:
+                    del self.solved[k]
             self.solved[key] = kinematic_state(
                 self.chain, self.plan, states_at(self.plan, theta), self.omega, self.metres,
                 rates_known=False, angle=np.radians(theta), strokes=self.strokes)

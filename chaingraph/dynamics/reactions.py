@@ -525,16 +525,17 @@ def _cycle_loads(chain, plan, metres, static, how, sweep=None) -> CycleEfforts:
     else from a sweep of the cycle solved here."""
     resist = [i for i, x in enumerate(chain.loads) if x.resist is not None]
     mean = any(x.mean_torque for x in chain.loads)
-    omega = 1.0 if sweep is None else sweep[0].omega
-    if not resist and not mean:
-        return CycleEfforts(chain, plan, metres, static, omega)
-    span = load_cycle(chain) or 360.0
     key = (chain, chain.source, metres, static, repr(sorted(how.items())))
-    whole = sweep is not None and _whole_cycle(sweep[0], span)
-    if not whole and key in _CYCLES:
+    if key in _CYCLES:
         return _CYCLES[key]
-    efforts = _cycle_efforts(chain, plan, metres, static, how, sweep if whole else None,
-                             span, resist, mean)
+    if not resist and not mean:
+        omega = solve_omega(chain, how) if sweep is None else sweep[0].omega
+        efforts = CycleEfforts(chain, plan, metres, static, omega)
+    else:
+        span = load_cycle(chain) or 360.0
+        whole = sweep is not None and _whole_cycle(sweep[0], span)
+        efforts = _cycle_efforts(chain, plan, metres, static, how, sweep if whole else None,
+                                 span, resist, mean)
     if len(_CYCLES) > 32:
         _CYCLES.clear()
     _CYCLES[key] = efforts
@@ -544,6 +545,11 @@ def _cycle_loads(chain, plan, metres, static, how, sweep=None) -> CycleEfforts:
 #: the loads' cycle quantities of the mechanisms solved lately (exact, so whatever grid
 #: they were found on), by chain, units, statics and inputs
 _CYCLES: dict = {}
+
+
+def solve_omega(chain: Chain, how: dict) -> float:
+    """The lead input's speed a solve of ``chain`` takes with ``how``'s inputs."""
+    return sweep_drive(chain, **how).omega
 
 
 def _cycle_efforts(chain, plan, metres, static, how, sweep, span, resist, mean):
@@ -602,7 +608,7 @@ def _mean_torque(efforts: CycleEfforts, grid: np.ndarray) -> float:
     """The steady torque of the ``torque = "mean"`` load that makes the lead input's
     mean effort over the cycle zero (the secant method: exact in one step without
     friction, where the effort is linear in the torque)."""
-    breaks = efforts.breaks(grid)
+    breaks = efforts.breaks(_partition(grid))
     t0, f0 = 0.0, efforts.mean(breaks)
     if not math.isfinite(f0):
         return math.nan
@@ -758,16 +764,11 @@ def _summary(chain, plan, motion, sol, speed_fluctuation, efforts_at: CycleEffor
         e = sol.efforts[lead.joint][cycle]
         if not sol.singular[cycle].any() and not sol.jammed[cycle].any():
             e = e[np.isfinite(e)]
-            grid = theta[cycle]
-            if grid[-1] < grid[0]:
-                grid = grid[::-1]
-            breaks = efforts_at.breaks(grid)
-            mean = efforts_at.mean(breaks)
-            rms = math.sqrt(efforts_at.mean(breaks, power=2))
+            mean, rms2, energy = _cycle_figures(efforts_at, theta[cycle])
+            rms = math.sqrt(rms2)
             old = efforts[lead.joint]
             mean = tidy(mean, float(np.abs(e).max()))
             efforts[lead.joint] = EffortStats(old.min, old.max, mean, rms)
-            energy = efforts_at.energy_fluctuation(breaks, mean)
             if speed_fluctuation is not None:
                 flywheel = Flywheel(speed_fluctuation,
                                     energy / (motion.omega ** 2 * speed_fluctuation),
@@ -776,6 +777,28 @@ def _summary(chain, plan, motion, sol, speed_fluctuation, efforts_at: CycleEffor
             notes.append("the energy fluctuation and flywheel are not determined: the "
                          "effort is unbounded or not determined over part of the cycle")
     return (ForcesSummary(efforts, reactions, energy, flywheel, mean, dead), tuple(notes))
+
+
+def _cycle_figures(efforts_at: CycleEfforts, theta: np.ndarray):
+    """The mean effort, its mean square and the energy fluctuation over the cycle
+    ``theta`` spans: exact, so kept with ``efforts_at`` for the next sweep of the same
+    cycle."""
+    key = ("figures", float(theta[0]), float(theta[-1]))
+    if key not in efforts_at.solved:
+        breaks = efforts_at.breaks(_partition(theta))
+        mean = efforts_at.mean(breaks)
+        efforts_at.solved[key] = (mean, efforts_at.mean(breaks, power=2),
+                                  efforts_at.energy_fluctuation(breaks, mean))
+    return efforts_at.solved[key]
+
+
+def _partition(theta: np.ndarray) -> np.ndarray:
+    """The cycle's span (from the sweep's first angle to its last, increasing) cut in
+    pieces of at most 5 degrees (Gauss-Legendre's 8 points on each: exact to rounding
+    for an effort of up to some tens of harmonics), the same whatever the sweep's
+    steps."""
+    lo, hi = sorted((float(theta[0]), float(theta[-1])))
+    return np.linspace(lo, hi, max(int(math.ceil((hi - lo) / 5.0)), 4) + 1)
 
 
 def _one_cycle(plan, motion, span):
