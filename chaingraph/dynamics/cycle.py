@@ -31,8 +31,10 @@ __all__ = ["kinematic_state", "states_at", "CycleEfforts"]
 _NODES, _WEIGHTS = np.polynomial.legendre.leggauss(8)
 
 
-def kinematic_state(chain: Chain, plan: Plan, states: LinkStates, omega, metres, *,
-                    rates_known, angle=None, strokes=None) -> KinematicState:
+def kinematic_state(chain: Chain, plan: Plan, states: LinkStates, omega: float,
+                    metres: float, *, rates_known: bool, angle: np.ndarray | None = None,
+                    strokes: dict[int, tuple[float, float]] | None = None
+                    ) -> KinematicState:
     """The :class:`KinematicState` of the solver's ``states`` at input speed ``omega``,
     in SI units: what the force solve needs, taken from the motion as it was solved;
     ``angle`` the lead R input's values (radians), ``strokes`` the stroke directions of
@@ -88,7 +90,7 @@ class CycleEfforts:
     #: and what the caller keeps of its integrals
     solved: dict = field(default_factory=dict, repr=False, compare=False)
 
-    def state(self, theta) -> KinematicState:
+    def state(self, theta: np.ndarray) -> KinematicState:
         """The kinematic state at the lead input's values ``theta`` (degrees)."""
         theta = np.asarray(theta, dtype=float)
         key = theta.tobytes()
@@ -101,7 +103,7 @@ class CycleEfforts:
                 rates_known=False, angle=np.radians(theta), strokes=self.strokes)
         return self.solved[key]
 
-    def effort(self, theta, kin: KinematicState | None = None) -> np.ndarray:
+    def effort(self, theta: np.ndarray, kin: KinematicState | None = None) -> np.ndarray:
         """The lead input's effort at ``theta`` (degrees)."""
         kin = self.state(theta) if kin is None else kin
         sol = solve_equilibrium(self.chain, self.plan, kin, static=self.static,

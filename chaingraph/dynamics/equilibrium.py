@@ -24,7 +24,7 @@ from chaingraph.errors import MechanismError
 from chaingraph.geometry import Vec, cross, rotate, unit_deg
 from chaingraph.kinematics.plan import InputJoint, Plan
 from chaingraph.kinematics.pose import LinkState
-from chaingraph.model.chain import Chain, Joint, mass_centre
+from chaingraph.model.chain import Chain, Joint, Load, mass_centre
 
 __all__ = ["UNIT_METRES", "KinematicState", "Solution", "solve_equilibrium", "load_table_value"]
 
@@ -390,18 +390,18 @@ def _load_force(chain, layout, state, joints, i):
     return None
 
 
-def load_table_value(load, state: KinematicState) -> np.ndarray:
+def load_table_value(load: Load, state: KinematicState) -> np.ndarray:
     """A table load's force (N, along its P joint's axis) at the state's steps: its
     table (or indicator diagram times area) interpolated linearly at the slide of
     ``along`` (held at its ends beyond them) or, periodic over its cycle, at the
     input's value."""
     xs, fs = (np.asarray(v, dtype=float) for v in load.values())
     if load.against == "slide":
+        assert load.along is not None               # (the chain checks a table's P joint)
         return np.interp(state.slides[load.along], xs, fs)
     if state.angle is None:
         raise MechanismError(f"the load on {load.on!r} is tabulated against the input's "
-                             "value: it needs an R input (a crank's angle)",
-                             mechanism=None)
+                             "value: it needs an R input (a crank's angle)")
     period = load.period
     xs = np.concatenate([[xs[-1] - period], xs, [xs[0] + period]])
     fs = np.concatenate([[fs[-1]], fs, [fs[0]]])

@@ -355,3 +355,43 @@ def test_loads_round_trip_through_the_chain_file():
     assert again.loads == chain.loads
     renamed = chain.relabelled(joints={"S": "guide"})
     assert next(x for x in renamed.loads if x.along).along == "guide"
+
+
+# -- the summary's shape and the small things --------------------------------------------
+def test_the_energy_fluctuation_does_not_depend_on_the_sweep_s_steps():
+    chain = chaingraph.load(catalog_path("shaper-crank-and-slotted-lever"))
+    coarse = chaingraph.forces(chain, omega=5.0, steps=40).summary
+    fine = chaingraph.forces(chain, omega=5.0, steps=1000).summary
+    assert coarse.energy_fluctuation == pytest.approx(fine.energy_fluctuation, rel=1e-12)
+    assert coarse.mean_effort == pytest.approx(fine.mean_effort, rel=1e-12)
+
+
+def test_a_flywheel_over_two_turns_is_that_of_one_and_a_part_turn_says_why_not(tmp_path):
+    import json
+    path = catalog_path("shaper-crank-and-slotted-lever")
+    one = json.loads(run_cli("forces", path, "--omega", "5", "--speed-fluctuation", "0.05",
+                             "--json")[1])
+    status, out, err = run_cli("forces", path, "--omega", "5", "--speed-fluctuation", "0.05",
+                               "--from", "60", "--to", "780", "--steps", "720", "--json")
+    two = json.loads(out)
+    assert status == 0
+    assert set(two["summary"]["flywheel"]) == {"speed_fluctuation", "inertia", "omega"}
+    assert two["summary"]["flywheel"]["inertia"] == pytest.approx(
+        one["summary"]["flywheel"]["inertia"], rel=1e-9)
+    status, out, err = run_cli("forces", path, "--omega", "5", "--speed-fluctuation", "0.05",
+                               "--from", "60", "--to", "500")
+    assert status == 0 and "flywheel" not in out.split("note:")[0]
+    assert "whole cycle" in out and "440 degrees" in out
+
+
+def test_a_p_input_s_csv_names_its_input_column_by_what_it_holds():
+    steady = engine(Load("piston", "B", (-1000.0, 0.0)))
+    f = chaingraph.forces(steady, inputs=["S"], steps=4, static=True)
+    # the slide (mm) in its input: column, no "theta" holding millimetres
+    assert list(f.columns)[:2] == ["input:S", "Fx:O"] and "theta" not in f.columns
+    assert "theta" in chaingraph.forces(steady, steps=4, static=True).columns
+
+
+def test_the_plot_option_says_what_it_plots():
+    status, out, err = run_cli("forces", "--help")
+    assert status == 0 and "(one input)" not in out and "each input's effort" in out
