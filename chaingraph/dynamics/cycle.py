@@ -55,8 +55,8 @@ def kinematic_state(chain: Chain, plan: Plan, states: LinkStates, omega: float,
                                 (arr(a[0], metres), arr(a[1], metres)), arr(a[2]))
     input_rates = {item.joint: arr(vel[item.key][2], 1.0 if item.kind == "R" else metres)
                    for item in plan.inputs}
-    slides = {j.id: arr(slide_of_states(plan, states, j.id).s)
-              for j in chain.joints if j.kind == "P"}
+    slides = {x.along: arr(slide_of_states(plan, states, x.along).s)
+              for x in chain.loads if x.along is not None}
     return KinematicState(n, links, input_rates, rates_known=rates_known, slides=slides,
                           angle=None if angle is None else arr(angle),
                           strokes=dict(strokes or {}))
