@@ -525,9 +525,12 @@ def _cycle_loads(chain, plan, metres, static, how, sweep=None) -> CycleEfforts:
     else from a sweep of the cycle solved here."""
     resist = [i for i, x in enumerate(chain.loads) if x.resist is not None]
     mean = any(x.mean_torque for x in chain.loads)
-    key = (chain, chain.source, metres, static, repr(sorted(how.items())))
-    if key in _CYCLES:
-        return _CYCLES[key]
+    key: tuple | None = (chain, chain.source, metres, static, repr(sorted(how.items())))
+    try:
+        if key in _CYCLES:
+            return _CYCLES[key]
+    except TypeError:                   # (a chain holding lists: not kept)
+        key = None
     if not resist and not mean:
         omega = solve_omega(chain, how) if sweep is None else sweep[0].omega
         efforts = CycleEfforts(chain, plan, metres, static, omega)
@@ -538,7 +541,8 @@ def _cycle_loads(chain, plan, metres, static, how, sweep=None) -> CycleEfforts:
                                  span, resist, mean)
     if len(_CYCLES) > 32:
         _CYCLES.clear()
-    _CYCLES[key] = efforts
+    if key is not None:
+        _CYCLES[key] = efforts
     return efforts
 
 

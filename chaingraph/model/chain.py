@@ -155,6 +155,16 @@ class Load:
     stroke: str | None = None
     resist: float | None = None
 
+    def __post_init__(self):
+        # tables given as lists (from Python) kept as tuples, so that a load is a value
+        for key in ("table", "pressure"):
+            rows = getattr(self, key)
+            if isinstance(rows, list | tuple):
+                object.__setattr__(self, key, tuple(
+                    tuple(r) if isinstance(r, list | tuple) else r for r in rows))
+        if isinstance(self.force, list):
+            object.__setattr__(self, "force", tuple(self.force))
+
     @property
     def mean_torque(self) -> bool:
         """The steady resisting torque equal to the mean effort (``torque = "mean"``)."""
