@@ -29,7 +29,7 @@ from chaingraph.dynamics.equilibrium import (
     Solution,
     solve_equilibrium,
 )
-from chaingraph.errors import MechanismError
+from chaingraph.errors import AssemblyError, MechanismError
 from chaingraph.kinematics import solve
 from chaingraph.kinematics.inputs import InputsGiven, sweep_drive
 from chaingraph.kinematics.motion import Motion
@@ -514,6 +514,11 @@ def _check_loads(chain, plan):
             raise MechanismError(f"the load on {load.on!r} is tabulated against the input's "
                                  f"value in degrees: it needs an R input (a crank), not the "
                                  f"P input {lead.joint!r}", mechanism=chain.source or chain.name)
+    if any(x.mean_torque and x.on == plan.fixed for x in chain.loads):
+        raise MechanismError(f"the steady torque equal to the mean effort (torque = \"mean\") "
+                             f"acts on the fixed link {plan.fixed!r}, which takes it without "
+                             "moving: put it on a moving link (the crank)",
+                             mechanism=chain.source or chain.name)
     if sum(x.mean_torque for x in chain.loads) > 1:
         raise MechanismError("only one load may be the steady torque equal to the mean "
                              "effort (torque = \"mean\")", mechanism=chain.source or chain.name)
@@ -559,8 +564,9 @@ def solve_omega(chain: Chain, how: dict) -> float:
 def _cycle_efforts(chain, plan, metres, static, how, sweep, span, resist, mean):
     """:func:`_cycle_loads`'s work, from ``sweep`` (the whole cycle) or solved here."""
     if sweep is None:
-        motion = solve(chain, start=0.0, stop=span, steps=int(round(span)), **how)
-        if not _whole_cycle(motion, span):          # a rocking input: its own range
+        try:
+            motion = solve(chain, start=0.0, stop=span, steps=int(round(span)), **how)
+        except AssemblyError:                       # a rocking input: its own range
             motion = solve(chain, steps=360, **how)
         sweep = (motion, None)
     motion, kin = sweep

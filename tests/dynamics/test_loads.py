@@ -395,3 +395,26 @@ def test_a_p_input_s_csv_names_its_input_column_by_what_it_holds():
 def test_the_plot_option_says_what_it_plots():
     status, out, err = run_cli("forces", "--help")
     assert status == 0 and "(one input)" not in out and "each input's effort" in out
+
+
+def test_a_mean_torque_where_it_cannot_be_is_one_line_exit_2(tmp_path):
+    base = FOUR_STROKE.read_text().split("# The machine's load")[0]
+    path = tmp_path / "frame.toml"
+    path.write_text(base + '[[loads]]\non = "frame"\ntorque = "mean"\n')
+    status, out, err = run_cli("forces", path, "--steps", "8")
+    assert status == 2 and len(err.strip().splitlines()) == 1 and "fixed link" in err, err
+    rocker = rocker_file(tmp_path)
+    rocker.write_text(rocker.read_text().replace("torque = 3.0", 'torque = "mean"'))
+    for args in (("--steps", "8"), ("--at", "100")):
+        status, out, err = run_cli("forces", rocker, *args)
+        assert status == 2 and len(err.strip().splitlines()) == 1 and "whole cycle" in err, err
+
+
+def test_a_cutting_stroke_on_a_rocking_input_is_its_forward_swing(tmp_path):
+    rocker = rocker_file(tmp_path)
+    rocker.write_text(rocker.read_text().replace(
+        "torque = 3.0", 'resist = 50.0\nat = "B"\nstroke = "forward"'))
+    f = chaingraph.forces(chaingraph.load(rocker), steps=40, static=True)
+    assert np.nanmax(np.abs(f.solution.power)) < 1e-9
+    one = chaingraph.forces(chaingraph.load(rocker), at=float(f.motion.theta[13]), static=True)
+    assert one.effort() == pytest.approx(f["effort:D"][13], rel=1e-9)
