@@ -192,11 +192,11 @@ class ForcesSummary:
     ``dead_centres``, the lead input's values there): ``efforts`` per input
     (:class:`EffortStats`), ``reactions`` the largest reaction per joint (N); for a
     crank turning through its whole cycle (a turn, or a load's ``cycle``) the
-    ``mean_effort`` (the lead input's, N m: its integral over the cycle over the cycle),
-    the ``energy_fluctuation`` (J: the largest swing of the work of its effort about the
-    mean, its extremes found where the effort crosses the mean, on the cubic spline
-    through the sweep's efforts) and, given a speed fluctuation, the ``flywheel``
-    (:class:`Flywheel`)."""
+    ``mean_effort`` (the lead input's, N m: its integral over the cycle divided by the
+    cycle), the ``energy_fluctuation`` (J: the largest swing of the work of its effort
+    about the mean, its extremes found where the effort crosses the mean) and, given a
+    speed fluctuation, the ``flywheel`` (:class:`Flywheel`); these integrals are exact,
+    not read off the sweep's grid (:mod:`chaingraph.dynamics.cycle`)."""
 
     efforts: dict
     reactions: dict
