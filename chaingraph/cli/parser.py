@@ -186,7 +186,8 @@ def _forces_command(sub) -> None:
     p.add_argument("--draw", type=path_argument, metavar="PATH.svg",
                    help="draw the free bodies at the pose (--at; else the sweep's first)")
     p.add_argument("--plot", type=path_argument, metavar="PATH.svg",
-                   help="plot the turning-moment diagram of the sweep (one input)")
+                   help="plot each input's effort over the sweep (a crank's: the "
+                        "turning-moment diagram)")
     p.add_argument("--polygon", type=path_argument, metavar="PATH.svg",
                    help="draw the force polygon of each dyad at the pose of --draw")
     p.add_argument("--polar", type=path_argument, metavar="PATH.svg",

@@ -240,6 +240,13 @@ def _panel(result, link, body, forces, place, size, scale, labels, *, colour):
         tail = (head[0] - f[0] * scale, head[1] - f[1] * scale)
         arrows.append((tail, head, what, key, f))
         labels.avoid_segment(tail, head, 0.6 * size)
+    if small:                                  # too short to draw to the scale (its
+        # place taken first: the labels placed after it keep clear of it)
+        text = "too small to draw: " + ", ".join(small)
+        anchor = (box[0] + 1.5 * size, box[1] + 1.5 * size + LABEL_DEPTH * labels.font)
+        labels.take(label_box(*anchor, text, labels.font))
+        shapes.append(Shape("text", "small-forces", (anchor,), tag, text=text,
+                            size=labels.font))
     for tail, head, what, key, f in arrows:
         # a head 1.6 pin radii wide, narrower on an arrow too short for it
         shapes += _arrow(tail, head, ARROWS[key], size, what, f,
@@ -255,12 +262,6 @@ def _panel(result, link, body, forces, place, size, scale, labels, *, colour):
             turn = "\u21ba" if c.value > 0 else "\u21bb"
             text = f"{c.what} {abs(c.value):.3g} N m {turn}"
             shapes.append(labels.near(text, centre, box, tag, cls="couple"))
-    if small:                                  # too short to draw to the scale
-        text = "too small to draw: " + ", ".join(small)
-        anchor = (box[0] + 1.5 * size, box[1] + 1.5 * size + LABEL_DEPTH * labels.font)
-        labels.take(label_box(*anchor, text, labels.font))
-        shapes.append(Shape("text", "small-forces", (anchor,), tag, text=text,
-                            size=labels.font))
     return shapes
 
 
@@ -628,8 +629,8 @@ def plot_turning_moment(result: SweepForces, path: str | os.PathLike[str] | None
     """The turning-moment diagram of a :class:`~chaingraph.dynamics.SweepForces` (one
     input), as the textbook draws it: over the cycle (0 to 360 degrees, or 720 for a
     sweep of two turns), the turning moment the machine delivers to its input shaft
-    (minus the effort) when its mean effort is negative (an engine), else the effort
-    that drives it; the mean line; each loop between the curve and the mean shaded and
+    (minus the effort, and minus the steady load torque that balances it, if any) when
+    that is positive on the mean (an engine), else the effort that drives it; the mean line; each loop between the curve and the mean shaded and
     marked with its energy (J), and the crank angles of the greatest and least energy
     with the fluctuation between them. Written to ``path`` (SVG, PNG...) or returned as
     a matplotlib figure."""
@@ -640,13 +641,17 @@ def plot_turning_moment(result: SweepForces, path: str | os.PathLike[str] | None
     x, order, cycle = cycle_of(result)
     x, e = closed_cycle(x, np.asarray(result[f"effort:{joint}"], dtype=float)[order], cycle)
     stats = result.summary.efforts[joint]
-    engine = stats.mean is not None and stats.mean < 0
-    t = -e if engine else e
+    # a steady load torque (torque = "mean") takes the engine's mean turning moment:
+    # the engine alone delivers minus (the effort and that torque), about its mean
+    steady = result.load_torque or 0.0
+    mean_alone = None if stats.mean is None else stats.mean + steady
+    engine = mean_alone is not None and mean_alone < 0
+    t = -(e + steady) if engine else e
     what = (f"turning moment delivered at {joint}" if engine
             else f"effort at {joint} (to drive it)")
     fig, ax = plt.subplots(figsize=(8.5, 4.2))
     ax.plot(x, t, color="#b2182b", linewidth=1.4, label=what)
-    mean = None if stats.mean is None else (-stats.mean if engine else stats.mean)
+    mean = None if mean_alone is None else (-mean_alone if engine else stats.mean)
     swing = result.summary.energy_fluctuation
     if mean is not None and np.isfinite(t).all():
         ax.axhline(mean, color="#444444", linewidth=0.9, linestyle="--",

@@ -3,7 +3,10 @@
 
 * :mod:`.reactions` :func:`forces` and its results, :class:`PoseForces` at one pose
   and :class:`SweepForces` over a sweep;
-* :mod:`.equilibrium` the equations of every link's equilibrium, solved at each pose.
+* :mod:`.equilibrium` the equations of every link's equilibrium, solved at each pose,
+  with the loads as the motion has them there;
+* :mod:`.cycle` the integrals over the input's cycle (the mean effort, the steady mean
+  torque, the energy fluctuation), exact rather than on the sweep's grid.
 """
 
 from chaingraph.dynamics.reactions import (
@@ -11,6 +14,7 @@ from chaingraph.dynamics.reactions import (
     AppliedForce,
     Effort,
     EffortStats,
+    Flywheel,
     ForcesSummary,
     PoseForces,
     Reaction,
@@ -19,4 +23,4 @@ from chaingraph.dynamics.reactions import (
 )
 
 __all__ = ["forces", "PoseForces", "SweepForces", "Reaction", "Effort", "EffortStats",
-           "ForcesSummary", "AppliedForce", "AppliedCouple"]
+           "Flywheel", "ForcesSummary", "AppliedForce", "AppliedCouple"]

@@ -16,7 +16,7 @@ from __future__ import annotations
 
 import itertools
 import math
-from dataclasses import dataclass, replace
+from dataclasses import dataclass, field, replace
 
 import numpy as np
 
@@ -24,9 +24,9 @@ from chaingraph.errors import MechanismError
 from chaingraph.geometry import Vec, cross, rotate, unit_deg
 from chaingraph.kinematics.plan import InputJoint, Plan
 from chaingraph.kinematics.pose import LinkState
-from chaingraph.model.chain import Chain, Joint, mass_centre
+from chaingraph.model.chain import Chain, Joint, Load, mass_centre
 
-__all__ = ["UNIT_METRES", "KinematicState", "Solution", "solve_equilibrium"]
+__all__ = ["UNIT_METRES", "KinematicState", "Solution", "solve_equilibrium", "load_table_value"]
 
 #: metres per length unit of a chain file
 UNIT_METRES = {"mm": 1e-3, "cm": 1e-2, "m": 1.0, "in": 0.0254}
@@ -49,6 +49,13 @@ class KinematicState:
     links: dict[str, LinkState]       # by link, its fields arrays over the steps
     rates: dict[str, np.ndarray]
     rates_known: bool = False
+    #: what the loads that follow the motion read: each P joint's slide from the drawn
+    #: pose (file units), the lead R input's value (radians), and per load (by its
+    #: index) limited to the input's forward or return stroke, the direction its point
+    #: moves in during that stroke (unit vector)
+    slides: dict[str, np.ndarray] = field(default_factory=dict)
+    angle: np.ndarray | None = None
+    strokes: dict[int, tuple[float, float]] = field(default_factory=dict)
 
     def direction(self, link: str, degrees: float) -> Vec:
         """The unit vector drawn at ``degrees`` on the link, turned with it."""
@@ -86,13 +93,15 @@ class Solution:
 
 
 def solve_equilibrium(chain: Chain, plan: Plan, state: KinematicState, *, static: bool = False,
-                      metres: float = 1.0) -> Solution:
+                      metres: float = 1.0, mean_torque: float = 0.0) -> Solution:
     """The reactions and efforts of ``chain`` (its masses, gravity, loads, friction) at
     the ``state``'s steps; ``plan`` gives the fixed link and the inputs; ``metres`` is
-    the length unit in metres; drawn coordinates are taken about ``plan.origin``."""
+    the length unit in metres; drawn coordinates are taken about ``plan.origin``;
+    ``mean_torque`` (N m) is the torque of a ``torque = "mean"`` load."""
     layout = _layout(chain, plan, state.n, metres)
     joints = _joint_geometry(chain, layout, state)
-    known = _known_forces(chain, layout, state, joints, static=static)
+    known = _known_forces(chain, layout, state, joints, static=static,
+                          mean_torque=mean_torque)
     x, singular, settled, sigma = _solve_with_friction(layout, joints, -known.rhs,
                                                        _known_singular(layout, state))
     at_rest = _at_rest(joints, layout, state)
@@ -290,11 +299,11 @@ class _Known:
     couples: list
 
 
-def _known_forces(chain, layout, state, joints, *, static):
+def _known_forces(chain, layout, state, joints, *, static, mean_torque=0.0):
     """Gravity, the loads and (unless ``static``) the inertia forces and couples."""
     known = _Known(np.zeros((layout.n, layout.rows, 1)), np.zeros(layout.n), [], [])
     _masses(chain, layout, state, known, static=static)
-    _loads(chain, layout, state, joints, known)
+    _loads(chain, layout, state, joints, known, mean_torque)
     return replace(known, rhs=known.rhs[:, :, 0])
 
 
@@ -326,27 +335,77 @@ def _masses(chain, layout, state, known, *, static):
         known.power[:] += f[0] * v[0] + f[1] * v[1] + couple * motion.omega
 
 
-def _loads(chain, layout, state, joints, known):
-    """The loads' forces and torques on the moving links."""
+def _loads(chain, layout, state, joints, known, mean_torque):
+    """The loads' forces and torques on the moving links, at each step as the motion
+    has them (a table's force read off at the slide or the input's value, a resisting
+    force against its point's velocity)."""
     one = np.ones(layout.n)
-    for load in chain.loads:
+    for i, load in enumerate(chain.loads):
         link = load.on
         if link == layout.fixed:
             continue
-        if load.force is not None:
-            if load.at in joints.where:
-                q = joints.where[load.at]
-            else:
-                q = state.links[link].moved(layout.drawn(chain.point(load.at).at))
-            f = (load.force[0] * one, load.force[1] * one)
+        f = _load_force(chain, layout, state, joints, i)
+        if f is not None:
+            q = (joints.where[load.at] if load.at in joints.where
+                 else state.links[link].moved(layout.drawn(chain.point(load.at).at)))
+            f = f(q)
             known.applied.append((link, "load", q, f))
             layout.put(known.rhs, link, 0, f, q)
             v = state.links[link].velocity_at(q)
             known.power[:] += f[0] * v[0] + f[1] * v[1]
-        if load.torque:
-            known.couples.append((link, "load", load.torque * one))
-            layout.put_couple(known.rhs, link, 0, load.torque * one)
-            known.power[:] += load.torque * state.links[link].omega
+        torque = mean_torque if load.mean_torque else float(load.torque)
+        if torque:
+            known.couples.append((link, "load", torque * one))
+            layout.put_couple(known.rhs, link, 0, torque * one)
+            known.power[:] += torque * state.links[link].omega
+
+
+def _load_force(chain, layout, state, joints, i):
+    """The force of load ``i`` as a function of its point q (arrays over the steps),
+    or None for a load without a force."""
+    load = chain.loads[i]
+    one = np.ones(layout.n)
+    if load.force is not None:
+        return lambda q: (load.force[0] * one, load.force[1] * one)
+    if load.follows:
+        size = load_table_value(load, state)
+        speed = joints.slide_speed[load.along]
+        if load.stroke == "out":
+            size = np.where(speed > 0, size, 0.0)
+        elif load.stroke == "in":
+            size = np.where(speed < 0, size, 0.0)
+        t = joints.axis[load.along]
+        return lambda q: (size * t[0], size * t[1])
+    if load.resist is not None:
+        def resist(q):
+            v = state.links[load.on].velocity_at(q)
+            speed = np.hypot(v[0], v[1])
+            moving = speed > 0
+            size = np.where(moving, -load.resist / np.where(moving, speed, 1.0), 0.0)
+            if i in state.strokes:
+                d = state.strokes[i]
+                size = np.where(v[0] * d[0] + v[1] * d[1] > 0, size, 0.0)
+            return (size * v[0], size * v[1])
+        return resist
+    return None
+
+
+def load_table_value(load: Load, state: KinematicState) -> np.ndarray:
+    """A table load's force (N, along its P joint's axis) at the state's steps: its
+    table (or indicator diagram times area) interpolated linearly at the slide of
+    ``along`` (held at its ends beyond them) or, periodic over its cycle, at the
+    input's value."""
+    xs, fs = (np.asarray(v, dtype=float) for v in load.values())
+    if load.against == "slide":
+        assert load.along is not None               # (the chain checks a table's P joint)
+        return np.interp(state.slides[load.along], xs, fs)
+    if state.angle is None:
+        raise MechanismError(f"the load on {load.on!r} is tabulated against the input's "
+                             "value: it needs an R input (a crank's angle)")
+    period = load.period
+    xs = np.concatenate([[xs[-1] - period], xs, [xs[0] + period]])
+    fs = np.concatenate([[fs[-1]], fs, [fs[0]]])
+    return np.interp(np.mod(state.angle - xs[1], period) + xs[1], xs, fs)
 
 
 # -- the solve, iterating the friction signs ------------------------------------------------

@@ -22,6 +22,7 @@ import numpy as np
 
 from chaingraph._util.numbers import tidy
 from chaingraph._util.text import csv_text, short_list
+from chaingraph.dynamics.cycle import CycleEfforts, kinematic_state
 from chaingraph.dynamics.equilibrium import (
     UNIT_METRES,
     KinematicState,
@@ -29,18 +30,17 @@ from chaingraph.dynamics.equilibrium import (
     solve_equilibrium,
 )
 from chaingraph.dynamics.shaking import Shaking, shaking
-from chaingraph.errors import MechanismError
+from chaingraph.errors import AssemblyError, MechanismError
 from chaingraph.kinematics import solve
-from chaingraph.kinematics.columns import LinkStates
-from chaingraph.kinematics.inputs import InputsGiven
+from chaingraph.kinematics.inputs import InputsGiven, sweep_drive
 from chaingraph.kinematics.motion import Motion
 from chaingraph.kinematics.plan import Plan
-from chaingraph.kinematics.pose import LinkState, PoseMotion, pose_motion
+from chaingraph.kinematics.pose import PoseMotion, pose_motion
 from chaingraph.model.chain import Chain
 
 __all__ = ["Reaction", "Effort", "AppliedForce", "AppliedCouple", "PoseForces",
-           "EffortStats", "ForcesSummary", "ReactionSeries", "EffortSeries", "SweepForces",
-           "forces"]
+           "EffortStats", "Flywheel", "ForcesSummary", "ReactionSeries", "EffortSeries",
+           "SweepForces", "forces", "load_cycle"]
 
 
 @dataclass(frozen=True)
@@ -173,29 +173,54 @@ class EffortStats:
 
 
 @dataclass(frozen=True)
+class Flywheel:
+    """The flywheel that holds the speed within ``speed_fluctuation`` ((omega_max -
+    omega_min) / omega) at the mean speed ``omega`` (rad/s): its ``inertia`` (kg m^2),
+    I = dE / (omega^2 CS)."""
+
+    speed_fluctuation: float
+    inertia: float
+    omega: float
+
+    def to_dict(self) -> dict:
+        return {"speed_fluctuation": self.speed_fluctuation, "inertia": self.inertia,
+                "omega": self.omega}
+
+
+@dataclass(frozen=True)
 class ForcesSummary:
-    """Over the sweep: ``efforts`` per input (:class:`EffortStats`), ``reactions`` the
-    largest reaction per joint (N), and for a crank turning fully the
-    ``energy_fluctuation`` (J: the largest swing of the work of its effort about the
-    mean over a turn) and, given a ``speed_fluctuation``, the ``flywheel`` inertia
-    (kg m^2) that holds the speed within it."""
+    """Over the sweep's regular poses (the dead centres left out, and listed apart in
+    ``dead_centres``, the lead input's values there): ``efforts`` per input
+    (:class:`EffortStats`), ``reactions`` the largest reaction per joint (N); for a
+    crank turning through its whole cycle (a turn, or a load's ``cycle``) the
+    ``mean_effort`` (the lead input's, N m: its integral over the cycle divided by the
+    cycle), the ``energy_fluctuation`` (J: the largest swing of the work of its effort
+    about the mean, its extremes found where the effort crosses the mean) and, given a
+    speed fluctuation, the ``flywheel`` (:class:`Flywheel`); these integrals are exact,
+    not read off the sweep's grid (:mod:`chaingraph.dynamics.cycle`)."""
 
     efforts: dict
     reactions: dict
     energy_fluctuation: float | None = None
-    speed_fluctuation: float | None = None
-    flywheel: float | None = None
-    mean_speed: float | None = None
+    flywheel: Flywheel | None = None
+    mean_effort: float | None = None
+    dead_centres: tuple[float, ...] = ()
     shaking: tuple[float | None, float | None] | None = None   # largest force N, moment N m
+
+    @property
+    def speed_fluctuation(self) -> float | None:
+        return None if self.flywheel is None else self.flywheel.speed_fluctuation
 
     def to_dict(self) -> dict:
         out: dict[str, Any] = {"efforts": {k: v.to_dict() for k, v in self.efforts.items()},
-               "reactions": {k: {"max": v} for k, v in self.reactions.items()}}
+               "reactions": {k: {"max": v} for k, v in self.reactions.items()},
+               "dead_centres": list(self.dead_centres)}
+        if self.mean_effort is not None:
+            out["mean_effort"] = self.mean_effort
         if self.energy_fluctuation is not None:
             out["energy_fluctuation"] = self.energy_fluctuation
         if self.flywheel is not None:
-            out["flywheel"] = {"speed_fluctuation": self.speed_fluctuation,
-                               "inertia": self.flywheel, "omega": self.mean_speed}
+            out["flywheel"] = self.flywheel.to_dict()
         if self.shaking is not None:
             out["shaking"] = {"force": {"max": self.shaking[0]},
                               "moment": {"max": self.shaking[1]}}
@@ -254,6 +279,8 @@ class SweepForces:
     chain: Chain = field(repr=False)
     notes: tuple[str, ...] = ()
     shaking: Shaking | None = field(default=None, repr=False)   # on the frame, per step
+    #: the steady torque of a ``torque = "mean"`` load (N m, on its link), else None
+    load_torque: float | None = None
 
     def __repr__(self):
         return (f"SweepForces({self.name!r}, inputs={list(self.inputs)!r}, "
@@ -263,7 +290,9 @@ class SweepForces:
     def columns(self) -> dict[str, np.ndarray]:
         """The CSV's columns, in its order."""
         out = {f"input:{joint}": v for joint, v in self.motion.values.items()}
-        out["theta"] = self.motion.theta
+        plan = self.motion.plan
+        if plan.inputs[plan.lead].kind == "R" or not out:
+            out["theta"] = self.motion.theta     # (a P input's slide: its input: column)
         for r in self.reactions:
             name = f"{r.joint}:{r.on}" if len(r.by) > 1 else r.joint
             out[f"Fx:{name}"], out[f"Fy:{name}"] = r.fx, r.fy
@@ -326,11 +355,18 @@ class SweepForces:
                                              f"mean {f(s.mean, u)}, RMS {f(s.rms, u)}"))
         for joint, v in self.summary.reactions.items():
             out.append((f"largest reaction {joint}", "-" if v is None else f"{v:.6g} N"))
+        if self.summary.mean_effort is not None:
+            unit = self.efforts[0].unit
+            out.append(("mean effort", f"{self.summary.mean_effort:.6g} {unit} over the cycle"))
         if self.summary.energy_fluctuation is not None:
             out.append(("energy fluctuation", f"{self.summary.energy_fluctuation:.6g} J"))
         if self.summary.flywheel is not None:
-            out.append(("flywheel", f"{self.summary.flywheel:.6g} kg m^2 for a speed "
-                                    f"fluctuation of {self.summary.speed_fluctuation:g}"))
+            fw = self.summary.flywheel
+            out.append(("flywheel", f"{fw.inertia:.6g} kg m^2 for a speed fluctuation of "
+                                    f"{fw.speed_fluctuation:g} at {fw.omega:g} rad/s"))
+        if self.summary.dead_centres:
+            out.append(("dead centres", ", ".join(f"{v:g}" for v in self.summary.dead_centres)
+                        + " (left out of the figures above)"))
         if self.summary.shaking is not None:
             for what, v, unit in zip(("force", "moment"), self.summary.shaking, ("N", "N m")):
                 out.append((f"largest shaking {what}", "-" if v is None else f"{v:.6g} {unit}"))
@@ -346,29 +382,6 @@ def _metres(chain):
         raise MechanismError(f"forces know the length units {', '.join(UNIT_METRES)}; the "
                              f"file's units are {chain.units!r}", mechanism=name)
     return UNIT_METRES[chain.units]
-
-
-def _kinematic_state(chain: Chain, plan: Plan, states: LinkStates, omega, metres, *,
-                     rates_known) -> KinematicState:
-    """The :class:`KinematicState` of the solver's ``states`` at input speed ``omega``,
-    in SI units: what the force solve needs, taken from the motion as it was solved."""
-    n = states.tau.size
-    w = 1.0 if float(omega) == states.speed else float(omega) / states.speed
-    pose = states.pose
-    vel = {k: tuple(np.asarray(c) * w for c in v) for k, v in states.velocity.items()}
-    acc = {k: tuple(np.asarray(c) * w * w for c in v) for k, v in states.acceleration.items()}
-
-    def arr(v, scale=1.0):
-        return np.broadcast_to(np.asarray(v, dtype=float) * scale, (n,)).copy()
-    links = {}
-    for link in chain.links:
-        p, v, a = pose[link], vel[link], acc[link]
-        links[link] = LinkState(link, (arr(p[0], metres), arr(p[1], metres)), arr(p[2]),
-                                (arr(v[0], metres), arr(v[1], metres)), arr(v[2]),
-                                (arr(a[0], metres), arr(a[1], metres)), arr(a[2]))
-    input_rates = {item.joint: arr(vel[item.key][2], 1.0 if item.kind == "R" else metres)
-                   for item in plan.inputs}
-    return KinematicState(n, links, input_rates, rates_known=rates_known)
 
 
 def _notes(solution, k=None):
@@ -479,36 +492,187 @@ def forces(mechanism: Chain, *, at: float | Sequence[float] | None = None,
                              f"(such as 0.02), got {speed_fluctuation!r}",
                              mechanism=mechanism.source or mechanism.name,
                              parameter="speed_fluctuation")
+    how: dict[str, Any] = dict(fixed=fixed, driver=driver, inputs=inputs, omega=omega)
     if at is not None:
-        state = pose_motion(mechanism, at=at, fixed=fixed, driver=driver, inputs=inputs,
-                            omega=omega)
-        return _forces_at(mechanism, state, static=static, metres=metres)
-    motion = solve(mechanism, fixed=fixed, driver=driver, inputs=inputs, start=start,
-                   stop=stop, steps=steps, omega=omega, summary=True)
+        state = pose_motion(mechanism, at=at, **how)
+        return _forces_at(mechanism, state, static=static, metres=metres, how=how)
+    cycle = load_cycle(mechanism)
+    _check_loads(mechanism, sweep_drive(mechanism, steps=steps, **how).plan)
+    if cycle is not None and start is None and stop is None:
+        start, stop = 0.0, cycle          # a load's cycle: swept from 0, as the textbook
+    motion = solve(mechanism, start=start, stop=stop, steps=steps, summary=True, **how)
     return _forces_over(mechanism, motion, static=static, metres=metres,
-                        speed_fluctuation=speed_fluctuation)
+                        speed_fluctuation=speed_fluctuation, how=how)
 
 
-def _forces_at(chain, state: PoseMotion, *, static, metres) -> PoseForces:
+def load_cycle(chain: Chain) -> float | None:
+    """The input's cycle in degrees of the loads tabulated against it with a ``cycle``
+    (720 for a four-stroke engine), or None when none gives one."""
+    cycles = [math.degrees(x.cycle) for x in chain.loads if x.cycle is not None]
+    return float(round(max(cycles), 9)) if cycles else None
+
+
+def _lead_angle(plan: Plan, values) -> np.ndarray | None:
+    """The lead input's value in radians (None for a P input)."""
+    lead = plan.inputs[plan.lead]
+    return np.radians(np.asarray(values, dtype=float)) if lead.kind == "R" else None
+
+
+def _check_loads(chain, plan):
+    """Loads that need what the inputs do not give."""
+    lead = plan.inputs[plan.lead]
+    for load in chain.loads:
+        if load.against == "input" and lead.kind != "R":
+            raise MechanismError(f"the load on {load.on!r} is tabulated against the input's "
+                                 f"value in degrees: it needs an R input (a crank), not the "
+                                 f"P input {lead.joint!r}", mechanism=chain.source or chain.name)
+    if any(x.mean_torque and x.on == plan.fixed for x in chain.loads):
+        raise MechanismError(f"the steady torque equal to the mean effort (torque = \"mean\") "
+                             f"acts on the fixed link {plan.fixed!r}, which takes it without "
+                             "moving: put it on a moving link (the crank)",
+                             mechanism=chain.source or chain.name)
+    if sum(x.mean_torque for x in chain.loads) > 1:
+        raise MechanismError("only one load may be the steady torque equal to the mean "
+                             "effort (torque = \"mean\")", mechanism=chain.source or chain.name)
+
+
+def _cycle_loads(chain, plan, metres, static, how, sweep=None) -> CycleEfforts:
+    """The loads' cycle quantities (the strokes' directions, the steady mean torque),
+    from ``sweep`` ((motion, state) of the sweep solved) when it is the whole cycle,
+    else from a sweep of the cycle solved here."""
+    resist = [i for i, x in enumerate(chain.loads) if x.resist is not None]
+    mean = any(x.mean_torque for x in chain.loads)
+    key: tuple | None = (chain, chain.source, metres, static, repr(sorted(how.items())))
+    try:
+        if key in _CYCLES:
+            return _CYCLES[key]
+    except TypeError:                   # (a chain holding lists: not kept)
+        key = None
+    if not resist and not mean:
+        omega = solve_omega(chain, how) if sweep is None else sweep[0].omega
+        efforts = CycleEfforts(chain, plan, metres, static, omega)
+    else:
+        span = load_cycle(chain) or 360.0
+        whole = sweep is not None and _whole_cycle(sweep[0], span)
+        efforts = _cycle_efforts(chain, plan, metres, static, how, sweep if whole else None,
+                                 span, resist, mean)
+    if len(_CYCLES) > 32:
+        _CYCLES.clear()
+    if key is not None:
+        _CYCLES[key] = efforts
+    return efforts
+
+
+#: the loads' cycle quantities of the mechanisms solved lately (exact, so whatever grid
+#: they were found on), by chain, units, statics and inputs
+_CYCLES: dict = {}
+
+
+def solve_omega(chain: Chain, how: dict) -> float:
+    """The lead input's speed a solve of ``chain`` takes with ``how``'s inputs."""
+    return sweep_drive(chain, **how).omega
+
+
+def _cycle_efforts(chain, plan, metres, static, how, sweep, span, resist, mean):
+    """:func:`_cycle_loads`'s work, from ``sweep`` (the whole cycle) or solved here."""
+    if sweep is None:
+        try:
+            motion = solve(chain, start=0.0, stop=span, steps=int(round(span)), **how)
+        except AssemblyError:                       # a rocking input: its own range
+            motion = solve(chain, steps=360, **how)
+        sweep = (motion, None)
+    motion, kin = sweep
+    if kin is None:
+        kin = kinematic_state(chain, plan, motion.states, motion.omega, metres,
+                              rates_known=True, angle=_lead_angle(plan, motion.theta))
+    directions = {i: _stroke_direction(chain, plan, kin, metres, i) for i in resist}
+    strokes = {i: d for i, d in directions.items() if chain.loads[i].stroke}
+    efforts = CycleEfforts(chain, plan, metres, static, motion.omega, strokes, directions)
+    if not mean:
+        return efforts
+    if not _whole_cycle(motion, span):
+        raise MechanismError("a steady torque equal to the mean effort (torque = \"mean\") "
+                             "needs a crank that turns through its whole cycle",
+                             mechanism=chain.source or chain.name)
+    return efforts.with_torque(_mean_torque(efforts, np.asarray(motion.theta, dtype=float)))
+
+
+def _whole_cycle(motion, span):
+    s = motion.summary
+    theta = np.asarray(motion.theta, dtype=float)
+    return (s is not None and s.full_turn and theta.size > 1
+            and abs(abs(theta[-1] - theta[0]) - span) < 1e-9)
+
+
+def _stroke_direction(chain, plan, kin, metres, i):
+    """The direction load ``i``'s point moves in during its stroke: the line of its
+    motion (the principal direction of its positions over the cycle), in the sense it
+    moves for the longer part of the input's cycle (the forward stroke), reversed for
+    the return stroke."""
+    load = chain.loads[i]
+    state = kin.links[load.on]
+    origin = plan.origin
+    p = (chain.joint(load.at).at if load.at in {j.id for j in chain.joints}
+         else chain.point(load.at).at)
+    q = state.moved(((p[0] - origin[0]) * metres, (p[1] - origin[1]) * metres))
+    xy = np.column_stack(q)
+    xy = xy - xy.mean(axis=0)
+    d = np.linalg.svd(xy, full_matrices=False)[2][0]
+    v = state.velocity_at(q)
+    u = v[0] * d[0] + v[1] * d[1]
+    sense = 1.0 if np.sum(u > 0) >= np.sum(u < 0) else -1.0
+    if load.stroke == "return":
+        sense = -sense
+    return (float(sense * d[0]), float(sense * d[1]))
+
+
+def _mean_torque(efforts: CycleEfforts, grid: np.ndarray) -> float:
+    """The steady torque of the ``torque = "mean"`` load that makes the lead input's
+    mean effort over the cycle zero (the secant method: exact in one step without
+    friction, where the effort is linear in the torque)."""
+    breaks = efforts.breaks(_partition(grid))
+    t0, f0 = 0.0, efforts.mean(breaks)
+    if not math.isfinite(f0):
+        return math.nan
+    t1 = f0 if f0 else 1.0
+    f1 = efforts.with_torque(t1).mean(breaks)
+    for _ in range(30):
+        if not math.isfinite(f1) or f1 == f0 or abs(f1) <= 1e-14 * max(abs(t1), 1e-300):
+            break
+        t0, f0, t1 = t1, f1, t1 - f1 * (t1 - t0) / (f1 - f0)
+        f1 = efforts.with_torque(t1).mean(breaks)
+    return t1
+
+
+def _forces_at(chain, state: PoseMotion, *, static, metres, how) -> PoseForces:
     """The forces at the solved pose ``state`` (its poses and rates as solved)."""
     plan = state.plan
     _check_masses(chain)
+    _check_loads(chain, plan)
     assert state.states is not None               # (pose_motion keeps them)
-    kin = _kinematic_state(chain, plan, state.states, state.omega, metres,
-                           rates_known=False)
-    sol = solve_equilibrium(chain, plan, kin, static=static, metres=metres)
+    cyc = _cycle_loads(chain, plan, metres, static, how)
+    kin = kinematic_state(chain, plan, state.states, state.omega, metres,
+                           rates_known=False, angle=_lead_angle(plan, [state.input]),
+                           strokes=cyc.strokes)
+    sol = solve_equilibrium(chain, plan, kin, static=static, metres=metres,
+                            mean_torque=cyc.mean_torque)
     values = tuple(state.inputs.values()) if state.inputs else (state.input,)
     return _pose_forces(chain, plan, sol, 0, values, static)
 
 
-def _forces_over(chain, motion: Motion, *, static, metres, speed_fluctuation) -> SweepForces:
+def _forces_over(chain, motion: Motion, *, static, metres, speed_fluctuation,
+                 how) -> SweepForces:
     """The forces over the solved sweep ``motion`` (its poses and rates as solved)."""
     plan = motion.plan
     _check_masses(chain)
+    _check_loads(chain, plan)
     assert motion.states is not None              # (solve keeps them)
-    kin = _kinematic_state(chain, plan, motion.states, motion.omega, metres,
-                           rates_known=True)
-    sol = solve_equilibrium(chain, plan, kin, static=static, metres=metres)
+    kin = kinematic_state(chain, plan, motion.states, motion.omega, metres,
+                           rates_known=True, angle=_lead_angle(plan, motion.theta))
+    cyc = _cycle_loads(chain, plan, metres, static, how, sweep=(motion, kin))
+    kin = replace(kin, strokes=cyc.strokes)
+    sol = solve_equilibrium(chain, plan, kin, static=static, metres=metres,
+                            mean_torque=cyc.mean_torque)
     shaken = shaking(sol, kin.n, origin=plan.origin, metres=metres)
     reactions = tuple(
         ReactionSeries(j.id, link, tuple(x for x in j.links if x != link),
@@ -518,13 +682,18 @@ def _forces_over(chain, motion: Motion, *, static, metres, speed_fluctuation) ->
         for j in chain.joints for link in _on_links(j))
     efforts = tuple(EffortSeries(i.joint, sol.efforts[i.joint], "N m" if i.kind == "R" else "N")
                     for i in plan.inputs)
+    summary, notes = _summary(chain, plan, motion, sol, speed_fluctuation, cyc)
+    summary = replace(summary, shaking=shaken.largest())
+    steady = next((x for x in chain.loads if x.mean_torque), None)
+    if steady is not None:
+        notes = (f"the steady load torque on {steady.on} (torque = \"mean\"), equal to the "
+                 f"mean effort over the cycle: {tidy(cyc.mean_torque, 1.0):.6g} N m",) + notes
     return SweepForces(name=chain.name, fixed=plan.fixed,
                        inputs=tuple(i.joint for i in plan.inputs), static=static,
                        steps=motion.steps, reactions=reactions, efforts=efforts,
-                       summary=replace(_summary(chain, plan, motion, sol, speed_fluctuation),
-                                       shaking=shaken.largest()),
-                       notes=_notes(sol), motion=motion, solution=sol, chain=chain,
-                       shaking=shaken)
+                       summary=summary, notes=_notes(sol) + notes, motion=motion,
+                       solution=sol, chain=chain, shaking=shaken,
+                       load_torque=cyc.mean_torque if steady is not None else None)
 
 
 def _on_links(joint):
@@ -579,61 +748,109 @@ def _reactions(chain, sol, k, size):
     return tuple(out)
 
 
-def _stats(v, unbounded):
-    """Over the steps where ``v`` is determined; None throughout when it is unbounded
-    somewhere (a dead centre) or nowhere determined."""
+def _stats(v, regular):
+    """Over the regular steps where ``v`` is determined; None throughout when it is
+    determined at none."""
     v = np.asarray(v, dtype=float)
-    v = v[np.isfinite(v)]
-    if v.size == 0 or unbounded.any():
+    v = v[regular & np.isfinite(v)]
+    if v.size == 0:
         return EffortStats(None, None, None, None)
     scale = float(np.abs(v).max())
     return EffortStats(float(v.min()), float(v.max()), tidy(float(v.mean()), scale),
                        float(np.sqrt(np.mean(v * v))))
 
 
-def _filled(v):
-    """``v`` with its undetermined steps (a slide at rest, a few steps) filled in
-    linearly from their neighbours, for the work over a turn."""
-    good = np.isfinite(v)
-    if good.all() or good.sum() < 2:
-        return v
-    k = np.arange(v.size)
-    return np.interp(k, k[good], v[good])
-
-
-def _summary(chain, plan, motion, sol, speed_fluctuation):
-    unbounded = sol.singular
-    efforts = {i.joint: _stats(sol.efforts[i.joint], unbounded) for i in plan.inputs}
+def _summary(chain, plan, motion, sol, speed_fluctuation, efforts_at: CycleEfforts):
+    """The :class:`ForcesSummary` over the regular poses, and notes on what it leaves
+    out; ``efforts_at`` the lead input's effort anywhere in its cycle, for the integrals
+    over the cycle."""
+    regular = ~sol.singular
+    theta = np.asarray(motion.theta, dtype=float)
+    efforts = {i.joint: _stats(sol.efforts[i.joint], regular) for i in plan.inputs}
     reactions = {}
     for j in chain.joints:
         mags = [np.hypot(*sol.forces[(j.id, link)]) for link in _on_links(j)]
         worst = np.max(np.vstack(mags), axis=0)
-        finite = worst[np.isfinite(worst)]
-        reactions[j.id] = (float(finite.max()) if finite.size and not unbounded.any()
-                           else None)
-    energy = flywheel = None
-    s = motion.summary
+        finite = worst[regular & np.isfinite(worst)]
+        reactions[j.id] = float(finite.max()) if finite.size else None
+    dead = tuple(float(v) for v in theta[sol.singular])
+    notes: list[str] = []
+    lead = plan.inputs[plan.lead]
+    span = load_cycle(chain) or 360.0
+    energy = mean = flywheel = None
+    cycle = _one_cycle(plan, motion, span)
+    if isinstance(cycle, str):
+        if speed_fluctuation is not None or (len(plan.inputs) == 1 and lead.kind == "R"
+                                             and motion.summary is not None
+                                             and motion.summary.full_turn):
+            notes.append(cycle)
+    else:
+        e = sol.efforts[lead.joint][cycle]
+        if not sol.singular[cycle].any() and not sol.jammed[cycle].any():
+            e = e[np.isfinite(e)]
+            mean, rms2, energy = _cycle_figures(efforts_at, theta[cycle])
+            rms = math.sqrt(rms2)
+            old = efforts[lead.joint]
+            mean = tidy(mean, float(np.abs(e).max()))
+            efforts[lead.joint] = EffortStats(old.min, old.max, mean, rms)
+            if speed_fluctuation is not None:
+                flywheel = Flywheel(speed_fluctuation,
+                                    energy / (motion.omega ** 2 * speed_fluctuation),
+                                    abs(motion.omega))
+        else:
+            notes.append("the energy fluctuation and flywheel are not determined: the "
+                         "effort is unbounded or not determined over part of the cycle")
+    return (ForcesSummary(efforts, reactions, energy, flywheel, mean, dead), tuple(notes))
+
+
+def _cycle_figures(efforts_at: CycleEfforts, theta: np.ndarray):
+    """The mean effort, its mean square and the energy fluctuation over the cycle
+    ``theta`` spans: exact, so kept with ``efforts_at`` for the next sweep of the same
+    cycle."""
+    key = ("figures", float(theta[0]), float(theta[-1]))
+    if key not in efforts_at.solved:
+        breaks = efforts_at.breaks(_partition(theta))
+        mean = efforts_at.mean(breaks)
+        efforts_at.solved[key] = (mean, efforts_at.mean(breaks, power=2),
+                                  efforts_at.energy_fluctuation(breaks, mean))
+    return efforts_at.solved[key]
+
+
+def _partition(theta: np.ndarray) -> np.ndarray:
+    """The cycle's span (from the sweep's first angle to its last, increasing) cut in
+    pieces of at most 5 degrees (Gauss-Legendre's 8 points on each: exact to rounding
+    for an effort of up to some tens of harmonics), the same whatever the sweep's
+    steps."""
+    lo, hi = sorted((float(theta[0]), float(theta[-1])))
+    return np.linspace(lo, hi, max(int(math.ceil((hi - lo) / 5.0)), 4) + 1)
+
+
+def _one_cycle(plan, motion, span):
+    """The steps of the sweep's first whole cycle of ``span`` degrees (a slice), or why
+    there is none (a note)."""
     lead = plan.inputs[plan.lead]
     theta = np.asarray(motion.theta, dtype=float)
-    if (len(plan.inputs) == 1 and lead.kind == "R" and s is not None and s.full_turn
-            and abs(abs(theta[-1] - theta[0]) - 360.0) < 1e-9):
-        e = _filled(sol.efforts[lead.joint])
-        if np.isfinite(e).all() and not unbounded.any():
-            u = np.radians(theta)
-            # over the turn, mean and RMS are integrals (the sweep's ends are one pose)
-            span = u[-1] - u[0]
-            mean_e = float(np.sum(0.5 * (e[1:] + e[:-1]) * np.diff(u)) / span)
-            rms_e = math.sqrt(float(np.sum(0.5 * (e[1:] ** 2 + e[:-1] ** 2) * np.diff(u))
-                                    / span))
-            old = efforts[lead.joint]
-            efforts[lead.joint] = EffortStats(old.min, old.max,
-                                              tidy(mean_e, float(np.abs(e).max())), rms_e)
-            # the work of the effort about its mean over the turn (trapezoid rule)
-            work = np.concatenate([[0.0], np.cumsum(0.5 * (e[1:] + e[:-1]) * np.diff(u))])
-            mean = work[-1] / (u[-1] - u[0])
-            swing = work - mean * (u - u[0])
-            energy = float(swing.max() - swing.min())
-            if speed_fluctuation is not None:
-                flywheel = energy / (motion.omega ** 2 * speed_fluctuation)
-    return ForcesSummary(efforts, reactions, energy, speed_fluctuation if flywheel is not None
-                         else None, flywheel, abs(motion.omega) if flywheel is not None else None)
+    s = motion.summary
+    if len(plan.inputs) != 1 or lead.kind != "R" or s is None or not s.full_turn:
+        return ("no energy fluctuation or flywheel: they are for a single crank turning "
+                "fully")
+    swept = abs(theta[-1] - theta[0])
+    turns = swept / span
+    per = (theta.size - 1) / turns if turns else 0.0
+    if turns < 1 - 1e-9 or abs(per - round(per)) > 1e-6:
+        return (f"no energy fluctuation or flywheel: they are over a whole cycle of the "
+                f"input ({span:g} degrees), and the sweep covers {swept:g} degrees"
+                + ("" if turns < 1 else ", whose steps do not end a cycle (sweep a whole "
+                                        "number of cycles)"))
+    return slice(0, int(round(per)) + 1)
+
+
+def _energy_swing(spline, u, mean):
+    """The largest swing of the work of the effort about its mean over the cycle: the
+    work W(u) = int e du - mean (u - u0) at its extremes (where the effort crosses the
+    mean, the spline's roots) and at the cycle's ends."""
+    work = spline.antiderivative()
+    roots = np.asarray(spline.solve(mean, extrapolate=False), dtype=float)
+    at = np.concatenate([[u[0], u[-1]], roots[np.isfinite(roots)]])
+    swing = work(at) - work(u[0]) - mean * (at - u[0])
+    return float(swing.max() - swing.min())

@@ -123,14 +123,68 @@ class LinkMass:
 
 @dataclass(frozen=True)
 class Load:
-    """An external load on one link (``[[loads]]``), constant in the fixed frame: a
-    ``force`` (N) whose line passes through the joint or point ``at`` of the link, and
-    a ``torque`` (N m, counter-clockwise positive)."""
+    """An external load on one link (``[[loads]]``).
+
+    Constant in the fixed frame: a ``force`` (N) whose line passes through the joint or
+    point ``at`` of the link, and a ``torque`` (N m, counter-clockwise positive);
+    ``torque = "mean"`` is the steady resisting torque equal to the mean effort over the
+    cycle (the machine's load: the net mean effort is zero).
+
+    Following the motion: a force along the axis of the P joint ``along`` (positive:
+    the axis direction) through ``at``, interpolated linearly in ``table`` ((x, N)
+    pairs) or ``pressure`` ((x, Pa) pairs, times ``area`` m^2: an indicator diagram),
+    against the slide of ``along`` from the drawn pose (file units) or, ``against =
+    "input"``, against the R input's value (radians), periodic over ``cycle``
+    (radians; 2 pi unless given, 4 pi for a four-stroke engine); ``stroke`` "out" or
+    "in" holds it only while the slide moves out (its speed positive) or in. A
+    ``resist`` force (N) always opposes the velocity of ``at``, with ``stroke``
+    "forward" or "return" only during that stroke of the input (the forward stroke: the
+    longer in input angle, a quick-return mechanism's cutting stroke).
+    """
 
     on: str
     at: str | None = None
     force: tuple[float, float] | None = None
-    torque: float = 0.0
+    torque: float | str = 0.0
+    along: str | None = None
+    table: tuple[tuple[float, float], ...] | None = None
+    pressure: tuple[tuple[float, float], ...] | None = None
+    area: float | None = None
+    against: str = "slide"
+    cycle: float | None = None
+    stroke: str | None = None
+    resist: float | None = None
+
+    def __post_init__(self):
+        # tables given as lists (from Python) kept as tuples, so that a load is a value
+        for key in ("table", "pressure"):
+            rows = getattr(self, key)
+            if isinstance(rows, list | tuple):
+                object.__setattr__(self, key, tuple(
+                    tuple(r) if isinstance(r, list | tuple) else r for r in rows))
+        if isinstance(self.force, list):
+            object.__setattr__(self, "force", tuple(self.force))
+
+    @property
+    def mean_torque(self) -> bool:
+        """The steady resisting torque equal to the mean effort (``torque = "mean"``)."""
+        return self.torque == "mean"
+
+    @property
+    def follows(self) -> bool:
+        """A force along a P joint's axis, read off a table or an indicator diagram."""
+        return self.table is not None or self.pressure is not None
+
+    @property
+    def period(self) -> float:
+        """The period of a table against the input (radians)."""
+        return self.cycle if self.cycle is not None else 2.0 * math.pi
+
+    def values(self) -> tuple[tuple[float, ...], tuple[float, ...]]:
+        """The table's abscissae and its forces (N; pressure times area)."""
+        rows = self.table if self.table is not None else self.pressure or ()
+        scale = 1.0 if self.table is not None else float(self.area or 0.0)
+        return tuple(r[0] for r in rows), tuple(r[1] * scale for r in rows)
 
 
 @dataclass(frozen=True)
@@ -388,7 +442,8 @@ class Chain:
         masses = tuple(replace(m, link=ren(lk, m.link)) for m in self.masses)
         loads = tuple(replace(x, on=ren(lk, x.on),
                               at=None if x.at is None else
-                              ren(jt, x.at) if x.at in self._joint_index else ren(pt, x.at))
+                              ren(jt, x.at) if x.at in self._joint_index else ren(pt, x.at),
+                              along=None if x.along is None else ren(jt, x.along))
                       for x in self.loads)
         return replace(self, joints=new_joints, points=new_points, mechanism=mech,
                        masses=masses, loads=loads)
@@ -475,26 +530,89 @@ def _validate_forces(chain, fail, links, point_ids):
     if chain.gravity is not None and not _is_finite_pair(chain.gravity):
         fail("'gravity' must be two finite numbers [gx, gy] (m/s^2)", "[forces]")
     for i, load in enumerate(chain.loads):
-        where = f"[[loads]] #{i + 1}"
-        if load.on not in links:
-            fail(f"'on' names no link of the chain: {load.on!r} "
-                 f"(links: {', '.join(chain.links)})", where)
-        if load.force is not None and not _is_finite_pair(load.force):
-            fail("'force' must be two finite numbers [Fx, Fy] (N)", where)
-        if not _finite(load.torque):
-            fail("'torque' must be a finite number (N m)", where)
-        if load.force is not None and load.at is None:
-            fail("a load with a 'force' needs 'at': a joint or point of its link that the "
-                 "force's line passes through", where)
-        if load.at is not None:
-            on_link = ({j.id for j in chain.joints if load.on in j.links}
-                       | {p.id for p in chain.points if p.link == load.on})
-            if load.at not in on_link:
-                what = ("is not on link " + repr(load.on) if load.at in point_ids
-                        or any(j.id == load.at for j in chain.joints)
-                        else "names no joint or point of the chain")
-                fail(f"'at' {what}: {load.at!r} (on {load.on!r}: "
-                     f"{', '.join(sorted(on_link)) or 'none'})", where)
+        _validate_load(chain, load, f"[[loads]] #{i + 1}", fail, links, point_ids)
+
+
+def _validate_load(chain, load, where, fail, links, point_ids):
+    """One load: its link and point, and what kind of load it is."""
+    if load.on not in links:
+        fail(f"'on' names no link of the chain: {load.on!r} "
+             f"(links: {', '.join(chain.links)})", where)
+    if load.force is not None and not _is_finite_pair(load.force):
+        fail("'force' must be two finite numbers [Fx, Fy] (N)", where)
+    if not load.mean_torque and not _finite(load.torque):
+        fail(f"'torque' must be a finite number (N m) or \"mean\" (a steady resisting "
+             f"torque equal to the mean effort), got {load.torque!r}", where)
+    needs_at = load.force is not None or load.follows or load.resist is not None
+    if needs_at and load.at is None:
+        fail("a load with a force needs 'at': a joint or point of its link that the "
+             "force's line passes through", where)
+    if load.at is not None:
+        on_link = ({j.id for j in chain.joints if load.on in j.links}
+                   | {p.id for p in chain.points if p.link == load.on})
+        if load.at not in on_link:
+            what = ("is not on link " + repr(load.on) if load.at in point_ids
+                    or any(j.id == load.at for j in chain.joints)
+                    else "names no joint or point of the chain")
+            fail(f"'at' {what}: {load.at!r} (on {load.on!r}: "
+                 f"{', '.join(sorted(on_link)) or 'none'})", where)
+    _validate_following(chain, load, where, fail)
+
+
+def _validate_following(chain, load, where, fail):
+    """A load that follows the motion: its table, its P joint, its cycle and stroke."""
+    kinds = [k for k, given in (("force", load.force is not None),
+                                ("table", load.table is not None),
+                                ("pressure", load.pressure is not None),
+                                ("resist", load.resist is not None)) if given]
+    if len(kinds) > 1:
+        fail(f"a load is one kind of force: it gives {' and '.join(map(repr, kinds))} "
+             "(write one [[loads]] for each)", where)
+    if load.follows:
+        if load.along is None:
+            fail("a 'table' or 'pressure' load needs 'along': the P joint along whose "
+                 "axis it acts", where)
+        rows = load.table if load.table is not None else load.pressure
+        key = "table" if load.table is not None else "pressure"
+        if (not rows or any(len(r) != 2 or not _is_finite_pair(r) for r in rows)):
+            fail(f"'{key}' must be a list of [x, value] pairs of finite numbers", where)
+        xs = [r[0] for r in rows]
+        bad = next((k for k in range(1, len(xs)) if xs[k] <= xs[k - 1]), None)
+        if bad is not None:
+            fail(f"'{key}' must be increasing in its first column: row {bad + 1} "
+                 f"({xs[bad]:g}) does not exceed row {bad} ({xs[bad - 1]:g})", where)
+        if load.pressure is not None and load.area is None:
+            fail("a 'pressure' load needs 'area': the piston's area (m^2)", where)
+    elif load.along is not None:
+        fail("'along' is for a 'table' or 'pressure' load (a force along a P joint's "
+             "axis)", where)
+    if load.area is not None and (load.pressure is None or not _finite(load.area)
+                                  or load.area <= 0):
+        fail("'area' must be a positive number of m^2, with 'pressure'", where)
+    if load.along is not None:
+        joint = next((j for j in chain.joints if j.id == load.along), None)
+        if joint is None or joint.kind != "P":
+            what = "names no joint" if joint is None else f"is a {joint.kind} joint"
+            fail(f"'along' must name a P joint (the force acts along its axis): "
+                 f"{load.along!r} {what}", where)
+    if load.against not in ("slide", "input"):
+        fail(f"'against' must be \"slide\" (the slide of 'along') or \"input\" (the input's "
+             f"value, degrees), got {load.against!r}", where)
+    if load.cycle is not None:
+        turns = load.cycle / (2 * math.pi) if _finite(load.cycle) else 0.0
+        if load.against != "input" or turns < 0.5 or abs(turns - round(turns)) > 1e-9:
+            got = (f"{math.degrees(load.cycle):g}" if _finite(load.cycle)
+                   else repr(load.cycle))
+            fail(f"'cycle' must be a whole number of turns of the input (360 or 720 "
+                 f"degrees), with against = \"input\", got {got}", where)
+    if load.resist is not None and (not _finite(load.resist) or load.resist < 0):
+        fail(f"'resist' must be a finite force >= 0 (N), got {load.resist!r}", where)
+    if load.stroke is not None:
+        ok = (("out", "in") if load.follows else ("forward", "return")
+              if load.resist is not None else ())
+        if load.stroke not in ok:
+            fail(f"'stroke' {load.stroke!r}: a table load takes \"out\" or \"in\" (its "
+                 "slide's), a 'resist' load \"forward\" or \"return\" (the input's)", where)
 
 
 def _validate(chain: Chain) -> None:

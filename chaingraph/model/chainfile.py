@@ -33,7 +33,8 @@ TOP_KEYS = ("name", "family", "units", "space", "notes", "naming", "joints", "po
 JOINT_KEYS = ("id", "kind", "links", "at", "axis", "closure", "friction")
 LINK_KEYS = ("name", "mass", "centre", "inertia")
 FORCES_KEYS = ("gravity",)
-LOAD_KEYS = ("on", "at", "force", "torque")
+LOAD_KEYS = ("on", "at", "force", "torque", "along", "table", "pressure", "area", "against",
+             "cycle", "stroke", "resist")
 POINT_KEYS = ("id", "link", "at")
 MECHANISM_KEYS = ("fixed", "driver", "inputs", "omega", "output")
 INPUT_KEYS = ("joint", "from", "to")
@@ -300,20 +301,52 @@ def _masses_and_loads(doc: dict[str, Any], fail: Fail) -> dict[str, Any]:
         _no_unknown_keys(table, FORCES_KEYS, None, lambda problem, w: fail(problem, "[forces]"))
         if "gravity" in table:
             gravity = _pair(table["gravity"], "gravity", "[forces]", fail, "m/s^2")
-    loads = []
-    for i, t in enumerate(_tables(doc.get("loads", []), "loads", fail)):
-        where = f"[[loads]] #{i + 1}"
-        _no_unknown_keys(t, LOAD_KEYS, None, lambda problem, w: fail(problem, where))
-        if "on" not in t:
-            fail("missing required key 'on' (the link it acts on)", where)
-        if "force" not in t and "torque" not in t:
-            fail("a load needs a 'force' [Fx, Fy] (N), a 'torque' (N m) or both", where)
-        on = _string(t["on"], where + " key 'on'", fail)
-        at = _string(t["at"], where + " key 'at'", fail) if "at" in t else None
-        force = _pair(t["force"], "force", where, fail, "[Fx, Fy] in N") if "force" in t else None
-        torque = number(t["torque"], where + " key 'torque'", fail) if "torque" in t else 0.0
-        loads.append(Load(on, at, force, torque))
+    loads = [_load(t, f"[[loads]] #{i + 1}", fail)
+             for i, t in enumerate(_tables(doc.get("loads", []), "loads", fail))]
     return {"masses": tuple(masses), "gravity": gravity, "loads": tuple(loads)}
+
+
+def _load(t: dict[str, Any], where: str, fail: Fail) -> Load:
+    """One ``[[loads]]`` table as a :class:`Load` (degrees read as radians); what it
+    means, such as a P joint for ``along``, is checked by the Chain."""
+    _no_unknown_keys(t, LOAD_KEYS, None, lambda problem, w: fail(problem, where))
+    if "on" not in t:
+        fail("missing required key 'on' (the link it acts on)", where)
+    if not any(k in t for k in ("force", "torque", "table", "pressure", "resist")):
+        fail("a load needs a 'force' [Fx, Fy] (N), a 'torque' (N m or \"mean\"), a "
+             "'table' or 'pressure' along a P joint, or a 'resist' force (N)", where)
+    on = _string(t["on"], where + " key 'on'", fail)
+    at = _string(t["at"], where + " key 'at'", fail) if "at" in t else None
+    force = _pair(t["force"], "force", where, fail, "[Fx, Fy] in N") if "force" in t else None
+    torque: float | str = 0.0
+    if "torque" in t:
+        torque = ("mean" if t["torque"] == "mean"
+                  else number(t["torque"], where + " key 'torque' (N m or \"mean\")", fail))
+    against = _string(t["against"], where + " key 'against'", fail) if "against" in t \
+        else "slide"
+    scale = math.radians(1.0) if against == "input" else 1.0
+    tables = {}
+    for key, unit in (("table", "N"), ("pressure", "Pa")):
+        if key in t:
+            rows = t[key]
+            if not isinstance(rows, list) or not rows:
+                fail(f"'{key}' must be a list of [x, {unit}] pairs, got {shown(rows)}", where)
+            pairs = [_pair(r, key, f"{where} row {k + 1}", fail, f"[x, {unit}]")
+                     for k, r in enumerate(rows)]
+            tables[key] = tuple((x * scale, v) for x, v in pairs)
+    cycle = None
+    if "cycle" in t:
+        cycle = math.radians(number(t["cycle"], where + " key 'cycle' (degrees)", fail))
+    return Load(on, at, force, torque,
+                along=_string(t["along"], where + " key 'along'", fail) if "along" in t
+                else None,
+                table=tables.get("table"), pressure=tables.get("pressure"),
+                area=number(t["area"], where + " key 'area'", fail) if "area" in t else None,
+                against=against, cycle=cycle,
+                stroke=_string(t["stroke"], where + " key 'stroke'", fail) if "stroke" in t
+                else None,
+                resist=number(t["resist"], where + " key 'resist'", fail) if "resist" in t
+                else None)
 
 
 def _point(table: dict[str, Any], index: int, fail: Fail, dimensioned: bool = False) -> Point:
@@ -496,12 +529,39 @@ def chain_document(chain: Chain) -> dict[str, Any]:
     if chain.gravity is not None:
         doc["forces"] = {"gravity": list(chain.gravity)}
     if chain.loads:
-        doc["loads"] = [{"on": x.on, **({"at": x.at} if x.at is not None else {}),
-                         **({"force": list(x.force)} if x.force is not None else {}),
-                         **({"torque": x.torque} if x.torque else {})} for x in chain.loads]
+        doc["loads"] = [load_entry(x) for x in chain.loads]
     if chain.task is not None:
         doc["task"] = chain.task
     return doc
+
+
+def load_entry(load: Load) -> dict[str, Any]:
+    """A :class:`Load` as its ``[[loads]]`` table (radians written as degrees)."""
+    def degrees(v: float) -> float:
+        return round(math.degrees(v), 9)
+    scale = degrees if load.against == "input" else (lambda v: v)
+    out: dict[str, Any] = {"on": load.on}
+    for key in ("at", "along"):
+        if getattr(load, key) is not None:
+            out[key] = getattr(load, key)
+    if load.force is not None:
+        out["force"] = list(load.force)
+    if load.torque:
+        out["torque"] = load.torque
+    for key in ("table", "pressure"):
+        rows = getattr(load, key)
+        if rows is not None:
+            out[key] = [[scale(x), v] for x, v in rows]
+    if load.area is not None:
+        out["area"] = load.area
+    if load.against != "slide":
+        out["against"] = load.against
+    if load.cycle is not None:
+        out["cycle"] = degrees(load.cycle)
+    for key in ("stroke", "resist"):
+        if getattr(load, key) is not None:
+            out[key] = getattr(load, key)
+    return out
 
 
 def dumps(chain: Chain) -> str:

@@ -367,7 +367,7 @@ def test_single_cylinder_engine_turning_moment_and_flywheel_by_the_textbook_meth
     swing = work - mean * u
     de = swing.max() - swing.min()
     assert f.summary.energy_fluctuation == pytest.approx(de, rel=1e-4)
-    assert f.summary.flywheel == pytest.approx(de / (w * w * 0.03), rel=1e-4)
+    assert f.summary.flywheel.inertia == pytest.approx(de / (w * w * 0.03), rel=1e-4)
     assert f.summary.efforts["O"].mean == pytest.approx(mean, abs=1e-6 * abs(torque).max())
 
 
@@ -492,7 +492,9 @@ def test_the_free_bodies_and_the_turning_moment_diagram(tmp_path):
     labels = [t.text for t in root.findall(".//s:text[@class='label']", ns)]
     assert labels == ["crank", "block", "slotted lever", "link", "ram"]
     arrows = root.findall(".//s:line[@class='force']", ns)
-    assert len(arrows) == len(root.findall(".//s:polygon[@class='arrowhead']", ns)) >= 14
+    # (12: the cutting force against the ram's motion leaves the guide G's reaction and
+    # the ram's inertia force too small to draw at the first pose)
+    assert len(arrows) == len(root.findall(".//s:polygon[@class='arrowhead']", ns)) >= 12
     assert any(a.get("data-force") == "load" for a in arrows)
     assert "<svg" in (tmp_path / "tm.svg").read_text()
     status, out, err = run_cli("forces", path, "--draw", tmp_path / "fb.png")
@@ -608,7 +610,9 @@ def _count_pose_solves(monkeypatch):
 
 @pytest.mark.parametrize("at, inputs", [(60.0, None), (-20.0, ["S"])])
 def test_forces_at_one_value_solves_its_pose_once(monkeypatch, at, inputs):
-    chain = replace(chaingraph.load(catalog_path("reciprocating-engine")), name="once")
+    # (a steady load: the catalog's gas force and mean torque need the whole cycle)
+    chain = replace(chaingraph.load(catalog_path("reciprocating-engine")), name="once",
+                    loads=(Load("crosshead", "B", (-2000.0, 0.0)),))
     calls = _count_pose_solves(monkeypatch)
     f = chaingraph.forces(chain, at=at, inputs=inputs)
     # one evaluation continued from the drawn pose to the value asked for (the anchor,
