@@ -26,7 +26,8 @@ from chaingraph._util.atomic import staged, write_atomic
 from chaingraph._util.parallel import process_runner
 from chaingraph._util.progress import ProgressBar
 from chaingraph.drawing.constructions import draw_centres, draw_polygons
-from chaingraph.drawing.forces import force_polygon_svg, free_body_svg, plot_turning_moment
+from chaingraph.drawing.forces import (force_polygon_svg, free_body_svg, plot_shaking,
+                                       plot_turning_moment)
 from chaingraph.drawing.graph import draw_link_joint_graph
 from chaingraph.drawing.limits import limits_svg
 from chaingraph.drawing.mechanism import mechanism_svg, skeleton_svg
@@ -301,6 +302,8 @@ def _write_images(entry: Entry, out: Path, frames: int) -> None:
             (img / f"{entry.slug}-force-polygons.svg").write_text(polygons, encoding="utf-8")
         if entry.forces is not None and len(entry.forces.inputs) == 1:
             plot_turning_moment(entry.forces, img / f"{entry.slug}-turning-moment.svg")
+        if entry.forces is not None and entry.forces.shaking is not None:
+            plot_shaking(entry.forces, img / f"{entry.slug}-shaking.svg")
     if entry.task is not None:
         draw_synthesis(entry.chain, **entry.task, title=entry.chain.name,
                        path=img / f"{entry.slug}-task.svg")

@@ -187,9 +187,15 @@ def _forces_section(e):
                    "</figcaption></figure>")
     if len(f.inputs) == 1:
         out.append(f"<figure><img src=\"img/{e.slug}-turning-moment.svg\" alt=\""
-                   "turning-moment diagram\" width=\"640\"><figcaption>The effort the input "
-                   "needs over the sweep, its mean and the swing of energy about it."
-                   "</figcaption></figure>")
+                   "turning-moment diagram\" width=\"640\"><figcaption>The turning-moment "
+                   "diagram over the cycle: the moment an engine delivers to its shaft (or "
+                   "the effort a driven machine needs), its mean and the energy of each loop "
+                   "about it.</figcaption></figure>")
+    if f.shaking is not None:
+        out.append(f"<figure><img src=\"img/{e.slug}-shaking.svg\" alt=\"polar diagram of "
+                   "the shaking force\" width=\"420\"><figcaption>The shaking force: the "
+                   "force the moving links put on the frame over the cycle (weights, loads "
+                   "and inertia), its tip traced about the origin.</figcaption></figure>")
     out.append("</div>")
     return out
 

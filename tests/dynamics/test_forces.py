@@ -528,6 +528,9 @@ def test_the_report_has_a_forces_section_for_the_engines(tmp_path):
     assert "<h2>Forces</h2>" in page and "energy fluctuation" in page
     assert (tmp_path / "img" / "reciprocating-engine-free-bodies.svg").exists()
     assert (tmp_path / "img" / "reciprocating-engine-turning-moment.svg").exists()
+    # the shaking force's polar diagram, shown on the page
+    assert (tmp_path / "img" / "reciprocating-engine-shaking.svg").exists()
+    assert "img/reciprocating-engine-shaking.svg" in page and "largest shaking force" in page
 
 
 def test_notebook_displays_and_renaming_carries_masses_and_loads():
