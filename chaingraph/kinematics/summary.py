@@ -569,10 +569,7 @@ def _cubic_roots(t0, t1, f0, f1, g0, g1):
     if np.size(t0) <= _FEW_BRACKETS:
         return np.array([_cubic_root(*(float(x) for x in v))
                          for v in zip(t0, t1, f0, f1, g0, g1)], dtype=float)
-    h = t1 - t0
-    a0, a1 = f0, g0 * h                       # p(s) = a0 + a1 s + a2 s^2 + a3 s^3
-    a2 = 3 * (f1 - f0) - (2 * g0 + g1) * h
-    a3 = 2 * (f0 - f1) + (g0 + g1) * h
+    h, (a0, a1, a2, a3) = t1 - t0, _hermite_cubic(t0, t1, f0, f1, g0, g1)
 
     def cubic(s):
         return a0 + s * (a1 + s * (a2 + s * a3))
@@ -593,6 +590,14 @@ def _cubic_roots(t0, t1, f0, f1, g0, g1):
     return t0 + s * h
 
 
+def _hermite_cubic(t0, t1, f0, f1, g0, g1):
+    """The coefficients (a0, a1, a2, a3) of p(s) = a0 + a1 s + a2 s^2 + a3 s^3 on
+    s in [0, 1] with values f and slopes g (per unit of t) at t0 and t1 (floats or
+    arrays alike)."""
+    h = t1 - t0
+    return f0, g0 * h, 3 * (f1 - f0) - (2 * g0 + g1) * h, 2 * (f0 - f1) + (g0 + g1) * h
+
+
 def _ratio(a, b):
     """a / b as numpy divides floats: infinite or NaN where b is 0."""
     if b != 0.0:
@@ -602,10 +607,7 @@ def _ratio(a, b):
 
 def _cubic_root(t0, t1, f0, f1, g0, g1):
     """:func:`_cubic_roots` of one bracket, in floats."""
-    h = t1 - t0
-    a0, a1 = f0, g0 * h                       # p(s) = a0 + a1 s + a2 s^2 + a3 s^3
-    a2 = 3 * (f1 - f0) - (2 * g0 + g1) * h
-    a3 = 2 * (f0 - f1) + (g0 + g1) * h
+    h, (a0, a1, a2, a3) = t1 - t0, _hermite_cubic(t0, t1, f0, f1, g0, g1)
 
     def cubic(s):
         return a0 + s * (a1 + s * (a2 + s * a3))
