@@ -27,13 +27,14 @@ from __future__ import annotations
 
 import math
 from abc import ABC, abstractmethod
+from dataclasses import dataclass
 
 import numpy as np
 
 from chaingraph.geometry import circle_circle
 from chaingraph.model.chain import Chain, Joint, Mechanism, Point
 
-__all__ = ["Family", "FourBar", "FOUR_BAR"]
+__all__ = ["Family", "FourBar", "FOUR_BAR", "AtlasFamily", "DyadStep", "dyad_plan"]
 
 
 class Family(ABC):
@@ -230,3 +231,254 @@ def _centred_unit(family: Family, params: np.ndarray) -> np.ndarray:
     pts = params.reshape(len(params), -1, 2)
     pts = (pts - np.stack([cx, cy], axis=1)[:, None, :]) / extent[:, None, None]
     return pts.reshape(len(params), -1)
+
+
+# -- any chain of the atlas, solved dyad by dyad -----------------------------------------
+@dataclass(frozen=True)
+class DyadStep:
+    """One dyad of a :class:`DyadPlan`: the unknown links ``first`` and ``second`` joined
+    by ``middle``; ``first`` joins the known link ``first_known`` at ``first_joint``,
+    ``second`` joins ``second_known`` at ``second_joint`` (every joint a turning pair)."""
+
+    first: str
+    second: str
+    middle: str
+    first_joint: str
+    second_joint: str
+    first_known: str
+    second_known: str
+
+
+def dyad_plan(chain: Chain, fixed: str, driver: str) -> tuple[DyadStep, ...] | None:
+    """The order in which the links of ``chain`` are found, two at a time, once ``fixed``
+    and ``driver`` (turning about the fixed link) are known: each step an RRR dyad whose
+    outer joints are on known links (an Assur group of class II). None when the chain is
+    not solved so (a sliding pair, a joint of three links, a driver not turning about the
+    fixed link on one turning pair, or a group of higher class: a triad).
+
+    Examples
+    --------
+    >>> from chaingraph.structure.atlas import atlas
+    >>> watt, stephenson = atlas(links=6)
+    >>> [(s.first, s.second) for s in dyad_plan(watt, "L1", "L2")]
+    [('L5', 'L6'), ('L3', 'L4')]
+    >>> dyad_plan(stephenson, "L3", "L5") is None     # a triad: L1, L2, L4 and L6
+    True
+    """
+    if any(j.kind != "R" or len(j.links) != 2 for j in chain.joints):
+        return None
+    if sum(1 for j in chain.joints if set(j.links) == {fixed, driver}) != 1:
+        return None
+    known = {fixed, driver}
+    steps: list[DyadStep] = []
+    while len(known) < len(chain.links):
+        step = _next_dyad(chain, known)
+        if step is None:
+            return None
+        steps.append(step)
+        known |= {step.first, step.second}
+    return tuple(steps)
+
+
+def _next_dyad(chain: Chain, known: set[str]) -> DyadStep | None:
+    """The first dyad (in joint order) of two unknown links whose other ends are known."""
+    def outer(link, middle):
+        return next(((j, x) for j in chain.joints_of(link) if j.id != middle.id
+                     for x in j.links if x != link and x in known), None)
+    for m in chain.joints:
+        u, v = m.links
+        if u in known or v in known:
+            continue
+        a, b = outer(u, m), outer(v, m)
+        if a is not None and b is not None:
+            return DyadStep(u, v, m.id, a[0].id, b[0].id, a[1], b[1])
+    return None
+
+
+class AtlasFamily(Family):
+    """A chain of the atlas as a mechanism family: ``fixed`` link, ``driver`` turning
+    about it, the tracing point on ``carrier``; the joints' positions solved dyad by dyad
+    (:func:`dyad_plan`) in closed form, vectorised over mechanisms and input values.
+    Parameters: every joint's drawn position in the chain's joint order, then the
+    point's. ``name`` is the mechanism's (a catalog name where there is one)."""
+
+    def __init__(self, chain: Chain, fixed: str, driver: str, carrier: str, *,
+                 name: str | None = None) -> None:
+        plan = dyad_plan(chain, fixed, driver)
+        if plan is None:
+            raise ValueError(f"{chain.name} with {fixed} fixed and {driver} driving is not "
+                             "solved dyad by dyad")
+        self.plan = plan
+        self.template = tuple(Joint(j.id, j.kind, j.links) for j in chain.joints)
+        self.fixed, self.driver, self.carrier = fixed, driver, carrier
+        self.name = name or f"{chain.name}, {fixed} fixed"
+        self.family_name = chain.family or chain.name
+        self._index = {j.id: k for k, j in enumerate(self.template)}
+        self._pivot = next(j.id for j in chain.joints if set(j.links) == {fixed, driver})
+        on = sorted(j.id for j in chain.joints if driver in j.links)
+        self._reference = (on[0], on[1])     # the solver's input line (reference_direction)
+        frames = {fixed: None, driver: (self._pivot, self._pivot)}
+        for s in plan:
+            frames[s.first] = (s.first_joint, s.middle)
+            frames[s.second] = (s.second_joint, s.middle)
+        self._frame_joints = frames
+        self._carrier_frame = frames[carrier]
+        self._links = sorted({x for j in self.template for x in j.links})
+
+    def _drawn(self, params):
+        p = np.asarray(params, dtype=float)
+        return p[:, :-2].reshape(len(p), -1, 2)
+
+    def _solve(self, params, theta):
+        """Every link's rigid motion from its drawn pose at ``theta``: link -> (c, s,
+        (px, py), (qx, qy)) meaning x -> p + R(c, s) (x - q) ((M, K) arrays; None: fixed)."""
+        drawn = self._drawn(params)
+        theta = np.asarray(theta, dtype=float)
+
+        def d(jid):
+            k = self._index[jid]
+            return drawn[:, k, 0][:, None], drawn[:, k, 1][:, None]
+        turn = theta - self.first_input(params)[:, None]
+        pivot = d(self._pivot)
+        motions: dict[str, tuple | None] = {self.fixed: None,
+                                            self.driver: (np.cos(turn), np.sin(turn), pivot, pivot)}
+        for s in self.plan:
+            a0, b0, m0 = d(s.first_joint), d(s.second_joint), d(s.middle)
+            a = _moved(motions[s.first_known], a0)
+            b = _moved(motions[s.second_known], b0)
+            r1 = np.hypot(m0[0] - a0[0], m0[1] - a0[1])
+            r2 = np.hypot(m0[0] - b0[0], m0[1] - b0[1])
+            mode = np.where((b0[0] - a0[0]) * (m0[1] - a0[1])
+                            - (b0[1] - a0[1]) * (m0[0] - a0[0]) >= 0, 1.0, -1.0)
+            with np.errstate(all="ignore"):
+                (mx, my), (nx, ny), raw = circle_circle(a, r1, b, r2)
+                root = mode * np.sqrt(np.where(raw >= 0, raw, np.nan))
+            m = (mx + root * nx, my + root * ny)
+            motions[s.first] = _rigid(a0, m0, a, m)
+            motions[s.second] = _rigid(b0, m0, b, m)
+        return motions
+
+    def positions(self, params, theta):
+        motions = self._solve(params, theta)
+        p = np.asarray(params, dtype=float)
+        return _moved(motions[self.carrier], (p[:, -2][:, None], p[:, -1][:, None]))
+
+    def posed(self, params, theta):
+        p = np.asarray(params, dtype=float)
+        th = np.asarray(theta, dtype=float)[:, None]
+        motions = self._solve(p, th)
+        drawn = self._drawn(p)
+        out = []
+        for k, j in enumerate(self.template):
+            link = next((x for x in j.links if motions[x] is not None), j.links[0])
+            x, y = _moved(motions[link], (drawn[:, k, 0][:, None], drawn[:, k, 1][:, None]))
+            out += [x, y]
+        out += list(_moved(motions[self.carrier], (p[:, -2][:, None], p[:, -1][:, None])))
+        return np.concatenate(out, axis=1)
+
+    def transmission(self, params, theta):
+        """The worst (farthest from 90 degrees) of the dyads' angles at their middle
+        joints."""
+        motions = self._solve(params, theta)
+        drawn = self._drawn(params)
+        worst = None
+        for s in self.plan:
+            pts = []
+            for link, jid in ((s.first, s.first_joint), (s.first, s.middle),
+                              (s.second, s.second_joint)):
+                k = self._index[jid]
+                pts.append(_moved(motions[link], (drawn[:, k, 0][:, None],
+                                                  drawn[:, k, 1][:, None])))
+            (ax, ay), (mx, my), (bx, by) = pts
+            ux, uy, vx, vy = ax - mx, ay - my, bx - mx, by - my
+            mu = np.degrees(np.arctan2(np.abs(ux * vy - uy * vx), ux * vx + uy * vy))
+            if worst is None:
+                worst = mu
+            else:
+                with np.errstate(invalid="ignore"):
+                    worst = np.where(np.abs(mu - 90.0) > np.abs(worst - 90.0), mu, worst)
+        if worst is None:
+            return np.full(np.shape(theta), 90.0)
+        return worst
+
+    def first_input(self, params):
+        drawn = self._drawn(params)
+        a, b = (self._index[j] for j in self._reference)
+        return np.arctan2(drawn[:, b, 1] - drawn[:, a, 1], drawn[:, b, 0] - drawn[:, a, 0])
+
+    def sample(self, rng, count):
+        """Random mechanisms of the chain that turn their input fully: the joints
+        scattered over a unit square, the driver's other joints drawn in towards its
+        pivot (a short crank), the point near the carrier's joints; those that
+        assemble over a whole turn kept (the draw repeated a few times, then the
+        feasible ones repeated), centred and scaled as :func:`_centred_unit`."""
+        kept: list[np.ndarray] = []
+        have = 0
+        for _ in range(_DRAWS):
+            p = self._scattered(rng, 4 * count + 16)
+            theta = self.first_input(p)[:, None] + np.linspace(0, 2 * math.pi, 48,
+                                                               endpoint=False)
+            with np.errstate(all="ignore"):
+                x, _ = self.positions(p, theta)
+                ok = np.all(np.isfinite(x), axis=1) & (self.link_ratio(p) <= 12.0)
+            kept.append(p[ok])
+            have += int(ok.sum())
+            if have >= count:
+                break
+        params = np.concatenate(kept)[:count]
+        if len(params) == 0:
+            params = self._scattered(rng, count)
+        while len(params) < count:
+            params = np.concatenate([params, params[:count - len(params)]])
+        return _centred_unit(self, params)
+
+    def _scattered(self, rng, n):
+        joints = rng.uniform(-1.0, 1.0, (n, len(self.template), 2))
+        pivot = self._index[self._pivot]
+        shrink = rng.uniform(0.1, 0.4, (n, 1, 1))
+        for k, j in enumerate(self.template):
+            if self.driver in j.links and k != pivot:
+                joints[:, k] = joints[:, pivot] + shrink[:, 0] * (joints[:, k] - joints[:, pivot])
+        on = [self._index[j.id] for j in self.template if self.carrier in j.links]
+        centre = joints[:, on].mean(axis=1)
+        point = centre + rng.normal(0.0, 0.5, (n, 2))
+        return np.concatenate([joints.reshape(n, -1), point], axis=1)
+
+    def dimensions(self, params):
+        p = [float(v) for v in np.asarray(params).reshape(-1)]
+        at = {j.id: (p[2 * k], p[2 * k + 1]) for k, j in enumerate(self.template)}
+        out = {}
+        for link in self._links:
+            on = [j.id for j in self.template if link in j.links]
+            for i, a in enumerate(on):
+                for b in on[i + 1:]:
+                    out[f"{a}-{b}"] = math.dist(at[a], at[b])
+        a, m = self._carrier_frame or (self._pivot, self._pivot)
+        if a == m:
+            a, m = sorted(j.id for j in self.template if self.carrier in j.links)[:2]
+        ex, ey = at[m][0] - at[a][0], at[m][1] - at[a][1]
+        length = math.hypot(ex, ey)
+        dx, dy = p[-2] - at[a][0], p[-1] - at[a][1]
+        out[f"{self.point} along {a}-{m}"] = (dx * ex + dy * ey) / length
+        out[f"{self.point} across"] = (-dx * ey + dy * ex) / length
+        return out
+
+
+_DRAWS = 6        # rounds of random mechanisms drawn when sampling an atlas family
+
+
+def _moved(motion, point):
+    """A drawn point (x, y) carried by a link's rigid motion (None: the fixed link)."""
+    if motion is None:
+        return point
+    c, s, (px, py), (qx, qy) = motion
+    dx, dy = point[0] - qx, point[1] - qy
+    return px + c * dx - s * dy, py + s * dx + c * dy
+
+
+def _rigid(a0, m0, a, m):
+    """The rigid motion taking drawn points a0, m0 to a, m (the same distance apart)."""
+    ux, uy = m0[0] - a0[0], m0[1] - a0[1]
+    vx, vy = m[0] - a[0], m[1] - a[1]
+    n = ux * ux + uy * uy
+    return (ux * vx + uy * vy) / n, (ux * vy - uy * vx) / n, a, a0

@@ -1,0 +1,212 @@
+"""Type synthesis through the atlas: a path or motion task searched over every 1-dof
+chain of a given number of links, every inversion and every link that can carry the
+point or pose, with the same optimiser as the four-bar's.
+
+The space (:func:`atlas_space`): the chains of the atlas with ``links`` links (with
+``prismatic`` sliding pairs: the sliding atlas's), each chain's inversions (the orbits of
+its links under its automorphisms, as the atlas counts them; the first link of each
+orbit fixed), each inversion's drivers (a link turning about the fixed link on a
+turning pair, one per orbit of (fixed, driver) pairs) and carriers (every link not
+jointed to the fixed link: a link turning about a fixed pivot traces circles only). A
+(chain, fixed, driver, carrier) choice is a *family*
+(:class:`~chaingraph.synthesis.family.AtlasFamily`) when its chain is solved dyad by
+dyad from its fixed link and driver (every Watt inversion, the Stephenson I and II;
+not the Stephenson III, whose group beyond its driver is a triad, nor chains with
+sliding pairs: those inversions are searched and counted, and reported in
+``rejected`` as ``"not dyad-solvable"``).
+
+Each family is one independent job (:func:`search_family`: the coarse search, the
+global search and least squares of :mod:`chaingraph.synthesis.optimiser` on a budget,
+then the best fits certified from their written files); jobs run on local processes or
+a Dask cluster through the atlas's runners (:func:`chaingraph._util.parallel.process_runner`,
+:class:`~chaingraph.structure.atlas.DaskRunner`), each from its own random stream
+(the task's seed and the family's number), so the result does not depend on how many
+workers ran it.
+"""
+
+from __future__ import annotations
+
+from collections import Counter
+from collections.abc import Callable
+from dataclasses import dataclass, replace
+from typing import Any
+
+import numpy as np
+
+from chaingraph._util.parallel import Runner, serial
+from chaingraph.errors import DesignError
+from chaingraph.model.chain import Chain
+from chaingraph.naming.atlas import atlas_names
+from chaingraph.structure.atlas import atlas
+from chaingraph.structure.isomorphism import automorphism_orbits, pair_orbits
+from chaingraph.synthesis.family import AtlasFamily, dyad_plan
+from chaingraph.synthesis.path_generation import Budget, synthesise_path
+from chaingraph.synthesis.result import Searched, Solution, Synthesis, ranked
+from chaingraph.synthesis.task import PathTask
+
+__all__ = ["LINKS", "Choice", "Space", "atlas_space", "search_family", "path_types",
+           "check_links", "BUDGETS", "UNSOLVED"]
+
+#: the sizes a synthesis searches (4: the four-bar; 6 and 8: through the atlas)
+LINKS = (4, 6, 8)
+#: the reason a family beyond the dyad-by-dyad solver is counted under
+UNSOLVED = "not dyad-solvable"
+#: how hard one family is searched, exact (up to five points) and fitted
+BUDGETS = {True: Budget(samples=1500, starts=24), False: Budget(samples=2000, starts=30,
+                                                                  fitted=4, generations=40)}
+_KEPT = 2         # certified solutions kept per family
+
+
+@dataclass(frozen=True)
+class Choice:
+    """One family of the space: the atlas's ``chain`` (number ``chain_id`` from 1 in the
+    atlas's order), its inversion ``inversion`` (from 1, in the order of its orbits),
+    ``fixed``, ``driver`` and ``carrier`` links, the catalog's ``names`` (the chain's,
+    then the inversion's) and whether it is ``solvable`` dyad by dyad."""
+
+    chain: Chain
+    chain_id: int
+    inversion: int
+    fixed: str
+    driver: str
+    carrier: str
+    names: tuple[str, ...]
+    solvable: bool
+
+
+@dataclass(frozen=True)
+class Space:
+    """The space a type synthesis searches: ``links``, ``prismatic``, the atlas's
+    ``chains`` and ``inversions`` (counts) and the ``choices``."""
+
+    links: int
+    prismatic: int
+    chains: int
+    inversions: int
+    choices: tuple[Choice, ...]
+
+
+def check_links(links, prismatic, *, kind: str) -> None:
+    """Refuse a number of links not in :data:`LINKS` (and a ``prismatic`` that is not a
+    whole number 0 or more, or "all")."""
+    if isinstance(links, bool) or links not in LINKS:
+        raise DesignError(f"links must be 4, 6 or 8, got {links!r}", kind=kind,
+                          parameter="links")
+    if prismatic is not None and prismatic != "all" and (
+            isinstance(prismatic, bool) or not isinstance(prismatic, int) or prismatic < 0):
+        raise DesignError(f"prismatic must be a whole number, 0 or more, or 'all', got "
+                          f"{prismatic!r}", kind=kind, parameter="prismatic")
+
+
+def atlas_space(links: int, prismatic: int | str | None = None) -> Space:
+    """Every chain of ``links`` links (1 dof; with ``prismatic`` sliding pairs), every
+    inversion, driver and carrier (see the module).
+
+    Examples
+    --------
+    >>> s = atlas_space(6)
+    >>> s.chains, s.inversions, len(s.choices), sum(c.solvable for c in s.choices)
+    (2, 5, 16, 14)
+    """
+    chains = list(atlas(links=links, prismatic=prismatic))
+    choices: list[Choice] = []
+    inversions = 0
+    for number, chain in enumerate(chains, 1):
+        named = atlas_names(chain)
+        by_link = {x: tuple(i["names"]) for i in named["inversions"] for x in i["links"]}
+        orbits = automorphism_orbits(chain, oriented=False)
+        inversions += len(orbits)
+        for k, orbit in enumerate(orbits, 1):
+            fixed = orbit[0]
+            names = tuple(named["chain"]) + by_link.get(fixed, ())
+            choices += _choices(chain, number, k, fixed, names)
+    p = 0 if prismatic is None else (-1 if prismatic == "all" else int(prismatic))
+    return Space(links, p, len(chains), inversions, tuple(choices))
+
+
+def _choices(chain, number, inversion, fixed, names) -> list[Choice]:
+    """An inversion's families: one driver per orbit of (fixed, driver) pairs, every
+    carrier not jointed to the fixed link."""
+    drivers = [next(x for x in j.links if x != fixed) for j in chain.joints
+               if fixed in j.links and len(j.links) == 2 and j.kind == "R"]
+    seen: set[str] = set()
+    kept = []
+    for orbit in pair_orbits(chain, [(fixed, d) for d in drivers], oriented=False):
+        mine = [d for f, d in orbit if f == fixed and d not in seen]
+        if mine:
+            kept.append(mine[0])
+            seen.update(d for f, d in orbit if f == fixed)
+    grounded = {x for j in chain.joints if fixed in j.links for x in j.links}
+    carriers = [x for x in chain.links if x not in grounded]
+    return [Choice(chain, number, inversion, fixed, d, c, names,
+                   dyad_plan(chain, fixed, d) is not None)
+            for d in kept for c in carriers]
+
+
+@dataclass(frozen=True)
+class _Job:
+    task: Any
+    choice: Choice
+    number: int
+    links: int
+    prismatic: int
+    solutions: int
+
+
+def search_family(job: _Job) -> tuple[list[Solution], dict[str, int], int]:
+    """One family searched (module docstring): its certified solutions (``atlas`` and
+    ``names`` filled), its rejected candidates by reason, and the random mechanisms it
+    sampled."""
+    c = job.choice
+    if not c.solvable:
+        return [], {UNSOLVED: 1}, 0
+    family = AtlasFamily(c.chain, c.fixed, c.driver, c.carrier,
+                         name=(c.names[-1] if len(c.names) > 1 else
+                               f"{c.chain.name}, {c.fixed} fixed"))
+    rng = np.random.default_rng([job.task.seed, job.number])
+    budget = BUDGETS[job.task.exact]
+    found = synthesise_path(job.task, family, solutions=min(job.solutions, _KEPT),
+                            budget=budget, rng=rng)
+    where = {"links": job.links, "prismatic": job.prismatic, "chain": c.chain_id,
+             "inversion": c.inversion}
+    out = [replace(s, names=c.names, atlas=where) for s in found.solutions]
+    return out, dict(found.rejected), budget.samples
+
+
+def path_types(task: PathTask, *, links: int, prismatic: int | str | None = None,
+               solutions: int = 5, runner: Runner | None = None,
+               progress: Callable[[int, int], None] | None = None) -> Synthesis:
+    """Type synthesis of a checked path task over the atlas's chains of ``links`` links
+    (6 or 8; with ``prismatic`` sliding pairs), every family searched on ``runner`` (by
+    default here, one after another); the certified solutions of every family ranked
+    together. ``progress(done, total)`` is called as families finish."""
+    space = atlas_space(links, prismatic)
+    task = replace(task, mechanism=_mechanism(links, prismatic))
+    jobs = [_Job(task, c, k, links, space.prismatic, solutions)
+            for k, c in enumerate(space.choices)]
+    results: dict[int, tuple] = {}
+
+    def done(i, result):
+        results[i] = result
+        if progress is not None:
+            progress(len(results), len(jobs))
+    (runner or serial)(search_family, jobs, done)
+    found: list[Solution] = []
+    rejected: Counter = Counter()
+    sampled = 0
+    for i in range(len(jobs)):          # in the space's order, however they ran
+        sols, why, n = results[i]
+        found += sols
+        rejected.update(why)
+        sampled += n
+    tolerance = 1e-9 * task.size if task.exact else 0.0
+    return Synthesis(task, ranked(found, solutions, tolerance=tolerance),
+                     dict(sorted(rejected.items())),
+                     Searched(space.chains, space.inversions, sampled))
+
+
+def _mechanism(links: int, prismatic) -> str:
+    """The task's mechanism: what was searched."""
+    if prismatic in (None, 0):
+        return f"{links}-link chains"
+    return f"{links}-link chains, {prismatic} sliding pairs"
