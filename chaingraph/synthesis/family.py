@@ -315,8 +315,9 @@ class AtlasFamily(Family):
         self.family_name = chain.family or chain.name
         self._index = {j.id: k for k, j in enumerate(self.template)}
         self._pivot = next(j.id for j in chain.joints if set(j.links) == {fixed, driver})
-        on = sorted(j.id for j in chain.joints if driver in j.links)
-        self._reference = (on[0], on[1])     # the solver's input line (reference_direction)
+        on = sorted(j.id for j in chain.joints if driver in j.links and j.id != self._pivot)
+        # the solver's input: the line from the pivot to the driver's first other joint
+        self._reference = (self._pivot, on[0])
         frames = {fixed: None, driver: (self._pivot, self._pivot)}
         for s in plan:
             frames[s.first] = (s.first_joint, s.middle)

@@ -41,10 +41,11 @@ from chaingraph.structure.atlas import atlas
 from chaingraph.structure.isomorphism import automorphism_orbits, pair_orbits
 from chaingraph.synthesis.family import AtlasFamily, dyad_plan
 from chaingraph.synthesis.path_generation import Budget, synthesise_path
+from chaingraph.synthesis.path_generation import path as four_bar_path
 from chaingraph.synthesis.result import Searched, Solution, Synthesis, ranked
-from chaingraph.synthesis.task import PathTask
+from chaingraph.synthesis.task import PathTask, check_options, path_task
 
-__all__ = ["LINKS", "Choice", "Space", "atlas_space", "search_family", "path_types",
+__all__ = ["path", "LINKS", "Choice", "Space", "atlas_space", "search_family", "path_types",
            "check_links", "BUDGETS", "UNSOLVED"]
 
 #: the sizes a synthesis searches (4: the four-bar; 6 and 8: through the atlas)
@@ -171,6 +172,43 @@ def search_family(job: _Job) -> tuple[list[Solution], dict[str, int], int]:
              "inversion": c.inversion}
     out = [replace(s, names=c.names, atlas=where) for s in found.solutions]
     return out, dict(found.rejected), budget.samples
+
+
+def path(*, points, timing=None, closed: bool = False, kind: str = "four-bar",
+         solutions: int = 5, seed: int | None = None, units: str = "mm",
+         min_transmission: float = 30.0, links: int = 4,
+         prismatic: int | str | None = None, runner: Runner | None = None) -> Synthesis:
+    """Synthesise a path generator: a point of one link passes through ``points`` in
+    order. With ``links`` 4 (and no ``prismatic``), the four-bar
+    (:func:`chaingraph.synthesis.path_generation.path`, whose parameters these are);
+    with 6 or 8, every chain of the atlas of that size (with ``prismatic`` sliding
+    pairs), every inversion and every link that can carry the point
+    (:func:`path_types`), its families searched on ``runner`` (a runner of
+    :mod:`chaingraph._util.parallel`, or :class:`~chaingraph.structure.atlas.DaskRunner`;
+    by default one after another here).
+
+    Examples
+    --------
+    >>> s = path(points=[(0, 0), (10, 4), (18, 12), (20, 22), (14, 30)], seed=1,
+    ...          solutions=1, links=6)
+    >>> s.solutions[0].atlas["links"], s.solutions[0].error.max < 1e-9 * 36
+    (6, True)
+    >>> s.searched.chains, s.searched.inversions
+    (2, 5)
+    """
+    check_links(links, prismatic, kind="path")
+    if links == 4 and prismatic in (None, 0):
+        return four_bar_path(points=points, timing=timing, closed=closed, kind=kind,
+                             solutions=solutions, seed=seed, units=units,
+                             min_transmission=min_transmission)
+    if seed is None:
+        seed = int(np.random.default_rng().integers(0, 2 ** 31))
+    task = path_task(points=points, timing=timing, closed=closed, kind=kind, seed=seed,
+                     units=units, min_transmission=min_transmission)
+    check_options(solutions=solutions, min_transmission=min_transmission, units=units,
+                  kind="path")
+    return path_types(task, links=links, prismatic=prismatic, solutions=solutions,
+                      runner=runner)
 
 
 def path_types(task: PathTask, *, links: int, prismatic: int | str | None = None,
