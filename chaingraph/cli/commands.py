@@ -511,15 +511,19 @@ def cmd_design_path(args) -> int:
                    min_transmission=args.min_transmission)
     if args.links == 4 and args.prismatic in (None, 0):
         return _synthesis_output(args, synthesis.path(**options))
+    return _synthesis_output(args, _through_atlas(args, synthesis.path, options))
+
+
+def _through_atlas(args, synthesise, options):
+    """A type synthesis (``synthesise``: synthesis.path or .motion with ``options``)
+    over the atlas's chains of ``--links`` links, on local processes or a Dask cluster."""
     if args.scheduler is not None:
         workers = args.workers if args.workers >= 1 else workers_asked(args.workers)
         with DaskRunner(args.scheduler, workers=workers) as runner:
-            found = synthesis.path(**options, links=args.links, prismatic=args.prismatic,
-                                   runner=runner)
-    else:
-        found = synthesis.path(**options, links=args.links, prismatic=args.prismatic,
-                               runner=process_runner(workers_asked(args.workers)))
-    return _synthesis_output(args, found)
+            return synthesise(**options, links=args.links, prismatic=args.prismatic,
+                              runner=runner)
+    return synthesise(**options, links=args.links, prismatic=args.prismatic,
+                      runner=process_runner(workers_asked(args.workers)))
 
 
 def points_file(path) -> list[tuple[float, float]]:
@@ -553,13 +557,12 @@ def cmd_design_motion(args) -> int:
     if args.draw:
         svg_file(args.draw, what="solution and its poses")
     synthesis.check_links(args.links, args.prismatic, kind="motion")
-    if args.links != 4 or args.prismatic not in (None, 0):
-        raise DesignError("motion generation through the atlas (links 6 or 8, or sliding "
-                          "pairs) is not built yet: links must be 4", kind="motion",
-                          parameter="links")
-    found = synthesis.motion(poses=args.poses, solutions=args.solutions, units=args.units,
-                             min_transmission=args.min_transmission)
-    return _synthesis_output(args, found)
+    options = dict(poses=args.poses, solutions=args.solutions, units=args.units,
+                   min_transmission=args.min_transmission)
+    if args.links == 4 and args.prismatic in (None, 0):
+        return _synthesis_output(args, synthesis.motion(**options))
+    return _synthesis_output(args, _through_atlas(args, synthesis.motion,
+                                                  {**options, "seed": args.seed}))
 
 
 def _task_line(task) -> str:

@@ -403,7 +403,7 @@ def _type_arguments(q) -> None:
     q.add_argument("--links", type=int, default=4, metavar="4|6|8",
                    help="the mechanism's links: 4 the four-bar (default); 6 or 8 every "
                         "1-dof chain of that size in the atlas, every inversion and every "
-                        "link that can carry the point")
+                        "link that can carry the point or pose")
     q.add_argument("--prismatic", type=prismatic_count, metavar="K|all",
                    help="with --links 6 or 8: chains with K sliding pairs ('all': any)")
     q.add_argument("--workers", type=int, default=1, metavar="K",
@@ -445,13 +445,19 @@ def numbers_argument(text: str) -> list[float]:
 def _design_motion_command(kinds) -> None:
     """The arguments of ``chaingraph design motion``."""
     q = kinds.add_parser(
-        "motion", help="a motion generator (four-bar or slider crank) through 2 to 5 poses",
+        "motion", help="a motion generator (four-bar or slider crank; with --links 6 or 8 "
+                       "any chain of the atlas) through 2 to 5 poses",
         description="A four-bar or slider crank whose coupler passes through the poses in "
                     "order: two and three poses by the classical constructions, four and "
-                    "five by Burmester theory; every pair of dyads tried, each driving; "
-                    "every solution certified by the solver from its written chain file.")
+                    "five by Burmester theory; every pair of dyads tried, each driving. "
+                    "With --links 6 or 8, every chain of that size, inversion and link "
+                    "that can carry the pose, searched by the path optimiser. Every "
+                    "solution certified by the solver from its written chain file.")
     q.add_argument("--poses", required=True, type=poses_argument, metavar='"X,Y,DEG; ..."',
                    help="the coupler's poses in order: its point P at X,Y and its angle DEG")
+    q.add_argument("--seed", type=int, metavar="S",
+                   help="with --links 6 or 8: the random search's seed (the same seed, the "
+                        "same solutions)")
     _type_arguments(q)
     _synthesis_arguments(q)
     q.set_defaults(run=cmd_design_motion)

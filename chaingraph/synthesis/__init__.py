@@ -26,8 +26,7 @@ from chaingraph.synthesis.certification import (
 )
 from chaingraph.synthesis.design import KINDS, Design, slotted_lever, whitworth
 from chaingraph.synthesis.function_generation import function
-from chaingraph.synthesis.motion_generation import motion
-from chaingraph.synthesis.type_synthesis import LINKS, check_links, path
+from chaingraph.synthesis.type_synthesis import LINKS, check_links, motion, path
 from chaingraph.synthesis.result import Curve, Error, Searched, Solution, Synthesis
 from chaingraph.synthesis.task import (
     FunctionTask,

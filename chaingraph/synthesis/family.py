@@ -11,7 +11,8 @@ the drawing, as the solver reads it. A family supplies, vectorised over many mec
 
 * :meth:`Family.positions`: where the tracing point is at given input values (NaN where
   the chain cannot be assembled), tracking the drawn assembly;
-* :meth:`Family.transmission`: the transmission angle there (degrees);
+* :meth:`Family.transmission`: the transmission angle there (degrees), and
+  :meth:`Family.rotation` how far the carrier has turned from its drawn pose (radians);
 * :meth:`Family.first_input`: the input's value (radians) at the drawn pose, and
   :meth:`Family.posed` the mechanisms drawn at other input values;
 * :meth:`Family.sample`: random mechanisms of the family that can turn their input fully,
@@ -20,7 +21,7 @@ the drawing, as the solver reads it. A family supplies, vectorised over many mec
   its ``[mechanism]`` (output: the tracing point), to be certified from its file.
 
 :class:`FourBar` is the four-bar's (closed form); a six-bar family plugs into the same
-optimiser (:mod:`chaingraph.synthesis.optimiser`) by giving these six.
+optimiser (:mod:`chaingraph.synthesis.optimiser`) by giving these seven.
 """
 
 from __future__ import annotations
@@ -66,6 +67,11 @@ class Family(ABC):
     @abstractmethod
     def transmission(self, params: np.ndarray, theta: np.ndarray) -> np.ndarray:
         """The transmission angle (degrees, (M, K)) at ``theta``; NaN where unassembled."""
+
+    @abstractmethod
+    def rotation(self, params: np.ndarray, theta: np.ndarray) -> np.ndarray:
+        """How far the carrier has turned (radians, (M, K)) at ``theta`` from its drawn
+        pose; NaN where unassembled."""
 
     @abstractmethod
     def first_input(self, params: np.ndarray) -> np.ndarray:
@@ -170,6 +176,12 @@ class FourBar(Family):
     def first_input(self, params):
         p = np.asarray(params, dtype=float)
         return np.arctan2(p[:, 3] - p[:, 1], p[:, 2] - p[:, 0])
+
+    def rotation(self, params: np.ndarray, theta: np.ndarray) -> np.ndarray:
+        p = np.asarray(params, dtype=float)
+        (bx, by), (cx, cy), _, _, _, _ = self._joints(p, theta)
+        drawn = np.arctan2(p[:, 5] - p[:, 3], p[:, 4] - p[:, 2])[:, None]
+        return np.arctan2(cy - by, cx - bx) - drawn
 
     def sample(self, rng, count):
         """Grashof crank-rockers (the crank the shortest link, so that it turns fully),
@@ -363,6 +375,10 @@ class AtlasFamily(Family):
         motions = self._solve(params, theta)
         p = np.asarray(params, dtype=float)
         return _moved(motions[self.carrier], (p[:, -2][:, None], p[:, -1][:, None]))
+
+    def rotation(self, params: np.ndarray, theta: np.ndarray) -> np.ndarray:
+        c, s, _, _ = self._solve(params, theta)[self.carrier]
+        return np.arctan2(s, c)
 
     def posed(self, params, theta):
         p = np.asarray(params, dtype=float)

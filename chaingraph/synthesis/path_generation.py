@@ -40,6 +40,7 @@ from chaingraph.synthesis.certification import Certified, PointTargets, Rejected
 from chaingraph.synthesis.family import FOUR_BAR, Family
 from chaingraph.synthesis.optimiser import (
     MAX_RATIO,
+    Fit,
     TaskFrame,
     coarse_search,
     fit_start,
@@ -50,7 +51,8 @@ from chaingraph.synthesis.optimiser import (
 from chaingraph.synthesis.result import Error, Searched, Solution, Synthesis, ranked
 from chaingraph.synthesis.task import PathTask, check_options, path_task
 
-__all__ = ["path", "EXACT", "synthesise_path", "Budget", "BUDGET"]
+__all__ = ["path", "EXACT", "synthesise_path", "Budget", "BUDGET", "distinct_fits",
+           "least_transmission"]
 
 #: a fit passes its points exactly when every distance is within this of the task's size
 EXACT = 1e-9
@@ -168,7 +170,7 @@ def synthesise_path(task: PathTask, family: Family, *, solutions: int,
             fits.append(fit)
     rejected: Counter = Counter()
     kept = []
-    for f in _distinct(fits):
+    for f in distinct_fits(fits):
         defect = predicted_defect(family, f)
         if defect is None:
             kept.append(f)
@@ -176,7 +178,7 @@ def synthesise_path(task: PathTask, family: Family, *, solutions: int,
             rejected[defect] += 1
     fits = kept
     if exact:
-        fits.sort(key=lambda f: -_least_transmission(family, f))
+        fits.sort(key=lambda f: -least_transmission(family, f))
     else:
         fits.sort(key=lambda f: f.residual)
     found: list[Solution] = []
@@ -194,16 +196,16 @@ def synthesise_path(task: PathTask, family: Family, *, solutions: int,
                      dict(sorted(rejected.items())), Searched(1, 1, budget.samples))
 
 
-def _distinct(fits):
+def distinct_fits(fits: list[Fit]) -> list[Fit]:
     """The fits, repeats dropped (parameters within 1e-6 of the task's size)."""
-    out = []
+    out: list[Fit] = []
     for f in fits:
         if not any(np.max(np.abs(f.params - g.params)) <= 1e-6 for g in out):
             out.append(f)
     return out
 
 
-def _least_transmission(family, fit) -> float:
+def least_transmission(family: Family, fit: Fit) -> float:
     """The transmission angle's worst (the least of mu and 180 - mu) between the first
     target and the last, by the family's own kinematics; -1 where unassembled."""
     lo, hi = fit.inputs[0], fit.inputs[-1]

@@ -27,7 +27,7 @@ workers ran it.
 from __future__ import annotations
 
 from collections import Counter
-from collections.abc import Callable
+from collections.abc import Callable, Sequence
 from dataclasses import dataclass, replace
 from typing import Any
 
@@ -40,13 +40,15 @@ from chaingraph.naming.atlas import atlas_names
 from chaingraph.structure.atlas import atlas
 from chaingraph.structure.isomorphism import automorphism_orbits, pair_orbits
 from chaingraph.synthesis.family import AtlasFamily, dyad_plan
+from chaingraph.synthesis.motion_generation import motion as four_bar_motion
 from chaingraph.synthesis.path_generation import Budget, synthesise_path
 from chaingraph.synthesis.path_generation import path as four_bar_path
+from chaingraph.synthesis.pose_search import synthesise_motion
 from chaingraph.synthesis.result import Searched, Solution, Synthesis, ranked
-from chaingraph.synthesis.task import PathTask, check_options, path_task
+from chaingraph.synthesis.task import MotionTask, PathTask, check_options, motion_task, path_task
 
-__all__ = ["path", "LINKS", "Choice", "Space", "atlas_space", "search_family", "path_types",
-           "check_links", "BUDGETS", "UNSOLVED"]
+__all__ = ["path", "motion", "LINKS", "Choice", "Space", "atlas_space", "search_family",
+           "path_types", "check_links", "BUDGETS", "UNSOLVED"]
 
 #: the sizes a synthesis searches (4: the four-bar; 6 and 8: through the atlas)
 LINKS = (4, 6, 8)
@@ -107,7 +109,7 @@ def atlas_space(links: int, prismatic: int | str | None = None) -> Space:
     --------
     >>> s = atlas_space(6)
     >>> s.chains, s.inversions, len(s.choices), sum(c.solvable for c in s.choices)
-    (2, 5, 16, 14)
+    (2, 5, 25, 17)
     """
     chains = list(atlas(links=links, prismatic=prismatic))
     choices: list[Choice] = []
@@ -166,8 +168,9 @@ def search_family(job: _Job) -> tuple[list[Solution], dict[str, int], int]:
                                f"{c.chain.name}, {c.fixed} fixed"))
     rng = np.random.default_rng([job.task.seed, job.number])
     budget = BUDGETS[job.task.exact]
-    found = synthesise_path(job.task, family, solutions=min(job.solutions, _KEPT),
-                            budget=budget, rng=rng)
+    search = synthesise_motion if job.task.kind == "motion" else synthesise_path
+    found = search(job.task, family, solutions=min(job.solutions, _KEPT), budget=budget,
+                   rng=rng)
     where = {"links": job.links, "prismatic": job.prismatic, "chain": c.chain_id,
              "inversion": c.inversion}
     out = [replace(s, names=c.names, atlas=where) for s in found.solutions]
@@ -211,10 +214,45 @@ def path(*, points, timing=None, closed: bool = False, kind: str = "four-bar",
                       runner=runner)
 
 
-def path_types(task: PathTask, *, links: int, prismatic: int | str | None = None,
+def motion(*, poses: Sequence[Sequence[float]], solutions: int = 5, units: str = "mm",
+           min_transmission: float = 30.0,
+           circle_points: Sequence[Sequence[float]] | None = None, links: int = 4, prismatic: int | str | None = None,
+           seed: int | None = None, runner: Runner | None = None) -> Synthesis:
+    """Synthesise a motion generator: one link passes through ``poses`` (x, y, degrees)
+    in order. With ``links`` 4 (and no ``prismatic``), the four-bar and slider crank by
+    the classical constructions and Burmester theory
+    (:func:`chaingraph.synthesis.motion_generation.motion`, whose parameters these are);
+    with 6 or 8, every chain of the atlas of that size, every inversion and every link
+    that can carry the pose (:func:`path_types`, the carrier's point at x, y and its
+    angle), each family searched by the path optimiser with the carrier's turn as
+    further equations (:func:`chaingraph.synthesis.pose_search.synthesise_motion`), on
+    ``runner``, repeatably from ``seed``.
+
+    Examples
+    --------
+    >>> s = motion(poses=[(0, 0, 0), (40, 10, 20), (70, 40, 50)], solutions=1, links=6,
+    ...            seed=1)
+    >>> s.solutions[0].atlas["links"], s.solutions[0].error.angle < 1e-6
+    (6, True)
+    """
+    check_links(links, prismatic, kind="motion")
+    if links == 4 and prismatic in (None, 0):
+        return four_bar_motion(poses=poses, solutions=solutions, units=units,
+                               min_transmission=min_transmission, circle_points=circle_points)
+    if seed is None:
+        seed = int(np.random.default_rng().integers(0, 2 ** 31))
+    task = motion_task(poses=poses, units=units, min_transmission=min_transmission,
+                       seed=seed)
+    check_options(solutions=solutions, min_transmission=min_transmission, units=units,
+                  kind="motion")
+    return path_types(task, links=links, prismatic=prismatic, solutions=solutions,
+                      runner=runner)
+
+
+def path_types(task: PathTask | MotionTask, *, links: int, prismatic: int | str | None = None,
                solutions: int = 5, runner: Runner | None = None,
                progress: Callable[[int, int], None] | None = None) -> Synthesis:
-    """Type synthesis of a checked path task over the atlas's chains of ``links`` links
+    """Type synthesis of a checked path or motion task over the atlas's chains of ``links`` links
     (6 or 8; with ``prismatic`` sliding pairs), every family searched on ``runner`` (by
     default here, one after another); the certified solutions of every family ranked
     together. ``progress(done, total)`` is called as families finish."""

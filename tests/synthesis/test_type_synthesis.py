@@ -140,3 +140,44 @@ def test_a_six_bar_beats_every_four_bar_where_the_task_needs_it():
     best_four = four.solutions[0].error.max if four.solutions else math.inf
     assert best_six < 0.5 * best_four
     assert six.solutions[0].atlas["links"] == 6
+
+
+def six_bar_poses(count):
+    """Poses of a link of a Stephenson I six-bar (a sampled mechanism of the family,
+    at 50 mm): its point P and the link's angle, solved by the solver at ``count``
+    input values over most of a turn."""
+    c = next(c for c in atlas_space(6).choices if c.names[-1] == "Stephenson I six-bar mechanism")
+    family = AtlasFamily(c.chain, c.fixed, c.driver, c.carrier)
+    params = family.sample(np.random.default_rng(3), 1) * 50.0
+    chain = family.chain(params[0], name="six-bar", units="mm", notes="")
+    start = float(np.degrees(family.first_input(params)[0]))
+    m = chaingraph.solve(chain, start=start, stop=start + 240.0, steps=count - 1,
+                         summary=False)
+    return [(float(m["x:P"][k]), float(m["y:P"][k]), float(m[f"angle:{c.carrier}"][k]))
+            for k in range(count)]
+
+
+@pytest.mark.slow
+def test_poses_of_a_six_bar_link_are_passed_by_a_six_bar(tmp_path):
+    poses = six_bar_poses(4)
+    text = "; ".join(f"{x!r},{y!r},{a!r}" for x, y, a in poses)
+    code, stdout, err = run_cli("design", "motion", "--poses", text, "--links", "6",
+                                "--seed", "1", "--solutions", "1", "--json",
+                                "--out", tmp_path)
+    assert code == 0, err
+    found = json.loads(stdout)
+    assert found["searched"] == {"chains": 2, "inversions": 5,
+                                 "candidates": found["searched"]["candidates"]}
+    best = found["solutions"][0]
+    assert best["atlas"]["links"] == 6
+    chain = load(tmp_path / "solution-1.toml")
+    link = chain.points[0].link
+    size = max(math.dist(p[:2], q[:2]) for p in poses for q in poses)
+    turns = []
+    for (x, y, a), v in zip(poses, best["reached_at"]):      # re-solved from the file
+        m = chaingraph.solve(chain, start=v, stop=v, steps=1, summary=False)
+        assert math.hypot(float(m["x:P"][0]) - x, float(m["y:P"][0]) - y) <= 1e-8 * size
+        turns.append(float(m[f"angle:{link}"][0]) - a)
+    spread = (np.asarray(turns) - turns[0] + 180.0) % 360.0 - 180.0
+    assert np.max(np.abs(spread)) <= 1e-6                  # the link turns as the poses do
+    assert best["error"]["max"] <= 1e-9 * size and best["error"]["angle_error"] <= 1e-6
