@@ -274,7 +274,7 @@ def dyad_plan(chain: Chain, fixed: str, driver: str) -> tuple[DyadStep, ...] | N
     >>> watt, stephenson = atlas(links=6)
     >>> [(s.first, s.second) for s in dyad_plan(watt, "L1", "L2")]
     [('L5', 'L6'), ('L3', 'L4')]
-    >>> dyad_plan(stephenson, "L3", "L5") is None     # a triad: L1, L2, L4 and L6
+    >>> dyad_plan(stephenson, "L1", "L2") is None     # Stephenson III: a triad after L2
     True
     """
     if any(j.kind != "R" or len(j.links) != 2 for j in chain.joints):

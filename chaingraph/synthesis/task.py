@@ -340,11 +340,6 @@ class MotionTask:
     mechanism: str = "four-bar or slider crank"
 
     @property
-    def exact(self) -> bool:
-        """Always: two to five poses are met exactly."""
-        return True
-
-    @property
     def size(self) -> float:
         """The task's size: the largest distance between two poses' points."""
         p = np.asarray([(x, y) for x, y, _ in self.poses])
