@@ -35,7 +35,7 @@ import numpy as np
 from chaingraph.geometry import circle_circle
 from chaingraph.model.chain import Chain, Joint, Mechanism, Point
 
-__all__ = ["Family", "FourBar", "FOUR_BAR", "AtlasFamily", "DyadStep", "dyad_plan"]
+__all__ = ["Family", "FourBar", "FOUR_BAR", "AtlasFamily", "LoopFamily", "DyadStep", "dyad_plan"]
 
 
 class Family(ABC):
@@ -499,3 +499,171 @@ def _rigid(a0, m0, a, m):
     vx, vy = m[0] - a[0], m[1] - a[1]
     n = ux * ux + uy * uy
     return (ux * vx + uy * vy) / n, (ux * vy - uy * vx) / n, a, a0
+
+
+# -- any chain of turning pairs, its group beyond the driver solved by Newton's method ----
+_GRID = 24        # steps of the continuation over a turn of the input
+_NEWTON = 6       # Newton iterations per step (and at each asked input)
+_CLOSED = 1e-9    # a loop closes when every joint is within this (of the unit size)
+
+
+class LoopFamily(AtlasFamily):
+    """A chain of turning pairs whose links beyond the driver are not found dyad by dyad
+    (a triad: the Stephenson III, the Stephenson II driven by its binary link): every
+    moving link's rigid motion from its drawn pose solved together by Newton's method,
+    continued along the input from the drawn pose over a turn (:data:`_GRID` steps, so
+    the drawn circuit is tracked), then refined at each asked input from the step before
+    it; vectorised over mechanisms. Slower than the dyads' closed form; the certification
+    by the solver from the written file is the same."""
+
+    def __init__(self, chain: Chain, fixed: str, driver: str, carrier: str, *,
+                 name: str | None = None) -> None:
+        if any(j.kind != "R" or len(j.links) != 2 for j in chain.joints) or sum(
+                1 for j in chain.joints if set(j.links) == {fixed, driver}) != 1:
+            raise ValueError(f"{chain.name} with {fixed} fixed and {driver} driving is not "
+                             "a chain of simple turning pairs driven about the fixed link")
+        self.plan = ()
+        self.template = tuple(Joint(j.id, j.kind, j.links) for j in chain.joints)
+        self.fixed, self.driver, self.carrier = fixed, driver, carrier
+        self.name = name or f"{chain.name}, {fixed} fixed"
+        self.family_name = chain.family or chain.name
+        self._index = {j.id: k for k, j in enumerate(self.template)}
+        self._pivot = next(j.id for j in chain.joints if set(j.links) == {fixed, driver})
+        on = sorted(j.id for j in chain.joints if driver in j.links and j.id != self._pivot)
+        self._reference = (self._pivot, on[0])
+        self._links = sorted({x for j in self.template for x in j.links})
+        self._unknown = [x for x in self._links if x not in (fixed, driver)]
+        self._anchor = {x: self._index[next(j.id for j in self.template if x in j.links)]
+                        for x in self._unknown}
+        self._equations = [(self._index[j.id], j.links) for j in self.template
+                           if j.id != self._pivot]
+        self._carrier_frame = None
+        col = {x: i for i, x in enumerate(self._links)}
+        self._driver_col = col[driver]
+        self._unknown_cols = [col[x] for x in self._unknown]
+        self._anchor_rows = [self._anchor[x] for x in self._unknown]
+        self._joint_rows = [k for k, _ in self._equations]
+        self._first = [col[a] for _, (a, _) in self._equations]
+        self._second = [col[b] for _, (_, b) in self._equations]
+        self._select = tuple(np.array([[1.0 if links[side] == x else 0.0
+                                        for x in self._unknown]
+                                       for _, links in self._equations])
+                             for side in (0, 1))
+        middles = [j for j in self.template if not set(j.links) & {fixed, driver}]
+        self._middles = [(self._index[j.id], [self._index[next(k.id for k in self.template
+                                                              if x in k.links and k.id != j.id)]
+                                              for x in j.links]) for j in middles]
+
+    def _state_motions(self, drawn, turn, z):
+        """Every link's motion (as :meth:`AtlasFamily._solve`) from the unknowns ``z``
+        (rows, 3 per unknown link: its anchor's move and its turn) and the driver's
+        ``turn``; rows of ``drawn`` (R, J, 2) and ``turn`` (R,)."""
+        pivot = drawn[:, self._index[self._pivot]]
+        out: dict[str, tuple | None] = {
+            self.fixed: None,
+            self.driver: (np.cos(turn), np.sin(turn), (pivot[:, 0], pivot[:, 1]),
+                          (pivot[:, 0], pivot[:, 1]))}
+        for k, x in enumerate(self._unknown):
+            q = drawn[:, self._anchor[x]]
+            out[x] = (np.cos(z[:, 3 * k + 2]), np.sin(z[:, 3 * k + 2]),
+                      (q[:, 0] + z[:, 3 * k], q[:, 1] + z[:, 3 * k + 1]), (q[:, 0], q[:, 1]))
+        return out
+
+    def _closure(self, drawn, turn, z):
+        """The loop-closure equations' residuals (R, 2E: each joint's place by its first
+        link less by its second) and their Jacobian (R, 2E, 3U), from the unknowns."""
+        rows = len(z)
+        unknown = len(self._unknown)
+        d = drawn[:, self._joint_rows]                                   # (R, E, 2)
+        sides = []
+        for links in (self._first, self._second):
+            c, s, p, q = (np.ones((rows, len(self._links))), np.zeros((rows, len(self._links))),
+                          np.zeros((rows, len(self._links), 2)), np.zeros((rows, len(self._links), 2)))
+            pivot = drawn[:, self._index[self._pivot]]
+            c[:, self._driver_col], s[:, self._driver_col] = np.cos(turn), np.sin(turn)
+            p[:, self._driver_col] = q[:, self._driver_col] = pivot
+            cols = self._unknown_cols
+            q[:, cols] = drawn[:, self._anchor_rows]
+            p[:, cols] = q[:, cols] + z.reshape(rows, unknown, 3)[:, :, :2]
+            c[:, cols], s[:, cols] = (np.cos(z[:, 2::3]), np.sin(z[:, 2::3]))
+            v = d - q[:, links]
+            cl, sl = c[:, links], s[:, links]
+            moved = np.stack([cl * v[..., 0] - sl * v[..., 1], sl * v[..., 0] + cl * v[..., 1]],
+                             axis=2)
+            sides.append((p[:, links] + moved, moved))
+        (pa, ra), (pb, rb) = sides
+        f = (pa - pb).reshape(rows, -1)
+        jac = np.zeros((rows, len(self._first), 2, unknown, 3))
+        sa, sb = self._select
+        jac[:, :, 0, :, 0] = jac[:, :, 1, :, 1] = sa - sb
+        jac[:, :, 0, :, 2] = -ra[..., 1, None] * sa + rb[..., 1, None] * sb
+        jac[:, :, 1, :, 2] = ra[..., 0, None] * sa - rb[..., 0, None] * sb
+        return f, jac.reshape(rows, 2 * len(self._first), 3 * unknown)
+
+    def _newton(self, drawn, turn, z, *, settled: float = 1e-14):
+        """Newton's iterations on the loop-closure equations from ``z`` (until no
+        unknown moves by more than ``settled``): the unknowns and whether they close
+        (to :data:`_CLOSED`)."""
+        n = z.shape[1]
+        for _ in range(_NEWTON):
+            f, jac = self._closure(drawn, turn, z)
+            bad = ~(np.all(np.isfinite(f), axis=1) & np.all(np.isfinite(jac), axis=(1, 2)))
+            f[bad], jac[bad] = 0.0, np.eye(n)[None, :, :]
+            try:
+                step = np.linalg.solve(jac, -f[:, :, None])[:, :, 0]
+            except np.linalg.LinAlgError:
+                step = np.einsum("rij,rj->ri", np.linalg.pinv(jac), -f)
+            z = np.where(bad[:, None], np.nan, z + step)
+            if not np.any(np.abs(step[~bad]) > settled):
+                break
+        f, _ = self._closure(drawn, turn, z)
+        gap = np.max(np.abs(f), axis=1)
+        return z, gap <= max(settled, _CLOSED) * np.maximum(1.0, np.abs(drawn).max(axis=(1, 2)))
+
+    def _solve(self, params, theta):
+        """As :meth:`AtlasFamily._solve`, by continuation from the drawn pose (see the
+        class); the asked inputs taken modulo a turn."""
+        drawn = self._drawn(params)
+        theta = np.asarray(theta, dtype=float)
+        m, k = theta.shape
+        n = 3 * len(self._unknown)
+        h = 2 * math.pi / _GRID
+        nodes = np.full((m, _GRID + 1, n), np.nan)
+        z = np.zeros((m, n))
+        nodes[:, 0] = z
+        alive = np.ones(m, dtype=bool)
+        for g in range(1, _GRID + 1):
+            z, ok = self._newton(drawn, np.full(m, g * h), z, settled=1e-7)
+            alive &= ok
+            z = np.where(alive[:, None], z, 0.0)
+            nodes[:, g] = np.where(alive[:, None], z, np.nan)
+        turn = (theta - self.first_input(params)[:, None]) % (2 * math.pi)
+        node = np.minimum(np.floor(turn / h).astype(int), _GRID)
+        start = np.take_along_axis(nodes, node[:, :, None], axis=1).reshape(m * k, n)
+        rows = np.repeat(drawn, k, axis=0)
+        z, ok = self._newton(rows, turn.reshape(-1), np.nan_to_num(start))
+        z = np.where((ok & np.all(np.isfinite(start), axis=1))[:, None], z, np.nan)
+        motions = self._state_motions(rows, turn.reshape(-1), z)
+        return {x: None if v is None else (v[0].reshape(m, k), v[1].reshape(m, k),
+                                           (v[2][0].reshape(m, k), v[2][1].reshape(m, k)),
+                                           (v[3][0].reshape(m, k), v[3][1].reshape(m, k)))
+                for x, v in motions.items()}
+
+    def transmission(self, params: np.ndarray, theta: np.ndarray) -> np.ndarray:
+        """The worst (farthest from 90 degrees) of the angles at the joints between two
+        links of the group (each link's line to another of its joints)."""
+        motions = self._solve(params, theta)
+        drawn = self._drawn(params)
+        worst = np.full(np.shape(theta), 90.0)
+        for k, (i, j) in self._middles:
+            jt = self.template[k]
+            pts = [_moved(motions[x], (drawn[:, o, 0][:, None], drawn[:, o, 1][:, None]))
+                   for x, o in zip(jt.links, (i, j))]
+            mx, my = _moved(motions[jt.links[0]], (drawn[:, k, 0][:, None],
+                                                   drawn[:, k, 1][:, None]))
+            ux, uy = pts[0][0] - mx, pts[0][1] - my
+            vx, vy = pts[1][0] - mx, pts[1][1] - my
+            mu = np.degrees(np.arctan2(np.abs(ux * vy - uy * vx), ux * vx + uy * vy))
+            with np.errstate(invalid="ignore"):
+                worst = np.where(np.abs(mu - 90.0) > np.abs(worst - 90.0), mu, worst)
+        return np.where(np.isfinite(worst), worst, np.nan)

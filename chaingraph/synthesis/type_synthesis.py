@@ -8,12 +8,15 @@ its links under its automorphisms, as the atlas counts them; the first link of e
 orbit fixed), each inversion's drivers (a link turning about the fixed link on a
 turning pair, one per orbit of (fixed, driver) pairs) and carriers (every link not
 jointed to the fixed link: a link turning about a fixed pivot traces circles only). A
-(chain, fixed, driver, carrier) choice is a *family*
-(:class:`~chaingraph.synthesis.family.AtlasFamily`) when its chain is solved dyad by
-dyad from its fixed link and driver (every Watt inversion, the Stephenson I and II;
-not the Stephenson III, whose group beyond its driver is a triad, nor chains with
-sliding pairs: those inversions are searched and counted, and reported in
-``rejected`` as ``"not dyad-solvable"``).
+(chain, fixed, driver, carrier) choice is a *family*: an
+:class:`~chaingraph.synthesis.family.AtlasFamily` when its chain is solved dyad by dyad
+from its fixed link and driver in closed form (every Watt inversion, the Stephenson I,
+the Stephenson II driven by a ternary link), a
+:class:`~chaingraph.synthesis.family.LoopFamily` when the group beyond its driver is a
+triad (the Stephenson III, the Stephenson II driven by its binary link: Newton's method,
+continued along the input, on a smaller budget, :data:`NEWTON_BUDGETS`). Chains with
+sliding pairs are not searched yet: their families are counted, and reported in
+``rejected`` as :data:`UNSOLVED`.
 
 Each family is one independent job (:func:`search_family`: the coarse search, the
 global search and least squares of :mod:`chaingraph.synthesis.optimiser` on a budget,
@@ -39,7 +42,7 @@ from chaingraph.model.chain import Chain
 from chaingraph.naming.atlas import atlas_names
 from chaingraph.structure.atlas import atlas
 from chaingraph.structure.isomorphism import automorphism_orbits, pair_orbits
-from chaingraph.synthesis.family import AtlasFamily, dyad_plan
+from chaingraph.synthesis.family import AtlasFamily, LoopFamily, dyad_plan
 from chaingraph.synthesis.motion_generation import motion as four_bar_motion
 from chaingraph.synthesis.path_generation import Budget, synthesise_path
 from chaingraph.synthesis.path_generation import path as four_bar_path
@@ -48,15 +51,19 @@ from chaingraph.synthesis.result import Searched, Solution, Synthesis, ranked
 from chaingraph.synthesis.task import MotionTask, PathTask, check_options, motion_task, path_task
 
 __all__ = ["path", "motion", "LINKS", "Choice", "Space", "atlas_space", "search_family",
-           "path_types", "check_links", "BUDGETS", "UNSOLVED"]
+           "path_types", "check_links", "BUDGETS", "NEWTON_BUDGETS",
+           "UNSOLVED"]
 
 #: the sizes a synthesis searches (4: the four-bar; 6 and 8: through the atlas)
 LINKS = (4, 6, 8)
-#: the reason a family beyond the dyad-by-dyad solver is counted under
-UNSOLVED = "not dyad-solvable"
+#: the reason a family not searched (a chain with sliding pairs) is counted under
+UNSOLVED = "sliding pairs not searched"
 #: how hard one family is searched, exact (up to five points) and fitted
 BUDGETS = {True: Budget(samples=1500, starts=24), False: Budget(samples=2000, starts=30,
                                                                   fitted=4, generations=40)}
+#: how hard a family solved by Newton's method (slower) is searched
+NEWTON_BUDGETS = {True: Budget(samples=200, starts=4, fitted=2, generations=5),
+                  False: Budget(samples=200, starts=6, fitted=1, generations=5)}
 _KEPT = 2         # certified solutions kept per family
 
 
@@ -65,7 +72,10 @@ class Choice:
     """One family of the space: the atlas's ``chain`` (number ``chain_id`` from 1 in the
     atlas's order), its inversion ``inversion`` (from 1, in the order of its orbits),
     ``fixed``, ``driver`` and ``carrier`` links, the catalog's ``names`` (the chain's,
-    then the inversion's) and whether it is ``solvable`` dyad by dyad."""
+    then the inversion's) and how its motion is found: ``method`` ``"dyads"`` (closed
+    form, :class:`~chaingraph.synthesis.family.AtlasFamily`), ``"newton"`` (a triad,
+    :class:`~chaingraph.synthesis.family.LoopFamily`) or ``""`` (not searched: sliding
+    pairs)."""
 
     chain: Chain
     chain_id: int
@@ -74,7 +84,12 @@ class Choice:
     driver: str
     carrier: str
     names: tuple[str, ...]
-    solvable: bool
+    method: str
+
+    @property
+    def solvable(self) -> bool:
+        """Whether the family is searched (its motion found by dyads or by Newton)."""
+        return bool(self.method)
 
 
 @dataclass(frozen=True)
@@ -109,7 +124,7 @@ def atlas_space(links: int, prismatic: int | str | None = None) -> Space:
     --------
     >>> s = atlas_space(6)
     >>> s.chains, s.inversions, len(s.choices), sum(c.solvable for c in s.choices)
-    (2, 5, 25, 17)
+    (2, 5, 25, 25)
     """
     chains = list(atlas(links=links, prismatic=prismatic))
     choices: list[Choice] = []
@@ -141,9 +156,17 @@ def _choices(chain, number, inversion, fixed, names) -> list[Choice]:
             seen.update(d for f, d in orbit if f == fixed)
     grounded = {x for j in chain.joints if fixed in j.links for x in j.links}
     carriers = [x for x in chain.links if x not in grounded]
-    return [Choice(chain, number, inversion, fixed, d, c, names,
-                   dyad_plan(chain, fixed, d) is not None)
+    return [Choice(chain, number, inversion, fixed, d, c, names, _method(chain, fixed, d))
             for d in kept for c in carriers]
+
+
+def _method(chain, fixed, driver) -> str:
+    """How a family's motion is found (see :class:`Choice`)."""
+    if dyad_plan(chain, fixed, driver) is not None:
+        return "dyads"
+    if all(j.kind == "R" and len(j.links) == 2 for j in chain.joints):
+        return "newton"
+    return ""
 
 
 @dataclass(frozen=True)
@@ -163,13 +186,14 @@ def search_family(job: _Job) -> tuple[list[Solution], dict[str, int], int]:
     c = job.choice
     if not c.solvable:
         return [], {UNSOLVED: 1}, 0
-    family = AtlasFamily(c.chain, c.fixed, c.driver, c.carrier,
-                         name=(c.names[-1] if len(c.names) > 1 else
-                               f"{c.chain.name}, {c.fixed} fixed"))
+    kind = AtlasFamily if c.method == "dyads" else LoopFamily
+    family = kind(c.chain, c.fixed, c.driver, c.carrier,
+                  name=(c.names[-1] if len(c.names) > 1 else f"{c.chain.name}, {c.fixed} fixed"))
     rng = np.random.default_rng([job.task.seed, job.number])
-    budget = BUDGETS[_exact(job.task)]
+    budget = (BUDGETS if c.method == "dyads" else NEWTON_BUDGETS)[_exact(job.task)]
     search = synthesise_motion if job.task.kind == "motion" else synthesise_path
-    found = search(job.task, family, solutions=min(job.solutions, _KEPT), budget=budget,
+    kept = _KEPT if c.method == "dyads" else 1      # a triad's certification is slow
+    found = search(job.task, family, solutions=min(job.solutions, kept), budget=budget,
                    rng=rng)
     where = {"links": job.links, "prismatic": job.prismatic, "chain": c.chain_id,
              "inversion": c.inversion}

@@ -15,7 +15,7 @@ from chaingraph._util.parallel import process_runner
 from chaingraph.files import load
 from chaingraph.structure.atlas import atlas_graphs
 from chaingraph.synthesis import PointTargets, certify, path
-from chaingraph.synthesis.family import AtlasFamily
+from chaingraph.synthesis.family import AtlasFamily, LoopFamily
 from chaingraph.synthesis.type_synthesis import UNSOLVED, atlas_space
 
 from ..conftest import run_cli
@@ -45,12 +45,14 @@ def test_the_six_link_inversions_are_named_from_the_catalog():
     assert ("Stephenson six-bar chain", "Stephenson III six-bar mechanism") in names
 
 
-def test_every_dyad_family_traces_what_the_solver_traces():
+def test_every_family_traces_what_the_solver_traces():
+    """Dyads in closed form, triads (Stephenson III, II by its binary link) by Newton."""
     rng = np.random.default_rng(7)
-    for c in atlas_space(6).choices:
-        if not c.solvable:
-            continue
-        family = AtlasFamily(c.chain, c.fixed, c.driver, c.carrier)
+    space = atlas_space(6)
+    assert {c.method for c in space.choices} == {"dyads", "newton"}
+    for c in space.choices:
+        kind = AtlasFamily if c.method == "dyads" else LoopFamily
+        family = kind(c.chain, c.fixed, c.driver, c.carrier)
         params = family.sample(rng, 2) * 50.0
         for p in params:
             chain = family.chain(p, name="sampled", units="mm", notes="")
@@ -77,7 +79,7 @@ def test_the_json_reports_the_space_and_where_each_solution_is(four):
     found, _ = four
     space = atlas_space(6)
     assert found["searched"]["chains"] == 2 and found["searched"]["inversions"] == 5
-    assert found["rejected"][UNSOLVED] == sum(not c.solvable for c in space.choices)
+    assert found["rejected"].get(UNSOLVED, 0) == sum(not c.solvable for c in space.choices) == 0
     for s in found["solutions"]:
         a = s["atlas"]
         assert a["links"] == 6 and a["prismatic"] == 0
