@@ -52,12 +52,14 @@ from chaingraph.synthesis.task import MotionTask, PathTask, check_options, motio
 
 __all__ = ["path", "motion", "LINKS", "Choice", "Space", "atlas_space", "search_family",
            "path_types", "check_links", "BUDGETS", "NEWTON_BUDGETS",
-           "UNSOLVED"]
+           "UNSOLVED", "TRIADS_SKIPPED"]
 
 #: the sizes a synthesis searches (4: the four-bar; 6 and 8: through the atlas)
 LINKS = (4, 6, 8)
 #: the reason a family not searched (a chain with sliding pairs) is counted under
 UNSOLVED = "sliding pairs not searched"
+#: the reason a triad family is counted under when ``triads`` is False (a quicker search)
+TRIADS_SKIPPED = "triads not searched"
 #: how hard one family is searched, exact (up to five points) and fitted
 BUDGETS = {True: Budget(samples=1500, starts=24), False: Budget(samples=2000, starts=30,
                                                                   fitted=4, generations=40)}
@@ -177,6 +179,7 @@ class _Job:
     links: int
     prismatic: int
     solutions: int
+    triads: bool = True
 
 
 def search_family(job: _Job) -> tuple[list[Solution], dict[str, int], int]:
@@ -186,6 +189,8 @@ def search_family(job: _Job) -> tuple[list[Solution], dict[str, int], int]:
     c = job.choice
     if not c.solvable:
         return [], {UNSOLVED: 1}, 0
+    if c.method == "newton" and not job.triads:
+        return [], {TRIADS_SKIPPED: 1}, 0
     kind = AtlasFamily if c.method == "dyads" else LoopFamily
     family = kind(c.chain, c.fixed, c.driver, c.carrier,
                   name=(c.names[-1] if len(c.names) > 1 else f"{c.chain.name}, {c.fixed} fixed"))
@@ -204,7 +209,8 @@ def search_family(job: _Job) -> tuple[list[Solution], dict[str, int], int]:
 def path(*, points, timing=None, closed: bool = False, kind: str = "four-bar",
          solutions: int = 5, seed: int | None = None, units: str = "mm",
          min_transmission: float = 30.0, links: int = 4,
-         prismatic: int | str | None = None, runner: Runner | None = None) -> Synthesis:
+         prismatic: int | str | None = None, runner: Runner | None = None,
+         triads: bool = True) -> Synthesis:
     """Synthesise a path generator: a point of one link passes through ``points`` in
     order. With ``links`` 4 (and no ``prismatic``), the four-bar
     (:func:`chaingraph.synthesis.path_generation.path`, whose parameters these are);
@@ -212,7 +218,8 @@ def path(*, points, timing=None, closed: bool = False, kind: str = "four-bar",
     pairs), every inversion and every link that can carry the point
     (:func:`path_types`), its families searched on ``runner`` (a runner of
     :mod:`chaingraph._util.parallel`, or :class:`~chaingraph.structure.atlas.DaskRunner`;
-    by default one after another here).
+    by default one after another here); ``triads`` False searches the dyad families
+    only (:func:`path_types`).
 
     Examples
     --------
@@ -235,13 +242,14 @@ def path(*, points, timing=None, closed: bool = False, kind: str = "four-bar",
     check_options(solutions=solutions, min_transmission=min_transmission, units=units,
                   kind="path")
     return path_types(task, links=links, prismatic=prismatic, solutions=solutions,
-                      runner=runner)
+                      runner=runner, triads=triads)
 
 
 def motion(*, poses: Sequence[Sequence[float]], solutions: int = 5, units: str = "mm",
            min_transmission: float = 30.0,
            circle_points: Sequence[Sequence[float]] | None = None, links: int = 4, prismatic: int | str | None = None,
-           seed: int | None = None, runner: Runner | None = None) -> Synthesis:
+           seed: int | None = None, runner: Runner | None = None,
+           triads: bool = True) -> Synthesis:
     """Synthesise a motion generator: one link passes through ``poses`` (x, y, degrees)
     in order. With ``links`` 4 (and no ``prismatic``), the four-bar and slider crank by
     the classical constructions and Burmester theory
@@ -272,19 +280,22 @@ def motion(*, poses: Sequence[Sequence[float]], solutions: int = 5, units: str =
     check_options(solutions=solutions, min_transmission=min_transmission, units=units,
                   kind="motion")
     return path_types(task, links=links, prismatic=prismatic, solutions=solutions,
-                      runner=runner)
+                      runner=runner, triads=triads)
 
 
 def path_types(task: PathTask | MotionTask, *, links: int, prismatic: int | str | None = None,
                solutions: int = 5, runner: Runner | None = None,
-               progress: Callable[[int, int], None] | None = None) -> Synthesis:
+               progress: Callable[[int, int], None] | None = None,
+               triads: bool = True) -> Synthesis:
     """Type synthesis of a checked path or motion task over the atlas's chains of ``links`` links
     (6 or 8; with ``prismatic`` sliding pairs), every family searched on ``runner`` (by
     default here, one after another); the certified solutions of every family ranked
-    together. ``progress(done, total)`` is called as families finish."""
+    together. ``progress(done, total)`` is called as families finish. ``triads`` False
+    leaves the families solved by Newton's method unsearched (counted under
+    :data:`TRIADS_SKIPPED`): a quicker search of the dyad families only."""
     space = atlas_space(links, prismatic)
     task = replace(task, mechanism=_mechanism(links, prismatic))
-    jobs = [_Job(task, c, k, links, space.prismatic, solutions)
+    jobs = [_Job(task, c, k, links, space.prismatic, solutions, triads)
             for k, c in enumerate(space.choices)]
     results: dict[int, tuple] = {}
 

@@ -13,10 +13,11 @@ import pytest
 import chaingraph
 from chaingraph._util.parallel import process_runner
 from chaingraph.files import load
+from chaingraph.model.chainfile import toml_text
 from chaingraph.structure.atlas import atlas_graphs
-from chaingraph.synthesis import PointTargets, certify, path
+from chaingraph.synthesis import PointTargets, certify, motion, path
 from chaingraph.synthesis.family import AtlasFamily, LoopFamily
-from chaingraph.synthesis.type_synthesis import UNSOLVED, atlas_space
+from chaingraph.synthesis.type_synthesis import TRIADS_SKIPPED, UNSOLVED, atlas_space
 
 from ..conftest import run_cli
 
@@ -107,8 +108,10 @@ def test_a_solution_re_solved_from_its_file_reproduces_its_error_and_reached_at(
 @pytest.mark.slow
 def test_two_workers_give_what_one_gives():
     points = FOUR[:3]
-    one = path(points=points, links=6, seed=5, solutions=2)
-    two = path(points=points, links=6, seed=5, solutions=2, runner=process_runner(2))
+    one = path(points=points, links=6, seed=5, solutions=2, triads=False)
+    two = path(points=points, links=6, seed=5, solutions=2, runner=process_runner(2),
+               triads=False)
+    assert one.rejected[TRIADS_SKIPPED] == 8
     assert one.to_dict() == two.to_dict()
 
 
@@ -136,7 +139,7 @@ SIX_BAR_CURVE = [(-49.8, 17.7), (-49.9, 25.1), (-43.3, 20.4), (-31.9, 9.6), (-15
 def test_a_six_bar_beats_every_four_bar_where_the_task_needs_it():
     points = SIX_BAR_CURVE
     four = path(points=points, closed=True, seed=1, solutions=1)
-    six = path(points=points, closed=True, seed=1, solutions=1, links=6)
+    six = path(points=points, closed=True, seed=1, solutions=1, links=6, triads=False)
     assert six.solutions
     best_six = six.solutions[0].error.max
     best_four = four.solutions[0].error.max if four.solutions else math.inf
@@ -162,16 +165,12 @@ def six_bar_poses(count):
 @pytest.mark.slow
 def test_poses_of_a_six_bar_link_are_passed_by_a_six_bar(tmp_path):
     poses = six_bar_poses(4)
-    text = "; ".join(f"{x!r},{y!r},{a!r}" for x, y, a in poses)
-    code, stdout, err = run_cli("design", "motion", "--poses", text, "--links", "6",
-                                "--seed", "1", "--solutions", "1", "--json",
-                                "--out", tmp_path)
-    assert code == 0, err
-    found = json.loads(stdout)
+    found = motion(poses=poses, links=6, seed=1, solutions=1, triads=False).to_dict()
     assert found["searched"] == {"chains": 2, "inversions": 5,
                                  "candidates": found["searched"]["candidates"]}
     best = found["solutions"][0]
     assert best["atlas"]["links"] == 6
+    (tmp_path / "solution-1.toml").write_text(toml_text(best["mechanism"]))
     chain = load(tmp_path / "solution-1.toml")
     link = chain.points[0].link
     size = max(math.dist(p[:2], q[:2]) for p in poses for q in poses)
