@@ -224,7 +224,7 @@ def path(*, points, timing=None, closed: bool = False, kind: str = "four-bar",
     Examples
     --------
     >>> s = path(points=[(0, 0), (10, 4), (18, 12), (20, 22), (14, 30)], seed=1,
-    ...          solutions=1, links=6)
+    ...          solutions=1, links=6, triads=False)
     >>> s.solutions[0].atlas["links"], s.solutions[0].error.max < 1e-9 * 36
     (6, True)
     >>> s.searched.chains, s.searched.inversions
