@@ -193,7 +193,7 @@ def fit_two_points(p1: Vec, w1: Vec, p2: Vec, w2: Vec) -> PoseEntry:
     dwx, dwy = w2[0] - w1[0], w2[1] - w1[1]
     c = dpx * dwx + dpy * dwy
     s = dpx * dwy - dpy * dwx
-    norm = np.hypot(c, s)
+    norm = np.sqrt(c * c + s * s)       # (np.hypot costs three times as much)
     c, s = c / norm, s / norm
     rx, ry = turn_by((0.0, 0.0, None, c, s), p1)
     return make_pose(w1[0] - rx, w1[1] - ry, np.arctan2(s, c), c, s)
@@ -235,9 +235,17 @@ def circle_circle(c1: Vec, r1: Scalar, c2: Vec, r2: Scalar) -> tuple[Vec, Vec, S
     # measured from the centre of the smaller circle, as (r - along) (r + along): the
     # half-chord squared then carries a rounding of about eps * r * d, not eps * d**2,
     # so that a link far shorter than the other keeps its length at a fold
+    first = r1 <= r2
+    if isinstance(first, (bool, np.bool_)):    # radii as numbers: only the branch taken
+        if first:
+            along1 = (r1 * r1 - r2 * r2 + d2) / (2 * d)
+            return ((c1[0] + along1 * ux, c1[1] + along1 * uy), (-uy, ux),
+                    (r1 - along1) * (r1 + along1))
+        along2 = (r2 * r2 - r1 * r1 + d2) / (2 * d)
+        return ((c2[0] - along2 * ux, c2[1] - along2 * uy), (-uy, ux),
+                (r2 - along2) * (r2 + along2))
     along1 = (r1 * r1 - r2 * r2 + d2) / (2 * d)
     along2 = (r2 * r2 - r1 * r1 + d2) / (2 * d)
-    first = r1 <= r2
     raw = np.where(first, (r1 - along1) * (r1 + along1), (r2 - along2) * (r2 + along2))
     mx = np.where(first, c1[0] + along1 * ux, c2[0] - along2 * ux)
     my = np.where(first, c1[1] + along1 * uy, c2[1] - along2 * uy)

@@ -22,8 +22,8 @@ from chaingraph._util.parallel import (
     serial,
 )
 from chaingraph._util.progress import ProgressBar
-from chaingraph._util.text import counted, freedom, short_list, write_columns
+from chaingraph._util.text import counted, csv_text, freedom, short_list, write_columns
 
-__all__ = ["counted", "freedom", "short_list", "write_columns", "tidy", "serial",
+__all__ = ["counted", "csv_text", "freedom", "short_list", "write_columns", "tidy", "serial",
            "process_runner", "ignore_interrupts", "prepare_worker", "ProgressBar",
            "DisjointSets", "write_atomic", "withdraw", "staged", "INDEX", "lazy_attribute"]

@@ -3,10 +3,17 @@
 from __future__ import annotations
 
 import math
+from typing import overload
 
 __all__ = ["tidy"]
 
 
+@overload
+def tidy(value: float, scale: float) -> float: ...
+@overload
+def tidy(value: None, scale: float) -> None: ...
+@overload
+def tidy(value: float | None, scale: float) -> float | None: ...
 def tidy(value: float | None, scale: float) -> float | None:
     """``value`` (a figure of magnitude up to about ``scale``) as the round number it
     is within rounding of (1e-12 of the scale): the nearest number with six

@@ -2,6 +2,7 @@
 
 from __future__ import annotations
 
+import os
 from collections.abc import Mapping, Sequence
 from typing import TextIO
 
@@ -12,7 +13,7 @@ import io
 
 import numpy as np
 
-__all__ = ["counted", "freedom", "short_list", "write_columns"]
+__all__ = ["counted", "freedom", "short_list", "write_columns", "csv_text"]
 
 
 def counted(n: int, singular: str, plural: str | None = None) -> str:
@@ -76,3 +77,16 @@ def write_columns(out: TextIO, columns: Mapping[str, ArrayLike], rows: int, *,
                     text[i] = "nan"
             texts.append(text)
         out.write("".join(",".join(row) + "\n" for row in zip(*texts)))
+
+
+def csv_text(columns: Mapping[str, ArrayLike], rows: int,
+             path: str | os.PathLike[str] | None = None) -> str | None:
+    """:func:`write_columns` to the file ``path``, or, when ``path`` is None, to a
+    string that is returned (a result's ``to_csv``)."""
+    if path is None:
+        buf = io.StringIO()
+        write_columns(buf, columns, rows)
+        return buf.getvalue()
+    with open(path, "w", encoding="utf-8", newline="") as f:
+        write_columns(f, columns, rows)
+    return None

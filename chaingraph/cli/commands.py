@@ -2,6 +2,7 @@
 
 from __future__ import annotations
 
+import argparse
 import os
 import sys
 import time
@@ -56,6 +57,7 @@ from chaingraph.structure.atlas import (
     REASONS,
     DaskRunner,
     SlidingCounts,
+    SlidingEntry,
     atlas_dict,
     check_size,
     joints_for,
@@ -70,15 +72,15 @@ from chaingraph.structure.atlas import (
     write_sliding,
 )
 from chaingraph import synthesis
-from chaingraph.drawing.synthesis import draw_synthesis
-from chaingraph.synthesis import KINDS
+from chaingraph.drawing.synthesis import draw_solution
+from chaingraph.synthesis import KINDS, PathTask
 from chaingraph.synthesis.path_generation import EXACT
 from chaingraph.variation import length_values, vary
 
 __all__ = ['cmd_classify', 'cmd_inversions', 'cmd_identify', 'cmd_solve', 'cmd_centres', 'cmd_polygons', 'cmd_assemble', 'cmd_measure', 'cmd_report', 'cmd_atlas', 'cmd_design', 'cmd_design_function', 'cmd_design_motion']
 
 
-def cmd_classify(args) -> int:
+def cmd_classify(args: argparse.Namespace) -> int:
     results, failed = [], 0
     for path in args.files:
         try:
@@ -100,7 +102,7 @@ def cmd_classify(args) -> int:
                             "J + H/2 = 3L/2 - 2", "verdict", "degenerate"]))
     return failed
 
-def cmd_inversions(args) -> int:
+def cmd_inversions(args: argparse.Namespace) -> int:
     result = inversions(load(args.file), with_input=args.with_input)
     if args.json:
         print_json(result.to_dict())
@@ -117,7 +119,7 @@ def cmd_inversions(args) -> int:
             print(f"{inv.fixed} fixed: {inv.note}")
     return 0
 
-def cmd_identify(args) -> int:
+def cmd_identify(args: argparse.Namespace) -> int:
     chain = load(args.file)
     found = identify(chain)
     if args.json:
@@ -140,7 +142,7 @@ def cmd_identify(args) -> int:
         print(f"note:      {found.note}")
     return 0
 
-def cmd_solve(args) -> int:
+def cmd_solve(args: argparse.Namespace) -> int:
     chain = load(args.file)
     if args.csv:
         output_file(args.csv, what="CSV")
@@ -180,7 +182,7 @@ def cmd_solve(args) -> int:
     print(table(rows, ["", ""]).split("\n", 2)[2])
     return 0
 
-def cmd_vary(args) -> int:
+def cmd_vary(args: argparse.Namespace) -> int:
     chain = load(args.file)
     if args.plot:
         picture_file(args.plot, what="plot")
@@ -210,7 +212,7 @@ def cmd_vary(args) -> int:
                                  "transmission angle", "input range (or why not)"]))
     return 0
 
-def cmd_forces(args) -> int:
+def cmd_forces(args: argparse.Namespace) -> int:
     chain = load(args.file)
     if args.csv:
         output_file(args.csv, what="CSV")
@@ -242,10 +244,8 @@ def cmd_forces(args) -> int:
             with Writing(args.plot):
                 plot_turning_moment(result, args.plot)
     if args.draw or args.polygon:
-        if at:
-            pose = result
-        else:                                   # the sweep's first pose
-            pose = forces(chain, at=result.motion.input_values(0), **common)
+        # the pose solved, or the sweep's first, as solved: nothing is solved again
+        pose = result if at else result.pose(0)
         if args.draw:
             write_text(args.draw, free_body_svg(pose))
         if args.polygon:
@@ -298,7 +298,7 @@ def _at_one_value(args, find, draw):
         return None
     return result
 
-def cmd_centres(args) -> int:
+def cmd_centres(args: argparse.Namespace) -> int:
     centres = _at_one_value(args, instant_centres, draw_centres)
     if centres is None:
         return 0
@@ -317,7 +317,7 @@ def cmd_centres(args) -> int:
             if link != state.fixed))
     return 0
 
-def cmd_polygons(args) -> int:
+def cmd_polygons(args: argparse.Namespace) -> int:
     polygons = _at_one_value(args, velocity_polygon, draw_polygons)
     if polygons is None:
         return 0
@@ -337,13 +337,13 @@ def cmd_polygons(args) -> int:
           f"{unit}/s and {closure['acceleration']:.3g} {unit}/s^2")
     return 0
 
-def cmd_assemble(args) -> int:
+def cmd_assemble(args: argparse.Namespace) -> int:
     chain, assembly = read_file(args.file)
     if args.json:
         out = {"name": chain.name, "file": args.file,
                "joints": {j.id: None if j.at is None else list(j.at) for j in chain.joints},
                "axes": {j.id: j.axis for j in chain.joints if j.kind == "P"},
-               "points": {p.id: list(p.at) for p in chain.points},
+               "points": {p.id: None if p.at is None else list(p.at) for p in chain.points},
                "modes": [{"part": m.part, "mode": m.word, "reference": m.reference,
                           "source": m.source} for m in assembly.modes] if assembly else [],
                "groups": [list(g) for g in assembly.groups] if assembly else []}
@@ -366,7 +366,7 @@ def cmd_assemble(args) -> int:
         sys.stdout.write(text)
     return 0
 
-def cmd_measure(args) -> int:
+def cmd_measure(args: argparse.Namespace) -> int:
     text = measure(load(args.file))
     if args.output:
         write_text(args.output, text)
@@ -376,7 +376,7 @@ def cmd_measure(args) -> int:
         sys.stdout.write(text)
     return 0
 
-def cmd_report(args) -> int:
+def cmd_report(args: argparse.Namespace) -> int:
     paths = args.paths or [catalog_dir()]
     output_folder(args.output, what="report")
     workers = workers_asked(args.workers) if args.workers is not None else None
@@ -391,7 +391,7 @@ def cmd_report(args) -> int:
              if report.failures else ""))
     return 0 if report.complete else 1
 
-def workers_asked(value, *, flag="--workers") -> int:
+def workers_asked(value: int, *, flag: str = "--workers") -> int:
     """The number of processes asked for, refused below 1 and capped at the CPUs."""
     cpus = os.cpu_count() or 1
     if value < 1:
@@ -401,7 +401,7 @@ def workers_asked(value, *, flag="--workers") -> int:
               file=sys.stderr)
     return min(value, cpus)
 
-def cmd_atlas(args) -> int:
+def cmd_atlas(args: argparse.Namespace) -> int:
 
     joints = joints_for(args.links, args.dof)   # a size with no chain: exit 2 with the reason
     wanted = prismatic_counts(args.links, args.dof, joints, args.prismatic, args.oriented)
@@ -467,7 +467,7 @@ def cmd_atlas(args) -> int:
               f"shards in {Path(args.out) / 'shards'}")
     return 0
 
-def cmd_design(args) -> int:
+def cmd_design(args: argparse.Namespace) -> int:
     if args.out:
         output_file(args.out, what="mechanism file")
     design = KINDS[args.kind](time_ratio=args.time_ratio, crank=args.crank, stroke=args.stroke)
@@ -485,7 +485,7 @@ def cmd_design(args) -> int:
     return 0
 
 
-def cmd_design_function(args) -> int:
+def cmd_design_function(args: argparse.Namespace) -> int:
     """``chaingraph design function``: certified function generators, best first."""
     if args.out:
         output_folder(args.out, what="solutions")
@@ -498,7 +498,7 @@ def cmd_design_function(args) -> int:
     return _synthesis_output(args, found)
 
 
-def cmd_design_path(args) -> int:
+def cmd_design_path(args: argparse.Namespace) -> int:
     """``chaingraph design path``: certified path generators, best first."""
     synthesis.check_links(args.links, args.prismatic, kind="path")
     if args.out:
@@ -526,7 +526,7 @@ def _through_atlas(args, synthesise, options):
                       runner=process_runner(workers_asked(args.workers)))
 
 
-def points_file(path) -> list[tuple[float, float]]:
+def points_file(path: str | os.PathLike[str]) -> list[tuple[float, float]]:
     """The targets of a CSV file: one ``x,y`` per line, a first line of names allowed,
     blank lines skipped; a bad line is a DesignError naming it."""
     try:
@@ -550,7 +550,7 @@ def points_file(path) -> list[tuple[float, float]]:
                               f"{line.strip()!r}", kind="path",
                               parameter="points_file") from None
     return out
-def cmd_design_motion(args) -> int:
+def cmd_design_motion(args: argparse.Namespace) -> int:
     """``chaingraph design motion``: certified motion generators, best first."""
     if args.out:
         output_folder(args.out, what="solutions")
@@ -591,17 +591,8 @@ def _synthesis_output(args, found) -> int:
             with Writing(target):
                 save(s.mechanism, target)
     if args.draw:
-        best = found.solutions[0]
-        task = best.mechanism.task or {}
-        sweep = None
-        if "swing" in task and "start" in task:
-            sweep = (task["start"][0], task["start"][0] + task["swing"][0])
-        poses = task.get("poses", ())
         with Writing(args.draw):
-            draw_synthesis(best.mechanism, at=best.reached_at[0], sweep=sweep,
-                           curve=None if poses else best.curve,
-                           targets=task.get("targets", ()), poses=poses,
-                           path=args.draw)
+            draw_solution(found.solutions[0], path=args.draw)
     if args.json:
         print_json(found.to_dict())
         return 0
@@ -626,8 +617,10 @@ def _synthesis_output(args, found) -> int:
              if any(s.atlas for s in found.solutions) else "")
     print(f"rejected: {rejected}; searched {space}{searched.candidates} candidates")
     if args.out:
-        print(f"written: solution-1.toml .. solution-{len(found.solutions)}.toml in "
-              f"{args.out} (chaingraph solve reproduces each)")
+        n = len(found.solutions)
+        files = "solution-1.toml" if n == 1 else f"solution-1.toml .. solution-{n}.toml"
+        print(f"written: {files} in {args.out} (chaingraph solve reproduces "
+              f"{'it' if n == 1 else 'each'})")
     return 0
 
 
@@ -650,7 +643,7 @@ def _error_text(found):
     return figure
 
 
-def synthesis_heading(task) -> str:
+def synthesis_heading(task: PathTask) -> str:
     """The first line of a path synthesis's text."""
     n = len(task.points)
     how = (f"{n} points on a closed curve" if task.closed else f"{n} points")
@@ -670,9 +663,8 @@ def _sliding(args, wanted) -> int:
     if args.out:
         output_folder(args.out, what="atlas")
     start = time.perf_counter()
-    base = run_atlas(args.links, args.dof, runner=process_runner(workers))
-    if args.multiple:
-        base = multiple_atlas(base)
+    simple = run_atlas(args.links, args.dof, runner=process_runner(workers))
+    base = multiple_atlas(simple) if args.multiple else simple
     def names(chain):
         return atlas_names(chain, oriented=args.oriented)
     if args.out or (args.json and not args.summary):
@@ -743,7 +735,7 @@ def _counted(base, wanted, args):
     """The counts of the chains with sliding pairs, counted as they are found, and the
     chains themselves when there are few enough to list (else None)."""
     counts = SlidingCounts(base.links, base.dof, wanted, args.oriented, {})
-    first = []
+    first: list[SlidingEntry] = []
     for entry in sliding_chains(base, prismatic=wanted, oriented=args.oriented,
                                 rejected=counts.rejected):
         if args.no_fractionated and entry.fractionated:

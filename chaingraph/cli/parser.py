@@ -417,17 +417,11 @@ def _type_arguments(q) -> None:
 
 def points_argument(text: str) -> list[tuple[float, float]]:
     """Points written "X,Y; X,Y; ..." (the library checks that they are finite)."""
-    out = []
-    for k, part in enumerate(text.split(";"), 1):
-        fields = part.split(",")
-        try:
-            if len(fields) != 2:
-                raise ValueError
-            out.append((float(fields[0]), float(fields[1])))
-        except ValueError:
-            raise argparse.ArgumentTypeError(f"point {k} is not two numbers X,Y: "
-                                             f"{part.strip()!r}") from None
-    return out
+    try:
+        return [(x, y) for x, y in _number_rows(text, 2)]
+    except _BadRow as e:
+        raise argparse.ArgumentTypeError(f"point {e.row} is not two numbers X,Y: "
+                                         f"{e.part!r}") from None
 
 
 def numbers_argument(text: str) -> list[float]:
@@ -465,18 +459,36 @@ def _design_motion_command(kinds) -> None:
 
 def poses_argument(text: str) -> list[tuple[float, float, float]]:
     """Poses written X,Y,DEG; X,Y,DEG; ... (the library checks that they are finite)."""
-    poses = []
+    try:
+        return [(x, y, a) for x, y, a in _number_rows(text, 3)]
+    except _BadRow as e:
+        raise argparse.ArgumentTypeError(f"poses X,Y,DEG; X,Y,DEG; ..., got {e.part!r} "
+                                         f"in {text!r}") from None
+
+
+class _BadRow(ValueError):
+    """Row ``row`` (from 1) of a "A,B; A,B; ..." option, ``part``, is not its numbers."""
+
+    def __init__(self, row: int, part: str) -> None:
+        super().__init__(row, part)
+        self.row, self.part = row, part
+
+
+def _number_rows(text: str, width: int) -> list[tuple[float, ...]]:
+    """Rows of ``width`` numbers written "A,B; A,B; ..." (a trailing ';' allowed)."""
     parts = text.split(";")
     if len(parts) > 1 and not parts[-1].strip():
-        parts.pop()                                     # a trailing ';'
-    for part in parts:
+        parts.pop()
+    rows = []
+    for k, part in enumerate(parts, 1):
+        fields = part.split(",")
         try:
-            x, y, a = (float(v) for v in part.split(","))
+            if len(fields) != width:
+                raise ValueError
+            rows.append(tuple(float(f) for f in fields))
         except ValueError:
-            raise argparse.ArgumentTypeError(f"poses X,Y,DEG; X,Y,DEG; ..., got {part.strip()!r} "
-                                             f"in {text!r}") from None
-        poses.append((x, y, a))
-    return poses
+            raise _BadRow(k, part.strip()) from None
+    return rows
 
 
 def _synthesis_arguments(q) -> None:

@@ -4,7 +4,7 @@ flag of the parameter at fault and the exit status it gives."""
 from __future__ import annotations
 
 import json
-from collections.abc import Sequence
+from collections.abc import Mapping, Sequence
 from typing import Any
 
 from chaingraph.errors import AssemblyError
@@ -88,7 +88,7 @@ PATH_FLAGS = {"points": '--points "X,Y; ..."', "points_file": "--points-file CSV
 def error_text(error: BaseException) -> str:
     """The error's message, with the flag of the parameter at fault."""
     kind = getattr(error, "kind", None)
-    flags = SYNTHESIS_FLAGS if kind in SYNTHESES else FLAGS
+    flags: Mapping[str, str | None] = SYNTHESIS_FLAGS if kind in SYNTHESES else FLAGS
     if kind == "path":
         flags = {**flags, **PATH_FLAGS}
     parameter = getattr(error, "parameter", None)

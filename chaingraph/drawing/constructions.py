@@ -8,11 +8,18 @@ one, returns the matplotlib Figure.
 from __future__ import annotations
 
 import math
+import os
+from typing import TYPE_CHECKING, overload
 
 import numpy as np
 
 from chaingraph.drawing.plots import finish, plain_text, pyplot_module
 from chaingraph.drawing.scene import COLOURS, Scene, draw_shapes, frame_shapes
+from chaingraph.graphical.centres import InstantCentres
+from chaingraph.graphical.polygons import Polygons
+
+if TYPE_CHECKING:                       # matplotlib is imported only to draw with it
+    from matplotlib.figure import Figure
 
 __all__ = ["draw_centres", "draw_polygons"]
 
@@ -27,8 +34,13 @@ def _unit_word(state, per):
     return f"{unit}/{per}"
 
 
+@overload
+def draw_centres(centres: InstantCentres, path: None = None) -> Figure: ...
+@overload
+def draw_centres(centres: InstantCentres, path: str | os.PathLike[str]) -> None: ...
 @plain_text
-def draw_centres(centres, path=None):
+def draw_centres(centres: InstantCentres, path: str | os.PathLike[str] | None = None
+                 ) -> Figure | None:
     """The mechanism with its instantaneous centres (left) and the circle diagram
     (right): primary centres from the joints as filled dots, those found by Kennedy's
     theorem as open ones with the two lines that met dashed; a centre at infinity as an
@@ -164,8 +176,13 @@ def _label(name):
     return name.lower()
 
 
+@overload
+def draw_polygons(polygons: Polygons, path: None = None) -> Figure: ...
+@overload
+def draw_polygons(polygons: Polygons, path: str | os.PathLike[str]) -> None: ...
 @plain_text
-def draw_polygons(polygons, path=None):
+def draw_polygons(polygons: Polygons, path: str | os.PathLike[str] | None = None
+                  ) -> Figure | None:
     """The velocity polygon (left) and the acceleration polygon (right), to scale:
     the pole o, each point's image labelled with its name in lower case (b' the
     guide's point under the block's b), the relative vectors as arrows coloured by link;
@@ -207,8 +224,8 @@ def draw_polygons(polygons, path=None):
                     kinds.add(c.kind)
                 start = end
                 reached.append(tuple(end))
-        reached = np.array([p for p in reached if all(map(math.isfinite, p))])
-        lo, hi = reached.min(axis=0), reached.max(axis=0)
+        box = np.array([p for p in reached if all(map(math.isfinite, p))])
+        lo, hi = box.min(axis=0), box.max(axis=0)
         pad = 0.12 * max(float((hi - lo).max()), 1e-12)
         ax.set_xlim(lo[0] - pad, hi[0] + pad)
         ax.set_ylim(lo[1] - pad, hi[1] + pad)

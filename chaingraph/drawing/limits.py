@@ -19,13 +19,13 @@ import numpy as np
 
 from chaingraph.drawing.scene import Scene, Shape, frame_shapes, svg_document, svg_elements
 from chaingraph.errors import MechanismError
-from chaingraph.kinematics import solve
+from chaingraph.kinematics import Motion, solve
 from chaingraph.kinematics.summary import output_signal
 
 __all__ = ["limit_motion", "limit_shapes", "limits_svg"]
 
 
-def limit_motion(motion):
+def limit_motion(motion: Motion) -> Motion | None:
     """The mechanism at the input values of its output's two extremes (a motion of two
     rows, the summary's ``extremes`` in order); None when the summary has none."""
     s = motion.summary
@@ -48,7 +48,7 @@ def _arc(centre, radius, a0, sweep, n=64):
     return tuple((centre[0] + radius * math.cos(x), centre[1] + radius * math.sin(x)) for x in t)
 
 
-def limit_shapes(motion):
+def limit_shapes(motion: Motion) -> tuple[Scene, list[Shape]]:
     """The limit-position picture of a solved motion with an output: (scene, shapes).
     The extreme poses carry ``data-extreme`` 1 and 2 and their input values as
     ``data-input``; the input's arcs their angles as ``data-angle``."""
@@ -192,7 +192,7 @@ def _fit_view(scene, shapes):
     scene.hi = (max(xs + [scene.hi[0]]), max(ys + [scene.hi[1]]) + 0.08 * scene.span)
 
 
-def limits_svg(motion, *, width=640) -> str:
+def limits_svg(motion: Motion, *, width: int = 640) -> str:
     """The limit positions of a solved motion as SVG text (see the module).
 
     Examples
@@ -207,7 +207,7 @@ def limits_svg(motion, *, width=640) -> str:
     scene, shapes = limit_shapes(motion)
     s = motion.summary
     title = f"{motion.name}: limit positions"
-    if s.time_ratio is not None:
+    if s is not None and s.time_ratio is not None:      # (limit_shapes needs a summary)
         title += f" (time ratio {s.time_ratio:.4g})"
     heading = (f'<text x="{0.03 * scene.size[0]:.4g}" y="{0.05 * scene.span:.4g}" '
                f'font-size="{0.03 * scene.span:.3g}" font-family="sans-serif">'

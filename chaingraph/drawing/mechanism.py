@@ -18,6 +18,7 @@ from __future__ import annotations
 
 import html
 import math
+from collections.abc import Sequence
 from dataclasses import replace
 
 import networkx as nx
@@ -30,10 +31,13 @@ from chaingraph.drawing.scene import (
     svg_document,
     svg_elements,
 )
+from chaingraph.kinematics import Motion
+from chaingraph.model.chain import Chain
 
 __all__ = ["mechanism_svg", "frame_steps", "skeleton_svg"]
 
-def frame_steps(motion, frames, *, there_and_back=None):
+def frame_steps(motion: Motion, frames: int, *, there_and_back: bool | None = None
+                ) -> list[int]:
     """The steps of the motion that an animation of ``frames`` frames shows: evenly
     over the sweep, and back again for a rocker (``there_and_back``; by default when
     the motion's summary says its input does not turn fully)."""
@@ -48,8 +52,9 @@ def _picks(n, frames, there_and_back):
     return picks + picks[::-1][1:-1] if there_and_back else picks
 
 
-def mechanism_svg(motion, *, frames=None, seconds=4.0, width=640, paths=True, rows=None,
-                  there_and_back=None, compact=False):
+def mechanism_svg(motion: Motion, *, frames: int | None = None, seconds: float = 4.0,
+                  width: int = 640, paths: bool = True, rows: Sequence[int] | None = None,
+                  there_and_back: bool | None = None, compact: bool = False) -> str:
     """The mechanism drawn in the textbook's style, as SVG text.
 
     Parameters
@@ -104,11 +109,11 @@ def mechanism_svg(motion, *, frames=None, seconds=4.0, width=640, paths=True, ro
     if paths:
         parts += svg_elements(scene, path_shapes(scene))
     count = len(picks)
-    when = {}                         # each frame drawn, and the times it is shown at
+    # each frame drawn (its step, and its pick unless compact), and the times it is shown at
+    when: dict[tuple[int, int], list[int]] = {}
     for i, k in enumerate(picks):
-        when.setdefault(k if compact else (k, i), []).append(i)
-    for key, times in when.items():
-        k = key if compact else key[0]
+        when.setdefault((k, -1) if compact else (k, i), []).append(i)
+    for (k, _), times in when.items():
         anim = ""
         if count > 1:
             edges = sorted({0, *times, *(i + 1 for i in times if i + 1 < count)})
@@ -141,7 +146,7 @@ def _scale_bar(scene, height_m, units):
             f'{bar:g} {html.escape(units)}</text></g>')
 
 
-def skeleton_svg(chain, *, width=420, labels=True):
+def skeleton_svg(chain: Chain, *, width: int = 420, labels: bool = True) -> str:
     """The kinematic skeleton of any chain, mechanism or not, drawn as its animation is
     (one scene): its links as bars (binary) and plates (three or more joints) between
     its joints, each whole with the blocks and slots it carries, R joints as pins, P

@@ -21,6 +21,7 @@ from chaingraph.drawing.constructions import draw_centres, draw_polygons
 from chaingraph.drawing.forces import free_body_svg, plot_turning_moment
 from chaingraph.drawing.mechanism import mechanism_svg, skeleton_svg
 from chaingraph.drawing.plots import plot_motion
+from chaingraph.drawing.synthesis import DrawnSolution, draw_solution
 from chaingraph.dynamics.reactions import PoseForces, SweepForces
 from chaingraph.graphical.centres import InstantCentres
 from chaingraph.graphical.polygons import Polygons
@@ -31,7 +32,8 @@ from chaingraph.structure.classification import Classification
 if TYPE_CHECKING:                   # matplotlib is imported only when a plot is drawn
     from matplotlib.figure import Figure
 
-__all__ = ["Animation", "animate", "figure_svg", "register", "DISPLAYS"]
+__all__ = ["Animation", "animate", "figure_svg", "register", "DISPLAYS",
+           "DISPLAYS_BY_NAME"]
 
 
 class InversionTable(Protocol):
@@ -44,6 +46,74 @@ class InversionTable(Protocol):
     classes: int
 
     def rows(self) -> list[tuple]: ...
+
+
+class SolutionError(Protocol):
+    """A synthesis solution's error (``max``, ``rms``, a pose's ``angle``)."""
+
+    @property
+    def max(self) -> float: ...
+
+    @property
+    def rms(self) -> float: ...
+
+    @property
+    def angle(self) -> float | None: ...
+
+
+class SolutionRow(DrawnSolution, Protocol):
+    """What the synthesis display reads of each ``Solution`` (synthesis is above
+    drawing: read through this protocol)."""
+
+    @property
+    def rank(self) -> int: ...
+
+    @property
+    def error(self) -> SolutionError: ...
+
+    @property
+    def transmission_angle(self) -> tuple[float, float] | None: ...
+
+    @property
+    def input(self) -> str: ...
+
+    @property
+    def grashof(self) -> str | None: ...
+
+    @property
+    def names(self) -> tuple[str, ...]: ...
+
+    @property
+    def dimensions(self) -> dict[str, float]: ...
+
+
+class SearchedSpace(Protocol):
+    """A synthesis's searched space."""
+
+    @property
+    def chains(self) -> int: ...
+
+    @property
+    def inversions(self) -> int: ...
+
+    @property
+    def candidates(self) -> int: ...
+
+
+class SynthesisResult(Protocol):
+    """What the synthesis display reads of :class:`chaingraph.synthesis.Synthesis`."""
+
+    @property
+    def task(self) -> Any: ...
+
+    @property
+    def solutions(self) -> Sequence[SolutionRow]: ...
+
+    @property
+    def rejected(self) -> dict[str, int]: ...
+
+    @property
+    def searched(self) -> SearchedSpace: ...
 
 
 def figure_svg(fig: Figure) -> str:
@@ -125,6 +195,39 @@ def sweep_forces_html(result: SweepForces) -> str:
     return out
 
 
+def synthesis_html(result: SynthesisResult) -> str:
+    """A synthesis: its task, the certified solutions as a table (best first) and the
+    best one's drawing (the mechanism at its first target, the targets, and a
+    function's structural error), then what was rejected and searched."""
+    task = result.task.to_dict()
+    what = ", ".join(f"{k} {v}" for k, v in task.items()
+                     if k not in ("kind", "units", "min_transmission") and v is not None)
+    out = [f"<b>{html.escape(str(task['kind']).capitalize())} synthesis</b>: "
+           f"{html.escape(what)}"]
+    angles = any(s.error.angle is not None for s in result.solutions)
+    header = ["rank", "error max", "error rms"] + (["angle error"] if angles else []) + [
+        "transmission", "input", "Grashof", "names", "dimensions"]
+    rows = [[s.rank, f"{s.error.max:.6g}", f"{s.error.rms:.6g}"]
+            + ([f"{s.error.angle or 0.0:.6g}"] if angles else [])
+            + ["-" if s.transmission_angle is None else
+               f"{s.transmission_angle[0]:.1f}..{s.transmission_angle[1]:.1f}",
+               s.input, s.grashof or "-", "; ".join(s.names),
+               ", ".join(f"{k.replace('_', ' ')} {v:.6g}" for k, v in s.dimensions.items())]
+            for s in result.solutions]
+    out.append(_table(rows, header))
+    if result.solutions:
+        fig = draw_solution(result.solutions[0])
+        assert fig is not None                      # without a path, the figure
+        out.append(figure_svg(fig).split("?>", 1)[-1])
+    else:
+        out.append("<p>No certified solution.</p>")
+    rejected = ", ".join(f"{k} {v}" for k, v in result.rejected.items()) or "none"
+    s = result.searched
+    out.append(f"<p>Rejected: {html.escape(rejected)}; searched {s.chains} chains, "
+               f"{s.inversions} inversions, {s.candidates} candidates.</p>")
+    return "".join(out)
+
+
 class Animation:
     """One cycle of a solved motion as an animated SVG (SMIL: no script, no network).
     A notebook shows it inline; :meth:`save` writes it."""
@@ -169,17 +272,25 @@ DISPLAYS: dict[str, tuple[str, Callable[[Any], str]]] = {"Chain": ("image/svg+xm
             "PoseForces": ("text/html", pose_forces_html),
             "SweepForces": ("text/html", sweep_forces_html)}
 
+#: the rich displays of results whose modules ``import chaingraph`` does not load (a
+#: synthesis: its module loads scipy's optimisers), by (module, class name): the shell
+#: shows them once the module is loaded, without loading it for them
+DISPLAYS_BY_NAME: dict[tuple[str, str], tuple[str, Callable[[Any], str]]] = {
+    ("chaingraph.synthesis.result", "Synthesis"): ("text/html", synthesis_html)}
+
 
 def register(classes: Iterable[type], shell: Any = None) -> bool:
     """Register the rich displays of ``classes`` (the results named in :data:`DISPLAYS`;
-    ``chaingraph`` passes its own) with an IPython shell's display formatters (the running
-    one by default); returns whether there was a shell to register with.
+    ``chaingraph`` passes its own), and those of :data:`DISPLAYS_BY_NAME` by their
+    module and class name, with an IPython shell's display formatters (the running one
+    by default); returns whether there was a shell to register with.
 
     Examples
     --------
     >>> class Formatter:
     ...     def __init__(self): self.types = {}
     ...     def for_type(self, cls, fn): self.types[cls.__name__] = fn
+    ...     def for_type_by_name(self, module, name, fn): self.types[name] = fn
     >>> class Shell:
     ...     class display_formatter:
     ...         formatters = {"text/html": Formatter(), "image/svg+xml": Formatter()}
@@ -187,7 +298,7 @@ def register(classes: Iterable[type], shell: Any = None) -> bool:
     >>> register(chaingraph.RESULTS, Shell())
     True
     >>> sorted(Shell.display_formatter.formatters["text/html"].types)
-    ['Classification', 'InstantCentres', 'Inversions', 'Motion', 'Polygons', 'PoseForces', 'SweepForces']
+    ['Classification', 'InstantCentres', 'Inversions', 'Motion', 'Polygons', 'PoseForces', 'SweepForces', 'Synthesis']
     """
     if shell is None:
         try:
@@ -201,4 +312,6 @@ def register(classes: Iterable[type], shell: Any = None) -> bool:
     for cls in classes:
         mime, fn = DISPLAYS[cls.__name__]
         formatters[mime].for_type(cls, fn)
+    for (module, name), (mime, fn) in DISPLAYS_BY_NAME.items():
+        formatters[mime].for_type_by_name(module, name, fn)
     return True

@@ -8,30 +8,63 @@ draws the mechanism in its drawn pose with the paths of its joints and points.
 from __future__ import annotations
 
 import functools
+import os
 import sys
 import textwrap
+from collections.abc import Callable, Sequence
 from pathlib import Path
+from types import ModuleType
+from typing import TYPE_CHECKING, Any, ParamSpec, Protocol, TypeVar, overload
 
 from chaingraph.drawing.scene import Scene, draw_shapes, frame_shapes, path_shapes
-from chaingraph.kinematics import Motion, output_signal, solve
+from chaingraph.kinematics import Motion, Summary, output_signal, solve
 from chaingraph.model.chain import Chain
+
+if TYPE_CHECKING:                       # matplotlib is imported only to draw with it
+    from matplotlib.figure import Figure
 
 __all__ = ["plot_motion", "draw_mechanism", "output_series"]
 
+_P = ParamSpec("_P")
+_R = TypeVar("_R")
 
-def plain_text(draw):
+
+class SummaryAt(Protocol):
+    """What :func:`plot_variation` reads of one value of a length (a
+    :class:`chaingraph.variation.VariationRow`, a module the drawings do not import)."""
+
+    @property
+    def value(self) -> float: ...
+    @property
+    def summary(self) -> Summary | None: ...
+
+
+class SummariesOverLength(Protocol):
+    """What :func:`plot_variation` reads of a :class:`chaingraph.variation.Variation`."""
+
+    @property
+    def name(self) -> str: ...
+    @property
+    def link(self) -> str: ...
+    @property
+    def units(self) -> str | None: ...
+    @property
+    def rows(self) -> Sequence[SummaryAt]: ...
+
+
+def plain_text(draw: Callable[_P, _R]) -> Callable[_P, _R]:
     """Draw with mathtext off: names are text, so ``$\\frac{a}{b}$`` in a link's name is
     drawn as typed instead of being parsed (and failing) as mathematics."""
 
     @functools.wraps(draw)
-    def wrapper(*args, **kwargs):
+    def wrapper(*args: _P.args, **kwargs: _P.kwargs) -> _R:
         import matplotlib
         with matplotlib.rc_context({"text.parse_math": False}):
             return draw(*args, **kwargs)
     return wrapper
 
 
-def pyplot_module():
+def pyplot_module() -> ModuleType:
 
     import matplotlib
     if "matplotlib.pyplot" not in sys.modules:
@@ -40,20 +73,27 @@ def pyplot_module():
     return plt
 
 
-def output_series(motion):
+def output_series(motion: Motion) -> tuple[str, Any, Any, Any, str]:
     """The output's (label, displacement, velocity, acceleration, unit) along the sweep."""
     output = motion.summary.output if motion.summary else None
     if output is None and motion.plan.chain.mechanism is not None:
         output = motion.plan.chain.mechanism.output
     if output is None:
         output = motion.driver or motion.plan.inputs[motion.plan.lead].b
-    signal = output_signal(motion.plan, output, motion.columns)
-    u, v, a = signal.values(motion.columns)
+    # (the motion reads its CSV's columns from its typed fields, without building them)
+    signal = output_signal(motion.plan, output, motion)
+    if signal is None:                 # (there is always an output here)
+        raise ValueError(f"{motion.name!r} has no output to plot")
+    u, v, a = signal.values(motion)
     return signal.label, u, v, a, signal.unit or "length"
 
 
+@overload
+def plot_motion(motion: Motion, path: None = None) -> Figure: ...
+@overload
+def plot_motion(motion: Motion, path: str | os.PathLike[str]) -> None: ...
 @plain_text
-def plot_motion(motion, path=None):
+def plot_motion(motion: Motion, path: str | os.PathLike[str] | None = None) -> Figure | None:
     """The output's displacement, velocity and acceleration against the input.
 
     Writes an SVG (or PNG, by the file's ending) to ``path``; without a path, returns
@@ -91,7 +131,15 @@ def plot_motion(motion, path=None):
     return finish(plt, fig, path)
 
 
-def finish(plt, fig, path):
+@overload
+def finish(plt: ModuleType, fig: Figure, path: None) -> Figure: ...
+@overload
+def finish(plt: ModuleType, fig: Figure, path: str | os.PathLike[str]) -> None: ...
+@overload
+def finish(plt: ModuleType, fig: Figure, path: str | os.PathLike[str] | None
+           ) -> Figure | None: ...
+def finish(plt: ModuleType, fig: Figure, path: str | os.PathLike[str] | None
+           ) -> Figure | None:
     """Save and close the figure, or, without a path, hand it back (closed to pyplot, so
     that it is shown once, where it is returned)."""
     if path is None:
@@ -131,8 +179,14 @@ def _in_sweep(t, theta):
     return [t + 360 * k for k in range(-3, 4) if lo - 1e-9 <= t + 360 * k <= hi + 1e-9]
 
 
+@overload
+def draw_mechanism(motion: Motion, path: None = None, *, pose_index: int = 0) -> Figure: ...
+@overload
+def draw_mechanism(motion: Motion, path: str | os.PathLike[str], *,
+                   pose_index: int = 0) -> None: ...
 @plain_text
-def draw_mechanism(motion, path=None, *, pose_index=0):
+def draw_mechanism(motion: Motion, path: str | os.PathLike[str] | None = None, *,
+                   pose_index: int = 0) -> Figure | None:
     """The mechanism in a pose with every joint's and point's path: written as SVG (or
     PNG) to ``path``, or returned as a matplotlib Figure without one.
 
@@ -184,24 +238,29 @@ def _motion_and_pose(given, k):
     return motion, (solve(given, start=value, stop=value, steps=1, summary=False), 0)
 
 
+@overload
+def plot_variation(variation: SummariesOverLength, path: None = None) -> Figure: ...
+@overload
+def plot_variation(variation: SummariesOverLength, path: str | os.PathLike[str]) -> None: ...
 @plain_text
-def plot_variation(variation, path=None):
+def plot_variation(variation: SummariesOverLength,
+                   path: str | os.PathLike[str] | None = None) -> Figure | None:
     """A :class:`~chaingraph.variation.Variation` plotted: the time ratio and the stroke
     against the length (the values with no motion left out). Written to ``path`` or
     returned as a figure."""
     plt = pyplot_module()
-    good = [r for r in variation.rows if r.summary is not None]
-    x = [r.value for r in good]
+    good = [(r.value, r.summary) for r in variation.rows if r.summary is not None]
+    x = [value for value, _ in good]
     fig, ax = plt.subplots(figsize=(7.0, 3.8))
-    ratio = [r.summary.time_ratio for r in good]
+    ratio = [s.time_ratio for _, s in good]
     if any(v is not None for v in ratio):
         ax.plot(x, [float("nan") if v is None else v for v in ratio], "o-", color="#b2182b",
                 label="time ratio")
         ax.set_ylabel("time ratio")
-    stroke = [r.summary.stroke for r in good]
+    stroke = [s.stroke for _, s in good]
     if any(v is not None for v in stroke):
         other = ax.twinx()
-        unit = next((r.summary.stroke_unit for r in good if r.summary.stroke_unit), "")
+        unit = next((s.stroke_unit for _, s in good if s.stroke_unit), "")
         other.plot(x, [float("nan") if v is None else v for v in stroke], "s--",
                    color="#2166ac", label="stroke")
         other.set_ylabel(f"stroke, {unit}")

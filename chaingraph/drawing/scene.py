@@ -15,11 +15,21 @@ from __future__ import annotations
 
 import html
 import math
+from collections.abc import Iterable, Sequence
 from dataclasses import dataclass
+from typing import TYPE_CHECKING, Any
 
 import numpy as np
 
-from chaingraph.geometry import convex_hull, polygon_area, segment_distance
+from chaingraph.geometry import Vec, convex_hull, polygon_area, segment_distance
+from chaingraph.kinematics import Motion, PoseMotion
+from chaingraph.model.chain import Chain, Joint
+
+if TYPE_CHECKING:                       # matplotlib is imported only to draw with it
+    from matplotlib.axes import Axes
+
+#: a coordinate, or its values over a motion's steps
+Coordinate = float | np.ndarray
 
 __all__ = ["View", "Scene", "Shape", "svg_document", "frame_shapes", "path_shapes", "svg_elements", "draw_shapes",
            "COLOURS"]
@@ -44,13 +54,13 @@ class Shape:
 
     kind: str
     cls: str
-    points: tuple
-    data: tuple = ()
+    points: tuple[Vec, ...]
+    data: tuple[tuple[str, str], ...] = ()
     fill: str | None = None
     fill_opacity: float | None = None
     stroke: str | None = None
     width: float | None = None
-    dash: tuple = ()
+    dash: tuple[float, ...] = ()
     join: str | None = None
     cap: str | None = None
     radius: float | None = None
@@ -77,16 +87,16 @@ class View:
     """A picture's window on the mechanism's plane: the box ``lo``-``hi`` (its units)
     with ``pad`` around it, mapped to picture coordinates (y down) for SVG."""
 
-    def __init__(self, lo, hi, pad):
+    def __init__(self, lo: Sequence[float], hi: Sequence[float], pad: float) -> None:
         self.lo, self.hi, self.pad = lo, hi, pad
 
     @property
-    def decimals(self):
+    def decimals(self) -> int:
         """Decimals enough that a length keeps its value to 1e-5 of the picture's size,
         whatever the size (a link's length must not wobble from frame to frame)."""
         return max(0, 5 - math.floor(math.log10(max(max(self.size), 1e-300))))
 
-    def num(self, v):
+    def num(self, v: float) -> str:
         """A picture coordinate as text, to the view's decimals."""
         if getattr(self, "_format", None) is None:
             self._format = f"{{:.{self.decimals}f}}"
@@ -96,17 +106,17 @@ class View:
         return "0" if text in ("-0", "") else text
 
     # model -> picture coordinates (y up -> y down)
-    def X(self, x):
+    def X(self, x: float) -> float:
         return x - self.lo[0] + self.pad
 
-    def Y(self, y):
+    def Y(self, y: float) -> float:
         return self.hi[1] - y + self.pad
 
-    def pt(self, x, y):
+    def pt(self, x: float, y: float) -> str:
         return f"{self.num(self.X(x))},{self.num(self.Y(y))}"
 
     @property
-    def size(self):
+    def size(self) -> tuple[float, float]:
         return (self.hi[0] - self.lo[0] + 2 * self.pad, self.hi[1] - self.lo[1] + 2 * self.pad)
 
 
@@ -137,9 +147,10 @@ class Scene(View):
                                  self.on_line(j, j.links.index(pair.block_link), pair.at))
         xs = [v[0] for v in self.xy.values()] + [e[0] for p in self.ends.values() for e in p]
         ys = [v[1] for v in self.xy.values()] + [e[1] for p in self.ends.values() for e in p]
-        xs, ys = np.concatenate(xs), np.concatenate(ys)
-        xs, ys = xs[np.isfinite(xs)], ys[np.isfinite(ys)]
-        lo, hi = [float(xs.min()), float(ys.min())], [float(xs.max()), float(ys.max())]
+        every_x, every_y = np.concatenate(xs), np.concatenate(ys)
+        every_x, every_y = every_x[np.isfinite(every_x)], every_y[np.isfinite(every_y)]
+        lo = [float(every_x.min()), float(every_y.min())]
+        hi = [float(every_x.max()), float(every_y.max())]
         self.span = max(hi[0] - lo[0], hi[1] - lo[1], 1e-9)
         for axis in (0, 1):       # no sliver of a picture: each side at least half the other
             grow = 0.25 * self.span - 0.5 * (hi[axis] - lo[axis])
@@ -150,7 +161,8 @@ class Scene(View):
         self.w = 0.035 * self.span           # a block's half length, a slot's width
 
     @classmethod
-    def of_motion(cls, motion, *, also=None, rows=None):
+    def of_motion(cls, motion: Motion, *, also: Motion | None = None,
+                  rows: Sequence[int] | None = None) -> Scene:
         """The scene over a solved :class:`~chaingraph.kinematics.Motion`; ``also``, a
         motion of the same mechanism whose steps are added after the first's (a pose
         to draw that is not one of the sweep's steps); ``rows``, the steps to keep (the
@@ -160,32 +172,34 @@ class Scene(View):
         motions = [motion] if also is None else [motion, also]
         keep = slice(None) if rows is None else np.asarray(rows, dtype=int)
 
-        def column(key):
-            return np.concatenate([np.asarray(m[key], dtype=float).reshape(-1)
-                                   for m in motions])[keep]
-        xy = {name: (column(f"x:{name}"), column(f"y:{name}")) for name in names}
+        def series(values):
+            return np.concatenate([np.asarray(v, dtype=float).reshape(-1)
+                                   for v in values])[keep]
+        xy = {name: (series(m.point(name).x for m in motions),
+                     series(m.point(name).y for m in motions)) for name in names}
         angle, slide = {}, {}
         for j in chain.joints:
             if j.kind == "P":
+                # the sliding line turns with its guide from the drawn pose
                 guide = j.links[0]
-                turn = np.radians(column(f"angle:{guide}") - chain.reference_direction(guide))
-                angle[j.id] = math.radians(j.axis) + turn
-                slide[j.id] = column(f"s:{j.id}")
+                turn = (series(m.link(guide).angle for m in motions)
+                        - math.radians(chain.reference_direction(guide)))
+                angle[j.id] = math.radians(j.axis or 0.0) + turn
+                slide[j.id] = series(m.slide(j.id).s for m in motions)
         return cls(chain, motion.fixed, xy, angle, slide)
 
     @classmethod
-    def of_chain(cls, chain):
+    def of_chain(cls, chain: Chain) -> Scene:
         """The scene of a chain in its drawn pose (one step): a mechanism's fixed link
         is the ground; a chain without a mechanism has none."""
-        xy = {j.id: ([j.at[0]], [j.at[1]]) for j in chain.joints}
-        xy.update({p.id: ([p.at[0]], [p.at[1]]) for p in chain.points})
+        xy = {name: ([x], [y]) for name, (x, y) in chain.positions().items()}
         angle = {j.id: [math.radians(j.axis or 0.0)] for j in chain.joints if j.kind == "P"}
         slide = {j.id: [0.0] for j in chain.joints if j.kind == "P"}
         return cls(chain, chain.mechanism.fixed if chain.mechanism else None, xy, angle,
                    slide)
 
     @classmethod
-    def of_pose(cls, state):
+    def of_pose(cls, state: PoseMotion) -> Scene:
         """The scene of one pose: a mechanism solved at one input value (the result
         of :func:`chaingraph.kinematics.pose.pose_motion`)."""
         xy = {name: ([p[0]], [p[1]]) for name, p in state.positions.items()}
@@ -193,7 +207,8 @@ class Scene(View):
         slide = {j: [s.slide] for j, s in state.slides.items()}
         return cls(state.chain, state.fixed, xy, angle, slide)
 
-    def on_line(self, joint, side, along):
+    def on_line(self, joint: Joint, side: int, along: Coordinate
+                ) -> tuple[np.ndarray, np.ndarray]:
         """Over the motion, the point at line coordinate ``along`` on the pair's link
         ``joint.links[side]`` (the joint's reference point moves with the second link;
         the first sees it slide by ``s``)."""
@@ -213,7 +228,7 @@ class Scene(View):
         away from it, the second from one side only, is a cylinder and its rod."""
         chain, fixed = self.chain, self.fixed
         s = s if s.size else np.zeros(1)
-        pts = [x.at for x in chain.joints] + [p.at for p in chain.points]
+        pts = list(chain.positions().values())
         extent = max(max(p[0] for p in pts) - min(p[0] for p in pts),
                      max(p[1] for p in pts) - min(p[1] for p in pts), 1e-9)
         tol = 0.035 * extent
@@ -286,7 +301,7 @@ def _line(cls, p, q, colour, width, data=(), dash=()):
     return Shape("line", cls, (p, q), data=data, stroke=colour, width=width, dash=dash)
 
 
-def frame_shapes(scene, k):
+def frame_shapes(scene: Scene, k: int) -> list[Shape]:
     """The shapes of the pose at step ``k``: links (plates and bars, each whole: with
     its blocks and the slots it carries), sliding pairs (guides and blocks), joints
     (fixed pivots on hatched ground, pins, higher pairs), points, and labels placed
@@ -338,7 +353,7 @@ def _bodies(scene, at, ends, blocks):
         hull = convex_hull([(round(x, 12), round(y, 12)) for x, y in pts])
         if len(hull) >= 3 and polygon_area(hull) <= 1e-6 * scene.span ** 2:
             # points in one line (a rod through its pin and point to its piston): a bar
-            hull = max(((p, q) for p in hull for q in hull), key=lambda e: math.dist(*e))
+            hull = list(max(((p, q) for p in hull for q in hull), key=lambda e: math.dist(*e)))
         if len(hull) >= 3:
             out.append(Shape("polygon", "plate", tuple(hull), data=(("link", link),),
                              fill=colour, fill_opacity=0.25, stroke=colour, width=stroke,
@@ -438,7 +453,8 @@ def _joint_shapes(scene, at):
 LABEL_CHAR, LABEL_DEPTH, LABEL_HEIGHT = 0.62, 0.25, 0.8
 
 
-def label_box(x, y, text, size):
+def label_box(x: float, y: float, text: str, size: float
+              ) -> tuple[float, float, float, float]:
     """The box ``(x0, y0, x1, y1)`` a label of ``size`` at baseline point ``(x, y)``
     takes (in the mechanism's coordinates, y up)."""
     return (x, y - LABEL_DEPTH * size, x + LABEL_CHAR * size * len(text),
@@ -452,7 +468,7 @@ def _labels(scene, at, shapes):
     font = 0.045 * scene.span
     clutter = _Clutter(shapes, (scene.lo[0] - scene.pad, scene.lo[1] - scene.pad,
                                 scene.hi[0] + scene.pad, scene.hi[1] + scene.pad))
-    near = {}
+    near: dict[str, list[tuple[float, float]]] = {}
     for link in scene.chain.links:
         names = [j.id for j in scene.chain.joints_of(link)]
         names += [p.id for p in scene.chain.points if p.link == link]
@@ -575,7 +591,7 @@ def _inside_many(points, polygon):
     return inside
 
 
-def path_shapes(scene, *, steps=None):
+def path_shapes(scene: Scene, *, steps: int | None = None) -> list[Shape]:
     """The paths of the joints and points that move over the scene's steps (the first
     ``steps`` of them), faint (points orange, pins grey), to be drawn under everything."""
     out = []
@@ -591,7 +607,7 @@ def path_shapes(scene, *, steps=None):
 
 
 # -- the SVG emitter -------------------------------------------------------------------
-def svg_document(view, elements, *, width, title) -> str:
+def svg_document(view: View, elements: Iterable[str], *, width: int, title: str) -> str:
     """A standalone SVG picture of ``view`` (a :class:`View`) at ``width`` pixels: a
     white ground, the ``elements`` (SVG text) and the ``title``."""
     w, h = view.size
@@ -605,7 +621,7 @@ def svg_document(view, elements, *, width, title) -> str:
 
 
 
-def svg_elements(scene, shapes):
+def svg_elements(scene: View, shapes: Iterable[Shape]) -> list[str]:
     """The shapes as SVG elements, in the scene's picture coordinates (y down)."""
     return [_svg(scene, s) for s in shapes]
 
@@ -648,7 +664,9 @@ def _svg(scene, s):
 
 
 # -- the matplotlib emitter ------------------------------------------------------------
-def draw_shapes(ax, scene, shapes, *, view=None, zorder=1.0):
+def draw_shapes(ax: Axes, scene: View, shapes: Sequence[Shape], *,
+                view: tuple[tuple[float, float], tuple[float, float]] | None = None,
+                zorder: float = 1.0) -> None:
     """Draw the shapes on matplotlib axes in the mechanism's coordinates, with the same
     look as the SVG. The view is ``view`` ((xmin, ymin), (xmax, ymax)), else the
     scene's with its padding, at equal scale; line widths and fonts, given in the
@@ -671,7 +689,7 @@ def draw_shapes(ax, scene, shapes, *, view=None, zorder=1.0):
         return (width or 0.0) * points
 
     for z, s in enumerate(shapes):
-        style = {"zorder": zorder + 0.9 * z / max(len(shapes), 1)}
+        order = zorder + 0.9 * z / max(len(shapes), 1)
         if s.kind in ("polygon", "polyline") and (s.kind == "polygon" or s.fill):
             face = "none" if not s.fill else s.fill
             alpha_face = s.fill_opacity if s.fill_opacity is not None else 1.0
@@ -679,26 +697,28 @@ def draw_shapes(ax, scene, shapes, *, view=None, zorder=1.0):
                                     facecolor=face if face == "none" else
                                     _rgba(face, alpha_face),
                                     edgecolor=s.stroke or "none", linewidth=lw(s.width),
-                                    joinstyle=s.join or "miter", **style)
+                                    joinstyle=s.join or "miter", zorder=order)
             ax.add_patch(patch)
         elif s.kind in ("polyline", "line"):
             xs, ys = zip(*s.points)
             line, = ax.plot(xs, ys, color=s.stroke, linewidth=lw(s.width),
                             solid_capstyle=s.cap or "butt",
-                            solid_joinstyle=s.join or "miter", **style)
+                            solid_joinstyle=s.join or "miter", zorder=order)
             if s.dash:
                 line.set_dashes([d * points / max(lw(s.width), 1e-9) for d in s.dash])
         elif s.kind == "circle":
-            ax.add_patch(patches.Circle(s.points[0], s.radius,
+            (x, y), = s.points
+            ax.add_patch(patches.Circle((x, y), s.radius or 0.0,
                                         facecolor=s.fill or "none",
                                         edgecolor=s.stroke or "none",
-                                        linewidth=lw(s.width), **style))
+                                        linewidth=lw(s.width), zorder=order))
         elif s.kind == "text":
             effects = ([patheffects.withStroke(linewidth=lw(s.halo), foreground="white")]
                        if s.halo else None)
-            ax.text(s.points[0][0], s.points[0][1], s.text, fontsize=s.size * points,
+            ax.text(s.points[0][0], s.points[0][1], s.text or "",
+                    fontsize=(s.size or 0.0) * points,
                     family="sans-serif", va="baseline", ha="left", path_effects=effects,
-                    **style)
+                    zorder=order)
 
 
 def _rgba(colour, alpha):

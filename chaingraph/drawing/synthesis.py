@@ -7,6 +7,10 @@ picture is written as SVG or PNG, or returned as a figure for a notebook.
 
 from __future__ import annotations
 
+import os
+from collections.abc import Sequence
+from typing import TYPE_CHECKING, Protocol
+
 import numpy as np
 
 from chaingraph.drawing.plots import finish, plain_text, pyplot_module
@@ -14,12 +18,40 @@ from chaingraph.drawing.scene import Scene, draw_shapes, frame_shapes, path_shap
 from chaingraph.kinematics import solve
 from chaingraph.model.chain import Chain
 
-__all__ = ["draw_synthesis"]
+if TYPE_CHECKING:                   # matplotlib is imported only when a picture is drawn
+    from matplotlib.figure import Figure
+
+__all__ = ["draw_synthesis", "draw_solution", "ErrorCurve", "DrawnSolution"]
+
+
+class ErrorCurve(Protocol):
+    """What is plotted beside a synthesised mechanism (synthesis's ``Curve``, read
+    here through this protocol: synthesis sits above drawing): ``x`` and ``y`` arrays,
+    their axes' labels, and the x values ``marks`` marked (the precision points)."""
+
+    @property
+    def x(self) -> np.ndarray: ...
+
+    @property
+    def y(self) -> np.ndarray: ...
+
+    @property
+    def x_label(self) -> str: ...
+
+    @property
+    def y_label(self) -> str: ...
+
+    @property
+    def marks(self) -> tuple[float, ...]: ...
 
 
 @plain_text
 def draw_synthesis(mechanism: Chain, *, at: float, sweep: tuple[float, float] | None = None,
-                   curve=None, targets=(), poses=(), title: str | None = None, path=None):
+                   curve: ErrorCurve | None = None,
+                   targets: Sequence[tuple[float, float]] = (),
+                   poses: Sequence[tuple[float, float, float]] = (),
+                   title: str | None = None,
+                   path: str | os.PathLike[str] | None = None) -> Figure | None:
     """Draw a synthesised mechanism and its error.
 
     Parameters
@@ -30,9 +62,9 @@ def draw_synthesis(mechanism: Chain, *, at: float, sweep: tuple[float, float] | 
         The input's value at the first target (the pose drawn).
     sweep : (float, float), optional
         The input's values over which the paths are drawn (default: its whole cycle).
-    curve : optional
-        What to plot beside it: an object with ``x``, ``y`` (arrays), ``x_label``,
-        ``y_label`` and ``marks`` (x values marked, the precision points), such as a
+    curve : ErrorCurve, optional
+        What to plot beside it: ``x``, ``y`` (arrays), ``x_label``, ``y_label`` and
+        ``marks`` (x values marked, the precision points), such as a
         :class:`chaingraph.synthesis.Curve`; None for the mechanism alone.
     targets : sequence of (x, y)
         Points marked on the mechanism's picture (a path's targets).
@@ -88,7 +120,7 @@ def _pose_frames(ax, poses, span):
                     color="#b2182b", zorder=6)
 
 
-def _error_plot(ax, curve):
+def _error_plot(ax, curve: ErrorCurve) -> None:
     ax.plot(curve.x, curve.y, color="#2166ac", linewidth=1.5)
     ax.axhline(0.0, color="#888888", linewidth=0.8)
     marks = np.asarray(curve.marks, dtype=float)
@@ -102,3 +134,34 @@ def _error_plot(ax, curve):
     ax.grid(True, color="#dddddd", linewidth=0.6)
     worst = float(np.max(np.abs(curve.y))) if len(curve.y) else 0.0
     ax.set_title(f"structural error: largest {worst:.4g}", fontsize=10)
+
+
+class DrawnSolution(Protocol):
+    """What :func:`draw_solution` reads of a synthesis's ``Solution``: its mechanism
+    (with its ``[task]``), the input at each target and its error curve."""
+
+    @property
+    def mechanism(self) -> Chain: ...
+
+    @property
+    def reached_at(self) -> tuple[float, ...]: ...
+
+    @property
+    def curve(self) -> ErrorCurve | None: ...
+
+
+def draw_solution(solution: DrawnSolution, *,
+                  path: str | os.PathLike[str] | None = None) -> Figure | None:
+    """A synthesis's solution drawn as ``design ... --draw`` draws it: the mechanism at
+    its first target, its paths over the task's sweep (a function's input swing, else
+    the whole cycle), its targets (points, or poses as frames) and, for a function, its
+    structural error beside it."""
+    task = solution.mechanism.task or {}
+    sweep = None
+    if "swing" in task and "start" in task:
+        sweep = (float(task["start"][0]), float(task["start"][0]) + float(task["swing"][0]))
+    poses = [tuple(p) for p in task.get("poses", ())]
+    return draw_synthesis(solution.mechanism, at=solution.reached_at[0], sweep=sweep,
+                          curve=None if poses else solution.curve,
+                          targets=[tuple(p) for p in task.get("targets", ())],
+                          poses=poses, path=path)

@@ -21,8 +21,10 @@ from dataclasses import dataclass, replace
 import numpy as np
 
 from chaingraph.errors import MechanismError
-from chaingraph.geometry import cross, rotate, unit_deg
-from chaingraph.model.chain import mass_centre
+from chaingraph.geometry import Vec, cross, rotate, unit_deg
+from chaingraph.kinematics.plan import InputJoint, Plan
+from chaingraph.kinematics.pose import LinkState
+from chaingraph.model.chain import Chain, Joint, mass_centre
 
 __all__ = ["UNIT_METRES", "KinematicState", "Solution", "solve_equilibrium"]
 
@@ -38,17 +40,17 @@ _SINGULAR = 1e-10
 @dataclass(frozen=True)
 class KinematicState:
     """What the force solve needs of the motion at n steps, in SI units: each link's
-    :class:`~chaingraph.kinematics.pose.LinkMotion` with arrays for fields (its frame
+    :class:`~chaingraph.kinematics.pose.LinkState` with arrays for fields (its frame
     origin about the plan's origin in m, its rotation from the drawn pose, their
     rates), and each input's rate ``rates[joint]`` (rad/s or m/s); ``rates_known``
     when the rates are the solver's own, NaN at its dead centres."""
 
     n: int
-    links: dict
-    rates: dict
+    links: dict[str, LinkState]       # by link, its fields arrays over the steps
+    rates: dict[str, np.ndarray]
     rates_known: bool = False
 
-    def direction(self, link, degrees):
+    def direction(self, link: str, degrees: float) -> Vec:
         """The unit vector drawn at ``degrees`` on the link, turned with it."""
         return rotate(unit_deg(degrees), self.links[link].angle)
 
@@ -69,21 +71,22 @@ class Solution:
     input's effort), ``couples`` as (link, what, N m) (inertia couples, loads' torques,
     an R input's effort), ``points`` every joint's point (m about the origin)."""
 
-    forces: dict
-    normal: dict
-    couple: dict
-    efforts: dict
+    forces: dict[tuple[str, str], Vec]
+    normal: dict[str, np.ndarray]
+    couple: dict[str, np.ndarray]
+    efforts: dict[str, np.ndarray]
     power: np.ndarray
     singular: np.ndarray
-    at_rest: dict
+    at_rest: dict[str, np.ndarray]
     jammed: np.ndarray
     indeterminate: bool = False
-    applied: tuple = ()
-    couples: tuple = ()
-    points: dict | None = None
+    applied: tuple[tuple[str, str, Vec, Vec], ...] = ()
+    couples: tuple[tuple[str, str, np.ndarray], ...] = ()
+    points: dict[str, Vec] | None = None
 
 
-def solve_equilibrium(chain, plan, state, *, static=False, metres=1.0) -> Solution:
+def solve_equilibrium(chain: Chain, plan: Plan, state: KinematicState, *, static: bool = False,
+                      metres: float = 1.0) -> Solution:
     """The reactions and efforts of ``chain`` (its masses, gravity, loads, friction) at
     the ``state``'s steps; ``plan`` gives the fixed link and the inputs; ``metres`` is
     the length unit in metres; drawn coordinates are taken about ``plan.origin``."""
@@ -157,7 +160,7 @@ def _layout(chain, plan, n, metres):
     normal force and couple; an effort per input) and the equations (three per moving
     link); refuses a joint other than R or P, and inputs that do not hold the
     mechanism."""
-    cols = []                                 # (kind, joint, extra)
+    cols: list[tuple[str, Joint | InputJoint, int | None]] = []   # (kind, joint, extra)
     for j in chain.joints:
         if j.kind == "R":
             for k in range(len(j.links) - 1):

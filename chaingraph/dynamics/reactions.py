@@ -2,30 +2,44 @@
 one pose or over a sweep, kinetostatic (inertia at the input speed, gravity, loads,
 friction) or static.
 
-:func:`forces` solves; :class:`PoseForces` and :class:`SweepForces` hold the results,
-with ``to_dict`` (the JSON of ``chaingraph forces --json``), ``rows`` and, for a sweep,
-``to_csv`` and ``to_frame``.
+:func:`forces` solves (the motion once: the pose's or the sweep's, whose solved states
+the force solve takes as they are); :class:`PoseForces` and :class:`SweepForces` hold
+the results, with ``to_dict`` (the JSON of ``chaingraph forces --json``), ``rows`` and,
+for a sweep, its typed arrays (:class:`ReactionSeries`, :class:`EffortSeries`), the
+CSV's view of them (``to_csv``, ``to_frame``, ``sweep["Fx:A"]``) and any of its steps as
+a :class:`PoseForces` (:meth:`SweepForces.pose`).
 """
 
 from __future__ import annotations
 
-import io
 import math
+import os
+from collections.abc import Sequence
 from dataclasses import dataclass, field
+from typing import Any, overload
 
 import numpy as np
 
 from chaingraph._util.numbers import tidy
-from chaingraph._util.text import short_list, write_columns
-from chaingraph.dynamics.equilibrium import UNIT_METRES, KinematicState, solve_equilibrium
+from chaingraph._util.text import csv_text, short_list
+from chaingraph.dynamics.equilibrium import (
+    UNIT_METRES,
+    KinematicState,
+    Solution,
+    solve_equilibrium,
+)
 from chaingraph.errors import MechanismError
 from chaingraph.kinematics import solve
-from chaingraph.kinematics.pose import LinkMotion, pose_motion
-from chaingraph.kinematics.rates import rates
-from chaingraph.kinematics.sweep import evaluate_near
+from chaingraph.kinematics.columns import LinkStates
+from chaingraph.kinematics.inputs import InputsGiven
+from chaingraph.kinematics.motion import Motion
+from chaingraph.kinematics.plan import Plan
+from chaingraph.kinematics.pose import LinkState, PoseMotion, pose_motion
+from chaingraph.model.chain import Chain
 
 __all__ = ["Reaction", "Effort", "AppliedForce", "AppliedCouple", "PoseForces",
-           "EffortStats", "ForcesSummary", "SweepForces", "forces"]
+           "EffortStats", "ForcesSummary", "ReactionSeries", "EffortSeries", "SweepForces",
+           "forces"]
 
 
 @dataclass(frozen=True)
@@ -107,17 +121,18 @@ class PoseForces:
     notes: tuple[str, ...] = ()
     units: str | None = None
     dyads: tuple[tuple[str, str], ...] = ()   # the solver's dyads, for the force polygons
-    points: dict = field(default_factory=dict, repr=False, compare=False)
+    points: dict[str, tuple[float, float]] = field(default_factory=dict, repr=False,
+                                                   compare=False)
     applied: tuple[AppliedForce, ...] = field(default=(), repr=False)
     couples: tuple[AppliedCouple, ...] = field(default=(), repr=False)
-    chain: object = field(default=None, repr=False, compare=False)
+    chain: Chain = field(kw_only=True, repr=False, compare=False)   # the mechanism solved
 
-    def effort(self, joint=None) -> float | None:
+    def effort(self, joint: str | None = None) -> float | None:
         """The effort of input ``joint`` (default: the first input)."""
         joint = joint or self.inputs[0]
         return next(e.value for e in self.efforts if e.joint == joint)
 
-    def reaction(self, joint, on=None) -> Reaction:
+    def reaction(self, joint: str, on: str | None = None) -> Reaction:
         """The reaction of ``joint`` on link ``on`` (default: its first link)."""
         return next(r for r in self.reactions if r.joint == joint and (on is None or r.on == on))
 
@@ -172,7 +187,7 @@ class ForcesSummary:
     mean_speed: float | None = None
 
     def to_dict(self) -> dict:
-        out = {"efforts": {k: v.to_dict() for k, v in self.efforts.items()},
+        out: dict[str, Any] = {"efforts": {k: v.to_dict() for k, v in self.efforts.items()},
                "reactions": {k: {"max": v} for k, v in self.reactions.items()}}
         if self.energy_fluctuation is not None:
             out["energy_fluctuation"] = self.energy_fluctuation
@@ -182,29 +197,95 @@ class ForcesSummary:
         return out
 
 
-@dataclass(frozen=True)
+@dataclass(frozen=True, eq=False)
+class ReactionSeries:
+    """A joint's reaction on one of its links over a sweep (NaN where not determined):
+    ``fx``, ``fy`` (N) the force that ``by`` (the joint's other link; for a multiple
+    joint, the others) exerts on ``on``; for a P joint also ``normal`` (N, across the
+    guide) and ``couple`` (N m, carried by the guide), else None."""
+
+    joint: str
+    on: str
+    by: tuple[str, ...]
+    fx: np.ndarray
+    fy: np.ndarray
+    normal: np.ndarray | None = None
+    couple: np.ndarray | None = None
+
+
+@dataclass(frozen=True, eq=False)
+class EffortSeries:
+    """What input ``joint`` needs over a sweep, in its positive sense: ``value`` a
+    torque (``unit`` "N m") for an R input, a force ("N") for a P input; NaN where it is
+    unbounded (a dead centre) or not determined."""
+
+    joint: str
+    value: np.ndarray
+    unit: str
+
+
+@dataclass(frozen=True, eq=False)
 class SweepForces:
-    """The forces over a sweep (``chaingraph forces``): ``columns`` by CSV name (the
-    input columns of ``solve``, then ``Fx:J``, ``Fy:J`` per joint, ``Fx:J:LINK`` per
-    link of a multiple joint, ``N:J``, ``M:J`` per P joint, ``effort:J`` per input),
-    and the ``summary``."""
+    """The forces over a sweep (``chaingraph forces``): ``reactions`` (one
+    :class:`ReactionSeries` per joint, per link of a multiple joint), ``efforts`` (one
+    :class:`EffortSeries` per input), the ``summary``, and the ``motion`` they are of.
+
+    ``sweep["Fx:J"]``, :attr:`columns`, :meth:`to_csv` and :meth:`to_frame` are the
+    CSV's view of them: the input columns of ``solve``, then ``Fx:J``, ``Fy:J`` per
+    joint (``Fx:J:LINK`` per link of a multiple joint), ``N:J``, ``M:J`` per P joint,
+    ``effort:J`` per input. :meth:`pose` gives one step as a :class:`PoseForces`.
+    """
 
     name: str
     fixed: str
     inputs: tuple[str, ...]
     static: bool
     steps: int
-    columns: dict = field(repr=False)
+    reactions: tuple[ReactionSeries, ...] = field(repr=False)
+    efforts: tuple[EffortSeries, ...] = field(repr=False)
     summary: ForcesSummary = field(repr=False)
+    motion: Motion = field(repr=False)
+    solution: Solution = field(repr=False)       # the force solve's own, every step
+    chain: Chain = field(repr=False)
     notes: tuple[str, ...] = ()
-    motion: object = field(default=None, repr=False, compare=False)
 
     def __repr__(self):
         return (f"SweepForces({self.name!r}, inputs={list(self.inputs)!r}, "
-                f"steps={self.steps}, columns={short_list(self.columns)})")
+                f"steps={self.steps}, columns={short_list(list(self.columns))})")
 
-    def __getitem__(self, name) -> np.ndarray:
+    @property
+    def columns(self) -> dict[str, np.ndarray]:
+        """The CSV's columns, in its order."""
+        out = {f"input:{joint}": v for joint, v in self.motion.values.items()}
+        out["theta"] = self.motion.theta
+        for r in self.reactions:
+            name = f"{r.joint}:{r.on}" if len(r.by) > 1 else r.joint
+            out[f"Fx:{name}"], out[f"Fy:{name}"] = r.fx, r.fy
+        for r in self.reactions:
+            if r.normal is not None and r.couple is not None:
+                out[f"N:{r.joint}"], out[f"M:{r.joint}"] = r.normal, r.couple
+        out.update((f"effort:{e.joint}", e.value) for e in self.efforts)
+        return out
+
+    def __getitem__(self, name: str) -> np.ndarray:
         return self.columns[name]
+
+    def reaction(self, joint: str, on: str | None = None) -> ReactionSeries:
+        """The reaction of ``joint`` on link ``on`` (default: its first link)."""
+        return next(r for r in self.reactions if r.joint == joint and (on is None or r.on == on))
+
+    def effort(self, joint: str | None = None) -> EffortSeries:
+        """The effort of input ``joint`` (default: the first input)."""
+        joint = joint or self.inputs[0]
+        return next(e for e in self.efforts if e.joint == joint)
+
+    def pose(self, k: int = 0) -> PoseForces:
+        """The forces at step ``k`` of the sweep, as :func:`forces` gives them at one
+        pose, from the sweep's own solution (nothing is solved again)."""
+        plan = self.motion.plan
+        at = self.motion.input_values(k)
+        return _pose_forces(self.chain, plan, self.solution, k,
+                            at if isinstance(at, list) else [at], self.static)
 
     def to_dict(self) -> dict:
         """The JSON of ``chaingraph forces --json`` over a sweep."""
@@ -212,17 +293,11 @@ class SweepForces:
                 "static": self.static, "steps": self.steps,
                 "summary": self.summary.to_dict(), "notes": list(self.notes)}
 
-    def to_csv(self, path=None) -> str | None:
+    def to_csv(self, path: str | os.PathLike | None = None) -> str | None:
         """Write the CSV (one row per step); returns the text when ``path`` is None."""
-        if path is None:
-            buf = io.StringIO()
-            write_columns(buf, self.columns, self.steps + 1)
-            return buf.getvalue()
-        with open(path, "w", encoding="utf-8", newline="") as f:
-            write_columns(f, self.columns, self.steps + 1)
-        return None
+        return csv_text(self.columns, self.steps + 1, path)
 
-    def to_frame(self):
+    def to_frame(self) -> Any:
         """The CSV's columns as a pandas DataFrame (needs the notebook extra)."""
         try:
             import pandas
@@ -236,10 +311,10 @@ class SweepForces:
         out = []
         def f(v, unit):
             return "unbounded or not determined" if v is None else f"{v:.6g} {unit}"
-        for joint, s in self.summary.efforts.items():
-            u = "N m" if self.motion is None or _kind(self.motion.plan, joint) == "R" else "N"
-            out.append((f"effort {joint}", f"min {f(s.min, u)}, max {f(s.max, u)}, "
-                                           f"mean {f(s.mean, u)}, RMS {f(s.rms, u)}"))
+        for e in self.efforts:
+            s, u = self.summary.efforts[e.joint], e.unit
+            out.append((f"effort {e.joint}", f"min {f(s.min, u)}, max {f(s.max, u)}, "
+                                             f"mean {f(s.mean, u)}, RMS {f(s.rms, u)}"))
         for joint, v in self.summary.reactions.items():
             out.append((f"largest reaction {joint}", "-" if v is None else f"{v:.6g} N"))
         if self.summary.energy_fluctuation is not None:
@@ -248,10 +323,6 @@ class SweepForces:
             out.append(("flywheel", f"{self.summary.flywheel:.6g} kg m^2 for a speed "
                                     f"fluctuation of {self.summary.speed_fluctuation:g}"))
         return out
-
-
-def _kind(plan, joint):
-    return next(i.kind for i in plan.inputs if i.joint == joint)
 
 
 def _metres(chain):
@@ -265,33 +336,27 @@ def _metres(chain):
     return UNIT_METRES[chain.units]
 
 
-def _state(plan, tau, omega, metres, *, solved=None):
-    """The :class:`KinematicState` at the path parameters ``tau`` (SI units); from the
-    solver's own :class:`~chaingraph.kinematics.motion.LinkStates` when ``solved``."""
-    tau = np.asarray(tau, dtype=float)
-    n = tau.size
-    if solved is not None:
-        w = float(omega)
-        pose = solved.pose
-        vel = {k: tuple(np.asarray(c) * w for c in v) for k, v in solved.velocity.items()}
-        acc = {k: tuple(np.asarray(c) * w * w for c in v)
-               for k, v in solved.acceleration.items()}
-    else:
-        ev = evaluate_near(plan, tau)
-        pose = ev.pose
-        vel, acc, _ = rates(plan, pose, float(omega), n, measure=False)
+def _kinematic_state(chain: Chain, plan: Plan, states: LinkStates, omega, metres, *,
+                     rates_known) -> KinematicState:
+    """The :class:`KinematicState` of the solver's ``states`` at input speed ``omega``,
+    in SI units: what the force solve needs, taken from the motion as it was solved."""
+    n = states.tau.size
+    w = 1.0 if float(omega) == states.speed else float(omega) / states.speed
+    pose = states.pose
+    vel = {k: tuple(np.asarray(c) * w for c in v) for k, v in states.velocity.items()}
+    acc = {k: tuple(np.asarray(c) * w * w for c in v) for k, v in states.acceleration.items()}
 
     def arr(v, scale=1.0):
         return np.broadcast_to(np.asarray(v, dtype=float) * scale, (n,)).copy()
     links = {}
-    for link in plan.chain.links:
+    for link in chain.links:
         p, v, a = pose[link], vel[link], acc[link]
-        links[link] = LinkMotion(link, (arr(p[0], metres), arr(p[1], metres)), arr(p[2]),
-                                 (arr(v[0], metres), arr(v[1], metres)), arr(v[2]),
-                                 (arr(a[0], metres), arr(a[1], metres)), arr(a[2]))
+        links[link] = LinkState(link, (arr(p[0], metres), arr(p[1], metres)), arr(p[2]),
+                                (arr(v[0], metres), arr(v[1], metres)), arr(v[2]),
+                                (arr(a[0], metres), arr(a[1], metres)), arr(a[2]))
     input_rates = {item.joint: arr(vel[item.key][2], 1.0 if item.kind == "R" else metres)
                    for item in plan.inputs}
-    return KinematicState(n, links, input_rates, rates_known=solved is not None)
+    return KinematicState(n, links, input_rates, rates_known=rates_known)
 
 
 def _notes(solution, k=None):
@@ -331,8 +396,23 @@ def _check_masses(chain):
                          "with masses, [[loads]] or [forces] gravity", mechanism=name)
 
 
-def forces(mechanism, *, at=None, static=False, fixed=None, driver=None, inputs=None,
-           start=None, stop=None, steps=360, omega=None, speed_fluctuation=None):
+@overload
+def forces(mechanism: Chain, *, at: None = None, static: bool = False,
+           fixed: str | None = None, driver: str | None = None, inputs: InputsGiven = None,
+           start: float | None = None, stop: float | None = None, steps: int = 360,
+           omega: float | None = None, speed_fluctuation: float | None = None
+           ) -> SweepForces: ...
+@overload
+def forces(mechanism: Chain, *, at: float | Sequence[float], static: bool = False,
+           fixed: str | None = None, driver: str | None = None, inputs: InputsGiven = None,
+           start: float | None = None, stop: float | None = None, steps: int = 360,
+           omega: float | None = None, speed_fluctuation: float | None = None
+           ) -> PoseForces: ...
+def forces(mechanism: Chain, *, at: float | Sequence[float] | None = None,
+           static: bool = False, fixed: str | None = None, driver: str | None = None,
+           inputs: InputsGiven = None, start: float | None = None,
+           stop: float | None = None, steps: int = 360, omega: float | None = None,
+           speed_fluctuation: float | None = None) -> PoseForces | SweepForces:
     """The joints' reactions and the inputs' efforts of a mechanism.
 
     Parameters
@@ -390,57 +470,78 @@ def forces(mechanism, *, at=None, static=False, fixed=None, driver=None, inputs=
     if at is not None:
         state = pose_motion(mechanism, at=at, fixed=fixed, driver=driver, inputs=inputs,
                             omega=omega)
-        plan = state.plan
-        _check_masses(mechanism)
-        lead = plan.inputs[plan.lead]
-        tau = np.array([state.input if lead.kind == "R" else plan.tau(state.input)])
-        kin = _state(plan, tau, state.omega, metres)
-        sol = solve_equilibrium(mechanism, plan, kin, static=static, metres=metres)
-        values = tuple(state.inputs.values()) if state.inputs else (state.input,)
-        ox, oy = plan.origin
-
-        def back(q):
-            return (float(q[0][0]) / metres + ox, float(q[1][0]) / metres + oy)
-        return PoseForces(
-            name=mechanism.name, fixed=plan.fixed,
-            inputs=tuple(i.joint for i in plan.inputs), at=tuple(float(v) for v in values),
-            static=static, reactions=_reactions(mechanism, sol, 0, plan.size * metres),
-            efforts=tuple(Effort(i.joint, _num(sol.efforts[i.joint][0]),
-                                 "N m" if i.kind == "R" else "N") for i in plan.inputs),
-            power_balance=_num(sol.power[0]), notes=_notes(sol, 0),
-            units=mechanism.units, points={k: back(q) for k, q in sol.points.items()},
-            dyads=tuple(tuple(step.links) for step in plan.steps if step.kind == "dyad"),
-            applied=tuple(AppliedForce(link, what, back(q), (_num(f[0][0]), _num(f[1][0])))
-                          for link, what, q, f in sol.applied),
-            couples=tuple(AppliedCouple(link, what, _num(np.asarray(v).reshape(-1)[0]))
-                          for link, what, v in sol.couples),
-            chain=mechanism)
+        return _forces_at(mechanism, state, static=static, metres=metres)
     motion = solve(mechanism, fixed=fixed, driver=driver, inputs=inputs, start=start,
                    stop=stop, steps=steps, omega=omega, summary=True)
+    return _forces_over(mechanism, motion, static=static, metres=metres,
+                        speed_fluctuation=speed_fluctuation)
+
+
+def _forces_at(chain, state: PoseMotion, *, static, metres) -> PoseForces:
+    """The forces at the solved pose ``state`` (its poses and rates as solved)."""
+    plan = state.plan
+    _check_masses(chain)
+    assert state.states is not None               # (pose_motion keeps them)
+    kin = _kinematic_state(chain, plan, state.states, state.omega, metres,
+                           rates_known=False)
+    sol = solve_equilibrium(chain, plan, kin, static=static, metres=metres)
+    values = tuple(state.inputs.values()) if state.inputs else (state.input,)
+    return _pose_forces(chain, plan, sol, 0, values, static)
+
+
+def _forces_over(chain, motion: Motion, *, static, metres, speed_fluctuation) -> SweepForces:
+    """The forces over the solved sweep ``motion`` (its poses and rates as solved)."""
     plan = motion.plan
-    _check_masses(mechanism)
-    kin = _state(plan, motion.links.tau, motion.omega, metres, solved=motion.links)
-    sol = solve_equilibrium(mechanism, plan, kin, static=static, metres=metres)
-    columns = {k: v for k, v in motion.columns.items()
-               if k == "theta" or k.startswith("input:")}
-    for j in mechanism.joints:
-        if j.kind == "R" and len(j.links) > 2:
-            for link in j.links:
-                fx, fy = sol.forces[(j.id, link)]
-                columns[f"Fx:{j.id}:{link}"], columns[f"Fy:{j.id}:{link}"] = fx, fy
-        else:
-            fx, fy = sol.forces[(j.id, j.links[0])]
-            columns[f"Fx:{j.id}"], columns[f"Fy:{j.id}"] = fx, fy
-    for j in mechanism.joints:
-        if j.kind == "P":
-            columns[f"N:{j.id}"], columns[f"M:{j.id}"] = sol.normal[j.id], sol.couple[j.id]
-    for item in plan.inputs:
-        columns[f"effort:{item.joint}"] = sol.efforts[item.joint]
-    summary = _summary(mechanism, plan, motion, sol, speed_fluctuation)
-    return SweepForces(name=mechanism.name, fixed=plan.fixed,
+    _check_masses(chain)
+    assert motion.states is not None              # (solve keeps them)
+    kin = _kinematic_state(chain, plan, motion.states, motion.omega, metres,
+                           rates_known=True)
+    sol = solve_equilibrium(chain, plan, kin, static=static, metres=metres)
+    reactions = tuple(
+        ReactionSeries(j.id, link, tuple(x for x in j.links if x != link),
+                       sol.forces[(j.id, link)][0], sol.forces[(j.id, link)][1],
+                       sol.normal[j.id] if j.kind == "P" else None,
+                       sol.couple[j.id] if j.kind == "P" else None)
+        for j in chain.joints for link in _on_links(j))
+    efforts = tuple(EffortSeries(i.joint, sol.efforts[i.joint], "N m" if i.kind == "R" else "N")
+                    for i in plan.inputs)
+    return SweepForces(name=chain.name, fixed=plan.fixed,
                        inputs=tuple(i.joint for i in plan.inputs), static=static,
-                       steps=motion.steps, columns=columns, summary=summary,
-                       notes=_notes(sol), motion=motion)
+                       steps=motion.steps, reactions=reactions, efforts=efforts,
+                       summary=_summary(chain, plan, motion, sol, speed_fluctuation),
+                       notes=_notes(sol), motion=motion, solution=sol, chain=chain)
+
+
+def _on_links(joint):
+    """The links a joint's reactions are given on: each of a multiple joint's, else the
+    first (the second's is its opposite)."""
+    return joint.links if (joint.kind == "R" and len(joint.links) > 2) else joint.links[:1]
+
+
+def _pose_forces(chain, plan, sol, k, at, static) -> PoseForces:
+    """The forces at step ``k`` of the solution ``sol``, the inputs at ``at``."""
+    metres = _metres(chain)
+    ox, oy = plan.origin
+
+    def one(v):
+        v = np.asarray(v, dtype=float).reshape(-1)
+        return float(v[k if v.size > 1 else 0])
+
+    def back(q):
+        return (one(q[0]) / metres + ox, one(q[1]) / metres + oy)
+    return PoseForces(
+        name=chain.name, fixed=plan.fixed,
+        inputs=tuple(i.joint for i in plan.inputs), at=tuple(float(v) for v in at),
+        static=static, reactions=_reactions(chain, sol, k, plan.size * metres),
+        efforts=tuple(Effort(i.joint, _num(one(sol.efforts[i.joint])),
+                             "N m" if i.kind == "R" else "N") for i in plan.inputs),
+        power_balance=_num(one(sol.power)), notes=_notes(sol, k),
+        units=chain.units, points={name: back(q) for name, q in sol.points.items()},
+        dyads=tuple(tuple(step.links) for step in plan.steps if step.kind == "dyad"),
+        applied=tuple(AppliedForce(link, what, back(q), (_num(one(f[0])), _num(one(f[1]))))
+                      for link, what, q, f in sol.applied),
+        couples=tuple(AppliedCouple(link, what, _num(one(v))) for link, what, v in sol.couples),
+        chain=chain)
 
 
 def _reactions(chain, sol, k, size):
@@ -454,8 +555,7 @@ def _reactions(chain, sol, k, size):
         return None if v is None else tidy(v, scale * unit)
     out = []
     for j in chain.joints:
-        on_links = j.links if (j.kind == "R" and len(j.links) > 2) else j.links[:1]
-        for link in on_links:
+        for link in _on_links(j):
             fx, fy = sol.forces[(j.id, link)]
             by = tuple(x for x in j.links if x != link)
             normal = num(sol.normal[j.id][k]) if j.kind == "P" else None
@@ -491,8 +591,7 @@ def _summary(chain, plan, motion, sol, speed_fluctuation):
     efforts = {i.joint: _stats(sol.efforts[i.joint], unbounded) for i in plan.inputs}
     reactions = {}
     for j in chain.joints:
-        links = j.links if (j.kind == "R" and len(j.links) > 2) else j.links[:1]
-        mags = [np.hypot(*sol.forces[(j.id, link)]) for link in links]
+        mags = [np.hypot(*sol.forces[(j.id, link)]) for link in _on_links(j)]
         worst = np.max(np.vstack(mags), axis=0)
         finite = worst[np.isfinite(worst)]
         reactions[j.id] = (float(finite.max()) if finite.size and not unbounded.any()
@@ -500,7 +599,7 @@ def _summary(chain, plan, motion, sol, speed_fluctuation):
     energy = flywheel = None
     s = motion.summary
     lead = plan.inputs[plan.lead]
-    theta = np.asarray(motion["theta"], dtype=float)
+    theta = np.asarray(motion.theta, dtype=float)
     if (len(plan.inputs) == 1 and lead.kind == "R" and s is not None and s.full_turn
             and abs(abs(theta[-1] - theta[0]) - 360.0) < 1e-9):
         e = _filled(sol.efforts[lead.joint])

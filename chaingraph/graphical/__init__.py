@@ -19,8 +19,8 @@ from chaingraph.graphical.polygons import (
     polygons_of,
     velocity_polygon,
 )
-from chaingraph.kinematics.pose import LinkMotion, PoseMotion, pose_motion
+from chaingraph.kinematics.pose import LinkState, PoseMotion, pose_motion
 
 __all__ = ["instant_centres", "InstantCentres", "Centre", "centres_of", "velocity_polygon",
            "Polygons", "Image", "Relative", "Component", "polygons_of", "pose_motion",
-           "PoseMotion", "LinkMotion"]
+           "PoseMotion", "LinkState"]

@@ -446,11 +446,34 @@ def slice(pose: Pose, idx: int | np.ndarray) -> dict[str, PoseEntry]:
 
 
 
-def check_poses(plan: Plan, pose: Pose, feasible: np.ndarray) -> np.ndarray:
-    """Raise AssemblyError where a returned pose does not close its loops."""
-    res = residuals(plan, pose)
-    bad = feasible & ~(res <= 1e-9 * plan.size)
+def _closes(plan: Plan, pose: Pose, tol: float) -> np.ndarray:
+    """Where every constraint's residual is at most ``tol`` (as :func:`residuals`
+    measures it, compared without its square roots and remainders, which cost more
+    than the rest of the check): False where one is larger or not a number."""
+    ok = np.ones(np.shape(pose[plan.fixed][0]) or (), dtype=bool)
+    for c in plan.constraints:
+        if c.kind != "R":
+            eqs = constraint_residuals(c, pose)
+            ok = ok & (np.abs(eqs[1]) <= tol) & (np.abs(eqs[0]) * plan.size <= tol)
+            if c.drive is not None:
+                ok = ok & (np.abs(eqs[2]) <= tol)
+            continue
+        wa, wb = world(pose, c.a, c.point), world(pose, c.b, c.at(c.b))
+        dx, dy = wa[0] - wb[0], wa[1] - wb[1]
+        ok = ok & (dx * dx + dy * dy <= tol * tol)
+        if c.drive is not None:        # the relative rotation, to whole turns
+            d = pose[c.b][2] - pose[c.a][2] - c.turn - pose[c.drive][2]
+            d = d - (2 * np.pi) * np.round(d / (2 * np.pi))
+            ok = ok & (np.abs(d) * plan.size <= tol)
+    return ok
+
+
+def check_poses(plan: Plan, pose: Pose, feasible: np.ndarray) -> None:
+    """Raise AssemblyError where a returned pose does not close its loops (a residual,
+    as :func:`residuals` measures it, over 1e-9 of the size)."""
+    bad = feasible & ~_closes(plan, pose, 1e-9 * plan.size)
     if bad.any():
+        res = residuals(plan, pose)
         i = int(np.argmax(bad))
         if not np.isfinite(res[i]):
             raise AssemblyError(f"the pose at step {i} cannot be computed: "
@@ -459,7 +482,6 @@ def check_poses(plan: Plan, pose: Pose, feasible: np.ndarray) -> np.ndarray:
         raise AssemblyError(f"loop closure fails at step {i} (residual {res[i]:.3g}, "
                             f"more than 1e-9 of the mechanism's size {plan.size:g})",
                             mechanism=plan.chain.name)
-    return res
 
 
 def _undefined_at(plan: Plan, pose: Pose, i: int) -> str:

@@ -3,6 +3,8 @@ report's player needs to move its two sliders independently."""
 
 from __future__ import annotations
 
+from dataclasses import replace
+
 import numpy as np
 
 from chaingraph.errors import ChainGraphError
@@ -20,7 +22,7 @@ def input_grid(chain: Chain, motion: Motion, *, size: int = 13) -> Motion | None
     some pair of values cannot be assembled."""
     if len(motion.inputs) != 2 or motion.plan.moving_inputs != 2:
         return None
-    first, second = (np.asarray(motion["input:" + i.joint]) for i in motion.inputs)
+    first, second = (np.asarray(motion.values[i.joint]) for i in motion.inputs)
     rows = []
     for value in np.linspace(second[0], second[-1], size):
         try:
@@ -31,8 +33,6 @@ def input_grid(chain: Chain, motion: Motion, *, size: int = 13) -> Motion | None
                               steps=size - 1, summary=False))
         except ChainGraphError:
             return None
-    columns = {key: np.concatenate([np.broadcast_to(r[key], (size,)) for r in rows])
-               for key in rows[0].columns}
-    return Motion(name=motion.name, fixed=motion.fixed, driver=None, omega=motion.omega,
-                  columns=columns, summary=None, units=motion.units, plan=rows[0].plan,
-                  inputs=motion.inputs)
+    return replace(rows[0].joined(*rows[1:]), name=motion.name, fixed=motion.fixed,
+                   driver=None, omega=motion.omega, summary=None, units=motion.units,
+                   inputs=motion.inputs)

@@ -9,10 +9,13 @@ is then corrected at once by batched Newton from Hermite-interpolated guesses.
 from __future__ import annotations
 
 import math
+from typing import TYPE_CHECKING, Protocol
 
 import numpy as np
+from numpy.typing import ArrayLike
 
 from chaingraph.kinematics.equations import (
+    Pose,
     batched_inverse,
     group_form,
     group_jacobian,
@@ -21,7 +24,19 @@ from chaingraph.kinematics.equations import (
     slice,
     with_group,
 )
+from chaingraph.kinematics.plan import Plan, Step
 from chaingraph.kinematics.rates import Factor, rates
+
+if TYPE_CHECKING:                       # tracking imports this module
+    from chaingraph.kinematics.tracking import Evaluation
+
+
+class Scaled(Protocol):
+    """What Newton's method reads of a plan: the size its tolerances are relative to
+    (a :class:`Plan`, or the assembly's stand-in for one)."""
+
+    @property
+    def size(self) -> float: ...
 
 
 def _chord(plan, step, known, q, iterations=8):
@@ -43,7 +58,8 @@ def _chord(plan, step, known, q, iterations=8):
     return q, err <= 1e-9 * plan.size
 
 
-def newton(plan, step, known, q, iterations=40, tol_rel=1e-12):
+def newton(plan: Scaled, step: Step, known: Pose, q: np.ndarray, iterations: int = 40,
+           tol_rel: float = 1e-12) -> tuple[np.ndarray, np.ndarray]:
     """Batched Newton's method on the group's loop-closure equations; each point
     iterates until its residual is below 1e-12 of the size (linear convergence at a
     fold needs more iterations than elsewhere, so only unconverged points go on).
@@ -72,7 +88,9 @@ def newton(plan, step, known, q, iterations=40, tol_rel=1e-12):
 
 
 
-def newton_path(plan, step, pose, theta, q0, coarse_deg=10.0, *, head):
+def newton_path(plan: Plan, step: Step, pose: Pose, theta: np.ndarray, q0: ArrayLike,
+                coarse_deg: float = 10.0, *, head: Evaluation
+                ) -> tuple[np.ndarray, np.ndarray, tuple[float, np.ndarray] | None]:
     """Group coordinates along the path, from q0 at its first point.
 
     A coarse trace of the group's branch by pseudo-arclength continuation (steps of
@@ -99,37 +117,24 @@ def newton_path(plan, step, pose, theta, q0, coarse_deg=10.0, *, head):
     qi, ok = newton(plan, step, known, q0[None])
     if not ok[0]:
         return np.zeros((n, q0.size)), np.zeros(n, dtype=bool), None
-    ts, qs, dqs, fold = _trace(plan, step, pose, theta, head, qi[0], t, float(theta[-1]),
-                               direction, h)
-    tc, qc, dqc = np.array(ts), np.array(qs), np.array(dqs)
-    reached = direction * (theta - tc[-1]) <= 1e-9
-    guess = _hermite(tc, qc, dqc, theta)
-    if fold is not None:
-        # between the trace's last point and the fold, q moves as the square root of
-        # the input's distance from the fold: predict it so, on this side
-        t_f, q_f = fold
-        near = ~reached & (direction * (theta - t_f) <= 1e-12)
-        with np.errstate(invalid="ignore", divide="ignore"):
-            frac = np.sqrt(np.clip((t_f - theta[near]) / (t_f - tc[-1]), 0.0, 1.0))
-        guess[near] = q_f + (qc[-1] - q_f) * frac[:, None]
-        reached = reached | near
-    guess = np.where(np.isfinite(guess), guess, 0.0)
-    q, ok = _chord(plan, step, pose, guess)
-    if not ok.all():
-        redo = np.nonzero(~ok)[0]
-        q2, ok2 = newton(plan, step, slice(pose, redo), guess[redo])
-        q[redo], ok[redo] = q2, ok2
-    ok &= np.linalg.norm(q - guess, axis=1) <= 0.05 * plan.size
-    ok &= reached
+    path = _Path(plan, step, pose, theta, head, direction, h)
+    q, ok, fold = path.traced(0, qi[0])
     # past a fold the trace found, the branch does not go on: Newton's method from the
     # fold may land on another branch (a small group's, a quaternary joint chain's)
     past = (direction * (theta - fold[0]) > 1e-12 if fold is not None
             else np.zeros(n, dtype=bool))
     # near a fold the tangent blows up and guesses are poor: continue point by point,
     # approaching each point through ever finer substeps (a limit of the range is a
-    # fold, where Newton's method converges only linearly)
-    for i in range(1, n):
+    # fold, where Newton's method converges only linearly). Where the trace ended
+    # with no fold (a slide far out, a step that collapsed), the branch is traced
+    # again from each point so reached, a few times, instead of approaching every
+    # point left one by one (a trace that ended far out, where this point was
+    # reached, goes on from here as far as the branch does)
+    retraces = _RETRACES if fold is None else 0
+    i = 1
+    while i < n:
         if ok[i]:
+            i += 1
             continue
         if not ok[i - 1] or past[i]:
             break
@@ -138,7 +143,74 @@ def newton_path(plan, step, pose, theta, q0, coarse_deg=10.0, *, head):
         if qi is None:
             break
         q[i], ok[i] = qi, True
+        if retraces and i + 1 < n:
+            retraces -= 1
+            more_q, more_ok, more_fold = path.traced(i, qi, runaway=math.inf)
+            run = _leading_run(more_ok[i + 1:])
+            q[i + 1:i + 1 + run], ok[i + 1:i + 1 + run] = more_q[i + 1:i + 1 + run], True
+            if more_fold is not None:
+                fold, retraces = more_fold, 0
+                past = direction * (theta - fold[0]) > 1e-12
+        i += 1
     return q, ok, fold
+
+
+#: how many times a path whose trace ended with no fold is traced again from a point
+#: approached past its end
+_RETRACES = 8
+
+
+def _leading_run(ok):
+    """How many of ``ok`` are True before the first False."""
+    return ok.size if ok.all() else int(np.argmin(ok))
+
+
+class _Path:
+    """A group's path of input values ``theta``: its branch traced from a point and
+    every point past it corrected at once (:meth:`traced`)."""
+
+    def __init__(self, plan, step, pose, theta, head, direction, h):
+        self.plan, self.step, self.pose, self.theta = plan, step, pose, theta
+        self.head, self.direction, self.h = head, direction, h
+
+    def traced(self, k, qk, runaway=None):
+        """(q, ok, fold) along the whole path from ``qk`` at its point ``k``: the trace
+        from there (ending ``runaway`` sizes out), and every point after it corrected
+        from Hermite guesses (ok only there, up to where the trace reached, or to its
+        fold)."""
+        plan, step, pose, theta, direction = (self.plan, self.step, self.pose, self.theta,
+                                              self.direction)
+        ts, qs, dqs, fold = _trace(plan, step, pose, theta, self.head, qk,
+                                   float(theta[k]), float(theta[-1]), direction, self.h,
+                                   RUNAWAY_SIZES if runaway is None else runaway)
+        tc, qc, dqc = np.array(ts), np.array(qs), np.array(dqs)
+        reached = direction * (theta - tc[-1]) <= 1e-9
+        reached[:k] = False
+        guess = _hermite(tc, qc, dqc, theta)
+        if fold is not None:
+            # between the trace's last point and the fold, q moves as the square root
+            # of the input's distance from the fold: predict it so, on this side
+            t_f, q_f = fold
+            near = ~reached & (direction * (theta - t_f) <= 1e-12)
+            near[:k] = False
+            with np.errstate(invalid="ignore", divide="ignore"):
+                frac = np.sqrt(np.clip((t_f - theta[near]) / (t_f - tc[-1]), 0.0, 1.0))
+            guess[near] = q_f + (qc[-1] - q_f) * frac[:, None]
+            reached = reached | near
+        guess = np.where(np.isfinite(guess), guess, 0.0)
+        if k == 0:
+            q, ok = _chord(plan, step, pose, guess)
+        else:
+            q, ok = np.zeros_like(guess), np.zeros(theta.size, dtype=bool)
+            at = np.arange(k, theta.size)
+            q[at], ok[at] = _chord(plan, step, slice(pose, at), guess[at])
+        if not ok[k:].all():
+            redo = k + np.nonzero(~ok[k:])[0]
+            q2, ok2 = newton(plan, step, slice(pose, redo), guess[redo])
+            q[redo], ok[redo] = q2, ok2
+        ok &= np.linalg.norm(q - guess, axis=1) <= 0.05 * plan.size
+        ok &= reached
+        return q, ok, fold
 
 
 class _Branch:
@@ -216,9 +288,11 @@ MAX_ARC_STEPS = 2000
 RUNAWAY_SIZES = 25.0
 
 
-def _trace(plan, step, pose, theta, head, q, t, end, direction, h_deg):
+def _trace(plan, step, pose, theta, head, q, t, end, direction, h_deg,
+           runaway=RUNAWAY_SIZES):
     """Points (input degrees, q, dq/dinput) along the group's branch from (t, q)
-    towards ``end``, by pseudo-arclength continuation; stops at ``end`` or a fold."""
+    towards ``end``, by pseudo-arclength continuation; stops at ``end``, a fold, or a
+    link ``runaway`` sizes from the drawing's centre."""
     branch = _Branch(plan, step, pose, theta, head)
     z = np.append(q / branch.scale, math.radians(t))
     tau = branch.tangent(z, direction=direction)
@@ -248,7 +322,7 @@ def _trace(plan, step, pose, theta, head, q, t, end, direction, h_deg):
         zp = z + ds * tau
         x = branch.correct(zp, tau)
         if x is None or np.linalg.norm(x - zp) > 0.25 * ds or \
-                np.abs(x[:-1][lengths]).max(initial=0.0) > RUNAWAY_SIZES:
+                np.abs(x[:-1][lengths]).max(initial=0.0) > runaway:
             # (past RUNAWAY_SIZES: halving the step ends the trace where it is reached,
             # on any path, within the smallest step)
             ds /= 2
@@ -262,7 +336,8 @@ def _trace(plan, step, pose, theta, head, q, t, end, direction, h_deg):
             fold = _fold(branch, z, tau, ds, direction)
             break
         z, tau = x, tau_new
-        ts.append(math.degrees(z[-1])), qs.append(branch.scale * z[:-1])
+        ts.append(math.degrees(z[-1]))
+        qs.append(branch.scale * z[:-1])
         dqs.append(branch.dq(tau))
         ds = min(h_here, 1.5 * ds)
     return ts, qs, dqs, fold
@@ -285,7 +360,8 @@ def _fold(branch, z, tau, ds, direction):
     return best
 
 
-def fold_point(plan, step, head, q, t, iterations=25):
+def fold_point(plan: Plan, step: Step, head: Evaluation, q: ArrayLike, t: float,
+               iterations: int = 25) -> tuple[float, np.ndarray] | None:
     """The fold of the group's branch near (``t``, ``q``): where the input turns back,
     the loop-closure equations R(q, t) = 0 together with the Jacobian's null vector,
     R_q v = 0 with c . v = 1, solved by Newton's method on that extended system, which

@@ -30,13 +30,15 @@ method.
 from __future__ import annotations
 
 import math
+from collections.abc import Sequence
 from dataclasses import dataclass, replace
 
 import networkx as nx
 import numpy as np
+from numpy.typing import ArrayLike
 
 from chaingraph.errors import MechanismError
-from chaingraph.model.chain import chosen_inputs
+from chaingraph.model.chain import Chain, Input, chosen_inputs
 from chaingraph.model.snap import check_link_sizes, size_of
 
 __all__ = ["Constraint", "Step", "InputJoint", "Plan", "build_plan"]
@@ -65,10 +67,10 @@ class Constraint:
     point_b: tuple[float, float] | None = None
     turn: float = 0.0
 
-    def other(self, link):
+    def other(self, link: str) -> str:
         return self.b if link == self.a else self.a
 
-    def at(self, link) -> tuple[float, float]:
+    def at(self, link: str) -> tuple[float, float]:
         """The joint's point in ``link``'s frame."""
         return self.point if self.point_b is None or link == self.a else self.point_b
 
@@ -98,7 +100,7 @@ class InputJoint:
     sweep: tuple[float, float] | None = None
 
     @property
-    def key(self):
+    def key(self) -> str:
         """The input's entry in pose and rate tables (never a link's name)."""
         return "@input:" + self.joint
 
@@ -107,7 +109,7 @@ class InputJoint:
 class Plan:
     """How to solve one inversion with its inputs."""
 
-    chain: object
+    chain: Chain
     fixed: str
     driver: str | None        # the input link, when the input is an R joint on the fixed link
     inputs: tuple[InputJoint, ...]
@@ -123,31 +125,31 @@ class Plan:
     from_driver: bool = False  # given as ``driver = LINK`` (the CSV keeps ``theta`` first)
 
     @property
-    def moving(self):
+    def moving(self) -> tuple[str, ...]:
         return tuple(x for x in self.chain.links if x != self.fixed)
 
-    def local(self, p):
+    def local(self, p: Sequence[float]) -> tuple[float, float]:
         """A drawn point in the plan's frame, centred on the drawing (so that precision
         does not depend on where the mechanism is drawn): the constraints and every
         pose are in this frame."""
         return (p[0] - self.origin[0], p[1] - self.origin[1])
 
     @property
-    def moving_inputs(self):
+    def moving_inputs(self) -> int:
         """How many inputs move along the sweep (the others are held)."""
         return sum(k != 0 for _, k in self.line)
 
     @property
-    def rate_scale(self):
+    def rate_scale(self) -> float:
         """d(delta of the lead input)/d(tau): the lead's native units per degree of tau."""
         return self.line[self.lead][1]
 
-    def deltas(self, tau):
+    def deltas(self, tau: ArrayLike) -> list[np.ndarray]:
         """Each input's delta (radians or length) at the path parameters ``tau``."""
         tau = np.asarray(tau, dtype=float)
         return [c + k * tau for c, k in self.line]
 
-    def values(self, tau):
+    def values(self, tau: ArrayLike) -> list[np.ndarray]:
         """Each input's value (degrees for R, slide for P) at ``tau``."""
         out = []
         for n, (item, delta) in enumerate(zip(self.inputs, self.deltas(tau))):
@@ -157,11 +159,11 @@ class Plan:
                 out.append(item.value0 + (np.degrees(delta) if item.kind == "R" else delta))
         return out
 
-    def value(self, tau):
+    def value(self, tau: ArrayLike) -> np.ndarray:
         """The lead input's value at ``tau`` (what the summary is expressed in)."""
         return self.values(tau)[self.lead]
 
-    def tau(self, value):
+    def tau(self, value: float) -> float:
         """The path parameter at which the lead input has ``value``."""
         item = self.inputs[self.lead]
         if item.kind == "R":
@@ -169,7 +171,7 @@ class Plan:
         c, k = self.line[self.lead]
         return (value - item.value0 - c) / k
 
-    def describe(self):
+    def describe(self) -> str:
         """The input in words, for messages: the driver or the input joints."""
         if self.from_driver:
             return f"the driver {self.driver!r}"
@@ -177,7 +179,7 @@ class Plan:
         return f"the input {names}" if len(self.inputs) == 1 else f"the inputs {names}"
 
     @property
-    def lead_unit(self):
+    def lead_unit(self) -> str:
         """The unit word of the lead input's values."""
         return "degrees" if self.inputs[self.lead].kind == "R" else \
             (self.chain.units or "length units")
@@ -264,7 +266,8 @@ def _equations(c):
     by coordinate (0, 1, 2 for x, y, phi): an R pair's two equations involve every
     coordinate of both links; a P joint's equal rotations only the angles, its line
     (and, for an input, its slide) every coordinate; an R input's rotation the angles."""
-    every, angles = (0, 1, 2), (2,)
+    every: tuple[int, ...] = (0, 1, 2)
+    angles: tuple[int, ...] = (2,)
     if c.kind == "R":
         out = [every, every] + ([angles] if c.drive is not None else [])
     else:
@@ -312,9 +315,9 @@ def _smallest_group(unknown, known, remaining):
             break
         cons = [c for c in remaining if (c.a in group or c.b in group)
                 and c.a in group | known and c.b in group | known]
-        if _freedom(sorted(group, key=order.get), cons, 1.0, with_inputs=True,
+        if _freedom(sorted(group, key=order.__getitem__), cons, 1.0, with_inputs=True,
                     generic=True) == 0:
-            return tuple(sorted(group, key=order.get))
+            return tuple(sorted(group, key=order.__getitem__))
     return tuple(unknown)
 
 
@@ -413,7 +416,8 @@ def _line(inputs, size):
 
 
 
-def build_plan(chain, fixed=None, driver=None, *, inputs=None, closed_form=True) -> Plan:
+def build_plan(chain: Chain, fixed: str | None = None, driver: str | None = None, *,
+               inputs: Sequence[Input] | None = None, closed_form: bool = True) -> Plan:
     """Check that an inversion can be solved with its inputs and plan how.
 
     Parameters
@@ -449,12 +453,12 @@ def build_plan(chain, fixed=None, driver=None, *, inputs=None, closed_form=True)
     """
     name = chain.source or chain.name
     fixed, driver, inputs = chosen_inputs(chain, fixed, driver, inputs)
-    _check_solvable(chain, fixed, inputs, name)
+    fixed = _check_solvable(chain, fixed, inputs, name)
     inputs = tuple(inputs or ())
     items = _input_joints(chain, fixed, driver, inputs, name)
     from_driver = not inputs
     lone = items[0] if len(items) == 1 and items[0].kind == "R" and items[0].a == fixed else None
-    where = {j.id: j.at for j in chain.joints} | {p.id: p.at for p in chain.points}
+    where = chain.positions()       # all of them: _check_solvable refused one unplaced
     size = size_of(where)
     xs, ys = [p[0] for p in where.values()], [p[1] for p in where.values()]
     origin = (0.5 * (max(xs) + min(xs)), 0.5 * (max(ys) + min(ys)))
@@ -471,10 +475,12 @@ def build_plan(chain, fixed=None, driver=None, *, inputs=None, closed_form=True)
                 from_driver=from_driver)
 
 
-def _check_solvable(chain, fixed, inputs, name):
+def _check_solvable(chain: Chain, fixed: str | None, inputs: Sequence[Input] | None,
+                    name: str) -> str:
     """Refuse what cannot be solved for motion whatever its inputs: no fixed link or
     one not of the chain, a spatial chain, an input or a joint that is not R or P, a
-    joint without a position, a chain in pieces, a link of zero length."""
+    joint without a position, a chain in pieces, a link of zero length. Returns the
+    fixed link."""
     if fixed is None:
         raise MechanismError("no fixed link: name it ([mechanism] fixed in the file, or the "
                              "parameter fixed)", mechanism=name, parameter="fixed")
@@ -507,6 +513,7 @@ def _check_solvable(chain, fixed, inputs, name):
         raise MechanismError("the chain is in several pieces that share no joint",
                              mechanism=name)
     check_link_sizes(chain)
+    return fixed
 
 
 def _check_inputs_hold(chain, fixed, items, constraints, size, *, mobility, numeric,

@@ -11,24 +11,26 @@ and acceleration of any point of the link follow.
 from __future__ import annotations
 
 import math
-from dataclasses import dataclass
+from collections.abc import Sequence
+from dataclasses import dataclass, field
 
 import numpy as np
 
-from chaingraph.errors import AssemblyError, MechanismError
+from chaingraph.errors import AssemblyError
 from chaingraph.geometry import rotate, turn_by
-from chaingraph.kinematics.columns import reference_link, slide_rates
+from chaingraph.kinematics.columns import LinkStates, Trajectories, reference_link
 from chaingraph.kinematics.equations import check_poses
-from chaingraph.kinematics.motion import as_inputs, check_input_value, plan_of
+from chaingraph.kinematics.inputs import Drive, InputsGiven, pose_drive
+from chaingraph.kinematics.plan import Plan
 from chaingraph.kinematics.rates import rates
 from chaingraph.kinematics.sweep import evaluate_near
-from chaingraph.model.chain import Input, chosen_inputs
+from chaingraph.model.chain import Chain
 
-__all__ = ["LinkMotion", "PoseMotion", "AtOneValue", "pose_motion"]
+__all__ = ["LinkState", "Slide", "PoseMotion", "AtOneValue", "pose_motion"]
 
 
 @dataclass(frozen=True)
-class LinkMotion:
+class LinkState:
     """One link's planar rigid-body motion at an instant, in the drawing's frame.
 
     ``point`` is a reference point of the link (any: the link's frame origin), with
@@ -38,25 +40,25 @@ class LinkMotion:
     arrays, one value per step of a sweep (``chaingraph.dynamics`` holds them so)."""
 
     link: str
-    point: tuple
+    point: tuple[float, float]
     angle: float
-    velocity: tuple
+    velocity: tuple[float, float]
     omega: float
-    acceleration: tuple
+    acceleration: tuple[float, float]
     alpha: float
 
-    def moved(self, offset):
+    def moved(self, offset: tuple[float, float]) -> tuple[float, float]:
         """Where the link's point is now that was drawn at ``offset`` from where
         ``point`` was drawn: point + R(angle) offset."""
         r = rotate(offset, self.angle)
         return (self.point[0] + r[0], self.point[1] + r[1])
 
-    def velocity_at(self, p):
+    def velocity_at(self, p: tuple[float, float]) -> tuple[float, float]:
         """Velocity of the link's point now at ``p``: v_O + omega k x (p - O)."""
         r = (p[0] - self.point[0], p[1] - self.point[1])
         return (self.velocity[0] - self.omega * r[1], self.velocity[1] + self.omega * r[0])
 
-    def acceleration_at(self, p):
+    def acceleration_at(self, p: tuple[float, float]) -> tuple[float, float]:
         """Acceleration of the link's point now at ``p``:
         a_O + alpha k x (p - O) - omega^2 (p - O)."""
         r = (p[0] - self.point[0], p[1] - self.point[1])
@@ -97,13 +99,18 @@ class PoseMotion:
     omega : float
         The lead input's speed.
     links : dict
-        link -> :class:`LinkMotion` (the fixed link's all zeros).
+        link -> :class:`LinkState` (the fixed link's all zeros).
     positions : dict
         joint or point id -> (x, y); a P joint's is its block's reference point.
     slides : dict
         P joint id -> :class:`Slide`.
     finite_rates : bool
         False at a dead centre, where the inputs do not determine the rates (NaN).
+    chain, plan
+        The chain solved and its solve plan.
+    states : LinkStates
+        The solver's own poses and rates (at ``omega``), from which the rest follows
+        (and the forces are solved).
     """
 
     name: str
@@ -113,14 +120,15 @@ class PoseMotion:
     inputs: dict
     omega: float
     units: str | None
-    links: dict
-    positions: dict
-    slides: dict
+    links: dict[str, LinkState]
+    positions: dict[str, tuple[float, float]]
+    slides: dict[str, Slide]
     finite_rates: bool
-    chain: object
-    plan: object
+    chain: Chain
+    plan: Plan
+    states: LinkStates | None = field(default=None, repr=False)
 
-    def input_text(self, symbol="theta", unit=" degrees") -> str:
+    def input_text(self, symbol: str = "theta", unit: str = " degrees") -> str:
         """The input's value in words: "theta = 60 degrees", or each input's
         "A = 80, E = 100"."""
         if self.inputs:
@@ -135,18 +143,18 @@ class PoseMotion:
         who = self.driver if self.driver and not self.inputs else lead.joint
         return f"{who} at {self.omega:g} {unit}"
 
-    def link_of(self, name):
+    def link_of(self, name: str) -> str:
         """The link whose motion a joint's or point's CSV columns follow."""
         chain = self.chain
-        if name in chain._joint_index:
+        if name in {j.id for j in chain.joints}:
             return reference_link(chain.joint(name), self.fixed)
         return chain.point(name).link
 
-    def velocity(self, name):
+    def velocity(self, name: str) -> tuple[float, float]:
         """A joint's or point's velocity (the solver's)."""
         return self.links[self.link_of(name)].velocity_at(self.positions[name])
 
-    def acceleration(self, name):
+    def acceleration(self, name: str) -> tuple[float, float]:
         """A joint's or point's acceleration (the solver's)."""
         return self.links[self.link_of(name)].acceleration_at(self.positions[name])
 
@@ -154,13 +162,15 @@ class PoseMotion:
 class AtOneValue:
     """What the results at one input value share: they keep their solved ``state``."""
 
+    state: PoseMotion
+
     @property
-    def name(self):
+    def name(self) -> str:
         """The mechanism's name."""
         return self.state.name
 
     @property
-    def input(self):
+    def input(self) -> float:
         """The lead input's value."""
         return self.state.input
 
@@ -170,8 +180,9 @@ def _first(value) -> float:
     return float(np.asarray(value).reshape(-1)[0])
 
 
-def pose_motion(chain, *, at=None, fixed=None, driver=None, inputs=None,
-                omega=None) -> PoseMotion:
+def pose_motion(chain: Chain, *, at: float | Sequence[float] | None = None,
+                fixed: str | None = None, driver: str | None = None,
+                inputs: InputsGiven = None, omega: float | None = None) -> PoseMotion:
     """Solve a mechanism at one input value, keeping every link's motion.
 
     Parameters
@@ -203,105 +214,57 @@ def pose_motion(chain, *, at=None, fixed=None, driver=None, inputs=None,
     >>> round(state.links["slotted lever"].omega, 6)      # 120 mm/s across AB = 420 mm
     0.285714
     """
-    name = chain.source or chain.name
-    if not chain.has_pose:
-        raise MechanismError("the chain has no drawn pose (joint positions or lengths): "
-                             "instant centres and polygons need its dimensions",
-                             mechanism=name)
-    values = None
-    if at is not None:
-        values = [at] if isinstance(at, (int, float)) else list(at)
-        if not values:
-            raise MechanismError("no input value given", mechanism=name)
-        for v in values:
-            check_input_value(v, "the input value", name)
-    if omega is not None:
-        check_input_value(omega, "the input speed omega", name)
-    fixed, driver, items = chosen_inputs(chain, fixed, driver, as_inputs(inputs, chain))
-    if items:
-        plan = plan_of(chain, fixed, None, items)
-        if at is None or len(values) > 1:
-            plan = plan_of(chain, fixed, None, _items_at(plan, values))
-    else:
-        if not driver and not fixed:
-            raise MechanismError("the chain has no mechanism: name its fixed link and its "
-                                 "driver or inputs ([mechanism])", mechanism=name)
-        plan = plan_of(chain, fixed, driver)
-    if values is not None and len(values) != 1 and len(values) != len(plan.inputs):
-        raise MechanismError(f"{len(values)} input values given for {len(plan.inputs)} "
-                             f"inputs: give one per input, or the first input's alone",
-                             mechanism=name)
-    lead = plan.inputs[plan.lead]
-    if values is None:
-        tau = plan.tau(lead.value0)               # the drawn pose (a P input's slide 0)
-    else:
-        tau = plan.tau(values[plan.lead] if len(values) > 1 else values[0])
-    if omega is None:
-        omega = chain.mechanism.omega if chain.mechanism else 1.0
-    theta = np.array([float(tau)])
+    drive = pose_drive(chain, at=at, fixed=fixed, driver=driver, inputs=inputs,
+                       omega=omega)
+    plan, omega = drive.plan, float(drive.omega)
+    theta = np.array([drive.tau])
+    ev = _assembled(drive, theta, chain.source or chain.name)
+    check_poses(plan, ev.pose, ev.feasible)
+    vel, acc, _ = rates(plan, ev.pose, omega, 1, measure=False)
+    states = LinkStates(theta, ev.pose, vel, acc, speed=omega)
+    now = Trajectories.of_states(plan, states)
+    ox, oy = plan.origin
+    links = {}
+    for link in chain.links:
+        x, y, phi = (_first(c) for c in ev.pose[link][:3])
+        v = [_first(c) for c in vel[link]]
+        a = [_first(c) for c in acc[link]]
+        links[link] = LinkState(link, (x + ox, y + oy), phi, (v[0], v[1]), v[2],
+                                (a[0], a[1]), a[2])
+    positions = {name: (_first(p.x), _first(p.y))
+                 for name, p in (*now.joints.items(), *now.points.items())}
+    slides = {}
+    for j in chain.joints:
+        if j.kind == "P":                         # the solver's slide rates (the CSV's)
+            guide, block = j.links
+            axis = math.radians(j.axis or 0.0)    # (a P joint's is always given)
+            x, y, phi, c, sin = map(_first, ev.pose[guide])
+            ux, uy = turn_by((x, y, phi, c, sin), (math.cos(axis), math.sin(axis)))
+            s = now.slides[j.id]
+            slides[j.id] = Slide(j.id, guide, block, positions[j.id], (float(ux), float(uy)),
+                                 _first(s.v), _first(s.a), _first(s.s))
+    finite = all(math.isfinite(c) for m in links.values()
+                 for c in (*m.velocity, m.omega, *m.acceleration, m.alpha))
+    return PoseMotion(name=chain.name, fixed=plan.fixed, driver=plan.driver,
+                      input=_first(now.theta),
+                      inputs={k: _first(v) for k, v in now.values.items()},
+                      omega=omega, units=chain.units, links=links, positions=positions,
+                      slides=slides, finite_rates=finite, chain=chain, plan=plan,
+                      states=states)
+
+
+def _assembled(drive: Drive, theta, name):
+    """The pose at the path parameters ``theta`` (one), or the range it leaves."""
+    plan = drive.plan
     try:
-        ev = evaluate_near(plan, theta)
+        return evaluate_near(plan, theta)
     except AssemblyError as e:
         rng = e.feasible_range
         if rng is None:
             raise
         value = _first(plan.value(theta))
-        verb = "turn" if lead.kind == "R" else "slide"
+        verb = "turn" if plan.inputs[plan.lead].kind == "R" else "slide"
         raise AssemblyError(
             f"the input value {value:g} {plan.lead_unit} cannot be assembled: "
             f"{plan.describe()} can {verb} only from {rng[0]:.6f} to {rng[1]:.6f} "
             f"{plan.lead_unit}", mechanism=name, feasible_range=rng) from None
-    check_poses(plan, ev.pose, ev.feasible)
-    vel, acc, _ = rates(plan, ev.pose, float(omega), 1, measure=False)
-    ox, oy = plan.origin
-    pose = {link: tuple(map(_first, ev.pose[link])) for link in chain.links}
-    links = {}
-    for link in chain.links:
-        x, y, phi = pose[link][:3]
-        v = [_first(c) for c in vel[link]]
-        a = [_first(c) for c in acc[link]]
-        links[link] = LinkMotion(link, (x + ox, y + oy), phi, (v[0], v[1]), v[2],
-                                 (a[0], a[1]), a[2])
-
-    def world(link, p):
-        if link == plan.fixed:                    # as drawn, to the last digit
-            return (float(p[0]), float(p[1]))
-        r = turn_by(pose[link], plan.local(p))
-        return (r[0] + pose[link][0] + ox, r[1] + pose[link][1] + oy)
-    positions = {j.id: world(reference_link(j, plan.fixed), j.at) for j in chain.joints}
-    positions.update((p.id, world(p.link, p.at)) for p in chain.points)
-    slides = {}
-    for j in chain.joints:
-        if j.kind == "P":                         # the solver's slide rates (the CSV's)
-            u = turn_by(pose[j.guide], (math.cos(math.radians(j.axis)),
-                                       math.sin(math.radians(j.axis))))
-            slide, speed, acceleration = slide_rates(ev.pose, vel, acc, j, plan.local(j.at))
-            slides[j.id] = Slide(j.id, j.guide, j.block, positions[j.id], u,
-                                 _first(speed), _first(acceleration), _first(slide))
-    inputs_now = {}
-    if not plan.from_driver:
-        for item, value in zip(plan.inputs, plan.values(theta)):
-            inputs_now[item.joint] = _first(value)
-    finite = all(math.isfinite(c) for m in links.values()
-                 for c in (*m.velocity, m.omega, *m.acceleration, m.alpha))
-    return PoseMotion(name=chain.name, fixed=plan.fixed, driver=plan.driver,
-                      input=_first(plan.value(theta)),
-                      inputs=inputs_now, omega=float(omega), units=chain.units,
-                      links=links, positions=positions, slides=slides,
-                      finite_rates=finite, chain=chain, plan=plan)
-
-
-def _items_at(plan, values):
-    """Inputs that pass through ``values`` (one per input; None: the drawn pose), each
-    moving at its sweep's rate (an input without a sweep is held)."""
-    items = []
-    for n, item in enumerate(plan.inputs):
-        value = item.value0 if values is None else values[n]
-        _, k = plan.line[n]
-        extent = 0.0
-        if k != 0 and item.sweep is not None:
-            extent = item.sweep[1] - item.sweep[0]
-        elif n == plan.lead:
-            extent = 1.0
-        items.append(Input(item.joint, float(value), float(value) + extent))
-    return tuple(items)

@@ -10,10 +10,11 @@ the rates are NaN, never a finite wrong number.
 from __future__ import annotations
 
 import math
+from collections.abc import Sequence
 
 import numpy as np
 
-from chaingraph.geometry import turn_by
+from chaingraph.geometry import Scalar, turn_by
 from chaingraph.kinematics.equations import (
     batched_inverse,
     constraint_gammas,
@@ -26,6 +27,8 @@ from chaingraph.kinematics.equations import (
     plus,
     times,
 )
+from chaingraph.kinematics.equations import Pose, Rates
+from chaingraph.kinematics.plan import Plan, Step
 
 __all__ = ["rates"]
 
@@ -43,8 +46,8 @@ def _column_free_det(p11, p12, p21, p22):
     error, so rates are refused (NaN) below ``_SINGULAR``, not at zero only: near a
     tangency a position error e becomes about e / d in velocities and e / d**3 in
     accelerations, for the normalized determinant d.)"""
-    return (p11 * p22 - p12 * p21) / ((np.hypot(p11, p21) + 1e-300) *
-                                       (np.hypot(p12, p22) + 1e-300))
+    return (p11 * p22 - p12 * p21) / ((np.sqrt(p11 * p11 + p21 * p21) + 1e-300) *
+                                       (np.sqrt(p12 * p12 + p22 * p22) + 1e-300))
 
 
 class _PointDyad:
@@ -53,6 +56,11 @@ class _PointDyad:
     [u_a; u_b], solved by Cramer's rule for velocities and again for accelerations; the
     links' rates follow from X's. The same answers as the general reduction in far fewer
     array operations, for the commonest dyad."""
+
+    # X's velocity relative to each known joint, kept by the velocity solve for the
+    # acceleration's centripetal terms (solve_velocity runs before solve_acceleration)
+    _rel_a: tuple[Scalar, Scalar]
+    _rel_b: tuple[Scalar, Scalar]
 
     def __init__(self, step, pose, n, size):
         self.step = step
@@ -182,7 +190,7 @@ class Factor:
     """One step's constraint Jacobian, factored once for the velocity and acceleration
     solves (which differ only in their right-hand sides)."""
 
-    def __init__(self, step, pose, n, size):
+    def __init__(self, step: Step, pose: Pose, n: int, size: float) -> None:
         self.step = step
         self.n = n
         self.rows = []                       # (unknown coefficients, known coefficients)
@@ -251,7 +259,7 @@ class Factor:
                 self._measure = signed
 
     @property
-    def measure(self):
+    def measure(self) -> Scalar:
         """The step's normalized determinant along the sweep (0 at a dead centre;
         signed, except for a group with more equations than unknowns)."""
         if self.step.kind == "single":
@@ -260,7 +268,7 @@ class Factor:
             return _column_free_det(*self._weighted)
         return self._measure
 
-    def solve(self, rhs):
+    def solve(self, rhs: Sequence[Scalar]) -> dict[str, tuple[Scalar, Scalar, Scalar]]:
         """Rates of the step's links for right-hand sides ``rhs`` (one per row)."""
         step = self.step
         if step.kind == "single":
@@ -297,7 +305,10 @@ class Factor:
         return {link: (x[:, 3 * k], x[:, 3 * k + 1], x[:, 3 * k + 2])
                 for k, link in enumerate(self.form.bodies)}
 
-    def right_hand_sides(self, rates_known, gammas=None):
+    def right_hand_sides(self, rates_known: Rates,
+                         gammas: Sequence[Scalar] | None = None) -> list[Scalar]:
+        """Each row's right-hand side: its quadratic term ``gammas[i]`` (0 for the
+        velocities) less the known links' terms from ``rates_known``."""
         out = []
         for i, (_, known) in enumerate(self.rows):
             value = gammas[i] if gammas is not None else 0.0
@@ -326,7 +337,7 @@ class _NullSpace:
 
     def particular(self, c1, c2):
         m1, m2 = self.m1, self.m2
-        y = [0.0, 0.0, 0.0]
+        y: list[Scalar] = [0.0, 0.0, 0.0]
         with np.errstate(divide="ignore", invalid="ignore"):
             for i in range(3):
                 use = self.drop == i
@@ -342,7 +353,11 @@ class _NullSpace:
 
 
 
-def rates(plan, pose, omega, n, *, steps=None, measure=True, accelerations=True):
+def rates(plan: Plan, pose: Pose, omega: float, n: int, *,
+          steps: Sequence[Step] | None = None, measure: bool = True,
+          accelerations: bool = True
+          ) -> tuple[dict[str, tuple[Scalar, Scalar, Scalar]],
+                     dict[str, tuple[Scalar, Scalar, Scalar]], np.ndarray | None]:
     """Velocities and accelerations of every link with the inputs at constant rates,
     the lead input's ``omega`` (rad/s for an R input, length units/s for a P input;
     the other inputs in proportion, as they move together along the sweep).
@@ -358,13 +373,14 @@ def rates(plan, pose, omega, n, *, steps=None, measure=True, accelerations=True)
     """
     zero = np.zeros(n)
     tau_rate = omega / plan.rate_scale          # d(tau)/dt, "degrees" per second
-    vel = {plan.fixed: (0.0, 0.0, 0.0)}
-    acc = {plan.fixed: (0.0, 0.0, 0.0)}
+    vel: dict[str, tuple[Scalar, Scalar, Scalar]] = {plan.fixed: (0.0, 0.0, 0.0)}
+    acc: dict[str, tuple[Scalar, Scalar, Scalar]] = {plan.fixed: (0.0, 0.0, 0.0)}
     for item, (_, k) in zip(plan.inputs, plan.line):
         vel[item.key] = (0.0, 0.0, k * tau_rate)
         acc[item.key] = (0.0, 0.0, 0.0)
-    measures = [] if measure else None
-    factors = []
+    measures: list[np.ndarray] = []           # left empty unless ``measure``
+    factors: list[_PointDyad | _Weld | Factor] = []
+    f: _PointDyad | _Weld | Factor
     for step in (plan.steps if steps is None else steps):
         if step.kind == "dyad" and step.pattern == "RRR" and _POINT_DYADS:
             f = _PointDyad(step, pose, n, plan.size)

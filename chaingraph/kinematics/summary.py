@@ -6,18 +6,42 @@ the sweep (not read off its grid).
 from __future__ import annotations
 
 import math
+from collections.abc import Callable
 from dataclasses import dataclass
+from typing import TYPE_CHECKING, Any, Protocol
 
 import numpy as np
+from numpy.typing import ArrayLike
 
 from chaingraph._util.numbers import tidy
 from chaingraph.errors import UnboundedRangeError
 from chaingraph.geometry import turn_by
-from chaingraph.kinematics.columns import csv_columns
+from chaingraph.kinematics.columns import (
+    LinkMotion,
+    LinkStates,
+    PointMotion,
+    SlideMotion,
+    Trajectories,
+    link_of_states,
+    point_of_states,
+    slide_of_states,
+)
 from chaingraph.kinematics.rates import rates
 from chaingraph.kinematics.roots import bracketed_roots
 from chaingraph.kinematics.sweep import cycle, evaluate_near, evaluate_sweep
-from chaingraph.kinematics.tracking import evaluate_at
+from chaingraph.kinematics.plan import Plan
+from chaingraph.kinematics.sweep import Cycle
+from chaingraph.kinematics.tracking import Evaluation, evaluate_at
+
+if TYPE_CHECKING:                       # motion imports this module
+    from chaingraph.kinematics.motion import Motion
+
+
+class Columns(Protocol):
+    """A sweep's columns by the CSV's names (``"x:B"``): a mapping, or the
+    :class:`Trajectories` (a motion)."""
+
+    def __getitem__(self, key: str, /) -> np.ndarray: ...
 
 __all__ = ["Summary", "ExtremePosition", "Straightness", "straightness", "summary_rows", "path_direction", "output_signal",
            "OutputSignal"]
@@ -144,7 +168,7 @@ class Summary:
         return rows
 
 
-def summary_rows(motion):
+def summary_rows(motion: Motion) -> list[tuple[str, str]]:
     """A motion's summary as (label, text) rows, for the command line, the report and
     the notebook: the fixed link and the inputs, then :meth:`Summary.rows`.
 
@@ -157,6 +181,7 @@ def summary_rows(motion):
     '1.0466'
     """
     s = motion.summary
+    assert s is not None, "summary_rows is of a motion solved with its summary"
     plan = motion.plan
     how = "  (turns fully)" if s.full_turn else "  (rocks)"
     if motion.inputs and plan.moving_inputs > 1:
@@ -167,6 +192,7 @@ def summary_rows(motion):
         said = ("inputs", ", ".join(f"{i.joint} ({i.kind})" for i in motion.inputs)
                 + (f"; {lead.joint} leads" if len(motion.inputs) > 1 else "") + how)
     else:
+        assert motion.driver is not None, "a motion without inputs has its driver"
         said = ("driver", motion.driver + how)
     return [("fixed link", motion.fixed), said, *s.rows()]
 
@@ -187,7 +213,7 @@ class Straightness:
         return {"deviation": self.deviation, "length": self.length}
 
 
-def straightness(x, y) -> Straightness | None:
+def straightness(x: ArrayLike, y: ArrayLike) -> Straightness | None:
     """The :class:`Straightness` of the path through the points (x, y) (the finite
     ones); None for fewer than two.
 
@@ -223,19 +249,35 @@ class OutputSignal:
     unit: str | None
     direction: tuple | None = None
 
-    def values(self, columns):
+    def values(self, columns: Columns) -> tuple[Any, Any, Any]:
         """(u, du/dt, d2u/dt2) along the sweep, from its columns (at unit input speed:
         per degree or length unit of the input, as the columns are)."""
-        cols = columns
+        return self._of(lambda kind: columns[f"{kind}:{self.name}"])
+
+    def of_states(self, plan: Plan, states: LinkStates) -> tuple[Any, Any, Any]:
+        """(u, du/dt, d2u/dt2) from the solver's ``states`` (:class:`LinkStates`):
+        :meth:`values` of their columns, working out the output's alone."""
+        item: SlideMotion | LinkMotion | PointMotion
         if self.kind == "slide":
-            return cols[f"s:{self.name}"], cols[f"v:{self.name}"], cols[f"a:{self.name}"]
+            item = slide_of_states(plan, states, self.name)
+        elif self.kind == "angle":
+            item = link_of_states(plan, states, self.name)
+        else:
+            item = point_of_states(plan, states, self.name)
+        fields = {"angle": "angle_deg", "omega": "omega", "alpha": "alpha"}
+        return self._of(lambda kind: getattr(item, fields.get(kind, kind)))
+
+    def _of(self, column: Callable[[str], Any]) -> tuple[Any, Any, Any]:
+        """(u, du/dt, d2u/dt2) from ``column(kind)``, the output's column of that kind."""
+        if self.kind == "slide":
+            return column("s"), column("v"), column("a")
         if self.kind == "angle":
-            return (cols[f"angle:{self.name}"], np.degrees(cols[f"omega:{self.name}"]),
-                    np.degrees(cols[f"alpha:{self.name}"]))
+            return column("angle"), np.degrees(column("omega")), np.degrees(column("alpha"))
+        # output_signal gives every point's output its path's direction
+        assert self.direction is not None, "a point's output has its path's direction"
         ux, uy = self.direction
-        return (cols[f"x:{self.name}"] * ux + cols[f"y:{self.name}"] * uy,
-                cols[f"vx:{self.name}"] * ux + cols[f"vy:{self.name}"] * uy,
-                cols[f"ax:{self.name}"] * ux + cols[f"ay:{self.name}"] * uy)
+        return (column("x") * ux + column("y") * uy, column("vx") * ux + column("vy") * uy,
+                column("ax") * ux + column("ay") * uy)
 
     @property
     def label(self) -> str:
@@ -247,7 +289,8 @@ class OutputSignal:
         return f"{self.output} (slide of joint {self.name})"
 
 
-def output_signal(plan, output, columns, *, closed=False) -> OutputSignal | None:
+def output_signal(plan: Plan, output: str | None, columns: Columns, *,
+                  closed: bool = False) -> OutputSignal | None:
     """How ``output`` (a link, point or joint, or None) moves along the sweep whose
     ``columns`` are given: the one definition the summary and the plots share (a P
     joint's is its slide, the block's travel along its guide; an R joint's its path). ``closed``: the
@@ -284,7 +327,8 @@ def output_signal(plan, output, columns, *, closed=False) -> OutputSignal | None
                         path_direction(columns, name, closed=closed))
 
 
-def path_direction(cols, name, *, closed=False):
+def path_direction(cols: Columns, name: str, *,
+                   closed: bool = False) -> tuple[float, float]:
     """The main direction of point ``name``'s path (a unit vector), along which its
     stroke is measured: its sign points towards the path's point farthest from the
     path's mean, so that it turns with the drawing and does not depend on its frame.
@@ -306,10 +350,10 @@ def path_direction(cols, name, *, closed=False):
     return float(d[0]), float(d[1])
 
 
-def cycle_theta(plan, c, steps_per_turn=3600):
+def cycle_theta(plan: Plan, c: Cycle, steps_per_turn: int = 3600) -> np.ndarray:
     """The summary's grid: one period of a crank from the drawn pose, or a rocker's
     whole range, limits included exactly."""
-    if c.full_turn:
+    if c.period is not None:                   # a full turn
         n = int(round(steps_per_turn * c.period / 360.0))
         return c.low + c.period * np.arange(n + 1) / n
     theta = np.linspace(c.low, c.high, steps_per_turn + 1)
@@ -317,16 +361,19 @@ def cycle_theta(plan, c, steps_per_turn=3600):
     return theta
 
 
-def _pointwise(plan, ev, k, t):
-    """Columns and step measures at angles ``t``, each continued from ev's point k."""
+def _pointwise(plan, ev, k, t, *, measures=False):
+    """The solver's states (:class:`LinkStates`) at angles ``t``, each continued from
+    ev's point k, or with ``measures`` the step measures there (and no accelerations)."""
     pose, feasible, _ = evaluate_at(plan, t, ev.reference(k))
-    vel, acc, measure = rates(plan, pose, 1.0, t.size)
-    return csv_columns(plan, t, pose, vel, acc), measure, feasible
+    vel, acc, measure = rates(plan, pose, 1.0, t.size, measure=measures,
+                              accelerations=not measures)
+    return LinkStates(t, pose, vel, acc), measure, feasible
 
 
-def motion_summary(plan, output, omega, c, *, sweep=None) -> Summary:
+def motion_summary(plan: Plan, output: str | None, omega: float, c: Cycle, *,
+                   sweep: tuple[Evaluation, Any, Any] | None = None) -> Summary:
     """The :class:`Summary` over the cycle ``c``; ``sweep`` is (evaluation, step
-    measures, columns at unit input speed) on the cycle's own grid when the caller has
+    measures, columns at unit input speed, or the :class:`Trajectories`) on the cycle's own grid when the caller has
     them. Figures within rounding of a round number are that number (:func:`tidy`)."""
     s = _raw_summary(plan, output, omega, c, sweep=sweep)
     length = plan.size
@@ -361,7 +408,7 @@ def _raw_summary(plan, output, omega, c, *, sweep=None):
         except UnboundedRangeError:            # a sweep of a slide without limits
             ev = evaluate_near(plan, theta)
         vel, acc, measure = rates(plan, ev.pose, 1.0, theta.size)
-        cols = csv_columns(plan, theta, ev.pose, vel, acc)
+        cols = Trajectories.of_states(plan, LinkStates(theta, ev.pose, vel, acc))
     else:
         ev, measure, cols = sweep
         theta = ev.theta
@@ -429,7 +476,8 @@ def _input_range(plan, theta, c):
             whole = cycle(plan)
         except UnboundedRangeError:
             return [None, None]                  # no limit either way
-        ends = (whole.low, whole.low + whole.period) if whole.full_turn else (whole.low, whole.high)
+        ends = ((whole.low, whole.low + whole.period) if whole.period is not None  # a turn
+                else (whole.low, whole.high))
         return [float(plan.value(t)) for t in ends]
     return [float(plan.value(theta[0])), float(plan.value(theta[-1]))]
 
@@ -465,8 +513,8 @@ def _output_extremes(plan, ev, signal, u, du, ddu, scale, c):
         ta = theta[ka]
         slope_a, slope_b = ddu[ka] * plan.rate_scale, ddu[kb] * plan.rate_scale
         guess = _cubic_roots(ta, tb, du[ka], du[kb], slope_a, slope_b)
-        cols, _, _ = _pointwise(plan, ev, ka, guess)
-        at_guess, rate, second = signal.values(cols)
+        states, _, _ = _pointwise(plan, ev, ka, guess)
+        at_guess, rate, second = signal.of_states(plan, states)
         with np.errstate(divide="ignore", invalid="ignore"):   # (checked below)
             step = -rate / (second * plan.rate_scale)
             t = guess + step
@@ -481,7 +529,7 @@ def _output_extremes(plan, ev, signal, u, du, ddu, scale, c):
                 lambda tt: _rate_and_slope(plan, ev, kbad, tt, signal),
                 ta[bad], tb[bad], du[kbad], du[kb[bad]], newton=True)
             redo, _, _ = _pointwise(plan, ev, kbad, t[bad])
-            value[bad] = signal.values(redo)[0]
+            value[bad] = signal.of_states(plan, redo)[0]
         if signal.kind == "angle":      # the same turn as the sweep's own values
             value = u[ka] + np.remainder(value - u[ka] + 180.0, 360.0) - 180.0
         found = [{"input": float(ti), "value": float(vi), "kind": "max" if sign[k] > 0 else "min"}
@@ -528,8 +576,8 @@ def _cubic_roots(t0, t1, f0, f1, g0, g1):
 
 def _rate_and_slope(plan, ev, k, t, signal):
     """The output's rate and its derivative per degree of input at angles t."""
-    cols, _, _ = _pointwise(plan, ev, k, t)
-    _, d1, d2 = signal.values(cols)
+    states, _, _ = _pointwise(plan, ev, k, t)
+    _, d1, d2 = signal.of_states(plan, states)
     return d1, d2 * plan.rate_scale        # d2 per unit of input squared, t in tau
 
 
@@ -595,7 +643,7 @@ def _dead_centres(plan, ev, measure, c):
         roots += [float(theta[k]) for k in np.nonzero(inner & (m == 0))[0]]
         if ka.size:
             def f(t, ka=ka, i=i):
-                _, mm, _ = _pointwise(plan, ev, ka, t)
+                _, mm, _ = _pointwise(plan, ev, ka, t, measures=True)
                 return mm[i]
             roots += list(bracketed_roots(f, theta[ka], theta[kb], m[ka], m[kb]))
     found = exact + [t for t in roots if all(abs(t - x) > 1e-5 for x in exact)]

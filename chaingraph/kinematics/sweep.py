@@ -9,14 +9,17 @@ from dataclasses import dataclass, field, replace
 from functools import lru_cache
 
 import numpy as np
+from numpy.typing import ArrayLike
 
 from chaingraph.errors import AssemblyError, UnboundedRangeError
 from chaingraph.kinematics import groups
 from chaingraph.kinematics.closed_form import dyad_roots
+from chaingraph.kinematics.plan import Plan
 from chaingraph.kinematics.roots import bracketed_roots
 from chaingraph.kinematics.tracking import (
     Evaluation,
     Reference,
+    Start,
     evaluate,
     evaluate_at,
     failing_step,
@@ -44,7 +47,7 @@ class Cycle:
     period: float | None
     low: float
     high: float
-    limit_poses: tuple = field(default=(), compare=False, repr=False)
+    limit_poses: tuple[Evaluation, ...] = field(default=(), compare=False, repr=False)
     ends: str = "limits"
 
     @property
@@ -60,11 +63,11 @@ class Anchor:
     moving link's (x, y, phi) there."""
 
     tau: float
-    state: object
-    pose: dict
+    state: Start | None
+    pose: dict[str, tuple[float, ...]]      # (x, y, phi)
 
 
-def anchor(plan) -> Anchor:
+def anchor(plan: Plan) -> Anchor:
     """The plan's :class:`Anchor` (cached per plan).
 
     Raises
@@ -212,7 +215,8 @@ def _fold(plan, at, good, bad, far, *, traced=None):
     if i is None:
         return good, at
     step = plan.steps[i]
-    double, group_q = (), dict(ref.group_q)
+    double: tuple[int, ...] = ()
+    group_q = dict(ref.group_q)
     if step.kind == "dyad":
         def disc(t):
             t = np.atleast_1d(np.asarray(t, dtype=float))
@@ -253,7 +257,7 @@ def _repeat(ref, n):
                      {i: np.repeat(q, n, axis=0) for i, q in ref.group_q.items()}, ref.switches)
 
 
-def cycle(plan) -> Cycle:
+def cycle(plan: Plan) -> Cycle:
     """The driver's :class:`Cycle` (cached per plan).
 
     Raises
@@ -284,7 +288,7 @@ def _cycle(plan):
     return Cycle(None, low[0], high[0], (low[1], high[1]))
 
 
-def feasible_range(plan):
+def feasible_range(plan: Plan) -> tuple[float, float] | None:
     """The input values that can be assembled from the drawn pose, or None for a crank.
 
     Returns
@@ -293,13 +297,18 @@ def feasible_range(plan):
     its drawn value, or None when it makes full turns. A range may be wider than a turn.
     """
     c = cycle(plan)
-    return None if c.full_turn else tuple(sorted(float(plan.value(t)) for t in (c.low, c.high)))
+    if c.full_turn:
+        return None
+    low, high = sorted(float(plan.value(t)) for t in (c.low, c.high))
+    return (low, high)
 
 
 def _outside(plan, lo, hi):
     """The error for a sweep from ``lo`` to ``hi`` (values of the lead input) that leaves
     the range that can be assembled."""
     rng = feasible_range(plan)
+    # only a rocker's sweep can leave its range: a crank assembles at every angle
+    assert rng is not None, "a sweep leaves the assembled range only of a rocker"
     unit = plan.lead_unit
     verb = "turn" if plan.inputs[plan.lead].kind == "R" else "slide"
     return AssemblyError(
@@ -322,7 +331,7 @@ def _along(plan, end, targets):
     return ev if idx is None else ev.take(idx)
 
 
-def merged_path(grid, targets):
+def merged_path(grid: ArrayLike, targets: ArrayLike) -> tuple[np.ndarray, np.ndarray | None]:
     """The sorted union of ``grid`` (increasing) and ``targets``, and where each target
     is in it (None when the union is the targets themselves, in their order).
 
@@ -372,7 +381,7 @@ def merged_path(grid, targets):
     return path, idx
 
 
-def evaluate_near(plan, theta):
+def evaluate_near(plan: Plan, theta: ArrayLike) -> Evaluation:
     """Poses at ``theta`` continued from the anchor on each side, without working out
     the cycle first (for an explicit sweep without summary); the cycle is worked out
     only to say the range when the sweep leaves it."""
@@ -394,14 +403,14 @@ def evaluate_near(plan, theta):
     return ev
 
 
-def evaluate_sweep(plan, theta):
+def evaluate_sweep(plan: Plan, theta: ArrayLike) -> Evaluation:
     """Poses at the path parameters ``theta`` (a driver's angles, degrees): a crank's
     from its angle within one period of the anchor, a rocker's from the anchor
     outward, both continued on the same internal grid whatever the sweep."""
     theta = np.asarray(theta, dtype=float)
     c = cycle(plan)
     t0 = anchor(plan).tau
-    if c.full_turn:
+    if c.period is not None:                   # a full turn
         turned = theta - t0
         if turned.size and turned.min() >= 0.0 and turned.max() <= c.period:
             # within one period from the anchor (a sweep from it): np.mod's result

@@ -11,22 +11,25 @@ an input value therefore do not depend on how finely the path is sampled.
 from __future__ import annotations
 
 import math
+from collections.abc import Container, Mapping
 
 import numpy as np
+from numpy.typing import ArrayLike
 
-from chaingraph.geometry import DISC_TOL, FIXED
+from chaingraph.geometry import DISC_TOL, FIXED, PoseEntry, Scalar
 from chaingraph.kinematics.closed_form import dyad_roots, initial_sign, single_link
 from chaingraph.kinematics.equations import group_form
 from chaingraph.kinematics.groups import newton, newton_path
+from chaingraph.kinematics.plan import Plan
 
-__all__ = ["Evaluation", "Reference", "evaluate", "evaluate_at", "failing_step"]
+__all__ = ["Evaluation", "Reference", "Start", "evaluate", "evaluate_at", "failing_step"]
 
 
 # -- the sweep -----------------------------------------------------------------------
 def _known_poses(plan, theta):
     """The fixed link, and each input's value (its delta, in the rotation's place) at
     the path parameters ``theta``: everything else is found from these."""
-    pose = {plan.fixed: FIXED}
+    pose: dict[str, PoseEntry] = {plan.fixed: FIXED}
     for item, delta in zip(plan.inputs, plan.deltas(theta)):
         pose[item.key] = (0.0, 0.0, np.broadcast_to(delta, theta.shape), 1.0, 0.0)
     return pose
@@ -38,13 +41,15 @@ class Reference:
     dyad's modes change label (``switches``: its two modes meet there and the motion
     continues smoothly into the other label)."""
 
-    def __init__(self, theta, signs, group_q, switches):
+    def __init__(self, theta: ArrayLike, signs: Mapping[int, Scalar],
+                 group_q: Mapping[int, np.ndarray],
+                 switches: Mapping[int, list[float]]) -> None:
         self.theta = np.asarray(theta, dtype=float)
         self.signs = signs
         self.group_q = group_q
         self.switches = switches
 
-    def sign(self, i, theta):
+    def sign(self, i: int, theta: np.ndarray) -> np.ndarray:
         """Step i's mode sign at ``theta``, from the reference's across its switches."""
         s = np.broadcast_to(self.signs[i], self.theta.shape).astype(float)
         for t in self.switches.get(i, ()):
@@ -52,7 +57,9 @@ class Reference:
         return s
 
 
-def evaluate_at(plan, theta, ref, *, upto=None, double=()):
+def evaluate_at(plan: Plan, theta: ArrayLike, ref: Reference, *, upto: int | None = None,
+                double: Container[int] = ()
+                ) -> tuple[dict[str, PoseEntry], np.ndarray, dict[int, np.ndarray]]:
     """Poses at the angles ``theta`` (degrees, shape (M,)), each point continued from
     the same point of ``ref`` (a :class:`Reference` of M points, close by) without
     tracking: the modes are the reference's, across its switches; groups are solved by
@@ -66,7 +73,7 @@ def evaluate_at(plan, theta, ref, *, upto=None, double=()):
     return pose, feasible, group_q
 
 
-def failing_step(plan, theta, ref):
+def failing_step(plan: Plan, theta: ArrayLike, ref: Reference) -> int | None:
     """The index of the first step of the plan that cannot be assembled at any of the
     angles ``theta`` (continued from ``ref`` as by :func:`evaluate_at`), or None."""
     return _evaluate_at(plan, theta, ref, None, ())[3]
@@ -74,11 +81,12 @@ def failing_step(plan, theta, ref):
 
 def _evaluate_at(plan, theta, ref, upto, double):
     theta = np.asarray(theta, dtype=float)
-    first_bad = None
+    first_bad: int | None = None
     with np.errstate(divide="ignore", invalid="ignore", over="ignore"):
         pose = _known_poses(plan, theta)
         feasible = np.ones(theta.size, dtype=bool)
-        group_q = {}
+        group_q: dict[int, np.ndarray] = {}
+        ok: bool | np.ndarray           # where each step assembles (a single link: all)
         for i, step in enumerate(plan.steps[:upto]):
             if step.kind == "single":
                 pose.update(single_link(step, pose))
@@ -100,7 +108,10 @@ def _evaluate_at(plan, theta, ref, upto, double):
 class Evaluation:
     """Poses of every link along a path of input angles, with what the next needs."""
 
-    def __init__(self, theta, pose, feasible, signs, group_q, switches, folds=None):
+    def __init__(self, theta: np.ndarray, pose: dict[str, PoseEntry], feasible: np.ndarray,
+                 signs: Mapping[int, np.ndarray], group_q: Mapping[int, np.ndarray],
+                 switches: Mapping[int, list[float]],
+                 folds: dict[int, tuple[float, np.ndarray]] | None = None) -> None:
         self.theta = theta            # degrees, (N,)
         self.pose = pose              # link -> (x, y, phi) arrays
         self.feasible = feasible      # (N,) bool
@@ -110,40 +121,58 @@ class Evaluation:
         # step index -> (input degrees, q): a group's fold its trace found on the path
         self.folds = {} if folds is None else folds
 
-    def at(self, k):
+    def at(self, k: int) -> Start:
         """The state at point k, to continue a new path from (its first angle)."""
-        return _Start({i: float(v[k]) for i, v in self.signs.items()},
+        return Start({i: float(v[k]) for i, v in self.signs.items()},
                       {i: q[k] for i, q in self.group_q.items()})
 
-    def poses_at(self, plan, theta, k, *, upto=None):
+    def poses_at(self, plan: Plan, theta: ArrayLike, k: int, *,
+                 upto: int | None = None) -> dict[str, PoseEntry]:
         """The poses at the angles ``theta``, each continued from this evaluation's
         point ``k`` (the first ``upto`` steps of the plan): :func:`evaluate_at`."""
         return evaluate_at(plan, theta, self.reference(k), upto=upto)[0]
 
-    def reference(self, k):
+    def reference(self, k: ArrayLike) -> Reference:
         """A :class:`Reference` for pointwise evaluations near the points ``k`` (array)."""
         k = np.asarray(k)
         return Reference(self.theta[k], {i: v[k] for i, v in self.signs.items()},
                          {i: q[k] for i, q in self.group_q.items()}, self.switches)
 
-    def take(self, k):
+    def take(self, k: np.ndarray) -> Evaluation:
         """The evaluation at the points ``k`` only (an index array)."""
-        def pick(v):
-            return v if np.ndim(v) == 0 else v[k]
-        return Evaluation(self.theta[k], {x: tuple(pick(v) for v in p)
-                                          for x, p in self.pose.items()},
-                          self.feasible[k], {i: v[k] for i, v in self.signs.items()},
-                          {i: q[k] for i, q in self.group_q.items()}, self.switches,
+        n = self.theta.size
+        moved = np.flatnonzero(k != np.arange(n)) if k.size == n else None
+        if moved is not None and moved.size <= n // 16:
+            # nearly every point in place (a crank's last point, its first again):
+            # copies patched where they differ, cheaper than indexing every array
+            source = k[moved]
+
+            def pick(v):
+                if np.ndim(v) == 0:
+                    return v
+                out = v.copy()
+                out[moved] = v[source]
+                return out
+        else:
+            def pick(v):
+                return v if np.ndim(v) == 0 else v[k]
+        return Evaluation(pick(self.theta), {x: tuple(pick(v) for v in p)
+                                             for x, p in self.pose.items()},
+                          pick(self.feasible), {i: pick(v) for i, v in self.signs.items()},
+                          {i: pick(q) for i, q in self.group_q.items()}, self.switches,
                           self.folds)
 
 
-class _Start:
-    def __init__(self, signs, group_q):
+class Start:
+    """Where a path continues from: each dyad step's mode sign and each group step's
+    coordinates at one point (:meth:`Evaluation.at`), by step index."""
+
+    def __init__(self, signs: dict[int, float], group_q: dict[int, np.ndarray]) -> None:
         self.signs = signs
         self.group_q = group_q
 
 
-def evaluate(plan, theta, *, start=None) -> Evaluation:
+def evaluate(plan: Plan, theta: ArrayLike, *, start: Start | None = None) -> Evaluation:
     """Poses along a path of input angles (degrees), continued from ``start`` (an
     Evaluation's state at the path's first point), else from the drawn pose, which
     must then be the path's first point.
@@ -170,15 +199,21 @@ _SWITCH_STEP = 1e-4       # degrees either side of a touch, to see which label c
 def _evaluate(plan, theta, start):
     pose = _known_poses(plan, theta)
     feasible = np.ones(theta.size, dtype=bool)
-    signs, group_q, switches, folds = {}, {}, {}, {}
+    signs: dict[int, np.ndarray] = {}
+    group_q: dict[int, np.ndarray] = {}
+    switches: dict[int, list[float]] = {}
+    folds: dict[int, tuple[float, np.ndarray]] = {}
     # a path from the drawn pose has it, as drawn, at its own value: the closed forms
     # would give it only to rounding, and at a drawn dead centre to its square root
-    at_drawn = theta == plan.theta0 if start is None and plan.theta0 is not None else None
-    if at_drawn is not None and not at_drawn.any():
-        at_drawn = None
+    at_drawn = None
+    if start is None and plan.theta0 is not None:
+        at_drawn = np.flatnonzero(theta == plan.theta0)
+        if not at_drawn.size:
+            at_drawn = None
     for i, step in enumerate(plan.steps):
         if at_drawn is not None and i:
-            _as_drawn(pose, plan.steps[i - 1].links, at_drawn, group_q.get(i - 1))
+            _as_drawn(pose, plan.steps[i - 1].links, at_drawn, theta.shape,
+                      group_q.get(i - 1))
         if step.kind == "single":
             pose.update(single_link(step, pose))
             continue
@@ -209,21 +244,25 @@ def _evaluate(plan, theta, start):
         group_q[i] = q
         pose.update(group_form(step).complete(group_form(step).set_bodies(pose, q)))
     if at_drawn is not None and plan.steps:
-        _as_drawn(pose, plan.steps[-1].links, at_drawn, group_q.get(len(plan.steps) - 1))
+        _as_drawn(pose, plan.steps[-1].links, at_drawn, theta.shape,
+                  group_q.get(len(plan.steps) - 1))
     if not feasible.all():
         first_bad = int(np.argmin(feasible))
         feasible[first_bad:] = False
     return Evaluation(theta, pose, feasible, signs, group_q, switches, folds)
 
 
-def _as_drawn(pose, links, drawn, q=None):
-    """Put ``links`` in their drawn pose (no motion) at the points ``drawn``, and a
-    group's coordinates ``q`` (its bodies' motions) to zero there."""
-    shape = drawn.shape
+def _as_drawn(pose, links, drawn, shape, q=None):
+    """Put ``links`` in their drawn pose (no motion) at the points ``drawn`` (indices
+    into a path of ``shape``), and a group's coordinates ``q`` (its bodies' motions)
+    to zero there."""
     for link in links:
         entry = []
         for v, rest in zip(pose[link], (0.0, 0.0, 0.0, 1.0, 0.0)):
-            v = np.array(np.broadcast_to(v, shape), dtype=float)   # a copy: v may be shared
+            if isinstance(v, np.ndarray) and v.shape == shape and v.dtype == float:
+                v = v.copy()                      # a copy: v may be shared
+            else:
+                v = np.array(np.broadcast_to(v, shape), dtype=float)
             v[drawn] = rest
             entry.append(v)
         pose[link] = tuple(entry)
@@ -247,7 +286,7 @@ def _track(plan, i, step, head, disc, sign0):
     ok = disc >= -DISC_TOL
     last = n if ok.all() else int(np.argmin(ok))
     direction = 1.0 if n < 2 or theta[-1] >= theta[0] else -1.0
-    found = []
+    found: list[float] = []
     touching = np.zeros(n, dtype=bool)
     if last >= 2:
         d = disc[:last]

@@ -13,6 +13,7 @@ a link and a joint may share a name.
 from __future__ import annotations
 
 import math
+from collections.abc import Callable, Sequence
 from dataclasses import dataclass, field, replace
 from functools import cached_property
 
@@ -20,7 +21,7 @@ import networkx as nx
 
 from chaingraph._util.numbers import tidy
 from chaingraph.errors import ChainFileError
-from chaingraph.model.pairs import PAIR_KINDS
+from chaingraph.model.pairs import PAIR_KINDS, PairKind
 
 __all__ = ["Joint", "Point", "Input", "Mechanism", "Chain", "LinkMass", "Load", "link_node",
            "joint_node", "mass_centre",
@@ -79,7 +80,7 @@ class Joint:
         return len(self.links)
 
     @property
-    def pair(self):
+    def pair(self) -> PairKind:
         """The joint's :class:`~chaingraph.model.pairs.PairKind`."""
         return PAIR_KINDS[self.kind]
 
@@ -105,7 +106,7 @@ class Point:
 
     id: str
     link: str
-    at: tuple[float, float]
+    at: tuple[float, float] | None     # None until placed: a file given by its lengths
 
 
 @dataclass(frozen=True)
@@ -224,6 +225,13 @@ class Chain:
         """The joint called ``joint_id``."""
         return self._joint_index[joint_id]
 
+    def freedom(self, joint: Joint) -> int:
+        """A joint's relative freedom in the chain's space (validation refuses a pair
+        that has no form in it)."""
+        f = joint.pair.freedom(self.space)
+        assert f is not None, f"a {joint.kind} pair has no {self.space} form"
+        return f
+
     def point(self, point_id: str) -> Point:
         """The tracer point called ``point_id``."""
         return {p.id: p for p in self.points}[point_id]
@@ -257,13 +265,22 @@ class Chain:
         turn = line_direction([(j.id, j.at) for j in joints], start.id)
         if turn is not None:
             return tidy(math.degrees(turn), 360.0)
-        slides = [j for j in joints if j.kind == "P" and j.axis is not None]
-        return float(slides[0].axis) if slides else 0.0
+        axes = [j.axis for j in joints if j.kind == "P" and j.axis is not None]
+        return float(axes[0]) if axes else 0.0
 
     @property
     def has_pose(self) -> bool:
-        """True when every joint has a position in the drawn pose."""
-        return all(j.at is not None for j in self.joints)
+        """True when every joint and point has a position in the drawn pose (a file
+        given by its lengths has them once assembled)."""
+        return all(j.at is not None for j in self.joints) and \
+            all(p.at is not None for p in self.points)
+
+    def positions(self) -> dict[str, tuple[float, float]]:
+        """Every joint's and point's position in the drawn pose by id, joints first
+        (those that have one: all of them when :attr:`has_pose`)."""
+        out = {j.id: j.at for j in self.joints if j.at is not None}
+        out.update({p.id: p.at for p in self.points if p.at is not None})
+        return out
 
     # -- graphs ---------------------------------------------------------------------
     @cached_property
@@ -345,7 +362,7 @@ class Chain:
         order = {name: i for i, name in enumerate(self.links)}
         comps = []
         for comp in nx.connected_components(self.graph):
-            links = sorted((n[1] for n in comp if n[0] == "link"), key=order.get)
+            links = sorted((n[1] for n in comp if n[0] == "link"), key=order.__getitem__)
             comps.append(tuple(links))
         return tuple(sorted(comps, key=lambda c: order[c[0]]))
 
@@ -411,13 +428,14 @@ def _is_finite_pair(value) -> bool:
                     and math.isfinite(v) for v in value))
 
 
-def mass_centre(chain, mass) -> tuple[float, float]:
+def mass_centre(chain: Chain, mass: LinkMass) -> tuple[float, float]:
     """A link's centre of mass in the drawn pose: its ``centre``, else the mean of the
     link's joints and points (a :class:`LinkMass` of ``chain``)."""
     if mass.centre is not None:
         return mass.centre
-    pts = [j.at for j in chain.joints if mass.link in j.links] + \
-          [p.at for p in chain.points if p.link == mass.link]
+    where = chain.positions()
+    pts = [where[j.id] for j in chain.joints if mass.link in j.links] + \
+          [where[p.id] for p in chain.points if p.link == mass.link]
     return (sum(p[0] for p in pts) / len(pts), sum(p[1] for p in pts) / len(pts))
 
 
@@ -615,7 +633,9 @@ def _validate_mechanism(chain, fail, links, point_ids):
         fail("'omega' must be a finite non-zero number (rad/s)", "[mechanism]")
 
 
-def chosen_inputs(chain, fixed=None, driver=None, inputs=None):
+def chosen_inputs(chain: Chain, fixed: str | None = None, driver: str | None = None,
+                  inputs: Sequence[Input] | None = None
+                  ) -> tuple[str | None, str | None, Sequence[Input] | None]:
     """Which inputs a mechanism uses: ``(fixed, driver, inputs)``, those given, else
     the file's ``[mechanism]``: its inputs when it fixes the same link and no driver is
     asked for, else its driver."""
@@ -628,7 +648,9 @@ def chosen_inputs(chain, fixed=None, driver=None, inputs=None):
     return fixed, driver, inputs
 
 
-def line_direction(features, start, *, tol=0.0, unplaced=None):
+def line_direction(features: Sequence[tuple[str, Sequence[float] | None]], start: str, *,
+                   tol: float = 0.0, unplaced: Callable[[str], float | None] | None = None
+                   ) -> float | None:
     """The rule a link's reference direction follows, over given positions: the
     direction (radians) from ``start`` to the first other of ``features`` (``(id,
     position)`` in id order) that is farther than ``tol`` from it; a feature without a
@@ -640,6 +662,7 @@ def line_direction(features, start, *, tol=0.0, unplaced=None):
     1.5707963267948966
     """
     here = dict(features)[start]
+    assert here is not None, f"the line's start {start!r} has no position"
     for name, at in features:
         if name == start:
             continue

@@ -7,12 +7,17 @@ from __future__ import annotations
 
 import math
 import warnings
+from collections.abc import Mapping, Sequence
 from dataclasses import replace
+from typing import TYPE_CHECKING
 
 import numpy as np
 
 from chaingraph.errors import DegenerateDrawingError, PoseAdjustedWarning
 from chaingraph.geometry import dot, normal, sub
+
+if TYPE_CHECKING:                       # the chain imports this module
+    from chaingraph.model.chain import Chain
 
 __all__ = ["snap_to_lines", "check_link_sizes", "size_of", "feature_label", "SILENT", "ROUNDING"]
 
@@ -23,7 +28,7 @@ SILENT = 1e-6
 ROUNDING = 1e-3
 
 
-def size_of(where):
+def size_of(where: Mapping[str, Sequence[float]]) -> float:
     """The mechanism's size, as the solver takes it: the longer side of the box round
     its joints and points."""
     xs = [p[0] for p in where.values()]
@@ -31,7 +36,7 @@ def size_of(where):
     return max(max(xs) - min(xs), max(ys) - min(ys), 1e-300)
 
 
-def feature_label(chain, name):
+def feature_label(chain: Chain, name: str) -> str:
     """How a message names a joint or point of the chain."""
     return (f"joint {name!r}" if any(j.id == name for j in chain.joints)
             else f"point {name!r}")
@@ -47,7 +52,7 @@ def _listed(names):
 
 
 # -- a drawing that gives a link no size -------------------------------------------------------
-def check_link_sizes(chain):
+def check_link_sizes(chain: Chain) -> None:
     """Refuse a drawn pose in which a link has zero length: a link turned by two or more
     R joints (and set in direction by no sliding pair) whose joints are all drawn at one
     point (within 1e-12 of the mechanism's size): its direction is undefined, and no
@@ -70,17 +75,16 @@ def check_link_sizes(chain):
     """
     if not chain.has_pose:
         return
-    where = {j.id: j.at for j in chain.joints}
-    where.update({p.id: p.at for p in chain.points})
+    where = chain.positions()
     tol = 1e-12 * size_of(where)
-    everything = all(math.dist(at, chain.joints[0].at) <= tol for at in where.values())
+    everything = all(math.dist(at, where[chain.joints[0].id]) <= tol for at in where.values())
     for link in chain.links:
         joints = chain.joints_of(link)
         turning = [j for j in joints if j.kind == "R"]
         if len(turning) < 2 or any(j.kind == "P" for j in joints):
             continue
-        at = turning[0].at
-        if all(math.dist(j.at, at) <= tol for j in turning[1:]):
+        at = where[turning[0].id]
+        if all(math.dist(where[j.id], at) <= tol for j in turning[1:]):
             names = [j.id for j in turning]
             point = f"({_figure(at[0] + 0.0)}, {_figure(at[1] + 0.0)})"
             both = "both" if len(names) == 2 else "all"
@@ -94,7 +98,7 @@ def check_link_sizes(chain):
 
 
 # -- drawing-level rounding in a file of coordinates -------------------------------------------
-def snap_to_lines(chain):
+def snap_to_lines(chain: Chain) -> Chain:
     """The chain with every joint or point that lies within drawing-level rounding of a
     sliding line it moves on (an R joint or point of the pair's guide or block, up to
     1e-3 of the mechanism's size off) put on it exactly: the nearest such pose (least
@@ -125,8 +129,7 @@ def snap_to_lines(chain):
     """
     if not chain.has_pose:
         return chain
-    where = {j.id: j.at for j in chain.joints}
-    where.update({p.id: p.at for p in chain.points})
+    where = chain.positions()
     size = size_of(where)
     on = _near_lines(chain, where, size)
     if not any(d > 1e-12 * size for *_, d in on):
@@ -142,20 +145,27 @@ def snap_to_lines(chain):
     index = {name: 2 * i for i, name in enumerate(features)}
     x0 = np.array([v for name in features for v in where[name]])
     x = _nearest_pose(chain, on, index, x0, where)
-    if max(abs(dot(normal(math.radians(chain.joint(p).axis)),
+    if max(abs(dot(normal(math.radians(_axis(chain, p))),
                    _position(name, x, index, where) - _position(p, x, index, where)))
            for p, name, _ in on) > 1e-12 * size:
         return chain      # the fixed link's joints themselves disagree: leave it as drawn
     moved = sorted(((math.dist(x[index[f]:index[f] + 2], x0[index[f]:index[f] + 2]), f)
                     for f in features), reverse=True)
-    joints = [replace(j, at=tuple(float(v) for v in x[index[j.id]:index[j.id] + 2]))
+    joints = [replace(j, at=(float(x[index[j.id]]), float(x[index[j.id] + 1])))
               if j.id in index else j for j in chain.joints]
-    points = [replace(p, at=tuple(float(v) for v in x[index[p.id]:index[p.id] + 2]))
+    points = [replace(p, at=(float(x[index[p.id]]), float(x[index[p.id] + 1])))
               if p.id in index else p for p in chain.points]
     snapped = replace(chain, joints=tuple(joints), points=tuple(points))
     if moved[0][0] > SILENT * size:
         _warn_moved(chain, on, moved, size)
     return snapped
+
+
+def _axis(chain: Chain, joint: str) -> float:
+    """A drawn P joint's axis (degrees): validation gives one to every P joint drawn."""
+    axis = chain.joint(joint).axis
+    assert axis is not None, f"the P joint {joint!r} is drawn without an axis"
+    return axis
 
 
 def _near_lines(chain, where, size):

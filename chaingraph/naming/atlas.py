@@ -13,6 +13,7 @@ from __future__ import annotations
 import math
 from dataclasses import dataclass, replace
 from functools import lru_cache
+from collections.abc import Iterable
 from pathlib import Path
 from typing import Any
 
@@ -49,7 +50,8 @@ def _catalog_forms(oriented, catalog=None):
     return out
 
 
-def atlas_names(chain, *, oriented=False, catalog=None) -> dict:
+def atlas_names(chain: Chain, *, oriented: bool = False,
+                catalog: Iterable[Chain] | None = None) -> dict[str, list[Any]]:
     """The catalog's names of ``chain`` (an atlas chain) and of its inversion classes:
     ``{"chain": [names], "inversions": [{"links": [...], "names": [...]}]}``, an item for
     each inversion class (an orbit of links, as
@@ -96,7 +98,8 @@ def atlas_names(chain, *, oriented=False, catalog=None) -> dict:
     return out
 
 
-def chain_names(chain, *, oriented=False, catalog=None) -> list:
+def chain_names(chain: Chain, *, oriented: bool = False,
+                catalog: Iterable[Chain] | None = None) -> list[str]:
     """The catalog's names of a chain's structure (see :func:`atlas_names`)."""
     return atlas_names(chain, oriented=oriented, catalog=catalog)["chain"]
 
@@ -111,14 +114,15 @@ class NamedMechanism:
     power of two, to about 100 units, so that what lies on a line stays exactly on it),
     the entry's fixed link and its input."""
 
-    links: tuple
+    links: tuple[str, ...]
     name: str
     source: str
     scale: float
     mechanism: Chain
 
 
-def named_mechanisms(chain, *, oriented=False, catalog=None) -> list:
+def named_mechanisms(chain: Chain, *, oriented: bool = False,
+                     catalog: Iterable[Chain] | None = None) -> list[NamedMechanism]:
     """Every catalog mechanism of ``chain``'s structure (see :func:`atlas_names`) as a
     :class:`NamedMechanism`: the atlas chain's links and joints, posed and driven as the
     catalog's mechanism is, so that it moves as its name says. In the order of the

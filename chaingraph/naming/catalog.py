@@ -51,8 +51,12 @@ _BUNDLED = None
 
 
 def bundled_catalog() -> tuple:
-    """The bundled catalog, loaded once per process (chains are immutable)."""
+    """The bundled catalog's names, loaded once per process (chains are immutable): every
+    entry but a synthesised mechanism's (a file with a ``[task]``, such as
+    ``log10-function-generator``), which is an example of a design, not a kind of
+    mechanism, and names nothing (identify, inversions and the atlas would otherwise
+    call every triple rocker driven by its crank after it)."""
     global _BUNDLED
     if _BUNDLED is None:
-        _BUNDLED = tuple(load_catalog())
+        _BUNDLED = tuple(c for c in load_catalog() if not c.task)
     return _BUNDLED

@@ -19,7 +19,9 @@ motion is the same whichever link carries the guide), the full turns deciding.
 from __future__ import annotations
 
 import itertools
+from collections.abc import Iterator, Sequence
 from dataclasses import dataclass
+from typing import Any
 
 import networkx as nx
 from networkx.algorithms.isomorphism import GraphMatcher
@@ -32,6 +34,7 @@ from chaingraph.kinematics.behaviour import (
     behaviour_key,
     turning_links,
 )
+from chaingraph.model.chain import Chain
 from chaingraph.naming.catalog import bundled_catalog
 from chaingraph.structure.isomorphism import (
     automorphism_orbits,
@@ -51,7 +54,7 @@ class InputClass:
     driver: str
     class_: int
 
-    def to_dict(self):
+    def to_dict(self) -> dict[str, Any]:
         return {"driver": self.driver, "class": self.class_}
 
 
@@ -67,8 +70,8 @@ class Inversion:
     inputs: tuple[InputClass, ...] | None = None
     note: str | None = None    # why a catalog name is missing, where one is
 
-    def to_dict(self):
-        d = {"fixed": self.fixed, "class": self.class_, "names": list(self.names),
+    def to_dict(self) -> dict[str, Any]:
+        d: dict[str, Any] = {"fixed": self.fixed, "class": self.class_, "names": list(self.names),
              "behaviour": self.behaviour,
              "full_turns": None if self.full_turns is None else list(self.full_turns),
              "note": self.note}
@@ -87,12 +90,11 @@ class Inversions:
     inversions: tuple[Inversion, ...]
     classes_with_input: int | None = None
 
-    def __repr__(self):
+    def __repr__(self) -> str:
         return (f"Inversions({self.name!r}, links={self.links}, classes={self.classes}, "
-                f"fixed={short_list(i.fixed for i in self.inversions)})")
+                f"fixed={short_list([i.fixed for i in self.inversions])})")
 
-
-    def rows(self) -> list[tuple]:
+    def rows(self) -> list[tuple[str | int, ...]]:
         """The inversions as table rows, the first the header: fixed link, class, (the
         inputs and their classes, where designated), behaviour, names ("-" for none), as
         the command line, the report and a notebook show them.
@@ -108,9 +110,9 @@ class Inversions:
         designated = self.classes_with_input is not None
         header = ("fixed", "class") + (("inputs (class)",) if designated else ()) + (
             "behaviour", "names")
-        rows = [header]
+        rows: list[tuple[str | int, ...]] = [header]
         for i in self.inversions:
-            inputs = ((", ".join(f"{x.driver} ({x.class_})" for x in i.inputs) or "-",)
+            inputs = ((", ".join(f"{x.driver} ({x.class_})" for x in i.inputs or ()) or "-",)
                       if designated else ())
             rows.append((i.fixed, i.class_) + inputs
                         + (i.behaviour or "-", "; ".join(i.names) or "-"))
@@ -120,15 +122,15 @@ class Inversions:
         """The inversion with ``fixed`` fixed."""
         return next(i for i in self.inversions if i.fixed == fixed)
 
-    def to_dict(self):
-        d = {"name": self.name, "links": self.links, "classes": self.classes,
+    def to_dict(self) -> dict[str, Any]:
+        d: dict[str, Any] = {"name": self.name, "links": self.links, "classes": self.classes,
              "inversions": [i.to_dict() for i in self.inversions]}
         if self.classes_with_input is not None:
             d["classes_with_input"] = self.classes_with_input
         return d
 
 
-def require_connected(chain) -> None:
+def require_connected(chain: Chain) -> None:
     """Raise ChainStructureError unless the chain is one connected piece."""
     if len(chain.pieces) > 1:
         pieces = "; ".join("{" + ", ".join(p) + "}" for p in chain.pieces)
@@ -149,7 +151,9 @@ def _labelled(chain, oriented, marks):
     return g
 
 
-def link_isomorphisms(a, b, *, oriented=True, marks_a=None, marks_b=None):
+def link_isomorphisms(a: Chain, b: Chain, *, oriented: bool = True,
+                      marks_a: dict[str, str] | None = None,
+                      marks_b: dict[str, str] | None = None) -> Iterator[dict[str, str]]:
     """Every isomorphism of chain ``a`` onto chain ``b``, as dicts of links.
 
     ``marks_a`` and ``marks_b`` tag links (for example ``{fixed: "fixed"}``) that only
@@ -196,8 +200,8 @@ class Match:
     behave alike, False when they behave differently, None when either has none."""
 
     score: int
-    entry: object
-    mapping: dict
+    entry: Chain
+    mapping: dict[str, str]
     oriented: bool
     alike: bool | None
 
@@ -220,20 +224,20 @@ BEHAVIOUR_LINKS = 40
 BEHAVIOUR_SECONDS = 8.0
 
 
-def _behaviours_solved(chain, needed):
+def _behaviours_solved(chain, needed, *, budget=BEHAVIOUR_SECONDS):
     """The fixed links whose behaviour :func:`inversions` solves: those in ``needed``
     (a catalog name needs it), and the others, the cheapest first, while the least
     each takes (:func:`behaviour_cost`: its first driver's cycle) keeps the estimated
-    seconds spent (counted as each is solved, every driver it tried) within
-    :data:`BEHAVIOUR_SECONDS` (so past it by one inversion's drivers at most); and each
-    unsolved one's least estimate."""
+    seconds spent (counted as each is solved, every driver it tried) within ``budget``
+    (so past it by one inversion's drivers at most); and each unsolved one's least
+    estimate."""
     if len(chain.links) > BEHAVIOUR_LINKS:
         return set(needed), {}
     least = {x: behaviour_cost(chain, x) for x in chain.links}
     solved, spent = set(), 0.0
     for x in list(needed) + sorted(chain.links, key=lambda x: (least[x],
                                                                 chain.links.index(x))):
-        if x in solved or (x not in needed and spent + least[x] > BEHAVIOUR_SECONDS):
+        if x in solved or (x not in needed and spent + least[x] > budget):
             continue
         behaviour(chain, x)
         spent += behaviour_cost(chain, x, spent=True)
@@ -247,7 +251,8 @@ def _behaviours_solved(chain, needed):
 MAX_MAPPINGS = 720
 
 
-def catalog_matches(chain, fixed, catalog, *, driver=None, output=None):
+def catalog_matches(chain: Chain, fixed: str, catalog: Sequence[Chain], *,
+                    driver: str | None = None, output: str | None = None) -> list[Match]:
     """The catalog mechanisms that are this chain with ``fixed`` fixed, by structure.
 
     Each entry is matched with P orientation respected, else with it forgotten (a
@@ -323,7 +328,7 @@ def _marks(chain, fixed, driver, output):
     return marks
 
 
-def naming_matches(matches):
+def naming_matches(matches: Sequence[Match]) -> list[Match]:
     """Which catalog matches name the inversion: those that behave alike (where both
     have dimensions); failing those, the names of structure (Watt I, the slider crank's
     inversions: they hold whatever the dimensions) and the names that cannot be
@@ -340,7 +345,9 @@ def naming_matches(matches):
     return []
 
 
-def inversions(chain, *, with_input: bool = False, catalog=None) -> Inversions:
+def inversions(chain: Chain, *, with_input: bool = False,
+               catalog: Sequence[Chain] | None = None,
+               behaviour_seconds: float = BEHAVIOUR_SECONDS) -> Inversions:
     """Every inversion of a chain, grouped by structure and named from the catalog.
 
     Parameters
@@ -351,6 +358,11 @@ def inversions(chain, *, with_input: bool = False, catalog=None) -> Inversions:
         with the classes of (fixed, input) pairs.
     catalog : sequence of Chain, optional
         Where names come from; the bundled catalog by default.
+    behaviour_seconds : float
+        The estimated seconds of one core that the behaviours of the inversions no
+        catalog name needs may take in all (:data:`BEHAVIOUR_SECONDS` by default): the
+        cheapest are solved first, past the budget by one inversion at most; the
+        others' notes say what each would take.
 
     Returns
     -------
@@ -380,46 +392,56 @@ def inversions(chain, *, with_input: bool = False, catalog=None) -> Inversions:
         catalog = bundled_catalog()
     orbits = automorphism_orbits(chain)
     class_of = {x: i + 1 for i, orbit in enumerate(orbits) for x in orbit}
-    drivers = {}
-    if with_input:
-        for fixed in chain.links:
-            drivers[fixed] = [x for x in chain.links if x != fixed and any(
-                j.kind == "R" and fixed in j.links and x in j.links for j in chain.joints)]
-        pairs = [(f, d) for f in chain.links for d in drivers[f]]
-        pair_class = {p: i + 1 for i, orbit in enumerate(pair_orbits(chain, pairs)) for p in orbit}
-    order = {x: i for i, x in enumerate(chain.links)}
     found = {fixed: catalog_matches(chain, fixed, catalog) for fixed in chain.links}
-    solvable, cost = _behaviours_solved(chain, [x for x in chain.links if found[x]])
-    result = []
-    for fixed in chain.links:
-        matches = found[fixed]
-        named = naming_matches(matches)
-        names = tuple(dict.fromkeys(x.entry.name for x in named))
-        differ = [x.entry.name for x in matches if x.alike is False and x.oriented
-                  and x.entry.name not in names]
-        solved = fixed in solvable
-        how = behaviour(chain, fixed) if solved else None
-        note = None
-        if differ:
-            note = (f"as dimensioned ({how or 'its own behaviour'}) it is not the catalog's "
-                    + ", ".join(dict.fromkeys(differ)) + ", whose names need that behaviour")
-        elif not names:
-            note = "the catalog names no inversion of this structure with this link fixed"
-        if not solved and chain.has_pose and fixed in cost:
-            note += (f"; its behaviour is not solved (its cycles would take "
-                     f"{cost[fixed]:.2g} s or more, past the {BEHAVIOUR_SECONDS:.0f} s "
-                     "the inversions' behaviours take in all; solve the inversion for it)")
-        elif not solved and chain.has_pose:
-            note += (f"; its behaviour is not solved (over {BEHAVIOUR_LINKS} links, every "
-                     "inversion's whole cycle; solve the inversion for it)")
-        turning = turning_links(chain, fixed) if solved else None
-        inputs = None
-        if with_input:
-            inputs = tuple(InputClass(d, pair_class[(fixed, d)]) for d in drivers[fixed])
-        result.append(Inversion(
-            fixed=fixed, class_=class_of[fixed], names=names, behaviour=how, note=note,
-            full_turns=None if turning is None else tuple(sorted(turning, key=order.get)),
-            inputs=inputs))
+    solvable, cost = _behaviours_solved(chain, [x for x in chain.links if found[x]],
+                                        budget=behaviour_seconds)
+    inputs = _input_classes(chain) if with_input else None
+    result = tuple(_inversion(chain, fixed, class_of[fixed], found[fixed],
+                              solved=fixed in solvable, cost=cost.get(fixed),
+                              budget=behaviour_seconds,
+                              inputs=None if inputs is None else inputs[fixed])
+                   for fixed in chain.links)
     return Inversions(name=chain.name, links=len(chain.links), classes=len(orbits),
-                      inversions=tuple(result),
-                      classes_with_input=len(set(pair_class.values())) if with_input else None)
+                      inversions=result,
+                      classes_with_input=None if inputs is None else len(
+                          {i.class_ for x in inputs.values() for i in x}))
+
+
+def _input_classes(chain) -> dict[str, tuple[InputClass, ...]]:
+    """For each fixed link, its inputs (every link joined to it by an R joint) with the
+    classes of the (fixed, input) pairs."""
+    drivers = {fixed: [x for x in chain.links if x != fixed and any(
+        j.kind == "R" and fixed in j.links and x in j.links for j in chain.joints)]
+        for fixed in chain.links}
+    pairs = [(f, d) for f in chain.links for d in drivers[f]]
+    pair_class = {p: i + 1 for i, orbit in enumerate(pair_orbits(chain, pairs)) for p in orbit}
+    return {f: tuple(InputClass(d, pair_class[(f, d)]) for d in drivers[f])
+            for f in chain.links}
+
+
+def _inversion(chain, fixed, class_, matches, *, solved, cost, budget, inputs) -> Inversion:
+    """The inversion with ``fixed`` fixed: its names from the catalog ``matches``, its
+    behaviour where ``solved`` (else ``cost``, its least estimate, or None over
+    :data:`BEHAVIOUR_LINKS` links, said in its note)."""
+    named = naming_matches(matches)
+    names = tuple(dict.fromkeys(x.entry.name for x in named))
+    differ = [x.entry.name for x in matches if x.alike is False and x.oriented
+              and x.entry.name not in names]
+    how = behaviour(chain, fixed) if solved else None
+    note = None
+    if differ:
+        note = (f"as dimensioned ({how or 'its own behaviour'}) it is not the catalog's "
+                + ", ".join(dict.fromkeys(differ)) + ", whose names need that behaviour")
+    elif not names:
+        note = "the catalog names no inversion of this structure with this link fixed"
+    if not solved and chain.has_pose:        # (a name needs its behaviour: it is solved)
+        why = (f"its cycles would take {cost:.2g} s or more, past the {budget:g} s the "
+               "inversions' behaviours take in all" if cost is not None else
+               f"over {BEHAVIOUR_LINKS} links, every inversion's whole cycle")
+        note = f"{note}; its behaviour is not solved ({why}; solve the inversion for it)"
+    turning = turning_links(chain, fixed) if solved else None
+    order = {x: i for i, x in enumerate(chain.links)}
+    return Inversion(
+        fixed=fixed, class_=class_, names=names, behaviour=how, note=note,
+        full_turns=None if turning is None else tuple(sorted(turning, key=order.__getitem__)),
+        inputs=inputs)

@@ -44,10 +44,10 @@ class Animation:
     mechanism: Chain
     shown: float
     turns: bool
-    notes: tuple
+    notes: tuple[str, ...]
 
 
-def animate_inversion(mechanism, *, frames=24, width=300) -> Animation:
+def animate_inversion(mechanism: Chain, *, frames: int = 24, width: int = 300) -> Animation:
     """``mechanism`` (a posed chain with one input) animated in ``frames`` frames at
     ``width`` pixels, over the part of its range where the links fill the picture (see
     the module's notes).
@@ -64,11 +64,13 @@ def animate_inversion(mechanism, *, frames=24, width=300) -> Animation:
         motion = solve(mechanism, steps=steps, summary=False)
         full = cycle(motion.plan).full_turn
     except UnboundedRangeError:
-        item = mechanism.mechanism.inputs[0] if mechanism.mechanism.inputs else None
+        m = mechanism.mechanism
+        item = m.inputs[0] if m is not None and m.inputs else None
         if item is None or mechanism.joint(item.joint).kind != "P":
             raise
         # a slide without a limit: a bounded part of it, the chain's size each way
-        half = float(f"{size_of({j.id: j.at for j in mechanism.joints}):.2g}")
+        drawn = {j.id: j.at for j in mechanism.joints if j.at is not None}   # (all: solved)
+        half = float(f"{size_of(drawn):.2g}")
         try:
             motion = solve(_swept(mechanism, -half, half), steps=steps, summary=False)
             mechanism = _swept(mechanism, -half, half)
@@ -94,8 +96,9 @@ def animate_inversion(mechanism, *, frames=24, width=300) -> Animation:
 
     if shown < 1.0:
         lo, hi = value(rows[0]), value(rows[-1])
-        unit = "degrees" if mechanism.joint(mechanism.mechanism.inputs[0].joint).kind == "R" \
-            else units
+        m = mechanism.mechanism
+        assert m is not None, "a mechanism solved above"
+        unit = "degrees" if mechanism.joint(m.inputs[0].joint).kind == "R" else units
         whole = "a full turn" if full else \
             f"{float(theta.min()):.4g} to {float(theta.max()):.4g} {unit}"
         notes.append(f"Shown over the part of its range where the links fill the picture: "
@@ -161,7 +164,6 @@ def _window(motion, mechanism, n, full):
 
 def _distance_to_drawn(xs, ys, mechanism, names):
     """Over the steps, how far the joints and points are from their drawn places."""
-    where = {j.id: j.at for j in mechanism.joints}
-    where.update({p.id: p.at for p in mechanism.points})
+    where = mechanism.positions()
     at = np.array([where[x] for x in names])
     return ((xs - at[:, :1]) ** 2 + (ys - at[:, 1:]) ** 2).sum(axis=0)

@@ -8,8 +8,10 @@ assembled in, animated, and a chain file that ``chaingraph solve`` runs as is.
 from __future__ import annotations
 
 import html
+import os
 from dataclasses import dataclass
 from pathlib import Path
+from typing import Any, TypeAlias
 
 from chaingraph._util.atomic import withdraw
 from chaingraph._util.parallel import process_runner
@@ -20,6 +22,7 @@ from chaingraph.naming.atlas import atlas_names, named_mechanisms
 from chaingraph.report.animation import animate_inversion
 from chaingraph.report.atlas_index import thumbnail_svg, write_index
 from chaingraph.structure.atlas.estimate import LOCAL_HOURS
+from chaingraph.structure.atlas.sliding import SlidingAtlas
 from chaingraph.structure.atlas.illustrate import (
     generic_pose,
     inversion_mechanism,
@@ -105,7 +108,13 @@ class _Figure:
     failed: str | None = None
 
 
-def _page_job(task):
+#: one chain's page as a worker computes it: (html, chain files (name, text), how many
+#: inversions were animated, those that failed (link, why), its catalog names, its thumbnail)
+PageJob: TypeAlias = tuple[str, list[tuple[str, str]], int, tuple[tuple[str, str], ...],
+                           dict[str, list[Any]], str]
+
+
+def _page_job(task: tuple[Any, ...]) -> PageJob:
     """Everything of one chain's page, computed in a worker: (html, chain files, how many
     inversions were animated, those that failed, its catalog names, its thumbnail)."""
     entry, dof, oriented, animate, frames = task
@@ -224,14 +233,14 @@ def _page_html(entry, chain, names, rows, sections, animate):
 SECONDS_PER_INVERSION = {4: 0.1, 5: 0.2, 6: 0.3, 7: 0.45, 8: 0.65}
 
 
-def animation_seconds(result, *, workers=1) -> float:
+def animation_seconds(result: SlidingAtlas, *, workers: int = 1) -> float:
     """About how long animating every inversion of ``result`` takes on ``workers``
     processes (seconds of the wall clock)."""
     per = SECONDS_PER_INVERSION.get(result.links, SECONDS_PER_INVERSION[8])
     return result.distinct_inversions * per / max(1, workers)
 
 
-def animated_by_default(result, *, workers=1) -> bool:
+def animated_by_default(result: SlidingAtlas, *, workers: int = 1) -> bool:
     """Whether :func:`write_illustrated` animates ``result``'s inversions unless told:
     chains of up to 8 links, when that is estimated to take at most the hour an atlas
     run takes here without a cluster (:data:`~chaingraph.structure.atlas.estimate.
@@ -240,7 +249,9 @@ def animated_by_default(result, *, workers=1) -> bool:
         animation_seconds(result, workers=workers) <= LOCAL_HOURS * 3600
 
 
-def write_illustrated(result, out_dir, *, animate=None, frames=24, workers=1) -> list:
+def write_illustrated(result: SlidingAtlas, out_dir: str | os.PathLike[str], *,
+                      animate: bool | None = None, frames: int = 24,
+                      workers: int = 1) -> list[IllustratedPage]:
     """Write ``DIR/index.html`` (the chains by links, sliding pairs and multiple joints,
     with their names) and ``DIR/chain-N.html`` per chain, with a chain file per
     inversion under ``DIR/chains/``; inversions are animated when ``animate`` is true
@@ -252,7 +263,7 @@ def write_illustrated(result, out_dir, *, animate=None, frames=24, workers=1) ->
     animate = (animated_by_default(result, workers=workers) if animate is None
                else bool(animate))
     tasks = [(e, result.dof, result.oriented, animate, frames) for e in result]
-    done = {}
+    done: dict[int, PageJob] = {}
     process_runner(workers)(_page_job, tasks, done.__setitem__)
     pages, cards = [], []
     for i, e in enumerate(result):

@@ -19,6 +19,8 @@ import sys
 import warnings
 from dataclasses import dataclass, field
 from pathlib import Path
+from collections.abc import Iterable
+from typing import Any, TextIO
 
 from chaingraph._util.atomic import staged, write_atomic
 from chaingraph._util.parallel import process_runner
@@ -29,17 +31,20 @@ from chaingraph.drawing.graph import draw_link_joint_graph
 from chaingraph.drawing.limits import limits_svg
 from chaingraph.drawing.mechanism import mechanism_svg, skeleton_svg
 from chaingraph.drawing.plots import plot_motion
-from chaingraph.dynamics import forces
+from chaingraph.drawing.synthesis import draw_synthesis
+from chaingraph.dynamics import PoseForces, SweepForces, forces
 from chaingraph.errors import ChainGraphError
 from chaingraph.files import load
-from chaingraph.graphical.centres import centres_of
-from chaingraph.graphical.polygons import polygons_of
-from chaingraph.kinematics import solve
+from chaingraph.graphical.centres import InstantCentres, centres_of
+from chaingraph.graphical.polygons import Polygons, polygons_of
+from chaingraph.kinematics import Motion, solve
 from chaingraph.kinematics.grid import input_grid
 from chaingraph.kinematics.pose import pose_motion
-from chaingraph.naming.inversion_classes import inversions
+from chaingraph.model.chain import Chain
+from chaingraph.naming.inversion_classes import Inversions, inversions
 from chaingraph.report.pages import entry_page, index_page
-from chaingraph.structure.classification import classify
+from chaingraph.structure.classification import Classification, classify
+from chaingraph.synthesis.function_generation import structural_error
 
 __all__ = ["Report", "build_report", "chain_paths"]
 
@@ -50,19 +55,20 @@ class Entry:
 
     source: str
     slug: str
-    chain: object = None
-    classification: object = None
-    inversions: object = None
-    motion: object = None
+    chain: Chain
+    classification: Classification
+    inversions: Inversions | None = None
+    motion: Motion | None = None
     error: str | None = None
-    warnings: list = field(default_factory=list)
+    warnings: list[str] = field(default_factory=list)
     frames: int = 48
-    grid: object = None           # two moving inputs: the poses over both, row by row
-    centres: object = None        # instantaneous centres at the drawn pose
-    polygons: object = None       # velocity and acceleration polygons at the drawn pose
-    limits: bool = False          # a time ratio: its limit positions drawn
-    forces: object = None         # with masses or loads: the forces over the sweep
-    pose_forces: object = None    # and at the sweep's first pose (the free bodies)
+    grid: Motion | None = None         # two moving inputs: the poses over both, row by row
+    centres: InstantCentres | None = None   # instantaneous centres at the drawn pose
+    polygons: Polygons | None = None   # velocity and acceleration polygons at the drawn pose
+    limits: bool = False               # a time ratio: its limit positions drawn
+    forces: SweepForces | None = None  # with masses or loads: the forces over the sweep
+    pose_forces: PoseForces | None = None   # and at the sweep's first pose (the free bodies)
+    task: dict[str, Any] | None = None  # a synthesised mechanism's [task], drawn (task_drawing)
 
 
 @dataclass
@@ -70,8 +76,8 @@ class Report:
     """What :func:`build_report` wrote."""
 
     index: Path
-    entries: list        # one Row per chain file, in file order
-    failures: list       # (path, problem)
+    entries: list[Row]                  # one Row per chain file, in file order
+    failures: list[tuple[str, str]]     # (path, problem)
 
     @property
     def complete(self) -> bool:
@@ -79,7 +85,8 @@ class Report:
         return not self.failures
 
 
-def chain_paths(paths):
+def chain_paths(paths: Iterable[str | os.PathLike[str]]
+                ) -> tuple[list[Path], list[tuple[str, str]]]:
     """The chain files named by ``paths`` (files, or folders of ``*.toml``), and the
     paths that are neither, as (files, problems)."""
     files, problems = [], []
@@ -102,7 +109,7 @@ def chain_paths(paths):
 RESERVED = frozenset({"index", "img"})
 
 
-def _slug(text, taken):
+def _slug(text: str, taken: set[str]) -> str:
     base = re.sub(r"[^a-z0-9]+", "-", text.lower()).strip("-") or "entry"
     slug, k = base, 2
     while slug in taken:
@@ -111,8 +118,9 @@ def _slug(text, taken):
     return slug
 
 
-def build_report(paths, out_dir, *, progress=sys.stderr, steps=180, frames=48,
-                 workers=None) -> Report:
+def build_report(paths: Iterable[str | os.PathLike[str]], out_dir: str | os.PathLike[str],
+                 *, progress: TextIO | None = sys.stderr, steps: int = 180, frames: int = 48,
+                 workers: int | None = None) -> Report:
     """Write the HTML catalog of the chain files ``paths`` into ``out_dir``.
 
     Parameters
@@ -188,15 +196,14 @@ class Row:
     error: str | None = None
 
 
-def _entry_job(job):
+def _entry_job(job: tuple[str, str, str, int, int]) -> Row:
     """Analyse one chain file and write its page and images; returns its index row."""
     source, slug, out, steps, frames = job
-    entry = Entry(source=source, slug=slug)
     row = Row(source=source, slug=slug)
     try:
         with warnings.catch_warnings():
             warnings.simplefilter("ignore", RuntimeWarning)
-            _analyse(entry, steps)
+            entry = _analyse(source, slug, steps)
             _write_images(entry, Path(out), frames)
             entry.frames = frames
         write_atomic(Path(out) / f"{slug}.html", entry_page(entry))
@@ -208,15 +215,14 @@ def _entry_job(job):
     row.links, row.joint_equivalents = c.links, c.joint_equivalents
     row.mobility, row.verdict = c.mobility, c.verdict
     row.classes = entry.inversions.classes if entry.inversions is not None else None
-    if entry.motion is not None:
+    if entry.motion is not None and entry.motion.summary is not None:
         row.time_ratio = entry.motion.summary.time_ratio
     return row
 
 
-def _analyse(entry, steps):
-    chain = load(entry.source)
-    entry.chain = chain
-    entry.classification = classify(chain)
+def _analyse(source: str, slug: str, steps: int) -> Entry:
+    chain = load(source)
+    entry = Entry(source=source, slug=slug, chain=chain, classification=classify(chain))
     if len(chain.pieces) == 1:
         entry.inversions = inversions(chain)
     m = chain.mechanism
@@ -239,10 +245,37 @@ def _analyse(entry, steps):
                     entry.pose_forces = forces(chain, at=entry.motion.input_values(0))
                 except ChainGraphError as e:
                     entry.warnings.append(f"forces not found: {e}")
+            if chain.task:
+                entry.task = _task_drawing(entry, chain.task)
+    return entry
+
+
+def _task_drawing(entry: Entry, task: dict[str, Any]) -> dict[str, Any] | None:
+    """What a synthesised mechanism's [task] asks, as the synthesis draws it: the input's
+    value at the drawn pose (its first target), the sweep, the targets or poses, and a
+    function generator's structural error over its range (None where it cannot be
+    worked out: the task is then only listed)."""
+    try:                                    # a synthesis draws its file at the first target
+        at = float(pose_motion(entry.chain).input)
+    except ChainGraphError as e:
+        entry.warnings.append(f"the task not drawn: {e}")
+        return None
+    drawn: dict[str, Any] = {"at": at, "sweep": None, "curve": None,
+                             "targets": [tuple(p) for p in task.get("targets", ())],
+                             "poses": [tuple(p) for p in task.get("poses", ())]}
+    if task.get("kind") == "function":
+        try:
+            drawn["curve"] = structural_error(entry.chain)
+        except ChainGraphError as e:
+            entry.warnings.append(f"the task's structural error not found: {e}")
+            return None
+        t0 = float(task["start"][0])
+        drawn["sweep"] = (t0, t0 + float(task["swing"][0]))
+    return drawn
 
 
 # -- images ----------------------------------------------------------------------------
-def _write_images(entry, out, frames):
+def _write_images(entry: Entry, out: Path, frames: int) -> None:
     img = out / "img"
     draw_link_joint_graph(entry.chain, img / f"{entry.slug}-graph.svg")
     (img / f"{entry.slug}-skeleton.svg").write_text(skeleton_svg(entry.chain), encoding="utf-8")
@@ -252,7 +285,8 @@ def _write_images(entry, out, frames):
         plot_motion(entry.motion, img / f"{entry.slug}-motion.svg")
         (img / f"{entry.slug}-cycle.svg").write_text(
             mechanism_svg(entry.motion, frames=frames), encoding="utf-8")
-    if entry.motion is not None and entry.motion.summary.time_ratio is not None:
+    if entry.motion is not None and entry.motion.summary is not None \
+            and entry.motion.summary.time_ratio is not None:
         try:
             (img / f"{entry.slug}-limits.svg").write_text(limits_svg(entry.motion),
                                                           encoding="utf-8")
@@ -265,8 +299,11 @@ def _write_images(entry, out, frames):
         polygons = force_polygon_svg(entry.pose_forces)
         if polygons is not None:
             (img / f"{entry.slug}-force-polygons.svg").write_text(polygons, encoding="utf-8")
-        if len(entry.forces.inputs) == 1:
+        if entry.forces is not None and len(entry.forces.inputs) == 1:
             plot_turning_moment(entry.forces, img / f"{entry.slug}-turning-moment.svg")
-    if entry.centres is not None:
+    if entry.task is not None:
+        draw_synthesis(entry.chain, **entry.task, title=entry.chain.name,
+                       path=img / f"{entry.slug}-task.svg")
+    if entry.centres is not None and entry.polygons is not None:
         draw_centres(entry.centres, img / f"{entry.slug}-centres.svg")
         draw_polygons(entry.polygons, img / f"{entry.slug}-polygons.svg")

@@ -124,6 +124,8 @@ def entry_page(e: Entry) -> str:
         body.append("</table>")
     if e.motion is not None:
         body += _motion_section(e)
+    if chain.task:
+        body += _task_section(e)
     for w in e.warnings:
         body.append(f"<p class=\"fail\">{_esc(w)}</p>")
     body.append("<p><a href=\"index.html\">&larr; back to the index</a></p>")
@@ -223,4 +225,47 @@ def _graphical_section(e):
                "acceleration polygons (loops close to "
                f"{closure['velocity']:.2g} and {closure['acceleration']:.2g}).</figcaption>"
                "</figure></div>")
+    return out
+
+
+#: the [task] keys shown, in this order, with their labels (the rest follow as written)
+_TASK_KEYS = {"kind": "kind", "function": "y =", "x": "x from, to",
+              "swing": "input, output swing", "start": "input, output at x = A",
+              "points": "precision points", "spacing": "spacing",
+              "precision_x": "precision points' x", "targets": "targets (x, y)",
+              "timing": "input at each target", "closed": "closed curve",
+              "poses": "poses (x, y, degrees)", "mechanism": "mechanism",
+              "min_transmission": "least transmission angle"}
+
+
+def _task_value(value):
+    if isinstance(value, list):
+        return "; ".join(_task_value(v) if isinstance(v, list) else _fmt(v) for v in value)
+    return _fmt(value)
+
+
+def _task_section(e):
+    """A synthesised mechanism's task: its [task] table (what it was designed to do)
+    and, drawn as the synthesis draws it, the mechanism at its first target with the
+    targets (points, poses as small frames) and, for a function generator, its
+    structural error over the range with the precision points marked."""
+    task = e.chain.task
+    keys = [k for k in _TASK_KEYS if k in task] + sorted(set(task) - set(_TASK_KEYS))
+    out = ["<h2>Synthesis task</h2><p>What this mechanism was designed to do (its "
+           "<code>[task]</code> table, written by <code>chaingraph design</code>, which "
+           "<code>solve</code> ignores); it was certified by chaingraph's solver from "
+           "its file.</p><table id=\"task\">"]
+    out += [f"<tr><th>{_esc(_TASK_KEYS.get(k, k))}</th><td>{_esc(_task_value(task[k]))}"
+            "</td></tr>" for k in keys]
+    out.append("</table>")
+    if e.task is not None:
+        what = ("its structural error over the range (the output's departure from the "
+                "task, from the solver's motion), the precision points marked"
+                if e.task["curve"] is not None else
+                "the targets marked" if e.task["targets"] else
+                "the poses as small numbered frames")
+        out.append(f"<div class=\"figures\"><figure><img src=\"img/{e.slug}-task.svg\" "
+                   "alt=\"the synthesis task\" width=\"760\"><figcaption>The mechanism at "
+                   f"its first target with its joints' paths, and {what}.</figcaption>"
+                   "</figure></div>")
     return out

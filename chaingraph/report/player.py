@@ -31,11 +31,12 @@ def player_html(e: Entry) -> list[str]:
     the sliders are independent (the drawing holds a pose for every pair of values, the
     entry's ``grid``); otherwise they follow the one sweep together."""
     m = e.grid if e.grid is not None else e.motion
+    assert m is not None, "the player is written only for an entry with a motion"
     grid = e.grid is not None
     picks = list(range(m.theta.size)) if grid else frame_steps(m, e.frames)
     drawing = mechanism_svg(m, frames=len(picks), width=480, paths=not grid).split("?>", 1)[-1]
     if m.inputs:
-        inputs = [(i.joint, m["input:" + i.joint]) for i in m.inputs]
+        inputs = [(i.joint, m.values[i.joint]) for i in m.inputs]
     else:
         inputs = [("\u03b8 (degrees)", m.theta)]
     label, u, *_ = output_series(m)

@@ -273,7 +273,7 @@ def classify(chain: Chain) -> Classification:
     higher = [j for j in chain.joints if not j.pair.lower]
     J = sum(j.order - 1 for j in lower)
     H = len(higher)
-    constraint = sum((d - j.pair.freedom(space)) * (j.order - 1) for j in chain.joints)
+    constraint = sum((d - chain.freedom(j)) * (j.order - 1) for j in chain.joints)
     mobility = d * (n_links - 1) - constraint
     g = chain.graph
     # cycle rank of the link-joint graph: edges - nodes + pieces
@@ -331,7 +331,7 @@ def _j_check(chain: Chain, n_links: int, J: int, H: int) -> Check:
                      "a check for planar chains; this chain is spatial (see mobility)")
     # each pair counts (3 - f)/2 binary equivalents: 1 for a lower or rolling pair,
     # 1/2 for a cam or gear pair
-    lhs = sum((Fraction(3 - j.pair.planar_freedom, 2) * (j.order - 1) for j in chain.joints),
+    lhs = sum((Fraction(3 - chain.freedom(j), 2) * (j.order - 1) for j in chain.joints),
               Fraction(0))
     rhs = Fraction(3 * n_links, 2) - 2
     rolling = sum(1 for j in chain.joints if j.kind == "rolling")

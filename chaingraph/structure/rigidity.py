@@ -169,7 +169,7 @@ def _incidence(chain: Chain) -> tuple[dict[str, int], int, dict[int, int]]:
     merged: dict[int, int] = {}
     for j in chain.joints:
         mask = sum(1 << index[x] for x in j.links)
-        merged[mask] = merged.get(mask, 0) + d - j.pair.freedom(chain.space)
+        merged[mask] = merged.get(mask, 0) + d - chain.freedom(j)
     return index, d, merged
 
 

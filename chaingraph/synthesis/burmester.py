@@ -131,6 +131,8 @@ def _line(v) -> tuple[float, float]:
     """A unit direction turned to [0, 180) degrees (a line's, either way along it; a
     line within rounding of the x axis points along +x)."""
     u = normalised(v)
+    if u is None:
+        raise ValueError(f"the direction {v!r} is zero or not finite")
     if u[1] < -1e-12 or (abs(u[1]) <= 1e-12 and u[0] < 0):
         u = -u
     return _xy(u)
@@ -168,9 +170,9 @@ class _System:
         centre, c_way = self.world(c)
         if circle is not None and centre is not None:
             return Dyad("RR", centre, circle)
-        if circle is not None:
+        if circle is not None and c_way is not None:
             return Dyad("PR", None, circle, _line(perp(c_way)))
-        if centre is not None:
+        if centre is not None and a_way is not None:
             return Dyad("RP", centre, None, _line(perp(a_way)))
         return None
 
@@ -448,7 +450,10 @@ def _at_far(s: _System, k: int) -> Dyad | None:
     p, q = top((1.0, 0.0)), top((0.0, 1.0))
     if math.hypot(p, q) == 0:
         return None
-    a = np.append(normalised((q, -p)), 0.0)
+    way = normalised((q, -p))
+    if way is None:
+        return None
+    a = np.append(way, 0.0)
     return s.dyad(a, _kernel([b @ a for b in s.B]))
 
 
@@ -488,7 +493,8 @@ def _side_points(s: _System) -> list[Dyad]:
     # the lines through the base are e1 + t e2, with e2 towards the pole P_1m: both
     # cubics pass through that pole, so t = infinity is a root and the degree drops to 7
     far = pole(s.poses, 0, m + 1)
-    e2 = normalised(far.direction if far.at is None else np.subtract(far.at, base))
+    towards = far.direction if far.at is None else np.subtract(far.at, base)
+    e2 = None if towards is None else normalised(towards)
     if e2 is None:                           # the two poles at one point: any line will do
         e2 = np.array([1.0, 0.0])
     e1 = np.array(perp(e2))
@@ -670,6 +676,7 @@ def _dyad_joints(d: Dyad, link: str, ids: tuple[str, str]) -> tuple[Joint, ...]:
     if d.kind == "RR":
         return (Joint(fixed_id, "R", ("frame", link), at=_xy(d.centre)),
                 Joint(moving_id, "R", (link, "coupler"), at=_xy(d.circle)))
+    assert d.guide is not None                          # a slider's dyad has its guide
     axis = direction_deg(d.guide)
     if d.kind == "PR":
         return (Joint(fixed_id, "P", ("frame", link), at=_xy(d.circle), axis=axis),

@@ -18,7 +18,7 @@ there), :class:`PointTargets` (points a tracer passes through) and
 from __future__ import annotations
 
 import math
-from collections.abc import Callable
+from collections.abc import Callable, Sequence
 from dataclasses import dataclass
 
 import numpy as np
@@ -26,12 +26,12 @@ from scipy.optimize import minimize_scalar  # type: ignore[import-untyped]
 
 from chaingraph.errors import AssemblyError
 from chaingraph.files import dumps, loads
-from chaingraph.kinematics import solve
+from chaingraph.kinematics import Motion, solve
 from chaingraph.kinematics.behaviour import behaviour, four_link_loop, turning_links
 from chaingraph.model.chain import Chain
 
 __all__ = ["FunctionTargets", "PointTargets", "PoseTargets", "Certified", "Rejected",
-           "certify", "REASONS", "transmission_angles", "output_values", "reached_in_order"]
+           "certify", "Targets", "REASONS", "transmission_angles", "output_values", "reached_in_order"]
 
 #: why a candidate is not listed
 REASONS = {
@@ -119,7 +119,12 @@ class Rejected:
     detail: str = ""
 
 
-def certify(candidate: Chain, targets, *, min_transmission: float = 30.0):
+#: what a candidate is checked against
+Targets = FunctionTargets | PointTargets | PoseTargets
+
+
+def certify(candidate: Chain, targets: Targets, *,
+            min_transmission: float = 30.0) -> Certified | Rejected:
     """Write ``candidate`` as a chain file, read it back, solve it and check it.
 
     Parameters
@@ -285,7 +290,8 @@ def _refined(chain, point, target, theta, k):
     return here + float(found.x), math.sqrt(max(float(found.fun), 0.0))
 
 
-def reached_in_order(candidates, theta, full_turn):
+def reached_in_order(candidates: Sequence[Sequence[float]], theta: np.ndarray,
+                     full_turn: bool) -> list[float] | None:
     """The input values, one per target, at which the targets are met in the given
     order as the input moves one way from the first (for an input that turns fully,
     within one turn); None when there are none. ``candidates[i]`` are the input values
@@ -314,18 +320,21 @@ def reached_in_order(candidates, theta, full_turn):
     return None
 
 
-def output_values(chain, motion, output, *, near=None) -> np.ndarray:
+def output_values(chain: Chain, motion: Motion, output: str, *,
+                  near: float | None = None) -> np.ndarray:
     """A function generator's output over a solved motion: for a link turning about the
     fixed link, the angle (degrees, CCW from +x, unwrapped, within a half turn of
     ``near`` at the first row) of the line from its pivot to its other joint; for a link
     sliding on the fixed link, its other joint's position along the guide (measured from
     the origin's foot on the guide's line)."""
+    if chain.mechanism is None:
+        raise ValueError(f"{chain.name!r} has no [mechanism]: no fixed link to measure from")
     fixed = chain.mechanism.fixed
     pivot = next(j for j in chain.joints_of(output) if fixed in j.links)
     other = next(j for j in chain.joints_of(output) if j.id != pivot.id)
     x, y = motion[f"x:{other.id}"], motion[f"y:{other.id}"]
     if pivot.kind == "P":
-        a = math.radians(pivot.axis)
+        a = math.radians(pivot.axis or 0.0)      # a drawn P joint has its axis
         return x * math.cos(a) + y * math.sin(a)
     angle = np.degrees(np.unwrap(np.arctan2(y - motion[f"y:{pivot.id}"],
                                             x - motion[f"x:{pivot.id}"])))
@@ -334,7 +343,8 @@ def output_values(chain, motion, output, *, near=None) -> np.ndarray:
     return angle
 
 
-def transmission_angles(chain, motions) -> tuple[float, float] | None:
+def transmission_angles(chain: Chain,
+                        motions: Sequence[Motion]) -> tuple[float, float] | None:
     """The transmission angle's range (degrees) over the rows of ``motions``, at the
     output dyad of a four-link loop (the joint between the two links that are neither
     fixed nor the input link, a driver or the link its input joint moves): the angle
@@ -347,7 +357,7 @@ def transmission_angles(chain, motions) -> tuple[float, float] | None:
     m = chain.mechanism
     loop = four_link_loop(chain)
     lead = _input_link(chain)
-    if loop is None or lead is None:
+    if m is None or loop is None or lead is None:
         return None
     free = [x for x in loop[0] if x not in (m.fixed, lead)]
     joint = next(j for j in chain.joints if set(j.links) == set(free))

@@ -17,7 +17,7 @@ connecting link, ram) that :func:`chaingraph.solve` reproduces.
 from __future__ import annotations
 
 import math
-from dataclasses import dataclass
+from dataclasses import dataclass, field
 
 from chaingraph.errors import DesignError
 from chaingraph.model.chain import Chain, Joint, Mechanism
@@ -40,7 +40,7 @@ class Design:
     lever: float | None = None          # slotted lever: pivot to the lever's end
     lever_arm: float | None = None      # Whitworth: pivot to the connecting rod's pin
     link: float = 0.0                   # lever end to ram (the connecting link or rod)
-    mechanism: Chain | None = None
+    mechanism: Chain = field(kw_only=True)   # the mechanism built from the dimensions
 
     def to_dict(self) -> dict:
         d = {"kind": self.kind, "time_ratio": self.time_ratio, "crank": self.crank,

@@ -56,7 +56,7 @@ def parse_expression(text: str, *, kind: str = "function") -> Expression:
     >>> parse_expression("__import__('os')")
     Traceback (most recent call last):
     ...
-    chaingraph.errors.DesignError: design function: the function '__import__('os')': unknown name '__import__' at column 1 (allowed: x, pi, numbers, + - * / **, sqrt exp log log10 sin cos tan)
+    chaingraph.errors.DesignError: design function: the function "__import__('os')": unknown name '__import__' at column 1 (allowed: x, pi, numbers, + - * / **, sqrt exp log log10 sin cos tan)
     """
     def fail(problem):
         raise DesignError(f"the function {text!r}: {problem}", kind=kind,
@@ -82,9 +82,10 @@ _ALLOWED = "x, pi, numbers, + - * / **, " + " ".join(FUNCTIONS)
 def _check(node, fail):
     where = f" at column {getattr(node, 'col_offset', 0) + 1}"
     if isinstance(node, ast.Constant):
-        if isinstance(node.value, bool) or not isinstance(node.value, (int, float)):
-            fail(f"{node.value!r} is not a number{where}")
-        if not math.isfinite(float(node.value)):
+        value = node.value
+        if isinstance(value, bool) or not isinstance(value, (int, float)):
+            fail(f"{value!r} is not a number{where}")
+        elif not math.isfinite(value):
             fail(f"the number {node.value!r} is not finite{where}")
     elif isinstance(node, ast.Name):
         if node.id not in ("x", "pi"):
@@ -119,6 +120,7 @@ def _symbol(op):
 
 def _value(node, x):
     if isinstance(node, ast.Constant):
+        assert isinstance(node.value, (int, float))      # checked when it was read
         return np.full_like(x, float(node.value))
     if isinstance(node, ast.Name):
         return x if node.id == "x" else np.full_like(x, math.pi)

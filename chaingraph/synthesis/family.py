@@ -31,6 +31,7 @@ from abc import ABC, abstractmethod
 from dataclasses import dataclass
 
 import numpy as np
+import numpy.typing as npt
 
 from chaingraph.geometry import circle_circle
 from chaingraph.model.chain import Chain, Joint, Mechanism, Point
@@ -102,11 +103,11 @@ class Family(ABC):
         with np.errstate(all="ignore"):
             return s.max(axis=1) / s.min(axis=1)
 
-    def chain(self, params, *, name: str, units: str, notes: str,
+    def chain(self, params: npt.ArrayLike, *, name: str, units: str, notes: str,
               task: dict | None = None) -> Chain:
         """The mechanism of one row of parameters, drawn at its pose, its output the
         tracing point."""
-        p = [float(v) for v in params]
+        p = [float(v) for v in np.asarray(params, dtype=float)]
         joints = tuple(Joint(j.id, j.kind, j.links, at=(p[2 * k], p[2 * k + 1]))
                        for k, j in enumerate(self.template))
         return Chain(name, joints, family=self.family_name, units=units, notes=notes,
@@ -115,7 +116,7 @@ class Family(ABC):
                      task=task)
 
     @abstractmethod
-    def dimensions(self, params) -> dict[str, float]:
+    def dimensions(self, params: np.ndarray) -> dict[str, float]:
         """One mechanism's lengths (and the tracing point's place on its link) by name."""
 
 
@@ -155,25 +156,26 @@ class FourBar(Family):
         cx, cy = mx + root * nx, my + root * ny
         return (bx, by), (cx, cy), d, coupler, along, across
 
-    def positions(self, params, theta):
+    def positions(self, params: np.ndarray, theta: np.ndarray) -> tuple[np.ndarray,
+                                                                         np.ndarray]:
         (bx, by), (cx, cy), _, coupler, along, across = self._joints(params, theta)
         with np.errstate(all="ignore"):
             ex, ey = (cx - bx) / coupler, (cy - by) / coupler
         return bx + along * ex - across * ey, by + along * ey + across * ex
 
-    def transmission(self, params, theta):
+    def transmission(self, params: np.ndarray, theta: np.ndarray) -> np.ndarray:
         (bx, by), (cx, cy), d, _, _, _ = self._joints(params, theta)
         ux, uy, vx, vy = bx - cx, by - cy, d[0] - cx, d[1] - cy
         return np.degrees(np.arctan2(np.abs(ux * vy - uy * vx), ux * vx + uy * vy))
 
-    def posed(self, params, theta):
+    def posed(self, params: np.ndarray, theta: np.ndarray) -> np.ndarray:
         p = np.asarray(params, dtype=float)
         th = np.asarray(theta, dtype=float)[:, None]
         (bx, by), (cx, cy), _, _, _, _ = self._joints(p, th)
         x, y = self.positions(p, th)
         return np.concatenate([p[:, 0:2], bx, by, cx, cy, p[:, 6:8], x, y], axis=1)
 
-    def first_input(self, params):
+    def first_input(self, params: np.ndarray) -> np.ndarray:
         p = np.asarray(params, dtype=float)
         return np.arctan2(p[:, 3] - p[:, 1], p[:, 2] - p[:, 0])
 
@@ -183,7 +185,7 @@ class FourBar(Family):
         drawn = np.arctan2(p[:, 5] - p[:, 3], p[:, 4] - p[:, 2])[:, None]
         return np.arctan2(cy - by, cx - bx) - drawn
 
-    def sample(self, rng, count):
+    def sample(self, rng: np.random.Generator, count: int) -> np.ndarray:
         """Grashof crank-rockers (the crank the shortest link, so that it turns fully),
         in either assembly, at a random crank angle, the coupler point anywhere within
         about the coupler's length of it, turned and scaled so that the point's path is
@@ -215,7 +217,7 @@ class FourBar(Family):
         params = np.concatenate([a, b, c, d, pt]).T
         return _centred_unit(self, params)
 
-    def dimensions(self, params):
+    def dimensions(self, params: np.ndarray) -> dict[str, float]:
         a, d, crank, coupler, rocker, _, along, across = self._unpack(np.atleast_2d(params))
         frame = np.hypot(d[0] - a[0], d[1] - a[1])
         return {"crank": float(crank[0, 0]), "coupler": float(coupler[0, 0]),
@@ -371,7 +373,8 @@ class AtlasFamily(Family):
             motions[s.second] = _rigid(b0, m0, b, m)
         return motions
 
-    def positions(self, params, theta):
+    def positions(self, params: np.ndarray, theta: np.ndarray) -> tuple[np.ndarray,
+                                                                       np.ndarray]:
         motions = self._solve(params, theta)
         p = np.asarray(params, dtype=float)
         return _moved(motions[self.carrier], (p[:, -2][:, None], p[:, -1][:, None]))
@@ -380,7 +383,7 @@ class AtlasFamily(Family):
         c, s, _, _ = self._solve(params, theta)[self.carrier]
         return np.arctan2(s, c)
 
-    def posed(self, params, theta):
+    def posed(self, params: np.ndarray, theta: np.ndarray) -> np.ndarray:
         p = np.asarray(params, dtype=float)
         th = np.asarray(theta, dtype=float)[:, None]
         motions = self._solve(p, th)
@@ -393,7 +396,7 @@ class AtlasFamily(Family):
         out += list(_moved(motions[self.carrier], (p[:, -2][:, None], p[:, -1][:, None])))
         return np.concatenate(out, axis=1)
 
-    def transmission(self, params, theta):
+    def transmission(self, params: np.ndarray, theta: np.ndarray) -> np.ndarray:
         """The worst (farthest from 90 degrees) of the dyads' angles at their middle
         joints."""
         motions = self._solve(params, theta)
@@ -418,12 +421,12 @@ class AtlasFamily(Family):
             return np.full(np.shape(theta), 90.0)
         return worst
 
-    def first_input(self, params):
+    def first_input(self, params: np.ndarray) -> np.ndarray:
         drawn = self._drawn(params)
         a, b = (self._index[j] for j in self._reference)
         return np.arctan2(drawn[:, b, 1] - drawn[:, a, 1], drawn[:, b, 0] - drawn[:, a, 0])
 
-    def sample(self, rng, count):
+    def sample(self, rng: np.random.Generator, count: int) -> np.ndarray:
         """Random mechanisms of the chain that turn their input fully: the joints
         scattered over a unit square, the driver's other joints drawn in towards its
         pivot (a short crank), the point near the carrier's joints; those that
@@ -461,7 +464,7 @@ class AtlasFamily(Family):
         point = centre + rng.normal(0.0, 0.5, (n, 2))
         return np.concatenate([joints.reshape(n, -1), point], axis=1)
 
-    def dimensions(self, params):
+    def dimensions(self, params: np.ndarray) -> dict[str, float]:
         p = [float(v) for v in np.asarray(params).reshape(-1)]
         at = {j.id: (p[2 * k], p[2 * k + 1]) for k, j in enumerate(self.template)}
         out = {}

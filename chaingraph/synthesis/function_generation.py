@@ -30,21 +30,29 @@ from __future__ import annotations
 
 import math
 from collections import Counter
+from collections.abc import Sequence
 from dataclasses import dataclass, replace
 
 import numpy as np
+import numpy.typing as npt
 from scipy.optimize import minimize  # type: ignore[import-untyped]
 
 from chaingraph.errors import DesignError
 from chaingraph.geometry import circle_circle, circle_line
 from chaingraph.model.chain import Chain, Joint, Mechanism
 from chaingraph.naming import identify
-from chaingraph.synthesis.certification import Certified, FunctionTargets, certify
+from chaingraph.kinematics import solve
+from chaingraph.synthesis.certification import (
+    Certified,
+    FunctionTargets,
+    certify,
+    output_values,
+)
 from chaingraph.synthesis.result import Curve, Error, Searched, Solution, Synthesis, ranked
 from chaingraph.synthesis.task import FunctionTask, check_options, function_task, precision_x
 
 __all__ = ["function", "FRAME", "MAX_RATIO", "FunctionDesign", "freudenstein",
-           "slider_crank_closed_form", "design_error"]
+           "slider_crank_closed_form", "design_error", "structural_error"]
 
 #: the four-bar's frame length (file units); a function generator's size is free
 FRAME = 100.0
@@ -76,7 +84,7 @@ class FunctionDesign:
     predicted: float
 
 
-def freudenstein(theta, psi) -> np.ndarray:
+def freudenstein(theta: npt.ArrayLike, psi: npt.ArrayLike) -> np.ndarray:
     """R1, R2, R3 of Freudenstein's equation through three (theta, psi) pairs (radians,
     arrays of shape (..., 3)); NaN where the three give no unique solution.
 
@@ -103,7 +111,7 @@ def freudenstein(theta, psi) -> np.ndarray:
     return np.where(ok[..., None], r, np.nan)
 
 
-def slider_crank_closed_form(theta, s) -> np.ndarray:
+def slider_crank_closed_form(theta: npt.ArrayLike, s: npt.ArrayLike) -> np.ndarray:
     """(r, l squared, e) of the slider crank through three (theta, s) pairs (theta in
     radians, s the block's pin along the guide; arrays of shape (..., 3)); NaN where the
     three give no unique solution.
@@ -157,24 +165,26 @@ def _wrap(deg):
     return (deg + 180.0) % 360.0 - 180.0
 
 
-def design_error(task: FunctionTask, kind, lengths, start, mode, xs=None):
+def design_error(task: FunctionTask, kind: str, lengths: Sequence[npt.ArrayLike],
+                 start: Sequence[npt.ArrayLike], mode: npt.ArrayLike,
+                 xs: npt.ArrayLike | None = None) -> tuple[np.ndarray, np.ndarray]:
     """The structural error (output's units) of a design at ``xs`` (default: the
     range, densely) and its transmission angles there (degrees), by the design's closed
     form. ``lengths``, ``start`` and ``mode`` may hold one value or arrays of M designs
     (the results are then (M, len(xs)))."""
-    xs = np.linspace(*task.x, _SAMPLES) if xs is None else np.asarray(xs, dtype=float)
-    lengths = [np.asarray(v, dtype=float)[..., None] for v in lengths]
+    at = (np.linspace(task.x[0], task.x[1], _SAMPLES) if xs is None
+          else np.asarray(xs, dtype=float))
+    sizes = [np.asarray(v, dtype=float)[..., None] for v in lengths]
     first, out0 = (np.asarray(v, dtype=float)[..., None] for v in start)
-    mode = np.asarray(mode)[..., None]
-    theta = np.radians(first + task.input_at(xs))
-    wanted = out0 + task.output_at(xs)
+    modes = np.asarray(mode)[..., None]
+    theta = np.radians(first + task.input_at(at))
+    wanted = out0 + task.output_at(at)
     with np.errstate(all="ignore"):
         if kind == "four-bar":
-            got, mu = _four_bar_output(lengths[0], lengths[1], lengths[2], lengths[3],
-                                       theta, mode)
+            got, mu = _four_bar_output(sizes[0], sizes[1], sizes[2], sizes[3], theta, modes)
             err = _wrap(np.degrees(got) - wanted)
         else:
-            got, mu = _slider_output(lengths[0], lengths[1], lengths[2], theta, mode)
+            got, mu = _slider_output(sizes[0], sizes[1], sizes[2], theta, modes)
             err = got - wanted
     return err, mu
 
@@ -188,7 +198,7 @@ def _scores(task, lengths, starts, modes, xs_targets):
     at, _ = design_error(task, task.mechanism, lengths.T, starts.T, modes, xs_targets)
     reasons = np.full(len(starts), None, dtype=object)
     lo, hi = min(xs_targets[0], xs_targets[-1]), max(xs_targets[0], xs_targets[-1])
-    xs = np.linspace(*task.x, _SAMPLES)
+    xs = np.linspace(task.x[0], task.x[1], _SAMPLES)
     inside = mu[:, (xs >= lo) & (xs <= hi)]
     mt = task.min_transmission
     reasons[np.any((inside < mt) | (inside > 180 - mt), axis=1)] = "transmission angle"
@@ -204,7 +214,14 @@ def _scores(task, lengths, starts, modes, xs_targets):
 # -- three points, exactly -----------------------------------------------------------
 def _three_points(task, xs, starts):
     """Designs through the precision points ``xs`` (three) for each start (rows of
-    ``starts``, degrees): (lengths (M, 3 or 4), modes (M,), reasons (M,) or None)."""
+    ``starts``, degrees): (lengths (M, 3 or 4), starts (M, 2), modes (M,), reasons (M,)
+    or None).
+
+    A negative crank or rocker out of the equations is the link pointing the other way
+    along its line (the textbooks' reading of the sign: an angle is a line's, the sign
+    of a length says which way along it): the link's length is made positive and its
+    start turned by half a turn; the mechanism is the same."""
+    starts = np.array(starts, dtype=float)
     theta = np.radians(starts[:, :1] + task.input_at(xs)[None, :])
     out = starts[:, 1:] + task.output_at(xs)[None, :]
     reasons = np.full(len(starts), None, dtype=object)
@@ -215,29 +232,30 @@ def _three_points(task, xs, starts):
             d = FRAME
             a, c = d / r[:, 0], d / r[:, 1]
             b2 = a * a + c * c + d * d - 2 * a * c * r[:, 2]
-            lengths = np.stack([a, np.sqrt(np.abs(b2)), c, np.full_like(a, d)], axis=1)
             bx, by = a * np.cos(theta[:, 0]), a * np.sin(theta[:, 0])
             cx, cy = d + c * np.cos(psi[:, 0]), c * np.sin(psi[:, 0])
             modes = np.where((d - bx) * (cy - by) - (0 - by) * (cx - bx) >= 0, 1, -1)
-            negative = (a <= 0) | (c <= 0)
+            starts[:, 0] += np.where(a < 0, 180.0, 0.0)
+            starts[:, 1] += np.where(c < 0, 180.0, 0.0)
+            lengths = np.stack([np.abs(a), np.sqrt(np.abs(b2)), np.abs(c),
+                                np.full_like(a, d)], axis=1)
             impossible = b2 <= 0
         else:
             k = slider_crank_closed_form(theta, out)
             r, l2, e = k[:, 0], k[:, 1], k[:, 2]
-            lengths = np.stack([r, np.sqrt(np.abs(l2)), e], axis=1)
             foot = r * np.cos(theta[:, 0])
             modes = np.where(out[:, 0] - foot >= 0, 1, -1)
-            negative = r <= 0
+            starts[:, 0] += np.where(r < 0, 180.0, 0.0)
+            lengths = np.stack([np.abs(r), np.sqrt(np.abs(l2)), e], axis=1)
             impossible = l2 <= 0
     singular = ~np.all(np.isfinite(lengths), axis=1)
     reasons[impossible] = "impossible length"
-    reasons[negative] = "negative length"
     reasons[singular] = "singular"
     positive = np.abs(lengths[:, :4 if task.mechanism == "four-bar" else 2])
     with np.errstate(all="ignore"):
         ratio = positive.max(axis=1) / positive.min(axis=1)
     reasons[(reasons == None) & ~(ratio <= MAX_RATIO)] = "link ratio"  # noqa: E711
-    return lengths, modes, reasons
+    return lengths, starts, modes, reasons
 
 
 def _grid_starts(task):
@@ -253,7 +271,7 @@ def _designs_at(task, starts, rejected):
     """Three-point designs at Chebyshev's (or the task's) points for each start, the
     failures counted in ``rejected``; [(predicted, FunctionDesign)] in the grid's order."""
     xs = task.precision_x() if task.points == 3 else precision_x(task.x, 3, "chebyshev")
-    lengths, modes, reasons = _three_points(task, xs, starts)
+    lengths, starts, modes, reasons = _three_points(task, xs, starts)
     ok = reasons == None  # noqa: E711
     score, why = _scores(task, lengths[ok], starts[ok], modes[ok], task.precision_x())
     reasons[ok] = why
@@ -278,7 +296,7 @@ def _refine_start(task, design):
     for _ in range(_ZOOMS):
         starts = np.array([(best.start[0] + u * step[0], best.start[1] + v * step[1])
                            for u in offsets for v in offsets])
-        lengths, modes, reasons = _three_points(task, xs, starts)
+        lengths, starts, modes, reasons = _three_points(task, xs, starts)
         ok = (reasons == None) & (modes == best.mode)  # noqa: E711
         if ok.any():
             score, _ = _scores(task, lengths[ok], starts[ok], modes[ok], xs)
@@ -302,17 +320,16 @@ def _minimax_fit(task, seed):
     free_start = task.start is None
     xs = task.precision_x()
     lo, hi = min(xs[0], xs[-1]), max(xs[0], xs[-1])
-    grid = np.linspace(*task.x, _FITTED)
+    grid = np.linspace(task.x[0], task.x[1], _FITTED)
     inside = np.zeros(grid.size, dtype=bool)
     inside[::4] = True                 # the transmission angle, more coarsely
     inside &= (grid >= lo) & (grid <= hi)
     mt = task.min_transmission
 
     def unpack(p):
-        if four:
-            lengths = (float(np.exp(np.clip(p[0], -30.0, 30.0))), float(np.exp(np.clip(p[1], -30.0, 30.0))), float(np.exp(np.clip(p[2], -30.0, 30.0))), FRAME)
-        else:
-            lengths = (float(np.exp(np.clip(p[0], -30.0, 30.0))) * scale, float(np.exp(np.clip(p[1], -30.0, 30.0))) * scale, p[2] * scale)
+        size = [float(np.exp(np.clip(v, -30.0, 30.0))) for v in p[:3]]
+        lengths: tuple[float, ...] = ((size[0], size[1], size[2], FRAME) if four else
+                                      (size[0] * scale, size[1] * scale, float(p[2]) * scale))
         start = ((p[3], p[4] * scale) if free_start else task.start)
         return lengths, start
 
@@ -379,7 +396,7 @@ def _distinct(designs, limit, *, apart=None):
     """The designs, near-repeats dropped (the same mode and lengths within 1e-3, or,
     with ``apart``, starts closer than that in degrees or in the output's units); the
     first ``limit`` of them."""
-    out = []
+    out: list[FunctionDesign] = []
     for dsg in designs:
         if apart is not None:
             same = [o for o in out if o.mode == dsg.mode and abs(_wrap(
@@ -475,7 +492,8 @@ def _solution(task, design, certified: Certified):
                     certified.input, _names(certified.chain), None, curve, dimensions)
 
 
-def function(*, function: str, x, swing, start=None, points: int = 3,
+def function(*, function: str, x: tuple[float, float], swing: tuple[float, float],
+             start: tuple[float, float] | None = None, points: int = 3,
              spacing: str = "chebyshev", kind: str = "four-bar", solutions: int = 5,
              units: str = "mm", min_transmission: float = 30.0) -> Synthesis:
     """Synthesise a function generator: a four-bar (input crank, output rocker) or a
@@ -520,10 +538,16 @@ def function(*, function: str, x, swing, start=None, points: int = 3,
 
     Examples
     --------
-    >>> s = function(function="log10(x)", x=(1, 2), swing=(60, 90), start=(45, 135))
+    The textbooks' task, from their starting angles (a least transmission angle of
+    25.8 degrees: below the default bound):
+
+    >>> s = function(function="log10(x)", x=(1, 2), swing=(60, 90), start=(45, 135),
+    ...              min_transmission=25)
     >>> best = s.solutions[0]
     >>> best.mechanism.mechanism.output, best.input, len(best.reached_at)
     ('rocker', 'rocks', 3)
+    >>> [round(best.dimensions[k] / 100, 4) for k in ("crank", "coupler", "rocker")]
+    [1.8509, 2.868, 1.9205]
     """
     task = function_task(function=function, x=x, swing=swing, start=start, points=points,
                          spacing=spacing, kind=kind, units=units,
@@ -545,3 +569,47 @@ def function(*, function: str, x, swing, start=None, points: int = 3,
             rejected[result.reason] += 1
     return Synthesis(task, ranked(found, solutions), dict(sorted(rejected.items())),
                      Searched(1, 1, tried))
+
+
+def structural_error(chain: Chain, *, steps: int = 720) -> Curve:
+    """A function generator's structural error over its task's range, from its file:
+    the chain (as ``design function --out`` writes it, with its ``[task]``: ``function``,
+    ``x``, ``swing``, the ``start`` chosen, ``precision_x``) solved by chaingraph's
+    solver over the input's swing, its output set against the task's, in the output's
+    units; the precision points marked.
+
+    Raises
+    ------
+    DesignError
+        A chain whose ``[task]`` is not a function generator's, or is not a good task.
+
+    Examples
+    --------
+    >>> from chaingraph.naming.catalog import catalog_path
+    >>> import chaingraph
+    >>> c = structural_error(chaingraph.load(catalog_path("log10-function-generator")))
+    >>> round(float(abs(c.y).max()), 4), [round(v, 3) for v in c.marks]
+    (0.0901, [1.067, 1.5, 1.933])
+    """
+    table = chain.task or {}
+    if table.get("kind") != "function" or "start" not in table or chain.mechanism is None \
+            or chain.mechanism.output is None:
+        raise DesignError(f"{chain.name!r} has no function generator's [task] (kind, "
+                          "function, x, swing, start) and output", kind="function",
+                          parameter="task")
+    task = function_task(function=table.get("function", ""), x=table.get("x", ()),
+                         swing=table.get("swing", ()), start=table["start"],
+                         points=int(table.get("points", 3)),   # TOML writes 3.0
+                         spacing=table.get("spacing", "chebyshev"),
+                         kind=table.get("mechanism", "four-bar"))
+    assert task.start is not None
+    t0, o0 = task.start
+    motion = solve(chain, start=t0, stop=t0 + task.swing[0], steps=steps, summary=False)
+    a, b = task.x
+    x = a + (motion["theta"] - t0) / task.swing[0] * (b - a)
+    wanted = o0 + task.output_at(x)
+    got = output_values(chain, motion, chain.mechanism.output, near=float(wanted[0]))
+    unit = "degrees" if task.mechanism == "four-bar" else (chain.units or "file units")
+    marks = table.get("precision_x") or [float(v) for v in task.precision_x()]
+    return Curve(np.asarray(x, dtype=float), np.asarray(got - wanted, dtype=float), "x",
+                 f"structural error ({unit})", tuple(float(v) for v in marks))

@@ -44,7 +44,7 @@ from __future__ import annotations
 
 import math
 from collections import Counter
-from collections.abc import Sequence
+from collections.abc import Iterable, Sequence
 from dataclasses import replace
 
 import numpy as np
@@ -63,7 +63,7 @@ from chaingraph.synthesis.burmester import (
     dyad_inputs,
     mechanism,
 )
-from chaingraph.synthesis.certification import Certified, PoseTargets, certify
+from chaingraph.synthesis.certification import Certified, PoseTargets, Rejected, certify
 from chaingraph.synthesis.function_generation import MAX_RATIO
 from chaingraph.synthesis.poses import inverted, moved, pole, task_size
 from chaingraph.synthesis.result import Curve, Error, Searched, Solution, Synthesis, ranked
@@ -500,6 +500,7 @@ def _certified(task, poses, dyads, candidate, rejected):
                         min_transmission=task.min_transmission)
         if isinstance(found, Certified):
             return _solution(found)
+    assert isinstance(found, Rejected)
     rejected[found.reason] += 1
     return None
 
@@ -516,11 +517,11 @@ def _solution(found: Certified) -> Solution:
 
 def _extent(s: Solution, size: float) -> float:
     pts = [j.at for j in s.mechanism.joints if j.at is not None]
-    centre = np.mean([p.at for p in s.mechanism.points], axis=0)
+    centre = np.mean([p.at for p in s.mechanism.points if p.at is not None], axis=0)
     return max(math.dist(p, centre) for p in pts) / size
 
 
-def motion(*, poses, solutions: int = 5, units: str = "mm", min_transmission: float = 30.0,
+def motion(*, poses: Iterable[tuple[float, float, float]], solutions: int = 5, units: str = "mm", min_transmission: float = 30.0,
            circle_points: Sequence[Sequence[float]] | None = None) -> Synthesis:
     """Synthesise a motion generator: a four-bar or a slider crank whose coupler passes
     through the poses in order.

@@ -26,8 +26,10 @@ from __future__ import annotations
 
 import math
 from dataclasses import dataclass
+from typing import Literal, overload
 
 import numpy as np
+import numpy.typing as npt
 from scipy.optimize import differential_evolution, least_squares  # type: ignore[import-untyped]
 
 from chaingraph.synthesis.family import Family
@@ -51,7 +53,7 @@ class TaskFrame:
     scale: float
 
     @classmethod
-    def of(cls, points) -> "TaskFrame":
+    def of(cls, points: npt.ArrayLike) -> "TaskFrame":
         """The targets' frame: centroid, first-to-second direction, largest distance."""
         p = np.asarray(points, dtype=float)
         c = p.mean(axis=0)
@@ -59,13 +61,13 @@ class TaskFrame:
         size = float(np.max(np.hypot(*(p[:, None, :] - p[None, :, :]).transpose(2, 0, 1))))
         return cls((float(c[0]), float(c[1])), math.atan2(d[1], d[0]), size)
 
-    def to_task(self, points) -> np.ndarray:
+    def to_task(self, points: npt.ArrayLike) -> np.ndarray:
         p = np.asarray(points, dtype=float).reshape(-1, 2) - self.origin
         c, s = math.cos(self.angle), math.sin(self.angle)
         return np.stack([c * p[:, 0] + s * p[:, 1], -s * p[:, 0] + c * p[:, 1]],
                         axis=1) / self.scale
 
-    def to_world(self, params) -> np.ndarray:
+    def to_world(self, params: npt.ArrayLike) -> np.ndarray:
         """Parameters (x, y pairs) of the task's frame in the world."""
         p = np.asarray(params, dtype=float)
         pts = p.reshape(-1, 2) * self.scale
@@ -74,12 +76,13 @@ class TaskFrame:
                         s * pts[:, 0] + c * pts[:, 1] + self.origin[1]], axis=1)
         return out.reshape(p.shape)
 
-    def input_to_world(self, theta):
+    def input_to_world(self, theta: npt.ArrayLike) -> np.ndarray:
         """An input angle (radians) of the task's frame in the world."""
         return np.asarray(theta) + self.angle
 
 
-def curve(family: Family, params, steps: int):
+def curve(family: Family, params: npt.ArrayLike,
+          steps: int) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
     """The tracing point's path over one turn of the input from the drawn pose:
     ``theta`` (M, steps), ``x``, ``y`` (NaN where unassembled)."""
     params = np.atleast_2d(params)
@@ -104,7 +107,21 @@ def _segment_distances(x, y, targets):
     return dx * dx + dy * dy, u
 
 
-def ordered_distance(x, y, targets, *, assign: bool = False, timed=None):
+@overload
+def ordered_distance(x: np.ndarray, y: np.ndarray, targets: np.ndarray, *,
+                     assign: Literal[False] = False,
+                     timed: npt.ArrayLike | None = None) -> np.ndarray: ...
+
+
+@overload
+def ordered_distance(x: np.ndarray, y: np.ndarray, targets: np.ndarray, *,
+                     assign: Literal[True], timed: npt.ArrayLike | None = None,
+                     ) -> tuple[np.ndarray, np.ndarray, np.ndarray]: ...
+
+
+def ordered_distance(x: np.ndarray, y: np.ndarray, targets: np.ndarray, *,
+                     assign: bool = False, timed: npt.ArrayLike | None = None,
+                     ) -> np.ndarray | tuple[np.ndarray, np.ndarray, np.ndarray]:
     """The in-order distance from the targets to each traced path (module docstring).
 
     Parameters
@@ -178,8 +195,9 @@ def _running_argmin(cost):
     return idx
 
 
-def objective(family: Family, params, targets, *, steps: int, min_transmission: float,
-              timing=None, turns=None) -> np.ndarray:
+def objective(family: Family, params: npt.ArrayLike, targets: np.ndarray, *, steps: int,
+              min_transmission: float, timing: npt.ArrayLike | None = None,
+              turns: npt.ArrayLike | None = None) -> np.ndarray:
     """The in-order rms distance from the targets to each mechanism's path (task units),
     plus penalties: an input that cannot turn fully (:data:`_BIG` and the share of the
     turn unassembled), a transmission angle out of ``[min, 180 - min]`` over the turn
@@ -223,9 +241,10 @@ def wrapped(angle: np.ndarray | float) -> np.ndarray:
     return (np.asarray(angle) + math.pi) % (2 * math.pi) - math.pi
 
 
-def coarse_search(family: Family, targets, rng: np.random.Generator, *, count: int,
-                  keep: int, steps: int, min_transmission: float, timing=None,
-                  turns=None):
+def coarse_search(family: Family, targets: np.ndarray, rng: np.random.Generator, *,
+                  count: int, keep: int, steps: int, min_transmission: float,
+                  timing: npt.ArrayLike | None = None,
+                  turns: npt.ArrayLike | None = None) -> tuple[np.ndarray, np.ndarray]:
     """``count`` random mechanisms of the family placed on the task (turned at random,
     scaled to 0.7 to 1.5 times its size, moved so that their path's centre is near the
     targets'), the ``keep`` best by :func:`objective`: (params (keep, size), scores)."""
@@ -251,8 +270,10 @@ def coarse_search(family: Family, targets, rng: np.random.Generator, *, count: i
     return params[best], score[best]
 
 
-def global_search(family: Family, targets, seeds, rng: np.random.Generator, *, steps: int,
-                  min_transmission: float, timing=None, generations: int = 100):
+def global_search(family: Family, targets: np.ndarray, seeds: npt.ArrayLike,
+                  rng: np.random.Generator, *, steps: int, min_transmission: float,
+                  timing: npt.ArrayLike | None = None,
+                  generations: int = 100) -> tuple[np.ndarray, float]:
     """Differential evolution on :func:`objective` from the population ``seeds`` (rows of
     parameters; at least five), within a box about them; the best parameters found."""
     seeds = np.asarray(seeds, dtype=float)
@@ -279,9 +300,11 @@ class Fit:
     residual: float
 
 
-def least_squares_fit(family: Family, targets, params, inputs, *, timing=None,
+def least_squares_fit(family: Family, targets: npt.ArrayLike, params: np.ndarray,
+                      inputs: npt.ArrayLike, *, timing: npt.ArrayLike | None = None,
                       exact: bool, min_transmission: float | None = None,
-                      closed: bool = False, turns=None) -> Fit | None:
+                      closed: bool = False,
+                      turns: npt.ArrayLike | None = None) -> Fit | None:
     """Solve ``position(params, theta_i) = target_i`` by least squares from ``params``
     and ``inputs`` (radians at each target, running one way; the first is the drawn
     pose's); to rounding when ``exact`` (else the least squares of the distances). The
@@ -307,7 +330,7 @@ def least_squares_fit(family: Family, targets, params, inputs, *, timing=None,
         if free_inputs:
             ahead = way * np.cumsum(np.exp(np.clip(z[:, size:], -30.0, 3.0)), axis=1)
         else:
-            ahead = np.asarray(timing[1:])[None, :]
+            ahead = np.asarray(timing)[None, 1:]
         th = np.concatenate([first, first + ahead], axis=1)
         x, y = family.positions(p, th)
         r = np.stack([x - targets[:, 0], y - targets[:, 1]], axis=2).reshape(len(z), -1)
@@ -387,7 +410,8 @@ def _penalties(family, params, inputs, min_transmission, closed, samples: int = 
     return np.concatenate([ratio, np.where(np.isfinite(excess), excess, 1.0)], axis=1)
 
 
-def fit_start(family: Family, params, targets, *, steps: int, timing=None):
+def fit_start(family: Family, params: npt.ArrayLike, targets: np.ndarray, *, steps: int,
+              timing: npt.ArrayLike | None = None) -> tuple[np.ndarray, np.ndarray]:
     """Where least squares starts from each mechanism (rows of ``params``): the
     mechanism drawn where its path meets the first target (in order, by
     :func:`ordered_distance`), and the input there and at every other target (radians,

@@ -30,6 +30,7 @@ recomputed: the largest and rms distance from the targets to the solved path).
 from __future__ import annotations
 
 from collections import Counter
+from collections.abc import Iterable
 from dataclasses import dataclass
 from typing import Any
 
@@ -64,7 +65,8 @@ _CERTIFIED = 3                           # candidates certified per solution ask
 _TIMING = 1e-6                           # degrees: a target's input against its timing
 
 
-def path(*, points, timing=None, closed: bool = False, kind: str = "four-bar",
+def path(*, points: Iterable[tuple[float, float]],
+         timing: Iterable[float] | None = None, closed: bool = False, kind: str = "four-bar",
          solutions: int = 5, seed: int | None = None, units: str = "mm",
          min_transmission: float = 30.0) -> Synthesis:
     """Synthesise a path generator: a four-bar whose coupler point passes through

@@ -170,7 +170,9 @@ def pole(poses: Sequence[Pose], i: int, j: int) -> Pole:
     theta = math.remainder(poses[j][2] - poses[i][2], 2 * math.pi)
     d = (poses[j][0] - poses[i][0], poses[j][1] - poses[i][1])
     if abs(theta) * AT_INFINITY < 1 and (d[0] or d[1]):
-        way = normalised(perp(d)) * (-1.0 if theta < 0 else 1.0)
+        square = normalised(perp(d))
+        assert square is not None                       # d is not zero
+        way = square * (-1.0 if theta < 0 else 1.0)
         return Pole((i, j), theta, None, (float(way[0]), float(way[1])))
     if theta == 0:
         raise DesignError(f"poses {i + 1} and {j + 1} are the same pose: they have no pole",

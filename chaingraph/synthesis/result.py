@@ -8,12 +8,14 @@ design function | path | motion --json`` (the contract's "Synthesis").
 from __future__ import annotations
 
 from dataclasses import dataclass, field
+from collections.abc import Callable, Iterable
 from typing import Any
 
 import numpy as np
 
 from chaingraph.model.chain import Chain
 from chaingraph.model.chainfile import chain_document
+from chaingraph.synthesis.task import FunctionTask, MotionTask, PathTask
 
 __all__ = ["Error", "Curve", "Solution", "Searched", "Synthesis", "ranked"]
 
@@ -29,7 +31,7 @@ class Error:
     angle: float | None = None
 
     def to_dict(self) -> dict:
-        out = {"max": self.max, "rms": self.rms}
+        out: dict[str, float] = {"max": self.max, "rms": self.rms}
         if self.angle is not None:
             out["angle_error"] = self.angle
         return out
@@ -98,7 +100,7 @@ class Synthesis:
     """A synthesis: its ``task``, the certified ``solutions`` best first, the
     ``rejected`` candidates counted by reason, and what was ``searched``."""
 
-    task: Any
+    task: FunctionTask | PathTask | MotionTask
     solutions: tuple[Solution, ...]
     rejected: dict[str, int]
     searched: Searched
@@ -109,14 +111,14 @@ class Synthesis:
                 "solutions": [s.to_dict() for s in self.solutions],
                 "rejected": dict(self.rejected), "searched": self.searched.to_dict()}
 
-    def __repr__(self):
+    def __repr__(self) -> str:
         best = (f", best error {self.solutions[0].error.max:.4g}" if self.solutions else "")
         return (f"Synthesis({self.task.kind}, {len(self.solutions)} solutions{best}, "
                 f"rejected={dict(self.rejected)})")
 
 
-def ranked(solutions, limit: int, *, tolerance: float = 0.0,
-           key=None) -> tuple[Solution, ...]:
+def ranked(solutions: Iterable[Solution], limit: int, *, tolerance: float = 0.0,
+           key: Callable[[Solution], Any] | None = None) -> tuple[Solution, ...]:
     """Best first (smallest error, then largest least transmission angle; or by
     ``key``, a sort key of a solution, that refines this order), ranked 1, 2... and cut
     to ``limit``; errors within ``tolerance`` count as equal (every exact solution's

@@ -12,11 +12,12 @@ from y(A) to y(B), both linearly. Every bad task raises one
 from __future__ import annotations
 
 import math
-from collections.abc import Sequence
+from collections.abc import Iterable, Sequence
 from dataclasses import dataclass
 from functools import cached_property
 
 import numpy as np
+import numpy.typing as npt
 
 from chaingraph.errors import DesignError
 from chaingraph.model.values import LARGEST
@@ -63,12 +64,12 @@ class FunctionTask:
         a, b = self.x
         return float(self.function(a)), float(self.function(b))
 
-    def input_at(self, x) -> np.ndarray:
+    def input_at(self, x: npt.ArrayLike) -> np.ndarray:
         """The input's turn from its start (degrees) at x."""
         a, b = self.x
         return self.swing[0] * (np.asarray(x, dtype=float) - a) / (b - a)
 
-    def output_at(self, x) -> np.ndarray:
+    def output_at(self, x: npt.ArrayLike) -> np.ndarray:
         """The output's move from its start (degrees, or file units for a slide) where
         the function is y(x), as the task asks it."""
         ya, yb = self.y_range
@@ -88,7 +89,7 @@ class FunctionTask:
                 "min_transmission": self.min_transmission}
 
 
-def precision_x(x_range, n: int, spacing: str) -> np.ndarray:
+def precision_x(x_range: tuple[float, float], n: int, spacing: str) -> np.ndarray:
     """n precision points over ``x_range``: Chebyshev's (the roots of the n-th Chebyshev
     polynomial mapped onto the range, which minimise the largest interpolation error of
     a smooth function), or evenly spaced, both ends included.
@@ -131,7 +132,7 @@ def _pair(value, parameter, names, kind):
             _number(second, parameter, f"{parameter}'s {names[1]}", kind))
 
 
-def check_options(*, solutions, min_transmission, units, kind):
+def check_options(*, solutions: int, min_transmission: float, units: str, kind: str) -> float:
     """The options every synthesis takes: ``solutions`` (how many to list, 1 or more),
     ``min_transmission`` (degrees, 0 up to but not 90) and ``units``."""
     if isinstance(solutions, bool) or not isinstance(solutions, int) or solutions < 1:
@@ -148,8 +149,10 @@ def check_options(*, solutions, min_transmission, units, kind):
     return mt
 
 
-def function_task(*, function, x, swing, start=None, points=3, spacing="chebyshev",
-                  kind="four-bar", units="mm", min_transmission=30.0) -> FunctionTask:
+def function_task(*, function: str | Expression, x: tuple[float, float],
+                  swing: tuple[float, float], start: tuple[float, float] | None = None,
+                  points: int = 3, spacing: str = "chebyshev", kind: str = "four-bar",
+                  units: str = "mm", min_transmission: float = 30.0) -> FunctionTask:
     """Check a function generator's task (see :func:`chaingraph.synthesis.function`)."""
     what = "function"
     if kind not in FUNCTION_KINDS:
@@ -252,8 +255,9 @@ class PathTask:
                 "units": self.units, "min_transmission": self.min_transmission}
 
 
-def path_task(*, points, timing=None, closed=False, kind="four-bar", seed=None,
-              units="mm", min_transmission=30.0) -> PathTask:
+def path_task(*, points: Iterable[tuple[float, float]], timing: Iterable[float] | None = None,
+              closed: bool = False, kind: str = "four-bar", seed: int | None = None,
+              units: str = "mm", min_transmission: float = 30.0) -> PathTask:
     """Check a path generator's task (see :func:`chaingraph.synthesis.path`)."""
     what = "path"
     if kind not in PATH_KINDS:
@@ -358,7 +362,7 @@ class MotionTask:
         return out
 
 
-def motion_task(*, poses: Sequence[Sequence[float]], units: str = "mm",
+def motion_task(*, poses: Iterable[Sequence[float]], units: str = "mm",
                 min_transmission: float = 30.0, seed: int | None = None) -> MotionTask:
     """Check a motion generator's task (see :func:`chaingraph.synthesis.motion`): 2 to 5
     poses of three finite numbers (x, y, degrees), no two the same."""
@@ -373,15 +377,16 @@ def motion_task(*, poses: Sequence[Sequence[float]], units: str = "mm",
     except TypeError:
         raise DesignError(f"poses must be a sequence of (x, y, degrees), got {poses!r}",
                           kind=what, parameter="poses") from None
-    out = []
+    out: list[tuple[float, float, float]] = []
     for n, pose in enumerate(given, 1):
         try:
             x, y, a = pose
         except (TypeError, ValueError):
             raise DesignError(f"pose {n} must be three numbers (x, y, degrees), got "
                               f"{pose!r}", kind=what, parameter="poses") from None
-        out.append(tuple(_number(v, "poses", f"pose {n}'s {name}", what)
-                         for v, name in zip((x, y, a), ("x", "y", "angle"))))
+        out.append((_number(x, "poses", f"pose {n}'s x", what),
+                    _number(y, "poses", f"pose {n}'s y", what),
+                    _number(a, "poses", f"pose {n}'s angle", what)))
     if len(out) not in POSE_COUNTS:
         raise DesignError(f"motion generation needs {POSE_COUNTS[0]} to {POSE_COUNTS[-1]} "
                           f"poses, got {len(out)}", kind=what, parameter="poses")

@@ -30,7 +30,7 @@ workers ran it.
 from __future__ import annotations
 
 from collections import Counter
-from collections.abc import Callable, Sequence
+from collections.abc import Callable, Iterable, Sequence
 from dataclasses import dataclass, replace
 from typing import Any
 
@@ -106,7 +106,7 @@ class Space:
     choices: tuple[Choice, ...]
 
 
-def check_links(links, prismatic, *, kind: str) -> None:
+def check_links(links: object, prismatic: object, *, kind: str) -> None:
     """Refuse a number of links not in :data:`LINKS` (and a ``prismatic`` that is not a
     whole number 0 or more, or "all")."""
     if isinstance(links, bool) or links not in LINKS:
@@ -206,7 +206,8 @@ def search_family(job: _Job) -> tuple[list[Solution], dict[str, int], int]:
     return out, dict(found.rejected), budget.samples
 
 
-def path(*, points, timing=None, closed: bool = False, kind: str = "four-bar",
+def path(*, points: Iterable[tuple[float, float]], timing: Iterable[float] | None = None,
+         closed: bool = False, kind: str = "four-bar",
          solutions: int = 5, seed: int | None = None, units: str = "mm",
          min_transmission: float = 30.0, links: int = 4,
          prismatic: int | str | None = None, runner: Runner | None = None,
@@ -245,7 +246,7 @@ def path(*, points, timing=None, closed: bool = False, kind: str = "four-bar",
                       runner=runner, triads=triads)
 
 
-def motion(*, poses: Sequence[Sequence[float]], solutions: int = 5, units: str = "mm",
+def motion(*, poses: Iterable[tuple[float, float, float]], solutions: int = 5, units: str = "mm",
            min_transmission: float = 30.0,
            circle_points: Sequence[Sequence[float]] | None = None, links: int = 4, prismatic: int | str | None = None,
            seed: int | None = None, runner: Runner | None = None,

@@ -214,3 +214,24 @@ def test_the_svg_and_the_matplotlib_picture_are_one_scene(name):
         at = (motion[f"x:{joint}"][0], motion[f"y:{joint}"][0])
         assert math.dist(s.points[0], at) <= 1e-9 * motion.plan.size
         assert any(math.dist(c.center, at) <= 1e-9 * motion.plan.size for c in circles)
+
+
+def test_the_scene_of_a_sweep_is_the_scene_of_each_of_its_poses():
+    """The scene reads the motion's typed fields (positions, the guides' angles in
+    radians, the slides): at every step it is the scene of that one pose, solved alone."""
+    import numpy as np
+
+    from chaingraph.drawing.scene import Scene
+    from chaingraph.kinematics.pose import pose_motion
+    chain = chaingraph.load(catalog_path("shaper-crank-and-slotted-lever"))
+    motion = chaingraph.solve(chain, steps=8)
+    sweep = Scene.of_motion(motion)
+    for k in (0, 3, 8):
+        one = Scene.of_pose(pose_motion(chain, at=motion.input_values(k)))
+        for name, (x, y) in one.xy.items():
+            assert (sweep.xy[name][0][k], sweep.xy[name][1][k]) == pytest.approx(
+                (x[0], y[0]), abs=1e-9)
+        for j in ("S", "G"):
+            turn = np.remainder(sweep.angle[j][k] - one.angle[j][0] + math.pi, 2 * math.pi)
+            assert turn - math.pi == pytest.approx(0.0, abs=1e-12)
+            assert sweep.slide[j][k] == pytest.approx(one.slide[j][0], abs=1e-9)

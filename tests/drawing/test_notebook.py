@@ -59,6 +59,9 @@ def _registered():
         def for_type(self, cls, fn):
             self[cls] = fn
 
+        def for_type_by_name(self, module, name, fn):
+            self[f"{module}.{name}"] = fn
+
     class Shell:
         class display_formatter:
             formatters = {"text/html": Formatter(), "image/svg+xml": Formatter()}
@@ -76,6 +79,43 @@ def test_rich_displays_are_valid(watt):
         assert well_formed_html(html[type(result)](result))
     page = html[type(motion)](motion)
     assert "<svg" in page and "time ratio" in page
+
+
+def test_a_synthesis_shows_its_solutions_and_the_best_one_drawn():
+    """Registered by its module and name (``import chaingraph`` does not load synthesis):
+    a table of the solutions, best first, and the best one's drawing with its
+    structural error."""
+    from chaingraph.synthesis import Synthesis, function
+    found = function(function="log10(x)", x=(1, 2), swing=(60, 90), solutions=3)
+    key = f"{Synthesis.__module__}.{Synthesis.__name__}"
+    assert key == "chaingraph.synthesis.result.Synthesis"
+    page = _registered()["text/html"][key](found)
+    assert well_formed_html(page)
+    rows = page.split("<table>")[1].split("</table>")[0].count("<tr>")
+    assert rows == 1 + len(found.solutions) >= 2              # a header and each solution
+    best = found.solutions[0]
+    assert f"{best.error.max:.6g}" in page and "crank" in page
+    assert page.index(f"{best.error.max:.6g}") < page.index(
+        f"{found.solutions[1].error.max:.6g}")                  # best first
+    svg = page[page.index("<svg"):page.index("</svg>") + 6]
+    xml.dom.minidom.parseString(svg)
+    assert "structural error" in svg and "precision points" in svg
+    assert "Rejected:" in page and f"{found.searched.candidates} candidates" in page
+
+
+def test_the_synthesis_display_is_registered_with_ipython_by_name():
+    """With a real IPython shell: the formatter holds the display by module and name, and
+    uses it for a synthesis once its module is loaded."""
+    from IPython.core.formatters import HTMLFormatter          # the notebook extra's
+    from chaingraph.synthesis import motion
+
+    class Shell:
+        class display_formatter:
+            formatters = {"text/html": HTMLFormatter(), "image/svg+xml": HTMLFormatter()}
+    assert register(chaingraph.RESULTS, Shell())
+    found = motion(poses=[(0, 0, 0), (40, 10, -25)], solutions=1)
+    page = Shell.display_formatter.formatters["text/html"](found)
+    assert page is not None and well_formed_html(page) and "<svg" in page
 
 
 def test_without_ipython_nothing_is_registered():

@@ -588,3 +588,92 @@ def test_forces_of_a_chain_the_solver_refuses_and_the_frame_of_a_sweep(tmp_path)
     import pandas                     # the test extra installs it
     frame = chaingraph.forces(engine(), steps=8).to_frame()
     assert isinstance(frame, pandas.DataFrame) and list(frame.columns)[-1] == "effort:O"
+
+
+# -- issue 36: the solved state taken as it is; typed arrays, the CSV a view -------------
+def _count_pose_solves(monkeypatch):
+    """Count the evaluations the pose solver is asked for (every path of the kinematics
+    goes through tracking.evaluate, which sweep.py calls)."""
+    import chaingraph.kinematics.sweep as sweep
+    calls = []
+    evaluate = sweep.evaluate
+
+    def counted(*args, **kwargs):
+        calls.append(args[1])
+        return evaluate(*args, **kwargs)
+    monkeypatch.setattr(sweep, "evaluate", counted)
+    return calls
+
+
+@pytest.mark.parametrize("at, inputs", [(60.0, None), (-20.0, ["S"])])
+def test_forces_at_one_value_solves_its_pose_once(monkeypatch, at, inputs):
+    chain = replace(chaingraph.load(catalog_path("reciprocating-engine")), name="once")
+    calls = _count_pose_solves(monkeypatch)
+    f = chaingraph.forces(chain, at=at, inputs=inputs)
+    # one evaluation continued from the drawn pose to the value asked for (the anchor,
+    # the drawn pose itself, needs none for this chain of dyads)
+    assert len(calls) == 1 and f.at == (at,)
+    # and the forces are those of that pose: the crank's effort balances the power
+    assert f.power_balance == pytest.approx(0.0, abs=1e-9)
+
+
+def test_the_command_line_draws_the_free_bodies_without_solving_again(monkeypatch, tmp_path):
+    path = catalog_path("reciprocating-engine")
+    chaingraph.forces(chaingraph.load(path), steps=12)   # its plan and cycle cached
+    calls = _count_pose_solves(monkeypatch)
+    assert run_cli("forces", path, "--at", "60", "--draw", tmp_path / "a.svg",
+                   "--polygon", tmp_path / "p.svg")[0] == 0
+    assert len(calls) == 1                               # the pose, solved once
+    del calls[:]
+    chaingraph.forces(chaingraph.load(path), steps=12)
+    swept = len(calls)                  # its steps, and its summary's grid
+    del calls[:]
+    assert run_cli("forces", path, "--steps", "12", "--draw", tmp_path / "b.svg",
+                   "--polygon", tmp_path / "q.svg")[0] == 0
+    # the sweep's own evaluations, and nothing more for the drawings of its first pose
+    assert len(calls) == swept >= 1 and len(calls[0]) >= 13
+    assert "<svg" in (tmp_path / "b.svg").read_text()
+
+
+def test_a_sweep_s_pose_is_the_pose_forces_at_that_step():
+    chain = chaingraph.load(catalog_path("shaper-crank-and-slotted-lever"))
+    sweep = chaingraph.forces(chain, steps=24, omega=5.0)
+    for k in (0, 7, 24):
+        from_sweep, solved = sweep.pose(k), chaingraph.forces(
+            chain, at=sweep.motion.input_values(k), omega=5.0)
+        assert from_sweep.at == solved.at and from_sweep.inputs == solved.inputs
+        scale = max(abs(v) for r in solved.reactions for v in r.force)
+        for a, b in zip(from_sweep.reactions, solved.reactions):
+            assert (a.joint, a.on, a.by) == (b.joint, b.on, b.by)
+            assert a.force == pytest.approx(b.force, abs=1e-9 * scale)
+        assert from_sweep.effort() == pytest.approx(solved.effort(), rel=1e-9)
+        assert from_sweep.points.keys() == solved.points.keys()
+        for name, p in solved.points.items():
+            assert from_sweep.points[name] == pytest.approx(p, abs=1e-9)
+        assert [(a.link, a.what) for a in from_sweep.applied] == \
+            [(a.link, a.what) for a in solved.applied]
+
+
+def test_a_sweep_s_forces_are_typed_arrays_and_its_csv_their_view():
+    chain = chaingraph.load(catalog_path("reciprocating-engine"))
+    s = chaingraph.forces(chain, steps=12)
+    header = s.to_csv().splitlines()[0].split(",")
+    assert header == list(s.columns) == ["theta", "Fx:O", "Fy:O", "Fx:A", "Fy:A", "Fx:B",
+                                         "Fy:B", "Fx:S", "Fy:S", "N:S", "M:S", "effort:O"]
+    rod_on_crank, guide = s.reaction("A"), s.reaction("S")
+    assert (rod_on_crank.on, rod_on_crank.by) == ("crank", ("connecting rod",))
+    assert rod_on_crank.fx is s["Fx:A"] and guide.normal is s["N:S"]
+    assert rod_on_crank.normal is None and guide.couple is s["M:S"]
+    effort = s.effort()
+    assert effort.joint == "O" and effort.unit == "N m" and effort.value is s["effort:O"]
+    # each step's largest reaction is the summary's, from the typed arrays
+    assert s.summary.reactions["A"] == pytest.approx(
+        float(np.nanmax(np.hypot(rod_on_crank.fx, rod_on_crank.fy))), rel=1e-12)
+    # a multiple joint: a reaction per link, by the others, each named in its columns
+    chain, _ = with_masses(chaingraph.load(catalog_path("crank-rocker-with-slider")), seed=5)
+    j = next(j for j in chain.joints if len(j.links) > 2)
+    f = chaingraph.forces(chain, steps=6)
+    on_j = [r for r in f.reactions if r.joint == j.id]
+    assert [r.on for r in on_j] == list(j.links)
+    assert all(set(r.by) == set(j.links) - {r.on} for r in on_j)
+    assert all(r.fx is f[f"Fx:{j.id}:{r.on}"] for r in on_j)

@@ -420,3 +420,41 @@ def test_a_slide_without_limits_on_the_command_line(tmp_path):
     status, out, err = run_cli("solve", UNBOUNDED, "--from", "-150", "--to", "150",
                                 "--steps", "6")
     assert status == 0 and "without limits" in out
+
+
+# -- issue 36: one front door for the inputs, for a sweep and one pose alike -----------------
+@pytest.mark.parametrize("kwargs, message", [
+    (dict(inputs=[("S", float("nan"), 1.0)]), "not a finite number"),
+    (dict(inputs=[3]), "an input must be a joint id"),
+    (dict(inputs=[]), "no inputs given"),
+    (dict(omega=float("inf")), "the input speed omega must be a finite number"),
+    (dict(omega=2e9), "the input speed omega 2e[+]09 is too large"),
+    (dict(inputs=["nowhere"]), "the input 'nowhere' is not a joint of the chain"),
+    (dict(fixed="nowhere"), "nowhere"),
+])
+def test_a_sweep_and_a_pose_refuse_the_same_inputs_alike(kwargs, message):
+    from chaingraph.kinematics.inputs import pose_drive, sweep_drive
+    engine = chaingraph.load(catalog_path("reciprocating-engine"))
+    for call in (sweep_drive, pose_drive, chaingraph.solve, chaingraph.instant_centres):
+        with pytest.raises(MechanismError, match=message):
+            call(engine, **kwargs)
+
+
+def test_the_front_door_gives_the_plan_the_sweep_s_ends_and_the_pose_s_value():
+    from chaingraph.kinematics.inputs import pose_drive, sweep_drive
+    engine = chaingraph.load(catalog_path("reciprocating-engine"))
+    drive = sweep_drive(engine, inputs=[("S", -30.0, 10.0)], stop=20.0)
+    # the first input's stop given here takes the place of its own
+    assert (drive.start, drive.stop) == (-30.0, 20.0) and drive.plan.inputs[0].joint == "S"
+    assert drive.omega == engine.mechanism.omega
+    by_driver = sweep_drive(engine, omega=4)
+    assert by_driver.plan.driver == "crank" and by_driver.omega == 4
+    assert (by_driver.start, by_driver.stop) == (None, None)        # its cycle decides
+    pose = pose_drive(engine, inputs=["S"], at=-20.0)
+    assert float(pose.plan.value(pose.tau)) == pytest.approx(-20.0, abs=1e-12)
+    drawn = pose_drive(engine)             # the drawn pose: the crank's direction O -> A
+    (ax, ay), (ox, oy) = engine.joint("A").at, engine.joint("O").at
+    assert drawn.plan.driver == "crank"
+    assert drawn.tau == pytest.approx(math.degrees(math.atan2(ay - oy, ax - ox)), abs=1e-9)
+    with pytest.raises(MechanismError, match="2 input values given for 1 inputs"):
+        pose_drive(engine, inputs=["S"], at=[1.0, 2.0])

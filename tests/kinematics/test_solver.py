@@ -585,12 +585,21 @@ def test_rounding_noise_is_not_printed_as_a_figure():
 
 def test_a_motion_has_typed_accessors_over_its_columns():
     engine = chaingraph.solve(chaingraph.load(catalog_path("reciprocating-engine")), steps=8)
-    crank, pin, slide = engine.link("crank"), engine.point("A"), engine.slide("S")
-    assert crank.angle is engine["angle:crank"] and crank.omega is engine["omega:crank"]
-    assert pin.x is engine["x:A"] and pin.ay is engine["ay:A"]
+    crank, pin, slide = engine.link("crank"), engine.joint("A"), engine.slide("S")
+    # radians inside, degrees where the name says so (the CSV's angle column)
+    assert np.array_equal(crank.angle_deg, engine["angle:crank"])
+    assert np.allclose(crank.angle, np.radians(engine["angle:crank"]), rtol=0, atol=1e-15)
+    assert crank.angle[0] == pytest.approx(-2 * math.pi / 3)          # drawn at -120 degrees
+    assert crank.omega is engine["omega:crank"] and crank.alpha is engine["alpha:crank"]
+    assert pin.x is engine["x:A"] and pin.ay is engine["ay:A"] and engine.point("A") is pin
     assert slide.s is engine["s:S"] and slide.a is engine["a:S"]
+    assert engine.links["crank"] is crank and engine.slides["S"] is slide
     with pytest.raises(KeyError, match="'rod' is no link"):
         engine.link("rod")
+    with pytest.raises(KeyError, match="'P' is no joint"):
+        engine.joint("P")
+    with pytest.raises(KeyError):
+        engine["x:nowhere"]
 
 
 def test_where_a_slide_runs_off_to_infinity_the_range_ends_on_every_path_alike():
@@ -623,3 +632,94 @@ def test_a_pose_that_is_not_a_number_is_named_not_told_residual_nan():
         check_poses(m.plan, ev.pose, ev.feasible)
     said = str(caught.value)
     assert "nan" not in said and "step 2" in said and "'connecting rod'" in said
+
+
+# -- issue 36: typed results, radians inside, the CSV a view ------------------------------
+@pytest.mark.parametrize("sign", [1, -1])
+def test_the_typed_fields_against_the_closed_form_in_radians(sign):
+    chain = four_bar(30.0, sign)
+    motion = solve(chain, steps=72)
+    theta = motion.theta
+    C, beta, gamma, w3, w4, al3, al4 = four_bar_by_hand(theta, 2.5, sign)
+    coupler, rocker, c = motion.link("coupler"), motion.link("rocker"), motion.joint("C")
+
+    def same_direction(radians, degrees):
+        return np.allclose(np.remainder(radians - np.radians(degrees) + math.pi,
+                                        2 * math.pi) - math.pi, 0.0, atol=1e-11)
+    assert same_direction(coupler.angle, beta) and same_direction(rocker.angle, gamma + 180.0)
+    # continuous over the sweep, the first in (-pi, pi]
+    assert -math.pi < coupler.angle[0] <= math.pi
+    assert np.abs(np.diff(coupler.angle)).max() < math.pi / 2
+    assert np.allclose(coupler.omega, w3, atol=1e-10) and np.allclose(rocker.alpha, al4, atol=1e-9)
+    assert np.allclose(c.x + 1j * c.y, C, atol=1e-9)
+    assert np.allclose(c.vx + 1j * c.vy, 1j * w4 * (C - GROUND), atol=1e-9)
+    # the driver's angle is the input angle: its direction is theta itself
+    assert same_direction(motion.link("crank").angle, theta)
+
+
+def test_the_csv_is_a_view_of_the_typed_fields_in_its_order():
+    chain = chaingraph.load(catalog_path("shaper-crank-and-slotted-lever"))
+    m = solve(chain, steps=12)
+    names = list(m.columns)
+    expected = ["theta"]
+    expected += [f"{k}:{x}" for x in chain.links for k in ("angle", "omega", "alpha")]
+    expected += [f"{k}:{x}" for x in [j.id for j in chain.joints] + [p.id for p in chain.points]
+                 for k in ("x", "y", "vx", "vy", "ax", "ay")]
+    expected += [f"{k}:{j.id}" for j in chain.joints if j.kind == "P" for k in ("s", "v", "a")]
+    assert names == expected
+    assert m.to_csv().splitlines()[0].split(",") == names
+    rows = m.rows()
+    assert len(rows) == m.steps + 1 and len(rows[5]) == len(names)
+    for name, values in m.columns.items():
+        assert np.array_equal(m[name], values, equal_nan=True)
+        assert [r[names.index(name)] for r in rows] == pytest.approx(values.tolist(), nan_ok=True)
+    assert np.array_equal(m["angle:ram"], m.link("ram").angle_deg)
+    assert m["s:G"] is m.slide("G").s and m["vy:P"] is m.point("P").vy
+
+
+def test_rates_scale_with_the_input_speed_and_positions_do_not():
+    chain = chaingraph.load(catalog_path("reciprocating-engine"))
+    slow, fast = solve(chain, steps=8, omega=1.0), solve(chain, steps=8, omega=3.0)
+    for name in ("connecting rod", "crank"):
+        a, b = slow.link(name), fast.link(name)
+        assert np.array_equal(a.angle, b.angle)
+        assert np.allclose(b.omega, 3 * a.omega, rtol=1e-12)
+        assert np.allclose(b.alpha, 9 * a.alpha, rtol=1e-12, atol=1e-12)
+    a, b = slow.joint("B"), fast.joint("B")
+    assert np.array_equal(a.x, b.x) and np.allclose(b.vx, 3 * a.vx) and np.allclose(b.ax, 9 * a.ax)
+    assert np.allclose(fast.slide("S").a, 9 * slow.slide("S").a)
+
+
+def test_at_a_rocker_s_limits_the_rates_are_unknown_and_what_is_fixed_stays_zero():
+    m = solve(chaingraph.load(catalog_path("watts-indicator-mechanism")), steps=10)
+    assert not m.summary.full_turn
+    moving = [x for x in m.links.values() if x.name != m.fixed]
+    for link in moving:
+        assert np.isnan(link.omega[[0, -1]]).all() and np.isfinite(link.omega[1:-1]).all()
+    frame = m.link(m.fixed)
+    assert np.array_equal(frame.omega, np.zeros(11)) and np.array_equal(frame.alpha, np.zeros(11))
+
+
+def test_motions_joined_run_one_after_the_other():
+    chain = chaingraph.load(catalog_path("beam-engine"))
+    a = solve(chain, start=0.0, stop=90.0, steps=3, summary=False)
+    b = solve(chain, start=90.0, stop=180.0, steps=3, summary=False)
+    both = a.joined(b)
+    assert both.theta.tolist() == a.theta.tolist() + b.theta.tolist()
+    assert both.joint("C").y.tolist() == a.joint("C").y.tolist() + b.joint("C").y.tolist()
+    assert both.link("lever").alpha.size == 8 and both.states is None and a.states is not None
+    assert both.to_csv().count("\n") == 9 and both.steps == 7
+
+
+def test_one_link_motion_and_the_single_pose_s_link_state():
+    from chaingraph.kinematics.pose import LinkState, pose_motion
+    assert chaingraph.kinematics.LinkMotion is chaingraph.kinematics.motion.LinkMotion
+    assert not hasattr(chaingraph.kinematics.pose, "LinkMotion")
+    engine = chaingraph.load(catalog_path("reciprocating-engine"))
+    state = pose_motion(engine, at=60.0)
+    sweep = solve(engine, start=60.0, stop=60.0, steps=1, summary=False)
+    rod = state.links["connecting rod"]
+    assert isinstance(rod, LinkState)
+    assert rod.omega == sweep.link("connecting rod").omega[0]
+    assert state.positions["B"] == (sweep.joint("B").x[0], sweep.joint("B").y[0])
+    assert state.slides["S"].speed == sweep.slide("S").v[0]

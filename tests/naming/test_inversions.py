@@ -182,7 +182,18 @@ def test_identify_natural_crank_and_slotted_lever():
     assert identify(chain).inversion == "Crank and slotted lever quick return mechanism"
 
 
-CATALOG_MECHANISMS = [p for p in catalog_files() if chaingraph.load(p).mechanism]
+CATALOG_MECHANISMS = [p for p in catalog_files() if chaingraph.load(p).mechanism
+                      and not chaingraph.load(p).task]
+#: synthesised mechanisms (a [task]): examples of a design, which name nothing
+SYNTHESISED = [p for p in catalog_files() if chaingraph.load(p).task]
+
+
+@pytest.mark.parametrize("path", SYNTHESISED, ids=[p.stem for p in SYNTHESISED])
+def test_a_synthesised_catalog_mechanism_is_named_by_its_kind_not_by_itself(path):
+    chain = chaingraph.load(path)
+    found = identify(chain)
+    assert found.inversion is not None and found.inversion != chain.name
+    assert chaingraph.load(found.inversion_file).task is None
 
 
 @pytest.mark.parametrize("path", CATALOG_MECHANISMS, ids=[p.stem for p in CATALOG_MECHANISMS])

@@ -191,11 +191,19 @@ SMALL = [catalog_dir() / f"{name}.toml" for name in
          ("four-bar-chain", "crank-rocker-with-slider")]
 
 
-@pytest.fixture
-def old_report(tmp_path):
-    """A complete report of two entries, as a reader last saw it."""
-    out = tmp_path / "out"
+@pytest.fixture(scope="module")
+def _old_report_built(tmp_path_factory):
+    out = tmp_path_factory.mktemp("old") / "out"
     build_report(SMALL, out, progress=None, steps=12, frames=4, workers=1)
+    return out
+
+
+@pytest.fixture
+def old_report(_old_report_built, tmp_path):
+    """A complete report of two entries, as a reader last saw it (built once, a fresh
+    copy for each test)."""
+    out = tmp_path / "out"
+    shutil.copytree(_old_report_built, out)
     return out, _snapshot(out)
 
 

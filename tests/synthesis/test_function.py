@@ -254,11 +254,63 @@ def test_a_bad_task_exits_2_in_one_line(args, names):
 
 
 def test_nothing_certified_exits_1_with_the_reasons():
+    """The textbook's task below, its least transmission angle 25.8 degrees: under the
+    default bound of 30, nothing is certified."""
     code, out, err = run_cli("design", "function", "--function", "log10(x)", "--x", "1:2",
                              "--swing", "60:90", "--start", "45:135")
     assert code == 1 and out == ""
     assert err.count("\n") == 1 and "no certified solution" in err
-    assert "negative length 1" in err
+    assert "transmission angle 1" in err
+
+
+def test_the_textbook_task_in_the_textbook_s_own_angles(tmp_path):
+    """The textbooks' classic task: y = log10(x) for 1 <= x <= 2, three Chebyshev points,
+    the input turning 60 degrees from 45, the output 90 degrees from 135, solved by hand
+    the textbooks' way and compared with what chaingraph designs from the same numbers.
+
+    The textbooks' loop (the frame r1 drawn at 180 degrees, as course notes on
+    Freudenstein's equation draw it) is r2 + r3 + r4 = r1: the input crank r2 from its pivot O2 (the origin), the coupler r3,
+    then r4 from the coupler's pin to the output's pivot O4 = (r1, 0). So the textbooks'
+    output angle theta4 is the direction from the pin to the pivot, and chaingraph's
+    rocker angle (from the pivot D to the pin C, CCW from +x) is theta4 + 180 degrees.
+    Eliminating theta3 gives their form of Freudenstein's equation,
+    K1 cos(theta2) + K2 cos(theta4) + K3 = cos(theta2 - theta4), K1 = r1/r4, K2 = r1/r2,
+    K3 = (r3^2 - r1^2 - r2^2 - r4^2) / (2 r2 r4), solved here for r1 = 1.
+
+    chaingraph reads the same starting angles 45 and 135 (a negative length out of its
+    own form is the link pointing the other way along its line, as the textbooks read
+    it); its least transmission angle, 25.8 degrees, needs a bound below the default."""
+    xs = precision_x((1.0, 2.0), 3, "chebyshev")
+    assert [round(float(v), 3) for v in xs] == [1.067, 1.5, 1.933]
+    theta2 = 45.0 + 60.0 * (xs - 1.0)
+    theta4 = 135.0 + 90.0 * np.log10(xs) / math.log10(2.0)
+    assert [round(float(v), 2) for v in theta2] == [49.02, 75.0, 100.98]
+    assert [round(float(v), 2) for v in theta4] == [143.42, 187.65, 220.58]
+    t2, t4 = np.radians(theta2), np.radians(theta4)
+    k1, k2, k3 = np.linalg.solve(np.stack([np.cos(t2), np.cos(t4), np.ones(3)], axis=1),
+                                 np.cos(t2 - t4))
+    r1 = 1.0
+    r2, r4 = r1 / k2, r1 / k1
+    r3 = math.sqrt(2 * r2 * r4 * k3 + r1 * r1 + r2 * r2 + r4 * r4)
+    assert min(r2, r4) > 0                  # positive lengths, in the textbooks' angles
+
+    s = function(**LOG, start=(45.0, 135.0), solutions=1, min_transmission=25.0)
+    best = s.solutions[0]
+    dim = best.dimensions
+    frame = dim["frame"]
+    assert (dim["crank"] / frame, dim["coupler"] / frame, dim["rocker"] / frame) == \
+        pytest.approx((r2 / r1, r3 / r1, r4 / r1), rel=1e-9)
+    assert best.reached_at == pytest.approx(list(theta2), abs=1e-9)
+    assert best.transmission_angle[0] == pytest.approx(25.83, abs=0.01)
+    # the written file, solved: chaingraph's rocker angle is theta4 + 180 at each point
+    path = tmp_path / "textbook.toml"
+    path.write_text(dumps(best.mechanism))
+    chain = chaingraph.load(path)
+    for theta, want in zip(theta2, theta4 + 180.0):
+        m = chaingraph.solve(chain, start=float(theta), stop=float(theta), steps=1,
+                             summary=False)
+        got = _rocker(m)[0]
+        assert abs(_near(got, want) - want) < 1e-9
 
 
 def test_the_library_names_the_parameter():

@@ -14,12 +14,15 @@ from __future__ import annotations
 
 import hashlib
 import json
+import os
+from collections.abc import Callable, Sequence
 from pathlib import Path
+from typing import Any
 
 import numpy as np
 
 from chaingraph._util.atomic import write_atomic
-from chaingraph._util.parallel import process_runner, serial
+from chaingraph._util.parallel import Runner, process_runner, serial
 from chaingraph.errors import AtlasRunError
 from chaingraph.structure.atlas.contracted import (
     assortments,
@@ -31,6 +34,10 @@ from chaingraph.structure.atlas.labelling import default_backend, graph_form
 from chaingraph.structure.atlas.pieces import piece, piece_work
 
 __all__ = ["Atlas", "plan", "run_atlas", "SHARDS"]
+
+#: a piece of the atlas: (the degrees of the contracted graph's multiple links, its
+#: edges (pairs of those links), how many binary links its chains have)
+PlanJob = tuple[tuple[int, ...], tuple[tuple[int, int], ...], int]
 
 #: shards a run is cut into (about; each holds whole pieces)
 SHARDS = 400
@@ -118,7 +125,8 @@ def _plan_task(task):
     return [(degrees, edges, binaries) for edges in contracted_graphs(degrees, backend=backend)]
 
 
-def plan(links, dof, *, backend=None, runner=None):
+def plan(links: int, dof: int, *, backend: str | None = None, runner: Runner | None = None
+         ) -> list[PlanJob]:
     """The pieces of the atlas in their fixed order: ``(degrees, edges, binaries)``,
     by link assortment, then contracted graph.
 
@@ -133,7 +141,7 @@ def plan(links, dof, *, backend=None, runner=None):
     backend = backend or default_backend()
     joints = joints_for(links, dof)
     tasks = [(_degrees(a), a[0], backend) for a in assortments(links, joints) if _degrees(a)]
-    results = [None] * len(tasks)
+    results: list[list[PlanJob]] = [[] for _ in tasks]   # each set as its task reports
     (runner or serial)(_plan_task, tasks, lambda i, r: results.__setitem__(i, r))
     return [job for r in results for job in r]
 
@@ -169,7 +177,7 @@ def _shard_task(task):
     return arrays + (encode_chains(links, *arrays) if encode else (b"", ""))
 
 
-def ring_of(links, backend):
+def ring_of(links: int, backend: str) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
     """The single loop of ``links`` binary links (the one chain with no contracted
     graph), as a shard result."""
     canon, orbits = graph_form(links, [(i, (i + 1) % links) for i in range(links)],
@@ -213,7 +221,8 @@ class DaskRunner:
                                 f"{str(error).splitlines()[0] if str(error) else type(error).__name__}",
                                 reason="unreachable") from None
 
-    def __call__(self, fn, tasks, on_result):
+    def __call__(self, fn: Callable[[Any], Any], tasks: Sequence[Any],
+                 on_result: Callable[[int, Any], None]) -> None:
         from distributed import as_completed
         futures = self.client.map(fn, tasks, pure=False)
         index = {f.key: i for i, f in enumerate(futures)}
@@ -225,7 +234,7 @@ class DaskRunner:
             self.client.cancel(futures)
             raise
 
-    def close(self):
+    def close(self) -> None:
         self.client.close()
         if self.cluster is not None:
             self.cluster.close()
@@ -243,8 +252,11 @@ def _digest(links, dof, backend, jobs, shards):
     return h.hexdigest()[:16]
 
 
-def run_atlas(links, dof=1, *, workers=1, runner=None, out=None, resume=False,
-              backend=None, progress=None, keep=True):
+def run_atlas(links: int, dof: int = 1, *, workers: int = 1, runner: Runner | None = None,
+              out: str | os.PathLike[str] | None = None, resume: bool = False,
+              backend: str | None = None,
+              progress: Callable[[float, str], None] | None = None, keep: bool = True
+              ) -> Atlas:
     """Enumerate the atlas, stage by stage; see the module's description.
 
     Parameters
