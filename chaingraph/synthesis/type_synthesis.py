@@ -52,7 +52,7 @@ from chaingraph.synthesis.task import MotionTask, PathTask, check_options, motio
 
 __all__ = ["path", "motion", "LINKS", "Choice", "Space", "atlas_space", "search_family",
            "path_types", "check_links", "BUDGETS", "NEWTON_BUDGETS",
-           "UNSOLVED", "TRIADS_SKIPPED"]
+           "UNSOLVED", "TRIADS_SKIPPED", "NOT_CHOSEN"]
 
 #: the sizes a synthesis searches (4: the four-bar; 6 and 8: through the atlas)
 LINKS = (4, 6, 8)
@@ -60,6 +60,8 @@ LINKS = (4, 6, 8)
 UNSOLVED = "sliding pairs not searched"
 #: the reason a triad family is counted under when ``triads`` is False (a quicker search)
 TRIADS_SKIPPED = "triads not searched"
+#: the reason a family left out by ``families`` (see :func:`path_types`) is counted under
+NOT_CHOSEN = "families not chosen"
 #: how hard one family is searched, exact (up to five points) and fitted
 BUDGETS = {True: Budget(samples=1500, starts=24), False: Budget(samples=2000, starts=30,
                                                                   fitted=4, generations=40)}
@@ -180,6 +182,7 @@ class _Job:
     prismatic: int
     solutions: int
     triads: bool = True
+    budget: Budget | None = None
 
 
 def search_family(job: _Job) -> tuple[list[Solution], dict[str, int], int]:
@@ -195,7 +198,7 @@ def search_family(job: _Job) -> tuple[list[Solution], dict[str, int], int]:
     family = kind(c.chain, c.fixed, c.driver, c.carrier,
                   name=(c.names[-1] if len(c.names) > 1 else f"{c.chain.name}, {c.fixed} fixed"))
     rng = np.random.default_rng([job.task.seed, job.number])
-    budget = (BUDGETS if c.method == "dyads" else NEWTON_BUDGETS)[_exact(job.task)]
+    budget = job.budget or (BUDGETS if c.method == "dyads" else NEWTON_BUDGETS)[_exact(job.task)]
     search = synthesise_motion if job.task.kind == "motion" else synthesise_path
     kept = _KEPT if c.method == "dyads" else 1      # a triad's certification is slow
     found = search(job.task, family, solutions=min(job.solutions, kept), budget=budget,
@@ -211,7 +214,8 @@ def path(*, points: Iterable[tuple[float, float]], timing: Iterable[float] | Non
          solutions: int = 5, seed: int | None = None, units: str = "mm",
          min_transmission: float = 30.0, links: int = 4,
          prismatic: int | str | None = None, runner: Runner | None = None,
-         triads: bool = True) -> Synthesis:
+         triads: bool = True, families: Callable[[Choice], bool] | None = None,
+         budget: Budget | None = None) -> Synthesis:
     """Synthesise a path generator: a point of one link passes through ``points`` in
     order. With ``links`` 4 (and no ``prismatic``), the four-bar
     (:func:`chaingraph.synthesis.path_generation.path`, whose parameters these are);
@@ -219,8 +223,8 @@ def path(*, points: Iterable[tuple[float, float]], timing: Iterable[float] | Non
     pairs), every inversion and every link that can carry the point
     (:func:`path_types`), its families searched on ``runner`` (a runner of
     :mod:`chaingraph._util.parallel`, or :class:`~chaingraph.structure.atlas.DaskRunner`;
-    by default one after another here); ``triads`` False searches the dyad families
-    only (:func:`path_types`).
+    by default one after another here); ``triads``, ``families`` and ``budget`` narrow
+    the search (:func:`path_types`).
 
     Examples
     --------
@@ -243,14 +247,15 @@ def path(*, points: Iterable[tuple[float, float]], timing: Iterable[float] | Non
     check_options(solutions=solutions, min_transmission=min_transmission, units=units,
                   kind="path")
     return path_types(task, links=links, prismatic=prismatic, solutions=solutions,
-                      runner=runner, triads=triads)
+                      runner=runner, triads=triads, families=families, budget=budget)
 
 
 def motion(*, poses: Iterable[tuple[float, float, float]], solutions: int = 5, units: str = "mm",
            min_transmission: float = 30.0,
            circle_points: Sequence[Sequence[float]] | None = None, links: int = 4, prismatic: int | str | None = None,
            seed: int | None = None, runner: Runner | None = None,
-           triads: bool = True) -> Synthesis:
+           triads: bool = True, families: Callable[[Choice], bool] | None = None,
+           budget: Budget | None = None) -> Synthesis:
     """Synthesise a motion generator: one link passes through ``poses`` (x, y, degrees)
     in order. With ``links`` 4 (and no ``prismatic``), the four-bar and slider crank by
     the classical constructions and Burmester theory
@@ -259,7 +264,8 @@ def motion(*, poses: Iterable[tuple[float, float, float]], solutions: int = 5, u
     that can carry the pose (:func:`path_types`, the carrier's point at x, y and its
     angle), each family searched by the path optimiser with the carrier's turn as
     further equations (:func:`chaingraph.synthesis.pose_search.synthesise_motion`), on
-    ``runner``, repeatably from ``seed``.
+    ``runner``, repeatably from ``seed``; ``triads``, ``families`` and ``budget`` narrow
+    the search (:func:`path_types`).
 
     Examples
     --------
@@ -281,23 +287,30 @@ def motion(*, poses: Iterable[tuple[float, float, float]], solutions: int = 5, u
     check_options(solutions=solutions, min_transmission=min_transmission, units=units,
                   kind="motion")
     return path_types(task, links=links, prismatic=prismatic, solutions=solutions,
-                      runner=runner, triads=triads)
+                      runner=runner, triads=triads, families=families, budget=budget)
 
 
 def path_types(task: PathTask | MotionTask, *, links: int, prismatic: int | str | None = None,
                solutions: int = 5, runner: Runner | None = None,
                progress: Callable[[int, int], None] | None = None,
-               triads: bool = True) -> Synthesis:
+               triads: bool = True, families: Callable[[Choice], bool] | None = None,
+               budget: Budget | None = None) -> Synthesis:
     """Type synthesis of a checked path or motion task over the atlas's chains of ``links`` links
     (6 or 8; with ``prismatic`` sliding pairs), every family searched on ``runner`` (by
     default here, one after another); the certified solutions of every family ranked
     together. ``progress(done, total)`` is called as families finish. ``triads`` False
     leaves the families solved by Newton's method unsearched (counted under
-    :data:`TRIADS_SKIPPED`): a quicker search of the dyad families only."""
+    :data:`TRIADS_SKIPPED`): a quicker search of the dyad families only. ``families``
+    (a test of a :class:`Choice`) searches only the families it accepts, the others
+    counted under :data:`NOT_CHOSEN`; ``budget`` searches every family on that budget
+    instead of :data:`BUDGETS` (:data:`NEWTON_BUDGETS` for the triads). Each family
+    keeps its number in the space (its random stream), so a family searched alone finds
+    what the whole search finds in it."""
     space = atlas_space(links, prismatic)
     task = replace(task, mechanism=_mechanism(links, prismatic))
-    jobs = [_Job(task, c, k, links, space.prismatic, solutions, triads)
-            for k, c in enumerate(space.choices)]
+    jobs = [_Job(task, c, k, links, space.prismatic, solutions, triads, budget)
+            for k, c in enumerate(space.choices) if families is None or families(c)]
+    left_out = len(space.choices) - len(jobs)
     results: dict[int, tuple] = {}
 
     def done(i, result):
@@ -313,6 +326,8 @@ def path_types(task: PathTask | MotionTask, *, links: int, prismatic: int | str 
         found += sols
         rejected.update(why)
         sampled += n
+    if left_out:
+        rejected[NOT_CHOSEN] += left_out
     tolerance = 1e-9 * task.size if _exact(task) else 0.0
     return Synthesis(task, ranked(found, solutions, tolerance=tolerance),
                      dict(sorted(rejected.items())),
