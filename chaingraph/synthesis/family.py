@@ -33,7 +33,8 @@ from dataclasses import dataclass
 import numpy as np
 import numpy.typing as npt
 
-from chaingraph.geometry import circle_circle
+from chaingraph.geometry import circle_circle, circle_line, line_by_two_distances
+from chaingraph.kinematics.equations import newton_step
 from chaingraph.model.chain import Chain, Joint, Mechanism, Point
 
 __all__ = ["Family", "FourBar", "FOUR_BAR", "AtlasFamily", "LoopFamily", "DyadStep", "dyad_plan"]
@@ -516,8 +517,18 @@ class LoopFamily(AtlasFamily):
     moving link's rigid motion from its drawn pose solved together by Newton's method,
     continued along the input from the drawn pose over a turn (:data:`_GRID` steps, so
     the drawn circuit is tracked), then refined at each asked input from the step before
-    it; vectorised over mechanisms. Slower than the dyads' closed form; the certification
-    by the solver from the written file is the same."""
+    it; vectorised over mechanisms.
+
+    A *screen*, not a solver: it scores thousands of candidate mechanisms at once (an
+    array row per mechanism, which the kernel's solver, one chain at a time, cannot),
+    with its own loop-closure equations (each joint placed alike by its two links'
+    motions) but the kernel's Newton step
+    (:func:`chaingraph.kinematics.equations.newton_step`, its linear algebra:
+    least squares at a fold, NaN where not finite). Nothing it finds is listed on its
+    word: every candidate is written as a chain file and certified by the kernel's
+    solver from that file (:func:`chaingraph.synthesis.certification.certify`: assembled
+    at every target on one circuit, in order, its transmission angle and error
+    recomputed), exactly as the dyads' closed form is."""
 
     def __init__(self, chain: Chain, fixed: str, driver: str, carrier: str, *,
                  name: str | None = None) -> None:
@@ -607,17 +618,11 @@ class LoopFamily(AtlasFamily):
         """Newton's iterations on the loop-closure equations from ``z`` (until no
         unknown moves by more than ``settled``): the unknowns and whether they close
         (to :data:`_CLOSED`)."""
-        n = z.shape[1]
         for _ in range(_NEWTON):
             f, jac = self._closure(drawn, turn, z)
-            bad = ~(np.all(np.isfinite(f), axis=1) & np.all(np.isfinite(jac), axis=(1, 2)))
-            f[bad], jac[bad] = 0.0, np.eye(n)[None, :, :]
-            try:
-                step = np.linalg.solve(jac, -f[:, :, None])[:, :, 0]
-            except np.linalg.LinAlgError:
-                step = np.einsum("rij,rj->ri", np.linalg.pinv(jac), -f)
-            z = np.where(bad[:, None], np.nan, z + step)
-            if not np.any(np.abs(step[~bad]) > settled):
+            step = newton_step(jac, f)         # the kernel's step (NaN where not finite)
+            z = z + step
+            if not np.any(np.abs(step[np.isfinite(step)]) > settled):
                 break
         f, _ = self._closure(drawn, turn, z)
         gap = np.max(np.abs(f), axis=1)
