@@ -405,7 +405,8 @@ def _type_arguments(q) -> None:
                         "1-dof chain of that size in the atlas, every inversion and every "
                         "link that can carry the point or pose")
     q.add_argument("--prismatic", type=prismatic_count, metavar="K|all",
-                   help="with --links 6 or 8: chains with K sliding pairs ('all': any)")
+                   help="chains with K sliding pairs ('all': any), searched through the "
+                        "atlas (with --links 4: the slider-crank chains)")
     q.add_argument("--workers", type=int, default=1, metavar="K",
                    help="with --links 6 or 8: local processes that search the families "
                         "side by side (at most the CPUs); with --scheduler local, the "

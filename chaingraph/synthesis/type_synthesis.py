@@ -11,12 +11,15 @@ jointed to the fixed link: a link turning about a fixed pivot traces circles onl
 (chain, fixed, driver, carrier) choice is a *family*: an
 :class:`~chaingraph.synthesis.family.AtlasFamily` when its chain is solved dyad by dyad
 from its fixed link and driver in closed form (every Watt inversion, the Stephenson I,
-the Stephenson II driven by a ternary link), a
-:class:`~chaingraph.synthesis.family.LoopFamily` when the group beyond its driver is a
-triad (the Stephenson III, the Stephenson II driven by its binary link: Newton's method,
-continued along the input, on a smaller budget, :data:`NEWTON_BUDGETS`). Chains with
-sliding pairs are not searched yet: their families are counted, and reported in
-``rejected`` as :data:`UNSOLVED`.
+the Stephenson II driven by a ternary link; with sliding pairs, every dyad kind RRR,
+RRP, PRR, RPR, PRP, RPP, PPR), a :class:`~chaingraph.synthesis.family.LoopFamily` when
+the group beyond its driver is a triad (the Stephenson III, the Stephenson II driven by
+its binary link, with or without sliding pairs: Newton's method, continued along the
+input, on a smaller budget, :data:`NEWTON_BUDGETS`). Both are screens: every solution is
+certified by the kernel's solver from its written file. The driver always turns (a
+sliding pair is never the input); a chain with no turning pair on its fixed link has no
+family. A family neither solves (a joint of three or more links: not in the atlases of
+single joints searched here) would be counted in ``rejected`` as :data:`UNSOLVED`.
 
 Each family is one independent job (:func:`search_family`: the coarse search, the
 global search and least squares of :mod:`chaingraph.synthesis.optimiser` on a budget,
@@ -52,14 +55,16 @@ from chaingraph.synthesis.task import MotionTask, PathTask, check_options, motio
 
 __all__ = ["path", "motion", "LINKS", "Choice", "Space", "atlas_space", "search_family",
            "path_types", "check_links", "BUDGETS", "NEWTON_BUDGETS",
-           "UNSOLVED", "TRIADS_SKIPPED", "NOT_CHOSEN"]
+           "UNSOLVED", "TRIADS_SKIPPED", "NOT_CHOSEN", "UNDRIVEN"]
 
 #: the sizes a synthesis searches (4: the four-bar; 6 and 8: through the atlas)
 LINKS = (4, 6, 8)
-#: the reason a family not searched (a chain with sliding pairs) is counted under
-UNSOLVED = "sliding pairs not searched"
+#: the reason a family whose motion neither family class finds is counted under
+UNSOLVED = "families not solved"
 #: the reason a triad family is counted under when ``triads`` is False (a quicker search)
 TRIADS_SKIPPED = "triads not searched"
+#: the reason an inversion with no turning pair on its fixed link (no input) is counted under
+UNDRIVEN = "inversions with no turning input"
 #: the reason a family left out by ``families`` (see :func:`path_types`) is counted under
 NOT_CHOSEN = "families not chosen"
 #: how hard one family is searched, exact (up to five points) and fitted
@@ -78,8 +83,8 @@ class Choice:
     ``fixed``, ``driver`` and ``carrier`` links, the catalog's ``names`` (the chain's,
     then the inversion's) and how its motion is found: ``method`` ``"dyads"`` (closed
     form, :class:`~chaingraph.synthesis.family.AtlasFamily`), ``"newton"`` (a triad,
-    :class:`~chaingraph.synthesis.family.LoopFamily`) or ``""`` (not searched: sliding
-    pairs)."""
+    :class:`~chaingraph.synthesis.family.LoopFamily`) or ``""`` (not searched, counted
+    under :data:`UNSOLVED`)."""
 
     chain: Chain
     chain_id: int
@@ -99,13 +104,15 @@ class Choice:
 @dataclass(frozen=True)
 class Space:
     """The space a type synthesis searches: ``links``, ``prismatic``, the atlas's
-    ``chains`` and ``inversions`` (counts) and the ``choices``."""
+    ``chains`` and ``inversions`` (counts), the ``choices`` and the number of
+    inversions with no family (``undriven``: no turning pair on the fixed link)."""
 
     links: int
     prismatic: int
     chains: int
     inversions: int
     choices: tuple[Choice, ...]
+    undriven: int = 0
 
 
 def check_links(links: object, prismatic: object, *, kind: str) -> None:
@@ -129,6 +136,11 @@ def atlas_space(links: int, prismatic: int | str | None = None) -> Space:
     >>> s = atlas_space(6)
     >>> s.chains, s.inversions, len(s.choices), sum(c.solvable for c in s.choices)
     (2, 5, 25, 25)
+    >>> s = atlas_space(6, 1)       # one sliding pair
+    >>> s.chains, s.inversions, len(s.choices), sum(c.method == "newton" for c in s.choices)
+    (6, 25, 118, 32)
+    >>> atlas_space(6, "all").undriven
+    20
     """
     chains = list(atlas(links=links, prismatic=prismatic))
     choices: list[Choice] = []
@@ -143,7 +155,8 @@ def atlas_space(links: int, prismatic: int | str | None = None) -> Space:
             names = tuple(named["chain"]) + by_link.get(fixed, ())
             choices += _choices(chain, number, k, fixed, names)
     p = 0 if prismatic is None else (-1 if prismatic == "all" else int(prismatic))
-    return Space(links, p, len(chains), inversions, tuple(choices))
+    driven = len({(c.chain_id, c.inversion) for c in choices})
+    return Space(links, p, len(chains), inversions, tuple(choices), inversions - driven)
 
 
 def _choices(chain, number, inversion, fixed, names) -> list[Choice]:
@@ -168,7 +181,8 @@ def _method(chain, fixed, driver) -> str:
     """How a family's motion is found (see :class:`Choice`)."""
     if dyad_plan(chain, fixed, driver) is not None:
         return "dyads"
-    if all(j.kind == "R" and len(j.links) == 2 for j in chain.joints):
+    if all(j.kind in ("R", "P") and len(j.links) == 2 for j in chain.joints) and [
+            j.kind for j in chain.joints if set(j.links) == {fixed, driver}] == ["R"]:
         return "newton"
     return ""
 
@@ -228,12 +242,14 @@ def path(*, points: Iterable[tuple[float, float]], timing: Iterable[float] | Non
 
     Examples
     --------
+    >>> def watt_ii(c):         # one of the 25 families: a Watt II, its point on L2
+    ...     return c.names[-1] == "Watt II six-bar mechanism" and (c.driver, c.carrier) == ("L1", "L2")
     >>> s = path(points=[(0, 0), (10, 4), (18, 12), (20, 22), (14, 30)], seed=1,
-    ...          solutions=1, links=6, triads=False)
-    >>> s.solutions[0].atlas["links"], s.solutions[0].error.max < 1e-9 * 36
-    (6, True)
-    >>> s.searched.chains, s.searched.inversions
-    (2, 5)
+    ...          solutions=1, links=6, families=watt_ii)
+    >>> s.solutions[0].atlas, s.solutions[0].error.max < 1e-9 * 36
+    ({'links': 6, 'prismatic': 0, 'chain': 1, 'inversion': 2}, True)
+    >>> s.searched.chains, s.searched.inversions, s.rejected["families not chosen"]
+    (2, 5, 24)
     """
     check_links(links, prismatic, kind="path")
     if links == 4 and prismatic in (None, 0):
@@ -328,6 +344,8 @@ def path_types(task: PathTask | MotionTask, *, links: int, prismatic: int | str 
         sampled += n
     if left_out:
         rejected[NOT_CHOSEN] += left_out
+    if space.undriven:
+        rejected[UNDRIVEN] += space.undriven
     tolerance = 1e-9 * task.size if _exact(task) else 0.0
     return Synthesis(task, ranked(found, solutions, tolerance=tolerance),
                      dict(sorted(rejected.items())),
