@@ -705,6 +705,7 @@ class LoopFamily(AtlasFamily):
                              "a chain of binary pairs driven about the fixed link")
         self.plan = ()
         self._setup(chain, fixed, driver, carrier, name)
+        self._kept: tuple | None = None
         self._unknown = [x for x in self._links if x not in (fixed, driver)]
         self._anchor = {x: self._index[next(j.id for j in self.template if x in j.links)]
                         for x in self._unknown}
@@ -827,6 +828,31 @@ class LoopFamily(AtlasFamily):
             out.append(np.concatenate([-ey, ex], axis=1))
         return np.stack(out, axis=1) if out else np.zeros((len(params), 0, 2))
 
+    def _nodes(self, params):
+        """The continuation over a turn from the drawn pose: the unknowns at
+        :data:`_GRID` + 1 even steps of the input (M, G + 1, 3U; NaN past where a
+        mechanism stops closing), and the sliding pairs' normals. The last mechanisms'
+        are kept: a fit asks for their points, transmission angles and turns in turn."""
+        p = np.ascontiguousarray(params, dtype=float)
+        key = (p.shape, p.tobytes())
+        if self._kept is not None and self._kept[0] == key:
+            return self._kept[1]
+        drawn = self._drawn(p)
+        m, n = len(p), 3 * len(self._unknown)
+        nodes = np.full((m, _GRID + 1, n), np.nan)
+        z = np.zeros((m, n))
+        nodes[:, 0] = z
+        normals = self._normals(p)
+        alive = np.ones(m, dtype=bool)
+        for g in range(1, _GRID + 1):
+            z, ok = self._newton(drawn, np.full(m, g * 2 * math.pi / _GRID), z, normals,
+                                 settled=1e-7)
+            alive &= ok
+            z = np.where(alive[:, None], z, 0.0)
+            nodes[:, g] = np.where(alive[:, None], z, np.nan)
+        self._kept = (key, (nodes, normals))
+        return nodes, normals
+
     def _solve(self, params, theta):
         """As :meth:`AtlasFamily._solve`, by continuation from the drawn pose (see the
         class); the asked inputs taken modulo a turn."""
@@ -835,16 +861,7 @@ class LoopFamily(AtlasFamily):
         m, k = theta.shape
         n = 3 * len(self._unknown)
         h = 2 * math.pi / _GRID
-        nodes = np.full((m, _GRID + 1, n), np.nan)
-        z = np.zeros((m, n))
-        nodes[:, 0] = z
-        normals = self._normals(params)
-        alive = np.ones(m, dtype=bool)
-        for g in range(1, _GRID + 1):
-            z, ok = self._newton(drawn, np.full(m, g * h), z, normals, settled=1e-7)
-            alive &= ok
-            z = np.where(alive[:, None], z, 0.0)
-            nodes[:, g] = np.where(alive[:, None], z, np.nan)
+        nodes, normals = self._nodes(params)
         turn = (theta - self.first_input(params)[:, None]) % (2 * math.pi)
         node = np.minimum(np.floor(turn / h).astype(int), _GRID)
         start = np.take_along_axis(nodes, node[:, :, None], axis=1).reshape(m * k, n)

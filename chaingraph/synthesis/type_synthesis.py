@@ -328,12 +328,14 @@ def path_types(task: PathTask | MotionTask, *, links: int, prismatic: int | str 
             for k, c in enumerate(space.choices) if families is None or families(c)]
     left_out = len(space.choices) - len(jobs)
     results: dict[int, tuple] = {}
+    # the slow families (Newton's) first, so that workers do not wait on one at the end
+    order = sorted(range(len(jobs)), key=lambda i: jobs[i].choice.method != "newton")
 
     def done(i, result):
-        results[i] = result
+        results[order[i]] = result
         if progress is not None:
             progress(len(results), len(jobs))
-    (runner or serial)(search_family, jobs, done)
+    (runner or serial)(search_family, [jobs[i] for i in order], done)
     found: list[Solution] = []
     rejected: Counter = Counter()
     sampled = 0
@@ -361,4 +363,6 @@ def _mechanism(links: int, prismatic) -> str:
     """The task's mechanism: what was searched."""
     if prismatic in (None, 0):
         return f"{links}-link chains"
-    return f"{links}-link chains, {prismatic} sliding pairs"
+    if prismatic == "all":
+        return f"{links}-link chains, any sliding pairs"
+    return f"{links}-link chains, {prismatic} sliding pair{'' if prismatic == 1 else 's'}"
