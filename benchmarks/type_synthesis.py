@@ -11,7 +11,8 @@ Each family is searched alone, one after another in this process, exactly as the
 search searches it (its number in the space, its random stream, its budget):
 CPU seconds per family, by how its motion is found ("dyads" in closed form, "newton"
 for the triads), and split into the optimiser's stages (the coarse search, differential
-evolution, least squares, the certification by the solver) by profiling. ``--every K``
+evolution, least squares, the certification by the solver) by profiling (shares of the
+profiled time; the profiler inflates the solver's many small calls somewhat). ``--every K``
 searches every K-th family only (a capped run) and projects the whole space from the
 mean CPU per family of each method. ``--workers K`` then runs the whole search as
 ``design path --links L --workers K`` does (process_runner) and gives its wall clock.
@@ -42,10 +43,11 @@ STAGES = {"coarse search": "coarse_search", "differential evolution": "global_se
 
 
 def _stages(stats: pstats.Stats) -> dict[str, float]:
-    """The cumulative seconds of each stage in a profile."""
-    out = dict.fromkeys(STAGES, 0.0)
+    """The cumulative seconds of each stage in a profile, and of the whole family's
+    search (``"total"``)."""
+    out = dict.fromkeys([*STAGES, "total"], 0.0)
     for (_, _, name), row in stats.stats.items():        # type: ignore[attr-defined]
-        for stage, fn in STAGES.items():
+        for stage, fn in [*STAGES.items(), ("total", "search_family")]:
             if name == fn:
                 out[stage] += row[3]
     return out
@@ -78,7 +80,8 @@ def per_family(links: int, prismatic, every: int, seed: int = 1):
 def summary(space, rows, every: int) -> None:
     """CPU by method, the stages' shares, and the whole space projected."""
     by: dict[str, list[float]] = defaultdict(list)
-    stages: dict[str, dict[str, float]] = defaultdict(lambda: dict.fromkeys(STAGES, 0.0))
+    stages: dict[str, dict[str, float]] = defaultdict(
+        lambda: dict.fromkeys([*STAGES, "total"], 0.0))
     for _, method, _, cpu, _, _, st in rows:
         by[method].append(cpu)
         for name, v in st.items():
@@ -92,7 +95,8 @@ def summary(space, rows, every: int) -> None:
     for method, cpus in by.items():
         mean = statistics.mean(cpus)
         whole += mean * counts[method]
-        share = ", ".join(f"{name} {v / sum(cpus):.0%}" for name, v in stages[method].items())
+        st = stages[method]
+        share = ", ".join(f"{name} {st[name] / st['total']:.0%}" for name in STAGES)
         print(f"{method}: {len(cpus)} families, {sum(cpus):.1f} CPU s, mean {mean:.2f} s "
               f"(median {statistics.median(cpus):.2f}, max {max(cpus):.1f}); {share}")
     print(f"projected for the whole space: {whole:.0f} CPU s, about {whole / 2:.0f} s of "
