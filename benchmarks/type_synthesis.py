@@ -23,6 +23,7 @@ from __future__ import annotations
 import argparse
 import cProfile
 import pstats
+import resource
 import statistics
 import sys
 import time
@@ -106,13 +107,16 @@ def summary(space, rows, every: int) -> None:
 def whole_run(links: int, prismatic, workers: int) -> None:
     """The whole search as the command line runs it, timed."""
     points = crank_rocker_points(range(0, 360, 18))
-    t, c = time.perf_counter(), time.process_time()
+    t = time.perf_counter()
+    before = resource.getrusage(resource.RUSAGE_CHILDREN)
     found = path(points=points, closed=True, seed=1, links=links, prismatic=prismatic,
                  runner=process_runner(workers))
     wall = time.perf_counter() - t
+    after = resource.getrusage(resource.RUSAGE_CHILDREN)
+    cpu = (after.ru_utime + after.ru_stime) - (before.ru_utime + before.ru_stime)
     best = found.solutions[0] if found.solutions else None
     print(f"\nwhole search on {workers} workers: {wall:.1f} s wall clock "
-          f"(this process {time.process_time() - c:.1f} CPU s); "
+          f"(the workers {cpu:.0f} CPU s); "
           f"{len(found.solutions)} solutions, best "
           + (f"{best.error.max / found.task.size:.4f} of the size ({best.names[-1:]})"
              if best else "none")
