@@ -47,7 +47,7 @@ from chaingraph.synthesis import (
 )
 
 
-def _crank_rocker_points(picks):
+def crank_rocker_points(picks):
     joints = (Joint("A", "R", ("frame", "crank"), at=(0.0, 0.0)),
               Joint("B", "R", ("crank", "coupler"), at=(20.0, 0.0)),
               Joint("C", "R", ("coupler", "rocker"), at=(70.0 - 50.0 * math.cos(1.2),
@@ -63,9 +63,9 @@ def _crank_rocker_points(picks):
 TASKS = {
     "function log10, 3 points": lambda: function(function="log10(x)", x=(1, 2),
                                                  swing=(60, 90)),
-    "path, 5 points (exact)": lambda: path(points=_crank_rocker_points(
+    "path, 5 points (exact)": lambda: path(points=crank_rocker_points(
         [10, 60, 120, 200, 290]), seed=1),
-    "path, 20 points closed (fit)": lambda: path(points=_crank_rocker_points(
+    "path, 20 points closed (fit)": lambda: path(points=crank_rocker_points(
         range(0, 360, 18)), closed=True, seed=1),
 }
 
@@ -174,7 +174,7 @@ def peer_rows(exe):
         rows.append((name, len(found["solutions"]), None, *judged, found["seconds"], mine,
                      seconds))
     for picks in ([10, 90, 200, 290], [10, 60, 120, 200, 290]):
-        points = _crank_rocker_points(picks)
+        points = crank_rocker_points(picks)
         t = time.perf_counter()
         mine = path(points=points, seed=1)
         seconds = time.perf_counter() - t

@@ -515,19 +515,30 @@ def cmd_design_function(args: argparse.Namespace) -> int:
 
 def cmd_design_path(args: argparse.Namespace) -> int:
     """``chaingraph design path``: certified path generators, best first."""
-    if args.links != 4:
-        raise DesignError(f"links must be 4 (the four-bar; type synthesis over 6 and 8 links "
-                          f"is not built yet), got {args.links}", kind="path",
-                          parameter="links")
+    synthesis.check_links(args.links, args.prismatic, kind="path")
     if args.out:
         output_folder(args.out, what="solutions")
     if args.draw:
         svg_file(args.draw, what="solution and its path")
     points = args.points if args.points is not None else points_file(args.points_file)
-    found = synthesis.path(points=points, timing=args.timing, closed=args.closed,
-                           solutions=args.solutions, seed=args.seed, units=args.units,
-                           min_transmission=args.min_transmission)
-    return _synthesis_output(args, found)
+    options = dict(points=points, timing=args.timing, closed=args.closed,
+                   solutions=args.solutions, seed=args.seed, units=args.units,
+                   min_transmission=args.min_transmission)
+    if args.links == 4 and args.prismatic in (None, 0):
+        return _synthesis_output(args, synthesis.path(**options))
+    return _synthesis_output(args, _through_atlas(args, synthesis.path, options))
+
+
+def _through_atlas(args, synthesise, options):
+    """A type synthesis (``synthesise``: synthesis.path or .motion with ``options``)
+    over the atlas's chains of ``--links`` links, on local processes or a Dask cluster."""
+    if args.scheduler is not None:
+        workers = args.workers if args.workers >= 1 else workers_asked(args.workers)
+        with DaskRunner(args.scheduler, workers=workers) as runner:
+            return synthesise(**options, links=args.links, prismatic=args.prismatic,
+                              runner=runner)
+    return synthesise(**options, links=args.links, prismatic=args.prismatic,
+                      runner=process_runner(workers_asked(args.workers)))
 
 
 def points_file(path: str | os.PathLike[str]) -> list[tuple[float, float]]:
@@ -560,9 +571,13 @@ def cmd_design_motion(args: argparse.Namespace) -> int:
         output_folder(args.out, what="solutions")
     if args.draw:
         svg_file(args.draw, what="solution and its poses")
-    found = synthesis.motion(poses=args.poses, solutions=args.solutions, units=args.units,
-                             min_transmission=args.min_transmission)
-    return _synthesis_output(args, found)
+    synthesis.check_links(args.links, args.prismatic, kind="motion")
+    options = dict(poses=args.poses, solutions=args.solutions, units=args.units,
+                   min_transmission=args.min_transmission)
+    if args.links == 4 and args.prismatic in (None, 0):
+        return _synthesis_output(args, synthesis.motion(**options))
+    return _synthesis_output(args, _through_atlas(args, synthesis.motion,
+                                                  {**options, "seed": args.seed}))
 
 
 def _task_line(task) -> str:
@@ -605,15 +620,31 @@ def _synthesis_output(args, found) -> int:
              f"{s.transmission_angle[0]:.1f}..{s.transmission_angle[1]:.1f}", s.input,
              ", ".join(f"{k.replace('_', ' ')} {figure(v)}" for k, v in s.dimensions.items())]
             for s in found.solutions]
-    print(table(rows, ["rank", "error max", "error rms"] + (["angle error"] if angles else [])
+    if any(s.atlas for s in found.solutions):
+        for row, s in zip(rows, found.solutions):
+            row.insert(1, _atlas_text(s))
+    print(table(rows, ["rank"] + (["mechanism"] if any(s.atlas for s in found.solutions)
+                                  else []) + ["error max", "error rms"]
+                + (["angle error"] if angles else [])
                 + ["transmission", "input", "dimensions"]))
-    print(f"rejected: {rejected}; searched {found.searched.candidates} candidates")
+    searched = found.searched
+    space = (f"{searched.chains} chains, {searched.inversions} inversions, "
+             if any(s.atlas for s in found.solutions) else "")
+    print(f"rejected: {rejected}; searched {space}{searched.candidates} candidates")
     if args.out:
         n = len(found.solutions)
         files = "solution-1.toml" if n == 1 else f"solution-1.toml .. solution-{n}.toml"
         print(f"written: {files} in {args.out} (chaingraph solve reproduces "
               f"{'it' if n == 1 else 'each'})")
     return 0
+
+
+def _atlas_text(s) -> str:
+    """Where a type synthesis found a solution: its catalog name, else its chain and
+    inversion in the atlas."""
+    a = s.atlas
+    where = f"chain {a['chain']}, inversion {a['inversion']}"
+    return f"{s.names[-1]} ({where})" if s.names else where
 
 
 def _error_text(found):

@@ -397,13 +397,29 @@ def _design_path_command(kinds) -> None:
                         "kept; its value at the first is chosen)")
     q.add_argument("--closed", action="store_true",
                    help="the targets lie on a closed curve traced over a full turn")
-    q.add_argument("--links", type=int, default=4, metavar="4",
-                   help="the mechanism's links (4: the four-bar; type synthesis over 6 and "
-                        "8 is not built yet)")
     q.add_argument("--seed", type=int, metavar="S",
                    help="the random search's seed (the same seed, the same solutions)")
+    _type_arguments(q)
     _synthesis_arguments(q)
     q.set_defaults(run=cmd_design_path)
+
+
+def _type_arguments(q) -> None:
+    """The options of type synthesis through the atlas (design path and motion)."""
+    q.add_argument("--links", type=int, default=4, metavar="4|6|8",
+                   help="the mechanism's links: 4 the four-bar (default); 6 or 8 every "
+                        "1-dof chain of that size in the atlas, every inversion and every "
+                        "link that can carry the point or pose")
+    q.add_argument("--prismatic", type=prismatic_count, metavar="K|all",
+                   help="chains with K sliding pairs ('all': any), searched through the "
+                        "atlas (with --links 4: the slider-crank chains)")
+    q.add_argument("--workers", type=int, default=1, metavar="K",
+                   help="with --links 6 or 8: local processes that search the families "
+                        "side by side (at most the CPUs); with --scheduler local, the "
+                        "embedded cluster's workers")
+    q.add_argument("--scheduler", metavar="ADDRESS",
+                   help="with --links 6 or 8: search on a Dask cluster (tcp://host:8786), "
+                        "or 'local' for an embedded one (pip install 'chaingraph[cluster]')")
 
 
 def points_argument(text: str) -> list[tuple[float, float]]:
@@ -430,13 +446,20 @@ def numbers_argument(text: str) -> list[float]:
 def _design_motion_command(kinds) -> None:
     """The arguments of ``chaingraph design motion``."""
     q = kinds.add_parser(
-        "motion", help="a motion generator (four-bar or slider crank) through 2 to 5 poses",
+        "motion", help="a motion generator (four-bar or slider crank; with --links 6 or 8 "
+                       "any chain of the atlas) through 2 to 5 poses",
         description="A four-bar or slider crank whose coupler passes through the poses in "
                     "order: two and three poses by the classical constructions, four and "
-                    "five by Burmester theory; every pair of dyads tried, each driving; "
-                    "every solution certified by the solver from its written chain file.")
+                    "five by Burmester theory; every pair of dyads tried, each driving. "
+                    "With --links 6 or 8, every chain of that size, inversion and link "
+                    "that can carry the pose, searched by the path optimiser. Every "
+                    "solution certified by the solver from its written chain file.")
     q.add_argument("--poses", required=True, type=poses_argument, metavar='"X,Y,DEG; ..."',
                    help="the coupler's poses in order: its point P at X,Y and its angle DEG")
+    q.add_argument("--seed", type=int, metavar="S",
+                   help="with --links 6 or 8: the random search's seed (the same seed, the "
+                        "same solutions)")
+    _type_arguments(q)
     _synthesis_arguments(q)
     q.set_defaults(run=cmd_design_motion)
 

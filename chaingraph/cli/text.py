@@ -76,11 +76,12 @@ SYNTHESIS_FLAGS = {"function": "--function EXPR", "x": "--x A:B", "swing": "--sw
                    "spacing": "--spacing chebyshev|even",
                    "kind": "--kind four-bar|slider-crank", "solutions": "--solutions K",
                    "min_transmission": "--min-transmission DEG", "units": "--units U",
-                   "poses": "--poses \"X,Y,DEG; ...\""}
+                   "poses": "--poses \"X,Y,DEG; ...\"", "links": "--links 4|6|8",
+                   "prismatic": "--prismatic K|all"}
 SYNTHESES = ("function", "path", "motion")
 # where a path task's parameter has its own flag
 PATH_FLAGS = {"points": '--points "X,Y; ..."', "points_file": "--points-file CSV",
-              "timing": '--timing "DEG; ..."', "seed": "--seed S", "links": "--links 4",
+              "timing": '--timing "DEG; ..."', "seed": "--seed S",
               "kind": None}
 
 

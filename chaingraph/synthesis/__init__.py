@@ -2,7 +2,8 @@
 
 * :func:`function` function generation (four-bar, slider crank), :mod:`.function_generation`;
 * :func:`path` path generation (four-bar), :mod:`.path_generation`, by the optimiser of
-  :mod:`.optimiser` over a mechanism family of :mod:`.family`;
+  :mod:`.optimiser` over a mechanism family of :mod:`.family`; with ``links`` 6 or 8,
+  type synthesis over the atlas's chains, :mod:`.type_synthesis`;
 * :func:`motion` motion generation (four-bar, slider crank through 2 to 5 poses),
   :mod:`.motion_generation`, on the Burmester geometry of :mod:`.poses` and
   :mod:`.burmester`;
@@ -25,8 +26,7 @@ from chaingraph.synthesis.certification import (
 )
 from chaingraph.synthesis.design import KINDS, Design, slotted_lever, whitworth
 from chaingraph.synthesis.function_generation import function
-from chaingraph.synthesis.motion_generation import motion
-from chaingraph.synthesis.path_generation import path
+from chaingraph.synthesis.type_synthesis import LINKS, check_links, motion, path
 from chaingraph.synthesis.result import Curve, Error, Searched, Solution, Synthesis
 from chaingraph.synthesis.task import (
     FunctionTask,
@@ -37,7 +37,7 @@ from chaingraph.synthesis.task import (
     path_task,
 )
 
-__all__ = ["function", "path", "motion", "MotionTask", "motion_task", "Synthesis", "Solution", "Error", "Curve", "Searched", "certify",
+__all__ = ["function", "path", "LINKS", "check_links", "motion", "MotionTask", "motion_task", "Synthesis", "Solution", "Error", "Curve", "Searched", "certify",
            "Certified", "Rejected", "FunctionTargets", "PointTargets", "PoseTargets",
            "REASONS", "FunctionTask", "function_task", "PathTask", "path_task", "Design", "slotted_lever",
            "whitworth", "KINDS"]

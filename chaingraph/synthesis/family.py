@@ -11,7 +11,8 @@ the drawing, as the solver reads it. A family supplies, vectorised over many mec
 
 * :meth:`Family.positions`: where the tracing point is at given input values (NaN where
   the chain cannot be assembled), tracking the drawn assembly;
-* :meth:`Family.transmission`: the transmission angle there (degrees);
+* :meth:`Family.transmission`: the transmission angle there (degrees), and
+  :meth:`Family.rotation` how far the carrier has turned from its drawn pose (radians);
 * :meth:`Family.first_input`: the input's value (radians) at the drawn pose, and
   :meth:`Family.posed` the mechanisms drawn at other input values;
 * :meth:`Family.sample`: random mechanisms of the family that can turn their input fully,
@@ -20,21 +21,24 @@ the drawing, as the solver reads it. A family supplies, vectorised over many mec
   its ``[mechanism]`` (output: the tracing point), to be certified from its file.
 
 :class:`FourBar` is the four-bar's (closed form); a six-bar family plugs into the same
-optimiser (:mod:`chaingraph.synthesis.optimiser`) by giving these six.
+optimiser (:mod:`chaingraph.synthesis.optimiser`) by giving these seven.
 """
 
 from __future__ import annotations
 
 import math
 from abc import ABC, abstractmethod
+from dataclasses import dataclass
 
 import numpy as np
 import numpy.typing as npt
 
-from chaingraph.geometry import circle_circle
+from chaingraph.geometry import circle_circle, circle_line, line_by_two_distances
+from chaingraph.kinematics.equations import newton_step
 from chaingraph.model.chain import Chain, Joint, Mechanism, Point
 
-__all__ = ["Family", "FourBar", "FOUR_BAR"]
+__all__ = ["Family", "FourBar", "FOUR_BAR", "AtlasFamily", "LoopFamily", "DyadStep", "dyad_plan",
+           "DYADS"]
 
 
 class Family(ABC):
@@ -66,6 +70,11 @@ class Family(ABC):
     @abstractmethod
     def transmission(self, params: np.ndarray, theta: np.ndarray) -> np.ndarray:
         """The transmission angle (degrees, (M, K)) at ``theta``; NaN where unassembled."""
+
+    @abstractmethod
+    def rotation(self, params: np.ndarray, theta: np.ndarray) -> np.ndarray:
+        """How far the carrier has turned (radians, (M, K)) at ``theta`` from its drawn
+        pose; NaN where unassembled."""
 
     @abstractmethod
     def first_input(self, params: np.ndarray) -> np.ndarray:
@@ -101,12 +110,15 @@ class Family(ABC):
         """The mechanism of one row of parameters, drawn at its pose, its output the
         tracing point."""
         p = [float(v) for v in np.asarray(params, dtype=float)]
-        joints = tuple(Joint(j.id, j.kind, j.links, at=(p[2 * k], p[2 * k + 1]))
-                       for k, j in enumerate(self.template))
-        return Chain(name, joints, family=self.family_name, units=units, notes=notes,
+        return Chain(name, self._drawn_joints(p), family=self.family_name, units=units, notes=notes,
                      points=(Point(self.point, self.carrier, (p[-2], p[-1])),),
                      mechanism=Mechanism(self.fixed, self.driver, 1.0, self.point),
                      task=task)
+
+    def _drawn_joints(self, p: list[float]) -> tuple[Joint, ...]:
+        """The template's joints drawn where one row of parameters puts them."""
+        return tuple(Joint(j.id, j.kind, j.links, at=(p[2 * k], p[2 * k + 1]))
+                     for k, j in enumerate(self.template))
 
     @abstractmethod
     def dimensions(self, params: np.ndarray) -> dict[str, float]:
@@ -172,6 +184,12 @@ class FourBar(Family):
         p = np.asarray(params, dtype=float)
         return np.arctan2(p[:, 3] - p[:, 1], p[:, 2] - p[:, 0])
 
+    def rotation(self, params: np.ndarray, theta: np.ndarray) -> np.ndarray:
+        p = np.asarray(params, dtype=float)
+        (bx, by), (cx, cy), _, _, _, _ = self._joints(p, theta)
+        drawn = np.arctan2(p[:, 5] - p[:, 3], p[:, 4] - p[:, 2])[:, None]
+        return np.arctan2(cy - by, cx - bx) - drawn
+
     def sample(self, rng: np.random.Generator, count: int) -> np.ndarray:
         """Grashof crank-rockers (the crank the shortest link, so that it turns fully),
         in either assembly, at a random crank angle, the coupler point anywhere within
@@ -232,3 +250,646 @@ def _centred_unit(family: Family, params: np.ndarray) -> np.ndarray:
     pts = params.reshape(len(params), -1, 2)
     pts = (pts - np.stack([cx, cy], axis=1)[:, None, :]) / extent[:, None, None]
     return pts.reshape(len(params), -1)
+
+
+# -- any chain of the atlas, solved dyad by dyad -----------------------------------------
+#: the dyads solved in closed form (the kinds of the first outer, middle and second outer
+#: joints): every dyad of a 1-dof chain (three sliding pairs would leave it free to slide)
+DYADS = ("RRR", "RRP", "PRR", "RPR", "PRP", "RPP", "PPR")
+
+
+@dataclass(frozen=True)
+class DyadStep:
+    """One dyad of a :class:`DyadPlan`: the unknown links ``first`` and ``second`` joined
+    by ``middle``; ``first`` joins the known link ``first_known`` at ``first_joint``,
+    ``second`` joins ``second_known`` at ``second_joint``; ``pattern`` the three joints'
+    kinds (first, middle, second: one of :data:`DYADS`)."""
+
+    first: str
+    second: str
+    middle: str
+    first_joint: str
+    second_joint: str
+    first_known: str
+    second_known: str
+    pattern: str = "RRR"
+
+
+def dyad_plan(chain: Chain, fixed: str, driver: str) -> tuple[DyadStep, ...] | None:
+    """The order in which the links of ``chain`` are found, two at a time, once ``fixed``
+    and ``driver`` (turning about the fixed link) are known: each step a dyad (RRR, or
+    with sliding pairs RRP, PRR, RPR, PRP, RPP, PPR: :data:`DYADS`) whose outer joints
+    are on known links (an Assur group of class II). None when the chain is not solved
+    so (a joint of three links, a driver not turning about the fixed link on one
+    turning pair, or a group of higher class: a triad).
+
+    Examples
+    --------
+    >>> from chaingraph.structure.atlas import atlas
+    >>> watt, stephenson = atlas(links=6)
+    >>> [(s.first, s.second) for s in dyad_plan(watt, "L1", "L2")]
+    [('L5', 'L6'), ('L3', 'L4')]
+    >>> dyad_plan(stephenson, "L1", "L2") is None     # Stephenson III: a triad after L2
+    True
+    >>> slider_crank, = atlas(links=4, prismatic=1)
+    >>> [(s.first, s.second, s.pattern) for s in dyad_plan(slider_crank, "L1", "L3")]
+    [('L2', 'L4', 'PRR')]
+    """
+    if any(j.kind not in ("R", "P") or len(j.links) != 2 for j in chain.joints):
+        return None
+    if [j.kind for j in chain.joints if set(j.links) == {fixed, driver}] != ["R"]:
+        return None
+    known = {fixed, driver}
+    steps: list[DyadStep] = []
+    while len(known) < len(chain.links):
+        step = _next_dyad(chain, known)
+        if step is None or step.pattern not in DYADS:
+            return None
+        steps.append(step)
+        known |= {step.first, step.second}
+    return tuple(steps)
+
+
+def _next_dyad(chain: Chain, known: set[str]) -> DyadStep | None:
+    """The first dyad (in joint order) of two unknown links whose other ends are known."""
+    def outer(link, middle):
+        return next(((j, x) for j in chain.joints_of(link) if j.id != middle.id
+                     for x in j.links if x != link and x in known), None)
+    for m in chain.joints:
+        u, v = m.links
+        if u in known or v in known:
+            continue
+        a, b = outer(u, m), outer(v, m)
+        if a is not None and b is not None:
+            return DyadStep(u, v, m.id, a[0].id, b[0].id, a[1], b[1],
+                            a[0].kind + m.kind + b[0].kind)
+    return None
+
+
+class AtlasFamily(Family):
+    """A chain of the atlas as a mechanism family: ``fixed`` link, ``driver`` turning
+    about it, the tracing point on ``carrier``; the joints' positions solved dyad by dyad
+    (:func:`dyad_plan`: RRR, and with sliding pairs RRP, PRR, RPR, PRP) in closed form,
+    vectorised over mechanisms and input values (a screen: every answer is certified by
+    the kernel's solver from its written file). Parameters: every joint's drawn position
+    in the chain's joint order, then for each sliding pair (in that order) a second
+    point of its line (its direction: a similarity of the plane moves it as it moves
+    the line), then the point's. ``name`` is the mechanism's (a catalog name where there
+    is one)."""
+
+    def __init__(self, chain: Chain, fixed: str, driver: str, carrier: str, *,
+                 name: str | None = None) -> None:
+        plan = dyad_plan(chain, fixed, driver)
+        if plan is None:
+            raise ValueError(f"{chain.name} with {fixed} fixed and {driver} driving is not "
+                             "solved dyad by dyad")
+        self.plan = plan
+        self._setup(chain, fixed, driver, carrier, name)
+        frames = {fixed: None, driver: (self._pivot, self._pivot)}
+        for s in plan:
+            frames[s.first] = (s.first_joint, s.middle)
+            frames[s.second] = (s.second_joint, s.middle)
+        self._carrier_frame = frames[carrier]
+
+    def _setup(self, chain: Chain, fixed: str, driver: str, carrier: str,
+               name: str | None) -> None:
+        """What every family of a chain keeps: its template, links, pivot and the
+        input's reference line, the sliding pairs' parameter rows."""
+        self.template = tuple(Joint(j.id, j.kind, j.links) for j in chain.joints)
+        self.fixed, self.driver, self.carrier = fixed, driver, carrier
+        self.name = name or f"{chain.name}, {fixed} fixed"
+        self.family_name = chain.family or chain.name
+        self._index = {j.id: k for k, j in enumerate(self.template)}
+        self._pivot = next(j.id for j in chain.joints if set(j.links) == {fixed, driver})
+        on = sorted(j.id for j in chain.joints if driver in j.links and j.id != self._pivot)
+        # the solver's input: the line from the pivot to the driver's first other joint
+        self._reference = (self._pivot, on[0])
+        self._links = sorted({x for j in self.template for x in j.links})
+        slides = [j.id for j in self.template if j.kind == "P"]
+        self._axis_row = {jid: len(self.template) + k for k, jid in enumerate(slides)}
+
+    @property
+    def size(self) -> int:
+        """The number of parameters (a second point for each sliding pair's line)."""
+        return 2 * (len(self.template) + len(self._axis_row) + 1)
+
+    def _drawn(self, params):
+        """The joints' drawn positions (M, J, 2)."""
+        p = np.asarray(params, dtype=float)
+        return p[:, :2 * len(self.template)].reshape(len(p), -1, 2)
+
+    def _axis(self, params, jid):
+        """A sliding pair's drawn direction (unit x, y, each (M, 1))."""
+        p = np.asarray(params, dtype=float)
+        k, r = 2 * self._index[jid], 2 * self._axis_row[jid]
+        dx, dy = p[:, r] - p[:, k], p[:, r + 1] - p[:, k + 1]
+        n = np.hypot(dx, dy)
+        return (dx / n)[:, None], (dy / n)[:, None]
+
+    def _solve(self, params, theta):
+        """Every link's rigid motion from its drawn pose at ``theta``: link -> (c, s,
+        (px, py), (qx, qy)) meaning x -> p + R(c, s) (x - q) ((M, K) arrays; None: fixed)."""
+        drawn = self._drawn(params)
+        theta = np.asarray(theta, dtype=float)
+        turn = theta - self.first_input(params)[:, None]
+        k = self._index[self._pivot]
+        pivot = drawn[:, k, 0][:, None], drawn[:, k, 1][:, None]
+        motions: dict[str, tuple | None] = {self.fixed: None,
+                                            self.driver: (np.cos(turn), np.sin(turn), pivot, pivot)}
+        for s in self.plan:
+            with np.errstate(all="ignore"):
+                motions.update(self._dyad(s, params, motions))
+        return motions
+
+    def _dyad(self, s: DyadStep, params, motions) -> dict[str, tuple]:
+        """One dyad's two motions (see :data:`DYADS`), in the drawn assembly mode."""
+        drawn = self._drawn(params)
+
+        def d(jid):
+            k = self._index[jid]
+            return drawn[:, k, 0][:, None], drawn[:, k, 1][:, None]
+        s = _mirrored(s)
+        a0, b0, m0 = d(s.first_joint), d(s.second_joint), d(s.middle)
+        ka, kb = motions[s.first_known], motions[s.second_known]
+        if s.pattern == "RPR":
+            c, sn = _rpr_turn(_moved(ka, a0), _moved(kb, b0), a0, b0,
+                              self._axis(params, s.middle))
+            return {s.first: (c, sn, _moved(ka, a0), a0),
+                    s.second: (c, sn, _moved(kb, b0), b0)}
+        if s.pattern == "PRP":
+            m = _lines_meet(_slide_line(ka, a0, m0, self._axis(params, s.first_joint)),
+                            _slide_line(kb, b0, m0, self._axis(params, s.second_joint)))
+            return {s.first: (*_turn_of(ka), m, m0), s.second: (*_turn_of(kb), m, m0)}
+        if s.pattern == "RPP":          # both links turn with the second's guide
+            turn = _turn_of(kb)
+            a = _moved(ka, a0)
+            first = (*turn, a, a0)
+            m = _lines_meet(_slide_line(first, m0, m0, self._axis(params, s.middle)),
+                            _slide_line(kb, b0, m0, self._axis(params, s.second_joint)))
+            return {s.first: first, s.second: (*turn, m, m0)}
+        a = _moved(ka, a0)
+        r1 = np.hypot(m0[0] - a0[0], m0[1] - a0[1])
+        if s.pattern == "RRR":
+            b = _moved(kb, b0)
+            r2 = np.hypot(m0[0] - b0[0], m0[1] - b0[1])
+            mode = np.where((b0[0] - a0[0]) * (m0[1] - a0[1])
+                            - (b0[1] - a0[1]) * (m0[0] - a0[0]) >= 0, 1.0, -1.0)
+            (mx, my), (nx, ny), raw = circle_circle(a, r1, b, r2)
+            root = mode * np.sqrt(np.where(raw >= 0, raw, np.nan))
+            m = (mx + root * nx, my + root * ny)
+            return {s.first: _rigid(a0, m0, a, m), s.second: _rigid(b0, m0, b, m)}
+        # RRP: the middle joint on the circle about a and on the second link's line
+        ex, ey = self._axis(params, s.second_joint)
+        base, (ux, uy) = _slide_line(kb, b0, m0, (ex, ey))
+        mode = np.where((m0[0] - a0[0]) * ex + (m0[1] - a0[1]) * ey >= 0, 1.0, -1.0)
+        (fx, fy), _, raw = circle_line(a, r1, base, (ux, uy))
+        root = mode * np.sqrt(np.where(raw >= 0, raw, np.nan))
+        m = (fx + root * ux, fy + root * uy)
+        return {s.first: _rigid(a0, m0, a, m), s.second: (*_turn_of(kb), m, m0)}
+
+    def positions(self, params: np.ndarray, theta: np.ndarray) -> tuple[np.ndarray,
+                                                                       np.ndarray]:
+        motions = self._solve(params, theta)
+        p = np.asarray(params, dtype=float)
+        return _moved(motions[self.carrier], (p[:, -2][:, None], p[:, -1][:, None]))
+
+    def rotation(self, params: np.ndarray, theta: np.ndarray) -> np.ndarray:
+        c, s, _, _ = self._solve(params, theta)[self.carrier]
+        return np.arctan2(s, c)
+
+    def posed(self, params: np.ndarray, theta: np.ndarray) -> np.ndarray:
+        p = np.asarray(params, dtype=float)
+        th = np.asarray(theta, dtype=float)[:, None]
+        motions = self._solve(p, th)
+        drawn = self._drawn(p)
+        out, axes = [], []
+        for k, j in enumerate(self.template):
+            # a sliding pair's place is its block's point (on the guide's line)
+            link = j.links[1] if j.kind == "P" else next(
+                (x for x in j.links if motions[x] is not None), j.links[0])
+            x, y = _moved(motions[link], (drawn[:, k, 0][:, None], drawn[:, k, 1][:, None]))
+            out += [x, y]
+            if j.kind == "P":
+                ex, ey = self._axis(p, j.id)
+                c, s = _turn_of(motions[link])
+                axes += [x + c * ex - s * ey, y + s * ex + c * ey]
+        out += axes
+        out += list(_moved(motions[self.carrier], (p[:, -2][:, None], p[:, -1][:, None])))
+        return np.concatenate([np.broadcast_to(v, (len(p), 1)) for v in out], axis=1)
+
+    def transmission(self, params: np.ndarray, theta: np.ndarray) -> np.ndarray:
+        """The worst (farthest from 90 degrees) of the dyads' transmission angles: at an
+        RRR dyad's middle joint, between its links; with a sliding pair (within [0, 90],
+        as the certification measures a slider crank's), between the turning link and
+        the guide's normal (RRP), the line between the two pivots and the guide's normal
+        (RPR), or the two guides (PRP, RPP)."""
+        motions = self._solve(params, theta)
+        worst = np.full(np.shape(theta), 90.0)
+        for s in self.plan:
+            with np.errstate(all="ignore"):
+                mu = self._dyad_angle(s, params, motions)
+                worst = np.where(np.abs(mu - 90.0) > np.abs(worst - 90.0), mu, worst)
+        return worst
+
+    def _dyad_angle(self, s: DyadStep, params, motions) -> np.ndarray:
+        """One dyad's transmission angle (see :meth:`transmission`)."""
+        drawn = self._drawn(params)
+
+        def at(link, jid):
+            k = self._index[jid]
+            return _moved(motions[link], (drawn[:, k, 0][:, None], drawn[:, k, 1][:, None]))
+
+        def axis(link, jid):
+            c, sn = _turn_of(motions[link])
+            ex, ey = self._axis(params, jid)
+            return c * ex - sn * ey, sn * ex + c * ey
+        s = _mirrored(s)
+        if s.pattern in ("PRP", "RPP"):
+            first = s.first_joint if s.pattern == "PRP" else s.middle
+            (ux, uy), (vx, vy) = axis(s.first, first), axis(s.second, s.second_joint)
+            return np.degrees(np.arccos(np.clip(np.abs(ux * vx + uy * vy), 0.0, 1.0)))
+        if s.pattern == "RPR":
+            (ax, ay), (bx, by) = at(s.first, s.first_joint), at(s.second, s.second_joint)
+            return _to_normal((bx - ax, by - ay), axis(s.first, s.middle))
+        (ax, ay), (mx, my) = at(s.first, s.first_joint), at(s.first, s.middle)
+        if s.pattern == "RRP":
+            return _to_normal((ax - mx, ay - my), axis(s.second, s.second_joint))
+        bx, by = at(s.second, s.second_joint)
+        ux, uy, vx, vy = ax - mx, ay - my, bx - mx, by - my
+        return np.degrees(np.arctan2(np.abs(ux * vy - uy * vx), ux * vx + uy * vy))
+
+    def first_input(self, params: np.ndarray) -> np.ndarray:
+        drawn = self._drawn(params)
+        a, b = (self._index[j] for j in self._reference)
+        return np.arctan2(drawn[:, b, 1] - drawn[:, a, 1], drawn[:, b, 0] - drawn[:, a, 0])
+
+    def sample(self, rng: np.random.Generator, count: int) -> np.ndarray:
+        """Random mechanisms of the chain that turn their input fully: the joints
+        scattered over a unit square, the driver's other joints drawn in towards its
+        pivot (a short crank), the sliding pairs' lines in random directions, the point
+        near the carrier's joints; those that assemble over a whole turn kept (the draw
+        repeated a few times, then the feasible ones repeated), centred and scaled as
+        :func:`_centred_unit`."""
+        kept: list[np.ndarray] = []
+        have = 0
+        for _ in range(_DRAWS):
+            p = self._scattered(rng, 4 * count + 16)
+            theta = self.first_input(p)[:, None] + np.linspace(0, 2 * math.pi, 48,
+                                                               endpoint=False)
+            with np.errstate(all="ignore"):
+                x, _ = self.positions(p, theta)
+                ok = np.all(np.isfinite(x), axis=1) & (self.link_ratio(p) <= 12.0)
+            kept.append(p[ok])
+            have += int(ok.sum())
+            if have >= count:
+                break
+        params = np.concatenate(kept)[:count]
+        if len(params) == 0:
+            params = self._scattered(rng, count)
+        while len(params) < count:
+            params = np.concatenate([params, params[:count - len(params)]])
+        return _centred_unit(self, params)
+
+    def _scattered(self, rng, n):
+        joints = rng.uniform(-1.0, 1.0, (n, len(self.template), 2))
+        pivot = self._index[self._pivot]
+        shrink = rng.uniform(0.1, 0.4, (n, 1, 1))
+        for k, j in enumerate(self.template):
+            if self.driver in j.links and k != pivot:
+                joints[:, k] = joints[:, pivot] + shrink[:, 0] * (joints[:, k] - joints[:, pivot])
+        on = [self._index[j.id] for j in self.template if self.carrier in j.links]
+        centre = joints[:, on].mean(axis=1)
+        point = centre + rng.normal(0.0, 0.5, (n, 2))
+        turn = rng.uniform(0.0, 2 * math.pi, (n, len(self._axis_row)))
+        axes = [joints[:, self._index[jid]] + 0.5 * np.stack([np.cos(turn[:, i]),
+                                                              np.sin(turn[:, i])], axis=1)
+                for i, jid in enumerate(self._axis_row)]
+        return np.concatenate([joints.reshape(n, -1), *axes, point], axis=1)
+
+    def _drawn_joints(self, p: list[float]) -> tuple[Joint, ...]:
+        """As :meth:`Family._drawn_joints`, each sliding pair along its line."""
+        def axis(jid):
+            k, r = 2 * self._index[jid], 2 * self._axis_row[jid]
+            return math.degrees(math.atan2(p[r + 1] - p[k + 1], p[r] - p[k]))
+        return tuple(Joint(j.id, j.kind, j.links, at=(p[2 * k], p[2 * k + 1]),
+                           axis=axis(j.id) if j.kind == "P" else None)
+                     for k, j in enumerate(self.template))
+
+    def dimensions(self, params: np.ndarray) -> dict[str, float]:
+        p = [float(v) for v in np.asarray(params).reshape(-1)]
+        at = {j.id: (p[2 * k], p[2 * k + 1]) for k, j in enumerate(self.template)}
+        out = {}
+        for link in self._links:
+            on = [j.id for j in self.template if link in j.links]
+            for i, a in enumerate(on):
+                for b in on[i + 1:]:
+                    out[f"{a}-{b}"] = math.dist(at[a], at[b])
+        for jid, r in self._axis_row.items():
+            out[f"{jid} axis"] = math.degrees(math.atan2(p[2 * r + 1] - at[jid][1],
+                                                         p[2 * r] - at[jid][0]))
+        a, m = self._carrier_frame or (self._pivot, self._pivot)
+        if a == m:
+            a, m = sorted(j.id for j in self.template if self.carrier in j.links)[:2]
+        ex, ey = at[m][0] - at[a][0], at[m][1] - at[a][1]
+        length = math.hypot(ex, ey)
+        dx, dy = p[-2] - at[a][0], p[-1] - at[a][1]
+        out[f"{self.point} along {a}-{m}"] = (dx * ex + dy * ey) / length
+        out[f"{self.point} across"] = (-dx * ey + dy * ex) / length
+        return out
+
+
+_DRAWS = 6        # rounds of random mechanisms drawn when sampling an atlas family
+
+
+def _moved(motion, point):
+    """A drawn point (x, y) carried by a link's rigid motion (None: the fixed link)."""
+    if motion is None:
+        return point
+    c, s, (px, py), (qx, qy) = motion
+    dx, dy = point[0] - qx, point[1] - qy
+    return px + c * dx - s * dy, py + s * dx + c * dy
+
+
+def _mirrored(s: DyadStep) -> DyadStep:
+    """A PRR or PPR dyad as the RRP or RPP dyad it is, read from its other end."""
+    if s.pattern not in ("PRR", "PPR"):
+        return s
+    return DyadStep(s.second, s.first, s.middle, s.second_joint, s.first_joint,
+                    s.second_known, s.first_known, s.pattern[::-1])
+
+
+def _turn_of(motion):
+    """A link's rotation (cos, sin) from its drawn pose (the fixed link: none)."""
+    return (1.0, 0.0) if motion is None else (motion[0], motion[1])
+
+
+def _rigid(a0, m0, a, m):
+    """The rigid motion taking drawn points a0, m0 to a, m (the same distance apart)."""
+    ux, uy = m0[0] - a0[0], m0[1] - a0[1]
+    vx, vy = m[0] - a[0], m[1] - a[1]
+    n = ux * ux + uy * uy
+    return (ux * vx + uy * vy) / n, (ux * vy - uy * vx) / n, a, a0
+
+
+def _slide_line(known, b0, m0, axis):
+    """The line on which a link sliding on ``known`` at the drawn point ``b0`` (along
+    ``axis``, drawn) carries its drawn point ``m0``: (base, unit direction) now."""
+    c, s = _turn_of(known)
+    bx, by = _moved(known, b0)
+    dx, dy = m0[0] - b0[0], m0[1] - b0[1]
+    return (bx + c * dx - s * dy, by + s * dx + c * dy), (c * axis[0] - s * axis[1],
+                                                          s * axis[0] + c * axis[1])
+
+
+def _lines_meet(first, second):
+    """Where two lines (base, direction) cross."""
+    (bx, by), (ux, uy) = first
+    (cx, cy), (vx, vy) = second
+    det = ux * vy - uy * vx
+    t = ((cx - bx) * vy - (cy - by) * vx) / det
+    return bx + t * ux, by + t * uy
+
+
+def _rpr_turn(a, b, a0, b0, axis):
+    """An RPR dyad's turn (cos, sin) from its drawn pose: its links turn about ``a`` and
+    ``b`` (drawn ``a0``, ``b0``) and slide on each other along ``axis`` (drawn), so
+    their common line's normal n, turned, meets ``n . (b - a) = n0 . (b0 - a0)``; the
+    root the drawn pose is on."""
+    nx, ny = -axis[1], axis[0]
+    c = nx * (b0[0] - a0[0]) + ny * (b0[1] - a0[1])
+    (ux, uy), ratio, raw = line_by_two_distances(a, b, c)
+    (u0x, u0y), _, _ = line_by_two_distances(a0, b0, c)
+    mode = np.where(u0x * ny - u0y * nx >= 0, 1.0, -1.0)
+    root = mode * np.sqrt(np.where(raw >= 0, raw, np.nan))
+    mx, my = ux * ratio - uy * root, uy * ratio + ux * root      # the turned normal
+    return nx * mx + ny * my, nx * my - ny * mx
+
+
+def _to_normal(u, axis):
+    """The angle (degrees, [0, 90]) between the vector ``u`` and the normal of the unit
+    ``axis``."""
+    cos = np.abs(-u[0] * axis[1] + u[1] * axis[0]) / np.hypot(u[0], u[1])
+    return np.degrees(np.arccos(np.clip(cos, 0.0, 1.0)))
+
+
+# -- any chain of turning pairs, its group beyond the driver solved by Newton's method ----
+_GRID = 24        # steps of the continuation over a turn of the input
+_NEWTON = 6       # Newton iterations per step (and at each asked input)
+_CLOSED = 1e-9    # a loop closes when every joint is within this (of the unit size)
+
+
+class LoopFamily(AtlasFamily):
+    """A chain of turning pairs whose links beyond the driver are not found dyad by dyad
+    (a triad: the Stephenson III, the Stephenson II driven by its binary link): every
+    moving link's rigid motion from its drawn pose solved together by Newton's method,
+    continued along the input from the drawn pose over a turn (:data:`_GRID` steps, so
+    the drawn circuit is tracked), then refined at each asked input from the step before
+    it; vectorised over mechanisms.
+
+    A *screen*, not a solver: it scores thousands of candidate mechanisms at once (an
+    array row per mechanism, which the kernel's solver, one chain at a time, cannot),
+    with its own loop-closure equations (each joint placed alike by its two links'
+    motions) but the kernel's Newton step
+    (:func:`chaingraph.kinematics.equations.newton_step`, its linear algebra:
+    least squares at a fold, NaN where not finite). Nothing it finds is listed on its
+    word: every candidate is written as a chain file and certified by the kernel's
+    solver from that file (:func:`chaingraph.synthesis.certification.certify`: assembled
+    at every target on one circuit, in order, its transmission angle and error
+    recomputed), exactly as the dyads' closed form is."""
+
+    def __init__(self, chain: Chain, fixed: str, driver: str, carrier: str, *,
+                 name: str | None = None) -> None:
+        if any(j.kind not in ("R", "P") or len(j.links) != 2 for j in chain.joints) or [
+                j.kind for j in chain.joints if set(j.links) == {fixed, driver}] != ["R"]:
+            raise ValueError(f"{chain.name} with {fixed} fixed and {driver} driving is not "
+                             "a chain of binary pairs driven about the fixed link")
+        self.plan = ()
+        self._setup(chain, fixed, driver, carrier, name)
+        self._kept: tuple | None = None
+        self._unknown = [x for x in self._links if x not in (fixed, driver)]
+        self._anchor = {x: self._index[next(j.id for j in self.template if x in j.links)]
+                        for x in self._unknown}
+        self._equations = [(self._index[j.id], j.links) for j in self.template
+                           if j.id != self._pivot]
+        self._carrier_frame = None
+        col = {x: i for i, x in enumerate(self._links)}
+        self._driver_col = col[driver]
+        self._unknown_cols = [col[x] for x in self._unknown]
+        self._anchor_rows = [self._anchor[x] for x in self._unknown]
+        self._joint_rows = [k for k, _ in self._equations]
+        self._first = [col[a] for _, (a, _) in self._equations]
+        self._second = [col[b] for _, (_, b) in self._equations]
+        # a sliding pair's equations: its block's point on the guide's line, no turn
+        self._slides = [e for e, (k, _) in enumerate(self._equations)
+                        if self.template[k].kind == "P"]
+        self._select = tuple(np.array([[1.0 if links[side] == x else 0.0
+                                        for x in self._unknown]
+                                       for _, links in self._equations])
+                             for side in (0, 1))
+        middles = [j for j in self.template if not set(j.links) & {fixed, driver}]
+        self._middles = [(self._index[j.id], [self._index[next(k.id for k in self.template
+                                                              if x in k.links and k.id != j.id)]
+                                              for x in j.links]) for j in middles]
+
+    def _state_motions(self, drawn, turn, z):
+        """Every link's motion (as :meth:`AtlasFamily._solve`) from the unknowns ``z``
+        (rows, 3 per unknown link: its anchor's move and its turn) and the driver's
+        ``turn``; rows of ``drawn`` (R, J, 2) and ``turn`` (R,)."""
+        pivot = drawn[:, self._index[self._pivot]]
+        out: dict[str, tuple | None] = {
+            self.fixed: None,
+            self.driver: (np.cos(turn), np.sin(turn), (pivot[:, 0], pivot[:, 1]),
+                          (pivot[:, 0], pivot[:, 1]))}
+        for k, x in enumerate(self._unknown):
+            q = drawn[:, self._anchor[x]]
+            out[x] = (np.cos(z[:, 3 * k + 2]), np.sin(z[:, 3 * k + 2]),
+                      (q[:, 0] + z[:, 3 * k], q[:, 1] + z[:, 3 * k + 1]), (q[:, 0], q[:, 1]))
+        return out
+
+    def _closure(self, drawn, turn, z, normals=None):
+        """The loop-closure equations' residuals (R, 2E: each turning pair's place by
+        its first link less by its second; a sliding pair's block point off the guide's
+        line, along its normal (``normals`` (R, S, 2), drawn), and the block's turn less
+        the guide's) and their Jacobian (R, 2E, 3U), from the unknowns."""
+        rows = len(z)
+        unknown = len(self._unknown)
+        d = drawn[:, self._joint_rows]                                   # (R, E, 2)
+        sides = []
+        for links in (self._first, self._second):
+            c, s, p, q = (np.ones((rows, len(self._links))), np.zeros((rows, len(self._links))),
+                          np.zeros((rows, len(self._links), 2)), np.zeros((rows, len(self._links), 2)))
+            pivot = drawn[:, self._index[self._pivot]]
+            c[:, self._driver_col], s[:, self._driver_col] = np.cos(turn), np.sin(turn)
+            p[:, self._driver_col] = q[:, self._driver_col] = pivot
+            cols = self._unknown_cols
+            q[:, cols] = drawn[:, self._anchor_rows]
+            p[:, cols] = q[:, cols] + z.reshape(rows, unknown, 3)[:, :, :2]
+            c[:, cols], s[:, cols] = (np.cos(z[:, 2::3]), np.sin(z[:, 2::3]))
+            v = d - q[:, links]
+            cl, sl = c[:, links], s[:, links]
+            moved = np.stack([cl * v[..., 0] - sl * v[..., 1], sl * v[..., 0] + cl * v[..., 1]],
+                             axis=2)
+            sides.append((p[:, links] + moved, moved))
+        (pa, ra), (pb, rb) = sides
+        f = pa - pb
+        jac = np.zeros((rows, len(self._first), 2, unknown, 3))
+        sa, sb = self._select
+        jac[:, :, 0, :, 0] = jac[:, :, 1, :, 1] = sa - sb
+        jac[:, :, 0, :, 2] = -ra[..., 1, None] * sa + rb[..., 1, None] * sb
+        jac[:, :, 1, :, 2] = ra[..., 0, None] * sa - rb[..., 0, None] * sb
+        if self._slides:
+            self._slide_rows(f, jac, (pa, ra, pb, rb), turn, z, normals)
+        return f.reshape(rows, -1), jac.reshape(rows, 2 * len(self._first), 3 * unknown)
+
+    def _slide_rows(self, f, jac, sides, turn, z, normals):
+        """The sliding pairs' rows of :meth:`_closure` (in place): the block's point off
+        the guide's line (along the turned normal n) and the block's turn less the
+        guide's."""
+        e = self._slides
+        pa, ra, pb, rb = (v[:, e] for v in sides)
+        angle = np.zeros((len(z), len(self._links)))
+        angle[:, self._driver_col] = turn
+        angle[:, self._unknown_cols] = z[:, 2::3]
+        ta, tb = angle[:, [self._first[k] for k in e]], angle[:, [self._second[k] for k in e]]
+        c, s = np.cos(ta), np.sin(ta)
+        nx = c * normals[..., 0] - s * normals[..., 1]
+        ny = s * normals[..., 0] + c * normals[..., 1]
+        gap = pb - pa
+        f[:, e] = np.stack([nx * gap[..., 0] + ny * gap[..., 1], tb - ta], axis=2)
+        sa, sb = (m[e][None, :, :] for m in self._select)
+        rows = np.zeros((len(z), len(e), 2) + jac.shape[3:])
+        rows[:, :, 0, :, 0] = nx[..., None] * (sb - sa)
+        rows[:, :, 0, :, 1] = ny[..., None] * (sb - sa)
+        along_b = nx * -rb[..., 1] + ny * rb[..., 0]          # n . (d rb / d turn)
+        along_a = (-ny * gap[..., 0] + nx * gap[..., 1]) - (nx * -ra[..., 1] + ny * ra[..., 0])
+        rows[:, :, 0, :, 2] = along_b[..., None] * sb + along_a[..., None] * sa
+        rows[:, :, 1, :, 2] = sb - sa
+        jac[:, e] = rows
+
+    def _newton(self, drawn, turn, z, normals=None, *, settled: float = 1e-14):
+        """Newton's iterations on the loop-closure equations from ``z`` (until no
+        unknown moves by more than ``settled``): the unknowns and whether they close
+        (to :data:`_CLOSED`)."""
+        for _ in range(_NEWTON):
+            f, jac = self._closure(drawn, turn, z, normals)
+            step = newton_step(jac, f)         # the kernel's step (NaN where not finite)
+            z = z + step
+            if not np.any(np.abs(step[np.isfinite(step)]) > settled):
+                break
+        f, _ = self._closure(drawn, turn, z, normals)
+        gap = np.max(np.abs(f), axis=1)
+        return z, gap <= max(settled, _CLOSED) * np.maximum(1.0, np.abs(drawn).max(axis=(1, 2)))
+
+    def _normals(self, params):
+        """The sliding pairs' drawn normals (M, S, 2), in :meth:`_closure`'s order."""
+        out = []
+        for e in self._slides:
+            ex, ey = self._axis(params, self.template[self._equations[e][0]].id)
+            out.append(np.concatenate([-ey, ex], axis=1))
+        return np.stack(out, axis=1) if out else np.zeros((len(params), 0, 2))
+
+    def _nodes(self, params):
+        """The continuation over a turn from the drawn pose: the unknowns at
+        :data:`_GRID` + 1 even steps of the input (M, G + 1, 3U; NaN past where a
+        mechanism stops closing), and the sliding pairs' normals. The last mechanisms'
+        are kept: a fit asks for their points, transmission angles and turns in turn."""
+        p = np.ascontiguousarray(params, dtype=float)
+        key = (p.shape, p.tobytes())
+        if self._kept is not None and self._kept[0] == key:
+            return self._kept[1]
+        drawn = self._drawn(p)
+        m, n = len(p), 3 * len(self._unknown)
+        nodes = np.full((m, _GRID + 1, n), np.nan)
+        z = np.zeros((m, n))
+        nodes[:, 0] = z
+        normals = self._normals(p)
+        alive = np.ones(m, dtype=bool)
+        for g in range(1, _GRID + 1):
+            z, ok = self._newton(drawn, np.full(m, g * 2 * math.pi / _GRID), z, normals,
+                                 settled=1e-7)
+            alive &= ok
+            z = np.where(alive[:, None], z, 0.0)
+            nodes[:, g] = np.where(alive[:, None], z, np.nan)
+        self._kept = (key, (nodes, normals))
+        return nodes, normals
+
+    def _solve(self, params, theta):
+        """As :meth:`AtlasFamily._solve`, by continuation from the drawn pose (see the
+        class); the asked inputs taken modulo a turn."""
+        drawn = self._drawn(params)
+        theta = np.asarray(theta, dtype=float)
+        m, k = theta.shape
+        n = 3 * len(self._unknown)
+        h = 2 * math.pi / _GRID
+        nodes, normals = self._nodes(params)
+        turn = (theta - self.first_input(params)[:, None]) % (2 * math.pi)
+        node = np.minimum(np.floor(turn / h).astype(int), _GRID)
+        start = np.take_along_axis(nodes, node[:, :, None], axis=1).reshape(m * k, n)
+        rows = np.repeat(drawn, k, axis=0)
+        z, ok = self._newton(rows, turn.reshape(-1), np.nan_to_num(start),
+                             np.repeat(normals, k, axis=0))
+        z = np.where((ok & np.all(np.isfinite(start), axis=1))[:, None], z, np.nan)
+        motions = self._state_motions(rows, turn.reshape(-1), z)
+        return {x: None if v is None else (v[0].reshape(m, k), v[1].reshape(m, k),
+                                           (v[2][0].reshape(m, k), v[2][1].reshape(m, k)),
+                                           (v[3][0].reshape(m, k), v[3][1].reshape(m, k)))
+                for x, v in motions.items()}
+
+    def transmission(self, params: np.ndarray, theta: np.ndarray) -> np.ndarray:
+        """The worst (farthest from 90 degrees) of the angles at the joints between two
+        links of the group (each link's line to another of its joints)."""
+        motions = self._solve(params, theta)
+        drawn = self._drawn(params)
+        worst = np.full(np.shape(theta), 90.0)
+        for k, (i, j) in self._middles:
+            jt = self.template[k]
+            pts = [_moved(motions[x], (drawn[:, o, 0][:, None], drawn[:, o, 1][:, None]))
+                   for x, o in zip(jt.links, (i, j))]
+            mx, my = _moved(motions[jt.links[0]], (drawn[:, k, 0][:, None],
+                                                   drawn[:, k, 1][:, None]))
+            ux, uy = pts[0][0] - mx, pts[0][1] - my
+            vx, vy = pts[1][0] - mx, pts[1][1] - my
+            mu = np.degrees(np.arctan2(np.abs(ux * vy - uy * vx), ux * vx + uy * vy))
+            with np.errstate(invalid="ignore"):
+                worst = np.where(np.abs(mu - 90.0) > np.abs(worst - 90.0), mu, worst)
+        return np.where(np.isfinite(worst), worst, np.nan)

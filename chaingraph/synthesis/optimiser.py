@@ -36,7 +36,7 @@ from chaingraph.synthesis.family import Family
 
 __all__ = ["TaskFrame", "MAX_RATIO", "curve", "ordered_distance", "objective",
            "coarse_search", "global_search", "fit_start", "least_squares_fit", "Fit",
-           "predicted_defect", "BETWEEN"]
+           "predicted_defect", "BETWEEN", "wrapped"]
 
 #: the longest link over the shortest, at most
 MAX_RATIO = 20.0
@@ -196,12 +196,15 @@ def _running_argmin(cost):
 
 
 def objective(family: Family, params: npt.ArrayLike, targets: np.ndarray, *, steps: int,
-              min_transmission: float, timing: npt.ArrayLike | None = None) -> np.ndarray:
+              min_transmission: float, timing: npt.ArrayLike | None = None,
+              turns: npt.ArrayLike | None = None) -> np.ndarray:
     """The in-order rms distance from the targets to each mechanism's path (task units),
     plus penalties: an input that cannot turn fully (:data:`_BIG` and the share of the
     turn unassembled), a transmission angle out of ``[min, 180 - min]`` over the turn
     (its excess in degrees over 90), a link ratio over :data:`MAX_RATIO`. ``timing``: the
-    input's turn (radians) from the first target to each."""
+    input's turn (radians) from the first target to each. ``turns`` (poses): the
+    carrier's turn (radians) from the first target to each, its rms miss (where the path
+    comes nearest each target) added."""
     params = np.atleast_2d(params)
     theta, x, y = curve(family, params, steps)
     unassembled = np.mean(~np.isfinite(x), axis=1)
@@ -214,15 +217,34 @@ def objective(family: Family, params: npt.ArrayLike, targets: np.ndarray, *, ste
         mu = family.transmission(params, theta)
         excess = np.nanmax(np.maximum(min_transmission - mu, mu - (180.0 - min_transmission)),
                            axis=1)
+        if turns is not None:
+            cost = cost + _turn_miss(family, params, theta, x, y, targets, turns)
     ratio = family.link_ratio(params)
     out = cost + np.maximum(excess, 0.0) / 90.0 + np.maximum(ratio / MAX_RATIO - 1.0, 0.0)
     out = np.where(unassembled > 0, _BIG * (1 + unassembled), out)
     return np.where(np.isfinite(out), out, 2 * _BIG)
 
 
+def _turn_miss(family, params, theta, x, y, targets, turns):
+    """The rms of the carrier's turn, where its path comes nearest each target, from
+    its turn at the first target, less ``turns`` (radians)."""
+    d2 = (x[:, None, :] - targets[None, :, 0, None]) ** 2 + \
+        (y[:, None, :] - targets[None, :, 1, None]) ** 2
+    near = np.argmin(np.where(np.isfinite(d2), d2, np.inf), axis=2)       # (M, N)
+    turned = np.take_along_axis(family.rotation(params, theta), near, axis=1)
+    miss = wrapped(turned - turned[:, :1] - np.asarray(turns)[None, :])
+    return np.sqrt(np.mean(miss * miss, axis=1))
+
+
+def wrapped(angle: np.ndarray | float) -> np.ndarray:
+    """Angles (radians) wrapped to [-pi, pi)."""
+    return (np.asarray(angle) + math.pi) % (2 * math.pi) - math.pi
+
+
 def coarse_search(family: Family, targets: np.ndarray, rng: np.random.Generator, *,
                   count: int, keep: int, steps: int, min_transmission: float,
-                  timing: npt.ArrayLike | None = None) -> tuple[np.ndarray, np.ndarray]:
+                  timing: npt.ArrayLike | None = None,
+                  turns: npt.ArrayLike | None = None) -> tuple[np.ndarray, np.ndarray]:
     """``count`` random mechanisms of the family placed on the task (turned at random,
     scaled to 0.7 to 1.5 times its size, moved so that their path's centre is near the
     targets'), the ``keep`` best by :func:`objective`: (params (keep, size), scores)."""
@@ -241,7 +263,8 @@ def coarse_search(family: Family, targets: np.ndarray, rng: np.random.Generator,
         p = moved.reshape(n, -1)
         batches.append(p)
         scores.append(objective(family, p, targets, steps=steps,
-                                min_transmission=min_transmission, timing=timing))
+                                min_transmission=min_transmission, timing=timing,
+                                turns=turns))
     params, score = np.concatenate(batches), np.concatenate(scores)
     best = np.argsort(score, kind="stable")[:keep]
     return params[best], score[best]
@@ -280,7 +303,8 @@ class Fit:
 def least_squares_fit(family: Family, targets: npt.ArrayLike, params: np.ndarray,
                       inputs: npt.ArrayLike, *, timing: npt.ArrayLike | None = None,
                       exact: bool, min_transmission: float | None = None,
-                      closed: bool = False) -> Fit | None:
+                      closed: bool = False,
+                      turns: npt.ArrayLike | None = None) -> Fit | None:
     """Solve ``position(params, theta_i) = target_i`` by least squares from ``params``
     and ``inputs`` (radians at each target, running one way; the first is the drawn
     pose's); to rounding when ``exact`` (else the least squares of the distances). The
@@ -290,7 +314,9 @@ def least_squares_fit(family: Family, targets: npt.ArrayLike, params: np.ndarray
     further residuals) its link ratio within :data:`MAX_RATIO` and, with
     ``min_transmission``, its transmission angle within bounds from the first target to
     the last (over the whole turn when ``closed``). None when the fit leaves the family
-    (a mechanism that cannot be assembled at a target)."""
+    (a mechanism that cannot be assembled at a target). ``turns`` (poses): the carrier
+    also turns by these (radians) from the first target to each (the residual in
+    radians, as a distance of the task's unit size)."""
     targets = np.asarray(targets, dtype=float)
     size = family.size
     free_inputs = timing is None
@@ -308,6 +334,9 @@ def least_squares_fit(family: Family, targets: npt.ArrayLike, params: np.ndarray
         th = np.concatenate([first, first + ahead], axis=1)
         x, y = family.positions(p, th)
         r = np.stack([x - targets[:, 0], y - targets[:, 1]], axis=2).reshape(len(z), -1)
+        if turns is not None:
+            r = np.concatenate([r, wrapped(family.rotation(p, th[:, 1:])
+                                           - np.asarray(turns)[None, 1:])], axis=1)
         if not exact:
             r = np.concatenate([r, _penalties(family, p, th, min_transmission, closed),
                                 _between(family, p, th, targets, closed)], axis=1)
@@ -328,11 +357,12 @@ def least_squares_fit(family: Family, targets: npt.ArrayLike, params: np.ndarray
                           method="dogbox", x_scale="jac", xtol=tol, ftol=tol, gtol=tol,
                           max_nfev=50 if exact else 100)
     r, th = residuals(found.x[None, :])
-    r = r[:, :2 * len(targets)]
+    n = len(targets)
+    r = r[:, :2 * n + (0 if turns is None else n - 1)]
     if np.any(np.abs(r) >= 10.0):
         return None
-    dist = np.hypot(r[0, 0::2], r[0, 1::2])
-    return Fit(found.x[:size], th[0], float(np.max(dist)))
+    dist = np.hypot(r[0, 0:2 * n:2], r[0, 1:2 * n:2])
+    return Fit(found.x[:size], th[0], float(np.max(np.concatenate([dist, np.abs(r[0, 2 * n:])]))))
 
 
 #: the weight of the path's distance from the chords between targets, in a fit

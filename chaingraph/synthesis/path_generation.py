@@ -31,6 +31,7 @@ from __future__ import annotations
 
 from collections import Counter
 from collections.abc import Iterable
+from dataclasses import dataclass
 from typing import Any
 
 import numpy as np
@@ -51,7 +52,8 @@ from chaingraph.synthesis.optimiser import (
 from chaingraph.synthesis.result import Error, Searched, Solution, Synthesis, ranked
 from chaingraph.synthesis.task import PathTask, check_options, path_task
 
-__all__ = ["path", "EXACT", "synthesise_path"]
+__all__ = ["path", "EXACT", "synthesise_path", "Budget", "BUDGET", "distinct_fits",
+           "least_transmission"]
 
 #: a fit passes its points exactly when every distance is within this of the task's size
 EXACT = 1e-9
@@ -118,23 +120,46 @@ def path(*, points: Iterable[tuple[float, float]],
     return synthesise_path(task, FOUR_BAR, solutions=solutions)
 
 
-def synthesise_path(task: PathTask, family: Family, *, solutions: int) -> Synthesis:
+@dataclass(frozen=True)
+class Budget:
+    """How hard the optimiser searches one family: random mechanisms in the coarse
+    search (``samples``), least-squares starts and differential evolution's population
+    (``starts``), fitted starts certified from (``fitted``), differential evolution's
+    ``generations``."""
+
+    samples: int
+    starts: int
+    fitted: int = _FITTED
+    generations: int = 100
+
+
+#: the four-bar's budget, exact (up to five points) and fitted
+BUDGET = {True: Budget(_SAMPLES[True], _STARTS[True]), False: Budget(_SAMPLES[False],
+                                                                        _STARTS[False])}
+
+
+def synthesise_path(task: PathTask, family: Family, *, solutions: int,
+                    budget: Budget | None = None,
+                    rng: np.random.Generator | None = None) -> Synthesis:
     """Path synthesis of a checked task over one mechanism family (the optimiser is the
-    family's: see :mod:`chaingraph.synthesis.family`)."""
+    family's: see :mod:`chaingraph.synthesis.family`), searching as hard as ``budget``
+    says (by default :data:`BUDGET`), from ``rng`` (by default the task's seed)."""
     frame = TaskFrame.of(task.points)
     targets = frame.to_task(task.points)
-    rng = np.random.default_rng(task.seed)
+    rng = np.random.default_rng(task.seed) if rng is None else rng
     exact = task.exact
+    budget = BUDGET[exact] if budget is None else budget
     steps = _STEPS[exact]
     turns = (None if task.timing is None
              else np.radians(np.asarray(task.timing) - task.timing[0]))
     common: dict[str, Any] = dict(steps=steps, min_transmission=task.min_transmission,
                                   timing=turns)
-    starts, _ = coarse_search(family, targets, rng, count=_SAMPLES[exact],
-                              keep=_STARTS[exact], **common)
+    starts, _ = coarse_search(family, targets, rng, count=budget.samples,
+                              keep=budget.starts, **common)
     if not exact:
-        best, _ = global_search(family, targets, starts, rng, **common)
-        starts = np.concatenate([best[None, :], starts[:_FITTED - 1]])
+        best, _ = global_search(family, targets, starts, rng,
+                                generations=budget.generations, **common)
+        starts = np.concatenate([best[None, :], starts[:budget.fitted - 1]])
     posed, inputs = fit_start(family, starts, targets, steps=steps, timing=turns)
     fits = []
     for p, th in zip(posed, inputs):
@@ -147,7 +172,7 @@ def synthesise_path(task: PathTask, family: Family, *, solutions: int) -> Synthe
             fits.append(fit)
     rejected: Counter = Counter()
     kept = []
-    for f in _distinct(fits):
+    for f in distinct_fits(fits):
         defect = predicted_defect(family, f)
         if defect is None:
             kept.append(f)
@@ -155,7 +180,7 @@ def synthesise_path(task: PathTask, family: Family, *, solutions: int) -> Synthe
             rejected[defect] += 1
     fits = kept
     if exact:
-        fits.sort(key=lambda f: -_least_transmission(family, f))
+        fits.sort(key=lambda f: -least_transmission(family, f))
     else:
         fits.sort(key=lambda f: f.residual)
     found: list[Solution] = []
@@ -170,10 +195,10 @@ def synthesise_path(task: PathTask, family: Family, *, solutions: int) -> Synthe
     size = task.size
     return Synthesis(task, ranked(found, solutions,
                                   tolerance=EXACT * size if exact else 0.0),
-                     dict(sorted(rejected.items())), Searched(1, 1, _SAMPLES[exact]))
+                     dict(sorted(rejected.items())), Searched(1, 1, budget.samples))
 
 
-def _distinct(fits):
+def distinct_fits(fits: list[Fit]) -> list[Fit]:
     """The fits, repeats dropped (parameters within 1e-6 of the task's size)."""
     out: list[Fit] = []
     for f in fits:
@@ -182,7 +207,7 @@ def _distinct(fits):
     return out
 
 
-def _least_transmission(family, fit) -> float:
+def least_transmission(family: Family, fit: Fit) -> float:
     """The transmission angle's worst (the least of mu and 180 - mu) between the first
     target and the last, by the family's own kinematics; -1 where unassembled."""
     lo, hi = fit.inputs[0], fit.inputs[-1]
@@ -202,7 +227,8 @@ def _certified(task, family, frame, fit):
     table = {k: v for k, v in task.to_dict().items() if v is not None}
     dims = family.dimensions(world)
     sizes = ", ".join(f"{k} {v:.6g}" for k, v in dims.items())
-    chain = family.chain(world, name=f"{family.name.capitalize()}: {how}", units=task.units,
+    chain = family.chain(world, name=f"{family.name[:1].upper()}{family.name[1:]}: {how}",
+                         units=task.units,
                          notes=f"Designed by chaingraph (path generation, {family.name}): "
                                f"{sizes}; drawn at the first target; the coupler point "
                                f"{family.point} passes the targets in order.", task=table)

@@ -12,7 +12,7 @@ from y(A) to y(B), both linearly. Every bad task raises one
 from __future__ import annotations
 
 import math
-from collections.abc import Iterable
+from collections.abc import Iterable, Sequence
 from dataclasses import dataclass
 from functools import cached_property
 
@@ -333,12 +333,21 @@ POSE_COUNTS = (2, 3, 4, 5)
 @dataclass(frozen=True)
 class MotionTask:
     """A motion generator's task: a link passes through ``poses``, ``(x, y, degrees)``
-    each (a point of it at x, y, the link turned by the angle), in order."""
+    each (a point of it at x, y, the link turned by the angle), in order; ``seed`` makes
+    a search through the atlas repeatable (None: no search, or one drawn)."""
 
     poses: tuple[tuple[float, float, float], ...]
     units: str = "mm"
     min_transmission: float = 30.0
     kind: str = "motion"
+    seed: int | None = None
+    mechanism: str = "four-bar or slider crank"
+
+    @property
+    def size(self) -> float:
+        """The task's size: the largest distance between two poses' points."""
+        p = np.asarray([(x, y) for x, y, _ in self.poses])
+        return float(np.max(np.hypot(*(p[:, None, :] - p[None, :, :]).transpose(2, 0, 1))))
 
     def radians(self) -> tuple[tuple[float, float, float], ...]:
         """The poses with their angles in radians (:mod:`chaingraph.synthesis.poses`)."""
@@ -346,12 +355,15 @@ class MotionTask:
 
     def to_dict(self) -> dict:
         """The JSON's ``"task"``."""
-        return {"kind": self.kind, "poses": [list(p) for p in self.poses],
-                "units": self.units, "min_transmission": self.min_transmission}
+        out = {"kind": self.kind, "poses": [list(p) for p in self.poses],
+               "units": self.units, "min_transmission": self.min_transmission}
+        if self.seed is not None:
+            out["seed"] = self.seed
+        return out
 
 
-def motion_task(*, poses: Iterable[tuple[float, float, float]], units: str = "mm",
-                min_transmission: float = 30.0) -> MotionTask:
+def motion_task(*, poses: Iterable[Sequence[float]], units: str = "mm",
+                min_transmission: float = 30.0, seed: int | None = None) -> MotionTask:
     """Check a motion generator's task (see :func:`chaingraph.synthesis.motion`): 2 to 5
     poses of three finite numbers (x, y, degrees), no two the same."""
     what = "motion"
@@ -379,4 +391,4 @@ def motion_task(*, poses: Iterable[tuple[float, float, float]], units: str = "mm
         raise DesignError(f"motion generation needs {POSE_COUNTS[0]} to {POSE_COUNTS[-1]} "
                           f"poses, got {len(out)}", kind=what, parameter="poses")
     checked_poses([(x, y, math.radians(a)) for x, y, a in out])
-    return MotionTask(tuple(out), units, mt)
+    return MotionTask(tuple(out), units, mt, seed=seed)

@@ -197,7 +197,7 @@ def test_the_four_bar_family_traces_what_the_solver_traces():
     (["--points", "0,0; 1"], "point 2 is not two numbers"),
     (["--points", "0,0; 1,1; 2,0", "--timing", "0; 10"], "timing gives 2 input values"),
     (["--points", "0,0; 1,1; 2,0", "--timing", "0; 10; 5"], "timing must move one way"),
-    (["--points", "0,0; 1,1; 2,0", "--links", "6"], "links must be 4"),
+    (["--points", "0,0; 1,1; 2,0", "--links", "5"], "links must be 4, 6 or 8, got 5"),
     (["--points-file", "bad.csv"], "bad.csv, line 3: expected two numbers x,y"),
 ])
 def test_bad_tasks_exit_2_with_one_line(args, what, tmp_path):

@@ -1,0 +1,142 @@
+"""Type synthesis through the atlas (a benchmark, not a test): a 20-point closed curve
+(benchmarks/synthesis.py's crank-rocker curve) searched over every family of a space of
+the atlas; where the time goes and how it grows with the number of families searched.
+
+    PYTHONPATH=$PWD python benchmarks/type_synthesis.py                 # --links 6
+    PYTHONPATH=$PWD python benchmarks/type_synthesis.py --links 6 --prismatic 1 --every 4
+    PYTHONPATH=$PWD python benchmarks/type_synthesis.py --links 8 --every 25
+    PYTHONPATH=$PWD python benchmarks/type_synthesis.py --workers 2     # and the whole run
+
+Each family is searched alone, one after another in this process, exactly as the whole
+search searches it (its number in the space, its random stream, its budget):
+CPU seconds per family, by how its motion is found ("dyads" in closed form, "newton"
+for the triads), and split into the optimiser's stages (the coarse search, differential
+evolution, least squares, the certification by the solver) by profiling (shares of the
+profiled time; the profiler inflates the solver's many small calls somewhat). ``--every K``
+searches every K-th family only (a capped run) and projects the whole space from the
+mean CPU per family of each method. ``--workers K`` then runs the whole search as
+``design path --links L --workers K`` does (process_runner) and gives its wall clock.
+"""
+
+from __future__ import annotations
+
+import argparse
+import cProfile
+import pstats
+import resource
+import statistics
+import sys
+import time
+from collections import defaultdict
+from pathlib import Path
+
+sys.path.insert(0, str(Path(__file__).resolve().parent))
+
+from synthesis import crank_rocker_points  # noqa: E402
+
+from chaingraph._util.parallel import process_runner  # noqa: E402
+from chaingraph.synthesis import path  # noqa: E402
+from chaingraph.synthesis.type_synthesis import atlas_space  # noqa: E402
+
+#: the optimiser's stages, by the function that does each
+STAGES = {"coarse search": "coarse_search", "differential evolution": "global_search",
+          "least squares": "least_squares_fit", "certification": "_certified"}
+
+
+def _stages(stats: pstats.Stats) -> dict[str, float]:
+    """The cumulative seconds of each stage in a profile, and of the whole family's
+    search (``"total"``)."""
+    out = dict.fromkeys([*STAGES, "total"], 0.0)
+    for (_, _, name), row in stats.stats.items():        # type: ignore[attr-defined]
+        for stage, fn in [*STAGES.items(), ("total", "search_family")]:
+            if name == fn:
+                out[stage] += row[3]
+    return out
+
+
+def per_family(links: int, prismatic, every: int, seed: int = 1):
+    """Every ``every``-th family searched alone: rows (number, method, names, CPU s,
+    certified, stages)."""
+    points = crank_rocker_points(range(0, 360, 18))
+    space = atlas_space(links, prismatic)
+    rows = []
+    for k, c in list(enumerate(space.choices))[::every]:
+        profile = cProfile.Profile()
+        t = time.process_time()
+        profile.enable()
+        found = path(points=points, closed=True, seed=seed, links=links,
+                     prismatic=prismatic, families=lambda x, c=c: x == c)
+        profile.disable()
+        cpu = time.process_time() - t
+        size = found.task.size
+        best = min((s.error.max for s in found.solutions), default=float("nan"))
+        rows.append((k, c.method, c.names[-1] if c.names else "", cpu, len(found.solutions),
+                     best / size, _stages(pstats.Stats(profile))))
+        print(f"{k:5d} {c.method:7s} {rows[-1][2][:34]:34s} {cpu:7.1f} s  "
+              f"{len(found.solutions)} certified  best {best / size:.4f} of the size",
+              flush=True)
+    return space, rows
+
+
+def summary(space, rows, every: int) -> None:
+    """CPU by method, the stages' shares, and the whole space projected."""
+    by: dict[str, list[float]] = defaultdict(list)
+    stages: dict[str, dict[str, float]] = defaultdict(
+        lambda: dict.fromkeys([*STAGES, "total"], 0.0))
+    for _, method, _, cpu, _, _, st in rows:
+        by[method].append(cpu)
+        for name, v in st.items():
+            stages[method][name] += v
+    counts = defaultdict(int)
+    for c in space.choices:
+        counts[c.method] += 1
+    print(f"\nspace: {space.chains} chains, {space.inversions} inversions, "
+          f"{len(space.choices)} families {dict(counts)}; searched every {every}")
+    whole = 0.0
+    for method, cpus in by.items():
+        mean = statistics.mean(cpus)
+        whole += mean * counts[method]
+        st = stages[method]
+        share = ", ".join(f"{name} {st[name] / st['total']:.0%}" for name in STAGES)
+        print(f"{method}: {len(cpus)} families, {sum(cpus):.1f} CPU s, mean {mean:.2f} s "
+              f"(median {statistics.median(cpus):.2f}, max {max(cpus):.1f}); {share}")
+    print(f"projected for the whole space: {whole:.0f} CPU s, about {whole / 2:.0f} s of "
+          "wall clock on 2 cores")
+
+
+def whole_run(links: int, prismatic, workers: int) -> None:
+    """The whole search as the command line runs it, timed."""
+    points = crank_rocker_points(range(0, 360, 18))
+    t = time.perf_counter()
+    before = resource.getrusage(resource.RUSAGE_CHILDREN)
+    found = path(points=points, closed=True, seed=1, links=links, prismatic=prismatic,
+                 runner=process_runner(workers))
+    wall = time.perf_counter() - t
+    after = resource.getrusage(resource.RUSAGE_CHILDREN)
+    cpu = (after.ru_utime + after.ru_stime) - (before.ru_utime + before.ru_stime)
+    best = found.solutions[0] if found.solutions else None
+    print(f"\nwhole search on {workers} workers: {wall:.1f} s wall clock "
+          f"(the workers {cpu:.0f} CPU s); "
+          f"{len(found.solutions)} solutions, best "
+          + (f"{best.error.max / found.task.size:.4f} of the size ({best.names[-1:]})"
+             if best else "none")
+          + f"; rejected {found.rejected}")
+
+
+def main() -> None:
+    parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
+    parser.add_argument("--links", type=int, default=6)
+    parser.add_argument("--prismatic", default=None)
+    parser.add_argument("--every", type=int, default=1)
+    parser.add_argument("--workers", type=int, default=0)
+    args = parser.parse_args()
+    prismatic = (None if args.prismatic is None else
+                 args.prismatic if args.prismatic == "all" else int(args.prismatic))
+    space, rows = per_family(args.links, prismatic, args.every)
+    summary(space, rows, args.every)
+    if args.workers:
+        whole_run(args.links, prismatic, args.workers)
+
+
+if __name__ == "__main__":
+    main()
