@@ -82,7 +82,10 @@ def draw_synthesis(mechanism: Chain, *, at: float, sweep: tuple[float, float] | 
         motion = solve(mechanism, start=sweep[0], stop=sweep[1], steps=240, summary=False)
     pose = solve(mechanism, start=at, stop=at, steps=1, summary=False)
     scene = Scene.of_motion(motion, also=pose)
-    columns = 2 if curve is not None else 1
+    # targets small beside the mechanism get a panel of their own, enlarged, with the
+    # curve traced through them (else the fit is a cluster of crosses at the point)
+    zoom = curve is None and len(targets) > 1 and _extent(targets) < ZOOM_BELOW * scene.span
+    columns = 2 if curve is not None or zoom else 1
     fig, axes = plt.subplots(1, columns, figsize=(6.0 * columns, 5.0),
                              gridspec_kw={"width_ratios": [1.0, 1.0][:columns]})
     axes = np.atleast_1d(axes)
@@ -96,10 +99,47 @@ def draw_synthesis(mechanism: Chain, *, at: float, sweep: tuple[float, float] | 
         xs, ys = zip(*targets)
         ax.plot(xs, ys, "x", color="#b2182b", markersize=8, zorder=5, label="targets")
     _pose_frames(ax, poses, scene.span)
+    if zoom:
+        _traced_near(axes[1], scene, targets)
+        fig.tight_layout()
     if curve is not None:
         _error_plot(axes[1], curve)
         fig.tight_layout()
     return finish(plt, fig, path)
+
+
+#: targets spanning less than this share of the mechanism's size are shown enlarged too
+ZOOM_BELOW = 0.3
+
+
+def _extent(points: Sequence[tuple[float, float]]) -> float:
+    xs, ys = zip(*points)
+    return float(np.hypot(np.ptp(xs), np.ptp(ys)))
+
+
+def _traced_near(ax, scene, targets):
+    """The targets and the path of the point that passes nearest them, enlarged."""
+    tx, ty = (np.asarray(v, dtype=float) for v in zip(*targets))
+    names = [p.id for p in scene.chain.points] or list(scene.xy)
+
+    def miss(name):
+        xs, ys = scene.xy[name]
+        d = np.hypot(xs[None, :] - tx[:, None], ys[None, :] - ty[:, None])
+        return float(np.nanmin(d, axis=1).max()) if np.isfinite(d).any() else np.inf
+    best = min(names, key=miss)
+    xs, ys = scene.xy[best]
+    ax.plot(xs, ys, color="#e07b00", linewidth=1.4, label=f"path of {best}")
+    ax.plot(tx, ty, "x", color="#b2182b", markersize=8, label="targets")
+    for k, (x, y) in enumerate(zip(tx, ty), 1):
+        ax.annotate(str(k), (x, y), xytext=(4, 4), textcoords="offset points", fontsize=7,
+                    color="#b2182b")
+    pad = 0.15 * _extent(targets)
+    ax.set_xlim(tx.min() - pad, tx.max() + pad)
+    ax.set_ylim(ty.min() - pad, ty.max() + pad)
+    ax.set_aspect("equal", adjustable="datalim")
+    ax.grid(True, linewidth=0.3)
+    ax.set_title(f"the targets and the path of {best}, enlarged", fontsize=10)
+    ax.legend(fontsize=8, loc="best")
 
 
 def _pose_frames(ax, poses, span):
