@@ -24,10 +24,11 @@ from dataclasses import dataclass
 import numpy as np
 from numpy.typing import NDArray
 
+from chaingraph.errors import DesignError
 from chaingraph.model.cams import LAWS, Cam
 
 __all__ = ["law", "follower_motion", "CamAnalysis", "analyse_cam", "smallest_base",
-           "turn_angles"]
+           "turn_angles", "profile_curvature", "cam_summary", "cam_table", "CSV_COLUMNS"]
 
 Array = NDArray[np.float64]
 
@@ -197,10 +198,12 @@ def smallest_base(cam: Cam, limit: float, *, steps: int = 3600) -> float:
     ``limit`` (radians) over a turn. For a translating knife or roller follower in closed
     form from ``tan(alpha) = (s' - e) / (s + sqrt(Rp^2 - e^2))``; for an oscillating one by
     bisection; for a flat face (whose pressure angle is always 0) the smallest base circle
-    whose profile is nowhere concave, ``base + s + s'' >= 0``."""
+    whose profile is nowhere concave, ``base + s + s'' >= 0``. A limit outside (0, 90)
+    degrees, or one no base circle meets, raises
+    :class:`~chaingraph.errors.DesignError`."""
     if not 0 < limit < math.pi / 2:
-        raise ValueError(f"the pressure angle's limit must lie strictly between 0 and 90 "
-                         f"degrees, got {math.degrees(limit):g}")
+        raise DesignError(f"the pressure angle's limit must lie strictly between 0 and 90 "
+                          f"degrees, got {math.degrees(limit):g}", parameter="limit")
     theta = turn_angles(cam, steps)
     s, ds, dds, _ = follower_motion(cam, theta)
     if cam.contact == "flat":
@@ -219,11 +222,70 @@ def smallest_base(cam: Cam, limit: float, *, steps: int = 3600) -> float:
     grid = np.linspace(low, high, 202)[1:-1]    # the pressure angle is not monotonic here
     ok = [b for b in grid if worst(b) <= limit]
     if not ok:
-        raise ValueError("no base circle the arm can reach keeps the pressure angle "
-                         f"under {math.degrees(limit):g} degrees")
+        raise DesignError(f"cam {cam.id!r}: no base circle the arm can reach keeps the "
+                          f"pressure angle under {math.degrees(limit):g} degrees",
+                          parameter="limit")
     good = ok[0]
     bad = grid[int(np.searchsorted(grid, good)) - 1] if good > grid[0] else low
     for _ in range(50):
         mid = (bad + good) / 2
         bad, good = (bad, mid) if worst(mid) <= limit else (mid, good)
     return float(good)
+
+
+def profile_curvature(cam: Cam, result: CamAnalysis) -> Array:
+    """The profile's radius of curvature at each angle where it is convex (the pitch
+    curve's less the roller's; a flat face's profile's own), NaN where concave or
+    straight: negative where the profile is undercut (the roller or the face cannot
+    follow it)."""
+    if cam.contact == "flat":
+        return result.curvature.copy()
+    convex = np.isfinite(result.curvature) & (result.curvature > 0)
+    return np.where(convex, result.curvature - cam.roller, np.nan)
+
+
+def cam_summary(cam: Cam, *, name: str = "", limit: float | None = None,
+                steps: int = 3600) -> dict[str, object]:
+    """What ``chaingraph cam --json`` prints: the cam's data, the stroke, the largest
+    pressure angle and where, the profile's smallest radius of curvature and where, the
+    undercut check, and with a pressure angle ``limit`` (radians) the smallest base circle
+    that keeps under it (else None). Angles in degrees of cam turn; an oscillating
+    follower's stroke in degrees. ``steps`` equal angles are analysed, with every
+    segment's ends and middle."""
+    theta = turn_angles(cam, steps)
+    result = analyse_cam(cam, theta)
+    k = int(np.argmax(np.abs(result.pressure)))
+    rho = profile_curvature(cam, result)
+    j = int(np.nanargmin(rho))
+    stroke = math.degrees(cam.stroke) if cam.moves == "oscillating" else cam.stroke
+    out: dict[str, object] = {
+        "name": name, "cam": cam.cam, "follower": cam.follower, "contact": cam.contact,
+        "base": cam.base, "roller": cam.roller, "offset": cam.offset, "stroke": stroke,
+        "pressure_angle": {"max": math.degrees(abs(float(result.pressure[k]))),
+                           "at": math.degrees(float(theta[k]))},
+        "curvature": {"min": float(rho[j]), "at": math.degrees(float(theta[j]))},
+        "undercut": bool(rho[j] < 0),
+        "min_base": None if limit is None else smallest_base(cam, limit, steps=steps)}
+    if cam.moves == "oscillating":
+        out.pop("offset")
+        out.update(arm=cam.arm, pivot=list(cam.pivot or ()))
+    return out
+
+
+CSV_COLUMNS = ("theta", "s", "ds", "dds", "ddds", "pressure_angle", "x_pitch", "y_pitch",
+               "x_profile", "y_profile")
+
+
+def cam_table(cam: Cam, *, steps: int = 360) -> tuple[tuple[float, ...], ...]:
+    """``steps`` + 1 rows over a turn (0 to 360 degrees), one number per column of
+    :data:`CSV_COLUMNS`: the angle (degrees), the follower's displacement and its
+    derivatives with respect to the cam's angle in radians (file units, degrees for an
+    oscillating follower), the pressure angle (degrees), and the pitch curve's and the
+    profile's points in the cam's frame."""
+    theta = np.linspace(0.0, 2 * math.pi, steps + 1)
+    r = analyse_cam(cam, theta)
+    scale = math.degrees(1.0) if cam.moves == "oscillating" else 1.0
+    cols = [np.degrees(theta), r.s * scale, r.ds * scale, r.dds * scale, r.ddds * scale,
+            np.degrees(r.pressure), r.pitch[:, 0], r.pitch[:, 1], r.profile[:, 0],
+            r.profile[:, 1]]
+    return tuple(tuple(float(c[i]) for c in cols) for i in range(len(theta)))
