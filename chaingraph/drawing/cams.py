@@ -55,7 +55,7 @@ def cam_shapes(cam: Cam, result: CamAnalysis, *, at: float = 0.0) -> list[Shape]
             out.append(Shape("line", "guide", ((x, w[1] + 0.3 * size), (x, w[1] + 0.55 * size)),
                              stroke="#444444", width=0.006 * size))
     else:
-        q = tuple(cam.pivot or (0.0, 0.0))
+        q = cam.pivot or (0.0, 0.0)
         out.append(Shape("line", "bar", (q, w), data=(("link", cam.follower),),
                          stroke=colour, width=stem, cap="round"))
         out.append(Shape("circle", "pin", (q,), radius=pin, fill="white", stroke="#222222",
@@ -129,6 +129,6 @@ def plot_cam(cam: Cam, result: CamAnalysis, path: str | os.PathLike[str] | None 
     axes[-1].set_xticks(np.arange(0, 361, 60))
     axes[-1].set_xlabel("cam angle, degrees")
     laws = ", ".join(f"{s.kind} {s.law}" for s in cam.motion if s.law)
-    axes[0].set_title(f"{name or cam.id}: follower {cam.follower} ({laws})", fontsize=10)
+    axes[0].set_title(f"{name or cam.id}: the motion of {cam.follower!r} ({laws})", fontsize=10)
     fig.tight_layout()
     return finish(plt, fig, path)
