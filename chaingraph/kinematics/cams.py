@@ -25,6 +25,7 @@ import numpy as np
 from numpy.typing import NDArray
 
 from chaingraph.errors import DesignError
+from chaingraph.geometry import cross, dot, perp, rotate
 from chaingraph.model.cams import LAWS, Cam
 
 __all__ = ["law", "follower_motion", "CamAnalysis", "analyse_cam", "smallest_base",
@@ -92,13 +93,14 @@ def follower_motion(cam: Cam, theta: Array) -> tuple[Array, Array, Array, Array]
 
 def _turn(theta: Array, v: Array) -> Array:
     """World vectors ``v`` (n x 2) seen from the cam turned by ``theta``: R(-theta) v."""
-    c, s = np.cos(theta), np.sin(theta)
-    return np.stack([c * v[:, 0] + s * v[:, 1], -s * v[:, 0] + c * v[:, 1]], axis=1)
+    x, y = rotate(v.T, -theta)
+    return np.stack([x, y], axis=1)
 
 
-def _perp(v: Array) -> Array:
-    """``v`` turned a quarter turn counter-clockwise (J v)."""
-    return np.stack([-v[:, 1], v[:, 0]], axis=1)
+def _quarter(v: Array) -> Array:
+    """Vectors ``v`` (n x 2) turned a quarter turn counter-clockwise."""
+    x, y = perp(v.T)
+    return np.stack([x, y], axis=1)
 
 
 def _follower_point(cam: Cam, base: float, s: Array, ds: Array, dds: Array,
@@ -120,7 +122,7 @@ def _follower_point(cam: Cam, base: float, s: Array, ds: Array, dds: Array,
     c = (prime ** 2 - d ** 2 - arm ** 2) / (2 * arm)
     psi = math.atan2(q[1], q[0]) - math.acos(max(-1.0, min(1.0, c / d))) + s
     u = np.stack([np.cos(psi), np.sin(psi)], axis=1)
-    v = _perp(u)
+    v = _quarter(u)
     w = q + arm * u
     return (w, arm * v * ds[:, None], arm * (v * dds[:, None] - u * (ds ** 2)[:, None]), v)
 
@@ -158,8 +160,8 @@ def analyse_cam(cam: Cam, theta: Array, *, base: float | None = None) -> CamAnal
     s, ds, dds, ddds = follower_motion(cam, theta)
     w, dw, ddw, up = _follower_point(cam, base, s, ds, dds)
     pitch = _turn(theta, w)
-    dp = dw - _perp(w)                          # the pitch curve's tangent, world-aligned
-    ddp = ddw - 2 * _perp(dw) - w
+    dp = dw - _quarter(w)                          # the pitch curve's tangent, world-aligned
+    ddp = ddw - 2 * _quarter(dw) - w
     if cam.contact == "flat":
         # the face y = base + s: envelope of the lines n . p = d with n = R(-theta) (0, 1)
         d, dd = base + s, ds
@@ -168,17 +170,17 @@ def analyse_cam(cam: Cam, theta: Array, *, base: float | None = None) -> CamAnal
         pressure = np.zeros_like(theta)
         radius = d + dds
         return CamAnalysis(theta, s, ds, dds, ddds, pressure, pitch, profile, radius)
-    normal = _perp(dp)       # the pitch curve's normal, world-aligned (convex: radius > 0)
+    normal = _quarter(dp)       # the pitch curve's normal, world-aligned (convex: radius > 0)
     normal /= np.hypot(normal[:, 0], normal[:, 1])[:, None]
-    normal *= np.sign(np.einsum("ij,ij->i", normal, w))[:, None]   # away from the cam
+    normal *= np.sign(dot(normal.T, w.T))[:, None]                  # away from the cam
     contact_world = w - cam.roller * normal
     profile = _turn(theta, contact_world)
-    pressure = np.arctan2(up[:, 0] * normal[:, 1] - up[:, 1] * normal[:, 0],
-                          np.einsum("ij,ij->i", up, normal))
+    pressure = np.arctan2(cross(up.T, normal.T), dot(up.T, normal.T))
     speed = np.hypot(dp[:, 0], dp[:, 1])
-    cross = dp[:, 0] * ddp[:, 1] - dp[:, 1] * ddp[:, 0]
+    turning = cross(dp.T, ddp.T)
     with np.errstate(divide="ignore"):
-        radius = np.where(cross == 0, np.inf, -speed ** 3 / np.where(cross == 0, 1.0, cross))
+        radius = np.where(turning == 0, np.inf,
+                          -speed ** 3 / np.where(turning == 0, 1.0, turning))
     return CamAnalysis(theta, s, ds, dds, ddds, pressure, pitch, profile, radius)
 
 
