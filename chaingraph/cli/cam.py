@@ -91,6 +91,7 @@ def _text(cam: Cam, summary: dict) -> str:
             ("smallest radius of curvature", f"{rho['min']:.6g} at {rho['at']:.4g} deg"),
             ("undercut", "yes" if summary["undercut"] else "no")]
     if summary["min_base"] is not None:
-        rows.append(("smallest base circle", f"{summary['min_base']:.6g} (pressure angle "
-                                             "within the limit)"))
+        why = ("the profile nowhere concave" if cam.contact == "flat"
+               else "pressure angle within the limit")
+        rows.append(("smallest base circle", f"{summary['min_base']:.6g} ({why})"))
     return f"Cam {cam.id} of {summary['name']}\n" + table(rows, ["", ""]).split("\n", 2)[2]
