@@ -252,7 +252,7 @@ def cam_summary(cam: Cam, *, name: str = "", limit: float | None = None,
     pressure angle and where, the profile's smallest radius of curvature and where, the
     undercut check, and with a pressure angle ``limit`` (radians) the smallest base circle
     that keeps under it (else None). Angles in degrees of cam turn; an oscillating
-    follower's stroke in degrees. ``steps`` equal angles are analysed, with every
+    follower's stroke in degrees, its ``offset`` None, its ``arm`` and ``pivot`` added. ``steps`` equal angles are analysed, with every
     segment's ends and middle."""
     theta = turn_angles(cam, steps)
     result = analyse_cam(cam, theta)
@@ -269,8 +269,7 @@ def cam_summary(cam: Cam, *, name: str = "", limit: float | None = None,
         "undercut": bool(rho[j] < 0),
         "min_base": None if limit is None else smallest_base(cam, limit, steps=steps)}
     if cam.moves == "oscillating":
-        out.pop("offset")
-        out.update(arm=cam.arm, pivot=list(cam.pivot or ()))
+        out.update(offset=None, arm=cam.arm, pivot=list(cam.pivot or ()))
     return out
 
 

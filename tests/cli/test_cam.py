@@ -130,3 +130,15 @@ def test_a_good_file_passes_and_bad_options_are_one_line(tmp_path):
         assert code == 2 and len(err.strip().splitlines()) == 1, (args, err)
     code, out, err = _main("cam", catalog_path("four-bar-chain"))
     assert code == 2 and "no [[cams]]" in err
+
+
+def test_an_oscillating_follower_json(tmp_path):
+    path = tmp_path / "rocker.toml"
+    path.write_text(GOOD.replace('kind = "P"', 'kind = "R"').replace(
+        "roller = 10.0", "roller = 8.0\narm = 60.0\npivot = [70.0, 20.0]").replace(
+        "rise = 30.0", "rise = 20.0").replace("fall = 30.0", "fall = 20.0"))
+    code, out, err = _main("cam", path, "--json")
+    assert code == 0, err
+    data = json.loads(out)
+    assert KEYS <= set(data) and data["offset"] is None and data["arm"] == 60.0
+    assert data["stroke"] == pytest.approx(20.0)
