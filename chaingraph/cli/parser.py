@@ -7,6 +7,7 @@ from typing import NoReturn
 
 from chaingraph import __version__
 from chaingraph.structure.atlas.estimate import LOCAL_HOURS
+from chaingraph.cli.cam import cmd_cam
 from chaingraph.cli.commands import (
     cmd_assemble,
     cmd_atlas,
@@ -68,7 +69,7 @@ def build_parser() -> argparse.ArgumentParser:
     for add in (_classify_command, _inversions_command, _identify_command,
                 _solve_command, _vary_command, _forces_command,
                 _centres_and_polygons_command, _assemble_command, _measure_command,
-                _report_command, _atlas_command, _design_command):
+                _report_command, _atlas_command, _design_command, _cam_command):
         add(sub)
     return parser
 
@@ -323,6 +324,35 @@ def _atlas_command(sub) -> None:
                         f"(default {LOCAL_HOURS:g}); longer runs are refused with the estimate")
     p.add_argument("-q", "--quiet", action="store_true", help="no progress bar")
     p.set_defaults(run=cmd_atlas)
+
+
+def _cam_command(sub) -> None:
+    """The arguments of ``chaingraph cam``."""
+    p = sub.add_parser("cam", help="a disc cam and its follower over a turn",
+                       description="The follower's displacement, velocity, acceleration and "
+                                   "jerk over a turn of the cam ([[cams]] in the file), the "
+                                   "pressure angle, the profile by the envelope of the "
+                                   "follower's positions, its smallest radius of curvature "
+                                   "and the undercut check.")
+    p.add_argument("file", type=path_argument, metavar="FILE", help="a chain file with [[cams]]")
+    p.add_argument("--cam", dest="cam_id", metavar="ID",
+                   help="the cam's id (needed when the file has several)")
+    p.add_argument("--json", action="store_true", help="print JSON")
+    p.add_argument("--csv", type=path_argument, metavar="PATH",
+                   help="write the motion, pressure angle, pitch curve and profile, one row "
+                        "per step")
+    p.add_argument("--draw", type=path_argument, metavar="PATH.svg",
+                   help="draw the profile with the follower at --at")
+    p.add_argument("--at", type=float, default=0.0, metavar="DEG",
+                   help="the cam's angle for --draw (degrees, default 0)")
+    p.add_argument("--plot", type=path_argument, metavar="PATH.svg",
+                   help="plot displacement, velocity, acceleration and jerk over a turn")
+    p.add_argument("--max-pressure-angle", dest="max_pressure", type=float, metavar="DEG",
+                   help="also find the smallest base circle that keeps the pressure angle "
+                        "under DEG")
+    p.add_argument("--steps", type=whole_number, default=360, metavar="N",
+                   help="equal steps of the turn in the CSV (N + 1 rows; default 360)")
+    p.set_defaults(run=cmd_cam)
 
 
 def _design_command(sub) -> None:

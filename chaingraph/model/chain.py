@@ -21,6 +21,7 @@ import networkx as nx
 
 from chaingraph._util.numbers import tidy
 from chaingraph.errors import ChainFileError
+from chaingraph.model.cams import Cam
 from chaingraph.model.pairs import PAIR_KINDS, PairKind
 
 __all__ = ["Joint", "Point", "Input", "Mechanism", "Chain", "LinkMass", "Load", "link_node",
@@ -254,6 +255,7 @@ class Chain:
     masses: tuple[LinkMass, ...] = ()           # [[links]]: the links that have mass
     gravity: tuple[float, float] | None = None  # [forces] gravity, m/s^2
     loads: tuple[Load, ...] = ()                # [[loads]]
+    cams: tuple[Cam, ...] = ()                  # [[cams]]: disc cams and followers
     # [task]: what a synthesised mechanism was designed to do (kept, written back, shown
     # by the drawings and the report; the solver ignores it)
     task: dict | None = field(default=None, compare=False)
@@ -263,6 +265,7 @@ class Chain:
         object.__setattr__(self, "points", tuple(self.points))
         object.__setattr__(self, "masses", tuple(self.masses))
         object.__setattr__(self, "loads", tuple(self.loads))
+        object.__setattr__(self, "cams", tuple(self.cams))
         _validate(self)
 
     # -- identity -------------------------------------------------------------------
@@ -445,8 +448,10 @@ class Chain:
                               ren(jt, x.at) if x.at in self._joint_index else ren(pt, x.at),
                               along=None if x.along is None else ren(jt, x.along))
                       for x in self.loads)
+        cams = tuple(replace(c, cam=ren(lk, c.cam), follower=ren(lk, c.follower))
+                     for c in self.cams)
         return replace(self, joints=new_joints, points=new_points, mechanism=mech,
-                       masses=masses, loads=loads)
+                       masses=masses, loads=loads, cams=cams)
 
     def with_mechanism(self, fixed: str, driver: str | None = None, *,
                        omega: float | None = None, output: str | None = None) -> "Chain":

@@ -21,6 +21,7 @@ from dataclasses import dataclass
 from typing import Any, NoReturn
 
 from chaingraph.errors import ChainFileError
+from chaingraph.model.cams import cam_entry, read_cam
 from chaingraph.model.chain import Chain, Input, Joint, LinkMass, Load, Mechanism, Point
 from chaingraph.model.dimensions import Dimensions, parse_dimensions
 from chaingraph.model.values import LARGEST, Fail, number, shown, type_name
@@ -29,7 +30,8 @@ __all__ = ["Document", "parse_file", "parse_text", "parse_document", "dumps", "s
            "toml_text", "chain_document"]
 
 TOP_KEYS = ("name", "family", "units", "space", "notes", "naming", "joints", "points",
-            "mechanism", "lengths", "assembly", "links", "forces", "loads", "task")
+            "mechanism", "lengths", "assembly", "links", "forces", "loads", "task",
+            "cams")
 JOINT_KEYS = ("id", "kind", "links", "at", "axis", "closure", "friction")
 LINK_KEYS = ("name", "mass", "centre", "inertia")
 FORCES_KEYS = ("gravity",)
@@ -136,7 +138,7 @@ def parse_document(doc: dict[str, Any], *, source: str = "<document>") -> Docume
         mechanism = _mechanism(doc["mechanism"], fail, dimensioned="lengths" in doc)
     meta = dict(name=name, family=family, units=units, space=space, notes=notes,
                 source=source, naming=naming, task=_task(doc, fail),
-                **_masses_and_loads(doc, fail))
+                **_masses_and_loads(doc, fail), cams=_cams(doc, joints, fail))
     if mechanism is not None and not dimensioned:
         kinds = {j.id: j.kind for j in joints}
         for i, item in enumerate(mechanism.inputs):
@@ -304,6 +306,17 @@ def _masses_and_loads(doc: dict[str, Any], fail: Fail) -> dict[str, Any]:
     loads = [_load(t, f"[[loads]] #{i + 1}", fail)
              for i, t in enumerate(_tables(doc.get("loads", []), "loads", fail))]
     return {"masses": tuple(masses), "gravity": gravity, "loads": tuple(loads)}
+
+
+def _cams(doc: dict[str, Any], joints: tuple[Joint, ...], fail: Fail) -> tuple[Any, ...]:
+    """``[[cams]]``: the chain's disc cams and followers (:mod:`chaingraph.model.cams`)."""
+    cams = tuple(read_cam(t, i, joints, fail)
+                 for i, t in enumerate(_tables(doc.get("cams", []), "cams", fail)))
+    ids = [c.id for c in cams]
+    for c in cams:
+        if ids.count(c.id) > 1:
+            fail("two cams have this id", f"[[cams]] {c.id!r}")
+    return cams
 
 
 def _load(t: dict[str, Any], where: str, fail: Fail) -> Load:
@@ -530,6 +543,8 @@ def chain_document(chain: Chain) -> dict[str, Any]:
         doc["forces"] = {"gravity": list(chain.gravity)}
     if chain.loads:
         doc["loads"] = [load_entry(x) for x in chain.loads]
+    if chain.cams:
+        doc["cams"] = [cam_entry(c) for c in chain.cams]
     if chain.task is not None:
         doc["task"] = chain.task
     return doc
