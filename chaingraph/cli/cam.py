@@ -67,7 +67,8 @@ def cmd_cam(args: argparse.Namespace) -> int:
         if args.plot:
             omega = chain.mechanism.omega if chain.mechanism is not None else None
             with Writing(args.plot):
-                plot_cam(cam, result, args.plot, name=chain.name, omega=omega)
+                plot_cam(cam, result, args.plot, name=chain.name, omega=omega,
+                         units=chain.units)
     if args.json:
         print_json(summary)
         return 0

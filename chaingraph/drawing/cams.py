@@ -94,22 +94,23 @@ def cam_svg(cam: Cam, result: CamAnalysis, *, at: float = 0.0, name: str = "",
 
 @overload
 def plot_cam(cam: Cam, result: CamAnalysis, path: None = None, *, name: str = "",
-             omega: float | None = None) -> Figure: ...
+             omega: float | None = None, units: str | None = None) -> Figure: ...
 
 
 @overload
 def plot_cam(cam: Cam, result: CamAnalysis, path: str | os.PathLike[str], *,
-             name: str = "", omega: float | None = None) -> None: ...
+             name: str = "", omega: float | None = None, units: str | None = None) -> None: ...
 
 
 def plot_cam(cam: Cam, result: CamAnalysis, path: str | os.PathLike[str] | None = None, *,
-             name: str = "", omega: float | None = None) -> Figure | None:
+             name: str = "", omega: float | None = None, units: str | None = None
+             ) -> Figure | None:
     """The follower's displacement, velocity, acceleration and jerk over a turn, stacked
     (derivatives with respect to the cam's angle; at the cam's speed ``omega`` in rad/s
-    when given). Written to ``path`` (SVG, PNG...) or returned as a matplotlib figure."""
+    when given; a translating follower's in ``units``, the chain file's). Written to ``path`` (SVG, PNG...) or returned as a matplotlib figure."""
     plt = pyplot_module()
     x = np.degrees(result.theta)
-    unit = "deg" if cam.moves == "oscillating" else "units"
+    unit = "deg" if cam.moves == "oscillating" else (units or "units")
     scale = math.degrees(1.0) if cam.moves == "oscillating" else 1.0
     w = 1.0 if omega is None else omega
     per = "rad" if omega is None else "s"
