@@ -21,6 +21,7 @@ import networkx as nx
 
 from chaingraph._util.numbers import tidy
 from chaingraph.errors import ChainFileError
+from chaingraph.model.gears import GearPair, check_gears
 from chaingraph.model.pairs import PAIR_KINDS, PairKind
 
 __all__ = ["Joint", "Point", "Input", "Mechanism", "Chain", "LinkMass", "Load", "link_node",
@@ -257,9 +258,12 @@ class Chain:
     # [task]: what a synthesised mechanism was designed to do (kept, written back, shown
     # by the drawings and the report; the solver ignores it)
     task: dict | None = field(default=None, compare=False)
+    # [[gears]]: gear pairs, each also a joint of kind "gear" (a higher pair) in joints
+    gears: tuple[GearPair, ...] = ()
 
     def __post_init__(self):
-        object.__setattr__(self, "joints", tuple(self.joints))
+        object.__setattr__(self, "gears", tuple(self.gears))
+        object.__setattr__(self, "joints", _with_gear_joints(tuple(self.joints), self.gears))
         object.__setattr__(self, "points", tuple(self.points))
         object.__setattr__(self, "masses", tuple(self.masses))
         object.__setattr__(self, "loads", tuple(self.loads))
@@ -445,8 +449,10 @@ class Chain:
                               ren(jt, x.at) if x.at in self._joint_index else ren(pt, x.at),
                               along=None if x.along is None else ren(jt, x.along))
                       for x in self.loads)
+        gears = tuple(replace(g, id=ren(jt, g.id), links=tuple(ren(lk, x) for x in g.links),
+                              carrier=ren(lk, g.carrier)) for g in self.gears)
         return replace(self, joints=new_joints, points=new_points, mechanism=mech,
-                       masses=masses, loads=loads)
+                       masses=masses, loads=loads, gears=gears)
 
     def with_mechanism(self, fixed: str, driver: str | None = None, *,
                        omega: float | None = None, output: str | None = None) -> "Chain":
@@ -475,6 +481,19 @@ class Chain:
 
     def __str__(self):
         return self.name
+
+
+def _with_gear_joints(joints: tuple[Joint, ...], gears: tuple[GearPair, ...]
+                      ) -> tuple[Joint, ...]:
+    """The joints with a ``"gear"`` joint for each gear pair that has none yet (a chain
+    rebuilt by :func:`dataclasses.replace` has them already)."""
+    have = {j.id: j for j in joints}
+    extra = []
+    for g in gears:
+        joint = Joint(g.id, "gear", tuple(g.links))
+        if have.get(g.id) != joint:
+            extra.append(joint)
+    return joints + tuple(extra)
 
 
 def _is_finite_pair(value) -> bool:
@@ -631,6 +650,9 @@ def _validate(chain: Chain) -> None:
         if not isinstance(j.id, str) or not j.id:
             fail("a joint id must be a non-empty string", "joint")
         if j.id in seen:
+            if any(g.id == j.id for g in chain.gears):
+                fail("the id is a joint's too (gear pairs and joints share one "
+                     "namespace)", f"gear pair {j.id!r}")
             fail("duplicate joint id", f"joint {j.id!r}")
         seen.add(j.id)
         _validate_joint(chain, j, fail)
@@ -642,6 +664,11 @@ def _validate(chain: Chain) -> None:
              f"example: as behaviour, and a general name is preferred to it), "
              f"got {chain.naming!r}", "key 'naming'")
     _validate_forces(chain, fail, links, point_ids)
+    if chain.gears:
+        gear_ids = {g.id for g in chain.gears}
+        check_gears(chain.gears, [j.links for j in chain.joints if j.kind == "R"],
+                    {x for j in chain.joints if j.id not in gear_ids for x in j.links},
+                    fail)
     if chain.mechanism is not None:
         _validate_mechanism(chain, fail, links, point_ids)
 

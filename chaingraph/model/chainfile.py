@@ -23,13 +23,14 @@ from typing import Any, NoReturn
 from chaingraph.errors import ChainFileError
 from chaingraph.model.chain import Chain, Input, Joint, LinkMass, Load, Mechanism, Point
 from chaingraph.model.dimensions import Dimensions, parse_dimensions
+from chaingraph.model.gears import GearPair, gear_entry, gear_pair
 from chaingraph.model.values import LARGEST, Fail, number, shown, type_name
 
 __all__ = ["Document", "parse_file", "parse_text", "parse_document", "dumps", "save",
            "toml_text", "chain_document"]
 
 TOP_KEYS = ("name", "family", "units", "space", "notes", "naming", "joints", "points",
-            "mechanism", "lengths", "assembly", "links", "forces", "loads", "task")
+            "mechanism", "lengths", "assembly", "links", "forces", "loads", "task", "gears")
 JOINT_KEYS = ("id", "kind", "links", "at", "axis", "closure", "friction")
 LINK_KEYS = ("name", "mass", "centre", "inertia")
 FORCES_KEYS = ("gravity",)
@@ -136,7 +137,7 @@ def parse_document(doc: dict[str, Any], *, source: str = "<document>") -> Docume
         mechanism = _mechanism(doc["mechanism"], fail, dimensioned="lengths" in doc)
     meta = dict(name=name, family=family, units=units, space=space, notes=notes,
                 source=source, naming=naming, task=_task(doc, fail),
-                **_masses_and_loads(doc, fail))
+                gears=_gears(doc, mechanism, fail), **_masses_and_loads(doc, fail))
     if mechanism is not None and not dimensioned:
         kinds = {j.id: j.kind for j in joints}
         for i, item in enumerate(mechanism.inputs):
@@ -197,6 +198,15 @@ def _task(doc: dict[str, Any], fail: Fail) -> dict[str, Any] | None:
         fail("[task] needs 'kind', the kind of task (\"function\", \"path\" or "
              "\"motion\")", "[task]")
     return task
+
+
+def _gears(doc: dict[str, Any], mechanism: Mechanism | None,
+           fail: Fail) -> tuple[GearPair, ...]:
+    """``[[gears]]``: the gear pairs as read (the chain checks their links and
+    carriers); a pair without a carrier takes the fixed link."""
+    fixed = mechanism.fixed if mechanism is not None else None
+    return tuple(gear_pair(t, i, fixed, fail)
+                 for i, t in enumerate(_tables(doc.get("gears", []), "gears", fail)))
 
 
 def _no_unknown_keys(table: dict[str, Any], allowed: Sequence[str], where: str | None,
@@ -492,7 +502,10 @@ def chain_document(chain: Chain) -> dict[str, Any]:
     if chain.space != "planar":
         doc["space"] = chain.space
     joints = []
+    gear_joints = {g.id for g in chain.gears}
     for j in chain.joints:
+        if j.id in gear_joints:          # written as its [[gears]] table
+            continue
         item: dict[str, Any] = {"id": j.id, "kind": j.kind, "links": list(j.links)}
         if j.at is not None:
             item["at"] = list(j.at)
@@ -532,6 +545,8 @@ def chain_document(chain: Chain) -> dict[str, Any]:
         doc["loads"] = [load_entry(x) for x in chain.loads]
     if chain.task is not None:
         doc["task"] = chain.task
+    if chain.gears:
+        doc["gears"] = [gear_entry(g) for g in chain.gears]
     return doc
 
 
