@@ -645,6 +645,12 @@ def _validate(chain: Chain) -> None:
         fail(f"unknown space {chain.space!r} (expected 'planar' or 'spatial')", "key 'space'")
     if not chain.joints:
         fail("the chain has no joints (add [[joints]] tables)", "key 'joints'")
+    if chain.gears:                  # before the joints: a pair's own words for its faults
+        gear_ids = {g.id for g in chain.gears}
+        check_gears(chain.gears, [j.links for j in chain.joints if j.kind == "R"],
+                    {x for j in chain.joints if not (j.kind == "gear" and j.id in gear_ids)
+                     for x in j.links},
+                    fail)
     seen = set()
     for j in chain.joints:
         if not isinstance(j.id, str) or not j.id:
@@ -664,11 +670,6 @@ def _validate(chain: Chain) -> None:
              f"example: as behaviour, and a general name is preferred to it), "
              f"got {chain.naming!r}", "key 'naming'")
     _validate_forces(chain, fail, links, point_ids)
-    if chain.gears:
-        gear_ids = {g.id for g in chain.gears}
-        check_gears(chain.gears, [j.links for j in chain.joints if j.kind == "R"],
-                    {x for j in chain.joints if j.id not in gear_ids for x in j.links},
-                    fail)
     if chain.mechanism is not None:
         _validate_mechanism(chain, fail, links, point_ids)
 
