@@ -486,13 +486,13 @@ class Chain:
 def _with_gear_joints(joints: tuple[Joint, ...], gears: tuple[GearPair, ...]
                       ) -> tuple[Joint, ...]:
     """The joints with a ``"gear"`` joint for each gear pair that has none yet (a chain
-    rebuilt by :func:`dataclasses.replace` has them already)."""
+    rebuilt by :func:`dataclasses.replace` has them already, perhaps placed)."""
     have = {j.id: j for j in joints}
     extra = []
     for g in gears:
-        joint = Joint(g.id, "gear", tuple(g.links))
-        if have.get(g.id) != joint:
-            extra.append(joint)
+        joint = have.get(g.id)
+        if joint is None or joint.kind != "gear" or joint.links != tuple(g.links):
+            extra.append(Joint(g.id, "gear", tuple(g.links)))
     return joints + tuple(extra)
 
 
