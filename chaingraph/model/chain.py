@@ -21,7 +21,7 @@ import networkx as nx
 
 from chaingraph._util.numbers import tidy
 from chaingraph.errors import ChainFileError
-from chaingraph.model.gears import GearPair, check_gears
+from chaingraph.model.gears import GearPair, check_gears, pitch_point
 from chaingraph.model.pairs import PAIR_KINDS, PairKind
 
 __all__ = ["Joint", "Point", "Input", "Mechanism", "Chain", "LinkMass", "Load", "link_node",
@@ -492,7 +492,7 @@ def _with_gear_joints(joints: tuple[Joint, ...], gears: tuple[GearPair, ...]
     for g in gears:
         joint = have.get(g.id)
         if joint is None or joint.kind != "gear" or joint.links != tuple(g.links):
-            extra.append(Joint(g.id, "gear", tuple(g.links)))
+            extra.append(Joint(g.id, "gear", tuple(g.links), at=pitch_point(g, joints)))
     return joints + tuple(extra)
 
 

@@ -14,11 +14,14 @@ from __future__ import annotations
 
 from collections.abc import Callable, Collection, Sequence
 from dataclasses import dataclass
-from typing import Any, NoReturn
+from typing import TYPE_CHECKING, Any, NoReturn
 
 from chaingraph.model.values import shown, type_name
 
-__all__ = ["GearPair", "GEAR_KEYS", "gear_pair", "gear_entry", "check_gears"]
+if TYPE_CHECKING:
+    from chaingraph.model.chain import Joint
+
+__all__ = ["GearPair", "GEAR_KEYS", "gear_pair", "gear_entry", "check_gears", "pitch_point"]
 
 GEAR_KEYS = ("id", "links", "teeth", "internal", "carrier")
 
@@ -138,3 +141,31 @@ def check_gears(gears: Sequence[GearPair], turning: Collection[tuple[str, ...]],
             if not any(link in r and g.carrier in r for r in turning):
                 fail(f"key 'carrier' {g.carrier!r} does not hold the axis of {link!r}: "
                      f"no R joint joins them", where)
+
+
+def pitch_point(pair: GearPair, joints: Sequence[Joint]) -> tuple[float, float] | None:
+    """Where the pair's pitch circles touch in the drawn pose: on the line of the two
+    axes (the places of the R joints that join each gear to the carrier), at the first
+    gear's pitch radius from its axis (the teeth in proportion: one module); None when
+    an axis is not drawn or both are at one place.
+
+    >>> from chaingraph.model.chain import Joint
+    >>> axes = [Joint("O", "R", ("arm", "sun", "annulus"), at=(0.0, 0.0)),
+    ...         Joint("P", "R", ("arm", "planet"), at=(50.0, 0.0))]
+    >>> pitch_point(GearPair("G1", ("sun", "planet"), (20, 30), False, "arm"), axes)
+    (20.0, 0.0)
+    >>> pitch_point(GearPair("G2", ("planet", "annulus"), (30, 80), True, "arm"), axes)
+    (80.0, 0.0)
+    """
+    def axis(link: str) -> tuple[float, float] | None:
+        return next((j.at for j in joints if j.kind == "R" and link in j.links
+                     and pair.carrier in j.links), None)
+    a, b = axis(pair.links[0]), axis(pair.links[1])
+    za, zb = pair.teeth
+    if a is None or b is None or a == b or (pair.internal and za == zb):
+        return None
+    if pair.internal:                  # beyond the pinion, at the annulus's radius from b
+        t = zb / (zb - za)
+        return (b[0] + (a[0] - b[0]) * t, b[1] + (a[1] - b[1]) * t)
+    t = za / (za + zb)
+    return (a[0] + (b[0] - a[0]) * t, a[1] + (b[1] - a[1]) * t)
