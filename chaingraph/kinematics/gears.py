@@ -328,9 +328,9 @@ def _solved(chain: Chain, train: GearTrain, fixed: str, given: dict[str, Fractio
     loose = [x for x, v in zip(train.links, values) if v is None]
     if loose:
         raise MechanismError(f"the train has {freedom} degree(s) of freedom with "
-                             f"{fixed!r} fixed: give {freedom} speed(s) (the speed of "
-                             f"{', '.join(map(repr, loose))} is not fixed by "
-                             f"{len(given)})", mechanism=chain.name, parameter="speeds")
+                             f"{fixed!r} fixed: give {freedom} speed(s) ({len(given)} "
+                             f"given leave {', '.join(map(repr, loose))} free)",
+                             mechanism=chain.name, parameter="speeds")
     tabular, agree2, table = tabular_speeds(train, fixed, given)
     if not agree2 or tabular != values:
         raise AssemblyError("the tabular method and the Willis equations disagree "
