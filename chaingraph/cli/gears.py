@@ -3,6 +3,7 @@
 from __future__ import annotations
 
 import argparse
+from collections.abc import Callable
 from fractions import Fraction
 
 from chaingraph.cli.text import print_json, table
@@ -26,8 +27,9 @@ def speed_argument(text: str) -> tuple[str, float]:
     return link, rpm
 
 
-def gears_command(sub, path_argument) -> None:
-    """The arguments of ``chaingraph gears``."""
+def gears_command(sub: argparse._SubParsersAction,
+                  path_argument: Callable[[str], str]) -> None:
+    """The arguments of ``chaingraph gears`` (``path_argument``: how a FILE is read)."""
     p = sub.add_parser("gears", help="a gear train's speeds, ratios, kind and graph",
                        description="The speed of every link of a gear train ([[gears]]) "
                                    "with the fixed link at rest and the given speeds, by "

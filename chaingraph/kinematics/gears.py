@@ -266,7 +266,7 @@ def _speed(value: float | int | Fraction) -> Fraction:
 
 def _free(train: GearTrain, fixed: str) -> int:
     """How many speeds must be given with ``fixed`` at rest: the degrees of freedom."""
-    count, given = 0, {}
+    count, given = 0, dict[str, Fraction]()
     while True:
         values, _ = willis_speeds(train, fixed, given)
         free = [x for x, v in zip(train.links, values) if v is None]
