@@ -27,6 +27,8 @@ from chaingraph.cli.commands import (
     cmd_vary,
 )
 
+from chaingraph.cli.gears import gears_command
+
 __all__ = ['build_parser', 'whole_number', 'path_argument']
 
 
@@ -71,6 +73,7 @@ def build_parser() -> argparse.ArgumentParser:
                 _centres_and_polygons_command, _assemble_command, _measure_command,
                 _report_command, _atlas_command, _design_command, _cam_command):
         add(sub)
+    gears_command(sub, path_argument)
     return parser
 
 

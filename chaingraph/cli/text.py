@@ -63,7 +63,7 @@ FLAGS = {"fixed": "--fixed LINK", "driver": "--driver LINK", "inputs": "--input 
           "resume": "--resume", "prismatic": "--prismatic K", "oriented": "--oriented",
           "speed_fluctuation": "--speed-fluctuation CS", "static": "--static",
           "output": "--output NAME", "length": "--length LINK=FROM:TO:STEP",
-          "hours": "--max-hours H"}
+          "hours": "--max-hours H", "speeds": "--speed LINK=RPM"}
 
 def exit_status(error: BaseException) -> int:
     """The exit status of an error: 1 for an analysis that failed (a pose that cannot

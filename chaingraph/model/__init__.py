@@ -7,6 +7,7 @@ a file accepts.
 * :mod:`.chainfile` the chain file's :class:`Document`: parsed and checked, written back
   (:func:`toml_text`, :func:`dumps`, :func:`save`);
 * :mod:`.dimensions` a file given by lengths (:class:`Dimensions`);
+* :mod:`.gears` gear pairs (``[[gears]]``: two links in mesh, their teeth, the carrier);
 * :mod:`.pairs` the kinds of pair (R, P) and what each allows;
 * :mod:`.snap` a drawing's rounding mended onto its lines, the size of a chain;
 * :mod:`.values` the numbers a file accepts.
@@ -44,13 +45,14 @@ from chaingraph.model.dimensions import (
     link_shape,
     parse_dimensions,
 )
+from chaingraph.model.gears import GearPair
 from chaingraph.model.pairs import PAIR_KINDS, PairKind, pair_kind
 from chaingraph.model.snap import check_link_sizes, feature_label, size_of, snap_to_lines
 from chaingraph.model.values import LARGEST, number
 
 __all__ = ["Chain", "Joint", "Point", "Input", "Mechanism", "LinkMass", "Load",
            "chosen_inputs", "line_direction", "mass_centre", "link_node", "joint_node",
-           "Document", "parse_file", "parse_text", "parse_document", "chain_document",
+           "GearPair", "Document", "parse_file", "parse_text", "parse_document", "chain_document",
            "toml_text", "dumps", "save", "Dimensions", "LineSpec", "parse_dimensions",
            "link_features", "link_shape", "MODE_WORDS", "PairKind", "PAIR_KINDS",
            "pair_kind", "snap_to_lines", "check_link_sizes", "size_of", "feature_label",

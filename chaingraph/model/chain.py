@@ -22,6 +22,7 @@ import networkx as nx
 from chaingraph._util.numbers import tidy
 from chaingraph.errors import ChainFileError
 from chaingraph.model.cams import Cam
+from chaingraph.model.gears import GearPair, check_gears, pitch_point
 from chaingraph.model.pairs import PAIR_KINDS, PairKind
 
 __all__ = ["Joint", "Point", "Input", "Mechanism", "Chain", "LinkMass", "Load", "link_node",
@@ -259,9 +260,12 @@ class Chain:
     # [task]: what a synthesised mechanism was designed to do (kept, written back, shown
     # by the drawings and the report; the solver ignores it)
     task: dict | None = field(default=None, compare=False)
+    # [[gears]]: gear pairs, each also a joint of kind "gear" (a higher pair) in joints
+    gears: tuple[GearPair, ...] = ()
 
     def __post_init__(self):
-        object.__setattr__(self, "joints", tuple(self.joints))
+        object.__setattr__(self, "gears", tuple(self.gears))
+        object.__setattr__(self, "joints", _with_gear_joints(tuple(self.joints), self.gears))
         object.__setattr__(self, "points", tuple(self.points))
         object.__setattr__(self, "masses", tuple(self.masses))
         object.__setattr__(self, "loads", tuple(self.loads))
@@ -450,8 +454,10 @@ class Chain:
                       for x in self.loads)
         cams = tuple(replace(c, cam=ren(lk, c.cam), follower=ren(lk, c.follower))
                      for c in self.cams)
+        gears = tuple(replace(g, id=ren(jt, g.id), links=tuple(ren(lk, x) for x in g.links),
+                              carrier=ren(lk, g.carrier)) for g in self.gears)
         return replace(self, joints=new_joints, points=new_points, mechanism=mech,
-                       masses=masses, loads=loads, cams=cams)
+                       masses=masses, loads=loads, cams=cams, gears=gears)
 
     def with_mechanism(self, fixed: str, driver: str | None = None, *,
                        omega: float | None = None, output: str | None = None) -> "Chain":
@@ -480,6 +486,19 @@ class Chain:
 
     def __str__(self):
         return self.name
+
+
+def _with_gear_joints(joints: tuple[Joint, ...], gears: tuple[GearPair, ...]
+                      ) -> tuple[Joint, ...]:
+    """The joints with a ``"gear"`` joint for each gear pair that has none yet (a chain
+    rebuilt by :func:`dataclasses.replace` has them already, perhaps placed)."""
+    have = {j.id: j for j in joints}
+    extra = []
+    for g in gears:
+        joint = have.get(g.id)
+        if joint is None or joint.kind != "gear" or joint.links != tuple(g.links):
+            extra.append(Joint(g.id, "gear", tuple(g.links), at=pitch_point(g, joints)))
+    return joints + tuple(extra)
 
 
 def _is_finite_pair(value) -> bool:
@@ -631,11 +650,20 @@ def _validate(chain: Chain) -> None:
         fail(f"unknown space {chain.space!r} (expected 'planar' or 'spatial')", "key 'space'")
     if not chain.joints:
         fail("the chain has no joints (add [[joints]] tables)", "key 'joints'")
+    if chain.gears:                  # before the joints: a pair's own words for its faults
+        gear_ids = {g.id for g in chain.gears}
+        check_gears(chain.gears, [j.links for j in chain.joints if j.kind == "R"],
+                    {x for j in chain.joints if not (j.kind == "gear" and j.id in gear_ids)
+                     for x in j.links},
+                    fail)
     seen = set()
     for j in chain.joints:
         if not isinstance(j.id, str) or not j.id:
             fail("a joint id must be a non-empty string", "joint")
         if j.id in seen:
+            if any(g.id == j.id for g in chain.gears):
+                fail("the id is a joint's too (gear pairs and joints share one "
+                     "namespace)", f"gear pair {j.id!r}")
             fail("duplicate joint id", f"joint {j.id!r}")
         seen.add(j.id)
         _validate_joint(chain, j, fail)

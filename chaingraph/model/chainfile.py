@@ -24,6 +24,7 @@ from chaingraph.errors import ChainFileError
 from chaingraph.model.cams import cam_entry, read_cam
 from chaingraph.model.chain import Chain, Input, Joint, LinkMass, Load, Mechanism, Point
 from chaingraph.model.dimensions import Dimensions, parse_dimensions
+from chaingraph.model.gears import GearPair, gear_entry, gear_pair
 from chaingraph.model.values import LARGEST, Fail, number, shown, type_name
 
 __all__ = ["Document", "parse_file", "parse_text", "parse_document", "dumps", "save",
@@ -31,7 +32,7 @@ __all__ = ["Document", "parse_file", "parse_text", "parse_document", "dumps", "s
 
 TOP_KEYS = ("name", "family", "units", "space", "notes", "naming", "joints", "points",
             "mechanism", "lengths", "assembly", "links", "forces", "loads", "task",
-            "cams")
+            "cams", "gears")
 JOINT_KEYS = ("id", "kind", "links", "at", "axis", "closure", "friction")
 LINK_KEYS = ("name", "mass", "centre", "inertia")
 FORCES_KEYS = ("gravity",)
@@ -138,7 +139,8 @@ def parse_document(doc: dict[str, Any], *, source: str = "<document>") -> Docume
         mechanism = _mechanism(doc["mechanism"], fail, dimensioned="lengths" in doc)
     meta = dict(name=name, family=family, units=units, space=space, notes=notes,
                 source=source, naming=naming, task=_task(doc, fail),
-                **_masses_and_loads(doc, fail), cams=_cams(doc, joints, fail))
+                **_masses_and_loads(doc, fail), cams=_cams(doc, joints, fail),
+                gears=_gears(doc, mechanism, fail))
     if mechanism is not None and not dimensioned:
         kinds = {j.id: j.kind for j in joints}
         for i, item in enumerate(mechanism.inputs):
@@ -199,6 +201,15 @@ def _task(doc: dict[str, Any], fail: Fail) -> dict[str, Any] | None:
         fail("[task] needs 'kind', the kind of task (\"function\", \"path\" or "
              "\"motion\")", "[task]")
     return task
+
+
+def _gears(doc: dict[str, Any], mechanism: Mechanism | None,
+           fail: Fail) -> tuple[GearPair, ...]:
+    """``[[gears]]``: the gear pairs as read (the chain checks their links and
+    carriers); a pair without a carrier takes the fixed link."""
+    fixed = mechanism.fixed if mechanism is not None else None
+    return tuple(gear_pair(t, i, fixed, fail)
+                 for i, t in enumerate(_tables(doc.get("gears", []), "gears", fail)))
 
 
 def _no_unknown_keys(table: dict[str, Any], allowed: Sequence[str], where: str | None,
@@ -505,7 +516,10 @@ def chain_document(chain: Chain) -> dict[str, Any]:
     if chain.space != "planar":
         doc["space"] = chain.space
     joints = []
+    gear_joints = {g.id for g in chain.gears}
     for j in chain.joints:
+        if j.id in gear_joints:          # written as its [[gears]] table
+            continue
         item: dict[str, Any] = {"id": j.id, "kind": j.kind, "links": list(j.links)}
         if j.at is not None:
             item["at"] = list(j.at)
@@ -547,6 +561,8 @@ def chain_document(chain: Chain) -> dict[str, Any]:
         doc["cams"] = [cam_entry(c) for c in chain.cams]
     if chain.task is not None:
         doc["task"] = chain.task
+    if chain.gears:
+        doc["gears"] = [gear_entry(g) for g in chain.gears]
     return doc
 
 
