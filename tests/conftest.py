@@ -79,6 +79,13 @@ def run_console_script(*args, cwd=None):
 CATALOG = catalog_files()
 
 
+def solver_takes(chain):
+    """Whether the position solver takes the chain's pairs: turning and sliding pairs
+    only (a cam or gear pair is analysed by `chaingraph cam` and `gears`, not solved
+    for the motion of a linkage yet: the solver refuses it in one line)."""
+    return all(j.kind in ("R", "P") for j in chain.joints)
+
+
 # -- processes (the Ctrl-C and SIGKILL tests) ------------------------------------------
 def children(pid):
     out = []

@@ -20,6 +20,7 @@ from chaingraph.graphical import instant_centres, velocity_polygon
 from chaingraph.graphical.centres import centres_of
 from chaingraph.graphical.polygons import polygons_of
 from chaingraph.kinematics.pose import pose_motion
+from ..conftest import solver_takes
 
 EXAMPLES = Path(__file__).resolve().parents[2] / "examples"
 
@@ -29,7 +30,7 @@ def _mechanisms():
     for path in sorted(catalog_dir().glob("*.toml")) + sorted(EXAMPLES.glob("*.toml")):
         chain = chaingraph.load(path)
         m = chain.mechanism
-        if m is not None and (m.driver or m.inputs) and chain.has_pose:
+        if m is not None and (m.driver or m.inputs) and chain.has_pose and solver_takes(chain):
             out.append(path)
     return out
 
@@ -521,7 +522,7 @@ def test_links_are_numbered_frame_input_then_along_the_chain():
 def test_no_link_is_named_by_a_number_it_does_not_have(path):
     """A name ending in a number (wheel 1, slider 3, link 5) is that link's number."""
     chain = chaingraph.load(path)
-    if not (chain.has_pose and chain.mechanism):
+    if not (chain.has_pose and chain.mechanism and solver_takes(chain)):
         return
     numbers = instant_centres(chain).numbers
     for link, n in numbers.items():

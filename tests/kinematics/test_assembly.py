@@ -16,6 +16,8 @@ from chaingraph.kinematics import build_plan, feasible_range
 from chaingraph.kinematics.assembly import measure
 from chaingraph.naming.catalog import catalog_path
 
+from ..conftest import solver_takes
+
 ROOT = Path(__file__).resolve().parents[2]
 DATA = ROOT / "tests" / "data"
 REFERENCE = json.loads((DATA / "assembly-poses.json").read_text(encoding="utf-8"))
@@ -57,7 +59,7 @@ def test_every_mechanism_assembles_to_the_same_pose_as_before(name, now):
 
 DRAWN = sorted(p for p in (ROOT / "catalog").glob("*.toml")
                if "[mechanism]" in (text := p.read_text(encoding="utf-8"))
-               and "[lengths]" not in text)
+               and "[lengths]" not in text and solver_takes(chaingraph.load(p)))
 
 
 @pytest.mark.parametrize("path", DRAWN, ids=lambda p: p.stem)

@@ -18,7 +18,7 @@ from chaingraph.kinematics.equations import residuals
 from chaingraph.kinematics.rates import rates
 from chaingraph.kinematics.sweep import cycle
 
-from ..conftest import CATALOG, run_cli
+from ..conftest import CATALOG, run_cli, solver_takes
 
 EXAMPLES = sorted((Path(__file__).parents[2] / "examples").glob("*.toml"))
 
@@ -26,7 +26,7 @@ EXAMPLES = sorted((Path(__file__).parents[2] / "examples").glob("*.toml"))
 def _mechanisms():
     for path in list(CATALOG) + EXAMPLES:
         chain = chaingraph.load(path)
-        if chain.mechanism is not None and chain.has_pose:
+        if chain.mechanism is not None and chain.has_pose and solver_takes(chain):
             yield path
 
 

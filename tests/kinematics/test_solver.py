@@ -22,10 +22,11 @@ from chaingraph.kinematics.equations import check_poses, residuals
 from chaingraph.kinematics.rates import rates
 from chaingraph.kinematics.tracking import evaluate
 
-from ..conftest import run_cli
+from ..conftest import run_cli, solver_takes
 
 SOLVABLE = [p for p in catalog_files()
-            if (c := chaingraph.load(p)).mechanism is not None and c.mechanism.driver]
+            if (c := chaingraph.load(p)).mechanism is not None and c.mechanism.driver
+            and solver_takes(c)]
 
 
 def R(joint_id, links, at):
