@@ -25,14 +25,18 @@ $(VENV)/.installed-test: pyproject.toml $(VENV)/.installed
 report: $(VENV)/.installed
 	$(BIN)/chaingraph report catalog -o report
 
-# the layers first (import-linter, contract in pyproject.toml), the types (mypy, its
-# settings in pyproject.toml), then the whole suite on both cores (pytest-xdist; a file's
-# tests on one worker, so its fixtures are built once; the files in the order
-# tests/conftest.py gives, the longest first, not xdist's order by number of tests)
+# the layers first (import-linter, contract in pyproject.toml), then the types (mypy, its
+# settings in pyproject.toml) beside the whole suite on both cores (pytest-xdist; a
+# file's tests on one worker, so its fixtures are built once; the files in the order
+# tests/conftest.py gives, the longest first, not xdist's order by number of tests);
+# either failing fails the target (mypy's report is printed after the suite's)
 test: $(VENV)/.installed-test
 	$(BIN)/lint-imports --no-cache
-	$(BIN)/python -m mypy chaingraph
-	$(BIN)/python -m pytest -n 2 --dist loadfile --no-loadscope-reorder
+	@$(BIN)/python -m mypy chaingraph > .mypy-report 2>&1 & types=$$!; \
+	$(BIN)/python -m pytest -n 2 --dist loadfile --no-loadscope-reorder; suite=$$?; \
+	wait $$types; checked=$$?; cat .mypy-report; rm -f .mypy-report; \
+	if [ $$checked -ne 0 ]; then echo "mypy found errors (above)"; exit $$checked; fi; \
+	exit $$suite
 
 benchmark: $(VENV)/.installed
 	$(BIN)/python benchmarks/classify.py
