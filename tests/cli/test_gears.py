@@ -5,12 +5,15 @@ import json
 
 import pytest
 
+from pathlib import Path
+
 from chaingraph.naming import catalog_dir
 
 from ..conftest import run_cli
 
-EPICYCLIC = catalog_dir() / "epicyclic-gear-train.toml"
-DIFFERENTIAL = catalog_dir() / "differential-gear-train.toml"
+EXAMPLES = Path(__file__).resolve().parents[2] / "examples"
+EPICYCLIC = EXAMPLES / "epicyclic-gear-train.toml"
+DIFFERENTIAL = EXAMPLES / "differential-gear-train.toml"
 
 
 def test_json_is_the_contracts():
