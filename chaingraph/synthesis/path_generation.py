@@ -53,6 +53,7 @@ from chaingraph.synthesis.result import Error, Searched, Solution, Synthesis, ra
 from chaingraph.synthesis.task import PathTask, check_options, path_task
 
 __all__ = ["path", "EXACT", "synthesise_path", "Budget", "BUDGET", "distinct_fits",
+           "screened_fits",
            "least_transmission"]
 
 #: a fit passes its points exactly when every distance is within this of the task's size
@@ -170,15 +171,7 @@ def synthesise_path(task: PathTask, family: Family, *, solutions: int,
                                 closed=task.closed)
         if fit is not None and (not exact or fit.residual <= EXACT / 10):
             fits.append(fit)
-    rejected: Counter = Counter()
-    kept = []
-    for f in distinct_fits(fits):
-        defect = predicted_defect(family, f)
-        if defect is None:
-            kept.append(f)
-        else:
-            rejected[defect] += 1
-    fits = kept
+    fits, rejected = screened_fits(family, fits)
     if exact:
         fits.sort(key=lambda f: -least_transmission(family, f))
     else:
@@ -205,6 +198,20 @@ def distinct_fits(fits: list[Fit]) -> list[Fit]:
         if not any(np.max(np.abs(f.params - g.params)) <= 1e-6 for g in out):
             out.append(f)
     return out
+
+
+def screened_fits(family: Family, fits: list[Fit]) -> tuple[list[Fit], Counter]:
+    """The distinct fits the family's own kinematics predicts no defect for, and the
+    others counted by the defect predicted."""
+    rejected: Counter = Counter()
+    kept = []
+    for f in distinct_fits(fits):
+        defect = predicted_defect(family, f)
+        if defect is None:
+            kept.append(f)
+        else:
+            rejected[defect] += 1
+    return kept, rejected
 
 
 def least_transmission(family: Family, fit: Fit) -> float:

@@ -17,7 +17,6 @@ bounds, the error recomputed by the solver).
 
 from __future__ import annotations
 
-from collections import Counter
 
 import numpy as np
 
@@ -29,13 +28,12 @@ from chaingraph.synthesis.optimiser import (
     coarse_search,
     fit_start,
     least_squares_fit,
-    predicted_defect,
 )
 from chaingraph.synthesis.path_generation import (
     EXACT,
     Budget,
-    distinct_fits,
     least_transmission,
+    screened_fits,
 )
 from chaingraph.synthesis.result import Curve, Error, Searched, Solution, Synthesis, ranked
 from chaingraph.synthesis.task import MotionTask
@@ -66,14 +64,7 @@ def synthesise_motion(task: MotionTask, family: Family, *, solutions: int, budge
         fit = least_squares_fit(family, targets, p, th, exact=True, turns=turns)
         if fit is not None and fit.residual <= EXACT / 10:
             fits.append(fit)
-    rejected: Counter = Counter()
-    kept = []
-    for f in distinct_fits(fits):
-        defect = predicted_defect(family, f)
-        if defect is None:
-            kept.append(f)
-        else:
-            rejected[defect] += 1
+    kept, rejected = screened_fits(family, fits)
     kept.sort(key=lambda f: -least_transmission(family, f))
     found: list[Solution] = []
     for fit in kept[:_CERTIFIED * solutions]:
