@@ -17,7 +17,6 @@ bounds, the error recomputed by the solver).
 
 from __future__ import annotations
 
-
 import numpy as np
 
 from chaingraph.synthesis.certification import Certified, PoseTargets, Rejected, certify
