@@ -30,7 +30,7 @@ recomputed: the largest and rms distance from the targets to the solved path).
 from __future__ import annotations
 
 from collections import Counter
-from collections.abc import Iterable
+from collections.abc import Callable, Iterable
 from dataclasses import dataclass
 from typing import Any
 
@@ -53,7 +53,7 @@ from chaingraph.synthesis.result import Error, Searched, Solution, Synthesis, ra
 from chaingraph.synthesis.task import PathTask, check_options, path_task
 
 __all__ = ["path", "EXACT", "synthesise_path", "Budget", "BUDGET", "distinct_fits",
-           "screened_fits",
+           "screened_fits", "first_certified",
            "least_transmission"]
 
 #: a fit passes its points exactly when every distance is within this of the task's size
@@ -176,15 +176,8 @@ def synthesise_path(task: PathTask, family: Family, *, solutions: int,
         fits.sort(key=lambda f: -least_transmission(family, f))
     else:
         fits.sort(key=lambda f: f.residual)
-    found: list[Solution] = []
-    for fit in fits[:_CERTIFIED * solutions]:
-        if len(found) >= solutions:
-            break
-        outcome = _certified(task, family, frame, fit)
-        if isinstance(outcome, Rejected):
-            rejected[outcome.reason] += 1
-        else:
-            found.append(outcome)
+    found = first_certified(fits, solutions, lambda f: _certified(task, family, frame, f),
+                            rejected, tried=_CERTIFIED * solutions)
     size = task.size
     return Synthesis(task, ranked(found, solutions,
                                   tolerance=EXACT * size if exact else 0.0),
@@ -212,6 +205,24 @@ def screened_fits(family: Family, fits: list[Fit]) -> tuple[list[Fit], Counter]:
         else:
             rejected[defect] += 1
     return kept, rejected
+
+
+def first_certified(fits: list[Fit], solutions: int,
+                    certify_one: Callable[[Fit], Solution | Rejected], rejected: Counter,
+                    *, tried: int) -> list[Solution]:
+    """The first ``solutions`` of the fits (in their order, at most ``tried`` of them
+    tried) that ``certify_one`` certifies; each rejected counted in ``rejected`` by its
+    reason."""
+    found: list[Solution] = []
+    for fit in fits[:tried]:
+        if len(found) >= solutions:
+            break
+        outcome = certify_one(fit)
+        if isinstance(outcome, Rejected):
+            rejected[outcome.reason] += 1
+        else:
+            found.append(outcome)
+    return found
 
 
 def least_transmission(family: Family, fit: Fit) -> float:

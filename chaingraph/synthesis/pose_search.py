@@ -31,6 +31,7 @@ from chaingraph.synthesis.optimiser import (
 from chaingraph.synthesis.path_generation import (
     EXACT,
     Budget,
+    first_certified,
     least_transmission,
     screened_fits,
 )
@@ -65,15 +66,8 @@ def synthesise_motion(task: MotionTask, family: Family, *, solutions: int, budge
             fits.append(fit)
     kept, rejected = screened_fits(family, fits)
     kept.sort(key=lambda f: -least_transmission(family, f))
-    found: list[Solution] = []
-    for fit in kept[:_CERTIFIED * solutions]:
-        if len(found) >= solutions:
-            break
-        outcome = _certified(task, family, frame, fit)
-        if isinstance(outcome, Rejected):
-            rejected[outcome.reason] += 1
-        else:
-            found.append(outcome)
+    found = first_certified(kept, solutions, lambda f: _certified(task, family, frame, f),
+                            rejected, tried=_CERTIFIED * solutions)
     return Synthesis(task, ranked(found, solutions, tolerance=EXACT * task.size),
                      dict(sorted(rejected.items())), Searched(1, 1, budget.samples))
 
