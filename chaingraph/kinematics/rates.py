@@ -107,14 +107,15 @@ class _PointDyad:
     def solve_velocity(self, vel):
         dwa = self._known_point(vel, self.ka, self.ra_k)
         dwb = self._known_point(vel, self.kb, self.rb_k)
-        self._found = [dwa]
+        self._at_wa = [dwa]                  # the known joint's rate, then acceleration
+        self._at_x = []                      # the joint's own, the same
         return self._solve(dwa, dwb, 0.0, 0.0, second=False)
 
     def solve_acceleration(self, acc, vel):
         dwa = self._known_point(acc, self.ka, self.ra_k, vel)
         dwb = self._known_point(acc, self.kb, self.rb_k, vel)
         ga, gb = _sq(self._rel_a), _sq(self._rel_b)
-        self._found.append(dwa)
+        self._at_wa.append(dwa)
         return self._solve(dwa, dwb, ga, gb, second=True, vel=vel)
 
     def points(self, near: Scalar = False) -> dict:
@@ -124,7 +125,7 @@ class _PointDyad:
         :class:`~chaingraph.kinematics.columns.LinkStates` holds them."""
         if any(c.point_b is not None for c in self.step.constraints):
             return {}           # (a link's point of a joint differs from the other's)
-        vwa, vx, awa, ax = self._found
+        (vwa, awa), (vx, ax) = self._at_wa, self._at_x
         if np.any(near):
             ax = tuple(np.where(near, np.nan, v) for v in ax)
         a, b = self.step.links
@@ -143,9 +144,9 @@ class _PointDyad:
             dx = np.where(self.singular, np.nan, dx)
             # (dy stays: it is what the links' rates are worked out from, as before;
             # the joint's own, as its links' rates give it, is NaN there too)
-            self._found.append((dx, np.where(self.singular, np.nan, dy)))
+            self._at_x.append((dx, np.where(self.singular, np.nan, dy)))
         else:
-            self._found.append((dx, dy))
+            self._at_x.append((dx, dy))
         a, b = self.step.links
         out = {}
         for link, u, dw, r2 in ((a, self.ua, dwa, self.ra2), (b, self.ub, dwb, self.rb2)):
