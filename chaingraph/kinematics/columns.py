@@ -258,11 +258,8 @@ def point_of_states(plan: Plan, states: LinkStates, name: str) -> PointMotion:
     solved = states.points.get((link, p))
     if solved is not None and all(np.shape(v) == (n,) for v in solved):
         x, y, *rates = solved
-        # (a rate the solve passed through unchanged is a link's own array: copied)
-        held = {id(v) for table in (states.velocity, states.acceleration)
-                for entry in table.values() for v in entry}
-        return PointMotion(name, x + ox, y + oy,
-                           *(v.copy() if id(v) in held else v for v in rates))
+        # (copied: a rate the solve passed through unchanged is a link's own array)
+        return PointMotion(name, x + ox, y + oy, *(v.copy() for v in rates))
     out = [np.empty(n) for _ in range(6)]
     _point_motion(states.pose, states.velocity, states.acceleration, link, p, out=out,
                   origin=(ox, oy))
