@@ -81,12 +81,11 @@ def follower_motion(cam: Cam, theta: Array) -> tuple[Array, Array, Array, Array]
         if seg.kind == "dwell":
             out[0][inside] = level
         else:
-            sign = 1.0 if seg.kind == "rise" else -1.0
             f = law(seg.law or "", (t[inside] - start) / seg.over)
             for k in range(4):
-                out[k][inside] = sign * seg.lift * f[k] / seg.over ** k
+                out[k][inside] = seg.change * f[k] / seg.over ** k
             out[0][inside] += level
-            level += sign * seg.lift
+            level += seg.change
         start = end
     return out[0], out[1], out[2], out[3]
 

@@ -11,6 +11,7 @@ follower's lift too); the file speaks degrees. The motion itself is
 
 from __future__ import annotations
 
+import itertools
 import math
 from collections.abc import Sequence
 from dataclasses import dataclass
@@ -40,6 +41,12 @@ class Segment:
     over: float
     law: str | None = None
 
+    @property
+    def change(self) -> float:
+        """The follower's travel over the segment: ``+lift`` for a rise, ``-lift`` for a
+        fall, 0 for a dwell."""
+        return {"rise": self.lift, "fall": -self.lift}.get(self.kind, 0.0)
+
 
 @dataclass(frozen=True)
 class Cam:
@@ -66,11 +73,7 @@ class Cam:
     @property
     def stroke(self) -> float:
         """The follower's largest travel from its lowest place (file units, or radians)."""
-        level, top = 0.0, 0.0
-        for seg in self.motion:
-            level += seg.lift if seg.kind == "rise" else -seg.lift if seg.kind == "fall" else 0
-            top = max(top, level)
-        return top
+        return max(itertools.accumulate((seg.change for seg in self.motion), initial=0.0))
 
     @property
     def prime(self) -> float:
@@ -121,7 +124,7 @@ def _program(value: object, where: str, fail: Fail, oscillating: bool) -> tuple[
              where + " key 'motion'")
     level, scale = 0.0, max(s.lift for s in motion)
     for i, s in enumerate(motion):
-        level += s.lift if s.kind == "rise" else -s.lift if s.kind == "fall" else 0.0
+        level += s.change
         if level < -_LIFT_TOLERANCE * scale:
             fail(f"motion #{i + 1} falls below the start (the base circle)",
                  where + " key 'motion'")
