@@ -192,15 +192,16 @@ def read_cam(table: object, index: int, joints: Sequence[Any], fail: Fail) -> Ca
     if moves == "translating" and abs(offset) >= base + roller:
         fail(f"the offset ({offset:g}) must be less than the prime circle's radius "
              f"({base + roller:g})", where + " key 'offset'")
-    arm, pivot = _swing(table, moves, contact, where, fail)
+    arm, pivot = _swing(table, moves, contact, base + roller, where, fail)
     motion = _program(table["motion"], where, fail, moves == "oscillating")
     return Cam(names["id"], names["cam"], names["follower"], contact, base, motion,
                moves=moves, roller=roller, offset=offset, arm=arm, pivot=pivot)
 
 
-def _swing(table: dict[str, Any], moves: str, contact: str, where: str,
+def _swing(table: dict[str, Any], moves: str, contact: str, prime: float, where: str,
            fail: Fail) -> tuple[float | None, tuple[float, float] | None]:
-    """An oscillating follower's ``arm`` and ``pivot`` (None for a translating one)."""
+    """An oscillating follower's ``arm`` and ``pivot`` (None for a translating one), the
+    arm reaching the prime circle of radius ``prime``."""
     if moves == "translating":
         for key in ("arm", "pivot"):
             if key in table:
@@ -222,7 +223,6 @@ def _swing(table: dict[str, Any], moves: str, contact: str, where: str,
     if not isinstance(p, list) or len(p) != 2:
         fail("'pivot' is [x, y] from the cam's centre", where + " key 'pivot'")
     pivot = (number(p[0], where + " key 'pivot'", fail), number(p[1], where + " key 'pivot'", fail))
-    prime = number(table["base"], where, fail) + (float(table.get("roller", 0.0)))
     d = math.hypot(*pivot)
     if not abs(d - arm) < prime < d + arm:
         fail(f"an arm of {arm:g} from a pivot {d:g} from the cam's centre cannot reach the "
