@@ -288,4 +288,4 @@ def cam_table(cam: Cam, *, steps: int = 360) -> tuple[tuple[float, ...], ...]:
     cols = [np.degrees(theta), r.s * scale, r.ds * scale, r.dds * scale, r.ddds * scale,
             np.degrees(r.pressure), r.pitch[:, 0], r.pitch[:, 1], r.profile[:, 0],
             r.profile[:, 1]]
-    return tuple(tuple(float(c[i]) for c in cols) for i in range(len(theta)))
+    return tuple(map(tuple, np.column_stack(cols).tolist()))
