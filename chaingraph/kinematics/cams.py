@@ -208,7 +208,7 @@ def smallest_base(cam: Cam, limit: float, *, steps: int = 3600) -> float:
     theta = turn_angles(cam, steps)
     s, ds, dds, _ = follower_motion(cam, theta)
     if cam.contact == "flat":
-        return float(max(np.max(-(s + dds)), 0.0))
+        return max(0.0, float(np.max(-(s + dds))))    # (0.0 first: never -0.0)
     if cam.moves == "translating":
         e = cam.offset
         y0 = float(np.max(np.abs(ds - e) / math.tan(limit) - s))
