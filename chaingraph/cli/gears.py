@@ -3,6 +3,7 @@
 from __future__ import annotations
 
 import argparse
+import math
 from collections.abc import Callable
 from fractions import Fraction
 
@@ -21,7 +22,7 @@ def speed_argument(text: str) -> tuple[str, float]:
         rpm = float(value)
     except ValueError:
         rpm = float("nan")
-    if not eq or not link or rpm != rpm or abs(rpm) == float("inf"):
+    if not eq or not link or not math.isfinite(rpm):
         raise argparse.ArgumentTypeError(f"expected LINK=RPM (a link and a finite speed), "
                                          f"got {text!r}")
     return link, rpm

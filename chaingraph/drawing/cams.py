@@ -12,6 +12,7 @@ import numpy as np
 
 from chaingraph.drawing.plots import finish, pyplot_module
 from chaingraph.drawing.scene import COLOURS, Shape, View, svg_document, svg_elements
+from chaingraph.geometry import rotate
 from chaingraph.kinematics.cams import CamAnalysis, analyse_cam
 from chaingraph.model.cams import Cam
 
@@ -22,8 +23,9 @@ __all__ = ["cam_shapes", "cam_svg", "plot_cam"]
 
 
 def _turned(points: np.ndarray, theta: float) -> list[tuple[float, float]]:
-    c, s = math.cos(theta), math.sin(theta)
-    return [(float(c * x - s * y), float(s * x + c * y)) for x, y in points]
+    """Points (n x 2) of the cam's frame in the world, the cam turned by ``theta``."""
+    x, y = rotate(points.T, theta)
+    return list(zip(x.tolist(), y.tolist()))
 
 
 def cam_shapes(cam: Cam, result: CamAnalysis, *, at: float = 0.0) -> list[Shape]:

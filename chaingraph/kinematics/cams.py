@@ -81,12 +81,11 @@ def follower_motion(cam: Cam, theta: Array) -> tuple[Array, Array, Array, Array]
         if seg.kind == "dwell":
             out[0][inside] = level
         else:
-            sign = 1.0 if seg.kind == "rise" else -1.0
             f = law(seg.law or "", (t[inside] - start) / seg.over)
             for k in range(4):
-                out[k][inside] = sign * seg.lift * f[k] / seg.over ** k
+                out[k][inside] = seg.change * f[k] / seg.over ** k
             out[0][inside] += level
-            level += sign * seg.lift
+            level += seg.change
         start = end
     return out[0], out[1], out[2], out[3]
 
@@ -209,7 +208,7 @@ def smallest_base(cam: Cam, limit: float, *, steps: int = 3600) -> float:
     theta = turn_angles(cam, steps)
     s, ds, dds, _ = follower_motion(cam, theta)
     if cam.contact == "flat":
-        return float(max(np.max(-(s + dds)), 0.0))
+        return max(0.0, float(np.max(-(s + dds))))    # (0.0 first: never -0.0)
     if cam.moves == "translating":
         e = cam.offset
         y0 = float(np.max(np.abs(ds - e) / math.tan(limit) - s))
@@ -289,4 +288,4 @@ def cam_table(cam: Cam, *, steps: int = 360) -> tuple[tuple[float, ...], ...]:
     cols = [np.degrees(theta), r.s * scale, r.ds * scale, r.dds * scale, r.ddds * scale,
             np.degrees(r.pressure), r.pitch[:, 0], r.pitch[:, 1], r.profile[:, 0],
             r.profile[:, 1]]
-    return tuple(tuple(float(c[i]) for c in cols) for i in range(len(theta)))
+    return tuple(map(tuple, np.column_stack(cols).tolist()))

@@ -11,6 +11,7 @@ follower's lift too); the file speaks degrees. The motion itself is
 
 from __future__ import annotations
 
+import itertools
 import math
 from collections.abc import Sequence
 from dataclasses import dataclass
@@ -40,6 +41,12 @@ class Segment:
     over: float
     law: str | None = None
 
+    @property
+    def change(self) -> float:
+        """The follower's travel over the segment: ``+lift`` for a rise, ``-lift`` for a
+        fall, 0 for a dwell."""
+        return {"rise": self.lift, "fall": -self.lift}.get(self.kind, 0.0)
+
 
 @dataclass(frozen=True)
 class Cam:
@@ -66,11 +73,7 @@ class Cam:
     @property
     def stroke(self) -> float:
         """The follower's largest travel from its lowest place (file units, or radians)."""
-        level, top = 0.0, 0.0
-        for seg in self.motion:
-            level += seg.lift if seg.kind == "rise" else -seg.lift if seg.kind == "fall" else 0
-            top = max(top, level)
-        return top
+        return max(itertools.accumulate((seg.change for seg in self.motion), initial=0.0))
 
     @property
     def prime(self) -> float:
@@ -121,7 +124,7 @@ def _program(value: object, where: str, fail: Fail, oscillating: bool) -> tuple[
              where + " key 'motion'")
     level, scale = 0.0, max(s.lift for s in motion)
     for i, s in enumerate(motion):
-        level += s.lift if s.kind == "rise" else -s.lift if s.kind == "fall" else 0.0
+        level += s.change
         if level < -_LIFT_TOLERANCE * scale:
             fail(f"motion #{i + 1} falls below the start (the base circle)",
                  where + " key 'motion'")
@@ -189,15 +192,16 @@ def read_cam(table: object, index: int, joints: Sequence[Any], fail: Fail) -> Ca
     if moves == "translating" and abs(offset) >= base + roller:
         fail(f"the offset ({offset:g}) must be less than the prime circle's radius "
              f"({base + roller:g})", where + " key 'offset'")
-    arm, pivot = _swing(table, moves, contact, where, fail)
+    arm, pivot = _swing(table, moves, contact, base + roller, where, fail)
     motion = _program(table["motion"], where, fail, moves == "oscillating")
     return Cam(names["id"], names["cam"], names["follower"], contact, base, motion,
                moves=moves, roller=roller, offset=offset, arm=arm, pivot=pivot)
 
 
-def _swing(table: dict[str, Any], moves: str, contact: str, where: str,
+def _swing(table: dict[str, Any], moves: str, contact: str, prime: float, where: str,
            fail: Fail) -> tuple[float | None, tuple[float, float] | None]:
-    """An oscillating follower's ``arm`` and ``pivot`` (None for a translating one)."""
+    """An oscillating follower's ``arm`` and ``pivot`` (None for a translating one), the
+    arm reaching the prime circle of radius ``prime``."""
     if moves == "translating":
         for key in ("arm", "pivot"):
             if key in table:
@@ -219,7 +223,6 @@ def _swing(table: dict[str, Any], moves: str, contact: str, where: str,
     if not isinstance(p, list) or len(p) != 2:
         fail("'pivot' is [x, y] from the cam's centre", where + " key 'pivot'")
     pivot = (number(p[0], where + " key 'pivot'", fail), number(p[1], where + " key 'pivot'", fail))
-    prime = number(table["base"], where, fail) + (float(table.get("roller", 0.0)))
     d = math.hypot(*pivot)
     if not abs(d - arm) < prime < d + arm:
         fail(f"an arm of {arm:g} from a pivot {d:g} from the cam's centre cannot reach the "

@@ -21,7 +21,7 @@ from dataclasses import dataclass
 from typing import Any, NoReturn
 
 from chaingraph.errors import ChainFileError
-from chaingraph.model.cams import cam_entry, read_cam
+from chaingraph.model.cams import Cam, cam_entry, read_cam
 from chaingraph.model.chain import Chain, Input, Joint, LinkMass, Load, Mechanism, Point
 from chaingraph.model.dimensions import Dimensions, parse_dimensions
 from chaingraph.model.gears import GearPair, gear_entry, gear_pair
@@ -319,7 +319,7 @@ def _masses_and_loads(doc: dict[str, Any], fail: Fail) -> dict[str, Any]:
     return {"masses": tuple(masses), "gravity": gravity, "loads": tuple(loads)}
 
 
-def _cams(doc: dict[str, Any], joints: tuple[Joint, ...], fail: Fail) -> tuple[Any, ...]:
+def _cams(doc: dict[str, Any], joints: tuple[Joint, ...], fail: Fail) -> tuple[Cam, ...]:
     """``[[cams]]``: the chain's disc cams and followers (:mod:`chaingraph.model.cams`)."""
     cams = tuple(read_cam(t, i, joints, fail)
                  for i, t in enumerate(_tables(doc.get("cams", []), "cams", fail)))

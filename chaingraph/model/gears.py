@@ -12,11 +12,11 @@ the pairs against the chain and :func:`gear_entry` writes one back.
 
 from __future__ import annotations
 
-from collections.abc import Callable, Collection, Sequence
+from collections.abc import Collection, Sequence
 from dataclasses import dataclass
-from typing import TYPE_CHECKING, Any, NoReturn
+from typing import TYPE_CHECKING, Any
 
-from chaingraph.model.values import shown, type_name
+from chaingraph.model.values import Fail, shown, type_name
 
 if TYPE_CHECKING:
     from chaingraph.model.chain import Joint
@@ -24,8 +24,6 @@ if TYPE_CHECKING:
 __all__ = ["GearPair", "GEAR_KEYS", "gear_pair", "gear_entry", "check_gears", "pitch_point"]
 
 GEAR_KEYS = ("id", "links", "teeth", "internal", "carrier")
-
-Fail = Callable[[str, str], NoReturn]
 
 
 @dataclass(frozen=True)

@@ -1,36 +1,25 @@
 """``chaingraph cam FILE`` (issue 39): the JSON keys and CSV columns of the contract, the
 drawings written, the file read back as written, every bad input one line and exit 2."""
 
-import contextlib
 import csv
-import io
 import json
 import math
 
 import pytest
 
 import chaingraph
-from chaingraph.cli.main import main
 from chaingraph.files import dumps, loads
 from chaingraph.naming.catalog import catalog_path
+
+from ..conftest import run_cli
 
 CAM = catalog_path("disc-cam-roller-follower")
 KEYS = {"name", "cam", "follower", "contact", "base", "roller", "offset", "stroke",
         "pressure_angle", "curvature", "undercut", "min_base"}
 
 
-def _main(*args):
-    out, err = io.StringIO(), io.StringIO()
-    with contextlib.redirect_stdout(out), contextlib.redirect_stderr(err):
-        try:
-            code = main([str(a) for a in args])
-        except SystemExit as e:
-            code = e.code
-    return code, out.getvalue(), err.getvalue()
-
-
 def test_cam_json_has_the_contract_s_keys():
-    code, out, err = _main("cam", CAM, "--json", "--max-pressure-angle", "30")
+    code, out, err = run_cli("cam", CAM, "--json", "--max-pressure-angle", "30")
     assert code == 0, err
     data = json.loads(out)
     assert set(data) == KEYS
@@ -48,7 +37,7 @@ def test_cam_json_has_the_contract_s_keys():
 
 def test_cam_csv_columns_and_rows(tmp_path):
     path = tmp_path / "cam.csv"
-    code, out, err = _main("cam", CAM, "--csv", path, "--steps", "36")
+    code, out, err = run_cli("cam", CAM, "--csv", path, "--steps", "36")
     assert code == 0, err
     rows = list(csv.reader(path.open()))
     assert rows[0] == ["theta", "s", "ds", "dds", "ddds", "pressure_angle", "x_pitch",
@@ -63,7 +52,7 @@ def test_cam_csv_columns_and_rows(tmp_path):
 
 def test_cam_text_draw_and_plot(tmp_path):
     draw, plot = tmp_path / "cam.svg", tmp_path / "plot.svg"
-    code, out, err = _main("cam", CAM, "--draw", draw, "--plot", plot, "--at", "45")
+    code, out, err = run_cli("cam", CAM, "--draw", draw, "--plot", plot, "--at", "45")
     assert code == 0, err
     assert "largest pressure angle" in out and "undercut" in out
     assert draw.read_text().count('class="roller"') == 1
@@ -116,7 +105,7 @@ def test_every_bad_cam_is_one_line_and_exit_2(tmp_path, old, new, words):
     assert old in GOOD
     path = tmp_path / "bad.toml"
     path.write_text(GOOD.replace(old, new, 1))
-    code, out, err = _main("cam", path)
+    code, out, err = run_cli("cam", path)
     assert code == 2 and out == ""
     assert len(err.strip().splitlines()) == 1 and words in err and "[[cams]]" in err
 
@@ -124,11 +113,11 @@ def test_every_bad_cam_is_one_line_and_exit_2(tmp_path, old, new, words):
 def test_a_good_file_passes_and_bad_options_are_one_line(tmp_path):
     path = tmp_path / "good.toml"
     path.write_text(GOOD)
-    assert _main("cam", path)[0] == 0
+    assert run_cli("cam", path)[0] == 0
     for args in (["--max-pressure-angle", "95"], ["--at", "nan"], ["--draw", tmp_path / "x.png"]):
-        code, out, err = _main("cam", path, *args)
+        code, out, err = run_cli("cam", path, *args)
         assert code == 2 and len(err.strip().splitlines()) == 1, (args, err)
-    code, out, err = _main("cam", catalog_path("four-bar-chain"))
+    code, out, err = run_cli("cam", catalog_path("four-bar-chain"))
     assert code == 2 and "no [[cams]]" in err
 
 
@@ -137,7 +126,7 @@ def test_an_oscillating_follower_json(tmp_path):
     path.write_text(GOOD.replace('kind = "P"', 'kind = "R"').replace(
         "roller = 10.0", "roller = 8.0\narm = 60.0\npivot = [70.0, 20.0]").replace(
         "rise = 30.0", "rise = 20.0").replace("fall = 30.0", "fall = 20.0"))
-    code, out, err = _main("cam", path, "--json")
+    code, out, err = run_cli("cam", path, "--json")
     assert code == 0, err
     data = json.loads(out)
     assert KEYS <= set(data) and data["offset"] is None and data["arm"] == 60.0

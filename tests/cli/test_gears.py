@@ -2,10 +2,9 @@
 line with exit status 2."""
 
 import json
+from pathlib import Path
 
 import pytest
-
-from pathlib import Path
 
 from chaingraph.naming import catalog_dir
 

@@ -2,7 +2,6 @@
 the pressure angle against the textbook's formula, the profile touching the follower at
 every angle, the smallest base circle against a search, undercutting."""
 
-import dataclasses
 import math
 
 import numpy as np
@@ -206,9 +205,16 @@ def test_a_limit_out_of_range_is_refused():
         smallest_base(_cam(), math.radians(90.0))
 
 
-def test_a_flat_face_base_circle_keeps_the_profile_convex():
-    cam = dataclasses.replace(_cam("uniform", "uniform", contact="flat", roller=0.0))
+@pytest.mark.parametrize("rise, fall, lift", [("uniform", "uniform", 30.0),
+                                              ("cycloidal", "shm", 60.0)])
+def test_a_flat_face_base_circle_keeps_the_profile_convex(rise, fall, lift):
+    """The base circle found leaves the profile nowhere concave (its radius of curvature
+    base + s + s'' at least 0), and one 1 % smaller makes it concave somewhere."""
+    cam = _cam(rise, fall, contact="flat", roller=0.0, lift=lift)
     base = smallest_base(cam, math.radians(30.0))
     theta = turn_angles(cam, 3600)
     s, _, dds, _ = follower_motion(cam, theta)
     assert base == pytest.approx(max(0.0, float(np.max(-(s + dds)))))
+    assert analyse_cam(cam, theta, base=base).curvature.min() >= -1e-9
+    if base > 0:
+        assert analyse_cam(cam, theta, base=0.99 * base).curvature.min() < 0

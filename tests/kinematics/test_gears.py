@@ -4,10 +4,9 @@ relative-velocity equation, and a differential's two outputs."""
 
 from fractions import Fraction
 from itertools import product
+from pathlib import Path
 
 import pytest
-
-from pathlib import Path
 
 import chaingraph
 from chaingraph.errors import ChainFileError, MechanismError
