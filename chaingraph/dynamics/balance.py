@@ -39,7 +39,7 @@ import numpy as np
 from chaingraph._util.numbers import tidy
 from chaingraph.dynamics.equilibrium import UNIT_METRES
 from chaingraph.dynamics.reactions import SweepForces, forces
-from chaingraph.dynamics.shaking import Shaking, shaking
+from chaingraph.dynamics.shaking import Shaking, largest_size, shaking
 from chaingraph.errors import MechanismError
 from chaingraph.model.chain import Chain, LinkMass, mass_centre
 
@@ -276,16 +276,10 @@ def balance(result: SweepForces, *, fraction: float = 1.0) -> Balance:
     if kind == "slider crank":
         along = after.fx * axis.real + after.fy * axis.imag
         across = -after.fx * axis.imag + after.fy * axis.real
-        secondary = _top(along)
-        transverse = _top(across)
+        secondary = largest_size(along)
+        transverse = largest_size(across)
         if fraction:
             notes.append("the counterweight's primary force across the line of stroke "
                          "remains (balance a fraction of the reciprocating mass to share it)")
     return Balance(kind, tuple(weights), balanced, before, after, again, secondary,
                    transverse, tuple(notes))
-
-
-def _top(v) -> float | None:
-    v = np.abs(np.asarray(v, dtype=float))
-    v = v[np.isfinite(v)]
-    return float(v.max()) if v.size else None

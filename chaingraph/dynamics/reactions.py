@@ -29,7 +29,7 @@ from chaingraph.dynamics.equilibrium import (
     Solution,
     solve_equilibrium,
 )
-from chaingraph.dynamics.shaking import Shaking, shaking
+from chaingraph.dynamics.shaking import Shaking, largest_size, shaking
 from chaingraph.errors import AssemblyError, MechanismError
 from chaingraph.kinematics import solve
 from chaingraph.kinematics.inputs import InputsGiven, sweep_drive
@@ -770,9 +770,7 @@ def _summary(chain, plan, motion, sol, speed_fluctuation, efforts_at: CycleEffor
     reactions = {}
     for j in chain.joints:
         mags = [np.hypot(*sol.forces[(j.id, link)]) for link in _on_links(j)]
-        worst = np.max(np.vstack(mags), axis=0)
-        finite = worst[regular & np.isfinite(worst)]
-        reactions[j.id] = float(finite.max()) if finite.size else None
+        reactions[j.id] = largest_size(np.max(np.vstack(mags), axis=0)[regular])
     dead = tuple(float(v) for v in theta[sol.singular])
     notes: list[str] = []
     lead = plan.inputs[plan.lead]
