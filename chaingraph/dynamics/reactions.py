@@ -373,7 +373,9 @@ class SweepForces:
         return out
 
 
-def _metres(chain):
+def length_metres(chain: Chain) -> float:
+    """The chain's length unit in metres; a MechanismError when it has none, or one
+    forces do not know."""
     name = chain.source or chain.name
     if not chain.units:
         raise MechanismError("forces need the file's length 'units' (mm, cm, m or in) to "
@@ -485,7 +487,7 @@ def forces(mechanism: Chain, *, at: float | Sequence[float] | None = None,
     >>> round(f.reaction("S").normal, 3)                      # 1000 tan(phi), phi = 14.48
     -258.199
     """
-    metres = _metres(mechanism)
+    metres = length_metres(mechanism)
     if speed_fluctuation is not None and not (isinstance(speed_fluctuation, (int, float))
                                               and 0 < speed_fluctuation < 2):
         raise MechanismError(f"the speed fluctuation must be a number between 0 and 2 "
@@ -704,7 +706,7 @@ def _on_links(joint):
 
 def _pose_forces(chain, plan, sol, k, at, static) -> PoseForces:
     """The forces at step ``k`` of the solution ``sol``, the inputs at ``at``."""
-    metres = _metres(chain)
+    metres = length_metres(chain)
     ox, oy = plan.origin
 
     def one(v):
