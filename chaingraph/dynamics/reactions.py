@@ -15,7 +15,7 @@ from __future__ import annotations
 import math
 import os
 from collections.abc import Sequence
-from dataclasses import dataclass, field, replace
+from dataclasses import asdict, dataclass, field, replace
 from typing import Any, overload
 
 import numpy as np
@@ -169,7 +169,7 @@ class EffortStats:
     rms: float | None
 
     def to_dict(self) -> dict:
-        return {"min": self.min, "max": self.max, "mean": self.mean, "rms": self.rms}
+        return asdict(self)
 
 
 @dataclass(frozen=True)
@@ -183,8 +183,7 @@ class Flywheel:
     omega: float
 
     def to_dict(self) -> dict:
-        return {"speed_fluctuation": self.speed_fluctuation, "inertia": self.inertia,
-                "omega": self.omega}
+        return asdict(self)
 
 
 @dataclass(frozen=True)
