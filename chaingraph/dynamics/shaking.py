@@ -21,6 +21,7 @@ from __future__ import annotations
 from dataclasses import dataclass
 
 import numpy as np
+from numpy.typing import ArrayLike
 
 from chaingraph.dynamics.equilibrium import Solution
 
@@ -51,7 +52,7 @@ class Shaking:
         return largest_size(self.force), largest_size(self.moment)
 
 
-def largest_size(values) -> float | None:
+def largest_size(values: ArrayLike) -> float | None:
     """The largest size (absolute value) of ``values`` where they are finite; None
     where none is."""
     v = np.abs(np.asarray(values, dtype=float))
