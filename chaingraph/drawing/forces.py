@@ -426,7 +426,7 @@ class _Labels:
                     tried.append((0.4 * k + 1.0 * ring + 0.1 * (side < 0),
                                   (m[0] + off * n[0], m[1] + off * n[1])))
         # beyond the tail, on the arrow's line
-        ahead = length * 0.0 + abs(u[0]) * hw + abs(u[1]) * hh + self.size
+        ahead = abs(u[0]) * hw + abs(u[1]) * hh + self.size
         tried.append((2.5, (p[0] - ahead * u[0], p[1] - ahead * u[1])))
         return self._place(text, tried, panel, (("force", text), *data), "force-label")
 

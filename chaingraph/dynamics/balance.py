@@ -37,9 +37,8 @@ from typing import Any
 import numpy as np
 
 from chaingraph._util.numbers import tidy
-from chaingraph.dynamics.equilibrium import UNIT_METRES
-from chaingraph.dynamics.reactions import SweepForces, forces
-from chaingraph.dynamics.shaking import Shaking, shaking
+from chaingraph.dynamics.reactions import SweepForces, forces, length_metres
+from chaingraph.dynamics.shaking import Shaking, largest_size, shaking
 from chaingraph.errors import MechanismError
 from chaingraph.model.chain import Chain, LinkMass, mass_centre
 
@@ -201,14 +200,10 @@ def _with_counterweight(chain: Chain, link: str, mass: float, at: complex) -> Ch
     m0, g0 = old.mass, _z(mass_centre(chain, old))
     total = m0 + mass
     g = (m0 * g0 + mass * at) / total
-    metres = _metres_of(chain)
+    metres = length_metres(chain)
     inertia = old.inertia + (m0 * abs(g0 - g) ** 2 + mass * abs(at - g) ** 2) * metres ** 2
     new = LinkMass(link, total, (g.real, g.imag), inertia)
     return replace(chain, masses=tuple(new if x is old else x for x in chain.masses))
-
-
-def _metres_of(chain: Chain) -> float:
-    return UNIT_METRES.get(chain.units or "m", 1.0)
 
 
 def balance(result: SweepForces, *, fraction: float = 1.0) -> Balance:
@@ -265,7 +260,7 @@ def balance(result: SweepForces, *, fraction: float = 1.0) -> Balance:
     again = forces(balanced, fixed=plan.fixed, inputs=[(item.joint, float(theta[0]),
                                                         float(theta[-1]))],
                    steps=result.steps, omega=motion.omega, static=result.static)
-    metres = _metres_of(chain)
+    metres = length_metres(chain)
     n = result.steps + 1
     before = shaking(result.solution, n, origin=plan.origin, metres=metres, inertia_only=True)
     after = shaking(again.solution, n, origin=again.motion.plan.origin, metres=metres, inertia_only=True)
@@ -276,16 +271,10 @@ def balance(result: SweepForces, *, fraction: float = 1.0) -> Balance:
     if kind == "slider crank":
         along = after.fx * axis.real + after.fy * axis.imag
         across = -after.fx * axis.imag + after.fy * axis.real
-        secondary = _top(along)
-        transverse = _top(across)
+        secondary = largest_size(along)
+        transverse = largest_size(across)
         if fraction:
             notes.append("the counterweight's primary force across the line of stroke "
                          "remains (balance a fraction of the reciprocating mass to share it)")
     return Balance(kind, tuple(weights), balanced, before, after, again, secondary,
                    transverse, tuple(notes))
-
-
-def _top(v) -> float | None:
-    v = np.abs(np.asarray(v, dtype=float))
-    v = v[np.isfinite(v)]
-    return float(v.max()) if v.size else None

@@ -15,7 +15,7 @@ from __future__ import annotations
 import math
 import os
 from collections.abc import Sequence
-from dataclasses import dataclass, field, replace
+from dataclasses import asdict, dataclass, field, replace
 from typing import Any, overload
 
 import numpy as np
@@ -29,7 +29,7 @@ from chaingraph.dynamics.equilibrium import (
     Solution,
     solve_equilibrium,
 )
-from chaingraph.dynamics.shaking import Shaking, shaking
+from chaingraph.dynamics.shaking import Shaking, largest_size, shaking
 from chaingraph.errors import AssemblyError, MechanismError
 from chaingraph.kinematics import solve
 from chaingraph.kinematics.inputs import InputsGiven, sweep_drive
@@ -169,7 +169,7 @@ class EffortStats:
     rms: float | None
 
     def to_dict(self) -> dict:
-        return {"min": self.min, "max": self.max, "mean": self.mean, "rms": self.rms}
+        return asdict(self)
 
 
 @dataclass(frozen=True)
@@ -183,8 +183,7 @@ class Flywheel:
     omega: float
 
     def to_dict(self) -> dict:
-        return {"speed_fluctuation": self.speed_fluctuation, "inertia": self.inertia,
-                "omega": self.omega}
+        return asdict(self)
 
 
 @dataclass(frozen=True)
@@ -373,7 +372,9 @@ class SweepForces:
         return out
 
 
-def _metres(chain):
+def length_metres(chain: Chain) -> float:
+    """The chain's length unit in metres; a MechanismError when it has none, or one
+    forces do not know."""
     name = chain.source or chain.name
     if not chain.units:
         raise MechanismError("forces need the file's length 'units' (mm, cm, m or in) to "
@@ -485,7 +486,7 @@ def forces(mechanism: Chain, *, at: float | Sequence[float] | None = None,
     >>> round(f.reaction("S").normal, 3)                      # 1000 tan(phi), phi = 14.48
     -258.199
     """
-    metres = _metres(mechanism)
+    metres = length_metres(mechanism)
     if speed_fluctuation is not None and not (isinstance(speed_fluctuation, (int, float))
                                               and 0 < speed_fluctuation < 2):
         raise MechanismError(f"the speed fluctuation must be a number between 0 and 2 "
@@ -704,7 +705,7 @@ def _on_links(joint):
 
 def _pose_forces(chain, plan, sol, k, at, static) -> PoseForces:
     """The forces at step ``k`` of the solution ``sol``, the inputs at ``at``."""
-    metres = _metres(chain)
+    metres = length_metres(chain)
     ox, oy = plan.origin
 
     def one(v):
@@ -770,9 +771,7 @@ def _summary(chain, plan, motion, sol, speed_fluctuation, efforts_at: CycleEffor
     reactions = {}
     for j in chain.joints:
         mags = [np.hypot(*sol.forces[(j.id, link)]) for link in _on_links(j)]
-        worst = np.max(np.vstack(mags), axis=0)
-        finite = worst[regular & np.isfinite(worst)]
-        reactions[j.id] = float(finite.max()) if finite.size else None
+        reactions[j.id] = largest_size(np.max(np.vstack(mags), axis=0)[regular])
     dead = tuple(float(v) for v in theta[sol.singular])
     notes: list[str] = []
     lead = plan.inputs[plan.lead]

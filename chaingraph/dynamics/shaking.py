@@ -21,10 +21,11 @@ from __future__ import annotations
 from dataclasses import dataclass
 
 import numpy as np
+from numpy.typing import ArrayLike
 
 from chaingraph.dynamics.equilibrium import Solution
 
-__all__ = ["Shaking", "shaking", "INERTIA"]
+__all__ = ["Shaking", "shaking", "largest_size", "INERTIA"]
 
 #: the names of the applied forces and couples that are the links' inertia
 INERTIA = ("inertia force", "inertia couple")
@@ -48,11 +49,15 @@ class Shaking:
     def largest(self) -> tuple[float | None, float | None]:
         """The largest shaking force (N) and moment (N m, in size) over the steps where
         they are determined; None where nowhere."""
-        def top(v):
-            v = np.abs(np.asarray(v, dtype=float))
-            v = v[np.isfinite(v)]
-            return float(v.max()) if v.size else None
-        return top(self.force), top(self.moment)
+        return largest_size(self.force), largest_size(self.moment)
+
+
+def largest_size(values: ArrayLike) -> float | None:
+    """The largest size (absolute value) of ``values`` where they are finite; None
+    where none is."""
+    v = np.abs(np.asarray(values, dtype=float))
+    v = v[np.isfinite(v)]
+    return float(v.max()) if v.size else None
 
 
 def shaking(solution: Solution, n: int, *, origin: tuple[float, float] = (0.0, 0.0),

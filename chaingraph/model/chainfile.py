@@ -340,7 +340,7 @@ def _load(t: dict[str, Any], where: str, fail: Fail) -> Load:
         fail("a load needs a 'force' [Fx, Fy] (N), a 'torque' (N m or \"mean\"), a "
              "'table' or 'pressure' along a P joint, or a 'resist' force (N)", where)
     on = _string(t["on"], where + " key 'on'", fail)
-    at = _string(t["at"], where + " key 'at'", fail) if "at" in t else None
+    at = _optional_string(t, "at", where + " key 'at'", fail)
     force = _pair(t["force"], "force", where, fail, "[Fx, Fy] in N") if "force" in t else None
     torque: float | str = 0.0
     if "torque" in t:
@@ -362,13 +362,11 @@ def _load(t: dict[str, Any], where: str, fail: Fail) -> Load:
     if "cycle" in t:
         cycle = math.radians(number(t["cycle"], where + " key 'cycle' (degrees)", fail))
     return Load(on, at, force, torque,
-                along=_string(t["along"], where + " key 'along'", fail) if "along" in t
-                else None,
+                along=_optional_string(t, "along", where + " key 'along'", fail),
                 table=tables.get("table"), pressure=tables.get("pressure"),
                 area=number(t["area"], where + " key 'area'", fail) if "area" in t else None,
                 against=against, cycle=cycle,
-                stroke=_string(t["stroke"], where + " key 'stroke'", fail) if "stroke" in t
-                else None,
+                stroke=_optional_string(t, "stroke", where + " key 'stroke'", fail),
                 resist=number(t["resist"], where + " key 'resist'", fail) if "resist" in t
                 else None)
 

@@ -243,7 +243,7 @@ def _analyse(source: str, slug: str, steps: int) -> Entry:
             if chain.masses or chain.loads or chain.gravity:
                 try:
                     entry.forces = forces(chain, steps=steps)
-                    entry.pose_forces = forces(chain, at=entry.motion.input_values(0))
+                    entry.pose_forces = entry.forces.pose(0)   # its first step, not solved again
                 except ChainGraphError as e:
                     entry.warnings.append(f"forces not found: {e}")
             if chain.task:

@@ -17,6 +17,7 @@ from chaingraph.errors import MechanismError
 from chaingraph.naming.catalog import catalog_path
 
 from ..conftest import run_cli
+from .conftest import L, R, slider_crank
 from .test_shaking import centre_columns, shaking_from_columns
 
 
@@ -69,28 +70,19 @@ def test_the_balance_leaves_the_weights_and_the_loads_alone():
     assert b.remaining[0] < 1e-9
 
 
-R, L = 50.0, 200.0
-
-
-def slider_crank(rod_centre=0.3):
-    """An in-line slider crank drawn at 90 degrees, its rod's centre on the rod at
+def engine(rod_centre=0.3):
+    """The shared test engine with masses, its rod's centre on the rod at
     ``rod_centre`` of the way from the crank pin."""
     bx = math.sqrt(L * L - R * R)
     g3 = (rod_centre * bx, R * (1 - rod_centre))
-    return Chain("engine", (
-        Joint("O", "R", ("frame", "crank"), at=(0.0, 0.0)),
-        Joint("A", "R", ("crank", "rod"), at=(0.0, R)),
-        Joint("B", "R", ("rod", "piston"), at=(bx, 0.0)),
-        Joint("S", "P", ("frame", "piston"), at=(bx, 0.0), axis=0.0)),
-        units="mm", mechanism=Mechanism("frame", driver="crank"),
-        masses=(LinkMass("crank", 2.0, (0.0, 10.0), 1e-3), LinkMass("rod", 1.5, g3, 4e-3),
-                LinkMass("piston", 2.5)))
+    return slider_crank(masses=(LinkMass("crank", 2.0, (0.0, 10.0), 1e-3),
+                                LinkMass("rod", 1.5, g3, 4e-3), LinkMass("piston", 2.5)))
 
 
 @pytest.mark.parametrize("fraction", [1.0, 2.0 / 3.0, 0.0])
 def test_a_slider_crank_s_residual_after_primary_balance_is_the_secondary_force(fraction):
     w = 150.0
-    f = chaingraph.forces(slider_crank(), steps=48, omega=w)
+    f = chaingraph.forces(engine(), steps=48, omega=w)
     b = balance(f, fraction=fraction)
     assert b.kind == "slider crank"
     # the closed form: x = r cos t + sqrt(l^2 - r^2 sin^2 t) of the crank angle t, the
@@ -121,10 +113,10 @@ def test_balance_refuses_what_it_does_not_balance():
                             steps=6)
     with pytest.raises(MechanismError, match="four-bar or a slider crank"):
         balance(six)
-    f = chaingraph.forces(slider_crank(), steps=6)
+    f = chaingraph.forces(engine(), steps=6)
     with pytest.raises(MechanismError, match="between 0 and 1"):
         balance(f, fraction=1.5)
-    piston = chaingraph.forces(slider_crank(), inputs=["S"], steps=6, static=True)
+    piston = chaingraph.forces(engine(), inputs=["S"], steps=6, static=True)
     with pytest.raises(MechanismError, match="crank turning on the frame"):
         balance(piston)
 

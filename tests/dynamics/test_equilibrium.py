@@ -10,21 +10,15 @@ import pytest
 import chaingraph
 from chaingraph import Chain, Input, Joint, LinkMass, Load, Mechanism
 
-R, L = 50.0, 200.0                       # crank and rod of the test engine, mm
+from .conftest import L, R, slider_crank
+
 LOCKS = "the friction locks the mechanism"
 
 
 def engine(mu):
-    """An in-line slider crank drawn at 90 degrees, a 1 kN load on its piston towards
-    the crank, friction ``mu`` at the piston's guide."""
-    bx = math.sqrt(L * L - R * R)
-    return Chain("engine", (
-        Joint("O", "R", ("frame", "crank"), at=(0.0, 0.0)),
-        Joint("A", "R", ("crank", "rod"), at=(0.0, R)),
-        Joint("B", "R", ("rod", "piston"), at=(bx, 0.0)),
-        Joint("S", "P", ("frame", "piston"), at=(bx, 0.0), axis=0.0, friction=mu)),
-        units="mm", mechanism=Mechanism("frame", driver="crank"),
-        loads=(Load("piston", "B", (-1000.0, 0.0)),))
+    """The shared test engine, a 1 kN load on its piston towards the crank, friction
+    ``mu`` at the piston's guide."""
+    return slider_crank(Load("piston", "B", (-1000.0, 0.0)), friction=mu)
 
 
 def piston_by_hand(theta, mu):

@@ -17,21 +17,12 @@ from chaingraph.dynamics.equilibrium import UNIT_METRES
 from chaingraph.naming.catalog import catalog_files, catalog_path
 
 from ..conftest import run_cli
-
-R, L = 50.0, 200.0                       # crank and rod of the test engine, mm
-
+from .conftest import L, R, slider_crank
 
 def engine(*, friction=None, load=-1000.0, masses=(), gravity=None, units="mm"):
-    """An in-line slider crank drawn at 90 degrees: crank O-A, rod A-B, piston on S."""
-    bx = math.sqrt(L * L - R * R)
-    return Chain("engine", (
-        Joint("O", "R", ("frame", "crank"), at=(0.0, 0.0)),
-        Joint("A", "R", ("crank", "rod"), at=(0.0, R)),
-        Joint("B", "R", ("rod", "piston"), at=(bx, 0.0)),
-        Joint("S", "P", ("frame", "piston"), at=(bx, 0.0), axis=0.0, friction=friction)),
-        units=units, mechanism=Mechanism("frame", driver="crank"),
-        loads=(Load("piston", "B", (load, 0.0)),) if load else (), masses=masses,
-        gravity=gravity)
+    """The shared test engine with a piston load ``load`` (N along x, none if falsy)."""
+    return slider_crank(*((Load("piston", "B", (load, 0.0)),) if load else ()),
+                        friction=friction, masses=masses, gravity=gravity, units=units)
 
 
 # -- closed forms ----------------------------------------------------------------------

@@ -16,26 +16,14 @@ from scipy.integrate import quad
 from scipy.optimize import brentq
 
 import chaingraph
-from chaingraph import Chain, Joint, Load, Mechanism
+from chaingraph import Load
 from chaingraph.naming.catalog import catalog_path
 
 from ..conftest import run_cli
+from .conftest import L, R, slider_crank as engine
 
 ROOT = Path(__file__).resolve().parents[2]
 FOUR_STROKE = ROOT / "examples" / "four-stroke-engine.toml"
-R, L = 50.0, 200.0                       # crank and rod of the small test engine, mm
-
-
-def engine(*loads, friction=None):
-    """An in-line slider crank drawn at 90 degrees: crank O-A, rod A-B, piston on S
-    (axis +x, away from the crank)."""
-    bx = math.sqrt(L * L - R * R)
-    return Chain("engine", (
-        Joint("O", "R", ("frame", "crank"), at=(0.0, 0.0)),
-        Joint("A", "R", ("crank", "rod"), at=(0.0, R)),
-        Joint("B", "R", ("rod", "piston"), at=(bx, 0.0)),
-        Joint("S", "P", ("frame", "piston"), at=(bx, 0.0), axis=0.0, friction=friction)),
-        units="mm", mechanism=Mechanism("frame", driver="crank"), loads=loads)
 
 
 def piston_x(t, r, l):
