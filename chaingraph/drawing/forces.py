@@ -26,6 +26,7 @@ from chaingraph.drawing.scene import (
     Shape,
     View,
     label_box,
+    segments_meet_boxes,
     svg_document,
     svg_elements,
 )
@@ -365,9 +366,9 @@ class _Labels:
     def clutter(self, box) -> int:
         """How many arrows and pins the box meets."""
         hits = 0
-        for p, q, half in self.segments:
-            grown = (box[0] - half, box[1] - half, box[2] + half, box[3] + half)
-            hits += _segment_meets_box(p, q, grown)
+        if self.segments:
+            segs = np.array([(*p, *q, half) for p, q, half in self.segments], dtype=float)
+            hits += int(segments_meet_boxes(segs, np.array([box], dtype=float)).sum())
         for c, r in self.circles:
             hits += (box[0] - r < c[0] < box[2] + r) and (box[1] - r < c[1] < box[3] + r)
         return hits
@@ -439,19 +440,6 @@ class _Labels:
                 tried.append((ring + 0.1 * k, (c[0] + d * self.size * math.cos(a),
                                                c[1] + d * self.size * math.sin(a))))
         return self._place(text, tried, panel, data, cls)
-
-
-def _segment_meets_box(p, q, box) -> bool:
-    """Whether the segment p-q meets the box (x0, y0, x1, y1) (Liang-Barsky)."""
-    t0, t1 = 0.0, 1.0
-    for a, d, lo, hi in ((p[0], q[0] - p[0], box[0], box[2]), (p[1], q[1] - p[1], box[1], box[3])):
-        if abs(d) < 1e-300:
-            if a < lo or a > hi:
-                return False
-            continue
-        e, f = (lo - a) / d, (hi - a) / d
-        t0, t1 = max(t0, min(e, f)), min(t1, max(e, f))
-    return t0 <= t1
 
 
 def force_polygon_shapes(result: PoseForces) -> tuple[list[Shape], View] | None:

@@ -31,7 +31,7 @@ if TYPE_CHECKING:                       # matplotlib is imported only to draw wi
 #: a coordinate, or its values over a motion's steps
 Coordinate = float | np.ndarray
 
-__all__ = ["View", "Scene", "Shape", "svg_document", "frame_shapes", "path_shapes", "svg_elements", "draw_shapes",
+__all__ = ["View", "Scene", "Shape", "segments_meet_boxes", "svg_document", "frame_shapes", "path_shapes", "svg_elements", "draw_shapes",
            "COLOURS"]
 
 #: the links' colours, in the order of the chain's links
@@ -546,7 +546,7 @@ class _Clutter:
                       & (c[None, :, 0] < boxes[:, None, 2] + c[None, :, 2])
                       & (boxes[:, None, 1] - c[None, :, 2] < c[None, :, 1])
                       & (c[None, :, 1] < boxes[:, None, 3] + c[None, :, 2])).sum(axis=1)
-        cost = cost + 1.5 * _segments_meet_boxes(self.segs, boxes).sum(axis=1)
+        cost = cost + 1.5 * segments_meet_boxes(self.segs, boxes).sum(axis=1)
         middle = np.stack([0.5 * (boxes[:, 0] + boxes[:, 2]),
                            0.5 * (boxes[:, 1] + boxes[:, 3])], axis=1)
         for pts in self.areas:
@@ -560,7 +560,7 @@ class _Clutter:
                              | (boxes[:, 2] > v[2]) | (boxes[:, 3] > v[3]))
 
 
-def _segments_meet_boxes(segs, boxes):
+def segments_meet_boxes(segs: np.ndarray, boxes: np.ndarray) -> np.ndarray:
     """(boxes, segments) booleans: whether each segment (rows x1, y1, x2, y2, half
     width) meets each box grown by its half width (Liang-Barsky clipping)."""
     px, py, qx, qy, half = (segs[None, :, i] for i in range(5))
