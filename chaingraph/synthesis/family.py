@@ -38,7 +38,7 @@ from chaingraph.kinematics.equations import newton_step
 from chaingraph.model.chain import Chain, Joint, Mechanism, Point
 
 __all__ = ["Family", "FourBar", "FOUR_BAR", "AtlasFamily", "LoopFamily", "DyadStep", "dyad_plan",
-           "DYADS"]
+           "DYADS", "driven_about_fixed"]
 
 
 class Family(ABC):
@@ -295,9 +295,7 @@ def dyad_plan(chain: Chain, fixed: str, driver: str) -> tuple[DyadStep, ...] | N
     >>> [(s.first, s.second, s.pattern) for s in dyad_plan(slider_crank, "L1", "L3")]
     [('L2', 'L4', 'PRR')]
     """
-    if any(j.kind not in ("R", "P") or len(j.links) != 2 for j in chain.joints):
-        return None
-    if [j.kind for j in chain.joints if set(j.links) == {fixed, driver}] != ["R"]:
+    if not driven_about_fixed(chain, fixed, driver):
         return None
     known = {fixed, driver}
     steps: list[DyadStep] = []
@@ -308,6 +306,14 @@ def dyad_plan(chain: Chain, fixed: str, driver: str) -> tuple[DyadStep, ...] | N
         steps.append(step)
         known |= {step.first, step.second}
     return tuple(steps)
+
+
+def driven_about_fixed(chain: Chain, fixed: str, driver: str) -> bool:
+    """Whether every joint of ``chain`` is a turning or sliding pair of two links and
+    ``driver`` turns about ``fixed`` on one turning pair (what both
+    :class:`AtlasFamily` and :class:`LoopFamily` need)."""
+    return all(j.kind in ("R", "P") and len(j.links) == 2 for j in chain.joints) and [
+        j.kind for j in chain.joints if set(j.links) == {fixed, driver}] == ["R"]
 
 
 def _next_dyad(chain: Chain, known: set[str]) -> DyadStep | None:
@@ -699,8 +705,7 @@ class LoopFamily(AtlasFamily):
 
     def __init__(self, chain: Chain, fixed: str, driver: str, carrier: str, *,
                  name: str | None = None) -> None:
-        if any(j.kind not in ("R", "P") or len(j.links) != 2 for j in chain.joints) or [
-                j.kind for j in chain.joints if set(j.links) == {fixed, driver}] != ["R"]:
+        if not driven_about_fixed(chain, fixed, driver):
             raise ValueError(f"{chain.name} with {fixed} fixed and {driver} driving is not "
                              "a chain of binary pairs driven about the fixed link")
         self.plan = ()

@@ -45,7 +45,7 @@ from chaingraph.model.chain import Chain
 from chaingraph.naming.atlas import atlas_names
 from chaingraph.structure.atlas import atlas
 from chaingraph.structure.isomorphism import automorphism_orbits, pair_orbits
-from chaingraph.synthesis.family import AtlasFamily, LoopFamily, dyad_plan
+from chaingraph.synthesis.family import AtlasFamily, LoopFamily, driven_about_fixed, dyad_plan
 from chaingraph.synthesis.motion_generation import motion as four_bar_motion
 from chaingraph.synthesis.path_generation import Budget, synthesise_path
 from chaingraph.synthesis.path_generation import path as four_bar_path
@@ -181,8 +181,7 @@ def _method(chain, fixed, driver) -> str:
     """How a family's motion is found (see :class:`Choice`)."""
     if dyad_plan(chain, fixed, driver) is not None:
         return "dyads"
-    if all(j.kind in ("R", "P") and len(j.links) == 2 for j in chain.joints) and [
-            j.kind for j in chain.joints if set(j.links) == {fixed, driver}] == ["R"]:
+    if driven_about_fixed(chain, fixed, driver):
         return "newton"
     return ""
 
