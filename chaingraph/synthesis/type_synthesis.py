@@ -209,7 +209,7 @@ def search_family(job: _Job) -> tuple[list[Solution], dict[str, int], int]:
         return [], {TRIADS_SKIPPED: 1}, 0
     kind = AtlasFamily if c.method == "dyads" else LoopFamily
     family = kind(c.chain, c.fixed, c.driver, c.carrier,
-                  name=(c.names[-1] if len(c.names) > 1 else f"{c.chain.name}, {c.fixed} fixed"))
+                  name=c.names[-1] if len(c.names) > 1 else None)   # None: the family's own
     rng = np.random.default_rng([job.task.seed, job.number])
     budget = job.budget or (BUDGETS if c.method == "dyads" else NEWTON_BUDGETS)[_exact(job.task)]
     search = synthesise_motion if job.task.kind == "motion" else synthesise_path
