@@ -50,9 +50,9 @@ from chaingraph.synthesis.optimiser import (
     predicted_defect,
 )
 from chaingraph.synthesis.result import Error, Searched, Solution, Synthesis, ranked
-from chaingraph.synthesis.task import PathTask, check_options, path_task
+from chaingraph.synthesis.task import PathTask, check_options, drawn_seed, path_task
 
-__all__ = ["path", "EXACT", "synthesise_path", "Budget", "BUDGET", "distinct_fits",
+__all__ = ["path", "path_search_task", "EXACT", "synthesise_path", "Budget", "BUDGET", "distinct_fits",
            "screened_fits", "first_certified",
            "least_transmission"]
 
@@ -112,13 +112,23 @@ def path(*, points: Iterable[tuple[float, float]],
     >>> s.solutions[0].error.max < 1e-9 * 36
     True
     """
-    if seed is None:
-        seed = int(np.random.default_rng().integers(0, 2 ** 31))
-    task = path_task(points=points, timing=timing, closed=closed, kind=kind, seed=seed,
-                     units=units, min_transmission=min_transmission)
+    task = path_search_task(points=points, timing=timing, closed=closed, kind=kind,
+                            solutions=solutions, seed=seed, units=units,
+                            min_transmission=min_transmission)
+    return synthesise_path(task, FOUR_BAR, solutions=solutions)
+
+
+def path_search_task(*, points: Iterable[tuple[float, float]],
+                     timing: Iterable[float] | None, closed: bool, kind: str,
+                     solutions: int, seed: int | None, units: str,
+                     min_transmission: float) -> PathTask:
+    """The checked task of a path search (:func:`path`'s parameters, ``solutions``
+    checked too), its seed drawn when None (:func:`~chaingraph.synthesis.task.drawn_seed`)."""
+    task = path_task(points=points, timing=timing, closed=closed, kind=kind,
+                     seed=drawn_seed(seed), units=units, min_transmission=min_transmission)
     check_options(solutions=solutions, min_transmission=min_transmission, units=units,
                   kind="path")
-    return synthesise_path(task, FOUR_BAR, solutions=solutions)
+    return task
 
 
 @dataclass(frozen=True)
