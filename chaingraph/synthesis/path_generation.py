@@ -49,7 +49,7 @@ from chaingraph.synthesis.optimiser import (
     least_squares_fit,
     predicted_defect,
 )
-from chaingraph.synthesis.result import Error, Searched, Solution, Synthesis, ranked
+from chaingraph.synthesis.result import Searched, Solution, Synthesis, ranked
 from chaingraph.synthesis.task import PathTask, check_options, drawn_seed, path_task
 
 __all__ = ["path", "path_search_task", "EXACT", "synthesise_path", "Budget", "BUDGET", "distinct_fits",
@@ -279,6 +279,5 @@ def _on_time(task, c: Certified) -> bool:
 def _solution(c: Certified, dims) -> Solution:
     found = identify(c.chain)
     names = tuple(n for n in (found.chain, found.inversion) if n)
-    return Solution(0, c.chain, Error(c.error_max, c.error_rms), c.reached_at,
-                    c.transmission_angle, c.grashof, c.input, names, None, None, dims)
+    return c.solution(names=names, dimensions=dims)
 

@@ -35,7 +35,7 @@ from chaingraph.synthesis.path_generation import (
     least_transmission,
     screened_fits,
 )
-from chaingraph.synthesis.result import Curve, Error, Searched, Solution, Synthesis, ranked
+from chaingraph.synthesis.result import Curve, Searched, Solution, Synthesis, ranked
 from chaingraph.synthesis.task import MotionTask
 
 __all__ = ["synthesise_motion"]
@@ -99,6 +99,4 @@ def _certified(task, family, frame, fit):
 
 def _solution(c: Certified, dims) -> Solution:
     xs, ys = c.curve
-    return Solution(0, c.chain, Error(c.error_max, c.error_rms, c.angle_error), c.reached_at,
-                    c.transmission_angle, c.grashof, c.input, (), None,
-                    Curve(np.asarray(xs), np.asarray(ys), "x", "y"), dims)
+    return c.solution(curve=Curve(np.asarray(xs), np.asarray(ys), "x", "y"), dimensions=dims)
