@@ -373,6 +373,7 @@ class AtlasFamily(Family):
         self._links = sorted({x for j in self.template for x in j.links})
         slides = [j.id for j in self.template if j.kind == "P"]
         self._axis_row = {jid: len(self.template) + k for k, jid in enumerate(slides)}
+        self._last: tuple | None = None
 
     @property
     def size(self) -> int:
@@ -391,6 +392,16 @@ class AtlasFamily(Family):
         dx, dy = p[:, r] - p[:, k], p[:, r + 1] - p[:, k + 1]
         n = np.hypot(dx, dy)
         return (dx / n)[:, None], (dy / n)[:, None]
+
+    def _motions(self, params, theta):
+        """:meth:`_solve`, the last answer kept: a fit asks for the points, the
+        transmission angles and the turns of the same mechanisms at the same inputs."""
+        p = np.ascontiguousarray(params, dtype=float)
+        th = np.ascontiguousarray(theta, dtype=float)
+        key = (p.shape, p.tobytes(), th.shape, th.tobytes())
+        if self._last is None or self._last[0] != key:
+            self._last = (key, self._solve(p, th))
+        return self._last[1]
 
     def _solve(self, params, theta):
         """Every link's rigid motion from its drawn pose at ``theta``: link -> (c, s,
@@ -455,18 +466,18 @@ class AtlasFamily(Family):
 
     def positions(self, params: np.ndarray, theta: np.ndarray) -> tuple[np.ndarray,
                                                                        np.ndarray]:
-        motions = self._solve(params, theta)
+        motions = self._motions(params, theta)
         p = np.asarray(params, dtype=float)
         return _moved(motions[self.carrier], (p[:, -2][:, None], p[:, -1][:, None]))
 
     def rotation(self, params: np.ndarray, theta: np.ndarray) -> np.ndarray:
-        c, s, _, _ = self._solve(params, theta)[self.carrier]
+        c, s, _, _ = self._motions(params, theta)[self.carrier]
         return np.arctan2(s, c)
 
     def posed(self, params: np.ndarray, theta: np.ndarray) -> np.ndarray:
         p = np.asarray(params, dtype=float)
         th = np.asarray(theta, dtype=float)[:, None]
-        motions = self._solve(p, th)
+        motions = self._motions(p, th)
         drawn = self._drawn(p)
         out, axes = [], []
         for k, j in enumerate(self.template):
@@ -489,7 +500,7 @@ class AtlasFamily(Family):
         as the certification measures a slider crank's), between the turning link and
         the guide's normal (RRP), the line between the two pivots and the guide's normal
         (RPR), or the two guides (PRP, RPP)."""
-        motions = self._solve(params, theta)
+        motions = self._motions(params, theta)
         worst = np.full(np.shape(theta), 90.0)
         for s in self.plan:
             with np.errstate(all="ignore"):
@@ -883,7 +894,7 @@ class LoopFamily(AtlasFamily):
     def transmission(self, params: np.ndarray, theta: np.ndarray) -> np.ndarray:
         """The worst (farthest from 90 degrees) of the angles at the joints between two
         links of the group (each link's line to another of its joints)."""
-        motions = self._solve(params, theta)
+        motions = self._motions(params, theta)
         drawn = self._drawn(params)
         worst = np.full(np.shape(theta), 90.0)
         for k, (i, j) in self._middles:
