@@ -52,9 +52,8 @@ from chaingraph.synthesis.optimiser import (
 from chaingraph.synthesis.result import Searched, Solution, Synthesis, ranked
 from chaingraph.synthesis.task import PathTask, check_options, drawn_seed, path_task
 
-__all__ = ["path", "path_search_task", "EXACT", "synthesise_path", "Budget", "BUDGET", "distinct_fits",
-           "screened_fits", "first_certified",
-           "least_transmission"]
+__all__ = ["path", "path_search_task", "EXACT", "synthesise_path", "Budget", "BUDGET",
+           "screened_fits", "first_certified", "least_transmission"]
 
 #: a fit passes its points exactly when every distance is within this of the task's size
 EXACT = 1e-9
@@ -194,7 +193,7 @@ def synthesise_path(task: PathTask, family: Family, *, solutions: int,
                      dict(sorted(rejected.items())), Searched(1, 1, budget.samples))
 
 
-def distinct_fits(fits: list[Fit]) -> list[Fit]:
+def _distinct(fits: list[Fit]) -> list[Fit]:
     """The fits, repeats dropped (parameters within 1e-6 of the task's size)."""
     out: list[Fit] = []
     for f in fits:
@@ -208,7 +207,7 @@ def screened_fits(family: Family, fits: list[Fit]) -> tuple[list[Fit], Counter]:
     others counted by the defect predicted."""
     rejected: Counter = Counter()
     kept = []
-    for f in distinct_fits(fits):
+    for f in _distinct(fits):
         defect = predicted_defect(family, f)
         if defect is None:
             kept.append(f)
