@@ -56,6 +56,12 @@ class Family(ABC):
     point: str = "P"
 
     @property
+    def title(self) -> str:
+        """The family's name as a designed chain's name begins: its first letter a
+        capital, the rest as written (a catalog name keeps its capitals)."""
+        return self.name[:1].upper() + self.name[1:]
+
+    @property
     def size(self) -> int:
         """The number of parameters."""
         return 2 * (len(self.template) + 1)

@@ -254,7 +254,7 @@ def _certified(task, family, frame, fit):
     table = {k: v for k, v in task.to_dict().items() if v is not None}
     dims = family.dimensions(world)
     sizes = ", ".join(f"{k} {v:.6g}" for k, v in dims.items())
-    chain = family.chain(world, name=f"{family.name[:1].upper()}{family.name[1:]}: {how}",
+    chain = family.chain(world, name=f"{family.title}: {how}",
                          units=task.units,
                          notes=f"Designed by chaingraph (path generation, {family.name}): "
                                f"{sizes}; drawn at the first target; the coupler point "

@@ -81,7 +81,7 @@ def _certified(task, family, frame, fit):
     dims = family.dimensions(world)
     sizes = ", ".join(f"{k} {v:.6g}" for k, v in dims.items())
     chain = family.chain(
-        world, name=f"{family.name[:1].upper()}{family.name[1:]}: motion through "
+        world, name=f"{family.title}: motion through "
                     f"{len(task.poses)} poses", units=task.units,
         notes=f"Designed by chaingraph (motion generation, {family.name}): {sizes}; "
               f"drawn at the first pose; link {family.carrier} passes the poses in order "
