@@ -30,6 +30,7 @@ from chaingraph.files import dumps, loads
 from chaingraph.kinematics import Motion, solve
 from chaingraph.kinematics.behaviour import behaviour, four_link_loop, turning_links
 from chaingraph.model.chain import Chain
+from chaingraph.synthesis.result import Curve, Error, Solution
 
 __all__ = ["FunctionTargets", "PointTargets", "PoseTargets", "Certified", "Rejected",
            "certify", "Targets", "REASONS", "transmission_angles", "output_values", "reached_in_order"]
@@ -109,6 +110,15 @@ class Certified:
     input: str
     curve: tuple[np.ndarray, np.ndarray]
     angle_error: float | None = None
+
+    def solution(self, *, names: tuple[str, ...] = (), curve: Curve | None = None,
+                 dimensions: dict[str, float] | None = None) -> Solution:
+        """The certified candidate as a synthesis's :class:`~chaingraph.synthesis.result.Solution`
+        (rank 0 until ranked), with its catalog ``names``, drawn ``curve`` and
+        ``dimensions``."""
+        return Solution(0, self.chain, Error(self.error_max, self.error_rms, self.angle_error),
+                        self.reached_at, self.transmission_angle, self.grashof, self.input,
+                        names, None, curve, dict(dimensions or {}))
 
 
 @dataclass(frozen=True)

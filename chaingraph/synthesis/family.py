@@ -38,7 +38,7 @@ from chaingraph.kinematics.equations import newton_step
 from chaingraph.model.chain import Chain, Joint, Mechanism, Point
 
 __all__ = ["Family", "FourBar", "FOUR_BAR", "AtlasFamily", "LoopFamily", "DyadStep", "dyad_plan",
-           "DYADS"]
+           "DYADS", "driven_about_fixed"]
 
 
 class Family(ABC):
@@ -54,6 +54,12 @@ class Family(ABC):
     fixed: str
     driver: str
     point: str = "P"
+
+    @property
+    def title(self) -> str:
+        """The family's name as a designed chain's name begins: its first letter a
+        capital, the rest as written (a catalog name keeps its capitals)."""
+        return self.name[:1].upper() + self.name[1:]
 
     @property
     def size(self) -> int:
@@ -295,9 +301,7 @@ def dyad_plan(chain: Chain, fixed: str, driver: str) -> tuple[DyadStep, ...] | N
     >>> [(s.first, s.second, s.pattern) for s in dyad_plan(slider_crank, "L1", "L3")]
     [('L2', 'L4', 'PRR')]
     """
-    if any(j.kind not in ("R", "P") or len(j.links) != 2 for j in chain.joints):
-        return None
-    if [j.kind for j in chain.joints if set(j.links) == {fixed, driver}] != ["R"]:
+    if not driven_about_fixed(chain, fixed, driver):
         return None
     known = {fixed, driver}
     steps: list[DyadStep] = []
@@ -308,6 +312,14 @@ def dyad_plan(chain: Chain, fixed: str, driver: str) -> tuple[DyadStep, ...] | N
         steps.append(step)
         known |= {step.first, step.second}
     return tuple(steps)
+
+
+def driven_about_fixed(chain: Chain, fixed: str, driver: str) -> bool:
+    """Whether every joint of ``chain`` is a turning or sliding pair of two links and
+    ``driver`` turns about ``fixed`` on one turning pair (what both
+    :class:`AtlasFamily` and :class:`LoopFamily` need)."""
+    return all(j.kind in ("R", "P") and len(j.links) == 2 for j in chain.joints) and [
+        j.kind for j in chain.joints if set(j.links) == {fixed, driver}] == ["R"]
 
 
 def _next_dyad(chain: Chain, known: set[str]) -> DyadStep | None:
@@ -367,6 +379,7 @@ class AtlasFamily(Family):
         self._links = sorted({x for j in self.template for x in j.links})
         slides = [j.id for j in self.template if j.kind == "P"]
         self._axis_row = {jid: len(self.template) + k for k, jid in enumerate(slides)}
+        self._last: tuple | None = None
 
     @property
     def size(self) -> int:
@@ -385,6 +398,16 @@ class AtlasFamily(Family):
         dx, dy = p[:, r] - p[:, k], p[:, r + 1] - p[:, k + 1]
         n = np.hypot(dx, dy)
         return (dx / n)[:, None], (dy / n)[:, None]
+
+    def _motions(self, params, theta):
+        """:meth:`_solve`, the last answer kept: a fit asks for the points, the
+        transmission angles and the turns of the same mechanisms at the same inputs."""
+        p = np.ascontiguousarray(params, dtype=float)
+        th = np.ascontiguousarray(theta, dtype=float)
+        key = (p.shape, p.tobytes(), th.shape, th.tobytes())
+        if self._last is None or self._last[0] != key:
+            self._last = (key, self._solve(p, th))
+        return self._last[1]
 
     def _solve(self, params, theta):
         """Every link's rigid motion from its drawn pose at ``theta``: link -> (c, s,
@@ -449,18 +472,18 @@ class AtlasFamily(Family):
 
     def positions(self, params: np.ndarray, theta: np.ndarray) -> tuple[np.ndarray,
                                                                        np.ndarray]:
-        motions = self._solve(params, theta)
+        motions = self._motions(params, theta)
         p = np.asarray(params, dtype=float)
         return _moved(motions[self.carrier], (p[:, -2][:, None], p[:, -1][:, None]))
 
     def rotation(self, params: np.ndarray, theta: np.ndarray) -> np.ndarray:
-        c, s, _, _ = self._solve(params, theta)[self.carrier]
+        c, s, _, _ = self._motions(params, theta)[self.carrier]
         return np.arctan2(s, c)
 
     def posed(self, params: np.ndarray, theta: np.ndarray) -> np.ndarray:
         p = np.asarray(params, dtype=float)
         th = np.asarray(theta, dtype=float)[:, None]
-        motions = self._solve(p, th)
+        motions = self._motions(p, th)
         drawn = self._drawn(p)
         out, axes = [], []
         for k, j in enumerate(self.template):
@@ -483,7 +506,7 @@ class AtlasFamily(Family):
         as the certification measures a slider crank's), between the turning link and
         the guide's normal (RRP), the line between the two pivots and the guide's normal
         (RPR), or the two guides (PRP, RPP)."""
-        motions = self._solve(params, theta)
+        motions = self._motions(params, theta)
         worst = np.full(np.shape(theta), 90.0)
         for s in self.plan:
             with np.errstate(all="ignore"):
@@ -699,8 +722,7 @@ class LoopFamily(AtlasFamily):
 
     def __init__(self, chain: Chain, fixed: str, driver: str, carrier: str, *,
                  name: str | None = None) -> None:
-        if any(j.kind not in ("R", "P") or len(j.links) != 2 for j in chain.joints) or [
-                j.kind for j in chain.joints if set(j.links) == {fixed, driver}] != ["R"]:
+        if not driven_about_fixed(chain, fixed, driver):
             raise ValueError(f"{chain.name} with {fixed} fixed and {driver} driving is not "
                              "a chain of binary pairs driven about the fixed link")
         self.plan = ()
@@ -878,7 +900,7 @@ class LoopFamily(AtlasFamily):
     def transmission(self, params: np.ndarray, theta: np.ndarray) -> np.ndarray:
         """The worst (farthest from 90 degrees) of the angles at the joints between two
         links of the group (each link's line to another of its joints)."""
-        motions = self._solve(params, theta)
+        motions = self._motions(params, theta)
         drawn = self._drawn(params)
         worst = np.full(np.shape(theta), 90.0)
         for k, (i, j) in self._middles:

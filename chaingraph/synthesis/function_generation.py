@@ -48,7 +48,7 @@ from chaingraph.synthesis.certification import (
     certify,
     output_values,
 )
-from chaingraph.synthesis.result import Curve, Error, Searched, Solution, Synthesis, ranked
+from chaingraph.synthesis.result import Curve, Searched, Solution, Synthesis, ranked
 from chaingraph.synthesis.task import FunctionTask, check_options, function_task, precision_x
 
 __all__ = ["function", "FRAME", "MAX_RATIO", "FunctionDesign", "freudenstein",
@@ -487,9 +487,8 @@ def _solution(task, design, certified: Certified):
              else ("crank", "rod", "offset"))
     dimensions = dict(zip(names, design.lengths))
     dimensions.update(input_start=design.start[0], output_start=design.start[1])
-    return Solution(0, certified.chain, Error(certified.error_max, certified.error_rms),
-                    certified.reached_at, certified.transmission_angle, certified.grashof,
-                    certified.input, _names(certified.chain), None, curve, dimensions)
+    return certified.solution(names=_names(certified.chain), curve=curve,
+                              dimensions=dimensions)
 
 
 def function(*, function: str, x: tuple[float, float], swing: tuple[float, float],

@@ -66,8 +66,8 @@ from chaingraph.synthesis.burmester import (
 from chaingraph.synthesis.certification import Certified, PoseTargets, Rejected, certify
 from chaingraph.synthesis.function_generation import MAX_RATIO
 from chaingraph.synthesis.poses import inverted, moved, pole, task_size
-from chaingraph.synthesis.result import Curve, Error, Searched, Solution, Synthesis, ranked
-from chaingraph.synthesis.task import MotionTask, check_options, motion_task
+from chaingraph.synthesis.result import Curve, Searched, Solution, Synthesis, ranked
+from chaingraph.synthesis.task import check_options, motion_task
 
 __all__ = ["motion", "motion_dyads", "EXACT", "GRID", "OFFSETS", "LINES", "BIN"]
 
@@ -509,10 +509,8 @@ def _solution(found: Certified) -> Solution:
     xs, ys = found.curve
     curve = Curve(np.asarray(xs), np.asarray(ys), "x", "y")
     names = identify(found.chain)
-    return Solution(0, found.chain, Error(found.error_max, found.error_rms, found.angle_error),
-                    found.reached_at, found.transmission_angle, found.grashof, found.input,
-                    tuple(n for n in (names.chain, names.inversion) if n), None, curve,
-                    _dimensions(found.chain))
+    return found.solution(names=tuple(n for n in (names.chain, names.inversion) if n),
+                          curve=curve, dimensions=_dimensions(found.chain))
 
 
 def _extent(s: Solution, size: float) -> float:

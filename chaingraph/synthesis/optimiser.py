@@ -36,7 +36,7 @@ from chaingraph.synthesis.family import Family
 
 __all__ = ["TaskFrame", "MAX_RATIO", "curve", "ordered_distance", "objective",
            "coarse_search", "global_search", "fit_start", "least_squares_fit", "Fit",
-           "predicted_defect", "BETWEEN", "wrapped"]
+           "predicted_defect", "BETWEEN"]
 
 #: the longest link over the shortest, at most
 MAX_RATIO = 20.0
@@ -232,11 +232,11 @@ def _turn_miss(family, params, theta, x, y, targets, turns):
         (y[:, None, :] - targets[None, :, 1, None]) ** 2
     near = np.argmin(np.where(np.isfinite(d2), d2, np.inf), axis=2)       # (M, N)
     turned = np.take_along_axis(family.rotation(params, theta), near, axis=1)
-    miss = wrapped(turned - turned[:, :1] - np.asarray(turns)[None, :])
+    miss = _wrapped(turned - turned[:, :1] - np.asarray(turns)[None, :])
     return np.sqrt(np.mean(miss * miss, axis=1))
 
 
-def wrapped(angle: np.ndarray | float) -> np.ndarray:
+def _wrapped(angle: np.ndarray | float) -> np.ndarray:
     """Angles (radians) wrapped to [-pi, pi)."""
     return (np.asarray(angle) + math.pi) % (2 * math.pi) - math.pi
 
@@ -335,7 +335,7 @@ def least_squares_fit(family: Family, targets: npt.ArrayLike, params: np.ndarray
         x, y = family.positions(p, th)
         r = np.stack([x - targets[:, 0], y - targets[:, 1]], axis=2).reshape(len(z), -1)
         if turns is not None:
-            r = np.concatenate([r, wrapped(family.rotation(p, th[:, 1:])
+            r = np.concatenate([r, _wrapped(family.rotation(p, th[:, 1:])
                                            - np.asarray(turns)[None, 1:])], axis=1)
         if not exact:
             r = np.concatenate([r, _penalties(family, p, th, min_transmission, closed),

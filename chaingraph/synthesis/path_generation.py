@@ -49,12 +49,11 @@ from chaingraph.synthesis.optimiser import (
     least_squares_fit,
     predicted_defect,
 )
-from chaingraph.synthesis.result import Error, Searched, Solution, Synthesis, ranked
-from chaingraph.synthesis.task import PathTask, check_options, path_task
+from chaingraph.synthesis.result import Searched, Solution, Synthesis, ranked
+from chaingraph.synthesis.task import PathTask, check_options, drawn_seed, path_task
 
-__all__ = ["path", "EXACT", "synthesise_path", "Budget", "BUDGET", "distinct_fits",
-           "screened_fits", "first_certified",
-           "least_transmission"]
+__all__ = ["path", "path_search_task", "EXACT", "synthesise_path", "Budget", "BUDGET",
+           "screened_fits", "first_certified", "least_transmission"]
 
 #: a fit passes its points exactly when every distance is within this of the task's size
 EXACT = 1e-9
@@ -112,13 +111,23 @@ def path(*, points: Iterable[tuple[float, float]],
     >>> s.solutions[0].error.max < 1e-9 * 36
     True
     """
-    if seed is None:
-        seed = int(np.random.default_rng().integers(0, 2 ** 31))
-    task = path_task(points=points, timing=timing, closed=closed, kind=kind, seed=seed,
-                     units=units, min_transmission=min_transmission)
+    task = path_search_task(points=points, timing=timing, closed=closed, kind=kind,
+                            solutions=solutions, seed=seed, units=units,
+                            min_transmission=min_transmission)
+    return synthesise_path(task, FOUR_BAR, solutions=solutions)
+
+
+def path_search_task(*, points: Iterable[tuple[float, float]],
+                     timing: Iterable[float] | None, closed: bool, kind: str,
+                     solutions: int, seed: int | None, units: str,
+                     min_transmission: float) -> PathTask:
+    """The checked task of a path search (:func:`path`'s parameters, ``solutions``
+    checked too), its seed drawn when None (:func:`~chaingraph.synthesis.task.drawn_seed`)."""
+    task = path_task(points=points, timing=timing, closed=closed, kind=kind,
+                     seed=drawn_seed(seed), units=units, min_transmission=min_transmission)
     check_options(solutions=solutions, min_transmission=min_transmission, units=units,
                   kind="path")
-    return synthesise_path(task, FOUR_BAR, solutions=solutions)
+    return task
 
 
 @dataclass(frozen=True)
@@ -184,7 +193,7 @@ def synthesise_path(task: PathTask, family: Family, *, solutions: int,
                      dict(sorted(rejected.items())), Searched(1, 1, budget.samples))
 
 
-def distinct_fits(fits: list[Fit]) -> list[Fit]:
+def _distinct(fits: list[Fit]) -> list[Fit]:
     """The fits, repeats dropped (parameters within 1e-6 of the task's size)."""
     out: list[Fit] = []
     for f in fits:
@@ -198,7 +207,7 @@ def screened_fits(family: Family, fits: list[Fit]) -> tuple[list[Fit], Counter]:
     others counted by the defect predicted."""
     rejected: Counter = Counter()
     kept = []
-    for f in distinct_fits(fits):
+    for f in _distinct(fits):
         defect = predicted_defect(family, f)
         if defect is None:
             kept.append(f)
@@ -245,7 +254,7 @@ def _certified(task, family, frame, fit):
     table = {k: v for k, v in task.to_dict().items() if v is not None}
     dims = family.dimensions(world)
     sizes = ", ".join(f"{k} {v:.6g}" for k, v in dims.items())
-    chain = family.chain(world, name=f"{family.name[:1].upper()}{family.name[1:]}: {how}",
+    chain = family.chain(world, name=f"{family.title}: {how}",
                          units=task.units,
                          notes=f"Designed by chaingraph (path generation, {family.name}): "
                                f"{sizes}; drawn at the first target; the coupler point "
@@ -269,6 +278,5 @@ def _on_time(task, c: Certified) -> bool:
 def _solution(c: Certified, dims) -> Solution:
     found = identify(c.chain)
     names = tuple(n for n in (found.chain, found.inversion) if n)
-    return Solution(0, c.chain, Error(c.error_max, c.error_rms), c.reached_at,
-                    c.transmission_angle, c.grashof, c.input, names, None, None, dims)
+    return c.solution(names=names, dimensions=dims)
 

@@ -35,7 +35,7 @@ from chaingraph.synthesis.path_generation import (
     least_transmission,
     screened_fits,
 )
-from chaingraph.synthesis.result import Curve, Error, Searched, Solution, Synthesis, ranked
+from chaingraph.synthesis.result import Curve, Searched, Solution, Synthesis, ranked
 from chaingraph.synthesis.task import MotionTask
 
 __all__ = ["synthesise_motion"]
@@ -81,7 +81,7 @@ def _certified(task, family, frame, fit):
     dims = family.dimensions(world)
     sizes = ", ".join(f"{k} {v:.6g}" for k, v in dims.items())
     chain = family.chain(
-        world, name=f"{family.name[:1].upper()}{family.name[1:]}: motion through "
+        world, name=f"{family.title}: motion through "
                     f"{len(task.poses)} poses", units=task.units,
         notes=f"Designed by chaingraph (motion generation, {family.name}): {sizes}; "
               f"drawn at the first pose; link {family.carrier} passes the poses in order "
@@ -99,6 +99,4 @@ def _certified(task, family, frame, fit):
 
 def _solution(c: Certified, dims) -> Solution:
     xs, ys = c.curve
-    return Solution(0, c.chain, Error(c.error_max, c.error_rms, c.angle_error), c.reached_at,
-                    c.transmission_angle, c.grashof, c.input, (), None,
-                    Curve(np.asarray(xs), np.asarray(ys), "x", "y"), dims)
+    return c.solution(curve=Curve(np.asarray(xs), np.asarray(ys), "x", "y"), dimensions=dims)

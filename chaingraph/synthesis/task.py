@@ -26,7 +26,8 @@ from chaingraph.synthesis.poses import checked_poses
 
 __all__ = ["FunctionTask", "function_task", "SPACINGS", "FUNCTION_KINDS", "MOST_POINTS",
            "check_options", "precision_x", "PathTask", "path_task", "PATH_KINDS",
-           "EXACT_POINTS", "MOST_TARGETS", "MotionTask", "motion_task", "POSE_COUNTS"]
+           "EXACT_POINTS", "MOST_TARGETS", "MotionTask", "motion_task", "POSE_COUNTS",
+           "drawn_seed"]
 
 #: the spacings of precision points
 SPACINGS = ("chebyshev", "even")
@@ -255,6 +256,19 @@ class PathTask:
                 "units": self.units, "min_transmission": self.min_transmission}
 
 
+def drawn_seed(seed: int | None) -> int:
+    """A search's seed: ``seed``, or a fresh one drawn when None (given back in the
+    task, so that the search can be repeated)."""
+    return int(np.random.default_rng().integers(0, 2 ** 31)) if seed is None else seed
+
+
+def _check_seed(seed: object, what: str) -> None:
+    """Refuse a seed that is not None or a whole number 0 or more."""
+    if seed is not None and (isinstance(seed, bool) or not isinstance(seed, int) or seed < 0):
+        raise DesignError(f"seed must be a whole number, 0 or more, got {seed!r}", kind=what,
+                          parameter="seed")
+
+
 def path_task(*, points: Iterable[tuple[float, float]], timing: Iterable[float] | None = None,
               closed: bool = False, kind: str = "four-bar", seed: int | None = None,
               units: str = "mm", min_transmission: float = 30.0) -> PathTask:
@@ -263,9 +277,7 @@ def path_task(*, points: Iterable[tuple[float, float]], timing: Iterable[float] 
     if kind not in PATH_KINDS:
         raise DesignError(f"unknown kind {kind!r} (expected one of {', '.join(PATH_KINDS)})",
                           kind=what, parameter="kind")
-    if seed is not None and (isinstance(seed, bool) or not isinstance(seed, int) or seed < 0):
-        raise DesignError(f"seed must be a whole number, 0 or more, got {seed!r}", kind=what,
-                          parameter="seed")
+    _check_seed(seed, what)
     mt = check_options(solutions=1, min_transmission=min_transmission, units=units,
                        kind=what)
     try:
@@ -367,6 +379,7 @@ def motion_task(*, poses: Iterable[Sequence[float]], units: str = "mm",
     """Check a motion generator's task (see :func:`chaingraph.synthesis.motion`): 2 to 5
     poses of three finite numbers (x, y, degrees), no two the same."""
     what = "motion"
+    _check_seed(seed, what)
     mt = check_options(solutions=1, min_transmission=min_transmission, units=units,
                        kind=what)
     if isinstance(poses, (str, bytes)):

@@ -45,13 +45,13 @@ from chaingraph.model.chain import Chain
 from chaingraph.naming.atlas import atlas_names
 from chaingraph.structure.atlas import atlas
 from chaingraph.structure.isomorphism import automorphism_orbits, pair_orbits
-from chaingraph.synthesis.family import AtlasFamily, LoopFamily, dyad_plan
+from chaingraph.synthesis.family import AtlasFamily, LoopFamily, driven_about_fixed, dyad_plan
 from chaingraph.synthesis.motion_generation import motion as four_bar_motion
-from chaingraph.synthesis.path_generation import Budget, synthesise_path
+from chaingraph.synthesis.path_generation import Budget, path_search_task, synthesise_path
 from chaingraph.synthesis.path_generation import path as four_bar_path
 from chaingraph.synthesis.pose_search import synthesise_motion
 from chaingraph.synthesis.result import Searched, Solution, Synthesis, ranked
-from chaingraph.synthesis.task import MotionTask, PathTask, check_options, motion_task, path_task
+from chaingraph.synthesis.task import MotionTask, PathTask, check_options, drawn_seed, motion_task
 
 __all__ = ["path", "motion", "LINKS", "Choice", "Space", "atlas_space", "search_family",
            "path_types", "check_links", "BUDGETS", "NEWTON_BUDGETS",
@@ -181,8 +181,7 @@ def _method(chain, fixed, driver) -> str:
     """How a family's motion is found (see :class:`Choice`)."""
     if dyad_plan(chain, fixed, driver) is not None:
         return "dyads"
-    if all(j.kind in ("R", "P") and len(j.links) == 2 for j in chain.joints) and [
-            j.kind for j in chain.joints if set(j.links) == {fixed, driver}] == ["R"]:
+    if driven_about_fixed(chain, fixed, driver):
         return "newton"
     return ""
 
@@ -210,7 +209,7 @@ def search_family(job: _Job) -> tuple[list[Solution], dict[str, int], int]:
         return [], {TRIADS_SKIPPED: 1}, 0
     kind = AtlasFamily if c.method == "dyads" else LoopFamily
     family = kind(c.chain, c.fixed, c.driver, c.carrier,
-                  name=(c.names[-1] if len(c.names) > 1 else f"{c.chain.name}, {c.fixed} fixed"))
+                  name=c.names[-1] if len(c.names) > 1 else None)   # None: the family's own
     rng = np.random.default_rng([job.task.seed, job.number])
     budget = job.budget or (BUDGETS if c.method == "dyads" else NEWTON_BUDGETS)[_exact(job.task)]
     search = synthesise_motion if job.task.kind == "motion" else synthesise_path
@@ -256,12 +255,9 @@ def path(*, points: Iterable[tuple[float, float]], timing: Iterable[float] | Non
         return four_bar_path(points=points, timing=timing, closed=closed, kind=kind,
                              solutions=solutions, seed=seed, units=units,
                              min_transmission=min_transmission)
-    if seed is None:
-        seed = int(np.random.default_rng().integers(0, 2 ** 31))
-    task = path_task(points=points, timing=timing, closed=closed, kind=kind, seed=seed,
-                     units=units, min_transmission=min_transmission)
-    check_options(solutions=solutions, min_transmission=min_transmission, units=units,
-                  kind="path")
+    task = path_search_task(points=points, timing=timing, closed=closed, kind=kind,
+                            solutions=solutions, seed=seed, units=units,
+                            min_transmission=min_transmission)
     return path_types(task, links=links, prismatic=prismatic, solutions=solutions,
                       runner=runner, triads=triads, families=families, budget=budget)
 
@@ -296,10 +292,8 @@ def motion(*, poses: Iterable[tuple[float, float, float]], solutions: int = 5, u
     if links == 4 and prismatic in (None, 0):
         return four_bar_motion(poses=poses, solutions=solutions, units=units,
                                min_transmission=min_transmission, circle_points=circle_points)
-    if seed is None:
-        seed = int(np.random.default_rng().integers(0, 2 ** 31))
     task = motion_task(poses=poses, units=units, min_transmission=min_transmission,
-                       seed=seed)
+                       seed=drawn_seed(seed))
     check_options(solutions=solutions, min_transmission=min_transmission, units=units,
                   kind="motion")
     return path_types(task, links=links, prismatic=prismatic, solutions=solutions,
