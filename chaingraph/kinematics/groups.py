@@ -222,14 +222,26 @@ class _Branch:
         m = group_form(step).size
         self.scale = np.tile([plan.size, plan.size, 1.0], m // 3)
         self.head_steps = plan.steps[:plan.steps.index(step)]
+        self._last = None
 
     def _full(self, z):
+        # the last point's poses kept: Newton's method asks the residual and the
+        # Jacobian at the same point
+        key = z.tobytes()
+        if self._last is not None and self._last[0] == key:
+            return self._last[1]
         known = _known_along(self.plan, self.step, self.pose, self.theta,
                              np.array([math.degrees(z[-1])]), self.head)
-        return with_group(known, self.step, (self.scale * z[:-1])[None])
+        full = with_group(known, self.step, (self.scale * z[:-1])[None])
+        self._last = (key, full)
+        return full
 
     def residual(self, z):
         return group_residual(self.step, self._full(z))[0] / self.plan.size
+
+    def in_unknowns(self, z):
+        """d(residual)/d(q / scale): the group's Jacobian in its own unknowns."""
+        return group_jacobian(self.step, self._full(z), 1)[0] * self.scale / self.plan.size
 
     def jacobian(self, z):
         """d(residual)/dz: the group's Jacobian in its unknowns, and its derivative in
@@ -256,15 +268,25 @@ class _Branch:
 
     def correct(self, zp, tau, tol=1e-11):
         """Newton's method from the predicted zp on the branch and the hyperplane
-        through zp normal to tau; None if it does not converge."""
+        through zp normal to tau; None if it does not converge. The Jacobian's column
+        in the input (the head's velocities, the costly part) is taken once, at zp:
+        the corrections keep the input within a small step of it, and the answer is
+        the residual's zero whatever the column (only the rate of convergence
+        depends on it)."""
         x = zp.copy()
+        column = None
         for _ in range(12):
             r = np.append(self.residual(x), tau @ (x - zp))
             if not np.all(np.isfinite(r)):
                 return None
             if np.abs(r).max() <= tol:
                 return x
-            a = np.vstack([self.jacobian(x), tau])
+            if column is None:
+                jac = self.jacobian(x)
+                column = jac[:, -1]
+            else:
+                jac = np.column_stack([self.in_unknowns(x), column])
+            a = np.vstack([jac, tau])
             if not np.isfinite(a).all():
                 return None
             x = x + newton_step(a[None], r[None])[0]
@@ -391,7 +413,7 @@ def fold_point(plan: Plan, step: Step, head: Evaluation, q: ArrayLike, t: float,
         for k in range(m + 1):
             e = np.zeros(m + 1)
             e[k] = h
-            d[:, k] = (branch.jacobian(z + e)[:, :m] @ v - branch.jacobian(z - e)[:, :m] @ v) / (2 * h)
+            d[:, k] = (branch.in_unknowns(z + e) @ v - branch.in_unknowns(z - e) @ v) / (2 * h)
         big = np.zeros((2 * m + 1, 2 * m + 1))
         big[:m, :m + 1] = jac
         big[m:2 * m, :m + 1] = d
