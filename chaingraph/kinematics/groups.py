@@ -9,6 +9,7 @@ is then corrected at once by batched Newton from Hermite-interpolated guesses.
 from __future__ import annotations
 
 import math
+import weakref
 from typing import TYPE_CHECKING, Protocol
 
 import numpy as np
@@ -180,9 +181,9 @@ class _Path:
         fold)."""
         plan, step, pose, theta, direction = (self.plan, self.step, self.pose, self.theta,
                                               self.direction)
-        ts, qs, dqs, fold = _trace(plan, step, pose, theta, self.head, qk,
-                                   float(theta[k]), float(theta[-1]), direction, self.h,
-                                   RUNAWAY_SIZES if runaway is None else runaway)
+        ts, qs, dqs, fold = _traced_once(plan, step, pose, theta, self.head, qk,
+                                         float(theta[k]), float(theta[-1]), direction,
+                                         self.h, runaway)
         tc, qc, dqc = np.array(ts), np.array(qs), np.array(dqs)
         reached = direction * (theta - tc[-1]) <= 1e-9
         reached[:k] = False
@@ -211,6 +212,34 @@ class _Path:
         ok &= np.linalg.norm(q - guess, axis=1) <= 0.05 * plan.size
         ok &= reached
         return q, ok, fold
+
+
+#: the traces of a plan's groups, by their start: the walk that finds a driver's cycle
+#: and the sweep over the same turn (or to the limit the walk found) from the same pose
+#: trace the same branch with the same steps (a trace depends only on where it starts,
+#: its step and the head's modes, and on its end only within a step of it); the points
+#: asked for are corrected from the trace, each to the rounding, whatever was traced
+_TRACES: weakref.WeakKeyDictionary = weakref.WeakKeyDictionary()
+_TRACES_KEPT = 32
+
+
+def _traced_once(plan, step, pose, theta, head, q, t, end, direction, h, runaway):
+    """:func:`_trace` from (t, q) to ``end``, kept per plan: a trace asked again, or
+    one that went at least as far from the same start with the same step, is not
+    traced again (only the first trace of a path is kept, not those to other runaway
+    bounds)."""
+    if runaway is not None:
+        return _trace(plan, step, pose, theta, head, q, t, end, direction, h, runaway)
+    key = (plan.steps.index(step), q.tobytes(), t, direction, h)
+    kept = _TRACES.setdefault(plan, {})
+    for (k, far), found in kept.items():
+        if k == key and direction * (far - end) >= 0.0:
+            return found
+    found = _trace(plan, step, pose, theta, head, q, t, end, direction, h)
+    if len(kept) >= _TRACES_KEPT:
+        kept.pop(next(iter(kept)))
+    kept[(key, end)] = found
+    return found
 
 
 class _Branch:
