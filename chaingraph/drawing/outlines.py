@@ -254,12 +254,16 @@ def link_outlines(chain: Chain, *, at: float | Sequence[float] | None = None,
     cores: dict[str, list] = {link: [] for link in chain.links}
     corner = {link: 0.5 * width for link in chain.links}
     slots: dict[str, list[Contour]] = {link: [] for link in chain.links}
+    blocks: dict[str, list[tuple[float, float]]] = {link: [] for link in chain.links}
     for j in scene.slides:
-        _sliding_pair(scene, j, pairs[j.id], width, cores, corner, slots)
+        _sliding_pair(scene, j, pairs[j.id], width, cores, corner, slots, blocks)
     parts = []
     for link in chain.links:
         members = [spot[j.id] for j in chain.joints_of(link) if j.kind != "P"]
         members += [spot[p.id] for p in chain.points if p.link == link]
+        # a pin in the middle of its block is inside it already
+        members = [m for m in members
+                   if not any(math.dist(m, b) <= 1e-9 * scene.span for b in blocks[link])]
         core = cores[link] + [q for m in members for q in _around(m, 0.5 * width - corner[link])]
         if not core:
             continue
@@ -270,7 +274,7 @@ def link_outlines(chain: Chain, *, at: float | Sequence[float] | None = None,
     return Outlines(chain.name, chain.units, width, hole, tuple(parts))
 
 
-def _sliding_pair(scene, joint, pair, width, cores, corner, slots):
+def _sliding_pair(scene, joint, pair, width, cores, corner, slots, blocks):
     """A sliding pair's parts: a slot a bar's width wide over the guide's travel in the
     carrier (its link half a width round it), a block a width across and two along
     (corners rounded an eighth of a width) on the block's link."""
@@ -285,6 +289,7 @@ def _sliding_pair(scene, joint, pair, width, cores, corner, slots):
     else:
         x, y = scene.on_line(joint, joint.links.index(pair.block_link), pair.at)
     centre = (float(np.ravel(x)[0]), float(np.ravel(y)[0]))
+    blocks[pair.block_link].append(centre)
     a = float(np.ravel(scene.angle[joint.id])[0])
     u, n = (math.cos(a), math.sin(a)), (-math.sin(a), math.cos(a))
     rho = width / 8.0

@@ -1,0 +1,76 @@
+"""``lint`` (issue 40): one fixture per kind of finding, each found where it is; the
+catalog clean; the command's lines and exit statuses."""
+
+from pathlib import Path
+
+import pytest
+
+from chaingraph.model.chainfile import parse_file
+from chaingraph.naming import lint
+from chaingraph.naming.catalog import catalog_files
+from chaingraph.naming.linter import KINDS
+
+from ..conftest import run_cli
+
+HERE = Path(__file__).resolve().parent / "lint"
+
+FOUND = {
+    "pose": "joint 'C'",
+    "degenerate": "links '1', '2', '3'",
+    "locked": "chain",
+    "mobility": "link 'left'",
+    "name": "chain",
+    "branch": "link 'crank'",
+}
+
+
+def test_every_kind_has_a_fixture():
+    assert sorted(FOUND) == sorted(KINDS)
+
+
+@pytest.mark.parametrize("kind", sorted(FOUND))
+def test_each_fixture_gives_its_finding_and_only_it(kind):
+    findings = lint(parse_file(HERE / f"{kind}.toml"))
+    assert [(f.kind, f.where) for f in findings] == [(kind, FOUND[kind])]
+
+
+def test_the_messages_say_what():
+    said = {k: lint(parse_file(HERE / f"{k}.toml"))[0].message for k in FOUND}
+    assert "does not close" in said["pose"] and "6.62097 mm" in said["pose"]
+    assert "mobility 1" in said["degenerate"]
+    assert "Kutzbach's mobility is 0" in said["locked"]
+    assert "is 2 at the drawn pose" in said["mobility"]
+    assert "Watt" in said["name"] and "Stephenson six-bar chain" in said["name"]
+    assert "dead centre" in said["branch"]
+
+
+def test_a_name_of_the_wrong_count_of_links(tmp_path):
+    text = (HERE / "mobility.toml").read_text().replace("Five links with one driver",
+                                                       "Four-bar with one driver")
+    (tmp_path / "x.toml").write_text(text)
+    kinds = {(f.kind, f.message) for f in lint(parse_file(tmp_path / "x.toml"))}
+    assert ("name", "the name says four-bar (4 links), the chain has 5 links") in kinds
+
+
+def test_the_catalog_is_clean():
+    found = {path.name: lint(parse_file(path)) for path in catalog_files()}
+    assert {k: v for k, v in found.items() if v} == {}
+
+
+def test_the_command_prints_a_line_per_finding_and_exits_1():
+    files = [HERE / f"{k}.toml" for k in sorted(FOUND)]
+    code, out, err = run_cli("lint", *files)
+    assert code == 1, err
+    lines = out.strip().splitlines()
+    assert len(lines) == len(FOUND)
+    for line, kind in zip(lines, sorted(FOUND)):
+        assert line.startswith(f"{HERE / kind}.toml: {FOUND[kind]}: {kind}: ")
+
+
+def test_clean_files_exit_0_and_an_unreadable_one_2(tmp_path):
+    clean = catalog_files()[0]
+    assert run_cli("lint", clean) == (0, "", "")
+    (tmp_path / "bad.toml").write_text("name = ")
+    code, out, err = run_cli("lint", tmp_path / "bad.toml", HERE / "name.toml")
+    assert code == 2 and "TOML syntax error" in err and len(err.strip().splitlines()) == 1
+    assert out.startswith(f"{HERE / 'name.toml'}: chain: name: ")
