@@ -41,7 +41,8 @@ WRITERS: dict[str, Callable[[argparse.Namespace, Chain], str]] = {
 }
 
 
-def export_command(sub, path_argument: Callable[[str], str],
+def export_command(sub: argparse._SubParsersAction,
+                   path_argument: Callable[[str], str],
                    positive_number: Callable[[str], float]) -> None:
     """Register ``chaingraph export`` with the subparsers ``sub`` (``path_argument`` and
     ``positive_number`` the parser's types of a path and a number above 0)."""

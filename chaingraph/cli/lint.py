@@ -21,7 +21,8 @@ from chaingraph.naming import finding_lines, lint
 __all__ = ["cmd_lint", "lint_command"]
 
 
-def lint_command(sub, path_argument: Callable[[str], str]) -> None:
+def lint_command(sub: argparse._SubParsersAction,
+                 path_argument: Callable[[str], str]) -> None:
     """Register ``chaingraph lint`` with the subparsers ``sub``."""
     p = sub.add_parser("lint", help="check chain files for what their authors may not know",
                        description="Check each chain file for a locked chain or a rigid "

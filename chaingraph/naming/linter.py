@@ -90,7 +90,7 @@ def lint(document: Document) -> tuple[Finding, ...]:
     """
     chain, found = _placed(document)
     if chain is None:
-        return found
+        return tuple(found)
     c = classify(chain)
     if len(c.pieces) > 1:
         found.append(Finding("chain", "degenerate", f"the chain is in {len(c.pieces)} pieces "
