@@ -264,7 +264,8 @@ def link_outlines(chain: Chain, *, at: float | Sequence[float] | None = None,
         # a pin in the middle of its block is inside it already
         members = [m for m in members
                    if not any(math.dist(m, b) <= 1e-9 * scene.span for b in blocks[link])]
-        core = cores[link] + [q for m in members for q in _around(m, 0.5 * width - corner[link])]
+        reach = 0.5 * width - corner[link]
+        core = cores[link] + [q for m in members for q in _around(m, reach)]
         if not core:
             continue
         holes = tuple(Hole(j.id, spot[j.id], hole) for j in chain.joints_of(link)

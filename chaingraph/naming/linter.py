@@ -68,13 +68,14 @@ class Finding:
         return {"where": self.where, "kind": self.kind, "message": self.message}
 
 
-def lint(document: Document) -> tuple[Finding, ...]:
+def lint(document: Document | Chain) -> tuple[Finding, ...]:
     """What is wrong with a chain file that reads well: see the module's kinds.
 
     Parameters
     ----------
-    document : Document
-        A parsed chain file (:func:`chaingraph.model.chainfile.parse_file`), placed here.
+    document : Document or Chain
+        A parsed chain file (:func:`chaingraph.model.chainfile.parse_file`), placed here;
+        or a chain (as :func:`chaingraph.load` gives it, or built in Python).
 
     Returns
     -------
@@ -88,19 +89,20 @@ def lint(document: Document) -> tuple[Finding, ...]:
     >>> lint(parse_file(catalog_path("watt-i-mechanism")))
     ()
     """
-    chain, found = _placed(document)
+    chain, found = _placed(document if isinstance(document, Document) else Document(document))
     if chain is None:
         return tuple(found)
     c = classify(chain)
     if len(c.pieces) > 1:
-        found.append(Finding("chain", "degenerate", f"the chain is in {len(c.pieces)} pieces "
-                             "that share no joint: " + "; ".join(", ".join(p) for p in c.pieces)))
+        found.append(Finding("chain", "degenerate",
+                             f"the chain is in {len(c.pieces)} pieces that share no joint: "
+                             + "; ".join(", ".join(p) for p in c.pieces)))
     if c.degenerate and c.mobility > 0:
         for links in c.rigid_subchains:
             found.append(Finding("links " + ", ".join(repr(x) for x in links), "degenerate",
-                                 "a rigid sub-chain: these links move as one body although "
-                                 f"the chain has mobility {c.mobility}; the chain is in effect "
-                                 "a smaller one"))
+                                 "a rigid sub-chain: these links move as one body "
+                                 f"although the chain has mobility {c.mobility}; the chain "
+                                 "is in effect a smaller one"))
     said = " ".join(x for x in (chain.name, chain.family or "", chain.notes or ""))
     if c.mobility <= 0 and chain.mechanism is None and not _STRUCTURE.search(said):
         found.append(Finding("chain", "locked", f"Kutzbach's mobility is {c.mobility}: no "
@@ -125,7 +127,8 @@ def _placed(document: Document) -> tuple[Chain | None, list[Finding]]:
         where = e.where or (("joint" if e.part in joints else "link") + f" {e.part!r}"
                             if e.part else "chain")
         kind = "degenerate" if getattr(e, "link", None) else "pose"
-        problem = e.problem if kind == "degenerate" else f"the drawn pose does not close: {e.problem}"
+        problem = (e.problem if kind == "degenerate" else
+                   f"the drawn pose does not close: {e.problem}")
         return None, [Finding(where, kind, problem)]
 
 

@@ -1,10 +1,12 @@
 """``lint`` (issue 40): one fixture per kind of finding, each found where it is; the
 catalog clean; the command's lines and exit statuses."""
 
+import json
 from pathlib import Path
 
 import pytest
 
+import chaingraph
 from chaingraph.model.chainfile import parse_file
 from chaingraph.naming import lint
 from chaingraph.naming.catalog import catalog_files
@@ -74,3 +76,18 @@ def test_clean_files_exit_0_and_an_unreadable_one_2(tmp_path):
     code, out, err = run_cli("lint", tmp_path / "bad.toml", HERE / "name.toml")
     assert code == 2 and "TOML syntax error" in err and len(err.strip().splitlines()) == 1
     assert out.startswith(f"{HERE / 'name.toml'}: chain: name: ")
+
+
+def test_a_chain_is_linted_as_its_file():
+    chain = chaingraph.load(HERE / "name.toml")
+    assert lint(chain) == lint(parse_file(HERE / "name.toml"))
+
+
+def test_json_gives_each_file_s_findings():
+    code, out, err = run_cli("lint", "--json", HERE / "mobility.toml", catalog_files()[0])
+    assert code == 1, err
+    data = json.loads(out)
+    assert data[str(HERE / "mobility.toml")] == [
+        {"where": "link 'left'", "kind": "mobility",
+         "message": lint(parse_file(HERE / "mobility.toml"))[0].message}]
+    assert data[str(catalog_files()[0])] == []
