@@ -13,7 +13,9 @@ Each :class:`Finding` says where (the chain, a link, a joint), what kind and wha
 * ``pose``: a drawn pose that does not close: positions typed beyond drawing-level
   rounding from where the lengths put them;
 * ``branch``: a drawn pose the inputs cannot take the mechanism out of, or at which they
-  do not determine its motion (a dead centre: which branch follows is not theirs).
+  do not determine its motion (a dead centre: which branch follows is not theirs), or a
+  drawn circuit on which the input only rocks while on another circuit of the same
+  lengths (a dyad's other mode) it turns fully: a branch it cannot reach.
 
 It takes the parsed file (:class:`~chaingraph.model.chainfile.Document`), so that a model
 read from another program's format is checked as a chain file is.
@@ -21,14 +23,15 @@ read from another program's format is checked as a chain file is.
 
 from __future__ import annotations
 
+import itertools
 import re
 import warnings
 from dataclasses import dataclass
 from typing import Any
 
 from chaingraph.errors import AssemblyError, ChainGraphError, DimensionError, MechanismError
-from chaingraph.files import place
-from chaingraph.kinematics import feasible_range, pose_motion
+from chaingraph.files import place, read_document
+from chaingraph.kinematics import feasible_range, measured_document, pose_motion
 from chaingraph.model.chain import Chain
 from chaingraph.model.chainfile import Document
 from chaingraph.naming.identification import identify
@@ -164,7 +167,49 @@ def _motion(chain: Chain) -> list[Finding]:
     if span is not None and span[1] - span[0] < _NO_RANGE:
         return [Finding(where, "branch", f"the inputs cannot move the mechanism from the "
                         f"drawn pose: it assembles only at {span[0]:.6g}")]
+    if span is not None and len(state.plan.inputs) == 1:
+        other = _turning_circuit(chain)
+        if other is not None:
+            unit = state.plan.lead_unit
+            return [Finding(where, "branch", f"on the drawn circuit the input only rocks, "
+                            f"from {span[0]:.6g} to {span[1]:.6g} {unit}; assembled with "
+                            f"{other} (the same lengths, another circuit) it turns fully: a "
+                            "branch it cannot reach from the drawn pose")]
     return []
+
+
+#: an assembly mode's word and its other
+_OTHER_MODE = {"left": "right", "right": "left", "ahead": "behind", "behind": "ahead"}
+
+
+def _turning_circuit(chain: Chain, *, most: int = 4) -> str | None:
+    """Of the mechanism's other circuits (its dyads' modes flipped, up to ``most`` of
+    them, at the drawn input value), the first on which the input turns fully, as the
+    modes that give it ("C left"); None when there is none."""
+    try:
+        with warnings.catch_warnings():
+            warnings.simplefilter("ignore")
+            doc = measured_document(chain)
+    except ChainGraphError:
+        return None
+    modes = doc.get("assembly", {})
+    dyads = sorted(k for k, v in modes.items() if isinstance(v, str) and v in _OTHER_MODE)
+    if not dyads or len(dyads) > most:
+        return None
+    for flips in itertools.product((False, True), repeat=len(dyads)):
+        if not any(flips):
+            continue
+        changed = {k: _OTHER_MODE[modes[k]] for k, flip in zip(dyads, flips) if flip}
+        try:
+            with warnings.catch_warnings():
+                warnings.simplefilter("ignore")
+                other, _ = read_document({**doc, "assembly": {**modes, **changed}},
+                                         source=chain.source or chain.name)
+                if feasible_range(pose_motion(other).plan) is None:
+                    return ", ".join(f"{k} {w}" for k, w in changed.items())
+        except ChainGraphError:
+            continue
+    return None
 
 
 def _words(text: str) -> str:

@@ -46,6 +46,19 @@ def test_the_messages_say_what():
     assert "dead centre" in said["branch"]
 
 
+def test_a_circuit_the_driver_cannot_reach():
+    """A crank-rocker drawn crossed drives a dyad that stops its crank; open, with the
+    same lengths, the crank turns fully (the solver says both)."""
+    findings = lint(parse_file(HERE / "circuit.toml"))
+    assert [(f.kind, f.where) for f in findings] == [("branch", "link 'crank'")]
+    assert "assembled with C left" in findings[0].message
+    drawn = chaingraph.solve(chaingraph.load(HERE / "circuit.toml"), steps=36)
+    assert not drawn.summary.full_turn
+    text = chaingraph.kinematics.measure(chaingraph.load(HERE / "circuit.toml"))
+    other = chaingraph.loads(text.replace('C = "right"', 'C = "left"'))
+    assert chaingraph.solve(other, steps=36).summary.full_turn
+
+
 def test_a_name_of_the_wrong_count_of_links(tmp_path):
     text = (HERE / "mobility.toml").read_text().replace("Five links with one driver",
                                                        "Four-bar with one driver")
