@@ -236,7 +236,7 @@ def _name(chain: Chain) -> list[Finding]:
                                f"({need} links), the chain has {links} links"))
         elif isinstance(need, str) and need not in known:
             said = (f"identify finds {found.chain!r}" if found is not None and found.chain
-                    else "identify finds it in no catalog chain")
+                    else f"identify finds its {links} links in no catalog chain")
             out.append(Finding("chain", "name", f"the name says {word.title()}, but "
                                f"{said}"))
     return out
