@@ -3,7 +3,9 @@ program (the command, kept apart from the others; its arguments are registered i
 :mod:`chaingraph.cli.parser` by :func:`export_command`).
 
 Each format is a writer in :data:`WRITERS`: a function of the parsed arguments and the
-chain that returns the file's text; a new format is one more entry.
+chain that returns the file's text; a new format is one more entry (a writer of the
+chain alone through :func:`chain_writers`). ``--to``'s choices are the entries when the
+parser is built.
 """
 
 from __future__ import annotations
@@ -17,7 +19,7 @@ from chaingraph.drawing import link_outlines, outlines_dxf, outlines_svg
 from chaingraph.files import load
 from chaingraph.model.chain import Chain
 
-__all__ = ["cmd_export", "export_command", "WRITERS"]
+__all__ = ["cmd_export", "export_command", "WRITERS", "chain_writers"]
 
 
 def _outlines(args: argparse.Namespace, chain: Chain):
@@ -39,6 +41,16 @@ WRITERS: dict[str, Callable[[argparse.Namespace, Chain], str]] = {
     "dxf": _dxf,
     "svg": _svg,
 }
+
+
+def chain_writers(writers: dict[str, Callable[[Chain], str]]
+                  ) -> dict[str, Callable[[argparse.Namespace, Chain], str]]:
+    """Writers of the chain alone (a format with no pose or sizes to choose) as
+    :data:`WRITERS` takes them: ``WRITERS.update(chain_writers({...}))``."""
+    def taking_arguments(write: Callable[[Chain], str]
+                         ) -> Callable[[argparse.Namespace, Chain], str]:
+        return lambda args, chain: write(chain)
+    return {name: taking_arguments(write) for name, write in writers.items()}
 
 
 def export_command(sub: argparse._SubParsersAction,

@@ -6,6 +6,7 @@ import sys
 import ezdxf
 import pytest
 
+from chaingraph.cli import export
 from chaingraph.naming.catalog import catalog_path
 
 from ..conftest import run_cli
@@ -60,3 +61,11 @@ def test_dxf_without_ezdxf_one_line_exit_2(tmp_path, monkeypatch):
     code, out, err = run_cli("export", ENGINE, "--to", "dxf", "-o", tmp_path / "x.dxf")
     assert (code, err) == (2, "chaingraph: error: DXF needs the cad extra: pip install "
                               "chaingraph[cad]\n")
+
+
+def test_a_writer_of_the_chain_alone_is_one_more_format(tmp_path, monkeypatch):
+    monkeypatch.setitem(export.WRITERS, "names", export.chain_writers(
+        {"names": lambda chain: "\n".join(chain.links)})["names"])
+    code, out, err = run_cli("export", ENGINE, "--to", "names", "-o", tmp_path / "n.txt")
+    assert code == 0, err
+    assert (tmp_path / "n.txt").read_text() == "frame\ncrank\nconnecting rod\ncrosshead"
