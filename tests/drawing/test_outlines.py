@@ -144,3 +144,20 @@ def test_dxf_without_ezdxf_says_which_extra(monkeypatch):
     with pytest.raises(ImportError, match=r"DXF needs the cad extra: pip install "
                                           r"chaingraph\[cad\]"):
         outlines_dxf(parts)
+
+
+@pytest.mark.parametrize("name", ["crank-and-slotted-lever-mechanism",
+                                  "whitworth-quick-return-mechanism",
+                                  "oscillating-cylinder-engine",
+                                  "shaper-crank-and-slotted-lever"])
+def test_every_block_is_in_its_slot_at_every_pose(name):
+    """A sliding pair's point, where the solver puts it at the pose, lies in a slot cut
+    in one of the pair's two links."""
+    chain = chaingraph.load(catalog_path(name))
+    for at in (0.0, 77.0, 150.0, 230.0, 300.0):
+        slides = pose_motion(chain, at=at).slides
+        parts = link_outlines(chain, at=at)
+        for j in chain.joints:
+            if j.kind == "P":
+                assert any(slot.contains(slides[j.id].at) for link in j.links
+                           for slot in parts.link(link).slots), (at, j.id)
