@@ -104,3 +104,11 @@ def test_json_gives_each_file_s_findings():
         {"where": "link 'left'", "kind": "mobility",
          "message": lint(parse_file(HERE / "mobility.toml"))[0].message}]
     assert data[str(catalog_files()[0])] == []
+
+
+def test_a_mechanism_with_no_freedom_is_locked(tmp_path):
+    text = (HERE / "locked.toml").read_text() + 'mechanism = {fixed = "frame", driver = "crank"}\n'
+    (tmp_path / "x.toml").write_text(text)
+    findings = lint(parse_file(tmp_path / "x.toml"))
+    assert [(f.kind, f.where) for f in findings] == [("locked", "link 'crank'")]
+    assert "no freedom at the drawn pose" in findings[0].message
