@@ -11,7 +11,7 @@ from pathlib import Path
 
 PACKAGE = Path(__file__).resolve().parent.parent / "chaingraph"
 MODULES = sorted(PACKAGE.rglob("*.py"))
-HEAVY = ("matplotlib", "pandas", "dask", "distributed", "pynauty", "IPython")
+HEAVY = ("matplotlib", "pandas", "dask", "distributed", "pynauty", "IPython", "ezdxf")
 
 
 def _trees():

@@ -27,7 +27,9 @@ from chaingraph.cli.commands import (
     cmd_vary,
 )
 
+from chaingraph.cli.export import export_command
 from chaingraph.cli.gears import gears_command
+from chaingraph.cli.lint import lint_command
 
 __all__ = ['build_parser', 'whole_number', 'path_argument']
 
@@ -74,6 +76,8 @@ def build_parser() -> argparse.ArgumentParser:
                 _report_command, _atlas_command, _design_command, _cam_command):
         add(sub)
     gears_command(sub, path_argument)
+    export_command(sub, path_argument, positive_number)
+    lint_command(sub, path_argument)
     return parser
 
 

@@ -10,7 +10,8 @@ displays. matplotlib is imported by the functions that draw with it, when they r
 * :mod:`.constructions` instant centres and polygons drawn;
 * :mod:`.limits` where an input stops; :mod:`.forces` free bodies, the force polygon,
   the turning moment; :mod:`.graph` the link-joint graph;
-* :mod:`.notebook` rich displays of the results and :func:`animate`.
+* :mod:`.notebook` rich displays of the results and :func:`animate`;
+* :mod:`.outlines` each link as a part to cut (:func:`link_outlines`), as DXF or SVG.
 """
 
 from chaingraph.drawing.constructions import draw_centres, draw_polygons
@@ -26,6 +27,7 @@ from chaingraph.drawing.graph import draw_link_joint_graph
 from chaingraph.drawing.limits import limit_motion, limit_shapes, limits_svg
 from chaingraph.drawing.mechanism import frame_steps, mechanism_svg, skeleton_svg
 from chaingraph.drawing.notebook import Animation, animate, figure_svg, register
+from chaingraph.drawing.outlines import Outlines, link_outlines, outlines_dxf, outlines_svg
 from chaingraph.drawing.plots import draw_mechanism, output_series, plot_motion, plot_variation
 from chaingraph.drawing.scene import (
     Scene,
@@ -42,4 +44,5 @@ __all__ = ["mechanism_svg", "skeleton_svg", "frame_steps", "plot_motion", "draw_
            "free_body_shapes", "force_polygon_shapes", "plot_turning_moment",
            "plot_shaking",
            "draw_link_joint_graph", "Scene", "Shape", "View", "svg_document",
-           "svg_elements", "draw_shapes", "animate", "Animation", "figure_svg", "register"]
+           "svg_elements", "draw_shapes", "animate", "Animation", "figure_svg", "register",
+           "Outlines", "link_outlines", "outlines_dxf", "outlines_svg"]
