@@ -28,6 +28,7 @@ from chaingraph.cli.commands import (
 )
 
 from chaingraph.cli.gears import gears_command
+from chaingraph.cli.interchange import import_command
 
 __all__ = ['build_parser', 'whole_number', 'path_argument']
 
@@ -74,6 +75,7 @@ def build_parser() -> argparse.ArgumentParser:
                 _report_command, _atlas_command, _design_command, _cam_command):
         add(sub)
     gears_command(sub, path_argument)
+    import_command(sub, path_argument)
     return parser
 
 
