@@ -5,7 +5,7 @@ from __future__ import annotations
 
 import argparse
 import sys
-from collections.abc import Callable
+from collections.abc import Callable, Sequence
 
 from chaingraph.cli.outputs import output_file, write_text
 from chaingraph.files import Imported, pylinkage_json, pyslvs_expression, read_pylinkage, \
@@ -13,7 +13,8 @@ from chaingraph.files import Imported, pylinkage_json, pyslvs_expression, read_p
 from chaingraph.files.imported import model_text
 from chaingraph.model.chain import Chain
 
-__all__ = ["import_command", "cmd_import", "peer_writers", "PEERS"]
+__all__ = ["import_command", "cmd_import", "peer_writers", "read_model", "input_pair",
+           "PEERS"]
 
 #: the tools whose models come in and go out
 PEERS = ("pylinkage", "pyslvs")
@@ -44,11 +45,25 @@ def import_command(sub: argparse._SubParsersAction,
     p.add_argument("--driver", metavar="LINK",
                    help="pyslvs: the input link (an expression holds none; default the "
                         "link on the first ground pivot)")
+    p.add_argument("--input", dest="inputs", action="append", type=input_pair,
+                   metavar="BASE:DRIVE", help="pyslvs: an input pair as Pyslvs gives it "
+                   "(joint numbers: the link of BASE and DRIVE turns about BASE); repeat "
+                   "it for each input")
     p.add_argument("--name", help="pyslvs: the chain's name (an expression has none)")
     p.set_defaults(run=cmd_import)
 
 
+def input_pair(text: str) -> tuple[int, int]:
+    """``BASE:DRIVE``, two joint numbers of a Pyslvs expression."""
+    base, colon, drive = text.partition(":")
+    if not (colon and base.strip().isdigit() and drive.strip().isdigit()):
+        raise argparse.ArgumentTypeError(f"expected BASE:DRIVE, two joint numbers, got "
+                                         f"{text!r}")
+    return int(base), int(drive)
+
+
 def read_model(path: str, peer: str, *, driver: str | None = None,
+               inputs: Sequence[tuple[int, int]] | None = None,
                name: str | None = None) -> Imported:
     """The model in ``path`` written by ``peer``, placed (a drawn pose that does not
     close is refused as a chain file's is)."""
@@ -56,19 +71,20 @@ def read_model(path: str, peer: str, *, driver: str | None = None,
     if peer == "pylinkage":
         model = read_pylinkage(text, source=path)
     else:
-        model = read_pyslvs(text, source=path, driver=driver, name=name)
+        model = read_pyslvs(text, source=path, driver=driver, inputs=inputs, name=name)
     model.chain                          # placed: a pose that cannot be is an error here
     return model
 
 
 def cmd_import(args: argparse.Namespace) -> int:
-    if args.peer == "pylinkage" and (args.driver or args.name):
-        print("chaingraph import: error: --driver and --name are for --from pyslvs (a "
-              "pylinkage model names its drivers and itself)", file=sys.stderr)
+    if args.peer == "pylinkage" and (args.driver or args.inputs or args.name):
+        print("chaingraph import: error: --driver, --input and --name are for --from "
+              "pyslvs (a pylinkage model names its drivers and itself)", file=sys.stderr)
         return 2
     if args.out:
         output_file(args.out, what="chain file")
-    model = read_model(args.file, args.peer, driver=args.driver, name=args.name)
+    model = read_model(args.file, args.peer, driver=args.driver, inputs=args.inputs,
+                       name=args.name)
     for note in model.notes:
         print(f"chaingraph import: note: {note}", file=sys.stderr)
     if args.out:

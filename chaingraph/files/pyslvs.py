@@ -14,6 +14,7 @@ from __future__ import annotations
 
 import math
 import re
+from collections.abc import Sequence
 from typing import Any
 
 from chaingraph.errors import InterchangeError
@@ -300,14 +301,45 @@ def _structure(parsed: list[dict[str, Any]], notes: list[str]
     return joints, points
 
 
-def _mechanism(joints: list[dict[str, Any]], driver: str | None, notes: list[str]
+def _given_inputs(joints: list[dict[str, Any]], inputs: Sequence[tuple[int, int]],
+                  notes: list[str]) -> dict[str, Any]:
+    """The [mechanism] of Pyslvs's input pairs ``(base, drive)``: the link joining
+    joints ``Pbase`` and ``Pdrive`` turns about ``Pbase`` on the ground."""
+    by_id = {j["id"]: j for j in joints}
+    chosen: list[tuple[str, str]] = []
+    for base, drive in inputs:
+        b, d = by_id.get(f"P{base}"), by_id.get(f"P{drive}")
+        common = sorted(set(b["links"]) & set(d["links"]) - {FRAME}) if b and d else []
+        if b is None or d is None or not common:
+            raise InterchangeError(f"input ({base}, {drive}): joints P{base} and P{drive} "
+                                   f"are not two joints of one link", format="pyslvs",
+                                   where="inputs")
+        if FRAME not in b["links"] or b["kind"] != "R":
+            raise InterchangeError(f"input ({base}, {drive}): P{base} is not a pivot on "
+                                   f"the ground; chaingraph's inputs here turn about one",
+                                   format="pyslvs", where="inputs")
+        chosen.append((b["id"], common[0]))
+    pivots = [b for b, _ in chosen]
+    if len(chosen) == 1 and len(by_id[pivots[0]]["links"]) == 2:
+        return {"fixed": FRAME, "driver": chosen[0][1]}
+    if len(set(pivots)) < len(pivots) or any(len(by_id[b]["links"]) != 2 for b in pivots):
+        notes.append(f"inputs {list(inputs)}: a pivot of several links drives one of them "
+                     f"(chaingraph's input is a joint); no input set")
+        return {"fixed": FRAME}
+    return {"fixed": FRAME, "inputs": pivots}
+
+
+def _mechanism(joints: list[dict[str, Any]], driver: str | None,
+               inputs: Sequence[tuple[int, int]] | None, notes: list[str]
                ) -> dict[str, Any] | None:
-    """The [mechanism]: the ground fixed, the driver given or the link on the first
-    ground pivot."""
+    """The [mechanism]: the ground fixed, the inputs or the driver given, or the link on
+    the first ground pivot."""
     links = {x for j in joints for x in j["links"]}
     if FRAME not in links:
         notes.append(f"no link is called {FRAME!r}: imported as a chain, nothing fixed")
         return None
+    if inputs:
+        return _given_inputs(joints, inputs, notes)
     if driver is not None:
         if driver not in links:
             raise InterchangeError(f"no link {driver!r} to drive (links: "
@@ -327,6 +359,7 @@ def _mechanism(joints: list[dict[str, Any]], driver: str | None, notes: list[str
 
 
 def read_pyslvs(text: str, *, source: str = "<string>", driver: str | None = None,
+                inputs: Sequence[tuple[int, int]] | None = None,
                 name: str | None = None) -> Imported:
     """A Pyslvs mechanism expression as a chain file.
 
@@ -343,6 +376,10 @@ def read_pyslvs(text: str, *, source: str = "<string>", driver: str | None = Non
     driver : str, optional
         The input link. By default the link on the first ground pivot (an R joint of
         the ground and one other link), said in the notes: the expression holds none.
+    inputs : sequence of (int, int), optional
+        Pyslvs's input pairs ``(base, drive)`` (its project and ``example_list`` keep
+        them): the link of joints ``base`` and ``drive`` turns about ``base``, a pivot
+        on the ground. Takes precedence over ``driver``.
     name : str, optional
         The chain's name (default: "Pyslvs mechanism").
 
@@ -371,7 +408,7 @@ def read_pyslvs(text: str, *, source: str = "<string>", driver: str | None = Non
     notes: list[str] = []
     try:
         joints, points = _structure(parsed, notes)
-        mechanism = _mechanism(joints, driver, notes)
+        mechanism = _mechanism(joints, driver, inputs, notes)
     except InterchangeError as e:
         raise InterchangeError(e.problem, format="pyslvs", source=source,
                                where=e.where) from None
@@ -381,7 +418,7 @@ def read_pyslvs(text: str, *, source: str = "<string>", driver: str | None = Non
     if points:
         keys["points"] = points
     if mechanism is not None:
-        if points and "driver" in mechanism:
+        if points and ("driver" in mechanism or "inputs" in mechanism):
             mechanism["output"] = points[0]["id"]
         keys["mechanism"] = mechanism
     return imported(keys, notes, source=source)
