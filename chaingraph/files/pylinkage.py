@@ -58,7 +58,8 @@ def _crank(chain: Chain) -> tuple[str, Joint, str, tuple[float, float] | None]:
             raise _refuse(chain, "its input is not a crank (an R joint between the fixed "
                                  "link and one other): pylinkage drives cranks only",
                           f"joint {motor.id!r}")
-        sweep = None if inputs[0].start is None else (inputs[0].start, inputs[0].stop)
+        start, stop = inputs[0].start, inputs[0].stop
+        sweep = None if start is None or stop is None else (start, stop)
         return fixed, motor, movers[0], sweep
     if driver is None:
         raise _refuse(chain, "it has no driver: pylinkage drives a crank")
@@ -421,13 +422,13 @@ def _inputs(r: _Reader, names: dict[str, str], frame: str, joints: list[dict[str
     rates = [abs(float(x.get("angular_velocity", math.tau / 360)))
              for x in drivers]
     slowest = min((w for w in rates if w > 0), default=math.tau / 360)
-    inputs = []
+    inputs: list[dict[str, Any]] = []
     for x, rate in zip(drivers, rates):
         link = names[x["id"]]
         motor = x.get("motor_joint") or next((i for i in x["joints"] if i in at
                                               and r.joints[i]["type"] == "ground"), None)
         where = f"link {x['id']!r}"
-        if motor not in at:
+        if not isinstance(motor, str) or motor not in at:
             raise r.bad("a driver needs a motor joint on the ground", where)
         others = [i for i in x["joints"] if i != motor and i in at]
         if not others:

@@ -1,10 +1,10 @@
 """Write the pylinkage models of tests/files/data as pylinkage 1.3 writes them, with the
-joints' positions pylinkage's own simulation gives at each step (run inside pylinkage's
+joints' positions pylinkage's own simulation gives every 30 degrees (run inside pylinkage's
 venv: benchmarks/.venv-pylinkage/bin/python tests/files/data/make_pylinkage_models.py).
 
 Each model is built with pylinkage's MechanismBuilder (or its factories) and saved by
-mechanism_to_dict; MODEL.trace.json holds, for steps 0 to 12 (every 30 degrees of the
-crank), every joint's position as pylinkage steps it: what tests/files/test_pylinkage.py
+mechanism_to_dict; MODEL.trace.json holds, every 30 steps of one degree over a turn of
+the crank, every joint's position as pylinkage steps it: what tests/files/test_pylinkage.py
 compares chaingraph's solve with. Also the six-bar factories of pylinkage.synthesis
 (watt_from_lengths, stephenson_from_lengths), converted by pylinkage's to_mechanism,
 as the docs run them through import.
@@ -19,7 +19,7 @@ from pathlib import Path
 import pylinkage
 from pylinkage.dyads._conversion import to_mechanism
 from pylinkage.mechanism import MechanismBuilder, fourbar, slider_crank
-from pylinkage.mechanism.serialization import mechanism_to_dict
+from pylinkage.mechanism.serialization import mechanism_from_dict, mechanism_to_dict
 
 # pylinkage.synthesis's __init__ needs scipy for its other modules; the two factories'
 # module does not: load it alone
@@ -33,7 +33,8 @@ stephenson_from_lengths = _conversion.stephenson_from_lengths
 watt_from_lengths = _conversion.watt_from_lengths
 
 HERE = Path(__file__).resolve().parent
-STEP = math.radians(30.0)
+STEP = math.radians(1.0)
+EVERY = 30                      # steps between the positions kept
 
 
 def watt():
@@ -103,20 +104,38 @@ FACTORIES = {
 }
 
 
+def trace(data):
+    """Every joint's position every EVERY steps over a turn, as pylinkage steps the
+    model. Its trackers are put by their own rule (TrackerJoint.update_position) on the
+    joints pylinkage steps without them: with a tracker, pylinkage 1.3 leaves its Assur
+    group solver for a joint-by-joint one that, on the Watt six-bar, takes a joint's
+    old position as an anchor and stretches the rocker (|CD| 70 becomes 58.4 at 30
+    degrees)."""
+    trackers = [j for j in data["joints"] if j["type"] == "tracker"]
+    bare = mechanism_from_dict({**data, "joints": [j for j in data["joints"]
+                                                   if j["type"] != "tracker"]})
+    ids = [j.id for j in bare.joints]
+    rows = [[list(j.position) for j in bare.joints]]
+    for k, coords in enumerate(bare.step(iterations=360), start=1):
+        if k % EVERY == 0:
+            rows.append([list(c) for c in coords])
+    for t in trackers:
+        joint = mechanism_from_dict({**data, "joints": [t], "links": []}).joints[0]
+        for row in rows:
+            joint.update_position(tuple(row[ids.index(t["ref_joint1_id"])]),
+                                  tuple(row[ids.index(t["ref_joint2_id"])]))
+            row.append(list(joint.position))
+        ids.append(t["id"])
+    return {"joints": ids, "step_deg": EVERY * math.degrees(STEP), "positions": rows}
+
+
 def main():
     for stem, make in {**MODELS, **FACTORIES}.items():
-        mechanism = make()
-        data = mechanism_to_dict(mechanism)
+        data = mechanism_to_dict(make())
         (HERE / f"{stem}.json").write_text(json.dumps(data, indent=2) + "\n")
-        if stem in FACTORIES:
-            continue
-        ids = [j.id for j in mechanism.joints]
-        rows = [[list(j.position) for j in mechanism.joints]]
-        for coords in mechanism.step(iterations=12):
-            rows.append([list(c) for c in coords])
-        (HERE / f"{stem}.trace.json").write_text(json.dumps(
-            {"joints": ids, "step_deg": math.degrees(STEP), "positions": rows}) + "\n")
-        print(stem, len(ids), "joints")
+        if stem not in FACTORIES:
+            (HERE / f"{stem}.trace.json").write_text(json.dumps(trace(data)) + "\n")
+            print(stem, len(data["joints"]), "joints")
 
 
 if __name__ == "__main__":
