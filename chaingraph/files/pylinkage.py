@@ -21,14 +21,18 @@ from collections.abc import Sequence
 from typing import Any
 
 from chaingraph._util.disjoint import DisjointSets
-from chaingraph.errors import InterchangeError
+from chaingraph.errors import ChainGraphError, InterchangeError
 from chaingraph.files.imported import Imported, imported
+from chaingraph.kinematics import build_plan, feasible_range
 from chaingraph.model.chain import Chain, Joint, chosen_inputs, line_direction
 
-__all__ = ["pylinkage_json", "pylinkage_dict", "read_pylinkage", "STEPS_PER_TURN"]
+__all__ = ["pylinkage_json", "pylinkage_dict", "read_pylinkage", "STEPS_PER_TURN",
+           "LIMIT_MARGIN"]
 
 #: a crank written for pylinkage turns a degree a step (chaingraph's sweep of a turn)
 STEPS_PER_TURN = 360
+#: how far (radians) inside its limits a driver that rocks is written to rock
+LIMIT_MARGIN = 1e-9
 JOINT_TYPES = ("ground", "revolute", "prismatic", "tracker")
 LINK_TYPES = ("ground", "driver", "arc_driver", "link")
 LEGACY_TYPES = ("Static", "Crank", "Revolute", "Fixed", "Prismatic", "Linear")
@@ -134,6 +138,20 @@ def _joint_entries(chain: Chain, fixed: str, pins: dict[str, Joint]) -> list[dic
     return entries
 
 
+def _rocking(chain: Chain) -> tuple[float, float] | None:
+    """A driver that cannot turn fully: the range it rocks over (degrees), pulled in
+    from each limit by ``LIMIT_MARGIN`` (at a limit the loop closes only to rounding,
+    and pylinkage's circle intersection finds no point); None for a crank."""
+    try:
+        found = feasible_range(build_plan(chain))
+    except ChainGraphError:
+        return None
+    if found is None:
+        return None
+    margin = math.degrees(LIMIT_MARGIN)
+    return found[0] + margin, found[1] - margin
+
+
 def _unique(name: str, taken: set[str]) -> str:
     out, k = name, 1
     while out in taken:
@@ -161,6 +179,8 @@ def _driver_entries(chain: Chain, motor: Joint, driver: str,
                              "joints": [motor.id, output.id],
                              "angular_velocity": math.tau / STEPS_PER_TURN,
                              "initial_angle": angle, "motor_joint": motor.id}
+    if sweep is None:
+        sweep = _rocking(chain)
     if sweep is not None:
         low, high = sorted(math.radians(v) for v in sweep)
         crank.update(type="arc_driver", arc_start=low, arc_end=high)
@@ -207,8 +227,9 @@ def pylinkage_json(chain: Chain) -> str:
     loads it, and its ``step`` traces the same paths).
 
     The crank turns a degree a step from its drawn direction (``angular_velocity``
-    2 pi / 360; an input swept between two values becomes an ``arc_driver`` between
-    them); each sliding pair's block becomes a prismatic joint at its pin, sliding on
+    2 pi / 360); a driver that cannot turn fully becomes an ``arc_driver`` over the
+    range it rocks, 1e-9 rad inside each limit (``LIMIT_MARGIN``), and an input swept
+    between two values an ``arc_driver`` between them; each sliding pair's block becomes a prismatic joint at its pin, sliding on
     the line through the pin along the pair's axis; each point a tracker from two
     joints of its link.
 

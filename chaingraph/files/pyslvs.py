@@ -21,7 +21,7 @@ from chaingraph.errors import InterchangeError
 from chaingraph.files.imported import Imported, imported
 from chaingraph.model.chain import Chain, chosen_inputs
 
-__all__ = ["pyslvs_expression", "read_pyslvs", "FRAME"]
+__all__ = ["pyslvs_expression", "read_pyslvs", "link_names", "pins_in_slots", "FRAME"]
 
 #: the name of the frame in a Pyslvs expression
 FRAME = "ground"
@@ -64,6 +64,21 @@ def link_names(chain: Chain, fixed: str) -> dict[str, str]:
     return names
 
 
+def pins_in_slots(chain: Chain, keep: set[str | None]) -> dict[str, str]:
+    """``{P joint: R joint}`` of the blocks that are a pin in a slot, Pyslvs's ``RP``
+    joint: a block (neither the fixed link nor the driver) whose only other joint is an
+    R pin, no point on it; the slot is the P joint's guide."""
+    out = {}
+    for p in (j for j in chain.joints if j.kind == "P"):
+        block = p.links[1]
+        others = [j for j in chain.joints_of(block) if j.id != p.id]
+        if block not in keep and len(others) == 1 and others[0].kind == "R" \
+                and others[0].at is not None and p.links[0] not in others[0].links \
+                and not any(q.link == block for q in chain.points):
+            out[p.id] = others[0].id
+    return out
+
+
 def _number(x: float) -> str:
     """A number as the grammar reads it, to the last digit (``repr``)."""
     text = repr(float(x))
@@ -76,7 +91,9 @@ def pyslvs_expression(chain: Chain) -> str:
 
     R joints are ``R`` joints on their links, each P joint a ``P`` joint on the link
     that carries the guide, then the block, at the pair's point with its axis as the
-    slot's angle; each point a joint on its one link. The fixed link is called
+    slot's angle, and a block that is only a pin in a slot (its one other joint an R
+    pin) Pyslvs's ``RP`` joint at the pin, on the slot's link and the pin's others; each
+    point a joint on its one link. The fixed link is called
     ``ground``; other names become names Pyslvs accepts (``connecting rod``:
     ``connecting_rod``). Positions are written to the last digit. The input's pivot is
     written first (Pyslvs keeps inputs outside the expression; :func:`read_pyslvs`
@@ -106,8 +123,7 @@ def pyslvs_expression(chain: Chain) -> str:
     M[
       J[R, color[Green], P[0.0, 0.0], L[ground, crank]],
       J[R, color[Green], P[20.000000000000004, 34.64101615137754], L[crank, connecting_rod]],
-      J[R, color[Green], P[176.20499351813308, 0.0], L[connecting_rod, crosshead]],
-      J[P, A[0.0], color[Green], P[176.20499351813308, 0.0], L[ground, crosshead]],
+      J[RP, A[0.0], color[Green], P[176.20499351813308, 0.0], L[ground, connecting_rod]],
     ]
     """
     if chain.space != "planar" or chain.cams or any(j.kind not in ("R", "P")
@@ -124,18 +140,27 @@ def pyslvs_expression(chain: Chain) -> str:
     first = inputs[0].joint if inputs else next(
         (j.id for j in chain.joints if j.kind == "R" and {fixed, driver} <= set(j.links)),
         None)
+    pins = pins_in_slots(chain, {fixed, driver})
     lines = []
     for j in sorted(chain.joints, key=lambda j: j.id != first):
         if j.at is None:
             raise _refuse(chain, "no drawn position", f"joint {j.id!r}")
+        if j.id in pins.values():
+            continue
         links = [*(x for x in j.links if x == fixed), *(x for x in j.links if x != fixed)]
-        if j.kind == "P":
+        at = j.at
+        if j.kind == "P" and j.id in pins:
+            pin = chain.joint(pins[j.id])
+            assert j.axis is not None and pin.at is not None
+            kind, at = f"RP, A[{_number(j.axis)}]", pin.at
+            links = [j.links[0], *(x for x in pin.links if x != j.links[1])]
+        elif j.kind == "P":
             links = list(j.links)
             assert j.axis is not None
             kind = f"P, A[{_number(j.axis)}]"
         else:
             kind = "R"
-        lines.append(f"J[{kind}, color[Green], P[{_number(j.at[0])}, {_number(j.at[1])}], "
+        lines.append(f"J[{kind}, color[Green], P[{_number(at[0])}, {_number(at[1])}], "
                      f"L[{', '.join(names[x] for x in links)}]]")
     for q in chain.points:
         if q.at is None:
@@ -308,6 +333,10 @@ def _given_inputs(joints: list[dict[str, Any]], inputs: Sequence[tuple[int, int]
     by_id = {j["id"]: j for j in joints}
     chosen: list[tuple[str, str]] = []
     for base, drive in inputs:
+        slot = by_id.get(f"P{base}_slot") or by_id.get(f"P{base}")
+        if base == drive and slot is not None and slot["kind"] == "P":
+            chosen.append((slot["id"], ""))         # the slider driven along its slot
+            continue
         b, d = by_id.get(f"P{base}"), by_id.get(f"P{drive}")
         common = sorted(set(b["links"]) & set(d["links"]) - {FRAME}) if b and d else []
         if b is None or d is None or not common:
@@ -320,7 +349,7 @@ def _given_inputs(joints: list[dict[str, Any]], inputs: Sequence[tuple[int, int]
                                    format="pyslvs", where="inputs")
         chosen.append((b["id"], common[0]))
     pivots = [b for b, _ in chosen]
-    if len(chosen) == 1 and len(by_id[pivots[0]]["links"]) == 2:
+    if len(chosen) == 1 and chosen[0][1] and len(by_id[pivots[0]]["links"]) == 2:
         return {"fixed": FRAME, "driver": chosen[0][1]}
     if len(set(pivots)) < len(pivots) or any(len(by_id[b]["links"]) != 2 for b in pivots):
         notes.append(f"inputs {list(inputs)}: a pivot of several links drives one of them "

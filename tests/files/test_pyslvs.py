@@ -14,7 +14,7 @@ import pytest
 import chaingraph
 from chaingraph.errors import InterchangeError
 from chaingraph.files import pyslvs_expression, read_pyslvs
-from chaingraph.files.pyslvs import link_names
+from chaingraph.files.pyslvs import link_names, pins_in_slots
 from chaingraph.naming.catalog import catalog_files, catalog_path
 from chaingraph.structure.isomorphism import is_isomorphic
 
@@ -35,19 +35,26 @@ def test_a_catalog_mechanism_comes_back_the_same_or_is_refused_with_the_reason(p
     back = read_pyslvs(text, source=str(path)).chain
     assert is_isomorphic(chain, back)
     fixed, names = chain.mechanism.fixed, link_names(chain, chain.mechanism.fixed)
-    written = [*(j for j in chain.joints if j.id == _first(chain)),
-               *(j for j in chain.joints if j.id != _first(chain))]
-    for k, j in enumerate(written):
-        again = back.joint(f"P{k}")
-        assert (again.kind, again.at, again.axis) == (j.kind, j.at, j.axis)
-        assert sorted(again.links) == sorted(names[x] for x in j.links)
-        if j.kind == "P":
-            assert again.links == tuple(names[x] for x in j.links)   # the guide first
-    for k, q in enumerate(chain.points, start=len(written)):
-        assert (back.point(f"P{k}").at, back.point(f"P{k}").link) == (q.at, names[q.link])
+    # a block that is a pin in a slot went as an RP joint and came back as a block of
+    # its own name: find it by its sliding pair, at the same place on the same guide
+    pins = pins_in_slots(chain, {chain.mechanism.fixed, chain.mechanism.driver})
+    for p in (j for j in chain.joints if j.kind == "P"):
+        at = chain.joint(pins[p.id]).at if p.id in pins else p.at   # an RP is at its pin
+        (q,) = [q for q in back.joints if q.kind == "P" and q.at == at
+                and q.axis == p.axis and q.links[0] == names[p.links[0]]]
+        names[p.links[1]] = q.links[1]
+    for j in chain.joints:
+        at = chain.joint(pins[j.id]).at if j.id in pins else j.at
+        same = [x for x in back.joints if (x.kind, x.at) == (j.kind, at)
+                and sorted(x.links) == sorted(names[y] for y in j.links)]
+        assert len(same) == 1, j.id
+    assert len(back.joints) == len(chain.joints)
+    assert sorted((q.at, q.link) for q in back.points) == \
+        sorted((q.at, names[q.link]) for q in chain.points)
     assert back.mechanism.fixed == names[fixed] == "ground"
     if chain.mechanism.driver is not None:
         assert back.mechanism.driver == names[chain.mechanism.driver]
+    assert back.joints[0].at == chain.joint(_first(chain)).at     # the crank's pivot first
 
 
 def _first(chain):
@@ -73,10 +80,16 @@ def test_every_catalog_mechanism_of_turning_and_sliding_pairs_is_held():
         pyslvs_expression(chaingraph.load(catalog_path("four-bar-chain")))
 
 
-def test_names_pyslvs_cannot_spell_are_spelled_its_way():
+def test_names_pyslvs_cannot_spell_are_spelled_its_way_and_a_crosshead_is_a_pin_in_a_slot():
     text = pyslvs_expression(chaingraph.load(catalog_path("reciprocating-engine")))
     assert "L[crank, connecting_rod]" in text and "L[ground, crank]" in text
     assert text.splitlines()[1] == "  J[R, color[Green], P[0.0, 0.0], L[ground, crank]],"
+    assert text.splitlines()[3] == \
+        "  J[RP, A[0.0], color[Green], P[176.20499351813308, 0.0], L[ground, connecting_rod]],"
+    # a block with more than a pin (the slotted lever's block is pinned to the crank,
+    # the driver, and slides in the lever) is still an RP; the shaper's ram is a P
+    text = pyslvs_expression(chaingraph.load(catalog_path("shaper-crank-and-slotted-lever")))
+    assert "J[RP, A[" in text and "L[slotted_lever, crank]]" in text
 
 
 MODELS = ["pyslvs-four-bar", "pyslvs-slider-crank", "pyslvs-watt", "pyslvs-stephenson"]
