@@ -19,7 +19,7 @@ from typing import Any
 
 from chaingraph.errors import InterchangeError
 from chaingraph.files.imported import Imported, imported
-from chaingraph.model.chain import Chain, chosen_inputs
+from chaingraph.model.chain import Chain, Joint, chosen_inputs
 
 __all__ = ["pyslvs_expression", "read_pyslvs", "link_names", "pins_in_slots", "FRAME"]
 
@@ -77,6 +77,26 @@ def pins_in_slots(chain: Chain, keep: set[str | None]) -> dict[str, str]:
                 and not any(q.link == block for q in chain.points):
             out[p.id] = others[0].id
     return out
+
+
+def _joint_text(chain: Chain, j: Joint, names: dict[str, str], pins: dict[str, str],
+                fixed: str) -> str:
+    """One joint's ``J[...]``: R, P, or RP for a P joint whose block is a pin."""
+    links = [*(x for x in j.links if x == fixed), *(x for x in j.links if x != fixed)]
+    assert j.at is not None
+    at = j.at
+    if j.kind == "P" and j.id in pins:
+        pin = chain.joint(pins[j.id])
+        assert j.axis is not None and pin.at is not None
+        kind, at = f"RP, A[{_number(j.axis)}]", pin.at
+        links = [j.links[0], *(x for x in pin.links if x != j.links[1])]
+    elif j.kind == "P":
+        assert j.axis is not None
+        kind, links = f"P, A[{_number(j.axis)}]", list(j.links)
+    else:
+        kind = "R"
+    return (f"J[{kind}, color[Green], P[{_number(at[0])}, {_number(at[1])}], "
+            f"L[{', '.join(names[x] for x in links)}]]")
 
 
 def _number(x: float) -> str:
@@ -145,23 +165,8 @@ def pyslvs_expression(chain: Chain) -> str:
     for j in sorted(chain.joints, key=lambda j: j.id != first):
         if j.at is None:
             raise _refuse(chain, "no drawn position", f"joint {j.id!r}")
-        if j.id in pins.values():
-            continue
-        links = [*(x for x in j.links if x == fixed), *(x for x in j.links if x != fixed)]
-        at = j.at
-        if j.kind == "P" and j.id in pins:
-            pin = chain.joint(pins[j.id])
-            assert j.axis is not None and pin.at is not None
-            kind, at = f"RP, A[{_number(j.axis)}]", pin.at
-            links = [j.links[0], *(x for x in pin.links if x != j.links[1])]
-        elif j.kind == "P":
-            links = list(j.links)
-            assert j.axis is not None
-            kind = f"P, A[{_number(j.axis)}]"
-        else:
-            kind = "R"
-        lines.append(f"J[{kind}, color[Green], P[{_number(at[0])}, {_number(at[1])}], "
-                     f"L[{', '.join(names[x] for x in links)}]]")
+        if j.id not in pins.values():
+            lines.append(_joint_text(chain, j, names, pins, fixed))
     for q in chain.points:
         if q.at is None:
             raise _refuse(chain, "no drawn position", f"point {q.id!r}")
