@@ -15,6 +15,7 @@ import chaingraph
 from chaingraph.errors import InterchangeError
 from chaingraph.files import pyslvs_expression, read_pyslvs
 from chaingraph.files.pyslvs import link_names, pins_in_slots
+from chaingraph.model.chainfile import Document
 from chaingraph.naming.catalog import catalog_files, catalog_path
 from chaingraph.structure.isomorphism import is_isomorphic
 
@@ -181,3 +182,25 @@ def test_a_round_trip_keeps_every_digit():
     again = read_pyslvs(pyslvs_expression(moved)).chain
     assert any(j.at == (127.3, 23.301000000000002) for j in again.joints)
     assert math.isclose(again.joint("P0").at[0], 118.241)
+
+
+def test_a_slider_s_own_input_pair_drives_its_slot():
+    """Pyslvs's input (k, k) on an RP joint drives the slider along its slot (its
+    "Slider lifter"): here a P input on the slot."""
+    text = ("M[J[RP, A[0.0], P[0.0, 0.0], L[ground, L2]], J[R, P[50.0, 0.0], L[ground, L1]],"
+            " J[R, P[25.0, 27.0], L[L1, L2]], J[R, P[50.0, 53.0], L[L2]]]")
+    model = read_pyslvs(text, inputs=[(0, 0)])
+    assert [i.joint for i in model.chain.mechanism.inputs] == ["P0_slot"]
+    assert model.chain.mechanism.output == "P3" and model.notes == ()
+    motion = chaingraph.solve(model.chain, start=0.0, stop=-10.0, steps=2, summary=False)
+    # the block slides 10 back along x; L1 (pivot (50, 0), 36.8 long) keeps its length
+    block = motion.joint("P0")
+    assert block.x[-1] == pytest.approx(-10.0) and block.y[-1] == pytest.approx(0.0)
+    pin = motion.joint("P2")
+    assert math.hypot(pin.x[-1] - 50.0, pin.y[-1]) == pytest.approx(math.hypot(25.0, 27.0))
+
+
+def test_the_imported_model_is_the_parsed_chain_file_and_its_text():
+    model = read_pyslvs((DATA / "pyslvs-watt.txt").read_text(), name="Watt")
+    assert isinstance(model.document, Document) and model.document.chain.name == "Watt"
+    assert chaingraph.loads(model.toml()) == model.chain
