@@ -23,6 +23,7 @@ __all__ = [
     "AtlasRunError",
     "OutputError",
     "DesignError",
+    "InterchangeError",
     "ChainGraphWarning",
     "PoseAdjustedWarning",
 ]
@@ -187,6 +188,17 @@ class DesignError(ChainGraphError, ValueError):
         self.kind = kind
         self.parameter = parameter
         super().__init__(f"design {kind}: {problem}" if kind else problem)
+
+
+class InterchangeError(ChainFileError):
+    """A model another tool wrote that cannot be read (malformed, an unknown joint type),
+    or a mechanism that another tool's format cannot hold (a sliding pair between two
+    moving links for pylinkage, a cam for either). Bad input: exit status 2. Extra
+    field: ``format`` (``"pylinkage"``, ``"pyslvs"``)."""
+
+    def __init__(self, problem, *, format=None, source=None, where=None, line=None):
+        self.format = format
+        super().__init__(problem, source=source, where=where, line=line)
 
 
 class ChainGraphWarning(UserWarning):

@@ -14,6 +14,7 @@ import argparse
 import sys
 from collections.abc import Callable
 
+from chaingraph.cli.interchange import peer_writers
 from chaingraph.cli.outputs import output_file, write_text
 from chaingraph.drawing import link_outlines, outlines_dxf, outlines_svg
 from chaingraph.files import load
@@ -53,20 +54,28 @@ def chain_writers(writers: dict[str, Callable[[Chain], str]]
     return {name: taking_arguments(write) for name, write in writers.items()}
 
 
+#: the models of other programs (pylinkage's JSON, a Pyslvs expression): the mechanism as
+#: drawn, which those programs sweep from
+MODELS = peer_writers()
+WRITERS.update(chain_writers(MODELS))
+
+
 def export_command(sub: argparse._SubParsersAction,
                    path_argument: Callable[[str], str],
                    positive_number: Callable[[str], float]) -> None:
     """Register ``chaingraph export`` with the subparsers ``sub`` (``path_argument`` and
     ``positive_number`` the parser's types of a path and a number above 0)."""
     p = sub.add_parser("export", help="the mechanism for another program: outlines to cut "
-                                      "(DXF, SVG)",
+                                      "(DXF, SVG), a pylinkage or Pyslvs model",
                        description="Write the mechanism for another program: with --to dxf "
                                    "or svg, each link's outline at one pose, true size in "
                                    "the file's units, to cut it (a bar with rounded ends for "
                                    "a binary link, a plate round its joints for a ternary or "
                                    "quaternary link, a block and a slotted guide for a "
                                    "sliding pair, holes at the pins; in DXF a layer per "
-                                   "link named after it).")
+                                   "link named after it); with --to pylinkage or pyslvs, "
+                                   "the mechanism as drawn as pylinkage's JSON "
+                                   "serialisation or a Pyslvs mechanism expression.")
     p.add_argument("file", type=path_argument, metavar="FILE", help="a chain file (TOML)")
     p.add_argument("--to", dest="to", required=True, choices=sorted(WRITERS),
                    help="the format")
@@ -85,6 +94,10 @@ def export_command(sub: argparse._SubParsersAction,
 
 def cmd_export(args: argparse.Namespace) -> int:
     chain = load(args.file)
+    if args.to in MODELS and args.at:
+        print(f"chaingraph: error: --at: a {args.to} model is the mechanism as drawn (its "
+              "program sweeps from there); a pose is for dxf and svg", file=sys.stderr)
+        return 2
     output_file(args.out, what=args.to.upper())
     write = WRITERS[args.to]
     try:

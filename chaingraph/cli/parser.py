@@ -29,6 +29,7 @@ from chaingraph.cli.commands import (
 
 from chaingraph.cli.export import export_command
 from chaingraph.cli.gears import gears_command
+from chaingraph.cli.interchange import import_command
 from chaingraph.cli.lint import lint_command
 
 __all__ = ['build_parser', 'whole_number', 'path_argument']
@@ -77,6 +78,7 @@ def build_parser() -> argparse.ArgumentParser:
         add(sub)
     gears_command(sub, path_argument)
     export_command(sub, path_argument, positive_number)
+    import_command(sub, path_argument)
     lint_command(sub, path_argument)
     return parser
 

@@ -1,4 +1,4 @@
-"""Chain files in and out: read (:mod:`chaingraph.model.chainfile` parses and checks), then
+"""chaingraph's own chain files (TOML) in and out: read (:mod:`chaingraph.model.chainfile` parses and checks), then
 placed (a file given by lengths assembled into its drawn pose, a file of coordinates
 with its drawing-level rounding mended: :func:`place`); written
 back by :func:`dumps` and :func:`save`.

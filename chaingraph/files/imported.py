@@ -1,0 +1,67 @@
+"""A model brought in from another tool: its chain file and what did not come over."""
+
+from __future__ import annotations
+
+import os
+from dataclasses import dataclass, field
+from functools import cached_property
+from typing import Any
+
+from chaingraph.errors import ChainFileError
+from chaingraph.model.chain import Chain
+from chaingraph.model.chainfile import Document, parse_document, toml_text
+from chaingraph.files.native import place
+
+__all__ = ["Imported", "imported", "model_text"]
+
+
+@dataclass(frozen=True)
+class Imported:
+    """A model of another tool read as a chain file.
+
+    Attributes
+    ----------
+    document : Document
+        The chain file, parsed and checked as a TOML file is
+        (:class:`~chaingraph.model.chainfile.Document`).
+    notes : tuple of str
+        What could not be carried over, one line each (a feature of the other tool
+        without an equivalent here, a choice the model did not make).
+    keys : dict
+        The chain file's document (the dict :func:`~chaingraph.model.chainfile.toml_text`
+        writes).
+    """
+
+    document: Document
+    notes: tuple[str, ...]
+    keys: dict[str, Any] = field(repr=False)
+
+    @cached_property
+    def chain(self) -> Chain:
+        """The chain in its drawn pose, as :func:`chaingraph.load` gives a file."""
+        return place(self.document)[0]
+
+    def toml(self) -> str:
+        """The chain file's text."""
+        return toml_text(self.keys)
+
+
+def imported(keys: dict[str, Any], notes: list[str], *, source: str) -> Imported:
+    """An :class:`Imported` of a chain file's document, checked as a file is."""
+    return Imported(parse_document(keys, source=source), tuple(notes), keys)
+
+
+def model_text(path: str | os.PathLike[str]) -> str:
+    """The text of another tool's model file (UTF-8), or ChainFileError naming it."""
+    source = os.fspath(path)
+    try:
+        with open(source, encoding="utf-8") as f:
+            return f.read()
+    except FileNotFoundError:
+        raise ChainFileError("no such file", source=source) from None
+    except IsADirectoryError:
+        raise ChainFileError("is a folder, not a model file", source=source) from None
+    except UnicodeDecodeError as e:
+        raise ChainFileError(f"is not UTF-8 text (byte {e.start})", source=source) from None
+    except OSError as e:
+        raise ChainFileError(f"cannot be read ({e.strerror})", source=source) from None
