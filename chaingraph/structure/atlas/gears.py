@@ -127,13 +127,16 @@ def check_gear_size(links: int, dof: int) -> int:
     """The number of gear pairs of a train of ``links`` links and ``dof`` freedoms;
     :class:`~chaingraph.errors.AtlasSizeError` for a size with no train or too large."""
     if dof < 1:
-        raise AtlasSizeError(f"'dof' must be 1 or more for a gear train, got {dof}")
+        raise AtlasSizeError(f"'dof' must be 1 or more for a gear train, got {dof}",
+                             links=links, dof=dof, parameter="dof")
     if links < dof + 2:
         raise AtlasSizeError(f"a gear train of {dof} degree(s) of freedom has at least "
-                             f"{dof + 2} links (one gear pair), got links = {links}")
+                             f"{dof + 2} links (one gear pair), got links = {links}",
+                             links=links, dof=dof, parameter="links")
     if links > MAX_GEAR_LINKS:
-        raise AtlasSizeError(f"'links' is at most {MAX_GEAR_LINKS} for gear trains, "
-                             f"got {links}")
+        raise AtlasSizeError(f"'links' is at most {MAX_GEAR_LINKS} for gear trains here "
+                             f"(8 links of one freedom take about two minutes), got "
+                             f"{links}", links=links, dof=dof, parameter="links")
     return links - 1 - dof
 
 
@@ -158,6 +161,9 @@ def train_levels(links: int, turning: Sequence[tuple[int, int]],
     tree = nx.Graph(list(turning))
     tree.add_nodes_from(range(links))
     paths = _paths(tree)
+    gears = [(min(a, b), max(a, b), c) for a, b, c in gears]
+    if any(c not in paths[(a, b)][1:-1] for a, b, c in gears):
+        raise ValueError("a carrier is not on the turning pairs' path between its gears")
     blocks = _level_blocks(len(turning), index, paths, gears)
     if blocks is None:
         raise ValueError("no assignment of axes makes every gear pair's carrier hold both "

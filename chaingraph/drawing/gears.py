@@ -1,0 +1,285 @@
+"""Gear trains drawn: the textbook's schematic of a train (SVG) and its graph.
+
+:func:`train_shapes` draws a chain's gear pairs as the front view of the textbook: each
+gear's pitch circle about its axis (an annulus as a ring), the radii in the proportion
+of the teeth and summing (or, for an annulus, differing) to the distance between the
+axes the file places, each carrier that moves as an arm through the axes it holds, the
+fixed link's bearings hatched, the pins and the names. :func:`train_graph_shapes` draws
+the train's graph (Buchsbaum and Freudenstein's): the links as numbered vertices on a
+circle, turning pairs thin with their axis (level) letter, gear pairs thick, each
+marked with its transfer vertex (the carrier: its number at the edge's middle, a dotted
+line to it). Both go through the scene's shapes and SVG emitter, in its colours.
+"""
+
+from __future__ import annotations
+
+import math
+from collections.abc import Sequence
+
+import numpy as np
+
+from chaingraph.drawing.scene import COLOURS, Shape, View, label_box, svg_document, svg_elements
+from chaingraph.model.chain import Chain
+from chaingraph.structure.atlas.gears import train_levels
+
+__all__ = ["train_shapes", "train_svg", "train_graph_shapes", "train_graph_svg",
+           "gear_circles", "label_boxes", "chain_graph"]
+
+Point = tuple[float, float]
+
+
+def _axis(chain: Chain, link: str, carrier: str) -> Point | None:
+    """Where ``link`` turns on ``carrier``: the drawn R joint that joins them."""
+    return next((j.at for j in chain.joints if j.kind == "R" and link in j.links
+                 and carrier in j.links and j.at is not None), None)
+
+
+def gear_circles(chain: Chain) -> list[tuple[str, str, Point, float, bool]]:
+    """Every gear's pitch circle: ``(pair id, link, centre, radius, annulus)``, the
+    radii from the teeth and the distance between the drawn axes (a pair whose axes
+    are not drawn, or coincide, is left out)."""
+    out = []
+    for g in chain.gears:
+        a, b = (_axis(chain, x, g.carrier) for x in g.links)
+        if a is None or b is None:
+            continue
+        d = math.dist(a, b)
+        za, zb = g.teeth
+        if d <= 0 or (g.internal and za >= zb):
+            continue
+        ra, rb = ((d * za / (zb - za), d * zb / (zb - za)) if g.internal
+                  else (d * za / (za + zb), d * zb / (za + zb)))
+        out += [(g.id, g.links[0], a, ra, False), (g.id, g.links[1], b, rb, g.internal)]
+    return out
+
+
+def _ground(x: float, y: float, s: float) -> list[Shape]:
+    """A bearing on the fixed link: a triangle under the pin on a hatched base."""
+    base = y - 1.8 * s
+    out = [Shape("polyline", "ground", ((x - s, base), (x, y), (x + s, base)),
+                 stroke="#444444", width=0.25 * s, join="round"),
+           Shape("line", "ground", ((x - 1.5 * s, base), (x + 1.5 * s, base)),
+                 stroke="#444444", width=0.3 * s)]
+    for k in range(5):
+        x0 = x - 1.4 * s + 0.65 * s * k
+        out.append(Shape("line", "hatch", ((x0, base), (x0 - 0.5 * s, base - 0.6 * s)),
+                         stroke="#444444", width=0.18 * s))
+    return out
+
+
+def _free(box: tuple[float, float, float, float], placed: list[tuple[float, ...]],
+          gap: float) -> bool:
+    return all(box[2] + gap < p[0] or p[2] + gap < box[0] or box[3] + gap < p[1]
+               or p[3] + gap < box[1] for p in placed)
+
+
+_ANGLES = (90, 60, 120, 30, 150, 0, 180, 300, 240, 270, 45, 135, 210, 330)
+
+
+def _place(text: str, centre: Point, reach: float, size: float,
+           placed: list[tuple[float, ...]], *, below: bool = False) -> Shape:
+    """A label round ``centre`` at ``reach``, at the first angle (top first, or bottom
+    first when ``below``) whose box meets no label placed before; farther out when
+    every angle is taken."""
+    w = len(text) * 0.62 * size
+    for ring in (1.0, 1.4, 2.0, 2.8, 4.0):
+        for deg in ((270, *_ANGLES[:9], *_ANGLES[10:]) if below else _ANGLES):
+            a = math.radians(deg)
+            cx = centre[0] + (reach * ring + 0.3 * size) * math.cos(a)
+            cy = centre[1] + (reach * ring + 0.3 * size) * math.sin(a)
+            x = cx if math.cos(a) > 0.3 else cx - w if math.cos(a) < -0.3 else cx - 0.5 * w
+            y = cy if math.sin(a) > 0.3 else cy - 0.8 * size if math.sin(a) < -0.3 \
+                else cy - 0.3 * size
+            box = label_box(x, y, text, size)
+            if _free(box, placed, 0.15 * size):
+                placed.append(box)
+                return Shape("text", "label", ((x, y),), text=text, size=size,
+                             halo=0.25 * size)
+    box = label_box(centre[0], centre[1], text, size)
+    placed.append(box)
+    return Shape("text", "label", (centre,), text=text, size=size, halo=0.25 * size)
+
+
+def train_shapes(chain: Chain, *, fixed: str | None = None) -> list[Shape]:
+    """The train's schematic (module text) as scene shapes in the file's coordinates;
+    ``fixed`` the link drawn as the frame (default: the mechanism's, else none)."""
+    if fixed is None and chain.mechanism is not None:
+        fixed = chain.mechanism.fixed
+    circles = gear_circles(chain)
+    pivots = [j.at for j in chain.joints if j.kind == "R" and j.at is not None]
+    xs = [p[0] for p in pivots] + [c[0] - r for _, _, c, r, _ in circles] + \
+        [c[0] + r for _, _, c, r, _ in circles]
+    ys = [p[1] for p in pivots] + [c[1] - r for _, _, c, r, _ in circles] + \
+        [c[1] + r for _, _, c, r, _ in circles]
+    span = max(max(xs) - min(xs), max(ys) - min(ys), 1e-9) if xs else 1.0
+    colour = {x: COLOURS[i % len(COLOURS)] for i, x in enumerate(chain.links)}
+    out: list[Shape] = []
+    seen = set()
+    for _, link, c, r, annulus in sorted(circles, key=lambda t: -t[3]):
+        if (link, c, round(r, 9)) in seen:
+            continue
+        seen.add((link, c, round(r, 9)))
+        if annulus:
+            out.append(Shape("circle", "annulus", (c,), data=(("link", link),),
+                             radius=r + 0.02 * span, stroke=colour[link], width=0.04 * span,
+                             fill_opacity=0.0))
+        out.append(Shape("circle", "gear", (c,), data=(("link", link),), radius=r,
+                         fill=None if annulus else colour[link],
+                         fill_opacity=None if annulus else 0.12, stroke=colour[link],
+                         width=0.008 * span))
+    for link in chain.links:
+        if link == fixed:
+            continue
+        held = [j.at for j in chain.joints if j.kind == "R" and link in j.links
+                and j.at is not None]
+        if len(held) > 1 and any(g.carrier == link for g in chain.gears):
+            out.append(Shape("polyline", "arm", tuple(held), data=(("link", link),),
+                             stroke=colour[link], width=0.03 * span, join="round",
+                             cap="round"))
+    pin = 0.018 * span
+    for j in chain.joints:
+        if j.kind != "R" or j.at is None:
+            continue
+        if fixed is not None and fixed in j.links:
+            out += _ground(j.at[0], j.at[1], pin * 1.6)
+        out.append(Shape("circle", "pin", (j.at,), data=(("joint", j.id),), radius=pin,
+                         fill="white", stroke="#222222", width=0.006 * span))
+    out += _train_labels(chain, circles, fixed, span)
+    return out
+
+
+def _train_labels(chain: Chain, circles: list[tuple[str, str, Point, float, bool]],
+                  fixed: str | None, span: float) -> list[Shape]:
+    """Each link's name (and its wheels' teeth) by its largest circle, a carrier's by
+    its arm, the fixed link's by its first bearing, no two overlapping."""
+    size = 0.045 * span
+    placed: list[tuple[float, ...]] = []
+    teeth: dict[str, list[int]] = {}
+    for g in chain.gears:
+        for x, z in zip(g.links, g.teeth):
+            if z not in teeth.setdefault(x, []):
+                teeth[x].append(z)
+    out = []
+    biggest: dict[str, tuple[Point, float]] = {}
+    for _, link, c, r, annulus in circles:
+        reach = r + (0.04 * span if annulus else 0.0)
+        if link not in biggest or reach > biggest[link][1]:
+            biggest[link] = (c, reach)
+    for link in sorted(biggest, key=lambda x: biggest[x][1]):
+        c, reach = biggest[link]
+        text = f"{link} ({', '.join(map(str, teeth[link]))})"
+        out.append(_place(text, c, reach, size, placed))
+    for link in chain.links:
+        if link in biggest:
+            continue
+        held = [j.at for j in chain.joints if j.kind == "R" and link in j.links
+                and j.at is not None]
+        if not held:
+            continue
+        if link == fixed:
+            x, y = held[0]
+            out.append(_place(link, (x, y), 0.075 * span, size, placed, below=True))
+        else:
+            mid = (float(np.mean([p[0] for p in held])), float(np.mean([p[1] for p in held])))
+            out.append(_place(link, mid, 0.04 * span, size, placed))
+    return out
+
+
+def label_boxes(shapes: Sequence[Shape]) -> list[tuple[float, float, float, float]]:
+    """The boxes of the labels among ``shapes`` (for the tests: none may overlap)."""
+    return [label_box(s.points[0][0], s.points[0][1], s.text or "", s.size or 0.0)
+            for s in shapes if s.kind == "text"]
+
+
+def _view(shapes: Sequence[Shape], pad: float) -> View:
+    xs, ys = [], []
+    for s in shapes:
+        for x, y in s.points:
+            r = (s.radius or 0.0) + (0.5 * (s.width or 0.0) if s.kind == "circle" else 0.0)
+            xs += [x - r, x + r]
+            ys += [y - r, y + r]
+        if s.kind == "text":
+            x0, y0, x1, y1 = label_box(s.points[0][0], s.points[0][1], s.text or "",
+                                       s.size or 0.0)
+            xs += [x0, x1]
+            ys += [y0, y1]
+    return View((min(xs), min(ys)), (max(xs), max(ys)), pad)
+
+
+def train_svg(chain: Chain, *, fixed: str | None = None, width: int = 640) -> str:
+    """The train's schematic (:func:`train_shapes`) as a standalone SVG."""
+    shapes = train_shapes(chain, fixed=fixed)
+    view = _view(shapes, 0.0)
+    view = View(view.lo, view.hi, 0.05 * max(view.size))
+    title = f"{chain.name}: gear train" + (f", {fixed} fixed" if fixed else "")
+    return svg_document(view, svg_elements(view, shapes), width=width, title=title)
+
+
+def train_graph_shapes(names: Sequence[str], turning: Sequence[tuple[int, int]],
+                       gears: Sequence[tuple[int, int, int]]) -> list[Shape]:
+    """The train's graph (module text) on a circle of radius 1: ``names`` the vertices'
+    labels, ``turning`` and ``gears`` (``(a, b, carrier)``) by index into them."""
+    n = len(names)
+    at = [(math.cos(math.pi / 2 - 2 * math.pi * i / n), math.sin(math.pi / 2 - 2 * math.pi * i / n))
+          for i in range(n)]
+    try:
+        levels: Sequence[int] | None = train_levels(n, turning, gears)
+    except (ValueError, KeyError):
+        levels = None
+    out: list[Shape] = []
+    size = 0.11
+    for k, (a, b) in enumerate(turning):
+        out.append(Shape("line", "turning", (at[a], at[b]), stroke="#333333", width=0.012))
+    for a, b, c in gears:
+        out.append(Shape("line", "gear", (at[a], at[b]), stroke=COLOURS[2], width=0.045,
+                         cap="round"))
+        mid = (0.5 * (at[a][0] + at[b][0]), 0.5 * (at[a][1] + at[b][1]))
+        out.append(Shape("line", "transfer", (mid, at[c]), stroke=COLOURS[2], width=0.008,
+                         dash=(0.02, 0.03)))
+    for i, (x, y) in enumerate(at):
+        out.append(Shape("circle", "vertex", ((x, y),), radius=0.09, fill="white",
+                         stroke="#222222", width=0.012))
+        out.append(Shape("text", "vertex-label", ((x - 0.031 * len(str(i + 1)), y - 0.035),),
+                         text=str(i + 1), size=0.1))
+    for a, b, c in gears:
+        mid = (0.5 * (at[a][0] + at[b][0]), 0.5 * (at[a][1] + at[b][1]))
+        out.append(Shape("text", "carrier", ((mid[0] - 0.03, mid[1] - 0.035),),
+                         text=str(c + 1), size=size, halo=0.04))
+    if levels is not None:
+        for (a, b), level in zip(turning, levels):
+            mid = (0.5 * (at[a][0] + at[b][0]), 0.5 * (at[a][1] + at[b][1]))
+            dx, dy = at[b][0] - at[a][0], at[b][1] - at[a][1]
+            norm = math.hypot(dx, dy) or 1.0
+            px, py = -dy / norm * 0.07, dx / norm * 0.07
+            out.append(Shape("text", "level", ((mid[0] + px - 0.025, mid[1] + py - 0.03),),
+                             text="abcdefghij"[level], size=0.09, halo=0.03))
+    for i, name in enumerate(names):
+        if name != str(i + 1):
+            x, y = at[i]
+            out.append(Shape("text", "label", ((1.18 * x - (0.062 * len(name) if x < -0.1 else
+                                                             0.031 * len(name) if x < 0.1 else 0),
+                                                1.18 * y - 0.03 + (0.06 if y > 0.9 else 0)),),
+                             text=name, size=0.1, halo=0.03))
+    return out
+
+
+def train_graph_svg(names: Sequence[str], turning: Sequence[tuple[int, int]],
+                    gears: Sequence[tuple[int, int, int]], *, title: str = "gear train graph",
+                    width: int = 320) -> str:
+    """The train's graph (:func:`train_graph_shapes`) as a standalone SVG."""
+    shapes = train_graph_shapes(names, turning, gears)
+    view = _view(shapes, 0.08)
+    return svg_document(view, svg_elements(view, shapes), width=width, title=title)
+
+
+def chain_graph(chain: Chain) -> tuple[list[str], list[tuple[int, int]],
+                                       list[tuple[int, int, int]]]:
+    """A chain's train as the graph's indices: (links, turning pairs, gear pairs with
+    carriers), one turning pair per link a multiple joint holds beyond the first."""
+    links = list(chain.links)
+    at = {x: i for i, x in enumerate(links)}
+    turning = [(at[j.links[0]], at[x]) for j in chain.joints if j.kind == "R"
+               for x in j.links[1:]]
+    gears = [(at[g.links[0]], at[g.links[1]], at[g.carrier]) for g in chain.gears]
+    return links, turning, gears
+
