@@ -5,10 +5,10 @@ gear's pitch circle about its axis (an annulus as a ring), the radii in the prop
 of the teeth and summing (or, for an annulus, differing) to the distance between the
 axes the file places, each carrier that moves as an arm through the axes it holds, the
 fixed link's bearings hatched, the pins and the names. :func:`train_graph_shapes` draws
-the train's graph (Buchsbaum and Freudenstein's): the links as numbered vertices on a
-circle, turning pairs thin with their axis (level) letter, gear pairs thick, each
-marked with its transfer vertex (the carrier: its number at the edge's middle, a dotted
-line to it). Both go through the scene's shapes and SVG emitter, in its colours.
+the train's graph (Buchsbaum and Freudenstein's): the links as numbered vertices, the
+tree of turning pairs drawn down from its busiest link, thin, with each pair's axis
+(level) letter, the gear pairs as thick arcs, each marked with its transfer vertex (the
+carrier's number at the arc's middle). Both go through the scene's shapes and SVG emitter, in its colours.
 """
 
 from __future__ import annotations
@@ -23,7 +23,7 @@ from chaingraph.model.chain import Chain
 from chaingraph.structure.atlas.gears import train_levels
 
 __all__ = ["train_shapes", "train_svg", "train_graph_shapes", "train_graph_svg",
-           "gear_circles", "label_boxes", "chain_graph"]
+           "gear_circles", "label_boxes", "chain_graph", "tree_layout"]
 
 Point = tuple[float, float]
 
@@ -172,13 +172,12 @@ def _train_labels(chain: Chain, circles: list[tuple[str, str, Point, float, bool
     for link in chain.links:
         if link in biggest:
             continue
-        held = [j.at for j in chain.joints if j.kind == "R" and link in j.links
-                and j.at is not None]
+        held: list[Point] = [j.at for j in chain.joints if j.kind == "R"
+                             and link in j.links and j.at is not None]
         if not held:
             continue
         if link == fixed:
-            x, y = held[0]
-            out.append(_place(link, (x, y), 0.075 * span, size, placed, below=True))
+            out.append(_place(link, held[0], 0.075 * span, size, placed, below=True))
         else:
             mid = (float(np.mean([p[0] for p in held])), float(np.mean([p[1] for p in held])))
             out.append(_place(link, mid, 0.04 * span, size, placed))
@@ -215,51 +214,77 @@ def train_svg(chain: Chain, *, fixed: str | None = None, width: int = 640) -> st
     return svg_document(view, svg_elements(view, shapes), width=width, title=title)
 
 
+def tree_layout(n: int, turning: Sequence[tuple[int, int]]) -> list[Point]:
+    """Places for the vertices of a train's graph: the tree of turning pairs drawn
+    down from the link that holds most, each link centred over those that turn on it,
+    leaves one unit apart."""
+    adjacent: list[list[int]] = [[] for _ in range(n)]
+    for a, b in turning:
+        adjacent[a].append(b)
+        adjacent[b].append(a)
+    root = max(range(n), key=lambda v: (len(adjacent[v]), -v))
+    at: list[Point] = [(0.0, 0.0)] * n
+    seen, column = {root}, [0.0]
+
+    def place(v: int, depth: int) -> float:
+        children = [u for u in sorted(adjacent[v]) if u not in seen]
+        seen.update(children)
+        if not children:
+            x = column[0]
+            column[0] += 1.0
+        else:
+            xs = [place(u, depth + 1) for u in children]
+            x = 0.5 * (xs[0] + xs[-1])
+        at[v] = (x, -1.1 * depth)
+        return x
+    place(root, 0)
+    return at
+
+
+def _arc(p: Point, q: Point, bend: float, steps: int = 16) -> list[Point]:
+    """A quadratic curve from ``p`` to ``q`` bulging ``bend`` times their distance to
+    the left of p -> q."""
+    mx, my = 0.5 * (p[0] + q[0]), 0.5 * (p[1] + q[1])
+    cx, cy = mx - bend * (q[1] - p[1]), my + bend * (q[0] - p[0])
+    return [((1 - t) ** 2 * p[0] + 2 * t * (1 - t) * cx + t * t * q[0],
+             (1 - t) ** 2 * p[1] + 2 * t * (1 - t) * cy + t * t * q[1])
+            for t in (k / steps for k in range(steps + 1))]
+
+
 def train_graph_shapes(names: Sequence[str], turning: Sequence[tuple[int, int]],
                        gears: Sequence[tuple[int, int, int]]) -> list[Shape]:
-    """The train's graph (module text) on a circle of radius 1: ``names`` the vertices'
-    labels, ``turning`` and ``gears`` (``(a, b, carrier)``) by index into them."""
+    """The train's graph (module text), the turning pairs' tree drawn down from its
+    busiest link (:func:`tree_layout`), the gear pairs as arcs: ``names`` the
+    vertices' labels, ``turning`` and ``gears`` (``(a, b, carrier)``) by index."""
     n = len(names)
-    at = [(math.cos(math.pi / 2 - 2 * math.pi * i / n), math.sin(math.pi / 2 - 2 * math.pi * i / n))
-          for i in range(n)]
+    at = tree_layout(n, turning)
     try:
         levels: Sequence[int] | None = train_levels(n, turning, gears)
     except (ValueError, KeyError):
         levels = None
     out: list[Shape] = []
-    size = 0.11
     for k, (a, b) in enumerate(turning):
-        out.append(Shape("line", "turning", (at[a], at[b]), stroke="#333333", width=0.012))
-    for a, b, c in gears:
-        out.append(Shape("line", "gear", (at[a], at[b]), stroke=COLOURS[2], width=0.045,
-                         cap="round"))
-        mid = (0.5 * (at[a][0] + at[b][0]), 0.5 * (at[a][1] + at[b][1]))
-        out.append(Shape("line", "transfer", (mid, at[c]), stroke=COLOURS[2], width=0.008,
-                         dash=(0.02, 0.03)))
-    for i, (x, y) in enumerate(at):
-        out.append(Shape("circle", "vertex", ((x, y),), radius=0.09, fill="white",
-                         stroke="#222222", width=0.012))
-        out.append(Shape("text", "vertex-label", ((x - 0.031 * len(str(i + 1)), y - 0.035),),
-                         text=str(i + 1), size=0.1))
-    for a, b, c in gears:
-        mid = (0.5 * (at[a][0] + at[b][0]), 0.5 * (at[a][1] + at[b][1]))
-        out.append(Shape("text", "carrier", ((mid[0] - 0.03, mid[1] - 0.035),),
-                         text=str(c + 1), size=size, halo=0.04))
-    if levels is not None:
-        for (a, b), level in zip(turning, levels):
+        out.append(Shape("line", "turning", (at[a], at[b]), stroke="#333333", width=0.025))
+        if levels is not None:
             mid = (0.5 * (at[a][0] + at[b][0]), 0.5 * (at[a][1] + at[b][1]))
-            dx, dy = at[b][0] - at[a][0], at[b][1] - at[a][1]
-            norm = math.hypot(dx, dy) or 1.0
-            px, py = -dy / norm * 0.07, dx / norm * 0.07
-            out.append(Shape("text", "level", ((mid[0] + px - 0.025, mid[1] + py - 0.03),),
-                             text="abcdefghij"[level], size=0.09, halo=0.03))
-    for i, name in enumerate(names):
-        if name != str(i + 1):
-            x, y = at[i]
-            out.append(Shape("text", "label", ((1.18 * x - (0.062 * len(name) if x < -0.1 else
-                                                             0.031 * len(name) if x < 0.1 else 0),
-                                                1.18 * y - 0.03 + (0.06 if y > 0.9 else 0)),),
-                             text=name, size=0.1, halo=0.03))
+            out.append(Shape("text", "level", ((mid[0] + 0.06, mid[1] - 0.05),),
+                             text="abcdefghij"[levels[k]], size=0.2, halo=0.05))
+    for a, b, c in gears:
+        p, q = (at[a], at[b]) if at[a][0] <= at[b][0] else (at[b], at[a])
+        curve = _arc(p, q, -0.35 if abs(p[1] - q[1]) < 1e-9 else -0.2)
+        out.append(Shape("polyline", "gear", tuple(curve), stroke=COLOURS[2], width=0.08,
+                         cap="round", join="round"))
+        x, y = curve[len(curve) // 2]
+        out.append(Shape("text", "carrier", ((x - 0.055 * len(str(c + 1)), y - 0.07),),
+                         text=str(c + 1), size=0.22, halo=0.07))
+    for i, (x, y) in enumerate(at):
+        out.append(Shape("circle", "vertex", ((x, y),), radius=0.16, fill="white",
+                         stroke="#222222", width=0.025))
+        out.append(Shape("text", "vertex-label", ((x - 0.062 * len(str(i + 1)), y - 0.075),),
+                         text=str(i + 1), size=0.22))
+        if names[i] != str(i + 1):
+            out.append(Shape("text", "label", ((x + 0.2, y + 0.12),), text=names[i],
+                             size=0.2, halo=0.05))
     return out
 
 
@@ -268,7 +293,7 @@ def train_graph_svg(names: Sequence[str], turning: Sequence[tuple[int, int]],
                     width: int = 320) -> str:
     """The train's graph (:func:`train_graph_shapes`) as a standalone SVG."""
     shapes = train_graph_shapes(names, turning, gears)
-    view = _view(shapes, 0.08)
+    view = _view(shapes, 0.15)
     return svg_document(view, svg_elements(view, shapes), width=width, title=title)
 
 
