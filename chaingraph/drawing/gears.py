@@ -15,6 +15,7 @@ from __future__ import annotations
 
 import math
 from collections.abc import Sequence
+from dataclasses import replace
 
 import numpy as np
 
@@ -205,9 +206,29 @@ def _view(shapes: Sequence[Shape], pad: float) -> View:
     return View((min(xs), min(ys)), (max(xs), max(ys)), pad)
 
 
-def train_svg(chain: Chain, *, fixed: str | None = None, width: int = 640) -> str:
-    """The train's schematic (:func:`train_shapes`) as a standalone SVG."""
+def _moved(shape: Shape, scale: float, dx: float, dy: float) -> Shape:
+    """A shape scaled about the origin, then moved by (dx, dy)."""
+    def k(v: float | None) -> float | None:
+        return None if v is None else v * scale
+    return replace(shape, points=tuple((x * scale + dx, y * scale + dy) for x, y in shape.points),
+                   width=k(shape.width), radius=k(shape.radius), size=k(shape.size),
+                   halo=k(shape.halo), dash=tuple(d * scale for d in shape.dash))
+
+
+def train_svg(chain: Chain, *, fixed: str | None = None, graph: bool = True,
+              width: int = 900) -> str:
+    """The train's schematic (:func:`train_shapes`) as a standalone SVG, with its graph
+    (:func:`train_graph_shapes`, the links by name) on the right when ``graph``."""
     shapes = train_shapes(chain, fixed=fixed)
+    if graph:
+        box = _view(shapes, 0.0)
+        links, turning, gears = chain_graph(chain)
+        drawn = train_graph_shapes(links, turning, gears)
+        other = _view(drawn, 0.0)
+        scale = 0.8 * box.size[1] / max(other.size[1], 2.0)
+        dx = box.hi[0] + 0.12 * box.size[0] - other.lo[0] * scale
+        dy = 0.5 * (box.lo[1] + box.hi[1]) - 0.5 * (other.lo[1] + other.hi[1]) * scale
+        shapes = shapes + [_moved(s, scale, dx, dy) for s in drawn]
     view = _view(shapes, 0.0)
     view = View(view.lo, view.hi, 0.05 * max(view.size))
     title = f"{chain.name}: gear train" + (f", {fixed} fixed" if fixed else "")
@@ -254,8 +275,9 @@ def _arc(p: Point, q: Point, bend: float, steps: int = 16) -> list[Point]:
 def train_graph_shapes(names: Sequence[str], turning: Sequence[tuple[int, int]],
                        gears: Sequence[tuple[int, int, int]]) -> list[Shape]:
     """The train's graph (module text), the turning pairs' tree drawn down from its
-    busiest link (:func:`tree_layout`), the gear pairs as arcs: ``names`` the
-    vertices' labels, ``turning`` and ``gears`` (``(a, b, carrier)``) by index."""
+    busiest link (:func:`tree_layout`), the gear pairs as arcs: ``names`` the links
+    (listed beside the graph by number unless they are the numbers), ``turning`` and
+    ``gears`` (``(a, b, carrier)``) by index into them."""
     n = len(names)
     at = tree_layout(n, turning)
     try:
@@ -282,9 +304,13 @@ def train_graph_shapes(names: Sequence[str], turning: Sequence[tuple[int, int]],
                          stroke="#222222", width=0.025))
         out.append(Shape("text", "vertex-label", ((x - 0.062 * len(str(i + 1)), y - 0.075),),
                          text=str(i + 1), size=0.22))
-        if names[i] != str(i + 1):
-            out.append(Shape("text", "label", ((x + 0.2, y + 0.12),), text=names[i],
-                             size=0.2, halo=0.05))
+    if any(name != str(i + 1) for i, name in enumerate(names)):      # a key, not labels
+        right = max(x for x, _ in at) + 0.6
+        top = max(y for _, y in at) + 0.05
+        step = max(0.3, (top - min(y for _, y in at) + 0.3) / n)
+        for i, name in enumerate(names):
+            out.append(Shape("text", "label", ((right, top - step * i - 0.07),),
+                             text=f"{i + 1} {name}", size=0.2))
     return out
 
 
