@@ -20,6 +20,7 @@ from dataclasses import replace
 import numpy as np
 
 from chaingraph.drawing.scene import COLOURS, Shape, View, label_box, svg_document, svg_elements
+from chaingraph.errors import MechanismError
 from chaingraph.model.chain import Chain
 from chaingraph.structure.atlas.gears import train_levels
 
@@ -106,6 +107,10 @@ def train_shapes(chain: Chain, *, fixed: str | None = None) -> list[Shape]:
     ``fixed`` the link drawn as the frame (default: the mechanism's, else none)."""
     if fixed is None and chain.mechanism is not None:
         fixed = chain.mechanism.fixed
+    if not any(j.kind == "R" and j.at is not None for j in chain.joints):
+        raise MechanismError("the train's axes are not placed (no turning pair has 'at'): "
+                             "a drawing needs where each axis is", mechanism=chain.name,
+                             parameter="at")
     circles = gear_circles(chain)
     pivots = [j.at for j in chain.joints if j.kind == "R" and j.at is not None]
     xs = [p[0] for p in pivots] + [c[0] - r for _, _, c, r, _ in circles] + \

@@ -87,3 +87,13 @@ def test_gears_draw_needs_an_svg(tmp_path):
     code, out, err = run_cli("gears", EXAMPLES / "simple-gear-train.toml", "--fixed",
                              "frame", "--speed", "driver=100", "--draw", tmp_path / "x.png")
     assert code == 2 and out == "" and err.count("\n") == 1 and not (tmp_path / "x.png").exists()
+
+
+def test_gears_draw_refuses_a_train_whose_axes_are_not_placed(tmp_path):
+    text = (EXAMPLES / "simple-gear-train.toml").read_text()
+    text = "\n".join(line for line in text.splitlines() if not line.startswith("at = "))
+    (tmp_path / "t.toml").write_text(text)
+    code, out, err = run_cli("gears", tmp_path / "t.toml", "--fixed", "frame", "--speed",
+                             "driver=100", "--draw", tmp_path / "t.svg")
+    assert code == 2 and out == "" and err.count("\n") == 1
+    assert "axes are not placed" in err and not (tmp_path / "t.svg").exists()
