@@ -186,17 +186,20 @@ def _sides(gear: Gear, index: dict[frozenset[int], int],
 def _level_blocks(edges: int, index: dict[frozenset[int], int],
                   paths: dict[tuple[int, int], list[int]], gears: Sequence[Gear],
                   ) -> DisjointSets | None:
+    """The turning pairs joined into axes as the gear pairs' circuits ask, or None when
+    some circuit's two sides would be on one axis (or a side is empty)."""
+    return _axes(edges, [_sides(g, index, paths) for g in gears])
+
+
+def _axes(edges: int, sides: Sequence[tuple[list[int], list[int]]]) -> DisjointSets | None:
     blocks = DisjointSets(edges)
-    apart = []
-    for g in gears:
-        left, right = _sides(g, index, paths)
+    for left, right in sides:
         if not left or not right:
             return None
         for side in (left, right):
             for e in side[1:]:
                 blocks.join(side[0], e)
-        apart.append((left[0], right[0]))
-    if any(blocks.find(x) == blocks.find(y) for x, y in apart):
+    if any(blocks.find(left[0]) == blocks.find(right[0]) for left, right in sides):
         return None
     return blocks
 
@@ -236,14 +239,18 @@ class _Equations:
         return out
 
     def bound(self) -> bool:
-        """Whether two links are bound to turn together (a rigid sub-train)."""
-        n = self.links
-        for x in range(n):
-            for y in range(x + 1, n):
-                v = [0] * n
-                v[x], v[y] = 1, _PRIME - 1
-                if not any(self.reduce(v)):
-                    return True
+        """Whether two links are bound to turn together (a rigid sub-train): the rows
+        are reduced, so each link's speed is a form in the free links' speeds (its own,
+        or minus its row's entries), and two links are bound when their forms agree."""
+        pivots = dict(self.rows)
+        free = [x for x in range(self.links) if x not in pivots]
+        seen = set()
+        for x in range(self.links):
+            form = (tuple(-pivots[x][f] % _PRIME for f in free) if x in pivots
+                    else tuple(int(f == x) for f in free))
+            if form in seen:
+                return True
+            seen.add(form)
         return False
 
 
@@ -257,9 +264,11 @@ def _trains_on(tree: nx.Graph, links: int, gears: int, rng: random.Random,
     candidates = [(a, b, c) for (a, b), path in sorted(paths.items()) if len(path) > 2
                   for c in path[1:-1]]
     ratios = {(a, b): rng.randrange(2, _PRIME - 1) for a, b, _ in candidates}
+    sides = [_sides(g, index, paths) for g in candidates]
 
     def grow(start: int, chosen: list[Gear], equations: _Equations,
-             pairs: set[tuple[int, int]]) -> Iterator[tuple[Gear, ...]]:
+             pairs: set[tuple[int, int]], circuits: list[tuple[list[int], list[int]]],
+             ) -> Iterator[tuple[Gear, ...]]:
         if len(chosen) == gears:
             if {x for g in chosen for x in g} == set(range(links)):
                 yield tuple(chosen)
@@ -270,15 +279,15 @@ def _trains_on(tree: nx.Graph, links: int, gears: int, rng: random.Random,
             g = candidates[i]
             if g[:2] in pairs:
                 continue
-            trial = chosen + [g]
-            if _level_blocks(len(turning), index, paths, trial) is None:
+            if _axes(len(turning), circuits + [sides[i]]) is None:
                 continue
             more = equations.with_gear(g)
             if more is None or more.bound():
                 continue
-            yield from grow(i + 1, trial, more, pairs | {g[:2]})
+            yield from grow(i + 1, chosen + [g], more, pairs | {g[:2]},
+                            circuits + [sides[i]])
 
-    yield from grow(0, [], _Equations(links, ratios), set())
+    yield from grow(0, [], _Equations(links, ratios), set(), [])
 
 
 def _coloured(links: int, turning: Sequence[tuple[int, int]], gears: Sequence[Gear],
