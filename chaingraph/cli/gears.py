@@ -19,6 +19,7 @@ from chaingraph.drawing.gears import train_graph_svg, train_svg
 from chaingraph.errors import ChainGraphError, MechanismError
 from chaingraph.files import load
 from chaingraph.kinematics.gears import TrainSpeeds, train_speeds
+from chaingraph.naming.gear_trains import gear_train_names
 from chaingraph.structure.atlas.gears import GearAtlas, gear_atlas, gear_atlas_dict
 
 __all__ = ["gears_command", "cmd_gears", "speed_argument", "cmd_gear_atlas"]
@@ -124,8 +125,8 @@ def cmd_gears(args: argparse.Namespace) -> int:
     return 0
 
 
-def _gear_index(atlas: GearAtlas, no_fractionated: bool) -> str:
-    """The HTML page of ``atlas --gears --out``: each train's graph and pairs."""
+def _gear_index(atlas: GearAtlas, no_fractionated: bool, named: dict[int, list[str]]) -> str:
+    """The HTML page of ``atlas --gears --out``: each train's graph, pairs and names."""
     cells = []
     shown = [e for e in atlas if not (no_fractionated and e.fractionated)]
     for i, e in enumerate(shown, start=1):
@@ -134,6 +135,7 @@ def _gear_index(atlas: GearAtlas, no_fractionated: bool) -> str:
         svg = svg.split("\n", 1)[1]                      # inline: no XML declaration
         cells.append(f'<figure id="train-{i}">{svg}<figcaption>{i}: gears '
                      f'{html.escape(e.key)}{" (fractionated)" if e.fractionated else ""}'
+                     f'{"".join("<br>" + html.escape(x) for x in named[e.id])}'
                      f"</figcaption></figure>")
     title = (f"{len(shown)} epicyclic gear trains of {atlas.links} links and "
              f"{freedom(atlas.dof)}")
@@ -158,19 +160,22 @@ def cmd_gear_atlas(args: argparse.Namespace) -> int:
     atlas = gear_atlas(args.links, args.dof)
     elapsed = time.perf_counter() - start
     record = gear_atlas_dict(atlas, no_fractionated=args.no_fractionated)
+    named = dict(zip((e.id for e in atlas), gear_train_names(atlas)))
+    shown = [e for e in atlas if not (args.no_fractionated and e.fractionated)]
+    for train, e in zip(record["trains"], shown):
+        train["names"] = named[e.id]
     if args.out:
         out = Path(args.out)
         with Writing(out):
             withdraw(out)
             write_atomic(out / "atlas.json",
                          json.dumps(record, indent=2, ensure_ascii=False) + "\n")
-            write_atomic(out / "index.html", _gear_index(atlas, args.no_fractionated))
+            write_atomic(out / "index.html", _gear_index(atlas, args.no_fractionated, named))
     if args.json or args.summary:
         if args.summary:
             record.pop("trains")
         print_json(record)
         return 0
-    shown = [e for e in atlas if not (args.no_fractionated and e.fractionated)]
     which = "non-fractionated " if args.no_fractionated else ""
     print(f"{len(shown)} {which}epicyclic gear trains of {args.links} links and "
           f"{freedom(args.dof)} ({atlas.count_non_fractionated} non-fractionated), "

@@ -22,10 +22,10 @@ import numpy as np
 from chaingraph.drawing.scene import COLOURS, Shape, View, label_box, svg_document, svg_elements
 from chaingraph.errors import MechanismError
 from chaingraph.model.chain import Chain
-from chaingraph.structure.atlas.gears import train_levels
+from chaingraph.structure.atlas.gears import chain_graph, train_levels
 
 __all__ = ["train_shapes", "train_svg", "train_graph_shapes", "train_graph_svg",
-           "gear_circles", "label_boxes", "chain_graph", "tree_layout"]
+           "gear_circles", "label_boxes", "tree_layout"]
 
 Point = tuple[float, float]
 
@@ -326,16 +326,3 @@ def train_graph_svg(names: Sequence[str], turning: Sequence[tuple[int, int]],
     shapes = train_graph_shapes(names, turning, gears)
     view = _view(shapes, 0.15)
     return svg_document(view, svg_elements(view, shapes), width=width, title=title)
-
-
-def chain_graph(chain: Chain) -> tuple[list[str], list[tuple[int, int]],
-                                       list[tuple[int, int, int]]]:
-    """A chain's train as the graph's indices: (links, turning pairs, gear pairs with
-    carriers), one turning pair per link a multiple joint holds beyond the first."""
-    links = list(chain.links)
-    at = {x: i for i, x in enumerate(links)}
-    turning = [(at[j.links[0]], at[x]) for j in chain.joints if j.kind == "R"
-               for x in j.links[1:]]
-    gears = [(at[g.links[0]], at[g.links[1]], at[g.carrier]) for g in chain.gears]
-    return links, turning, gears
-

@@ -33,7 +33,7 @@ def test_json_and_summary():
     assert data["count_non_fractionated"] == sum(not t["fractionated"] for t in data["trains"]) == 2
     for t in data["trains"]:
         assert set(t) == {"id", "turning", "gears", "levels", "inversions", "fractionated",
-                          "arrangements", "key"}
+                          "arrangements", "key", "names"}
         assert train_verdict(6, [tuple(p) for p in t["turning"]],
                              [tuple(g) for g in t["gears"]], dof=2) is None
     assert data["arrangements"] == sum(t["arrangements"] for t in data["trains"])

@@ -10,7 +10,6 @@ from pathlib import Path
 import pytest
 
 from chaingraph.drawing.gears import (
-    chain_graph,
     gear_circles,
     label_boxes,
     train_graph_shapes,
@@ -19,7 +18,7 @@ from chaingraph.drawing.gears import (
     tree_layout,
 )
 from chaingraph.files import load
-from chaingraph.structure.atlas.gears import gear_atlas
+from chaingraph.structure.atlas.gears import chain_graph, gear_atlas
 
 EXAMPLES = Path(__file__).resolve().parents[2] / "examples"
 TRAINS = sorted(EXAMPLES.glob("*-gear-train.toml"))

@@ -15,9 +15,9 @@ import networkx as nx
 import pytest
 
 from chaingraph.files import load
-from chaingraph.drawing.gears import chain_graph
 from chaingraph.errors import AtlasSizeError
 from chaingraph.structure.atlas.gears import (
+    chain_graph,
     fractionated,
     gear_atlas,
     train_key,

@@ -49,9 +49,11 @@ import networkx as nx
 
 from chaingraph._util.disjoint import DisjointSets
 from chaingraph.errors import AtlasSizeError
+from chaingraph.model.chain import Chain
 
 __all__ = ["GearEntry", "GearAtlas", "gear_atlas", "gear_trains", "train_key",
-           "train_levels", "train_verdict", "gear_atlas_dict", "MAX_GEAR_LINKS"]
+           "train_levels", "train_verdict", "gear_atlas_dict", "MAX_GEAR_LINKS",
+           "chain_graph", "fractionated", "check_gear_size", "rotation_key"]
 
 #: the largest train enumerated (8 links take minutes here; 9, hours)
 MAX_GEAR_LINKS = 8
@@ -445,3 +447,21 @@ def gear_atlas_dict(atlas: GearAtlas, *, chains: bool = True,
     if chains:
         out["trains"] = [dict(e.to_dict(), id=i) for i, e in enumerate(entries, start=1)]
     return out
+
+
+def chain_graph(chain: Chain) -> tuple[list[str], list[tuple[int, int]], list[Gear]]:
+    """A chain's gear train as the graph's indices: (links, turning pairs, gear pairs
+    with their carriers), a multiple joint giving a turning pair from its first link to
+    each other."""
+    links = list(chain.links)
+    at = {x: i for i, x in enumerate(links)}
+    turning = [(at[j.links[0]], at[x]) for j in chain.joints if j.kind == "R"
+               for x in j.links[1:]]
+    gears = [(at[g.links[0]], at[g.links[1]], at[g.carrier]) for g in chain.gears]
+    return links, turning, gears
+
+
+def rotation_key(links: int, gears: Sequence[Gear]) -> Hashable:
+    """The key of a train's rotation graph (its gear pairs with their carriers): equal
+    for two trains exactly when the atlas counts them as one."""
+    return train_key(links, (), gears)[0]
