@@ -4,7 +4,7 @@ Buchsbaum and Freudenstein's graph, once up to isomorphism.
 A gear train's graph has the links as vertices and two kinds of edge: the turning pairs
 (a link journalled on another) and the gear pairs, each labelled with its *transfer
 vertex*, the carrier that holds both gears' axes. The rules (Buchsbaum and Freudenstein
-1970; Tsai 1987, *Mechanism Design*, ch. 7):
+1970; Tsai 1987; Tsai, *Mechanism Design*, 2001, ch. 7):
 
 * the turning pairs form a spanning tree: J_t = N - 1 (a link turns on one other);
 * with every pair of turning one freedom and every gear pair taking one (the rotations
@@ -20,22 +20,27 @@ vertex*, the carrier that holds both gears' axes. The rules (Buchsbaum and Freud
   to turn together (a rigid sub-train, one link in effect), and every link meshes in a
   gear pair or carries one (a link in no equation turns freely, a freedom of its own).
 
-A train is *fractionated* when a link separates its graph (two trains sharing a link);
-a train of one freedom never is. Two trains are the same when a renumbering of the links
-maps turning pairs to turning pairs and gear pairs to gear pairs with their carriers
-(the rotation graph's isomorphism, the edges' levels not told apart: the published
-"r-graphs"); the key is nauty's certificate of the graph with each edge subdivided by a
-node of its kind and a gear pair's node tied to its carrier through a node of a third
+A train is *fractionated* when one link splits its gear pairs' equations in two (two
+trains joined at that link: Tsai and Lin's count leaves them out); a train of one
+freedom never is. Two trains are the same when a renumbering of the links maps their
+gear pairs, with their carriers, onto each other: the *rotation graph* of the literature
+(the "r-graphs" of Yang and Ding), which fixes every ratio of speeds. The trees of
+turning pairs that carry one rotation graph (which link is journalled on which: coaxial
+links allow several) are its *arrangements*, counted up to isomorphism of the whole
+graph. The keys are nauty's certificates of the graphs with each edge subdivided by a
+node of its kind, a gear pair's node tied to its carrier through a node of a third
 kind.
 
 Method: for each tree on N vertices (up to isomorphism), the gear pairs are chosen one
 at a time among the (a, b, c) the tree allows, in increasing order, each kept only
 while the levels stay assignable (union-find: equal along each side, different across
 the carrier), the equations independent and no two links bound together (exact
-elimination modulo a large prime with random ratios: rank and rigidity are then the
-generic ones but for a chance of about 1e-17); the complete sets are keyed and kept
+elimination modulo the prime 2^61 - 1 with random ratios: rank and rigidity are then
+the generic ones but for a chance of the links' number over 2^61 at each test, by
+Schwartz and Zippel); the complete sets are keyed by their rotation graph and kept
 once. ``tests/structure/test_gear_atlas.py`` checks it against a brute force over every
-labelled graph, isomorphism by every permutation of the links.
+labelled graph to five links (isomorphism by every permutation of the links) and the
+published counts.
 """
 
 from __future__ import annotations
