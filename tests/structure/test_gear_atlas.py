@@ -164,8 +164,8 @@ def test_the_atlas_is_the_brute_force(n, dof):
 
 def test_published_counts_small():
     # one freedom: 1, 2, 6 (Buchsbaum and Freudenstein 1970; Tsai 1987), 27 at six links
-    # (Yang and Ding 2019: Tsai's 26 misses one); two freedoms, non-fractionated: none up
-    # to five links, 2 of six (Tsai and Lin 1989)
+    # (Yang and Ding 2019, where earlier atlases give 26); two freedoms, non-fractionated:
+    # none up to five links, 2 of six (Tsai and Lin 1989)
     assert [len(gear_atlas(n, 1)) for n in (3, 4, 5, 6)] == [1, 2, 6, 27]
     assert [gear_atlas(n, 2).count_non_fractionated for n in (4, 5, 6)] == [0, 0, 2]
 
