@@ -17,6 +17,7 @@ from chaingraph.cli.outputs import (
     svg_file,
     write_text,
 )
+from chaingraph.cli.gears import cmd_gear_atlas
 from chaingraph.cli.text import (
     classification_text,
     error_text,
@@ -417,7 +418,8 @@ def workers_asked(value: int, *, flag: str = "--workers") -> int:
     return min(value, cpus)
 
 def cmd_atlas(args: argparse.Namespace) -> int:
-
+    if args.gears:
+        return cmd_gear_atlas(args)
     joints = joints_for(args.links, args.dof)   # a size with no chain: exit 2 with the reason
     wanted = prismatic_counts(args.links, args.dof, joints, args.prismatic, args.oriented)
     if wanted is not None or args.multiple:

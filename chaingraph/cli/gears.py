@@ -3,16 +3,32 @@
 from __future__ import annotations
 
 import argparse
+import html
+import json
 import math
+import time
 from collections.abc import Callable
 from fractions import Fraction
+from pathlib import Path
 
+from chaingraph._util import freedom
+from chaingraph._util.atomic import withdraw, write_atomic
+from chaingraph.cli.outputs import Writing, output_folder, svg_file
 from chaingraph.cli.text import print_json, table
-from chaingraph.errors import MechanismError
+from chaingraph.drawing.gears import train_graph_svg, train_svg
+from chaingraph.errors import ChainGraphError, MechanismError
 from chaingraph.files import load
 from chaingraph.kinematics.gears import TrainSpeeds, train_speeds
+from chaingraph.naming.gear_trains import gear_train_names
+from chaingraph.structure.atlas.gears import GearAtlas, gear_atlas, gear_atlas_dict
 
-__all__ = ["gears_command", "cmd_gears", "speed_argument"]
+__all__ = ["gears_command", "cmd_gears", "speed_argument", "cmd_gear_atlas"]
+
+#: the flags of ``atlas`` that mean nothing for gear trains
+_NOT_FOR_GEARS = (("prismatic", "--prismatic"), ("oriented", "--oriented"),
+                  ("multiple", "--multiple"), ("scheduler", "--scheduler"),
+                  ("resume", "--resume"), ("illustrate", "--illustrate"),
+                  ("chain_files", "--chain-files"))
 
 
 def speed_argument(text: str) -> tuple[str, float]:
@@ -45,6 +61,9 @@ def gears_command(sub: argparse._SubParsersAction,
                                             "degree of freedom (default: the file's "
                                             "driver at 1 rpm)")
     p.add_argument("--json", action="store_true", help="print JSON")
+    p.add_argument("--draw", type=path_argument, metavar="PATH.svg",
+                   help="draw the train (pitch circles about the axes, carriers as arms, "
+                        "the fixed link hatched) and its graph, as SVG")
     p.set_defaults(run=cmd_gears)
 
 
@@ -84,6 +103,8 @@ def gears_text(result: TrainSpeeds) -> str:
 
 
 def cmd_gears(args: argparse.Namespace) -> int:
+    if args.draw:
+        svg_file(args.draw, what="gear train")
     chain = load(args.file)
     speeds: dict[str, float] = {}
     for link, rpm in args.speeds or ():
@@ -92,6 +113,9 @@ def cmd_gears(args: argparse.Namespace) -> int:
                                  parameter="speeds")
         speeds[link] = rpm
     result = train_speeds(chain, fixed=args.fixed, speeds=speeds)
+    if args.draw:
+        with Writing(args.draw):
+            write_atomic(args.draw, train_svg(chain, fixed=result.fixed))
     if args.json:
         print_json({"name": chain.name, "fixed": result.fixed,
                     "speeds": {x: float(w) for x, w in result.speeds.items()},
@@ -99,3 +123,71 @@ def cmd_gears(args: argparse.Namespace) -> int:
         return 0
     print(gears_text(result))
     return 0
+
+
+def _gear_index(atlas: GearAtlas, no_fractionated: bool, named: dict[int, list[str]]) -> str:
+    """The HTML page of ``atlas --gears --out``: each train's graph, pairs and names."""
+    cells = []
+    shown = [e for e in atlas if not (no_fractionated and e.fractionated)]
+    for i, e in enumerate(shown, start=1):
+        names = [str(x + 1) for x in range(atlas.links)]
+        svg = train_graph_svg(names, e.turning, e.gears, title=f"train {i}", width=220)
+        svg = svg.split("\n", 1)[1]                      # inline: no XML declaration
+        cells.append(f'<figure id="train-{i}">{svg}<figcaption>{i}: gears '
+                     f'{html.escape(e.key)}{" (fractionated)" if e.fractionated else ""}'
+                     f'{"".join("<br>" + html.escape(x) for x in named[e.id])}'
+                     f"</figcaption></figure>")
+    title = (f"{len(shown)} epicyclic gear trains of {atlas.links} links and "
+             f"{freedom(atlas.dof)}")
+    return ("<!DOCTYPE html>\n<html><head><meta charset=\"utf-8\"><title>"
+            f"{html.escape(title)}</title><style>figure{{display:inline-block;margin:6px;"
+            "width:230px;font:12px sans-serif;vertical-align:top}</style></head><body>"
+            f"<h1>{html.escape(title)}</h1><p>Vertices are links; thin edges turning "
+            "pairs (letters: their axes), thick arcs gear pairs, each with the number "
+            "of its carrier (the transfer vertex). Gears a-b/c: a and b mesh, "
+            "c carries them.</p>" + "".join(cells) + "</body></html>\n")
+
+
+def cmd_gear_atlas(args: argparse.Namespace) -> int:
+    """``chaingraph atlas --gears``: the epicyclic gear trains of N links."""
+    for name, flag in _NOT_FOR_GEARS:
+        if getattr(args, name, None):
+            raise ChainGraphError(f"--gears enumerates gear trains (turning and gear "
+                                  f"pairs): leave out {flag}")
+    if args.out:
+        output_folder(args.out, what="atlas")
+    start = time.perf_counter()
+    atlas = gear_atlas(args.links, args.dof)
+    elapsed = time.perf_counter() - start
+    record = gear_atlas_dict(atlas, no_fractionated=args.no_fractionated)
+    named = dict(zip((e.id for e in atlas), gear_train_names(atlas)))
+    shown = [e for e in atlas if not (args.no_fractionated and e.fractionated)]
+    for train, e in zip(record["trains"], shown):
+        train["names"] = named[e.id]
+    if args.out:
+        out = Path(args.out)
+        with Writing(out):
+            withdraw(out)
+            write_atomic(out / "atlas.json",
+                         json.dumps(record, indent=2, ensure_ascii=False) + "\n")
+            write_atomic(out / "index.html", _gear_index(atlas, args.no_fractionated, named))
+    if args.json or args.summary:
+        if args.summary:
+            record.pop("trains")
+        print_json(record)
+        return 0
+    which = "non-fractionated " if args.no_fractionated else ""
+    print(f"{len(shown)} {which}epicyclic gear trains of {args.links} links and "
+          f"{freedom(args.dof)} ({atlas.count_non_fractionated} non-fractionated), "
+          f"{record['arrangements']} arrangements of turning pairs, "
+          f"{record['distinct_inversions']} distinct inversions ({elapsed:.2f} s)")
+    if len(shown) <= 60:
+        rows = [[i, e.key, " ".join(f"{a + 1}-{b + 1}" for a, b in e.turning),
+                 e.arrangements, e.inversions, "yes" if e.fractionated else "no"]
+                for i, e in enumerate(shown, start=1)]
+        print(table(rows, ["id", "gear pairs (a-b/carrier)", "turning pairs (simplest)",
+                           "arrangements", "inversions", "fractionated"]))
+    if args.out:
+        print(f"written: {Path(args.out) / 'atlas.json'}, {Path(args.out) / 'index.html'}")
+    return 0
+

@@ -322,6 +322,10 @@ def _atlas_command(sub) -> None:
     p.add_argument("--multiple", action="store_true",
                    help="turning pairs may join three links or more (a joint of d links "
                         "counts as d - 1); with --prismatic, only simple joints slide")
+    p.add_argument("--gears", action="store_true",
+                   help="the epicyclic gear trains of N links and F degrees of freedom "
+                        "(graphs of turning and gear pairs, each gear pair with its "
+                        "carrier) instead of the chains of turning pairs")
     p.add_argument("--illustrate", action="store_true",
                    help="with --out and --prismatic or --multiple: draw and animate every "
                         "chain whatever the size (by default drawn up to 8 links, and "

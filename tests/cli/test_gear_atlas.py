@@ -1,0 +1,99 @@
+"""``chaingraph atlas --gears`` and ``chaingraph gears --draw`` (issue 39): the counts, the
+JSON, the written folder and the picture, and bad input as one line with exit status 2."""
+
+import json
+from pathlib import Path
+
+import pytest
+
+from chaingraph.structure.atlas.gears import gear_atlas, train_verdict
+
+from ..conftest import run_cli
+
+EXAMPLES = Path(__file__).resolve().parents[2] / "examples"
+
+
+def test_text_lists_the_trains():
+    code, out, err = run_cli("atlas", "--gears", "--links", "5")
+    assert code == 0, err
+    first, *rest = out.splitlines()
+    assert first.startswith("6 epicyclic gear trains of 5 links and 1 degree of freedom "
+                            "(6 non-fractionated), 20 arrangements of turning pairs")
+    rows = [line.split() for line in rest[2:]]
+    assert [r[0] for r in rows] == [str(i) for i in range(1, 7)]
+    assert [" ".join(r[1:4]) for r in rows] == [e.key for e in gear_atlas(5, 1)]
+
+
+def test_json_and_summary():
+    code, out, err = run_cli("atlas", "--gears", "--links", "6", "--dof", "2", "--json")
+    assert code == 0, err
+    data = json.loads(out)
+    assert (data["links"], data["dof"], data["gear_pairs"]) == (6, 2, 3)
+    assert data["count"] == len(data["trains"]) == 12
+    assert data["count_non_fractionated"] == sum(not t["fractionated"] for t in data["trains"]) == 2
+    for t in data["trains"]:
+        assert set(t) == {"id", "turning", "gears", "levels", "inversions", "fractionated",
+                          "arrangements", "key", "names"}
+        assert train_verdict(6, [tuple(p) for p in t["turning"]],
+                             [tuple(g) for g in t["gears"]], dof=2) is None
+    assert data["arrangements"] == sum(t["arrangements"] for t in data["trains"])
+    code, out, _ = run_cli("atlas", "--gears", "--links", "6", "--dof", "2", "--summary")
+    summary = json.loads(out)
+    assert "trains" not in summary and summary["count"] == 12
+    code, out, _ = run_cli("atlas", "--gears", "--links", "6", "--dof", "2", "--summary",
+                           "--no-fractionated")
+    assert json.loads(out)["count"] == 2
+
+
+def test_out_writes_the_json_and_an_index(tmp_path):
+    code, out, err = run_cli("atlas", "--gears", "--links", "5", "--out", tmp_path / "g")
+    assert code == 0, err
+    data = json.loads((tmp_path / "g" / "atlas.json").read_text())
+    assert data["count"] == 6 and len(data["trains"]) == 6
+    page = (tmp_path / "g" / "index.html").read_text()
+    assert page.count("<svg") == 6 and page.count('class="gear"') == 6 * 3
+    assert "written:" in out
+
+
+@pytest.mark.parametrize("flag", [["--prismatic", "1"], ["--multiple"], ["--oriented"],
+                                  ["--scheduler", "local"], ["--resume"]])
+def test_other_atlas_flags_are_refused(flag):
+    code, out, err = run_cli("atlas", "--gears", "--links", "5", *flag)
+    assert code == 2 and out == ""
+    assert err.count("\n") == 1 and "leave out " + flag[0] in err
+
+
+@pytest.mark.parametrize("size, words", [(["--links", "2"], "--links N"),
+                                         (["--links", "4", "--dof", "0"], "--dof F"),
+                                         (["--links", "12"], "--links N")])
+def test_sizes_without_trains_are_one_line(size, words):
+    code, out, err = run_cli("atlas", "--gears", *size)
+    assert code == 2 and out == "" and err.count("\n") == 1 and words in err
+
+
+def test_gears_draw_writes_the_schematic(tmp_path):
+    path = tmp_path / "train.svg"
+    code, out, err = run_cli("gears", EXAMPLES / "epicyclic-gear-train.toml", "--fixed",
+                             "frame", "--speed", "annulus=0", "--speed", "sun=1000",
+                             "--draw", path)
+    assert code == 0, err
+    assert "arm" in out                        # the speeds are printed as without --draw
+    svg = path.read_text()
+    assert svg.startswith("<?xml") and svg.count('class="gear"') == 3 + 2  # + graph arcs
+    assert svg.count('class="annulus"') == 1 and 'class="arm"' in svg
+
+
+def test_gears_draw_needs_an_svg(tmp_path):
+    code, out, err = run_cli("gears", EXAMPLES / "simple-gear-train.toml", "--fixed",
+                             "frame", "--speed", "driver=100", "--draw", tmp_path / "x.png")
+    assert code == 2 and out == "" and err.count("\n") == 1 and not (tmp_path / "x.png").exists()
+
+
+def test_gears_draw_refuses_a_train_whose_axes_are_not_placed(tmp_path):
+    text = (EXAMPLES / "simple-gear-train.toml").read_text()
+    text = "\n".join(line for line in text.splitlines() if not line.startswith("at = "))
+    (tmp_path / "t.toml").write_text(text)
+    code, out, err = run_cli("gears", tmp_path / "t.toml", "--fixed", "frame", "--speed",
+                             "driver=100", "--draw", tmp_path / "t.svg")
+    assert code == 2 and out == "" and err.count("\n") == 1
+    assert "axes are not placed" in err and not (tmp_path / "t.svg").exists()
