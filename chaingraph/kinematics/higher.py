@@ -201,7 +201,7 @@ def derived_inputs(chain: Chain, inputs: Sequence[tuple[str, str, str, str]], na
                                  "the pair's motion cannot be derived from the inputs",
                                  mechanism=name)
         pairs = left
-    ids = {h.id for h in (*chain.gears, *chain.cams)}
+    ids = {g.id for g in chain.gears} | {c.id for c in chain.cams}
     stray = [j.id for j in chain.joints if j.kind in HIGHER_KINDS and j.id not in ids]
     if stray:
         raise MechanismError(f"the higher pair {stray[0]!r} has no [[cams]] or [[gears]] "

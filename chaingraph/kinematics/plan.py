@@ -494,8 +494,8 @@ def build_plan(chain: Chain, fixed: str | None = None, driver: str | None = None
     derived = derived_inputs(chain, [(i.joint, i.key, i.a, i.b) for i in items], name)
     constraints = tuple(_constraints(chain, fixed, items, origin, derived))
     # Kutzbach: a lower pair takes 2 freedoms, a higher pair (cam, gear) 1
-    mobility = 3 * (len(chain.links) - 1) - sum((3 - j.pair.planar_freedom) * (j.order - 1)
-                                                for j in chain.joints)
+    mobility = 3 * (len(chain.links) - 1) - sum((3 - (j.pair.planar_freedom or 1))
+                                                * (j.order - 1) for j in chain.joints)
     numeric = _numeric_mobility(chain, fixed, constraints, size, with_inputs=False,
                                 derived=derived)
     _check_inputs_hold(chain, fixed, items, constraints, size, mobility=mobility,
@@ -528,7 +528,7 @@ def _check_solvable(chain: Chain, fixed: str | None, inputs: Sequence[Input] | N
         if j is not None and j.kind not in ("R", "P"):
             raise MechanismError(f"the input {item.joint!r} is a {j.pair.name} ({j.kind}); "
                                  "an input must be an R or P joint", mechanism=name)
-    paired = {p.id for p in (*chain.cams, *chain.gears)}
+    paired = {c.id for c in chain.cams} | {g.id for g in chain.gears}
     for j in chain.joints:
         if j.kind not in ("R", "P") and not (j.kind in HIGHER_KINDS and j.id in paired):
             raise MechanismError(
