@@ -16,9 +16,10 @@ from typing import Any, Self
 
 import numpy as np
 
-from chaingraph.geometry import turn_by
+from chaingraph.geometry import rotate, turn_by, world
+from chaingraph.kinematics.higher import cam_contact, cam_frame
 from chaingraph.kinematics.plan import Plan
-from chaingraph.model.chain import Joint
+from chaingraph.model.chain import Chain, Joint
 
 __all__ = ["LinkStates", "LinkMotion", "PointMotion", "SlideMotion", "Trajectories",
            "reference_link", "slide_rates", "csv_columns", "link_of_states",
@@ -244,7 +245,9 @@ def point_of_states(plan: Plan, states: LinkStates, name: str) -> PointMotion:
     chain, n = plan.chain, states.tau.size
     try:
         joint = chain.joint(name)
-        link, at = reference_link(joint, plan.fixed), joint.at
+        if joint.kind == "cam":
+            return _contact_motion(plan, states, joint)
+        link, at = reference_link(joint, plan.fixed, chain=chain), joint.at
     except KeyError:
         point = chain.point(name)
         link, at = point.link, point.at
@@ -264,6 +267,23 @@ def point_of_states(plan: Plan, states: LinkStates, name: str) -> PointMotion:
     _point_motion(states.pose, states.velocity, states.acceleration, link, p, out=out,
                   origin=(ox, oy))
     return PointMotion(name, *out)
+
+
+def _contact_motion(plan, states, joint):
+    """A cam pair's contact point over the sweep, and the velocity and acceleration of
+    the follower's point there."""
+    chain, pose, n = plan.chain, states.pose, states.tau.size
+    cam = next(c for c in chain.cams if c.id == joint.id)
+    on = cam_frame(chain, cam).on
+    turn = np.broadcast_to(np.asarray(pose[cam.cam][2] - pose[on][2], dtype=float), (n,))
+    point, _, _ = cam_contact(chain, cam, turn)          # drawn, its frame link held
+    here = world(pose, on, plan.local((point[:, 0], point[:, 1])))
+    f = pose[cam.follower]
+    local = rotate((here[0] - f[0], here[1] - f[1]), -np.asarray(f[2], dtype=float))
+    out = [np.empty(n) for _ in range(6)]
+    _point_motion(pose, states.velocity, states.acceleration, cam.follower, local, out=out,
+                  origin=plan.origin)
+    return PointMotion(joint.id, *out)
 
 
 def slide_of_states(plan: Plan, states: LinkStates, joint: str) -> SlideMotion:
@@ -307,9 +327,18 @@ def _point_motion(pose, vel, acc, link, p, *, out=None, origin=None):
     return out
 
 
-def reference_link(joint: Joint, fixed: str) -> str:
+def reference_link(joint: Joint, fixed: str, *, chain: Chain | None = None) -> str:
     """The link whose motion a joint's CSV columns follow: a P joint's block, an R
-    joint's fixed link when it has it, else its first link."""
+    joint's fixed link when it has it, else its first link; with the ``chain``, a gear
+    pair's carrier (its pitch point stays on it) and a cam pair's follower (the point
+    of it at the contact)."""
+    if chain is not None and joint.kind in ("cam", "gear"):
+        pair = next((p for p in chain.gears if p.id == joint.id), None)
+        if pair is not None:
+            return pair.carrier
+        cam = next((c for c in chain.cams if c.id == joint.id), None)
+        if cam is not None:
+            return cam.follower
     if joint.kind == "P":
         return joint.links[1]                   # its block
     return fixed if fixed in joint.links else joint.links[0]
