@@ -16,8 +16,8 @@ from typing import Any, Self
 
 import numpy as np
 
-from chaingraph.geometry import rotate, turn_by, world
-from chaingraph.kinematics.higher import cam_contact, cam_frame
+from chaingraph.geometry import turn_by
+from chaingraph.kinematics.higher import cam_contact
 from chaingraph.kinematics.plan import Plan
 from chaingraph.model.chain import Chain, Joint
 
@@ -246,7 +246,7 @@ def point_of_states(plan: Plan, states: LinkStates, name: str) -> PointMotion:
     try:
         joint = chain.joint(name)
         if joint.kind == "cam":
-            return _contact_motion(plan, states, joint)
+            return _follower_point(plan, states, joint)
         link, at = reference_link(joint, plan.fixed, chain=chain), joint.at
     except KeyError:
         point = chain.point(name)
@@ -269,20 +269,15 @@ def point_of_states(plan: Plan, states: LinkStates, name: str) -> PointMotion:
     return PointMotion(name, *out)
 
 
-def _contact_motion(plan, states, joint):
-    """A cam pair's contact point over the sweep, and the velocity and acceleration of
-    the follower's point there."""
-    chain, pose, n = plan.chain, states.pose, states.tau.size
-    cam = next(c for c in chain.cams if c.id == joint.id)
-    on = cam_frame(chain, cam).on
-    turn = np.broadcast_to(np.asarray(pose[cam.cam][2] - pose[on][2], dtype=float), (n,))
-    point, _, _ = cam_contact(chain, cam, turn)          # drawn, its frame link held
-    here = world(pose, on, plan.local((point[:, 0], point[:, 1])))
-    f = pose[cam.follower]
-    local = rotate((here[0] - f[0], here[1] - f[1]), -np.asarray(f[2], dtype=float))
-    out = [np.empty(n) for _ in range(6)]
-    _point_motion(pose, states.velocity, states.acceleration, cam.follower, local, out=out,
-                  origin=plan.origin)
+def _follower_point(plan, states, joint):
+    """A cam pair's columns: its follower's reference point (the roller's centre, the
+    knife's tip, the flat face's foot on its line), a point of the follower, drawn
+    where the drawing's cam (at the start of its program) puts it."""
+    cam = next(c for c in plan.chain.cams if c.id == joint.id)
+    drawn = cam_contact(plan.chain, cam, np.zeros(1))[2][0]
+    out = [np.empty(states.tau.size) for _ in range(6)]
+    _point_motion(states.pose, states.velocity, states.acceleration, cam.follower,
+                  plan.local(drawn), out=out, origin=plan.origin)
     return PointMotion(joint.id, *out)
 
 
@@ -330,8 +325,8 @@ def _point_motion(pose, vel, acc, link, p, *, out=None, origin=None):
 def reference_link(joint: Joint, fixed: str, *, chain: Chain | None = None) -> str:
     """The link whose motion a joint's CSV columns follow: a P joint's block, an R
     joint's fixed link when it has it, else its first link; with the ``chain``, a gear
-    pair's carrier (its pitch point stays on it) and a cam pair's follower (the point
-    of it at the contact)."""
+    pair's carrier (its pitch point stays on it) and a cam pair's follower (its
+    reference point: the roller's centre, the knife's tip, the flat face's foot)."""
     if chain is not None and joint.kind in ("cam", "gear"):
         pair = next((p for p in chain.gears if p.id == joint.id), None)
         if pair is not None:

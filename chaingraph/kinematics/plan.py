@@ -466,7 +466,10 @@ def build_plan(chain: Chain, fixed: str | None = None, driver: str | None = None
     Raises
     ------
     MechanismError
-        For a higher pair or spatial joint, a joint without a position, a driver not
+        For a spatial joint, a higher pair without its [[cams]] or [[gears]] table or
+        that no input drives (a cam or gear pair moves its follower's or driven gear's
+        joint as an input derived from its driving joint's: :mod:`.higher`), a joint
+        without a position, a driver not
         pinned to the fixed link by an R joint, an input that is not an R or P joint
         of the chain, or as many inputs as there are not degrees of freedom (the
         mobility found is said).
@@ -533,7 +536,8 @@ def _check_solvable(chain: Chain, fixed: str | None, inputs: Sequence[Input] | N
         if j.kind not in ("R", "P") and not (j.kind in HIGHER_KINDS and j.id in paired):
             raise MechanismError(
                 f"a {j.pair.name} ({j.kind}) cannot be solved for motion: only R and P "
-                "joints can (classification and inversions take every kind)",
+                "joints can, and cams and gear pairs with their [[cams]] or [[gears]] "
+                "tables (classification and inversions take every kind)",
                 mechanism=name, where=f"joint {j.id!r}")
     unplaced = [j.id for j in chain.joints if j.at is None]
     if unplaced:
