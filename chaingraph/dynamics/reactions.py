@@ -424,8 +424,8 @@ def _leaving(chain, solution, values, unit, k=None):
         finite = f[np.isfinite(f)]
         scale = float(np.abs(finite).max()) if finite.size else 0.0
         pull = np.isfinite(f) & (f < -1e-9 * scale)
-        said = (f"the cam {cam.id!r}'s contact force would have to pull its follower "
-                f"{cam.follower!r} onto it")
+        said = (f"the contact force of cam {cam.id!r} would have to pull its follower "
+                f"{cam.follower!r} onto the cam")
         hold = ("the pair is unclosed, so the follower leaves the cam (a stronger spring "
                 "or load, a slower speed, or a closed cam would hold it)")
         if k is not None:

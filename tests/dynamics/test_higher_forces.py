@@ -83,7 +83,7 @@ def test_where_the_follower_would_leave_the_cam_is_noted():
     theta = f.motion.theta
     pulls = theta[n < 0]
     (note,) = [x for x in f.notes if "leaves the cam" in x]
-    assert note.startswith("the cam 'K''s contact force would have to pull its follower")
+    assert note.startswith("the contact force of cam 'K' would have to pull its follower")
     # the runs the note gives are the steps where the force is negative
     runs = [tuple(float(v) for v in run.split(" to "))
             for run in note.split(" at ")[1].split(" degrees")[0].split(", ")]
