@@ -266,11 +266,6 @@ class _Line:
     radial: Vec | None = None
 
 
-def _unit(v):
-    length = np.hypot(v[0], v[1])
-    return (v[0] / length, v[1] / length)
-
-
 def _higher_lines(chain, layout, state):
     """Each cam's contact point and common normal (from the cam to the follower), each
     gear pair's pitch point, common tangent and line of centres, as the links move."""
@@ -291,9 +286,12 @@ def _higher_lines(chain, layout, state):
                      and g.carrier in j.links) for link in g.links]
         a, b = (carrier.moved(layout.drawn(p)) for p in axes)
         pitch = carrier.moved(layout.drawn(chain.joint(g.id).at))
-        centres = _unit((b[0] - a[0], b[1] - a[1]))
-        out[g.id] = _Line(pitch, (-centres[1], centres[0]), g.links[1], g.links[0],
-                          _unit((pitch[0] - a[0], pitch[1] - a[1])))
+        # the common tangent, square to the line of centres; the radial direction from
+        # the driving gear's axis through the pitch point (away from it on the other)
+        centres = np.arctan2(b[1] - a[1], b[0] - a[0])
+        radial = np.arctan2(pitch[1] - a[1], pitch[0] - a[0])
+        out[g.id] = _Line(pitch, rotate((0.0, 1.0), centres), g.links[1], g.links[0],
+                          rotate((1.0, 0.0), radial))
     return out
 
 
