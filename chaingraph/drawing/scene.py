@@ -413,7 +413,9 @@ def _members(scene, link, at, ends, blocks, rollers=None):
     middles of the slots cut in it, and a cylinder's barrel where the body does not
     reach it."""
     chain = scene.chain
-    members = [at[j.id] for j in chain.joints_of(link) if j.kind not in ("P", *HIGHER_KINDS)]
+    drawn = {c.id for c in chain.cams} | {g.id for g in chain.gears}   # as parts
+    members = [at[j.id] for j in chain.joints_of(link)
+               if j.kind != "P" and not (j.kind in HIGHER_KINDS and j.id in drawn)]
     members += list((rollers or {}).get(link, ()))       # a follower reaches its roller
     members += [at[p.id] for p in chain.points if p.link == link]
     barrels = []
