@@ -142,6 +142,20 @@ def test_single_pose_follows_the_pairs_too():
                                                                abs=1e-9)
 
 
+def test_a_simple_gear_train_turns_by_the_product_of_its_teeth():
+    """The driver (20 teeth) turns the driven gear (50) through an idler (35): the
+    driven gear turns 20/50 of the driver's angle, the same way, the idler -20/35."""
+    chain = chaingraph.load("examples/simple-gear-train.toml")
+    m = chaingraph.solve(chain, fixed="frame", driver="driver", start=0.0, stop=360.0,
+                         steps=36)
+    turn = np.radians(m.theta - m.theta[0])
+    for link, ratio in (("idler", -20 / 35), ("driven", 20 / 50)):
+        angle = m.link(link).angle
+        np.testing.assert_allclose(angle - angle[0], ratio * turn, atol=1e-12)
+        np.testing.assert_allclose(m.link(link).omega, ratio * m.omega, rtol=1e-12)
+    assert m.plan.mobility == 1        # Kutzbach: 3 x 3 - 2 x 3 - 2 = 1
+
+
 def test_a_pair_no_input_drives_is_refused():
     chain = chaingraph.load(FIVE_BAR)
     with pytest.raises(MechanismError, match="gear pair 'G'") as e:
