@@ -29,13 +29,14 @@ import numpy as np
 from numpy.typing import ArrayLike
 
 from chaingraph.errors import MechanismError
+from chaingraph.geometry import rotate
 from chaingraph.kinematics.cams import analyse_cam, follower_motion
 from chaingraph.model.cams import Cam
 from chaingraph.model.chain import Chain, Joint
 from chaingraph.model.gears import GearPair
 
 __all__ = ["Derived", "derived_inputs", "CamFrame", "cam_frame", "HIGHER_KINDS",
-           "cam_contact", "gear_of_pair"]
+           "cam_contact"]
 
 #: the joint kinds a chain may have as higher pairs solved as derived inputs
 HIGHER_KINDS = ("cam", "gear")
@@ -275,6 +276,12 @@ def cam_frame(chain: Chain, cam: Cam) -> CamFrame:
     return CamFrame(o, right, up, f)
 
 
+def _turned(v: np.ndarray, angle: np.ndarray) -> np.ndarray:
+    """Vectors ``v`` (n x 2) turned by ``angle`` (n)."""
+    x, y = rotate(v.T, angle)
+    return np.stack([x, y], axis=1)
+
+
 def cam_contact(chain: Chain, cam: Cam, theta: ArrayLike
                 ) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
     """At the cam's turns ``theta`` (radians from the drawn pose), in the drawing with
@@ -284,20 +291,11 @@ def cam_contact(chain: Chain, cam: Cam, theta: ArrayLike
     frame = cam_frame(chain, cam)
     theta = np.atleast_1d(np.asarray(theta, dtype=float))
     r = analyse_cam(cam, theta)
-    w = np.stack([np.cos(theta) * r.pitch[:, 0] - np.sin(theta) * r.pitch[:, 1],
-                  np.sin(theta) * r.pitch[:, 0] + np.cos(theta) * r.pitch[:, 1]], axis=1)
-    c = np.stack([np.cos(theta) * r.profile[:, 0] - np.sin(theta) * r.profile[:, 1],
-                  np.sin(theta) * r.profile[:, 0] + np.cos(theta) * r.profile[:, 1]], axis=1)
+    w, c = _turned(r.pitch, theta), _turned(r.profile, theta)   # the cam's frame, turned
     if cam.moves == "translating":
         up = np.tile([0.0, 1.0], (theta.size, 1))
     else:                                   # square to the arm, the way it swings
         arm = w - np.asarray(cam.pivot, dtype=float)
         up = np.stack([-arm[:, 1], arm[:, 0]], axis=1) / np.hypot(arm[:, 0], arm[:, 1])[:, None]
-    cs, sn = np.cos(r.pressure), np.sin(r.pressure)   # the normal: up turned by it
-    normal = np.stack([cs * up[:, 0] - sn * up[:, 1], sn * up[:, 0] + cs * up[:, 1]], axis=1)
+    normal = _turned(up, r.pressure)                  # up turned by the pressure angle
     return frame.drawn(c), frame.vector(normal), frame.drawn(w)
-
-
-def gear_of_pair(chain: Chain, joint: str) -> GearPair | None:
-    """The gear pair whose id is ``joint``, or None."""
-    return next((g for g in chain.gears if g.id == joint), None)
