@@ -4,8 +4,11 @@ in kinetostatics, d'Alembert's principle), batched over the steps of a sweep.
 The unknowns are the joints' reactions (two components for a turning pair of two
 links; the forces on all but the last link for a multiple joint; the normal force and
 the couple for a sliding pair, with Coulomb friction along its guide in proportion to
-the normal force) and one effort per input (a couple between the input's two links for
-an R input, a force along the guide for a P input). Three equations per moving link,
+the normal force; one force for a higher pair: a cam's along the common normal at the
+contact, a gear pair's along the common tangent at the pitch point, whose radial part
+along the line of action, |tangential| tan(pressure angle), is then added as a known
+force) and one effort per input (a couple between the input's two links for an R
+input, a force along the guide for a P input). Three equations per moving link,
 the forces and the moment about the drawing's origin, in SI units: one linear solve per
 step, all steps at once. Friction's sign follows the normal force's sign, found by
 iterating the signs per step until they agree (every combination tried where they do
@@ -179,9 +182,9 @@ class _Layout:
 
 def _layout(chain, plan, n, metres):
     """The unknowns (two reaction components per pair of an R joint's links; a P joint's
-    normal force and couple; an effort per input) and the equations (three per moving
-    link); refuses a joint other than R or P, and inputs that do not hold the
-    mechanism."""
+    normal force and couple; a higher pair's force; an effort per input) and the
+    equations (three per moving link); refuses another joint (a rolling pair), and
+    inputs that do not hold the mechanism."""
     cols: list[tuple[str, Joint | InputJoint, int | None]] = []   # (kind, joint, extra)
     for j in chain.joints:
         if j.kind == "R":
