@@ -28,6 +28,7 @@ from dataclasses import dataclass
 import numpy as np
 from numpy.typing import ArrayLike
 
+from chaingraph._util.numbers import tidy
 from chaingraph.errors import MechanismError
 from chaingraph.geometry import rotate
 from chaingraph.kinematics.cams import analyse_cam, follower_motion
@@ -270,7 +271,8 @@ def cam_frame(chain: Chain, cam: Cam) -> CamFrame:
     offset = (jf.at[0] - o[0]) * right[0] + (jf.at[1] - o[1]) * right[1]
     if abs(offset - cam.offset) > 1e-6 * size:
         raise MechanismError(
-            f"the cam {cam.id!r}: the follower's line {jf.id!r} is drawn {offset:g} to the "
+            f"the cam {cam.id!r}: the follower's line {jf.id!r} is drawn "
+            f"{tidy(offset, size):g} to the "
             f"right of the cam's centre (looking along the follower); its 'offset' is "
             f"{cam.offset:g}", mechanism=name)
     return CamFrame(o, right, up, f)

@@ -16,6 +16,8 @@ from chaingraph.errors import MechanismError
 from chaingraph.kinematics.cams import follower_motion
 from chaingraph.kinematics.plan import build_plan
 
+from ..conftest import run_cli
+
 FIVE_BAR = "examples/geared-five-bar.toml"
 CAM_ROCKER = "examples/cam-rocker.toml"
 
@@ -167,3 +169,16 @@ def test_a_follower_drawn_off_its_line_is_refused():
     text = _text(CAM_ROCKER).replace("offset = 0.0", "offset = 5.0")
     with pytest.raises(MechanismError, match="offset"):
         chaingraph.solve(chaingraph.loads(text), steps=10)
+
+
+def test_the_command_line_refuses_in_one_line(tmp_path):
+    bad = tmp_path / "bad.toml"
+    bad.write_text(_text(CAM_ROCKER).replace("offset = 0.0", "offset = 5.0"), encoding="utf-8")
+    for args, said in (([bad], "drawn 0 to the right of the cam's centre (looking along the "
+                                "follower); its 'offset' is 5"),
+                       (["catalog/cam-and-follower.toml", "--fixed", "frame", "--driver", "cam"],
+                        "cannot be solved for motion"),
+                       ([FIVE_BAR, "--input", "C"], "cannot be derived from the inputs")):
+        code, out, err = run_cli("solve", *args)
+        assert code == 2 and out == "" and len(err.strip().splitlines()) == 1, err
+        assert said in err
