@@ -6,8 +6,8 @@ links; the forces on all but the last link for a multiple joint; the normal forc
 the couple for a sliding pair, with Coulomb friction along its guide in proportion to
 the normal force; one force for a higher pair: a cam's along the common normal at the
 contact, a gear pair's along the common tangent at the pitch point, whose radial part
-along the line of action, |tangential| tan(pressure angle), is then added as a known
-force) and one effort per input (a couple between the input's two links for an R
+along the line of action, |tangential| tan(pressure angle) (the pair's
+``pressure_angle``, 20 degrees by default), is then added as a known force) and one effort per input (a couple between the input's two links for an R
 input, a force along the guide for a P input). Three equations per moving link,
 the forces and the moment about the drawing's origin, in SI units: one linear solve per
 step, all steps at once. Friction's sign follows the normal force's sign, found by
@@ -30,16 +30,10 @@ from chaingraph.kinematics.plan import InputJoint, Plan
 from chaingraph.kinematics.pose import LinkState
 from chaingraph.model.chain import Chain, Joint, Load, mass_centre
 
-__all__ = ["UNIT_METRES", "KinematicState", "Solution", "solve_equilibrium", "load_table_value",
-           "PRESSURE_ANGLE"]
+__all__ = ["UNIT_METRES", "KinematicState", "Solution", "solve_equilibrium", "load_table_value"]
 
 #: metres per length unit of a chain file
 UNIT_METRES = {"mm": 1e-3, "cm": 1e-2, "m": 1.0, "in": 0.0254}
-
-#: a gear pair's pressure angle (radians): its tooth force lies along the line of action,
-#: the common tangent of the pitch circles turned by this, so that it pushes the gears
-#: apart by |tangential force| tan(pressure angle)
-PRESSURE_ANGLE = math.radians(20.0)
 
 #: a step's matrix (scaled) whose determinant over the product of its columns' lengths
 #: (or, with more unknowns than equations, whose smallest singular value over its
@@ -260,13 +254,15 @@ def _joint_geometry(chain, layout, state):
 class _Line:
     """A higher pair's force over the steps: ``by`` pushes ``on`` at ``point`` (m about
     the origin) along ``direction`` (unit) per unit of its unknown; a gear pair's
-    ``radial`` is the direction that parts ``on`` from ``by`` (else None)."""
+    ``radial`` is the direction that parts ``on`` from ``by`` (else None), and its tooth
+    force's line of action leans ``pressure`` (radians) from the common tangent."""
 
     point: Vec
     direction: Vec
     on: str
     by: str
     radial: Vec | None = None
+    pressure: float = 0.0
 
 
 def _higher_lines(chain, layout, state):
@@ -294,7 +290,7 @@ def _higher_lines(chain, layout, state):
         centres = np.arctan2(b[1] - a[1], b[0] - a[0])
         radial = np.arctan2(pitch[1] - a[1], pitch[0] - a[0])
         out[g.id] = _Line(pitch, rotate((0.0, 1.0), centres), g.links[1], g.links[0],
-                          rotate((1.0, 0.0), radial))
+                          rotate((1.0, 0.0), radial), math.radians(g.pressure_angle))
     return out
 
 
@@ -551,7 +547,7 @@ def _parting_forces(layout, joints, x):
         return None
     share = np.zeros((layout.n, layout.rows, 1))
     for c, h in gears:
-        r = np.nan_to_num(np.abs(x[:, c])) * math.tan(PRESSURE_ANGLE)
+        r = np.nan_to_num(np.abs(x[:, c])) * math.tan(h.pressure)
         assert h.radial is not None
         f = (r * h.radial[0], r * h.radial[1])
         layout.put(share, h.on, 0, f, h.point)
@@ -583,9 +579,9 @@ def _reactions(chain, layout, joints, x, sigma):
             t = x[:, c]
             f = (t * h.direction[0], t * h.direction[1])
             if h.radial is not None:            # a gear's: along the line of action
-                r = np.abs(t) * math.tan(PRESSURE_ANGLE)
+                r = np.abs(t) * math.tan(h.pressure)
                 f = (f[0] + r * h.radial[0], f[1] + r * h.radial[1])
-                t = t / math.cos(PRESSURE_ANGLE)
+                t = t / math.cos(h.pressure)
             forces[(j.id, h.on)] = f
             forces[(j.id, h.by)] = (-f[0], -f[1])
             normal[j.id] = t

@@ -14,6 +14,8 @@ import pytest
 import chaingraph
 from chaingraph.kinematics.higher import cam_contact
 
+from ..conftest import run_cli
+
 CAM_ROCKER = "examples/cam-rocker.toml"
 FIVE_BAR = "examples/geared-five-bar.toml"
 
@@ -116,3 +118,22 @@ def test_geared_five_bar_effort_by_virtual_work_and_tooth_force_on_its_line():
     # pushing the gears apart: on the right gear, away from the left one (+x)
     assert np.all(fx[moving] > 0)
     np.testing.assert_allclose(np.abs(f.solution.normal["G"]), np.hypot(fx, fy), rtol=1e-12)
+
+
+def test_a_gear_pairs_pressure_angle_tilts_its_tooth_force_and_leaves_the_effort(tmp_path):
+    text = open(FIVE_BAR, encoding="utf-8").read()
+    steeper = chaingraph.loads(text.replace('carrier = "frame"',
+                                            'carrier = "frame"\npressure_angle = 25.0'))
+    assert steeper.gears[0].pressure_angle == 25.0
+    assert chaingraph.loads(chaingraph.dumps(steeper)).gears[0].pressure_angle == 25.0
+    a = chaingraph.forces(chaingraph.load(FIVE_BAR), at=60.0, static=True)
+    b = chaingraph.forces(steeper, at=60.0, static=True)
+    assert b.effort() == pytest.approx(a.effort(), rel=1e-12)     # the tangential part
+    fx, fy = b.reaction("G", "left crank").force
+    assert abs(fx / fy) == pytest.approx(math.tan(math.radians(25.0)), rel=1e-9)
+    bad = tmp_path / "bad.toml"
+    bad.write_text(text.replace('carrier = "frame"', 'carrier = "frame"\npressure_angle = 50'),
+                   encoding="utf-8")
+    code, out, err = run_cli("solve", bad)
+    assert code == 2 and len(err.strip().splitlines()) == 1
+    assert "key 'pressure_angle' must be a number of degrees from 0 to less than 45" in err
