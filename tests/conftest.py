@@ -80,10 +80,19 @@ CATALOG = catalog_files()
 
 
 def solver_takes(chain):
-    """Whether the position solver takes the chain's pairs: turning and sliding pairs
-    only (a cam or gear pair is analysed by `chaingraph cam` and `gears`, not solved
-    for the motion of a linkage yet: the solver refuses it in one line)."""
-    return all(j.kind in ("R", "P") for j in chain.joints)
+    """Whether the position solver takes the chain's pairs: turning and sliding pairs,
+    and cams and gear pairs with their [[cams]] and [[gears]] tables (moved as inputs
+    derived from the others: kinematics/higher.py); a higher pair without one (a cam
+    and follower written for their structure alone) it refuses in one line. A gear
+    train (whose turning pairs close no loop) it solves too, but its speeds are
+    `chaingraph gears`' (a train of ratio 5/2 returns to its pose after five turns
+    of its input, past the solver's search for a cycle)."""
+    tabled = {c.id for c in chain.cams} | {g.id for g in chain.gears}
+    lower = sum(len(j.links) - 1 for j in chain.joints if j.kind in ("R", "P"))
+    if chain.gears and lower < len(chain.links):
+        return False      # a gear train (no loop of lower pairs): `chaingraph gears`
+    return all(j.kind in ("R", "P") or (j.kind in ("cam", "gear") and j.id in tabled)
+               for j in chain.joints)
 
 
 # -- processes (the Ctrl-C and SIGKILL tests) ------------------------------------------

@@ -21,8 +21,10 @@ from typing import TYPE_CHECKING, Any
 
 import numpy as np
 
-from chaingraph.geometry import Vec, convex_hull, polygon_area, segment_distance
+from chaingraph.geometry import Vec, convex_hull, polygon_area, rotate, segment_distance
 from chaingraph.kinematics import Motion, PoseMotion
+from chaingraph.kinematics.cams import analyse_cam, turn_angles
+from chaingraph.kinematics.higher import HIGHER_KINDS, cam_contact, cam_frame
 from chaingraph.model.chain import Chain, Joint
 
 if TYPE_CHECKING:                       # matplotlib is imported only to draw with it
@@ -125,14 +127,20 @@ class Scene(View):
 
     ``xy`` maps every joint and point to its (x, y) arrays over the steps; ``angle``
     every P joint to its sliding line's direction (radians) and ``slide`` to its slide
-    from the drawn pose. Build one with :meth:`of_motion` or :meth:`of_pose`.
+    from the drawn pose; ``turns`` each link to its rotation from the drawn pose
+    (radians; none given: the drawn pose), which turns a cam's profile, its follower's
+    roller and a gear's pitch circle with their links. Build one with
+    :meth:`of_motion` or :meth:`of_pose`.
     """
 
-    def __init__(self, chain, fixed, xy, angle, slide):
+    def __init__(self, chain, fixed, xy, angle, slide, turns=None):
         self.chain, self.fixed = chain, fixed
         self.xy = {name: (np.asarray(x, dtype=float), np.asarray(y, dtype=float))
                    for name, (x, y) in xy.items()}
         self.n = next(iter(self.xy.values()))[0].size if self.xy else 0
+        self.turns = {link: np.broadcast_to(np.asarray(v, dtype=float), (self.n,))
+                      for link, v in (turns or {}).items()}
+        self.higher = _higher_parts(chain)
         self.slides = [j for j in chain.joints if j.kind == "P"]
         self.angle, self.slide, self.pairs, self.ends, self.blocks = {}, {}, {}, {}, {}
         for j in self.slides:
@@ -147,6 +155,10 @@ class Scene(View):
                                  self.on_line(j, j.links.index(pair.block_link), pair.at))
         xs = [v[0] for v in self.xy.values()] + [e[0] for p in self.ends.values() for e in p]
         ys = [v[1] for v in self.xy.values()] + [e[1] for p in self.ends.values() for e in p]
+        for part in self.higher:            # a cam's or gear's circle about its centre
+            cx, cy = self.xy[part.centre]
+            xs += [cx - part.reach, cx + part.reach]
+            ys += [cy - part.reach, cy + part.reach]
         every_x, every_y = np.concatenate(xs), np.concatenate(ys)
         every_x, every_y = every_x[np.isfinite(every_x)], every_y[np.isfinite(every_y)]
         lo = [float(every_x.min()), float(every_y.min())]
@@ -177,16 +189,15 @@ class Scene(View):
                                    for v in values])[keep]
         xy = {name: (series(m.point(name).x for m in motions),
                      series(m.point(name).y for m in motions)) for name in names}
+        turns = {link: series(m.link(link).angle for m in motions)
+                 - math.radians(chain.reference_direction(link)) for link in chain.links}
         angle, slide = {}, {}
         for j in chain.joints:
             if j.kind == "P":
                 # the sliding line turns with its guide from the drawn pose
-                guide = j.links[0]
-                turn = (series(m.link(guide).angle for m in motions)
-                        - math.radians(chain.reference_direction(guide)))
-                angle[j.id] = math.radians(j.axis or 0.0) + turn
+                angle[j.id] = math.radians(j.axis or 0.0) + turns[j.links[0]]
                 slide[j.id] = series(m.slide(j.id).s for m in motions)
-        return cls(chain, motion.fixed, xy, angle, slide)
+        return cls(chain, motion.fixed, xy, angle, slide, turns)
 
     @classmethod
     def of_chain(cls, chain: Chain) -> Scene:
@@ -205,7 +216,8 @@ class Scene(View):
         xy = {name: ([p[0]], [p[1]]) for name, p in state.positions.items()}
         angle = {j: [math.atan2(s.axis[1], s.axis[0])] for j, s in state.slides.items()}
         slide = {j: [s.slide] for j, s in state.slides.items()}
-        return cls(state.chain, state.fixed, xy, angle, slide)
+        turns = {link: [state.links[link].angle] for link in state.chain.links}
+        return cls(state.chain, state.fixed, xy, angle, slide, turns)
 
     def on_line(self, joint: Joint, side: int, along: Coordinate
                 ) -> tuple[np.ndarray, np.ndarray]:
@@ -293,6 +305,82 @@ class Scene(View):
         return _Pair(links[0], links[1], "slot", padded([travel] + reach, 0.04 * extent))
 
 
+class _Part:
+    """A higher pair's drawn part on one link: a cam's profile (``points``, drawn, about
+    the joint ``centre``), a follower's roller (``points`` its drawn centre, ``radius``),
+    a gear's pitch circle (``radius``, its spoke towards ``points[0]``); ``link`` carries
+    it, turning about ``centre`` (a joint of it); ``reach`` its size about the centre."""
+
+    def __init__(self, kind, link, centre, points, radius=0.0, reach=0.0):
+        self.kind, self.link, self.centre = kind, link, centre
+        self.points = np.asarray(points, dtype=float)
+        self.radius, self.reach = radius, reach
+
+
+def _higher_parts(chain):
+    """Every cam's profile and follower, every gear pair's two pitch circles."""
+    out = []
+    for cam in chain.cams:
+        frame = cam_frame(chain, cam)
+        centre = next(j for j in chain.joints if j.kind == "R" and set(j.links) ==
+                      {cam.cam, frame.on})
+        profile = frame.drawn(analyse_cam(cam, turn_angles(cam, 180)).profile)
+        reach = float(np.max(np.hypot(*(profile - centre.at).T)))
+        out.append(_Part("cam", cam.cam, centre.id, profile, reach=reach))
+        if cam.contact == "roller":
+            held = next(j for j in chain.joints if cam.follower in j.links and
+                        (j.kind == "R" or (j.kind == "P" and j.links[1] == cam.follower)))
+            roller = cam_contact(chain, cam, np.zeros(1))[2]
+            out.append(_Part("roller", cam.follower, held.id, roller, radius=cam.roller))
+    for g in chain.gears:
+        pitch = chain.joint(g.id).at
+        for link in g.links:
+            axis = next(j for j in chain.joints if j.kind == "R" and link in j.links
+                        and g.carrier in j.links)
+            r = math.dist(axis.at, pitch) if pitch is not None else 0.0
+            out.append(_Part("gear", link, axis.id, [pitch], radius=r, reach=r))
+    return out
+
+
+def _higher_shapes(scene, k, at):
+    """At step ``k``: each cam's profile turned with it, each roller on its follower,
+    each gear's pitch circle (dash-dot) with a spoke that turns with the gear."""
+    out = []
+    stroke = 0.012 * scene.span
+    colours = {link: COLOURS[c % len(COLOURS)] for c, link in enumerate(scene.chain.links)}
+    for part in scene.higher:
+        pts = _moved(scene, part, k, at)
+        if pts is None:
+            continue
+        tag = (("link", part.link),)
+        colour = colours[part.link]
+        if part.kind == "cam":
+            out.append(Shape("polygon", "cam", pts, data=tag, fill=colour, fill_opacity=0.3,
+                             stroke=colour, width=stroke, join="round"))
+        elif part.kind == "roller":
+            out.append(Shape("circle", "roller", pts, data=tag, radius=part.radius,
+                             fill="white", stroke=colour, width=stroke))
+        else:
+            centre = at[part.centre]
+            out.append(Shape("circle", "pitch", (centre,), data=tag, radius=part.radius,
+                             stroke=colour, width=0.6 * stroke,
+                             dash=(3 * stroke, stroke, 0.6 * stroke, stroke)))
+            out.append(_line("spoke", centre, pts[0], colour, 0.6 * stroke, tag))
+    return out
+
+
+def _moved(scene, part, k, at):
+    """A part's drawn points where its link has carried them at step ``k`` (None
+    where the pose is not known)."""
+    turn = float(scene.turns[part.link][k]) if part.link in scene.turns else 0.0
+    c0, ck = scene.chain.joint(part.centre).at, at[part.centre]
+    if not (math.isfinite(turn) and _finite(ck)):
+        return None
+    p = part.points
+    d = rotate((p[:, 0] - c0[0], p[:, 1] - c0[1]), turn)
+    return tuple((float(x), float(y)) for x, y in zip(ck[0] + d[0], ck[1] + d[1]))
+
+
 def _finite(*points):
     return all(math.isfinite(v) for p in points for v in p)
 
@@ -309,7 +397,9 @@ def frame_shapes(scene: Scene, k: int) -> list[Shape]:
     at = {name: (v[0][k], v[1][k]) for name, v in scene.xy.items()}
     ends = {j: ((e1[0][k], e1[1][k]), (e2[0][k], e2[1][k])) for j, (e1, e2) in scene.ends.items()}
     blocks = {j: (b[0][k], b[1][k]) for j, b in scene.blocks.items()}
-    out = _bodies(scene, at, ends, blocks)
+    rollers = {part.link: _moved(scene, part, k, at) or () for part in scene.higher
+               if part.kind == "roller"}
+    out = _higher_shapes(scene, k, at) + _bodies(scene, at, ends, blocks, rollers)
     for j in scene.slides:
         out += _slide_shapes(scene, j, k, ends[j.id], blocks[j.id])
     out += _joint_shapes(scene, at)
@@ -317,13 +407,16 @@ def frame_shapes(scene: Scene, k: int) -> list[Shape]:
     return out
 
 
-def _members(scene, link, at, ends, blocks):
+def _members(scene, link, at, ends, blocks, rollers=None):
     """The points a link's body joins at one pose: its turning pairs and points, the
     blocks it carries (a block not on one of its pins, a piston at its rod's end), the
     middles of the slots cut in it, and a cylinder's barrel where the body does not
     reach it."""
     chain = scene.chain
-    members = [at[j.id] for j in chain.joints_of(link) if j.kind != "P"]
+    drawn = {c.id for c in chain.cams} | {g.id for g in chain.gears}   # as parts
+    members = [at[j.id] for j in chain.joints_of(link)
+               if j.kind != "P" and not (j.kind in HIGHER_KINDS and j.id in drawn)]
+    members += list((rollers or {}).get(link, ()))       # a follower reaches its roller
     members += [at[p.id] for p in chain.points if p.link == link]
     barrels = []
     for jid, pair in scene.pairs.items():
@@ -341,14 +434,14 @@ def _members(scene, link, at, ends, blocks):
     return [p for p in members if _finite(p)]
 
 
-def _bodies(scene, at, ends, blocks):
+def _bodies(scene, at, ends, blocks, rollers=None):
     """The moving links as plates (three or more points not in one line) and bars."""
     stroke = 0.012 * scene.span
     out = []
     for c, link in enumerate(scene.chain.links):
         if link == scene.fixed:
             continue
-        pts = _members(scene, link, at, ends, blocks)
+        pts = _members(scene, link, at, ends, blocks, rollers)
         colour = COLOURS[c % len(COLOURS)]
         hull = convex_hull([(round(x, 12), round(y, 12)) for x, y in pts])
         if len(hull) >= 3 and polygon_area(hull) <= 1e-6 * scene.span ** 2:

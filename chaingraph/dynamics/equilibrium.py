@@ -4,8 +4,11 @@ in kinetostatics, d'Alembert's principle), batched over the steps of a sweep.
 The unknowns are the joints' reactions (two components for a turning pair of two
 links; the forces on all but the last link for a multiple joint; the normal force and
 the couple for a sliding pair, with Coulomb friction along its guide in proportion to
-the normal force) and one effort per input (a couple between the input's two links for
-an R input, a force along the guide for a P input). Three equations per moving link,
+the normal force; one force for a higher pair: a cam's along the common normal at the
+contact, a gear pair's along the common tangent at the pitch point, whose radial part
+along the line of action, |tangential| tan(pressure angle) (the pair's
+``pressure_angle``, 20 degrees by default), is then added as a known force) and one effort per input (a couple between the input's two links for an R
+input, a force along the guide for a P input). Three equations per moving link,
 the forces and the moment about the drawing's origin, in SI units: one linear solve per
 step, all steps at once. Friction's sign follows the normal force's sign, found by
 iterating the signs per step until they agree (every combination tried where they do
@@ -22,6 +25,7 @@ import numpy as np
 
 from chaingraph.errors import MechanismError
 from chaingraph.geometry import Vec, cross, rotate, unit_deg
+from chaingraph.kinematics.higher import HIGHER_KINDS, cam_contact, cam_frame
 from chaingraph.kinematics.plan import InputJoint, Plan
 from chaingraph.kinematics.pose import LinkState
 from chaingraph.model.chain import Chain, Joint, Load, mass_centre
@@ -66,8 +70,10 @@ class KinematicState:
 class Solution:
     """The solve's numbers at n steps (NaN where not determined): ``forces[(joint,
     link)]`` the (Fx, Fy) on ``link`` at the joint (for a two-link joint its first link,
-    by the second), ``normal[joint]``, ``couple[joint]`` for P joints, ``efforts[joint]``
-    per input, ``power`` the power balance (W), ``singular`` the dead-centre steps,
+    by the second), ``normal[joint]``, ``couple[joint]`` for P joints (``normal`` also
+    for a higher pair: a cam's contact force along the common normal, positive where it
+    pushes the follower off the cam; a gear pair's tooth force along the line of
+    action), ``efforts[joint]`` per input, ``power`` the power balance (W), ``singular`` the dead-centre steps,
     ``at_rest`` per friction joint the steps where its slide is at rest (the friction
     is indeterminate within its cone), ``jammed`` the steps where no sign of the
     friction forces is consistent (the friction locks the mechanism);
@@ -104,6 +110,10 @@ def solve_equilibrium(chain: Chain, plan: Plan, state: KinematicState, *, static
                           mean_torque=mean_torque)
     x, singular, settled, sigma = _solve_with_friction(layout, joints, -known.rhs,
                                                        _known_singular(layout, state))
+    parting = _parting_forces(layout, joints, x)
+    if parting is not None:     # the gears' radial forces: the reactions at their axes
+        x, singular, settled, sigma = _solve_with_friction(
+            layout, joints, -known.rhs - parting, _known_singular(layout, state))
     at_rest = _at_rest(joints, layout, state)
     jammed = ~settled & ~singular
     undetermined = singular | jammed
@@ -166,9 +176,9 @@ class _Layout:
 
 def _layout(chain, plan, n, metres):
     """The unknowns (two reaction components per pair of an R joint's links; a P joint's
-    normal force and couple; an effort per input) and the equations (three per moving
-    link); refuses a joint other than R or P, and inputs that do not hold the
-    mechanism."""
+    normal force and couple; a higher pair's force; an effort per input) and the
+    equations (three per moving link); refuses another joint (a rolling pair), and
+    inputs that do not hold the mechanism."""
     cols: list[tuple[str, Joint | InputJoint, int | None]] = []   # (kind, joint, extra)
     for j in chain.joints:
         if j.kind == "R":
@@ -176,6 +186,8 @@ def _layout(chain, plan, n, metres):
                 cols += [("Fx", j, k), ("Fy", j, k)]
         elif j.kind == "P":
             cols += [("N", j, None), ("M", j, None)]
+        elif j.kind in HIGHER_KINDS:    # one force: along the common normal, or the tangent
+            cols.append(("contact", j, None))
         else:
             raise MechanismError(f"forces are solved for R and P joints; joint {j.id!r} is "
                                  f"{j.kind}", mechanism=chain.source or chain.name)
@@ -206,6 +218,7 @@ class _Joints:
     slide_speed: dict
     friction: tuple
     normal_cols: dict
+    higher: dict = field(default_factory=dict)
 
     def friction_share(self, j, sigma, steps=slice(None)):
         """Friction's share of the guide's force per unit normal force, at ``steps``: on
@@ -232,7 +245,53 @@ def _joint_geometry(chain, layout, state):
     friction = tuple(j for j in chain.joints if j.kind == "P" and j.friction)
     normal_cols = {j.id: next(c for c, (kind, jj, _) in enumerate(layout.cols)
                               if kind == "N" and jj.id == j.id) for j in friction}
-    return _Joints(where, axis, slide_speed, friction, normal_cols)
+    higher = _higher_lines(chain, layout, state)
+    where.update({k: h.point for k, h in higher.items()})
+    return _Joints(where, axis, slide_speed, friction, normal_cols, higher)
+
+
+@dataclass(frozen=True)
+class _Line:
+    """A higher pair's force over the steps: ``by`` pushes ``on`` at ``point`` (m about
+    the origin) along ``direction`` (unit) per unit of its unknown; a gear pair's
+    ``radial`` is the direction that parts ``on`` from ``by`` (else None), and its tooth
+    force's line of action leans ``pressure`` (radians) from the common tangent."""
+
+    point: Vec
+    direction: Vec
+    on: str
+    by: str
+    radial: Vec | None = None
+    pressure: float = 0.0
+
+
+def _higher_lines(chain, layout, state):
+    """Each cam's contact point and common normal (from the cam to the follower), each
+    gear pair's pitch point, common tangent and line of centres, as the links move."""
+    n = state.n
+    out = {}
+    for cam in chain.cams:
+        frame = cam_frame(chain, cam)
+        on = state.links[frame.on]
+        turn = np.broadcast_to(np.asarray(state.links[cam.cam].angle, dtype=float)
+                               - np.asarray(on.angle, dtype=float), (n,))
+        point, normal, _ = cam_contact(chain, cam, turn)
+        where = on.moved(layout.drawn((point[:, 0], point[:, 1])))
+        out[cam.id] = _Line(where, rotate((normal[:, 0], normal[:, 1]), on.angle),
+                            cam.follower, cam.cam)
+    for g in chain.gears:
+        carrier = state.links[g.carrier]
+        axes = [next(j.at for j in chain.joints if j.kind == "R" and link in j.links
+                     and g.carrier in j.links) for link in g.links]
+        a, b = (carrier.moved(layout.drawn(p)) for p in axes)
+        pitch = carrier.moved(layout.drawn(chain.joint(g.id).at))
+        # the common tangent, square to the line of centres; the radial direction from
+        # the driving gear's axis through the pitch point (away from it on the other)
+        centres = np.arctan2(b[1] - a[1], b[0] - a[0])
+        radial = np.arctan2(pitch[1] - a[1], pitch[0] - a[0])
+        out[g.id] = _Line(pitch, rotate((0.0, 1.0), centres), g.links[1], g.links[0],
+                          rotate((1.0, 0.0), radial), math.radians(g.pressure_angle))
+    return out
 
 
 def _at_rest(joints, layout, state):
@@ -261,6 +320,10 @@ def _base_matrix(layout, joints):
         elif kind == "M":
             layout.put_couple(a, j.links[0], c, one * layout.size)
             layout.put_couple(a, j.links[1], c, one * layout.size, -1.0)
+        elif kind == "contact":
+            h = joints.higher[j.id]
+            layout.put(a, h.on, c, h.direction, h.point)
+            layout.put(a, h.by, c, h.direction, h.point, -1.0)
         elif j.kind == "R":                      # an R input's effort: a couple
             layout.put_couple(a, j.b, c, one)
             layout.put_couple(a, j.a, c, one, -1.0)
@@ -473,6 +536,25 @@ def _every_sign(layout, joints, base, b, known, found):
 
 
 # -- the results --------------------------------------------------------------------------
+def _parting_forces(layout, joints, x):
+    """The gear pairs' radial forces (|tangential force| tan(pressure angle), parting
+    the gears) as known forces' shares of the equations, from a first solve ``x``; None
+    without gears. They pass through the gears' axes on the carrier and balance there,
+    so the tangential forces (and the efforts) do not change."""
+    gears = [(c, joints.higher[j.id]) for c, (kind, j, _) in enumerate(layout.cols)
+             if kind == "contact" and joints.higher[j.id].radial is not None]
+    if not gears:
+        return None
+    share = np.zeros((layout.n, layout.rows, 1))
+    for c, h in gears:
+        r = np.nan_to_num(np.abs(x[:, c])) * math.tan(h.pressure)
+        assert h.radial is not None
+        f = (r * h.radial[0], r * h.radial[1])
+        layout.put(share, h.on, 0, f, h.point)
+        layout.put(share, h.by, 0, f, h.point, -1.0)
+    return share[:, :, 0]
+
+
 def _reactions(chain, layout, joints, x, sigma):
     """(forces, normal, couple, efforts) from the unknowns ``x`` (see :class:`Solution`)."""
     forces, normal, couple, efforts = {}, {}, {}, {}
@@ -492,6 +574,17 @@ def _reactions(chain, layout, joints, x, sigma):
             couple[j.id] = x[:, c + 1] * layout.size
         elif kind == "effort":                  # a couple (N m) or a force (N)
             efforts[j.joint] = x[:, c]
+        elif kind == "contact":
+            h = joints.higher[j.id]
+            t = x[:, c]
+            f = (t * h.direction[0], t * h.direction[1])
+            if h.radial is not None:            # a gear's: along the line of action
+                r = np.abs(t) * math.tan(h.pressure)
+                f = (f[0] + r * h.radial[0], f[1] + r * h.radial[1])
+                t = t / math.cos(h.pressure)
+            forces[(j.id, h.on)] = f
+            forces[(j.id, h.by)] = (-f[0], -f[1])
+            normal[j.id] = t
     for j in chain.joints:
         if j.kind == "R" and len(j.links) > 2:
             parts = [forces[(j.id, link)] for link in j.links[:-1]]

@@ -414,6 +414,32 @@ def _notes(solution, k=None):
     return tuple(out)
 
 
+def _leaving(chain, solution, values, unit, k=None):
+    """Where a cam's contact force would have to pull (the pair is unclosed: it can only
+    push): the follower would leave the cam there; at step ``k``, or over the sweep as
+    runs of the input's ``values`` (in ``unit``)."""
+    out = []
+    for cam in chain.cams:
+        f = np.asarray(solution.normal[cam.id], dtype=float)
+        finite = f[np.isfinite(f)]
+        scale = float(np.abs(finite).max()) if finite.size else 0.0
+        pull = np.isfinite(f) & (f < -1e-9 * scale)
+        said = (f"the contact force of cam {cam.id!r} would have to pull its follower "
+                f"{cam.follower!r} onto the cam")
+        hold = ("the pair is unclosed, so the follower leaves the cam (a stronger spring "
+                "or load, a slower speed, or a closed cam would hold it)")
+        if k is not None:
+            if pull[k]:
+                out.append(f"{said} ({f[k]:.6g} N): {hold}")
+            continue
+        idx = np.flatnonzero(pull)
+        if idx.size:
+            runs = np.split(idx, np.flatnonzero(np.diff(idx) > 1) + 1)
+            at = ", ".join(f"{values[r[0]]:.6g} to {values[r[-1]]:.6g}" for r in runs)
+            out.append(f"{said} at {at} {unit} (least {f[idx].min():.6g} N): {hold}")
+    return tuple(out)
+
+
 def _check_masses(chain):
     name = chain.source or chain.name
     if chain.masses or chain.loads or chain.gravity:
@@ -678,7 +704,7 @@ def _forces_over(chain, motion: Motion, *, static, metres, speed_fluctuation,
     reactions = tuple(
         ReactionSeries(j.id, link, tuple(x for x in j.links if x != link),
                        sol.forces[(j.id, link)][0], sol.forces[(j.id, link)][1],
-                       sol.normal[j.id] if j.kind == "P" else None,
+                       sol.normal.get(j.id) if j.kind != "R" else None,
                        sol.couple[j.id] if j.kind == "P" else None)
         for j in chain.joints for link in _on_links(j))
     efforts = tuple(EffortSeries(i.joint, sol.efforts[i.joint], "N m" if i.kind == "R" else "N")
@@ -692,7 +718,9 @@ def _forces_over(chain, motion: Motion, *, static, metres, speed_fluctuation,
     return SweepForces(name=chain.name, fixed=plan.fixed,
                        inputs=tuple(i.joint for i in plan.inputs), static=static,
                        steps=motion.steps, reactions=reactions, efforts=efforts,
-                       summary=summary, notes=_notes(sol) + notes, motion=motion,
+                       summary=summary, motion=motion,
+                       notes=_notes(sol) + _leaving(chain, sol, motion.theta, plan.lead_unit)
+                       + notes,
                        solution=sol, chain=chain, shaking=shaken,
                        load_torque=cyc.mean_torque if steady is not None else None)
 
@@ -720,7 +748,8 @@ def _pose_forces(chain, plan, sol, k, at, static) -> PoseForces:
         static=static, reactions=_reactions(chain, sol, k, plan.size * metres),
         efforts=tuple(Effort(i.joint, _num(one(sol.efforts[i.joint])),
                              "N m" if i.kind == "R" else "N") for i in plan.inputs),
-        power_balance=_num(one(sol.power)), notes=_notes(sol, k),
+        power_balance=_num(one(sol.power)),
+        notes=_notes(sol, k) + _leaving(chain, sol, at, plan.lead_unit, k),
         units=chain.units, points={name: back(q) for name, q in sol.points.items()},
         dyads=tuple(tuple(step.links) for step in plan.steps if step.kind == "dyad"),
         applied=tuple(AppliedForce(link, what, back(q), (_num(one(f[0])), _num(one(f[1]))))
@@ -743,7 +772,7 @@ def _reactions(chain, sol, k, size):
         for link in _on_links(j):
             fx, fy = sol.forces[(j.id, link)]
             by = tuple(x for x in j.links if x != link)
-            normal = num(sol.normal[j.id][k]) if j.kind == "P" else None
+            normal = num(sol.normal[j.id][k]) if j.kind != "R" else None
             couple = num(sol.couple[j.id][k], size) if j.kind == "P" else None
             out.append(Reaction(j.id, link, by, (num(fx[k]), num(fy[k])), normal, couple))
     return tuple(out)

@@ -275,7 +275,9 @@ def _primary(state):
     """The centres the joints give: (pair -> (homogeneous point, "joint J"))."""
     known: dict[Any, Any] = {}
     for j in state.chain.joints:
-        if j.kind == "R":
+        if j.kind == "cam":             # its centre is on the common normal: not a point
+            continue
+        if j.kind in ("R", "gear"):     # a gear pair's centre is its pitch point
             h = normalised(np.array((*_scaled(state, state.positions[j.id]), 1.0)))
         else:
             u = state.slides[j.id].axis

@@ -17,8 +17,9 @@ from typing import Any, Self
 import numpy as np
 
 from chaingraph.geometry import turn_by
+from chaingraph.kinematics.higher import cam_contact
 from chaingraph.kinematics.plan import Plan
-from chaingraph.model.chain import Joint
+from chaingraph.model.chain import Chain, Joint
 
 __all__ = ["LinkStates", "LinkMotion", "PointMotion", "SlideMotion", "Trajectories",
            "reference_link", "slide_rates", "csv_columns", "link_of_states",
@@ -244,7 +245,9 @@ def point_of_states(plan: Plan, states: LinkStates, name: str) -> PointMotion:
     chain, n = plan.chain, states.tau.size
     try:
         joint = chain.joint(name)
-        link, at = reference_link(joint, plan.fixed), joint.at
+        if joint.kind == "cam":
+            return _follower_point(plan, states, joint)
+        link, at = reference_link(joint, plan.fixed, chain=chain), joint.at
     except KeyError:
         point = chain.point(name)
         link, at = point.link, point.at
@@ -264,6 +267,18 @@ def point_of_states(plan: Plan, states: LinkStates, name: str) -> PointMotion:
     _point_motion(states.pose, states.velocity, states.acceleration, link, p, out=out,
                   origin=(ox, oy))
     return PointMotion(name, *out)
+
+
+def _follower_point(plan, states, joint):
+    """A cam pair's columns: its follower's reference point (the roller's centre, the
+    knife's tip, the flat face's foot on its line), a point of the follower, drawn
+    where the drawing's cam (at the start of its program) puts it."""
+    cam = next(c for c in plan.chain.cams if c.id == joint.id)
+    drawn = cam_contact(plan.chain, cam, np.zeros(1))[2][0]
+    out = [np.empty(states.tau.size) for _ in range(6)]
+    _point_motion(states.pose, states.velocity, states.acceleration, cam.follower,
+                  plan.local(drawn), out=out, origin=plan.origin)
+    return PointMotion(joint.id, *out)
 
 
 def slide_of_states(plan: Plan, states: LinkStates, joint: str) -> SlideMotion:
@@ -307,9 +322,18 @@ def _point_motion(pose, vel, acc, link, p, *, out=None, origin=None):
     return out
 
 
-def reference_link(joint: Joint, fixed: str) -> str:
+def reference_link(joint: Joint, fixed: str, *, chain: Chain | None = None) -> str:
     """The link whose motion a joint's CSV columns follow: a P joint's block, an R
-    joint's fixed link when it has it, else its first link."""
+    joint's fixed link when it has it, else its first link; with the ``chain``, a gear
+    pair's carrier (its pitch point stays on it) and a cam pair's follower (its
+    reference point: the roller's centre, the knife's tip, the flat face's foot)."""
+    if chain is not None and joint.kind in ("cam", "gear"):
+        pair = next((p for p in chain.gears if p.id == joint.id), None)
+        if pair is not None:
+            return pair.carrier
+        cam = next((c for c in chain.cams if c.id == joint.id), None)
+        if cam is not None:
+            return cam.follower
     if joint.kind == "P":
         return joint.links[1]                   # its block
     return fixed if fixed in joint.links else joint.links[0]

@@ -38,6 +38,7 @@ import numpy as np
 from numpy.typing import ArrayLike
 
 from chaingraph.errors import MechanismError
+from chaingraph.kinematics.higher import HIGHER_KINDS, Derived, derived_inputs
 from chaingraph.model.chain import Chain, Input, chosen_inputs
 from chaingraph.model.snap import check_link_sizes, size_of
 
@@ -123,6 +124,9 @@ class Plan:
     numeric_mobility: int     # coordinates minus rank of the joints' constraint Jacobian
     origin: tuple[float, float] = (0.0, 0.0)   # the drawing's centre: see ``local``
     from_driver: bool = False  # given as ``driver = LINK`` (the CSV keeps ``theta`` first)
+    #: the joints that higher pairs (cams, gears) move as functions of the inputs, in
+    #: the order they follow from them (:mod:`chaingraph.kinematics.higher`)
+    derived: tuple[Derived, ...] = ()
 
     def __hash__(self) -> int:
         """The fields' hash, as the dataclass's, worked out once: the plan keys the
@@ -208,13 +212,15 @@ class Plan:
             (self.chain.units or "length units")
 
 
-def _constraints(chain, fixed, inputs, origin):
+def _constraints(chain, fixed, inputs, origin, derived=()):
     def local(p):
         return (p[0] - origin[0], p[1] - origin[1])
-    driven = {i.joint: i for i in inputs}
+    driven = {i.joint: i for i in (*inputs, *derived)}
     out = []
     for j in sorted(chain.joints, key=lambda j: j.id):
         item = driven.get(j.id)
+        if j.kind in HIGHER_KINDS:         # a higher pair: its derived joint's input
+            continue
         if j.kind == "R":
             ref = item.a if item else fixed if fixed in j.links else j.links[0]
             for x in j.links:
@@ -460,7 +466,10 @@ def build_plan(chain: Chain, fixed: str | None = None, driver: str | None = None
     Raises
     ------
     MechanismError
-        For a higher pair or spatial joint, a joint without a position, a driver not
+        For a spatial joint, a higher pair without its [[cams]] or [[gears]] table or
+        that no input drives (a cam or gear pair moves its follower's or driven gear's
+        joint as an input derived from its driving joint's: :mod:`.higher`), a joint
+        without a position, a driver not
         pinned to the fixed link by an R joint, an input that is not an R or P joint
         of the chain, or as many inputs as there are not degrees of freedom (the
         mobility found is said).
@@ -485,9 +494,13 @@ def build_plan(chain: Chain, fixed: str | None = None, driver: str | None = None
     size = size_of(where)
     xs, ys = [p[0] for p in where.values()], [p[1] for p in where.values()]
     origin = (0.5 * (max(xs) + min(xs)), 0.5 * (max(ys) + min(ys)))
-    constraints = tuple(_constraints(chain, fixed, items, origin))
-    mobility = 3 * (len(chain.links) - 1) - 2 * sum(j.order - 1 for j in chain.joints)
-    numeric = _numeric_mobility(chain, fixed, constraints, size, with_inputs=False)
+    derived = derived_inputs(chain, [(i.joint, i.key, i.a, i.b) for i in items], name)
+    constraints = tuple(_constraints(chain, fixed, items, origin, derived))
+    # Kutzbach: a lower pair takes 2 freedoms, a higher pair (cam, gear) 1
+    mobility = 3 * (len(chain.links) - 1) - sum((3 - (j.pair.planar_freedom or 1))
+                                                * (j.order - 1) for j in chain.joints)
+    numeric = _numeric_mobility(chain, fixed, constraints, size, with_inputs=False,
+                                derived=derived)
     _check_inputs_hold(chain, fixed, items, constraints, size, mobility=mobility,
                        numeric=numeric, driver=driver, from_driver=from_driver)
     steps = _steps(chain, fixed, constraints, closed_form)
@@ -495,7 +508,7 @@ def build_plan(chain: Chain, fixed: str | None = None, driver: str | None = None
     return Plan(chain=chain, fixed=fixed, driver=lone.b if lone else None, inputs=items,
                 lead=lead, line=line, theta0=tau0, steps=steps, constraints=constraints,
                 size=size, mobility=mobility, numeric_mobility=numeric, origin=origin,
-                from_driver=from_driver)
+                from_driver=from_driver, derived=derived)
 
 
 def _check_solvable(chain: Chain, fixed: str | None, inputs: Sequence[Input] | None,
@@ -518,11 +531,13 @@ def _check_solvable(chain: Chain, fixed: str | None, inputs: Sequence[Input] | N
         if j is not None and j.kind not in ("R", "P"):
             raise MechanismError(f"the input {item.joint!r} is a {j.pair.name} ({j.kind}); "
                                  "an input must be an R or P joint", mechanism=name)
+    paired = {c.id for c in chain.cams} | {g.id for g in chain.gears}
     for j in chain.joints:
-        if j.kind not in ("R", "P"):
+        if j.kind not in ("R", "P") and not (j.kind in HIGHER_KINDS and j.id in paired):
             raise MechanismError(
                 f"a {j.pair.name} ({j.kind}) cannot be solved for motion: only R and P "
-                "joints can (classification and inversions take every kind)",
+                "joints can, and cams and gear pairs with their [[cams]] or [[gears]] "
+                "tables (classification and inversions take every kind)",
                 mechanism=name, where=f"joint {j.id!r}")
     unplaced = [j.id for j in chain.joints if j.at is None]
     if unplaced:
@@ -568,7 +583,8 @@ def _check_inputs_hold(chain, fixed, items, constraints, size, *, mobility, nume
                 mobility=numeric)
 
 
-def _numeric_mobility(chain, fixed, constraints, size, *, with_inputs=False, generic=False):
+def _numeric_mobility(chain, fixed, constraints, size, *, with_inputs=False, generic=False,
+                      derived=()):
     """Coordinates (3 per moving link) minus the rank of all ``constraints`` (every
     joint's; with ``with_inputs`` the inputs' equations too) at the drawn pose, or, with
     ``generic``, at a random placement of the joints (any placement is the drawn pose of
@@ -578,34 +594,61 @@ def _numeric_mobility(chain, fixed, constraints, size, *, with_inputs=False, gen
     its size, so that its rank does not depend on where the mechanism is drawn or how
     large it is."""
     return _freedom([x for x in chain.links if x != fixed], constraints, size,
-                    with_inputs=with_inputs, generic=generic)
+                    with_inputs=with_inputs, generic=generic, derived=derived)
 
 
-def _freedom(moving, constraints, size, *, with_inputs=False, generic=False):
+def _freedom(moving, constraints, size, *, with_inputs=False, generic=False, derived=()):
     """The coordinates of the ``moving`` links (3 each) minus the rank of the rows of
-    ``constraints`` in them (every other link held): see :func:`_numeric_mobility`."""
+    ``constraints`` in them (every other link held): see :func:`_numeric_mobility`.
+    Each of the ``derived`` joints is a constraint of the chain, with or without the
+    inputs: its value less its slope times the driving joint's, linearised at the
+    drawn pose."""
     col = {x: 3 * i for i, x in enumerate(moving)}
     rows = []
     rng = np.random.default_rng(20261122)
     joints = sorted({c.joint for c in constraints})
     placed = {j: tuple(rng.uniform(-1.0, 1.0, 2)) for j in joints}
     turned = {j: float(rng.uniform(0.0, 180.0)) for j in joints}
+    drive_rows = {}
+    derived_keys = {d.key for d in derived}
     for c in constraints:
         if generic:
             c = replace(c, point=placed[c.joint], axis=None if c.axis is None else turned[c.joint])
             scaled = c.point
         else:
             scaled = (c.point[0] / size, c.point[1] / size)
-        for coeffs in _rows_at_drawn_pose(replace(c, point=scaled), with_inputs):
+        for n, coeffs in enumerate(_rows_at_drawn_pose(replace(c, point=scaled),
+                                                        with_inputs or c.drive in derived_keys)):
             row = np.zeros(3 * len(moving))
             for link, vec in coeffs.items():
                 if link in col:
                     row[col[link]:col[link] + 3] += vec
+            if c.drive is not None and n == 2:       # the input's row (R and P alike)
+                drive_rows[c.drive] = row
+                if c.drive in derived_keys:
+                    continue              # added below, with its driving joint's
             rows.append(row)
+    for d in derived:
+        by = drive_rows.get(d.by)
+        if by is None:                    # an input left out: its row, as drawn
+            by = _drive_row(constraints, d.by, col, size, len(moving))
+        slope = float(d.slopes(0.0)[0])
+        rows.append(drive_rows[d.key] - slope * d.by_sign * by)
     if not rows:
         return 3 * len(moving)
     rank = np.linalg.matrix_rank(np.array(rows), tol=1e-9)
     return 3 * len(moving) - int(rank)
+
+
+def _drive_row(constraints, key, col, size, n):
+    """The input row of the constraint driven by ``key``, at the drawn pose."""
+    c = next(c for c in constraints if c.drive == key)
+    scaled = replace(c, point=(c.point[0] / size, c.point[1] / size))
+    row = np.zeros(3 * n)
+    for link, vec in _rows_at_drawn_pose(scaled, True)[-1].items():
+        if link in col:
+            row[col[link]:col[link] + 3] += vec
+    return row
 
 
 def _rows_at_drawn_pose(c, with_inputs=False):

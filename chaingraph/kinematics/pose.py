@@ -147,7 +147,7 @@ class PoseMotion:
         """The link whose motion a joint's or point's CSV columns follow."""
         chain = self.chain
         if name in {j.id for j in chain.joints}:
-            return reference_link(chain.joint(name), self.fixed)
+            return reference_link(chain.joint(name), self.fixed, chain=chain)
         return chain.point(name).link
 
     def velocity(self, name: str) -> tuple[float, float]:

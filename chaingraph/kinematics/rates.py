@@ -415,6 +415,8 @@ def rates(plan: Plan, pose: Pose, omega: float, n: int, *,
     for item, (_, k) in zip(plan.inputs, plan.line):
         vel[item.key] = (0.0, 0.0, k * tau_rate)
         acc[item.key] = (0.0, 0.0, 0.0)
+    for d in plan.derived:         # a higher pair's joint: by the chain rule
+        vel[d.key], acc[d.key] = d.rates(pose, vel, acc)
     measures: list[np.ndarray] = []           # left empty unless ``measure``
     factors: list[_PointDyad | _Weld | Factor] = []
     f: _PointDyad | _Weld | Factor

@@ -28,10 +28,14 @@ __all__ = ["Evaluation", "Reference", "Start", "evaluate", "evaluate_at", "faili
 # -- the sweep -----------------------------------------------------------------------
 def _known_poses(plan, theta):
     """The fixed link, and each input's value (its delta, in the rotation's place) at
-    the path parameters ``theta``: everything else is found from these."""
+    the path parameters ``theta``, and each joint a higher pair derives from them:
+    everything else is found from these."""
     pose: dict[str, PoseEntry] = {plan.fixed: FIXED}
     for item, delta in zip(plan.inputs, plan.deltas(theta)):
         pose[item.key] = (0.0, 0.0, np.broadcast_to(delta, theta.shape), 1.0, 0.0)
+    for d in plan.derived:            # the higher pairs' joints, from the inputs
+        pose[d.key] = (0.0, 0.0, np.broadcast_to(d.value(d.driving(pose)), theta.shape),
+                       1.0, 0.0)
     return pose
 
 

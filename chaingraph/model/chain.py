@@ -452,8 +452,8 @@ class Chain:
                               ren(jt, x.at) if x.at in self._joint_index else ren(pt, x.at),
                               along=None if x.along is None else ren(jt, x.along))
                       for x in self.loads)
-        cams = tuple(replace(c, cam=ren(lk, c.cam), follower=ren(lk, c.follower))
-                     for c in self.cams)
+        cams = tuple(replace(c, id=ren(jt, c.id), cam=ren(lk, c.cam),
+                             follower=ren(lk, c.follower)) for c in self.cams)
         gears = tuple(replace(g, id=ren(jt, g.id), links=tuple(ren(lk, x) for x in g.links),
                               carrier=ren(lk, g.carrier)) for g in self.gears)
         return replace(self, joints=new_joints, points=new_points, mechanism=mech,

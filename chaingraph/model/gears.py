@@ -23,7 +23,7 @@ if TYPE_CHECKING:
 
 __all__ = ["GearPair", "GEAR_KEYS", "gear_pair", "gear_entry", "check_gears", "pitch_point"]
 
-GEAR_KEYS = ("id", "links", "teeth", "internal", "carrier")
+GEAR_KEYS = ("id", "links", "teeth", "internal", "carrier", "pressure_angle")
 
 
 @dataclass(frozen=True)
@@ -43,6 +43,9 @@ class GearPair:
     carrier : str
         The link that holds both axes (the frame of an ordinary train, the arm of an
         epicyclic one).
+    pressure_angle : float
+        The angle (degrees) between the line of action and the common tangent of the
+        pitch circles (20 by default): the tooth force's direction in ``forces``.
     """
 
     id: str
@@ -50,6 +53,7 @@ class GearPair:
     teeth: tuple[int, int]
     internal: bool = False
     carrier: str = ""
+    pressure_angle: float = 20.0
 
     def __post_init__(self) -> None:
         object.__setattr__(self, "links", tuple(self.links))
@@ -94,15 +98,22 @@ def gear_pair(table: dict[str, Any], index: int, fixed: str | None, fail: Fail) 
              "take for it: name the link that holds both axes", where)
     if not isinstance(carrier, str) or not carrier:
         fail(f"key 'carrier' must be a link name, got {shown(carrier)}", where)
+    angle = table.get("pressure_angle", 20.0)
+    if isinstance(angle, bool) or not isinstance(angle, (int, float)) or not 0 <= angle < 45:
+        fail(f"key 'pressure_angle' must be a number of degrees from 0 to less than 45, got "
+             f"{shown(angle)}", where)
     # (the one TOML writer writes numbers as floats: 20.0 teeth are read as 20)
     return GearPair(table["id"], (links[0], links[1]), (int(teeth[0]), int(teeth[1])), internal,
-                    carrier)
+                    carrier, float(angle))
 
 
 def gear_entry(pair: GearPair) -> dict[str, Any]:
     """A :class:`GearPair` as its ``[[gears]]`` table."""
-    return {"id": pair.id, "links": list(pair.links), "teeth": list(pair.teeth),
-            "internal": pair.internal, "carrier": pair.carrier}
+    out = {"id": pair.id, "links": list(pair.links), "teeth": list(pair.teeth),
+           "internal": pair.internal, "carrier": pair.carrier}
+    if pair.pressure_angle != 20.0:
+        out["pressure_angle"] = pair.pressure_angle
+    return out
 
 
 def check_gears(gears: Sequence[GearPair], turning: Collection[tuple[str, ...]],

@@ -148,8 +148,11 @@ def test_every_chain_has_a_skeleton(path):
              + root.findall(".//s:polygon[@class='block']", NS)
              + root.findall(".//s:circle[@class='higher']", NS))
     assert len(marks) == len(chain.joints)
+    # (a cam's body is its profile, a gear's its pitch circle)
     bodies = root.findall(".//s:polygon[@class='plate']", NS) + \
-        root.findall(".//s:polyline[@class='bar']", NS)
+        root.findall(".//s:polyline[@class='bar']", NS) + \
+        root.findall(".//s:polygon[@class='cam']", NS) + \
+        root.findall(".//s:circle[@class='pitch']", NS)
     fixed = chain.mechanism.fixed if chain.mechanism else None
     # the fixed link is the ground (hatched pivots and ways), never a moving body; a
     # block on the link's one pin is the link's body

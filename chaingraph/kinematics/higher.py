@@ -1,0 +1,303 @@
+"""Higher pairs inside a linkage: cams and gear pairs as *derived inputs*.
+
+A gear pair or a cam fixes the relative motion of one joint as a function of another's:
+
+* a gear pair (links a, b in mesh, their axes held by the carrier c, teeth za, zb):
+  Willis's equation ``(w_b - w_c) / (w_a - w_c) = -+ za / zb`` (minus for external
+  teeth, plus for an annulus), integrated from the drawn pose: the rotation of b on
+  its axis joint with c is ``ratio`` times that of a on its own;
+* a disc cam turning on an R joint on a link F (the frame) and its follower sliding in
+  a P joint on F, or swinging about an R joint on F: the follower's slide (or angle)
+  from the drawn pose is the program's ``s(theta)``, theta the cam's turn on F from the
+  drawn pose (the drawing shows the cam at the start of its program, theta = 0, the
+  follower at its lowest).
+
+When the driving joint's motion is known (an input, or driven through other pairs), the
+driven joint is one more input of the plan (a :class:`Derived`, its key ``"@derived:J"``
+in pose and rate tables), whose value, rate and acceleration follow by the chain rule:
+``f(x)``, ``f'(x) x'`` and ``f''(x) x'^2 + f'(x) x''``. The position kernel, the rates
+and everything above them then move the mechanism as for any input.
+"""
+
+from __future__ import annotations
+
+import math
+from collections.abc import Mapping, Sequence
+from dataclasses import dataclass
+
+import numpy as np
+from numpy.typing import ArrayLike
+
+from chaingraph._util.numbers import tidy
+from chaingraph.errors import MechanismError
+from chaingraph.geometry import rotate
+from chaingraph.kinematics.cams import analyse_cam, follower_motion
+from chaingraph.model.cams import Cam
+from chaingraph.model.chain import Chain, Joint
+from chaingraph.model.gears import GearPair
+
+__all__ = ["Derived", "derived_inputs", "CamFrame", "cam_frame", "HIGHER_KINDS",
+           "cam_contact"]
+
+#: the joint kinds a chain may have as higher pairs solved as derived inputs
+HIGHER_KINDS = ("cam", "gear")
+
+
+@dataclass(frozen=True)
+class Derived:
+    """A joint whose relative motion a higher pair derives from another joint's.
+
+    ``joint`` (kind ``"R"`` or ``"P"``) between ``a`` and ``b``: its value is the
+    rotation of b less a's (radians), or b's slide along a's guide, from the drawn
+    pose. ``by`` is the table key of the driving joint's value (an input's or another
+    derived joint's), ``by_sign`` turns it into the driving link's own motion (the cam's
+    turn on F, the driving gear's rotation on the carrier). ``pair`` names the higher
+    pair; ``ratio`` a gear pair's, or ``cam`` and ``sign`` (+1, or -1 where the P
+    joint's guide is the follower) a cam's."""
+
+    joint: str
+    kind: str
+    a: str
+    b: str
+    pair: str
+    by: str
+    by_sign: float
+    ratio: float | None = None
+    cam: Cam | None = None
+    sign: float = 1.0
+
+    @property
+    def key(self) -> str:
+        """The derived joint's entry in pose and rate tables."""
+        return "@derived:" + self.joint
+
+    def driving(self, table: Mapping[str, tuple]) -> np.ndarray:
+        """The driving link's motion (radians) from a table's entry of ``by``."""
+        return self.by_sign * np.asarray(table[self.by][2], dtype=float)
+
+    def value(self, x: ArrayLike) -> np.ndarray:
+        """The joint's value at the driving motion ``x`` (radians)."""
+        x = np.asarray(x, dtype=float)
+        if self.cam is None:
+            return float(self.ratio or 0.0) * x
+        s = follower_motion(self.cam, np.atleast_1d(x))[0]
+        return self.sign * s.reshape(x.shape)
+
+    def slopes(self, x: ArrayLike) -> tuple[np.ndarray, np.ndarray]:
+        """df/dx and d2f/dx2 at the driving motion ``x``."""
+        x = np.asarray(x, dtype=float)
+        if self.cam is None:
+            return np.full(x.shape, float(self.ratio or 0.0)), np.zeros(x.shape)
+        _, ds, dds, _ = follower_motion(self.cam, np.atleast_1d(x))
+        return self.sign * ds.reshape(x.shape), self.sign * dds.reshape(x.shape)
+
+    def rates(self, pose: Mapping[str, tuple], vel: Mapping[str, tuple],
+              acc: Mapping[str, tuple]) -> tuple[tuple, tuple]:
+        """The joint's (velocity, acceleration) table entries, by the chain rule."""
+        x = self.driving(pose)
+        xr = self.by_sign * np.asarray(vel[self.by][2], dtype=float)
+        xa = self.by_sign * np.asarray(acc[self.by][2], dtype=float)
+        d1, d2 = self.slopes(x)
+        return (0.0, 0.0, d1 * xr), (0.0, 0.0, d2 * xr * xr + d1 * xa)
+
+
+def _r_joint(chain: Chain, one: str, other: str) -> Joint | None:
+    return next((j for j in sorted(chain.joints, key=lambda j: j.id)
+                 if j.kind == "R" and one in j.links and other in j.links), None)
+
+
+def _entry(known: Mapping[str, tuple[str, str, str]], joint: Joint, on: str, link: str
+           ) -> tuple[str, float] | None:
+    """(table key, sign) giving ``link``'s rotation on ``on`` at ``joint``, when the
+    joint's motion is known (an input or derived between those two links)."""
+    got = known.get(joint.id)
+    if got is None:
+        return None
+    key, a, b = got
+    if (a, b) == (on, link):
+        return key, 1.0
+    if (a, b) == (link, on):
+        return key, -1.0
+    return None
+
+
+def _gear(chain: Chain, g: GearPair, known, name: str) -> Derived | None:
+    """The gear pair as a derived joint, once one of its gears' axis joints is known."""
+    c = g.carrier
+    a, b = g.links
+    ja, jb = _r_joint(chain, a, c), _r_joint(chain, b, c)
+    if ja is None or jb is None:
+        raise MechanismError(f"the gear pair {g.id!r} needs each gear on an R joint with "
+                             f"its carrier {c!r} to be solved", mechanism=name)
+    ratio = g.sign * g.teeth[0] / g.teeth[1]       # (w_b - w_c) / (w_a - w_c)
+    for (drive, driven, r) in ((ja, jb, ratio), (jb, ja, 1.0 / ratio)):
+        by = _entry(known, drive, c, a if drive is ja else b)
+        if by is None:
+            continue
+        if driven.id in known:
+            raise MechanismError(
+                f"the gear pair {g.id!r} drives joint {driven.id!r}, whose motion is "
+                "already an input or driven by another pair (a closed loop of gears, or "
+                "one input too many)", mechanism=name)
+        return Derived(driven.id, "R", c, b if driven is jb else a, g.id, by[0], by[1],
+                       ratio=r)
+    return None
+
+
+def _cam_joints(chain: Chain, cam: Cam, name: str) -> tuple[Joint, Joint, str]:
+    """The cam's R joint, the follower's joint on the same link F, and F."""
+    for jc in sorted(chain.joints, key=lambda j: j.id):
+        if jc.kind != "R" or cam.cam not in jc.links or cam.follower in jc.links \
+                or len(jc.links) != 2:
+            continue
+        f = next(x for x in jc.links if x != cam.cam)
+        for jf in sorted(chain.joints, key=lambda j: j.id):
+            if jf.kind in ("R", "P") and set(jf.links) == {f, cam.follower}:
+                return jc, jf, f
+    raise MechanismError(f"the cam {cam.id!r}: the cam and the follower must turn, slide or "
+                         "swing on one link (the frame) to be solved", mechanism=name)
+
+
+def _cam(chain: Chain, cam: Cam, known, name: str) -> Derived | None:
+    jc, jf, f = _cam_joints(chain, cam, name)
+    by = _entry(known, jc, f, cam.cam)
+    if by is None:
+        return None
+    if jf.id in known:
+        raise MechanismError(f"the cam {cam.id!r} drives joint {jf.id!r}, whose motion is "
+                             "already an input or driven by another pair", mechanism=name)
+    if jf.kind == "R":
+        return Derived(jf.id, "R", f, cam.follower, cam.id, by[0], by[1], cam=cam)
+    frame = cam_frame(chain, cam)
+    up = (math.cos(math.radians(jf.axis or 0.0)), math.sin(math.radians(jf.axis or 0.0)))
+    along = 1.0 if up[0] * frame.up[0] + up[1] * frame.up[1] > 0 else -1.0
+    sign = along if jf.links[0] == f else -along
+    return Derived(jf.id, "P", jf.links[0], jf.links[1], cam.id, by[0], by[1], cam=cam,
+                   sign=sign)
+
+
+def derived_inputs(chain: Chain, inputs: Sequence[tuple[str, str, str, str]], name: str
+                   ) -> tuple[Derived, ...]:
+    """Every higher pair of ``chain`` as a :class:`Derived` joint, in the order they
+    follow from the ``inputs`` (each ``(joint, key, a, b)``: the joint, its table key,
+    and the links whose relative motion it gives). Refuses a pair no input drives."""
+    known = {j: (key, a, b) for j, key, a, b in inputs}
+    pairs: list[GearPair | Cam] = [*chain.gears, *chain.cams]
+    out: list[Derived] = []
+    while pairs:
+        left = []
+        for p in pairs:
+            d = _gear(chain, p, known, name) if isinstance(p, GearPair) else \
+                _cam(chain, p, known, name)
+            if d is None:
+                left.append(p)
+            else:
+                out.append(d)
+                known[d.joint] = (d.key, d.a, d.b)
+        if len(left) == len(pairs):
+            p = left[0]
+            what = (f"the gear pair {p.id!r}: neither gear's joint with the carrier "
+                    f"{p.carrier!r}" if isinstance(p, GearPair) else
+                    f"the cam {p.id!r}: the cam's turning joint")
+            raise MechanismError(f"{what} is an input or driven through another pair, so "
+                                 "the pair's motion cannot be derived from the inputs",
+                                 mechanism=name)
+        pairs = left
+    ids = {g.id for g in chain.gears} | {c.id for c in chain.cams}
+    stray = [j.id for j in chain.joints if j.kind in HIGHER_KINDS and j.id not in ids]
+    if stray:
+        raise MechanismError(f"the higher pair {stray[0]!r} has no [[cams]] or [[gears]] "
+                             "table saying how it moves", mechanism=name)
+    return tuple(out)
+
+
+# -- a cam's place in the drawing ------------------------------------------------------
+@dataclass(frozen=True)
+class CamFrame:
+    """Where :mod:`chaingraph.kinematics.cams`' frame lies in the drawing: the cam's
+    centre ``centre`` and the images ``right`` and ``up`` of its x and y axes (unit
+    vectors: a point p of that frame is drawn at ``centre + p_x right + p_y up``); the
+    link ``on`` (the frame) that the cam and the follower turn or slide on."""
+
+    centre: tuple[float, float]
+    right: tuple[float, float]
+    up: tuple[float, float]
+    on: str
+
+    def drawn(self, p: ArrayLike) -> np.ndarray:
+        """Points ``p`` (n x 2) of the cam's frame, in the drawing."""
+        p = np.asarray(p, dtype=float)
+        return np.stack([self.centre[0] + p[..., 0] * self.right[0] + p[..., 1] * self.up[0],
+                         self.centre[1] + p[..., 0] * self.right[1] + p[..., 1] * self.up[1]],
+                        axis=-1)
+
+    def vector(self, v: ArrayLike) -> np.ndarray:
+        """Vectors ``v`` (n x 2) of the cam's frame, in the drawing."""
+        v = np.asarray(v, dtype=float)
+        return np.stack([v[..., 0] * self.right[0] + v[..., 1] * self.up[0],
+                         v[..., 0] * self.right[1] + v[..., 1] * self.up[1]], axis=-1)
+
+
+def cam_frame(chain: Chain, cam: Cam) -> CamFrame:
+    """The cam's frame in the drawing (see :class:`CamFrame`): a translating follower
+    slides along its P joint's axis, ``up`` pointing away from the cam's centre (to the
+    follower's other joints), its line ``offset`` to the right of the centre; an
+    oscillating follower's pivot lies at ``pivot`` from the centre, turned. Refuses a
+    drawing whose follower's line or pivot does not agree with the ``[[cams]]`` table."""
+    name = chain.source or chain.name
+    jc, jf, f = _cam_joints(chain, cam, name)
+    if jc.at is None or jf.at is None:
+        raise MechanismError(f"the cam {cam.id!r}: its joints need positions to be solved",
+                             mechanism=name)
+    o = jc.at
+    size = max(1.0, max(abs(v) for j in chain.joints if j.at for v in j.at))
+    if jf.kind == "R":
+        q = (jf.at[0] - o[0], jf.at[1] - o[1])
+        px, py = cam.pivot or (0.0, 0.0)
+        if abs(math.hypot(*q) - math.hypot(px, py)) > 1e-6 * size:
+            raise MechanismError(
+                f"the cam {cam.id!r}: the follower's pivot {jf.id!r} is drawn "
+                f"{math.hypot(*q):g} from the cam's centre; its 'pivot' is "
+                f"{math.hypot(px, py):g} from it", mechanism=name)
+        turn = math.atan2(q[1], q[0]) - math.atan2(py, px)
+        c, s = math.cos(turn), math.sin(turn)
+        return CamFrame(o, (c, s), (-s, c), f)
+    u = (math.cos(math.radians(jf.axis or 0.0)), math.sin(math.radians(jf.axis or 0.0)))
+    ahead = [j.at for j in chain.joints if cam.follower in j.links and j.at is not None
+             and j.kind not in HIGHER_KINDS]
+    reach = sum((p[0] - o[0]) * u[0] + (p[1] - o[1]) * u[1] for p in ahead)
+    up = u if reach >= 0 else (-u[0], -u[1])
+    right = (up[1], -up[0])
+    offset = (jf.at[0] - o[0]) * right[0] + (jf.at[1] - o[1]) * right[1]
+    if abs(offset - cam.offset) > 1e-6 * size:
+        raise MechanismError(
+            f"the cam {cam.id!r}: the follower's line {jf.id!r} is drawn "
+            f"{tidy(offset, size):g} to the "
+            f"right of the cam's centre (looking along the follower); its 'offset' is "
+            f"{cam.offset:g}", mechanism=name)
+    return CamFrame(o, right, up, f)
+
+
+def _turned(v: np.ndarray, angle: np.ndarray) -> np.ndarray:
+    """Vectors ``v`` (n x 2) turned by ``angle`` (n)."""
+    x, y = rotate(v.T, angle)
+    return np.stack([x, y], axis=1)
+
+
+def cam_contact(chain: Chain, cam: Cam, theta: ArrayLike
+                ) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+    """At the cam's turns ``theta`` (radians from the drawn pose), in the drawing with
+    the link F held where drawn: the contact point (n x 2), the common normal there
+    (unit, from the cam towards the follower) and the follower's reference point (the
+    roller's centre, the knife's tip, the flat face's foot)."""
+    frame = cam_frame(chain, cam)
+    theta = np.atleast_1d(np.asarray(theta, dtype=float))
+    r = analyse_cam(cam, theta)
+    w, c = _turned(r.pitch, theta), _turned(r.profile, theta)   # the cam's frame, turned
+    if cam.moves == "translating":
+        up = np.tile([0.0, 1.0], (theta.size, 1))
+    else:                                   # square to the arm, the way it swings
+        arm = w - np.asarray(cam.pivot, dtype=float)
+        up = np.stack([-arm[:, 1], arm[:, 0]], axis=1) / np.hypot(arm[:, 0], arm[:, 1])[:, None]
+    normal = _turned(up, r.pressure)                  # up turned by the pressure angle
+    return frame.drawn(c), frame.vector(normal), frame.drawn(w)

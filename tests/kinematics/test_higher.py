@@ -1,0 +1,184 @@
+"""Linkages with higher pairs: a geared five-bar and a cam driving a rocker, solved by
+the ordinary solver with the pairs as derived inputs (kinematics/higher.py).
+
+Checked against closed forms (the 1:1 geared five-bar is symmetric about the line
+between its pivots, its coupler's joint on that line), kinematics/cams.py's program
+(the follower's slide is s(theta) exactly), finite differences of the positions, and
+relabelling."""
+
+import math
+
+import numpy as np
+import pytest
+
+import chaingraph
+from chaingraph.errors import MechanismError
+from chaingraph.kinematics.cams import follower_motion
+from chaingraph.kinematics.plan import build_plan
+
+from ..conftest import run_cli
+
+FIVE_BAR = "examples/geared-five-bar.toml"
+CAM_ROCKER = "examples/cam-rocker.toml"
+
+
+def _text(path):
+    with open(path, encoding="utf-8") as f:
+        return f.read()
+
+
+def test_geared_five_bar_is_symmetric_and_matches_its_closed_form():
+    chain = chaingraph.load(FIVE_BAR)
+    m = chaingraph.solve(chain, steps=48)
+    theta = np.radians(m.theta)                      # the left crank's direction
+    b = m.joint("B")
+    np.testing.assert_allclose(b.x, 40 * np.cos(theta), atol=1e-9)
+    np.testing.assert_allclose(b.y, 40 * np.sin(theta), atol=1e-9)
+    # the right crank turns the other way at the same speed: D mirrors B about x = 50
+    d = m.joint("D")
+    np.testing.assert_allclose(d.x, 100 - b.x, atol=1e-9)
+    np.testing.assert_allclose(d.y, b.y, atol=1e-9)
+    c = m.joint("C")
+    np.testing.assert_allclose(c.x, 50.0, atol=1e-9)
+    np.testing.assert_allclose(
+        c.y, 40 * np.sin(theta) + np.sqrt(70.0 ** 2 - (50 - 40 * np.cos(theta)) ** 2),
+        atol=1e-9)
+    right = m.link("right crank").omega
+    np.testing.assert_allclose(right, -m.link("left crank").omega, atol=1e-12)
+    # the arms straighten (a dead centre) where 50 - 40 cos(theta) = 70
+    assert m.summary["input_range"] == pytest.approx([-120.0, 120.0], abs=1e-6)
+    assert m.plan.mobility == 1 and m.plan.numeric_mobility == 1
+
+
+def _check_finite_differences(m, names, h_deg, *, rtol_a):
+    """Each point's velocity and acceleration against central differences of its
+    positions over the sweep's uniform grid of input angles (``h_deg`` apart), to a
+    share of the point's largest velocity and acceleration."""
+    h = math.radians(h_deg) / m.omega
+    for name in names:
+        p = m.point(name)
+        v_scale = max(np.abs(p.vx).max(), np.abs(p.vy).max())
+        a_scale = max(np.abs(p.ax).max(), np.abs(p.ay).max())
+        for coord in ("x", "y"):
+            q = getattr(p, coord)
+            np.testing.assert_allclose((q[2:] - q[:-2]) / (2 * h),
+                                       getattr(p, "v" + coord)[1:-1], atol=1e-5 * v_scale)
+            np.testing.assert_allclose((q[2:] - 2 * q[1:-1] + q[:-2]) / h ** 2,
+                                       getattr(p, "a" + coord)[1:-1], atol=rtol_a * a_scale)
+
+
+@pytest.mark.parametrize("teeth", [(25, 25), (20, 30)])
+def test_geared_five_bar_rates_are_the_derivatives_of_its_positions(teeth):
+    text = _text(FIVE_BAR).replace("teeth = [25, 25]", f"teeth = [{teeth[0]}, {teeth[1]}]")
+    chain = chaingraph.loads(text)
+    m = chaingraph.solve(chain, start=20.0, stop=80.0, steps=600)
+    assert np.all(np.diff(m.theta) == pytest.approx(0.1))
+    ratio = -teeth[0] / teeth[1]
+    np.testing.assert_allclose(m.link("right crank").omega, ratio * m.link("left crank").omega,
+                               rtol=1e-12)
+    turned = (m.link("right crank").angle - m.link("right crank").angle[0])
+    np.testing.assert_allclose(turned, ratio * np.radians(m.theta - m.theta[0]), atol=1e-12)
+    _check_finite_differences(m, ("C", "P"), 0.1, rtol_a=1e-4)
+
+
+def test_cam_follower_slides_by_the_program():
+    chain = chaingraph.load(CAM_ROCKER)
+    m = chaingraph.solve(chain, steps=720)
+    cam = chain.cams[0]
+    turn = np.radians(m.theta - m.theta[0])           # the cam's turn from the drawing
+    s, ds, dds, _ = follower_motion(cam, turn)
+    slide = m.slide("S")
+    np.testing.assert_allclose(slide.s, s, atol=1e-12)
+    np.testing.assert_allclose(slide.v, ds * m.omega, atol=1e-9)
+    np.testing.assert_allclose(slide.a, dds * m.omega ** 2, atol=1e-7)
+    np.testing.assert_allclose(m.joint("F").y, 100.0 + s, atol=1e-9)
+    np.testing.assert_allclose(m.joint("F").x, 0.0, atol=1e-12)
+    assert m.plan.mobility == 1
+
+
+def test_cam_rocker_rates_are_the_derivatives_of_its_positions():
+    chain = chaingraph.load(CAM_ROCKER)
+    m = chaingraph.solve(chain, start=100.0, stop=200.0, steps=1000)  # inside the rise
+    _check_finite_differences(m, ("G",), 0.1, rtol_a=1e-3)
+
+
+def test_oscillating_follower_swings_by_the_program(write):
+    """A cam swinging a rocker follower (the oscillating example's cam, drawn with its
+    pivot at the table's place) turns the rocker by the program exactly."""
+    text = _text("examples/cam-oscillating-roller.toml")
+    text = text.replace('links = ["frame", "cam"]', 'links = ["frame", "cam"]\nat = [0.0, 0.0]')
+    text = text.replace('links = ["frame", "rocker"]',
+                        'links = ["frame", "rocker"]\nat = [70.0, 20.0]')
+    text = text.replace('links = ["cam", "rocker"]', 'links = ["cam", "rocker"]\nat = [0.0, 30.0]')
+    text += '\n[mechanism]\nfixed = "frame"\ndriver = "cam"\noutput = "rocker"\n'
+    chain = chaingraph.load(write(text))
+    m = chaingraph.solve(chain, steps=360)
+    s = follower_motion(chain.cams[0], np.radians(m.theta - m.theta[0]))[0]
+    rocker = m.link("rocker").angle
+    np.testing.assert_allclose(rocker - rocker[0], s, atol=1e-12)
+
+
+def test_relabelled_chains_move_alike():
+    chain = chaingraph.load(CAM_ROCKER)
+    other = chain.relabelled(links={"cam": "disc", "follower": "tappet", "rocker": "lever"},
+                             joints={"K": "contact", "S": "guide", "F": "pin"})
+    a = chaingraph.solve(chain, steps=90)
+    b = chaingraph.solve(other, steps=90)
+    np.testing.assert_allclose(a.slide("S").s, b.slide("guide").s, atol=1e-12)
+    np.testing.assert_allclose(a.link("rocker").alpha, b.link("lever").alpha, atol=1e-9)
+    five = chaingraph.load(FIVE_BAR)
+    swapped = five.relabelled(links={"left crank": "one", "right crank": "two"},
+                              joints={"G": "mesh"})
+    np.testing.assert_allclose(chaingraph.solve(five, steps=30).point("P").y,
+                               chaingraph.solve(swapped, steps=30).point("P").y, atol=1e-12)
+
+
+def test_single_pose_follows_the_pairs_too():
+    chain = chaingraph.load(CAM_ROCKER)
+    pose = chaingraph.pose_motion(chain, at=150.0)       # 60 degrees into the rise
+    cam = chain.cams[0]
+    s, ds, _, _ = follower_motion(cam, np.array([math.radians(60.0)]))
+    assert pose.slides["S"].slide == pytest.approx(float(s[0]), abs=1e-9)
+    assert pose.positions["F"][1] == pytest.approx(100.0 + float(s[0]), abs=1e-9)
+    assert pose.links["follower"].velocity[1] == pytest.approx(float(ds[0]) * pose.omega,
+                                                               abs=1e-9)
+
+
+def test_a_simple_gear_train_turns_by_the_product_of_its_teeth():
+    """The driver (20 teeth) turns the driven gear (50) through an idler (35): the
+    driven gear turns 20/50 of the driver's angle, the same way, the idler -20/35."""
+    chain = chaingraph.load("examples/simple-gear-train.toml")
+    m = chaingraph.solve(chain, fixed="frame", driver="driver", start=0.0, stop=360.0,
+                         steps=36)
+    turn = np.radians(m.theta - m.theta[0])
+    for link, ratio in (("idler", -20 / 35), ("driven", 20 / 50)):
+        angle = m.link(link).angle
+        np.testing.assert_allclose(angle - angle[0], ratio * turn, atol=1e-12)
+        np.testing.assert_allclose(m.link(link).omega, ratio * m.omega, rtol=1e-12)
+    assert m.plan.mobility == 1        # Kutzbach: 3 x 3 - 2 x 3 - 2 = 1
+
+
+def test_a_pair_no_input_drives_is_refused():
+    chain = chaingraph.load(FIVE_BAR)
+    with pytest.raises(MechanismError, match="gear pair 'G'") as e:
+        build_plan(chain, inputs=[chaingraph.Input("C")])
+    assert "cannot be derived" in str(e.value)
+
+
+def test_a_follower_drawn_off_its_line_is_refused():
+    text = _text(CAM_ROCKER).replace("offset = 0.0", "offset = 5.0")
+    with pytest.raises(MechanismError, match="offset"):
+        chaingraph.solve(chaingraph.loads(text), steps=10)
+
+
+def test_the_command_line_refuses_in_one_line(tmp_path):
+    bad = tmp_path / "bad.toml"
+    bad.write_text(_text(CAM_ROCKER).replace("offset = 0.0", "offset = 5.0"), encoding="utf-8")
+    for args, said in (([bad], "drawn 0 to the right of the cam's centre (looking along the "
+                                "follower); its 'offset' is 5"),
+                       (["catalog/cam-and-follower.toml", "--fixed", "frame", "--driver", "cam"],
+                        "cannot be solved for motion"),
+                       ([FIVE_BAR, "--input", "C"], "cannot be derived from the inputs")):
+        code, out, err = run_cli("solve", *args)
+        assert code == 2 and out == "" and len(err.strip().splitlines()) == 1, err
+        assert said in err
