@@ -15,7 +15,8 @@ from collections.abc import Callable
 
 from chaingraph.cli.text import error_text, print_json
 from chaingraph.errors import ChainGraphError
-from chaingraph.model.chainfile import parse_file
+from chaingraph.files import model_kind, model_text, read_pylinkage, read_pyslvs
+from chaingraph.model.chainfile import Document, parse_file
 from chaingraph.naming import finding_lines, lint
 
 __all__ = ["cmd_lint", "lint_command"]
@@ -29,20 +30,36 @@ def lint_command(sub: argparse._SubParsersAction,
                                    "sub-chain, a degenerate structure, inputs that are not "
                                    "one per degree of freedom, a name that does not fit the "
                                    "structure, a drawn pose that does not close and a drawn "
-                                   "pose the inputs cannot move or do not determine. One "
-                                   "line per finding; exit status 1 when there is one.")
+                                   "pose the inputs cannot move or do not determine; a "
+                                   "pylinkage or Pyslvs model is read as its import "
+                                   "reads it. One line per finding; exit status 1 when "
+                                   "there is one.")
     p.add_argument("files", nargs="+", type=path_argument, metavar="PATH",
-                   help="chain files (TOML)")
+                   help="chain files (TOML), or pylinkage (JSON) or Pyslvs (an "
+                        "expression) models, told apart by their text")
     p.add_argument("--json", action="store_true",
                    help="print JSON: each file's findings (where, kind, message)")
     p.set_defaults(run=cmd_lint)
+
+
+def _document(path: str) -> Document:
+    """The chain file at ``path``, or the model of another tool there, read as one."""
+    if path.endswith(".toml"):
+        return parse_file(path)
+    text = model_text(path)
+    kind = model_kind(text)
+    if kind == "pylinkage":
+        return read_pylinkage(text, source=path).document
+    if kind == "pyslvs":
+        return read_pyslvs(text, source=path).document
+    return parse_file(path)
 
 
 def cmd_lint(args: argparse.Namespace) -> int:
     status, report = 0, {}
     for path in args.files:
         try:
-            findings = lint(parse_file(path))
+            findings = lint(_document(path))
         except ChainGraphError as e:
             print(f"chaingraph: error: {error_text(e)}", file=sys.stderr)
             status = 2

@@ -12,7 +12,7 @@ sent out.
   (:class:`~chaingraph.errors.InterchangeError`).
 """
 
-from chaingraph.files.imported import Imported
+from chaingraph.files.imported import Imported, model_kind, model_text
 from chaingraph.files.native import (
     dumps,
     from_document,
@@ -29,4 +29,4 @@ from chaingraph.files.pyslvs import pyslvs_expression, read_pyslvs
 
 __all__ = ["load", "loads", "from_document", "dumps", "save", "read_file", "read_text",
            "read_document", "place", "Imported", "read_pylinkage", "pylinkage_json",
-           "read_pyslvs", "pyslvs_expression"]
+           "read_pyslvs", "pyslvs_expression", "model_kind", "model_text"]

@@ -12,7 +12,7 @@ from chaingraph.model.chain import Chain
 from chaingraph.model.chainfile import Document, parse_document, toml_text
 from chaingraph.files.native import place
 
-__all__ = ["Imported", "imported", "model_text"]
+__all__ = ["Imported", "imported", "model_text", "model_kind"]
 
 
 @dataclass(frozen=True)
@@ -65,3 +65,20 @@ def model_text(path: str | os.PathLike[str]) -> str:
         raise ChainFileError(f"is not UTF-8 text (byte {e.start})", source=source) from None
     except OSError as e:
         raise ChainFileError(f"cannot be read ({e.strerror})", source=source) from None
+
+
+def model_kind(text: str) -> str | None:
+    """Which tool's model ``text`` is: ``"pylinkage"`` (a JSON object), ``"pyslvs"`` (a
+    mechanism expression, ``M[...]``), or None (not another tool's: a chain file).
+
+    >>> model_kind('{"name": "four-bar", "joints": []}'), model_kind("M[J[R, P[0, 0]]]")
+    ('pylinkage', 'pyslvs')
+    >>> model_kind('name = "four-bar"') is None
+    True
+    """
+    head = text.lstrip()
+    if head.startswith("{"):
+        return "pylinkage"
+    if head.startswith("M["):
+        return "pyslvs"
+    return None

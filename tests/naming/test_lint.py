@@ -112,3 +112,18 @@ def test_a_mechanism_with_no_freedom_is_locked(tmp_path):
     findings = lint(parse_file(tmp_path / "x.toml"))
     assert [(f.kind, f.where) for f in findings] == [("locked", "link 'crank'")]
     assert "no freedom at the drawn pose" in findings[0].message
+
+
+def test_lint_reads_the_peers_models_as_import_reads_them():
+    """A pylinkage JSON and a Pyslvs expression are linted as imported: pylinkage's
+    Watt factory is a degenerate 8-link chain misnamed Watt; the hand-written Pyslvs
+    Watt six-bar and pylinkage four-bar are clean."""
+    data = "tests/files/data/"
+    code, said, err = run_cli("lint", data + "pylinkage-watt-factory.json",
+                              data + "pyslvs-watt.txt", data + "pylinkage-four-bar.json")
+    assert code == 1, err
+    lines = said.splitlines()
+    assert [line.split(": ")[2] for line in lines] == ["degenerate", "name"]
+    assert all(line.startswith(data + "pylinkage-watt-factory.json: ") for line in lines)
+    code, said, err = run_cli("lint", data + "pyslvs-watt.txt")
+    assert (code, said) == (0, "")
