@@ -305,7 +305,9 @@ def _base_matrix(layout, joints):
     """The equilibrium matrix without friction: one column per unknown."""
     n = layout.n
     one, zero = np.ones(n), np.zeros(n)
-    a = np.zeros((n, layout.rows, len(layout.cols)))
+    # laid out step-last, so that each entry's steps are contiguous (every write below
+    # is one entry over the steps), and seen step-first as the solve takes it
+    a = np.zeros((layout.rows, len(layout.cols), n)).transpose(2, 0, 1)
     where, axis = joints.where, joints.axis
     for c, (kind, j, k) in enumerate(layout.cols):
         if kind in ("Fx", "Fy"):

@@ -31,7 +31,7 @@ from chaingraph.dynamics.equilibrium import (
 )
 from chaingraph.dynamics.shaking import Shaking, largest_size, shaking
 from chaingraph.errors import AssemblyError, MechanismError
-from chaingraph.kinematics import solve
+from chaingraph.kinematics import feasible_range, solve
 from chaingraph.kinematics.inputs import InputsGiven, sweep_drive
 from chaingraph.kinematics.motion import Motion
 from chaingraph.kinematics.plan import Plan
@@ -527,7 +527,9 @@ def forces(mechanism: Chain, *, at: float | Sequence[float] | None = None,
     _check_loads(mechanism, sweep_drive(mechanism, steps=steps, **how).plan)
     if cycle is not None and start is None and stop is None:
         start, stop = 0.0, cycle          # a load's cycle: swept from 0, as the textbook
-    motion = solve(mechanism, start=start, stop=stop, steps=steps, summary=True, **how)
+    # the motion's summary is not the forces': only whether the input turns fully is
+    # (:func:`_full_turn`), which the cycle says without the summary's cost
+    motion = solve(mechanism, start=start, stop=stop, steps=steps, summary=False, **how)
     return _forces_over(mechanism, motion, static=static, metres=metres,
                         speed_fluctuation=speed_fluctuation, how=how)
 
@@ -624,10 +626,23 @@ def _cycle_efforts(chain, plan, metres, static, how, sweep, span, resist, mean):
     return efforts.with_torque(_mean_torque(efforts, np.asarray(motion.theta, dtype=float)))
 
 
+def _full_turn(motion: Motion) -> bool:
+    """Whether the motion's lead input turns fully (its cycle a whole turn), from the
+    motion's summary when it has one, else from the cycle (found once per plan)."""
+    if motion.summary is not None:
+        return bool(motion.summary.full_turn)
+    plan = motion.plan
+    if plan.moving_inputs > 1:
+        return False
+    try:
+        return feasible_range(plan) is None
+    except AssemblyError:             # no cycle: the input neither returns nor stops
+        return False
+
+
 def _whole_cycle(motion, span):
-    s = motion.summary
     theta = np.asarray(motion.theta, dtype=float)
-    return (s is not None and s.full_turn and theta.size > 1
+    return (_full_turn(motion) and theta.size > 1
             and abs(abs(theta[-1] - theta[0]) - span) < 1e-9)
 
 
@@ -809,8 +824,7 @@ def _summary(chain, plan, motion, sol, speed_fluctuation, efforts_at: CycleEffor
     cycle = _one_cycle(plan, motion, span)
     if isinstance(cycle, str):
         if speed_fluctuation is not None or (len(plan.inputs) == 1 and lead.kind == "R"
-                                             and motion.summary is not None
-                                             and motion.summary.full_turn):
+                                             and _full_turn(motion)):
             notes.append(cycle)
     else:
         e = sol.efforts[lead.joint][cycle]
@@ -858,8 +872,7 @@ def _one_cycle(plan, motion, span):
     there is none (a note)."""
     lead = plan.inputs[plan.lead]
     theta = np.asarray(motion.theta, dtype=float)
-    s = motion.summary
-    if len(plan.inputs) != 1 or lead.kind != "R" or s is None or not s.full_turn:
+    if len(plan.inputs) != 1 or lead.kind != "R" or not _full_turn(motion):
         return ("no energy fluctuation or flywheel: they are for a single crank turning "
                 "fully")
     swept = abs(theta[-1] - theta[0])
