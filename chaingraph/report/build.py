@@ -28,6 +28,7 @@ from chaingraph._util.progress import ProgressBar
 from chaingraph.drawing.constructions import draw_centres, draw_polygons
 from chaingraph.drawing.forces import (force_polygon_svg, free_body_svg, plot_shaking,
                                        plot_turning_moment)
+from chaingraph.drawing.gears import train_svg
 from chaingraph.drawing.graph import draw_link_joint_graph
 from chaingraph.drawing.limits import limits_svg
 from chaingraph.drawing.mechanism import mechanism_svg, skeleton_svg
@@ -43,6 +44,7 @@ from chaingraph.kinematics.grid import input_grid
 from chaingraph.kinematics.pose import pose_motion
 from chaingraph.model.chain import Chain
 from chaingraph.naming.inversion_classes import Inversions, inversions
+from chaingraph.report.gears import TrainWay, is_gear_train, train_fixed, train_ways
 from chaingraph.report.pages import entry_page, index_page
 from chaingraph.structure.classification import Classification, classify
 from chaingraph.synthesis.function_generation import structural_error
@@ -70,6 +72,8 @@ class Entry:
     forces: SweepForces | None = None  # with masses or loads: the forces over the sweep
     pose_forces: PoseForces | None = None   # and at the sweep's first pose (the free bodies)
     task: dict[str, Any] | None = None  # a synthesised mechanism's [task], drawn (task_drawing)
+    train: str | None = None            # a gear train: its fixed link (report.gears)
+    ways: list[TrainWay] = field(default_factory=list)   # and the ways it is run
 
 
 @dataclass
@@ -226,6 +230,13 @@ def _analyse(source: str, slug: str, steps: int) -> Entry:
     entry = Entry(source=source, slug=slug, chain=chain, classification=classify(chain))
     if len(chain.pieces) == 1:
         entry.inversions = inversions(chain)
+    if is_gear_train(chain):            # its speeds, not a motion: no skeleton, no sweep
+        entry.train = train_fixed(chain)
+        entry.ways = train_ways(chain, fixed=entry.train)
+        if not entry.ways:
+            entry.warnings.append(f"speeds not found: no link driven at 1 rpm with "
+                                  f"{entry.train} fixed (and a member held) settles the train")
+        return entry
     m = chain.mechanism
     if m is not None and (m.driver is not None or m.inputs) and chain.has_pose:
         try:
@@ -279,6 +290,10 @@ def _task_drawing(entry: Entry, task: dict[str, Any]) -> dict[str, Any] | None:
 def _write_images(entry: Entry, out: Path, frames: int) -> None:
     img = out / "img"
     draw_link_joint_graph(entry.chain, img / f"{entry.slug}-graph.svg")
+    if entry.train is not None:
+        (img / f"{entry.slug}-train.svg").write_text(train_svg(entry.chain, fixed=entry.train),
+                                                     encoding="utf-8")
+        return
     (img / f"{entry.slug}-skeleton.svg").write_text(skeleton_svg(entry.chain), encoding="utf-8")
     if entry.motion is not None:
         (img / f"{entry.slug}-pose.svg").write_text(mechanism_svg(entry.motion),

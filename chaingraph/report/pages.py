@@ -11,6 +11,7 @@ from typing import TYPE_CHECKING
 
 from chaingraph.drawing.forces import force_polygon_svg
 from chaingraph.kinematics import summary_rows
+from chaingraph.report.gears import gears_section
 from chaingraph.report.player import player_html
 
 if TYPE_CHECKING:                       # the runner's records; it imports this module
@@ -85,12 +86,16 @@ def entry_page(e: Entry) -> str:
             f"<code>{_esc(Path(e.source).name)}</code></p>"]
     if chain.notes:
         body.append(f"<p class=\"notes\">{_esc(chain.notes)}</p>")
+    if e.train is not None:
+        body += gears_section(chain, e.slug, e.train, e.ways)
     body.append("<h2>The chain and its link-joint graph</h2><div class=\"figures\">")
-    body.append(f"<figure><img src=\"img/{e.slug}-skeleton.svg\" alt=\"kinematic skeleton of "
-                f"{_esc(chain.name)}\" width=\"360\"><figcaption>The kinematic skeleton: "
-                "links as bars and plates, R joints as pins, P joints as blocks"
-                + (", from the drawn pose" if chain.has_pose else ", in a computed layout "
-                   "(the file gives no pose)") + ".</figcaption></figure>")
+    if e.train is None:
+        body.append(f"<figure><img src=\"img/{e.slug}-skeleton.svg\" alt=\"kinematic "
+                    f"skeleton of {_esc(chain.name)}\" width=\"360\"><figcaption>The "
+                    "kinematic skeleton: links as bars and plates, R joints as pins, P "
+                    "joints as blocks"
+                    + (", from the drawn pose" if chain.has_pose else ", in a computed "
+                       "layout (the file gives no pose)") + ".</figcaption></figure>")
     body.append(f"<figure><img src=\"img/{e.slug}-graph.svg\" alt=\"link-joint graph of "
                 f"{_esc(chain.name)}\" width=\"560\"><figcaption>Links as circles, joints as "
                 "squares labelled with their kind (R turning, P sliding: the arrow points to "
