@@ -198,6 +198,7 @@ class Row:
     verdict: str = ""
     classes: int | None = None
     time_ratio: float | None = None
+    picture: str = ""                   # its thumbnail: the skeleton, or a train's drawing
     error: str | None = None
 
 
@@ -217,6 +218,7 @@ def _entry_job(job: tuple[str, str, str, int, int]) -> Row:
         return row
     c = entry.classification
     row.name, row.family = entry.chain.name, entry.chain.family or ""
+    row.picture = f"img/{slug}-{'train-front' if entry.train is not None else 'skeleton'}.svg"
     row.links, row.joint_equivalents = c.links, c.joint_equivalents
     row.mobility, row.verdict = c.mobility, c.verdict
     row.classes = entry.inversions.classes if entry.inversions is not None else None
@@ -291,8 +293,9 @@ def _write_images(entry: Entry, out: Path, frames: int) -> None:
     img = out / "img"
     draw_link_joint_graph(entry.chain, img / f"{entry.slug}-graph.svg")
     if entry.train is not None:
-        (img / f"{entry.slug}-train.svg").write_text(train_svg(entry.chain, fixed=entry.train),
-                                                     encoding="utf-8")
+        for name, graph in (("train", True), ("train-front", False)):   # page, index
+            (img / f"{entry.slug}-{name}.svg").write_text(
+                train_svg(entry.chain, fixed=entry.train, graph=graph), encoding="utf-8")
         return
     (img / f"{entry.slug}-skeleton.svg").write_text(skeleton_svg(entry.chain), encoding="utf-8")
     if entry.motion is not None:

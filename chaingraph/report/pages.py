@@ -54,16 +54,19 @@ def index_page(rows: list[Row], failures: list[tuple[str, str]]) -> str:
         if r.error:
             continue
         lines.append(
-            f"<tr><td><a href=\"{r.slug}.html\">{_esc(r.name)}</a></td>"
+            f"<tr><td><a href=\"{r.slug}.html\"><img class=\"thumb\" src=\"{_esc(r.picture)}\" "
+            f"alt=\"\" height=\"56\"></a></td>"
+            f"<td><a href=\"{r.slug}.html\">{_esc(r.name)}</a></td>"
             f"<td>{_esc(r.family)}</td><td class=\"num\">{r.links}</td>"
             f"<td class=\"num\">{r.joint_equivalents}</td><td class=\"num\">{r.mobility}</td>"
             f"<td>{_esc(r.verdict)}</td><td class=\"num\">{_fmt(r.classes)}</td>"
             f"<td class=\"num\">{_fmt(r.time_ratio, 5)}</td></tr>")
     body = ["<h1>Catalog of kinematic chains and mechanisms</h1>",
-            f"<p>{len(lines)} entries. Each entry's page has its link-joint graph, its "
-            "classification with the textbook's checks, its inversions and, for a "
-            "mechanism, its motion.</p>",
-            "<table id=\"entries\"><thead><tr><th>name</th><th>family</th><th>L</th>"
+            f"<p>{len(lines)} entries, each pictured by its skeleton (a gear train by its "
+            "drawing). Each entry's page has its link-joint graph, its classification "
+            "with the textbook's checks, its inversions and, for a mechanism, its motion; "
+            "for a gear train, its speeds.</p>",
+            "<table id=\"entries\"><thead><tr><th>picture</th><th>name</th><th>family</th><th>L</th>"
             "<th>J</th><th>mobility</th><th>verdict</th><th>inversion classes</th>"
             "<th>time ratio</th></tr></thead><tbody>", *lines, "</tbody></table>"]
     if failures:
