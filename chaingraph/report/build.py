@@ -6,7 +6,8 @@ process of its own, builds the report aside and moves it into place, the index l
 (a table of every entry) and one page per entry: its link-joint graph, classification
 with both textbook checks, inversions, and for a mechanism its drawn pose with the
 paths of its points, the output's motion, the summary and an animation of one cycle
-(an animated SVG). Pages and images are plain files that open from disk with no
+(an animated SVG); for a gear train, its drawing and speeds (``gears``) in place of
+the skeleton and the motion. Pages and images are plain files that open from disk with no
 network. A file that cannot be read or analysed is listed on the index as a failure and
 the rest go on.
 """
