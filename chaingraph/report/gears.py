@@ -18,7 +18,7 @@ from dataclasses import dataclass
 from fractions import Fraction
 
 from chaingraph.errors import ChainGraphError
-from chaingraph.kinematics.gears import TrainSpeeds, train_speeds
+from chaingraph.kinematics.gears import TrainSpeeds, train_kind, train_speeds
 from chaingraph.model.chain import Chain
 
 __all__ = ["is_gear_train", "train_fixed", "TrainWay", "train_ways", "gears_section"]
@@ -58,6 +58,12 @@ class TrainWay:
     held: str | None
     driver: str
     result: TrainSpeeds
+
+    @property
+    def kind(self) -> str:
+        """The train's kind as it runs this way: with the held link at rest too (the
+        epicyclic train with its arm held is an ordinary one)."""
+        return train_kind(self.result.train, self.held) if self.held else self.result.kind
 
 
 def _members(chain: Chain, fixed: str) -> list[str]:
@@ -126,11 +132,12 @@ def _way_title(fixed: str, way: TrainWay) -> str:
 def _speeds_table(chain: Chain, fixed: str, ways: list[TrainWay]) -> list[str]:
     """Every way's speeds in one table, a row per way, a column per link."""
     links = list(chain.links)
-    out = ["<table id=\"gear-speeds\"><tr><th>held</th><th>driver (1 rpm)</th><th>kind</th>"
+    out = ["<table id=\"gear-speeds\"><tr><th>held</th><th>driver (1 rpm)</th>"
+           "<th>kind, so held</th>"
            + "".join(f"<th>{_esc(x)}</th>" for x in links) + "</tr>"]
     for w in ways:
         out.append(f"<tr><td>{_esc(w.held or fixed)}</td><td>{_esc(w.driver)}</td>"
-                   f"<td>{_esc(w.result.kind)}</td>"
+                   f"<td>{_esc(w.kind)}</td>"
                    + "".join(f"<td class=\"num\">{_esc(_shown(w.result.speeds[x]))}</td>"
                              for x in links) + "</tr>")
     out.append("</table>")
@@ -185,9 +192,8 @@ def gears_section(chain: Chain, slug: str, fixed: str, ways: list[TrainWay]) -> 
            f"<p><b>Gear pairs:</b> {_esc(teeth)}.</p>"]
     if not ways:
         return out
-    kinds = sorted({w.result.kind for w in ways})
     freedom = ways[0].result.freedom
-    out.append(f"<p><b>Kind:</b> {_esc(', '.join(kinds))}, {freedom} degree"
+    out.append(f"<p><b>Kind:</b> {_esc(ways[0].result.kind)}, {freedom} degree"
                f"{'' if freedom == 1 else 's'} of freedom with {_esc(fixed)} fixed. "
                "Speeds in rpm with the driver at 1 rpm (so they are ratios to it), "
                "exact, by the tabular method and the relative-velocity (Willis) equations, "

@@ -73,6 +73,9 @@ def test_the_epicyclic_train_with_each_member_held():
     w = ways["arm"].speeds
     assert w["annulus"] / w["sun"] == Fraction(-zs, za)
     assert all(r.speeds["frame"] == 0 and r.freedom == 2 for r in ways.values())
+    # held by its arm, it is an ordinary train (the planet an idler); else epicyclic
+    kinds = {w.held: w.kind for w in train_ways(chain)}
+    assert kinds == {"sun": "epicyclic", "annulus": "epicyclic", "arm": "simple"}
 
 
 def test_the_differential_s_wheels_share_the_case():
