@@ -18,6 +18,7 @@ settings.load_profile(os.environ.get("HYPOTHESIS_PROFILE", "derandomized"))
 
 from chaingraph.naming.catalog import catalog_files, catalog_path  # noqa: F401  (used by the tests)
 from chaingraph.cli.main import main
+from chaingraph.report.gears import is_gear_train
 
 #: the test files that take longest, longest first (``pytest --durations=0``, summed by
 #: file): `make test` runs them first, each on one worker (``--dist loadfile
@@ -88,8 +89,7 @@ def solver_takes(chain):
     `chaingraph gears`' (a train of ratio 5/2 returns to its pose after five turns
     of its input, past the solver's search for a cycle)."""
     tabled = {c.id for c in chain.cams} | {g.id for g in chain.gears}
-    lower = sum(len(j.links) - 1 for j in chain.joints if j.kind in ("R", "P"))
-    if chain.gears and lower < len(chain.links):
+    if is_gear_train(chain):
         return False      # a gear train (no loop of lower pairs): `chaingraph gears`
     return all(j.kind in ("R", "P") or (j.kind in ("cam", "gear") and j.id in tabled)
                for j in chain.joints)

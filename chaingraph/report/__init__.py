@@ -1,5 +1,6 @@
 """The HTML report: a page per chain file with its pictures, classification,
-inversions, motion and forces (:mod:`.build`), the animation of an inversion
+inversions, motion and forces (:mod:`.build`), a gear train's drawing and speeds
+(:mod:`.gears`), the animation of an inversion
 (:mod:`.animation`), and the atlas's illustrated pages and index (:mod:`.atlas`,
 :mod:`.atlas_index`; loaded when first used: the atlas loads pynauty).
 """

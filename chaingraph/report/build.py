@@ -6,7 +6,8 @@ process of its own, builds the report aside and moves it into place, the index l
 (a table of every entry) and one page per entry: its link-joint graph, classification
 with both textbook checks, inversions, and for a mechanism its drawn pose with the
 paths of its points, the output's motion, the summary and an animation of one cycle
-(an animated SVG). Pages and images are plain files that open from disk with no
+(an animated SVG); for a gear train, its drawing and speeds (``gears``) in place of
+the skeleton and the motion. Pages and images are plain files that open from disk with no
 network. A file that cannot be read or analysed is listed on the index as a failure and
 the rest go on.
 """
@@ -28,6 +29,7 @@ from chaingraph._util.progress import ProgressBar
 from chaingraph.drawing.constructions import draw_centres, draw_polygons
 from chaingraph.drawing.forces import (force_polygon_svg, free_body_svg, plot_shaking,
                                        plot_turning_moment)
+from chaingraph.drawing.gears import train_svg
 from chaingraph.drawing.graph import draw_link_joint_graph
 from chaingraph.drawing.limits import limits_svg
 from chaingraph.drawing.mechanism import mechanism_svg, skeleton_svg
@@ -43,6 +45,7 @@ from chaingraph.kinematics.grid import input_grid
 from chaingraph.kinematics.pose import pose_motion
 from chaingraph.model.chain import Chain
 from chaingraph.naming.inversion_classes import Inversions, inversions
+from chaingraph.report.gears import TrainWay, is_gear_train, train_fixed, train_ways
 from chaingraph.report.pages import entry_page, index_page
 from chaingraph.structure.classification import Classification, classify
 from chaingraph.synthesis.function_generation import structural_error
@@ -70,6 +73,8 @@ class Entry:
     forces: SweepForces | None = None  # with masses or loads: the forces over the sweep
     pose_forces: PoseForces | None = None   # and at the sweep's first pose (the free bodies)
     task: dict[str, Any] | None = None  # a synthesised mechanism's [task], drawn (task_drawing)
+    train: str | None = None            # a gear train: its fixed link (report.gears)
+    ways: list[TrainWay] = field(default_factory=list)   # and the ways it is run
 
 
 @dataclass
@@ -194,6 +199,7 @@ class Row:
     verdict: str = ""
     classes: int | None = None
     time_ratio: float | None = None
+    picture: str = ""                   # its thumbnail: the skeleton, or a train's drawing
     error: str | None = None
 
 
@@ -213,6 +219,7 @@ def _entry_job(job: tuple[str, str, str, int, int]) -> Row:
         return row
     c = entry.classification
     row.name, row.family = entry.chain.name, entry.chain.family or ""
+    row.picture = f"img/{slug}-{'train-front' if entry.train is not None else 'skeleton'}.svg"
     row.links, row.joint_equivalents = c.links, c.joint_equivalents
     row.mobility, row.verdict = c.mobility, c.verdict
     row.classes = entry.inversions.classes if entry.inversions is not None else None
@@ -226,6 +233,13 @@ def _analyse(source: str, slug: str, steps: int) -> Entry:
     entry = Entry(source=source, slug=slug, chain=chain, classification=classify(chain))
     if len(chain.pieces) == 1:
         entry.inversions = inversions(chain)
+    if is_gear_train(chain):            # its speeds, not a motion: no skeleton, no sweep
+        entry.train = train_fixed(chain)
+        entry.ways = train_ways(chain, fixed=entry.train)
+        if not entry.ways:
+            entry.warnings.append(f"speeds not found: no link driven at 1 rpm with "
+                                  f"{entry.train} fixed (and a member held) settles the train")
+        return entry
     m = chain.mechanism
     if m is not None and (m.driver is not None or m.inputs) and chain.has_pose:
         try:
@@ -279,6 +293,11 @@ def _task_drawing(entry: Entry, task: dict[str, Any]) -> dict[str, Any] | None:
 def _write_images(entry: Entry, out: Path, frames: int) -> None:
     img = out / "img"
     draw_link_joint_graph(entry.chain, img / f"{entry.slug}-graph.svg")
+    if entry.train is not None:
+        for name, graph in (("train", True), ("train-front", False)):   # page, index
+            (img / f"{entry.slug}-{name}.svg").write_text(
+                train_svg(entry.chain, fixed=entry.train, graph=graph), encoding="utf-8")
+        return
     (img / f"{entry.slug}-skeleton.svg").write_text(skeleton_svg(entry.chain), encoding="utf-8")
     if entry.motion is not None:
         (img / f"{entry.slug}-pose.svg").write_text(mechanism_svg(entry.motion),

@@ -11,6 +11,7 @@ from typing import TYPE_CHECKING
 
 from chaingraph.drawing.forces import force_polygon_svg
 from chaingraph.kinematics import summary_rows
+from chaingraph.report.gears import gears_section
 from chaingraph.report.player import player_html
 
 if TYPE_CHECKING:                       # the runner's records; it imports this module
@@ -53,16 +54,19 @@ def index_page(rows: list[Row], failures: list[tuple[str, str]]) -> str:
         if r.error:
             continue
         lines.append(
-            f"<tr><td><a href=\"{r.slug}.html\">{_esc(r.name)}</a></td>"
+            f"<tr><td><a href=\"{r.slug}.html\"><img class=\"thumb\" src=\"{_esc(r.picture)}\" "
+            f"alt=\"\" height=\"56\"></a></td>"
+            f"<td><a href=\"{r.slug}.html\">{_esc(r.name)}</a></td>"
             f"<td>{_esc(r.family)}</td><td class=\"num\">{r.links}</td>"
             f"<td class=\"num\">{r.joint_equivalents}</td><td class=\"num\">{r.mobility}</td>"
             f"<td>{_esc(r.verdict)}</td><td class=\"num\">{_fmt(r.classes)}</td>"
             f"<td class=\"num\">{_fmt(r.time_ratio, 5)}</td></tr>")
     body = ["<h1>Catalog of kinematic chains and mechanisms</h1>",
-            f"<p>{len(lines)} entries. Each entry's page has its link-joint graph, its "
-            "classification with the textbook's checks, its inversions and, for a "
-            "mechanism, its motion.</p>",
-            "<table id=\"entries\"><thead><tr><th>name</th><th>family</th><th>L</th>"
+            f"<p>{len(lines)} entries, each pictured by its skeleton (a gear train by its "
+            "drawing). Each entry's page has its link-joint graph, its classification "
+            "with the textbook's checks, its inversions and, for a mechanism, its motion; "
+            "for a gear train, its speeds.</p>",
+            "<table id=\"entries\"><thead><tr><th>picture</th><th>name</th><th>family</th><th>L</th>"
             "<th>J</th><th>mobility</th><th>verdict</th><th>inversion classes</th>"
             "<th>time ratio</th></tr></thead><tbody>", *lines, "</tbody></table>"]
     if failures:
@@ -85,12 +89,16 @@ def entry_page(e: Entry) -> str:
             f"<code>{_esc(Path(e.source).name)}</code></p>"]
     if chain.notes:
         body.append(f"<p class=\"notes\">{_esc(chain.notes)}</p>")
+    if e.train is not None:
+        body += gears_section(chain, e.slug, e.train, e.ways)
     body.append("<h2>The chain and its link-joint graph</h2><div class=\"figures\">")
-    body.append(f"<figure><img src=\"img/{e.slug}-skeleton.svg\" alt=\"kinematic skeleton of "
-                f"{_esc(chain.name)}\" width=\"360\"><figcaption>The kinematic skeleton: "
-                "links as bars and plates, R joints as pins, P joints as blocks"
-                + (", from the drawn pose" if chain.has_pose else ", in a computed layout "
-                   "(the file gives no pose)") + ".</figcaption></figure>")
+    if e.train is None:
+        body.append(f"<figure><img src=\"img/{e.slug}-skeleton.svg\" alt=\"kinematic "
+                    f"skeleton of {_esc(chain.name)}\" width=\"360\"><figcaption>The "
+                    "kinematic skeleton: links as bars and plates, R joints as pins, P "
+                    "joints as blocks"
+                    + (", from the drawn pose" if chain.has_pose else ", in a computed "
+                       "layout (the file gives no pose)") + ".</figcaption></figure>")
     body.append(f"<figure><img src=\"img/{e.slug}-graph.svg\" alt=\"link-joint graph of "
                 f"{_esc(chain.name)}\" width=\"560\"><figcaption>Links as circles, joints as "
                 "squares labelled with their kind (R turning, P sliding: the arrow points to "

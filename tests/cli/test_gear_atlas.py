@@ -2,15 +2,14 @@
 JSON, the written folder and the picture, and bad input as one line with exit status 2."""
 
 import json
-from pathlib import Path
 
 import pytest
 
+from chaingraph.naming.catalog import catalog_path
 from chaingraph.structure.atlas.gears import gear_atlas, train_verdict
 
 from ..conftest import run_cli
 
-EXAMPLES = Path(__file__).resolve().parents[2] / "examples"
 
 
 def test_text_lists_the_trains():
@@ -73,7 +72,7 @@ def test_sizes_without_trains_are_one_line(size, words):
 
 def test_gears_draw_writes_the_schematic(tmp_path):
     path = tmp_path / "train.svg"
-    code, out, err = run_cli("gears", EXAMPLES / "epicyclic-gear-train.toml", "--fixed",
+    code, out, err = run_cli("gears", catalog_path("epicyclic-gear-train"), "--fixed",
                              "frame", "--speed", "annulus=0", "--speed", "sun=1000",
                              "--draw", path)
     assert code == 0, err
@@ -84,13 +83,13 @@ def test_gears_draw_writes_the_schematic(tmp_path):
 
 
 def test_gears_draw_needs_an_svg(tmp_path):
-    code, out, err = run_cli("gears", EXAMPLES / "simple-gear-train.toml", "--fixed",
+    code, out, err = run_cli("gears", catalog_path("simple-gear-train"), "--fixed",
                              "frame", "--speed", "driver=100", "--draw", tmp_path / "x.png")
     assert code == 2 and out == "" and err.count("\n") == 1 and not (tmp_path / "x.png").exists()
 
 
 def test_gears_draw_refuses_a_train_whose_axes_are_not_placed(tmp_path):
-    text = (EXAMPLES / "simple-gear-train.toml").read_text()
+    text = (catalog_path("simple-gear-train")).read_text()
     text = "\n".join(line for line in text.splitlines() if not line.startswith("at = "))
     (tmp_path / "t.toml").write_text(text)
     code, out, err = run_cli("gears", tmp_path / "t.toml", "--fixed", "frame", "--speed",

@@ -2,7 +2,6 @@
 line with exit status 2."""
 
 import json
-from pathlib import Path
 
 import pytest
 
@@ -10,9 +9,8 @@ from chaingraph.naming import catalog_dir
 
 from ..conftest import run_cli
 
-EXAMPLES = Path(__file__).resolve().parents[2] / "examples"
-EPICYCLIC = EXAMPLES / "epicyclic-gear-train.toml"
-DIFFERENTIAL = EXAMPLES / "differential-gear-train.toml"
+EPICYCLIC = catalog_dir() / "epicyclic-gear-train.toml"
+DIFFERENTIAL = catalog_dir() / "differential-gear-train.toml"
 
 
 def test_json_is_the_contracts():

@@ -5,7 +5,6 @@ carrier, a line per turning pair with its axis letter."""
 
 import itertools
 import math
-from pathlib import Path
 
 import pytest
 
@@ -18,10 +17,11 @@ from chaingraph.drawing.gears import (
     tree_layout,
 )
 from chaingraph.files import load
+from chaingraph.naming.catalog import catalog_dir, catalog_path
 from chaingraph.structure.atlas.gears import chain_graph, gear_atlas
 
-EXAMPLES = Path(__file__).resolve().parents[2] / "examples"
-TRAINS = sorted(EXAMPLES.glob("*-gear-train.toml"))
+#: the textbook's trains, in the catalog
+TRAINS = sorted(catalog_dir().glob("*-gear-train.toml"))
 
 
 def _overlap(a, b):
@@ -60,12 +60,12 @@ def test_labels_name_every_link_and_do_not_overlap(path):
 
 
 def test_carriers_that_move_are_arms():
-    chain = load(EXAMPLES / "epicyclic-gear-train.toml")
+    chain = load(catalog_path("epicyclic-gear-train"))
     arms = [s for s in train_shapes(chain, fixed="frame") if s.cls == "arm"]
     assert [dict(s.data)["link"] for s in arms] == ["arm"]
     assert set(arms[0].points) == {(0.0, 0.0), (50.0, 0.0)}     # the axes it holds
     # held still, the frame's own axes are bearings, not an arm
-    simple = load(EXAMPLES / "simple-gear-train.toml")
+    simple = load(catalog_path("simple-gear-train"))
     assert not any(s.cls == "arm" for s in train_shapes(simple, fixed="frame"))
 
 
@@ -91,7 +91,7 @@ def test_the_tree_hangs_from_its_busiest_link():
 
 
 def test_the_document_has_the_schematic_and_the_graph():
-    chain = load(EXAMPLES / "differential-gear-train.toml")
+    chain = load(catalog_path("differential-gear-train"))
     svg = train_svg(chain, fixed="frame")
     links, turning, gears = chain_graph(chain)
     assert svg.count('class="vertex"') == len(links) == 7

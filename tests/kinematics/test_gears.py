@@ -4,7 +4,6 @@ relative-velocity equation, and a differential's two outputs."""
 
 from fractions import Fraction
 from itertools import product
-from pathlib import Path
 
 import pytest
 
@@ -22,13 +21,9 @@ from chaingraph.naming.catalog import catalog_path
 from chaingraph.structure import classify
 
 
-#: the textbook's trains, examples until the report draws a gear train as the textbook
-#: does (its skeleton of coaxial links is no picture of one)
-EXAMPLES = Path(__file__).resolve().parents[2] / "examples"
-
-
 def catalog(name):
-    return chaingraph.load(EXAMPLES / f"{name}.toml")
+    """The textbook's train ``name`` from the catalog."""
+    return chaingraph.load(catalog_path(name))
 
 
 def planetary(zs, zp, za):

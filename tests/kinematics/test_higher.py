@@ -16,7 +16,7 @@ from chaingraph.errors import MechanismError
 from chaingraph.kinematics.cams import follower_motion
 from chaingraph.kinematics.plan import build_plan
 
-from ..conftest import run_cli
+from ..conftest import catalog_path, run_cli
 
 FIVE_BAR = "examples/geared-five-bar.toml"
 CAM_ROCKER = "examples/cam-rocker.toml"
@@ -147,7 +147,7 @@ def test_single_pose_follows_the_pairs_too():
 def test_a_simple_gear_train_turns_by_the_product_of_its_teeth():
     """The driver (20 teeth) turns the driven gear (50) through an idler (35): the
     driven gear turns 20/50 of the driver's angle, the same way, the idler -20/35."""
-    chain = chaingraph.load("examples/simple-gear-train.toml")
+    chain = chaingraph.load(catalog_path("simple-gear-train"))
     m = chaingraph.solve(chain, fixed="frame", driver="driver", start=0.0, stop=360.0,
                          steps=36)
     turn = np.radians(m.theta - m.theta[0])

@@ -15,6 +15,7 @@ from hypothesis import strategies as st
 import chaingraph
 from chaingraph import AssemblyError, Chain, Joint, Mechanism
 from chaingraph.naming.catalog import catalog_path
+from chaingraph.report.gears import is_gear_train
 
 from ..conftest import run_cli
 
@@ -225,6 +226,8 @@ def test_every_input_of_every_inversion_of_every_catalog_chain_solves_or_is_refu
     for path in catalog_files():
         chain = chaingraph.load(path)
         if not chain.has_pose or len(chain.links) > 8:
+            continue
+        if is_gear_train(chain):        # its speeds are `chaingraph gears`' (conftest)
             continue
         for fixed in chain.links:
             for j in chain.joints:

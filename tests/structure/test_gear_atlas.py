@@ -9,12 +9,12 @@ renumbering and the textbook's trains (the example files) found in the atlas."""
 import itertools
 import random
 from fractions import Fraction
-from pathlib import Path
 
 import networkx as nx
 import pytest
 
 from chaingraph.files import load
+from chaingraph.naming.catalog import catalog_path
 from chaingraph.errors import AtlasSizeError
 from chaingraph.structure.atlas.gears import (
     chain_graph,
@@ -25,7 +25,6 @@ from chaingraph.structure.atlas.gears import (
     train_verdict,
 )
 
-EXAMPLES = Path(__file__).resolve().parents[2] / "examples"
 
 
 def _trees(n):
@@ -233,7 +232,7 @@ def test_sizes_without_trains_are_refused(links, dof):
                                        pytest.param("differential", 2,
                                                     marks=pytest.mark.slow)])
 def test_the_textbooks_trains_are_in_the_atlas(name, dof):
-    links, turning, gears = chain_graph(load(EXAMPLES / f"{name}-gear-train.toml"))
+    links, turning, gears = chain_graph(load(catalog_path(f"{name}-gear-train")))
     n = len(links)
     assert train_verdict(n, turning, gears, dof=dof) is None
     key = train_key(n, (), gears)[0]
@@ -243,5 +242,5 @@ def test_the_textbooks_trains_are_in_the_atlas(name, dof):
 def test_the_housed_epicyclic_train_has_an_idle_housing():
     # sun, planet, annulus and arm turn in a housing that neither meshes nor carries a
     # gear pair: as a train of its own, the housing is a freedom of its own (module text)
-    links, turning, gears = chain_graph(load(EXAMPLES / "epicyclic-gear-train.toml"))
+    links, turning, gears = chain_graph(load(catalog_path("epicyclic-gear-train")))
     assert "neither meshes nor carries" in train_verdict(len(links), turning, gears)
