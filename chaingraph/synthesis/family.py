@@ -126,15 +126,16 @@ class Family(ABC):
             return s.max(axis=1) / s.min(axis=1)
 
     def chain(self, params: npt.ArrayLike, *, name: str, units: str, notes: str,
-              task: dict | None = None) -> Chain:
+              task: dict | None = None, span: tuple[float, float] | None = None) -> Chain:
         """The mechanism of one row of parameters, drawn at its pose, its output the
-        tracing point."""
+        tracing point; a sliding input swept over ``span`` (slides from the drawn pose,
+        file units) when given."""
         p = [float(v) for v in np.asarray(params, dtype=float)]
         return Chain(name, self._drawn_joints(p), family=self.family_name, units=units, notes=notes,
                      points=(Point(self.point, self.carrier, (p[-2], p[-1])),),
-                     mechanism=self.mechanism(), task=task)
+                     mechanism=self.mechanism(span), task=task)
 
-    def mechanism(self) -> Mechanism:
+    def mechanism(self, span: tuple[float, float] | None = None) -> Mechanism:
         """The ``[mechanism]`` of the family's chains: its fixed link, its input (the
         driver turning about the fixed link) and the tracing point as the output."""
         return Mechanism(self.fixed, self.driver, 1.0, self.point)
@@ -674,11 +675,14 @@ class AtlasFamily(Family):
                 for i, jid in enumerate(self._axis_row)]
         return np.concatenate([joints.reshape(n, -1), *axes, point], axis=1)
 
-    def mechanism(self) -> Mechanism:
+    def mechanism(self, span: tuple[float, float] | None = None) -> Mechanism:
         """As :meth:`Family.mechanism`; a sliding input is the sliding pair on the fixed
-        link (its value the block's slide along the guide, in file units)."""
+        link (its value the block's slide along the guide from the drawn pose, in file
+        units), swept over ``span`` when given (a slide may run on without a limit)."""
         if self.sliding:
-            return Mechanism(self.fixed, None, 1.0, self.point, inputs=(Input(self._pivot),))
+            start, stop = (None, None) if span is None else (float(span[0]), float(span[1]))
+            return Mechanism(self.fixed, None, 1.0, self.point,
+                             inputs=(Input(self._pivot, start, stop),))
         return super().mechanism()
 
     def _drawn_joints(self, p: list[float]) -> tuple[Joint, ...]:
