@@ -120,11 +120,14 @@ def path(*, points: Iterable[tuple[float, float]],
 def path_search_task(*, points: Iterable[tuple[float, float]],
                      timing: Iterable[float] | None, closed: bool, kind: str,
                      solutions: int, seed: int | None, units: str,
-                     min_transmission: float) -> PathTask:
+                     min_transmission: float, slides: bool = False) -> PathTask:
     """The checked task of a path search (:func:`path`'s parameters, ``solutions``
-    checked too), its seed drawn when None (:func:`~chaingraph.synthesis.task.drawn_seed`)."""
+    checked too), its seed drawn when None (:func:`~chaingraph.synthesis.task.drawn_seed`);
+    ``slides``: the timing may be a sliding input's (see
+    :func:`~chaingraph.synthesis.task.path_task`)."""
     task = path_task(points=points, timing=timing, closed=closed, kind=kind,
-                     seed=drawn_seed(seed), units=units, min_transmission=min_transmission)
+                     seed=drawn_seed(seed), units=units, min_transmission=min_transmission,
+                     slides=slides)
     check_options(solutions=solutions, min_transmission=min_transmission, units=units,
                   kind="path")
     return task

@@ -289,7 +289,8 @@ def path(*, points: Iterable[tuple[float, float]], timing: Iterable[float] | Non
                              min_transmission=min_transmission)
     task = path_search_task(points=points, timing=timing, closed=closed, kind=kind,
                             solutions=solutions, seed=seed, units=units,
-                            min_transmission=min_transmission)
+                            min_transmission=min_transmission,
+                            slides=prismatic not in (None, 0))
     return path_types(task, links=links, prismatic=prismatic, solutions=solutions,
                       runner=runner, triads=triads, families=families, budget=budget)
 
