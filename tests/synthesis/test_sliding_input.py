@@ -14,7 +14,7 @@ import pytest
 import chaingraph
 from chaingraph.files import loads
 from chaingraph.model.chainfile import toml_text
-from chaingraph.synthesis import PointTargets, certify, path
+from chaingraph.synthesis import PointTargets, certify, motion, path
 from chaingraph.synthesis.family import AtlasFamily
 from chaingraph.synthesis.type_synthesis import NOT_CHOSEN, SLIDING_CLOSED, atlas_space
 
@@ -174,3 +174,35 @@ def test_a_closed_curve_leaves_the_sliding_inputs_out(links, prismatic, inversio
                  families=lambda c: False)
     assert found.rejected == {NOT_CHOSEN: others, SLIDING_CLOSED: inversions}
     assert not found.solutions
+
+
+def test_four_poses_of_the_engine_rod_give_the_engine_back():
+    """Motion generation over the family driven by the slider: four poses of the
+    engine's rod (at the piston's slides) are passed exactly, and the engine's own
+    slider dyad is among the solutions (the rod's pin B on the guide y = 0, reached at
+    the same slides, up to the guide's sense); its crank is a free choice (four poses
+    leave a curve of centre points: Burmester's)."""
+    engine = _engine()
+    ref = engine.reference_direction("rod")
+    poses = []
+    for v in SLIDES[:4]:
+        m = chaingraph.solve(engine, start=v, stop=v, steps=1, summary=False)
+        poses.append((float(m["x:P"][0]), float(m["y:P"][0]),
+                      float(m["angle:rod"][0]) - ref))
+    found = motion(poses=poses, links=4, prismatic=1, seed=1, solutions=2,
+                   families=lambda c: c.sliding)
+    size = _size([p[:2] for p in poses])
+    pin = engine.joint("B").at
+    assert found.solutions
+    engines = 0
+    for s in found.solutions:
+        assert s.input == "slides"
+        assert s.error.max <= 1e-9 * size and s.error.angle <= 1e-9
+        chain = loads(toml_text(s.to_dict()["mechanism"]))
+        guide = chain.joint(chain.mechanism.inputs[0].joint)
+        block = next(x for x in guide.links if x != chain.mechanism.fixed)
+        on_block = next(j for j in chain.joints if block in j.links and j.kind == "R")
+        engines += (math.dist(on_block.at, pin) <= 1e-6 * size
+                    and abs(math.sin(math.radians(guide.axis))) <= 1e-9
+                    and np.allclose(np.abs(s.reached_at), np.abs(SLIDES[:4]), atol=1e-6))
+    assert engines >= 1
