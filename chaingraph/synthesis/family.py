@@ -335,9 +335,8 @@ def dyad_plan(chain: Chain, fixed: str, driver: str) -> tuple[DyadStep, ...] | N
 
 def driven_about_fixed(chain: Chain, fixed: str, driver: str) -> bool:
     """Whether every joint of ``chain`` is a turning or sliding pair of two links and
-    ``driver`` turns about ``fixed`` on one turning pair (what :class:`LoopFamily`
-    needs; :class:`AtlasFamily` also takes a driver sliding on ``fixed``:
-    :func:`input_kind`)."""
+    ``driver`` turns about ``fixed`` on one turning pair (both family classes also take
+    a driver sliding on ``fixed``: :func:`input_kind`)."""
     return input_kind(chain, fixed, driver) == "R"
 
 
@@ -805,8 +804,9 @@ class LoopFamily(AtlasFamily):
     (a triad: the Stephenson III, the Stephenson II driven by its binary link): every
     moving link's rigid motion from its drawn pose solved together by Newton's method,
     continued along the input from the drawn pose over a turn (:data:`_GRID` steps, so
-    the drawn circuit is tracked), then refined at each asked input from the step before
-    it; vectorised over mechanisms.
+    the drawn circuit is tracked; a sliding input's both ways from the drawn slide, as
+    far as :meth:`AtlasFamily.sweep` probes), then refined at each asked input from the
+    step before it (nearer the drawn pose); vectorised over mechanisms.
 
     A *screen*, not a solver: it scores thousands of candidate mechanisms at once (an
     array row per mechanism, which the kernel's solver, one chain at a time, cannot),
@@ -821,9 +821,9 @@ class LoopFamily(AtlasFamily):
 
     def __init__(self, chain: Chain, fixed: str, driver: str, carrier: str, *,
                  name: str | None = None) -> None:
-        if not driven_about_fixed(chain, fixed, driver):
+        if input_kind(chain, fixed, driver) is None:
             raise ValueError(f"{chain.name} with {fixed} fixed and {driver} driving is not "
-                             "a chain of binary pairs driven about the fixed link")
+                             "a chain of binary pairs driven on the fixed link")
         self.plan = ()
         self._setup(chain, fixed, driver, carrier, name)
         self._kept: tuple | None = None
@@ -852,15 +852,34 @@ class LoopFamily(AtlasFamily):
                                                               if x in k.links and k.id != j.id)]
                                               for x in j.links]) for j in middles]
 
+    @staticmethod
+    def _lead(pivot, turn):
+        """The driver's rigid motion (c, s, p, q; each (R,) or (R, 2)) from its move:
+        ``turn`` (R,) about the ``pivot`` (R, 2), or for a sliding input its
+        displacement (R, 2) along the guide."""
+        if np.ndim(turn) == 2:
+            ones = np.ones(len(turn))
+            return ones, 0.0 * ones, pivot + turn, pivot
+        return np.cos(turn), np.sin(turn), pivot, pivot
+
+    def _moves(self, params, slide):
+        """The driver's moves (:meth:`_lead`) for inputs ``slide`` (M, K) from the drawn
+        one: the turns themselves, or a sliding input's displacements (M, K, 2)."""
+        if not self.sliding:
+            return slide
+        ex, ey = self._axis(params, self._pivot)
+        return self._sign * np.stack([slide * ex, slide * ey], axis=-1)
+
     def _state_motions(self, drawn, turn, z):
         """Every link's motion (as :meth:`AtlasFamily._solve`) from the unknowns ``z``
         (rows, 3 per unknown link: its anchor's move and its turn) and the driver's
-        ``turn``; rows of ``drawn`` (R, J, 2) and ``turn`` (R,)."""
+        ``turn`` (:meth:`_lead`); rows of ``drawn`` (R, J, 2) and ``turn`` (R,) or
+        (R, 2)."""
         pivot = drawn[:, self._index[self._pivot]]
+        c, sn, p, q = self._lead(pivot, turn)
         out: dict[str, tuple | None] = {
             self.fixed: None,
-            self.driver: (np.cos(turn), np.sin(turn), (pivot[:, 0], pivot[:, 1]),
-                          (pivot[:, 0], pivot[:, 1]))}
+            self.driver: (c, sn, (p[:, 0], p[:, 1]), (q[:, 0], q[:, 1]))}
         for k, x in enumerate(self._unknown):
             q = drawn[:, self._anchor[x]]
             out[x] = (np.cos(z[:, 3 * k + 2]), np.sin(z[:, 3 * k + 2]),
@@ -880,8 +899,9 @@ class LoopFamily(AtlasFamily):
             c, s, p, q = (np.ones((rows, len(self._links))), np.zeros((rows, len(self._links))),
                           np.zeros((rows, len(self._links), 2)), np.zeros((rows, len(self._links), 2)))
             pivot = drawn[:, self._index[self._pivot]]
-            c[:, self._driver_col], s[:, self._driver_col] = np.cos(turn), np.sin(turn)
-            p[:, self._driver_col] = q[:, self._driver_col] = pivot
+            lead = self._lead(pivot, turn)
+            c[:, self._driver_col], s[:, self._driver_col] = lead[0], lead[1]
+            p[:, self._driver_col], q[:, self._driver_col] = lead[2], lead[3]
             cols = self._unknown_cols
             q[:, cols] = drawn[:, self._anchor_rows]
             p[:, cols] = q[:, cols] + z.reshape(rows, unknown, 3)[:, :, :2]
@@ -909,7 +929,7 @@ class LoopFamily(AtlasFamily):
         e = self._slides
         pa, ra, pb, rb = (v[:, e] for v in sides)
         angle = np.zeros((len(z), len(self._links)))
-        angle[:, self._driver_col] = turn
+        angle[:, self._driver_col] = turn if np.ndim(turn) == 1 else 0.0
         angle[:, self._unknown_cols] = z[:, 2::3]
         ta, tb = angle[:, [self._first[k] for k in e]], angle[:, [self._second[k] for k in e]]
         c, s = np.cos(ta), np.sin(ta)
@@ -960,19 +980,38 @@ class LoopFamily(AtlasFamily):
             return self._kept[1]
         drawn = self._drawn(p)
         m, n = len(p), 3 * len(self._unknown)
-        nodes = np.full((m, _GRID + 1, n), np.nan)
-        z = np.zeros((m, n))
-        nodes[:, 0] = z
         normals = self._normals(p)
-        alive = np.ones(m, dtype=bool)
-        for g in range(1, _GRID + 1):
-            z, ok = self._newton(drawn, np.full(m, g * 2 * math.pi / _GRID), z, normals,
-                                 settled=1e-7)
-            alive &= ok
-            z = np.where(alive[:, None], z, 0.0)
-            nodes[:, g] = np.where(alive[:, None], z, np.nan)
+        if self.sliding:        # both ways from the drawn slide, centre node _GRID
+            nodes = np.full((m, 2 * _GRID + 1, n), np.nan)
+            nodes[:, _GRID] = 0.0
+            for way in (1, -1):
+                self._continued(p, drawn, normals, nodes, way * self._reach(p) / _GRID, way)
+        else:
+            nodes = np.full((m, _GRID + 1, n), np.nan)
+            nodes[:, 0] = 0.0
+            self._continued(p, drawn, normals, nodes, np.full(m, 2 * math.pi / _GRID), 1)
         self._kept = (key, (nodes, normals))
         return nodes, normals
+
+    def _reach(self, params):
+        """A sliding input's slides continued either way (M,): as far as
+        :meth:`AtlasFamily.sweep` probes."""
+        return _REACH * np.max(np.ptp(self._drawn(params), axis=1), axis=1)
+
+    def _continued(self, params, drawn, normals, nodes, h, way):
+        """The continuation (in place) from the node of the drawn pose (``nodes``' first
+        for a turn, its middle for a slide) by steps ``h`` (M,) of the input, ``way`` by
+        ``way`` node, NaN past where a mechanism stops closing."""
+        m, n = len(params), nodes.shape[2]
+        start = 0 if not self.sliding else _GRID
+        z = np.zeros((m, n))
+        alive = np.ones(m, dtype=bool)
+        for g in range(1, _GRID + 1):
+            move = self._moves(params, (g * h)[:, None])[:, 0]
+            z, ok = self._newton(drawn, move, z, normals, settled=1e-7)
+            alive &= ok
+            z = np.where(alive[:, None], z, 0.0)
+            nodes[:, start + way * g] = np.where(alive[:, None], z, np.nan)
 
     def _solve(self, params, theta):
         """As :meth:`AtlasFamily._solve`, by continuation from the drawn pose (see the
@@ -983,14 +1022,24 @@ class LoopFamily(AtlasFamily):
         n = 3 * len(self._unknown)
         h = 2 * math.pi / _GRID
         nodes, normals = self._nodes(params)
-        turn = (theta - self.first_input(params)[:, None]) % (2 * math.pi)
-        node = np.minimum(np.floor(turn / h).astype(int), _GRID)
-        start = np.take_along_axis(nodes, node[:, :, None], axis=1).reshape(m * k, n)
+        turn = theta - self.first_input(params)[:, None]
+        if self.sliding:        # the node at or nearer the drawn slide; none beyond reach
+            h = self._reach(params)[:, None] / _GRID
+            node = _GRID + np.trunc(turn / h)
+            node = np.where(np.abs(node - _GRID) <= _GRID, node, -1).astype(int)
+            move = self._moves(params, turn).reshape(m * k, 2)
+        else:
+            turn = turn % (2 * math.pi)
+            node = np.minimum(np.floor(turn / h).astype(int), _GRID)
+            move = turn.reshape(-1)
+        start = np.take_along_axis(nodes, np.maximum(node, 0)[:, :, None],
+                                   axis=1).reshape(m * k, n)
+        start = np.where((node >= 0).reshape(-1, 1), start, np.nan)
         rows = np.repeat(drawn, k, axis=0)
-        z, ok = self._newton(rows, turn.reshape(-1), np.nan_to_num(start),
+        z, ok = self._newton(rows, move, np.nan_to_num(start),
                              np.repeat(normals, k, axis=0))
         z = np.where((ok & np.all(np.isfinite(start), axis=1))[:, None], z, np.nan)
-        motions = self._state_motions(rows, turn.reshape(-1), z)
+        motions = self._state_motions(rows, move, z)
         return {x: None if v is None else (v[0].reshape(m, k), v[1].reshape(m, k),
                                            (v[2][0].reshape(m, k), v[2][1].reshape(m, k)),
                                            (v[3][0].reshape(m, k), v[3][1].reshape(m, k)))

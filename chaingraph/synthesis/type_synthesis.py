@@ -19,10 +19,11 @@ the group beyond its driver is a triad (the Stephenson III, the Stephenson II dr
 its binary link, with or without sliding pairs: Newton's method, continued along the
 input, on a smaller budget, :data:`NEWTON_BUDGETS`). Both are screens: every solution is
 certified by the kernel's solver from its written file. A sliding input's families are
-solved dyad by dyad only (its path swept over the slides that assemble, from limit to
-limit: :meth:`~chaingraph.synthesis.family.Family.sweep`); those that leave a triad are
-counted in ``rejected`` as :data:`UNSOLVED`, as would be a family neither class solves
-(a joint of three or more links: not in the atlases of single joints searched here). A
+solved alike, dyad by dyad or by Newton's method continued both ways from the drawn
+slide, their path swept over the slides that assemble, from limit to limit
+(:meth:`~chaingraph.synthesis.family.Family.sweep`). A family neither class solves (a
+joint of three or more links: not in the atlases of single joints searched here) would
+be counted in ``rejected`` as :data:`UNSOLVED`. A
 closed curve needs a turning input (a slide does not come back by going on): for a
 ``closed`` task the families driven by a slide are not searched, the inversions that
 have them counted under :data:`SLIDING_CLOSED`.
@@ -54,7 +55,6 @@ from chaingraph.structure.isomorphism import automorphism_orbits, pair_orbits
 from chaingraph.synthesis.family import (
     AtlasFamily,
     LoopFamily,
-    driven_about_fixed,
     dyad_plan,
     input_kind,
 )
@@ -209,11 +209,11 @@ def _choices(chain, number, inversion, fixed, names, kind) -> list[Choice]:
 
 
 def _method(chain, fixed, driver) -> str:
-    """How a family's motion is found (see :class:`Choice`): a sliding input's by dyads
-    only (its triads are counted under :data:`UNSOLVED`)."""
+    """How a family's motion is found (see :class:`Choice`), for a turning or a
+    sliding input alike."""
     if dyad_plan(chain, fixed, driver) is not None:
         return "dyads"
-    if driven_about_fixed(chain, fixed, driver):
+    if input_kind(chain, fixed, driver) is not None:
         return "newton"
     return ""
 
