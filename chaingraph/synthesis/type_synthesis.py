@@ -161,8 +161,8 @@ def atlas_space(links: int, prismatic: int | str | None = None) -> Space:
     (2, 5, 25, 25)
     >>> s = atlas_space(6, 1)       # one sliding pair
     >>> s.chains, s.inversions, len(s.choices), sum(c.method == "newton" for c in s.choices)
-    (6, 25, 141, 32)
-    >>> sum(c.sliding for c in s.choices), sum(c.sliding and c.solvable for c in s.choices)
+    (6, 25, 141, 40)
+    >>> sum(c.sliding for c in s.choices), sum(c.sliding and c.method == "dyads" for c in s.choices)
     (23, 15)
     >>> atlas_space(6, "all").undriven      # every fixed link has a turning or sliding pair
     0
