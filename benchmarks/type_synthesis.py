@@ -11,7 +11,8 @@ the atlas; where the time goes and how it grows with the number of families sear
 ``--open`` searches an open path instead (20 points of the same curve over half its
 turn), which the families driven by a sliding input also search (a closed curve leaves
 them out); ``--only sliding`` or ``--only turning`` searches only the families driven by
-a slide on the fixed link, or only those driven by a turn.
+a slide on the fixed link, or only those driven by a turn; ``--method dyads|newton``
+only the families solved so.
 
 Each family is searched alone, one after another in this process, exactly as the whole
 search searches it (its number in the space, its random stream, its budget):
@@ -67,14 +68,16 @@ def task_points(open_task: bool):
 
 
 def per_family(links: int, prismatic, every: int, seed: int = 1, open_task: bool = False,
-               only: str | None = None):
+               only: str | None = None, method: str | None = None):
     """Every ``every``-th family (of those ``only`` names: driven by a slide or by a
-    turn) searched alone: rows (number, method, names, CPU s, certified, stages)."""
+    turn; of that ``method`` only) searched alone: rows (number, method, names, CPU s,
+    certified, stages)."""
     points = task_points(open_task)
     space = atlas_space(links, prismatic)
     rows = []
     chosen = [(k, c) for k, c in enumerate(space.choices)
-              if only is None or c.sliding == (only == "sliding")]
+              if (only is None or c.sliding == (only == "sliding"))
+              and (method is None or c.method == method)]
     sliding = sum(c.sliding for c in space.choices)
     print(f"families: {len(space.choices)}, of which {sliding} driven by a slide "
           f"({sum(c.sliding and c.solvable for c in space.choices)} solvable), "
@@ -153,11 +156,12 @@ def main() -> None:
     parser.add_argument("--workers", type=int, default=0)
     parser.add_argument("--open", action="store_true")
     parser.add_argument("--only", choices=("sliding", "turning"), default=None)
+    parser.add_argument("--method", choices=("dyads", "newton"), default=None)
     args = parser.parse_args()
     prismatic = (None if args.prismatic is None else
                  args.prismatic if args.prismatic == "all" else int(args.prismatic))
     space, rows = per_family(args.links, prismatic, args.every, open_task=args.open,
-                             only=args.only)
+                             only=args.only, method=args.method)
     summary(space, rows, args.every, args.only)
     if args.workers:
         whole_run(args.links, prismatic, args.workers, args.open)
