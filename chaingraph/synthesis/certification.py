@@ -190,7 +190,8 @@ def _slides(chain) -> bool:
     """Whether a mechanism's (one) input is a sliding pair: its values are slides, in
     file units, and it does not come round."""
     m = chain.mechanism
-    return m.driver is None and len(m.inputs) == 1 and chain.joint(m.inputs[0].joint).kind == "P"
+    return (m.driver is None and len(m.inputs) == 1
+            and chain.joint(m.inputs[0].joint).kind == "P")
 
 
 def _function(chain, t: FunctionTargets):

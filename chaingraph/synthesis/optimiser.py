@@ -229,11 +229,11 @@ def objective(family: Family, params: npt.ArrayLike, targets: np.ndarray, *, ste
     """The in-order rms distance from the targets to each mechanism's path (task units),
     plus penalties: an input that cannot turn fully (:data:`_BIG` and the share of the
     turn unassembled), a transmission angle out of ``[min, 180 - min]`` over the turn
-    (a sliding input's: between the first target and the last) (its excess in degrees
-    over 90), a link ratio over :data:`MAX_RATIO`. ``timing``: the
-    input's turn (radians; a sliding input's slide) from the first target to each. ``turns`` (poses): the
-    carrier's turn (radians) from the first target to each, its rms miss (where the path
-    comes nearest each target) added."""
+    (a sliding input's: between the first target and the last; its excess in degrees
+    over 90), a link ratio over :data:`MAX_RATIO`. ``timing``: the input's turn
+    (radians; a sliding input's slide) from the first target to each. ``turns``
+    (poses): the carrier's turn (radians) from the first target to each, its rms miss
+    (where the path comes nearest each target) added."""
     params = np.atleast_2d(params)
     theta, x, y = curve(family, params, steps)
     unassembled = np.mean(~np.isfinite(x), axis=1)
