@@ -6,6 +6,13 @@ the atlas; where the time goes and how it grows with the number of families sear
     PYTHONPATH=$PWD python benchmarks/type_synthesis.py --links 6 --prismatic 1 --every 4
     PYTHONPATH=$PWD python benchmarks/type_synthesis.py --links 8 --every 25
     PYTHONPATH=$PWD python benchmarks/type_synthesis.py --workers 2     # and the whole run
+    PYTHONPATH=$PWD python benchmarks/type_synthesis.py --links 6 --prismatic 1 --open --only sliding
+
+``--open`` searches an open path instead (20 points of the same curve over half its
+turn), which the families driven by a sliding input also search (a closed curve leaves
+them out); ``--only sliding`` or ``--only turning`` searches only the families driven by
+a slide on the fixed link, or only those driven by a turn; ``--method dyads|newton``
+only the families solved so.
 
 Each family is searched alone, one after another in this process, exactly as the whole
 search searches it (its number in the space, its random stream, its budget):
@@ -54,17 +61,32 @@ def _stages(stats: pstats.Stats) -> dict[str, float]:
     return out
 
 
-def per_family(links: int, prismatic, every: int, seed: int = 1):
-    """Every ``every``-th family searched alone: rows (number, method, names, CPU s,
+def task_points(open_task: bool):
+    """The task: 20 points of the crank-rocker's curve, over its whole turn (closed) or
+    half of it (open)."""
+    return crank_rocker_points(range(0, 180, 9) if open_task else range(0, 360, 18))
+
+
+def per_family(links: int, prismatic, every: int, seed: int = 1, open_task: bool = False,
+               only: str | None = None, method: str | None = None):
+    """Every ``every``-th family (of those ``only`` names: driven by a slide or by a
+    turn; of that ``method`` only) searched alone: rows (number, method, names, CPU s,
     certified, stages)."""
-    points = crank_rocker_points(range(0, 360, 18))
+    points = task_points(open_task)
     space = atlas_space(links, prismatic)
     rows = []
-    for k, c in list(enumerate(space.choices))[::every]:
+    chosen = [(k, c) for k, c in enumerate(space.choices)
+              if (only is None or c.sliding == (only == "sliding"))
+              and (method is None or c.method == method)]
+    sliding = sum(c.sliding for c in space.choices)
+    print(f"families: {len(space.choices)}, of which {sliding} driven by a slide "
+          f"({sum(c.sliding and c.solvable for c in space.choices)} solvable), "
+          f"{len(space.choices) - sliding} by a turn", flush=True)
+    for k, c in chosen[::every]:
         profile = cProfile.Profile()
         t = time.process_time()
         profile.enable()
-        found = path(points=points, closed=True, seed=seed, links=links,
+        found = path(points=points, closed=not open_task, seed=seed, links=links,
                      prismatic=prismatic, families=lambda x, c=c: x == c)
         profile.disable()
         cpu = time.process_time() - t
@@ -72,14 +94,16 @@ def per_family(links: int, prismatic, every: int, seed: int = 1):
         best = min((s.error.max for s in found.solutions), default=float("nan"))
         rows.append((k, c.method, c.names[-1] if c.names else "", cpu, len(found.solutions),
                      best / size, _stages(pstats.Stats(profile))))
-        print(f"{k:5d} {c.method:7s} {rows[-1][2][:34]:34s} {cpu:7.1f} s  "
+        print(f"{k:5d} {c.method or '-':7s} {'slide' if c.sliding else 'turn':5s} "
+              f"{rows[-1][2][:34]:34s} {cpu:7.1f} s  "
               f"{len(found.solutions)} certified  best {best / size:.4f} of the size",
               flush=True)
     return space, rows
 
 
-def summary(space, rows, every: int) -> None:
-    """CPU by method, the stages' shares, and the whole space projected."""
+def summary(space, rows, every: int, only: str | None = None) -> None:
+    """CPU by method, the stages' shares, and the whole space (of those ``only``
+    names) projected."""
     by: dict[str, list[float]] = defaultdict(list)
     stages: dict[str, dict[str, float]] = defaultdict(
         lambda: dict.fromkeys([*STAGES, "total"], 0.0))
@@ -89,7 +113,8 @@ def summary(space, rows, every: int) -> None:
             stages[method][name] += v
     counts = defaultdict(int)
     for c in space.choices:
-        counts[c.method] += 1
+        if only is None or c.sliding == (only == "sliding"):
+            counts[c.method] += 1
     print(f"\nspace: {space.chains} chains, {space.inversions} inversions, "
           f"{len(space.choices)} families {dict(counts)}; searched every {every}")
     whole = 0.0
@@ -97,19 +122,19 @@ def summary(space, rows, every: int) -> None:
         mean = statistics.mean(cpus)
         whole += mean * counts[method]
         st = stages[method]
-        share = ", ".join(f"{name} {st[name] / st['total']:.0%}" for name in STAGES)
+        share = ", ".join(f"{name} {st[name] / max(st['total'], 1e-9):.0%}" for name in STAGES)
         print(f"{method}: {len(cpus)} families, {sum(cpus):.1f} CPU s, mean {mean:.2f} s "
               f"(median {statistics.median(cpus):.2f}, max {max(cpus):.1f}); {share}")
     print(f"projected for the whole space: {whole:.0f} CPU s, about {whole / 2:.0f} s of "
           "wall clock on 2 cores")
 
 
-def whole_run(links: int, prismatic, workers: int) -> None:
+def whole_run(links: int, prismatic, workers: int, open_task: bool = False) -> None:
     """The whole search as the command line runs it, timed."""
-    points = crank_rocker_points(range(0, 360, 18))
+    points = task_points(open_task)
     t = time.perf_counter()
     before = resource.getrusage(resource.RUSAGE_CHILDREN)
-    found = path(points=points, closed=True, seed=1, links=links, prismatic=prismatic,
+    found = path(points=points, closed=not open_task, seed=1, links=links, prismatic=prismatic,
                  runner=process_runner(workers))
     wall = time.perf_counter() - t
     after = resource.getrusage(resource.RUSAGE_CHILDREN)
@@ -129,13 +154,17 @@ def main() -> None:
     parser.add_argument("--prismatic", default=None)
     parser.add_argument("--every", type=int, default=1)
     parser.add_argument("--workers", type=int, default=0)
+    parser.add_argument("--open", action="store_true")
+    parser.add_argument("--only", choices=("sliding", "turning"), default=None)
+    parser.add_argument("--method", choices=("dyads", "newton"), default=None)
     args = parser.parse_args()
     prismatic = (None if args.prismatic is None else
                  args.prismatic if args.prismatic == "all" else int(args.prismatic))
-    space, rows = per_family(args.links, prismatic, args.every)
-    summary(space, rows, args.every)
+    space, rows = per_family(args.links, prismatic, args.every, open_task=args.open,
+                             only=args.only, method=args.method)
+    summary(space, rows, args.every, args.only)
     if args.workers:
-        whole_run(args.links, prismatic, args.workers)
+        whole_run(args.links, prismatic, args.workers, args.open)
 
 
 if __name__ == "__main__":

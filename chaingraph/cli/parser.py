@@ -437,7 +437,8 @@ def _design_path_command(kinds) -> None:
                                            "allowed)")
     q.add_argument("--timing", type=numbers_argument, metavar='"DEG; DEG; ..."',
                    help="the input's value at each target (its turn between targets is "
-                        "kept; its value at the first is chosen)")
+                        "kept; its value at the first is chosen; a sliding input's: its "
+                        "slide, in file units)")
     q.add_argument("--closed", action="store_true",
                    help="the targets lie on a closed curve traced over a full turn")
     q.add_argument("--seed", type=int, metavar="S",

@@ -180,10 +180,18 @@ def certify(candidate: Chain, targets: Targets, *,
     four = four_link_loop(chain)
     grashof = (behaviour(chain, m.fixed) if four is not None
                and all(j.kind == "R" for j in chain.joints) else None)
+    how = ("slides" if _slides(chain) else
+           "turns fully" if turning and m.driver in turning else "rocks")
     return Certified(chain, float(np.max(error)), float(np.sqrt(np.mean(np.square(error)))),
-                     tuple(float(v) for v in reached), ta, grashof,
-                     "turns fully" if turning and m.driver in turning else "rocks", curve,
-                     angle)
+                     tuple(float(v) for v in reached), ta, grashof, how, curve, angle)
+
+
+def _slides(chain) -> bool:
+    """Whether a mechanism's (one) input is a sliding pair: its values are slides, in
+    file units, and it does not come round."""
+    m = chain.mechanism
+    return (m.driver is None and len(m.inputs) == 1
+            and chain.joint(m.inputs[0].joint).kind == "P")
 
 
 def _function(chain, t: FunctionTargets):
@@ -257,7 +265,7 @@ def _traced(chain, t):
     theta = whole["theta"]
     xs, ys = whole[f"x:{t.point}"], whole[f"y:{t.point}"]
     size = _size(chain)
-    full = abs(theta[-1] - theta[0]) >= 360.0 - 1e-9
+    full = abs(theta[-1] - theta[0]) >= 360.0 - 1e-9 and not _slides(chain)
     if getattr(t, "closed", False) and not full:
         return Rejected("branch defect", "the input does not turn fully: no closed curve "
                         "over its turn")

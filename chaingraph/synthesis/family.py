@@ -35,10 +35,10 @@ import numpy.typing as npt
 
 from chaingraph.geometry import circle_circle, circle_line, line_by_two_distances
 from chaingraph.kinematics.equations import newton_step
-from chaingraph.model.chain import Chain, Joint, Mechanism, Point
+from chaingraph.model.chain import Chain, Input, Joint, Mechanism, Point
 
 __all__ = ["Family", "FourBar", "FOUR_BAR", "AtlasFamily", "LoopFamily", "DyadStep", "dyad_plan",
-           "DYADS", "driven_about_fixed"]
+           "DYADS", "driven_about_fixed", "input_kind"]
 
 
 class Family(ABC):
@@ -54,6 +54,10 @@ class Family(ABC):
     fixed: str
     driver: str
     point: str = "P"
+    #: whether the input is a sliding pair on the fixed link (its value a slide, in the
+    #: parameters' units, not an angle): its path is open, swept over the slides that
+    #: assemble (:meth:`sweep`)
+    sliding: bool = False
 
     @property
     def title(self) -> str:
@@ -84,7 +88,17 @@ class Family(ABC):
 
     @abstractmethod
     def first_input(self, params: np.ndarray) -> np.ndarray:
-        """The input's value (radians, (M,)) at the drawn pose."""
+        """The input's value (radians, (M,); a sliding input's: its slide) at the drawn
+        pose."""
+
+    def sweep(self, params: np.ndarray, steps: int) -> np.ndarray:
+        """The input values (M, steps) a mechanism's path is sampled at: a turn from the
+        drawn pose (the last sample one step short of it), or for a :attr:`sliding`
+        input the slides that assemble about the drawn pose, limit to limit, both ends
+        included (NaN rows where the drawn pose itself does not assemble)."""
+        params = np.atleast_2d(params)
+        return self.first_input(params)[:, None] + np.linspace(0.0, 2 * math.pi, steps,
+                                                               endpoint=False)
 
     @abstractmethod
     def posed(self, params: np.ndarray, theta: np.ndarray) -> np.ndarray:
@@ -112,14 +126,19 @@ class Family(ABC):
             return s.max(axis=1) / s.min(axis=1)
 
     def chain(self, params: npt.ArrayLike, *, name: str, units: str, notes: str,
-              task: dict | None = None) -> Chain:
+              task: dict | None = None, span: tuple[float, float] | None = None) -> Chain:
         """The mechanism of one row of parameters, drawn at its pose, its output the
-        tracing point."""
+        tracing point; a sliding input swept over ``span`` (slides from the drawn pose,
+        file units) when given."""
         p = [float(v) for v in np.asarray(params, dtype=float)]
         return Chain(name, self._drawn_joints(p), family=self.family_name, units=units, notes=notes,
                      points=(Point(self.point, self.carrier, (p[-2], p[-1])),),
-                     mechanism=Mechanism(self.fixed, self.driver, 1.0, self.point),
-                     task=task)
+                     mechanism=self.mechanism(span), task=task)
+
+    def mechanism(self, span: tuple[float, float] | None = None) -> Mechanism:
+        """The ``[mechanism]`` of the family's chains: its fixed link, its input (the
+        driver turning about the fixed link) and the tracing point as the output."""
+        return Mechanism(self.fixed, self.driver, 1.0, self.point)
 
     def _drawn_joints(self, p: list[float]) -> tuple[Joint, ...]:
         """The template's joints drawn where one row of parameters puts them."""
@@ -245,8 +264,7 @@ _CURVE = 64       # samples of the tracing point's path when sampling a family
 def _centred_unit(family: Family, params: np.ndarray) -> np.ndarray:
     """Mechanisms moved and scaled so that their tracing point's path (over a turn of
     the input) is centred on the origin, its largest extent 1."""
-    theta = family.first_input(params)[:, None] + np.linspace(0, 2 * math.pi, _CURVE,
-                                                              endpoint=False)
+    theta = family.sweep(params, _CURVE)
     x, y = family.positions(params, theta)
     with np.errstate(all="ignore"):
         cx, cy = np.nanmean(x, axis=1), np.nanmean(y, axis=1)
@@ -285,9 +303,10 @@ def dyad_plan(chain: Chain, fixed: str, driver: str) -> tuple[DyadStep, ...] | N
     """The order in which the links of ``chain`` are found, two at a time, once ``fixed``
     and ``driver`` (turning about the fixed link) are known: each step a dyad (RRR, or
     with sliding pairs RRP, PRR, RPR, PRP, RPP, PPR: :data:`DYADS`) whose outer joints
-    are on known links (an Assur group of class II). None when the chain is not solved
-    so (a joint of three links, a driver not turning about the fixed link on one
-    turning pair, or a group of higher class: a triad).
+    are on known links (an Assur group of class II). ``driver`` turns or slides on the
+    fixed link (:func:`input_kind`). None when the chain is not solved so (a joint of
+    three links, a driver not on the fixed link by one turning or sliding pair, or a
+    group of higher class: a triad).
 
     Examples
     --------
@@ -301,7 +320,7 @@ def dyad_plan(chain: Chain, fixed: str, driver: str) -> tuple[DyadStep, ...] | N
     >>> [(s.first, s.second, s.pattern) for s in dyad_plan(slider_crank, "L1", "L3")]
     [('L2', 'L4', 'PRR')]
     """
-    if not driven_about_fixed(chain, fixed, driver):
+    if input_kind(chain, fixed, driver) is None:
         return None
     known = {fixed, driver}
     steps: list[DyadStep] = []
@@ -316,10 +335,27 @@ def dyad_plan(chain: Chain, fixed: str, driver: str) -> tuple[DyadStep, ...] | N
 
 def driven_about_fixed(chain: Chain, fixed: str, driver: str) -> bool:
     """Whether every joint of ``chain`` is a turning or sliding pair of two links and
-    ``driver`` turns about ``fixed`` on one turning pair (what both
-    :class:`AtlasFamily` and :class:`LoopFamily` need)."""
-    return all(j.kind in ("R", "P") and len(j.links) == 2 for j in chain.joints) and [
-        j.kind for j in chain.joints if set(j.links) == {fixed, driver}] == ["R"]
+    ``driver`` turns about ``fixed`` on one turning pair (both family classes also take
+    a driver sliding on ``fixed``: :func:`input_kind`)."""
+    return input_kind(chain, fixed, driver) == "R"
+
+
+def input_kind(chain: Chain, fixed: str, driver: str) -> str | None:
+    """``"R"`` when ``driver`` turns about ``fixed`` on one turning pair, ``"P"`` when it
+    slides on it on one sliding pair (a linear actuator, a slider driving the rest),
+    every joint of ``chain`` a turning or sliding pair of two links; else None.
+
+    Examples
+    --------
+    >>> from chaingraph.structure.atlas import atlas
+    >>> slider_crank, = atlas(links=4, prismatic=1)
+    >>> input_kind(slider_crank, "L1", "L3"), input_kind(slider_crank, "L1", "L2")
+    ('R', 'P')
+    """
+    if not all(j.kind in ("R", "P") and len(j.links) == 2 for j in chain.joints):
+        return None
+    kinds = [j.kind for j in chain.joints if set(j.links) == {fixed, driver}]
+    return kinds[0] if len(kinds) == 1 else None
 
 
 def _next_dyad(chain: Chain, known: set[str]) -> DyadStep | None:
@@ -374,8 +410,15 @@ class AtlasFamily(Family):
         self._index = {j.id: k for k, j in enumerate(self.template)}
         self._pivot = next(j.id for j in chain.joints if set(j.links) == {fixed, driver})
         on = sorted(j.id for j in chain.joints if driver in j.links and j.id != self._pivot)
-        # the solver's input: the line from the pivot to the driver's first other joint
+        # the solver's input: the line from the pivot to the driver's first other joint;
+        # a sliding input's: that joint's place along the guide (the block's slide)
         self._reference = (self._pivot, on[0])
+        pair = chain.joint(self._pivot)
+        self.sliding = pair.kind == "P"
+        if self.sliding:
+            self.name += f", driven by its sliding pair {self._pivot}"
+        # a slide of the block (the pair's second link) along the guide (its first)
+        self._sign = 1.0 if pair.links[1] == driver else -1.0
         self._links = sorted({x for j in self.template for x in j.links})
         slides = [j.id for j in self.template if j.kind == "P"]
         self._axis_row = {jid: len(self.template) + k for k, jid in enumerate(slides)}
@@ -417,8 +460,14 @@ class AtlasFamily(Family):
         turn = theta - self.first_input(params)[:, None]
         k = self._index[self._pivot]
         pivot = drawn[:, k, 0][:, None], drawn[:, k, 1][:, None]
-        motions: dict[str, tuple | None] = {self.fixed: None,
-                                            self.driver: (np.cos(turn), np.sin(turn), pivot, pivot)}
+        if self.sliding:        # the driver slides along the fixed guide, turning not
+            ex, ey = self._axis(params, self._pivot)
+            d = self._sign * turn
+            driven = (np.ones_like(turn), np.zeros_like(turn),
+                      (pivot[0] + d * ex, pivot[1] + d * ey), pivot)
+        else:
+            driven = (np.cos(turn), np.sin(turn), pivot, pivot)
+        motions: dict[str, tuple | None] = {self.fixed: None, self.driver: driven}
         for s in self.plan:
             with np.errstate(all="ignore"):
                 motions.update(self._dyad(s, params, motions))
@@ -544,7 +593,42 @@ class AtlasFamily(Family):
     def first_input(self, params: np.ndarray) -> np.ndarray:
         drawn = self._drawn(params)
         a, b = (self._index[j] for j in self._reference)
+        if self.sliding:        # the driver's joint's place along the guide
+            ex, ey = self._axis(params, self._pivot)
+            return self._sign * (drawn[:, b, 0] * ex[:, 0] + drawn[:, b, 1] * ey[:, 0])
         return np.arctan2(drawn[:, b, 1] - drawn[:, a, 1], drawn[:, b, 0] - drawn[:, a, 0])
+
+    def sweep(self, params: np.ndarray, steps: int) -> np.ndarray:
+        """As :meth:`Family.sweep`; a sliding input's range found by probing
+        :data:`_REACH` times the mechanism's spread either way of the drawn slide, the
+        run of probes that assemble about it kept and each end refined by bisection
+        (:data:`_ENDS` halvings) towards the limit beyond it."""
+        p = np.atleast_2d(np.asarray(params, dtype=float))
+        if not self.sliding:
+            return super().sweep(p, steps)
+        s0 = self.first_input(p)
+        drawn = self._drawn(p)
+        spread = np.max(np.ptp(drawn, axis=1), axis=1)
+        probe = s0[:, None] + _REACH * spread[:, None] * np.linspace(-1.0, 1.0,
+                                                                     2 * _PROBES + 1)
+        with np.errstate(all="ignore"):
+            ok = np.isfinite(self.positions(p, probe)[0])
+        rows = np.arange(len(p))
+        ends = []
+        for side in (1, -1):        # the last probe that assembles, and the next beyond
+            run = np.cumprod(ok[:, _PROBES::side], axis=1).sum(axis=1)
+            last = _PROBES + side * np.maximum(run - 1, 0)
+            beyond = np.clip(last + side, 0, 2 * _PROBES)
+            good, bad = probe[rows, last], probe[rows, beyond]
+            for _ in range(_ENDS):
+                mid = 0.5 * (good + bad)
+                with np.errstate(all="ignore"):
+                    fine = np.isfinite(self.positions(p, mid[:, None])[0][:, 0])
+                good, bad = np.where(fine, mid, good), np.where(fine, bad, mid)
+            ends.append(good)
+        hi, lo = ends
+        theta = lo[:, None] + (hi - lo)[:, None] * np.linspace(0.0, 1.0, steps)
+        return np.where(ok[:, _PROBES:_PROBES + 1], theta, np.nan)
 
     def sample(self, rng: np.random.Generator, count: int) -> np.ndarray:
         """Random mechanisms of the chain that turn their input fully: the joints
@@ -557,11 +641,12 @@ class AtlasFamily(Family):
         have = 0
         for _ in range(_DRAWS):
             p = self._scattered(rng, 4 * count + 16)
-            theta = self.first_input(p)[:, None] + np.linspace(0, 2 * math.pi, 48,
-                                                               endpoint=False)
             with np.errstate(all="ignore"):
-                x, _ = self.positions(p, theta)
+                x, y = self.positions(p, self.sweep(p, 48))
                 ok = np.all(np.isfinite(x), axis=1) & (self.link_ratio(p) <= 12.0)
+                if self.sliding:    # a path, not a point: slides that move it
+                    extent = np.maximum(np.ptp(x, axis=1), np.ptp(y, axis=1))
+                    ok &= extent > 0.2 * np.max(np.ptp(self._drawn(p), axis=1), axis=1)
             kept.append(p[ok])
             have += int(ok.sum())
             if have >= count:
@@ -578,7 +663,7 @@ class AtlasFamily(Family):
         pivot = self._index[self._pivot]
         shrink = rng.uniform(0.1, 0.4, (n, 1, 1))
         for k, j in enumerate(self.template):
-            if self.driver in j.links and k != pivot:
+            if self.driver in j.links and k != pivot and not self.sliding:
                 joints[:, k] = joints[:, pivot] + shrink[:, 0] * (joints[:, k] - joints[:, pivot])
         on = [self._index[j.id] for j in self.template if self.carrier in j.links]
         centre = joints[:, on].mean(axis=1)
@@ -588,6 +673,16 @@ class AtlasFamily(Family):
                                                               np.sin(turn[:, i])], axis=1)
                 for i, jid in enumerate(self._axis_row)]
         return np.concatenate([joints.reshape(n, -1), *axes, point], axis=1)
+
+    def mechanism(self, span: tuple[float, float] | None = None) -> Mechanism:
+        """As :meth:`Family.mechanism`; a sliding input is the sliding pair on the fixed
+        link (its value the block's slide along the guide from the drawn pose, in file
+        units), swept over ``span`` when given (a slide may run on without a limit)."""
+        if self.sliding:
+            start, stop = (None, None) if span is None else (float(span[0]), float(span[1]))
+            return Mechanism(self.fixed, None, 1.0, self.point,
+                             inputs=(Input(self._pivot, start, stop),))
+        return super().mechanism()
 
     def _drawn_joints(self, p: list[float]) -> tuple[Joint, ...]:
         """As :meth:`Family._drawn_joints`, each sliding pair along its line."""
@@ -622,6 +717,9 @@ class AtlasFamily(Family):
 
 
 _DRAWS = 6        # rounds of random mechanisms drawn when sampling an atlas family
+_REACH = 3.0      # a sliding input's slides probed either way, in the mechanism's spreads
+_PROBES = 48      # probes either way of the drawn slide
+_ENDS = 8         # halvings refining each end of a sliding input's range
 
 
 def _moved(motion, point):
@@ -706,8 +804,9 @@ class LoopFamily(AtlasFamily):
     (a triad: the Stephenson III, the Stephenson II driven by its binary link): every
     moving link's rigid motion from its drawn pose solved together by Newton's method,
     continued along the input from the drawn pose over a turn (:data:`_GRID` steps, so
-    the drawn circuit is tracked), then refined at each asked input from the step before
-    it; vectorised over mechanisms.
+    the drawn circuit is tracked; a sliding input's both ways from the drawn slide, as
+    far as :meth:`AtlasFamily.sweep` probes), then refined at each asked input from the
+    step before it (nearer the drawn pose); vectorised over mechanisms.
 
     A *screen*, not a solver: it scores thousands of candidate mechanisms at once (an
     array row per mechanism, which the kernel's solver, one chain at a time, cannot),
@@ -722,9 +821,9 @@ class LoopFamily(AtlasFamily):
 
     def __init__(self, chain: Chain, fixed: str, driver: str, carrier: str, *,
                  name: str | None = None) -> None:
-        if not driven_about_fixed(chain, fixed, driver):
+        if input_kind(chain, fixed, driver) is None:
             raise ValueError(f"{chain.name} with {fixed} fixed and {driver} driving is not "
-                             "a chain of binary pairs driven about the fixed link")
+                             "a chain of binary pairs driven on the fixed link")
         self.plan = ()
         self._setup(chain, fixed, driver, carrier, name)
         self._kept: tuple | None = None
@@ -753,15 +852,34 @@ class LoopFamily(AtlasFamily):
                                                               if x in k.links and k.id != j.id)]
                                               for x in j.links]) for j in middles]
 
+    @staticmethod
+    def _lead(pivot, turn):
+        """The driver's rigid motion (c, s, p, q; each (R,) or (R, 2)) from its move:
+        ``turn`` (R,) about the ``pivot`` (R, 2), or for a sliding input its
+        displacement (R, 2) along the guide."""
+        if np.ndim(turn) == 2:
+            ones = np.ones(len(turn))
+            return ones, 0.0 * ones, pivot + turn, pivot
+        return np.cos(turn), np.sin(turn), pivot, pivot
+
+    def _moves(self, params, slide):
+        """The driver's moves (:meth:`_lead`) for inputs ``slide`` (M, K) from the drawn
+        one: the turns themselves, or a sliding input's displacements (M, K, 2)."""
+        if not self.sliding:
+            return slide
+        ex, ey = self._axis(params, self._pivot)
+        return self._sign * np.stack([slide * ex, slide * ey], axis=-1)
+
     def _state_motions(self, drawn, turn, z):
         """Every link's motion (as :meth:`AtlasFamily._solve`) from the unknowns ``z``
         (rows, 3 per unknown link: its anchor's move and its turn) and the driver's
-        ``turn``; rows of ``drawn`` (R, J, 2) and ``turn`` (R,)."""
+        ``turn`` (:meth:`_lead`); rows of ``drawn`` (R, J, 2) and ``turn`` (R,) or
+        (R, 2)."""
         pivot = drawn[:, self._index[self._pivot]]
+        c, sn, p, q = self._lead(pivot, turn)
         out: dict[str, tuple | None] = {
             self.fixed: None,
-            self.driver: (np.cos(turn), np.sin(turn), (pivot[:, 0], pivot[:, 1]),
-                          (pivot[:, 0], pivot[:, 1]))}
+            self.driver: (c, sn, (p[:, 0], p[:, 1]), (q[:, 0], q[:, 1]))}
         for k, x in enumerate(self._unknown):
             q = drawn[:, self._anchor[x]]
             out[x] = (np.cos(z[:, 3 * k + 2]), np.sin(z[:, 3 * k + 2]),
@@ -781,8 +899,9 @@ class LoopFamily(AtlasFamily):
             c, s, p, q = (np.ones((rows, len(self._links))), np.zeros((rows, len(self._links))),
                           np.zeros((rows, len(self._links), 2)), np.zeros((rows, len(self._links), 2)))
             pivot = drawn[:, self._index[self._pivot]]
-            c[:, self._driver_col], s[:, self._driver_col] = np.cos(turn), np.sin(turn)
-            p[:, self._driver_col] = q[:, self._driver_col] = pivot
+            lead = self._lead(pivot, turn)
+            c[:, self._driver_col], s[:, self._driver_col] = lead[0], lead[1]
+            p[:, self._driver_col], q[:, self._driver_col] = lead[2], lead[3]
             cols = self._unknown_cols
             q[:, cols] = drawn[:, self._anchor_rows]
             p[:, cols] = q[:, cols] + z.reshape(rows, unknown, 3)[:, :, :2]
@@ -810,7 +929,7 @@ class LoopFamily(AtlasFamily):
         e = self._slides
         pa, ra, pb, rb = (v[:, e] for v in sides)
         angle = np.zeros((len(z), len(self._links)))
-        angle[:, self._driver_col] = turn
+        angle[:, self._driver_col] = turn if np.ndim(turn) == 1 else 0.0
         angle[:, self._unknown_cols] = z[:, 2::3]
         ta, tb = angle[:, [self._first[k] for k in e]], angle[:, [self._second[k] for k in e]]
         c, s = np.cos(ta), np.sin(ta)
@@ -861,19 +980,38 @@ class LoopFamily(AtlasFamily):
             return self._kept[1]
         drawn = self._drawn(p)
         m, n = len(p), 3 * len(self._unknown)
-        nodes = np.full((m, _GRID + 1, n), np.nan)
-        z = np.zeros((m, n))
-        nodes[:, 0] = z
         normals = self._normals(p)
-        alive = np.ones(m, dtype=bool)
-        for g in range(1, _GRID + 1):
-            z, ok = self._newton(drawn, np.full(m, g * 2 * math.pi / _GRID), z, normals,
-                                 settled=1e-7)
-            alive &= ok
-            z = np.where(alive[:, None], z, 0.0)
-            nodes[:, g] = np.where(alive[:, None], z, np.nan)
+        if self.sliding:        # both ways from the drawn slide, centre node _GRID
+            nodes = np.full((m, 2 * _GRID + 1, n), np.nan)
+            nodes[:, _GRID] = 0.0
+            for way in (1, -1):
+                self._continued(p, drawn, normals, nodes, way * self._reach(p) / _GRID, way)
+        else:
+            nodes = np.full((m, _GRID + 1, n), np.nan)
+            nodes[:, 0] = 0.0
+            self._continued(p, drawn, normals, nodes, np.full(m, 2 * math.pi / _GRID), 1)
         self._kept = (key, (nodes, normals))
         return nodes, normals
+
+    def _reach(self, params):
+        """A sliding input's slides continued either way (M,): as far as
+        :meth:`AtlasFamily.sweep` probes."""
+        return _REACH * np.max(np.ptp(self._drawn(params), axis=1), axis=1)
+
+    def _continued(self, params, drawn, normals, nodes, h, way):
+        """The continuation (in place) from the node of the drawn pose (``nodes``' first
+        for a turn, its middle for a slide) by steps ``h`` (M,) of the input, ``way`` by
+        ``way`` node, NaN past where a mechanism stops closing."""
+        m, n = len(params), nodes.shape[2]
+        start = 0 if not self.sliding else _GRID
+        z = np.zeros((m, n))
+        alive = np.ones(m, dtype=bool)
+        for g in range(1, _GRID + 1):
+            move = self._moves(params, (g * h)[:, None])[:, 0]
+            z, ok = self._newton(drawn, move, z, normals, settled=1e-7)
+            alive &= ok
+            z = np.where(alive[:, None], z, 0.0)
+            nodes[:, start + way * g] = np.where(alive[:, None], z, np.nan)
 
     def _solve(self, params, theta):
         """As :meth:`AtlasFamily._solve`, by continuation from the drawn pose (see the
@@ -884,14 +1022,24 @@ class LoopFamily(AtlasFamily):
         n = 3 * len(self._unknown)
         h = 2 * math.pi / _GRID
         nodes, normals = self._nodes(params)
-        turn = (theta - self.first_input(params)[:, None]) % (2 * math.pi)
-        node = np.minimum(np.floor(turn / h).astype(int), _GRID)
-        start = np.take_along_axis(nodes, node[:, :, None], axis=1).reshape(m * k, n)
+        turn = theta - self.first_input(params)[:, None]
+        if self.sliding:        # the node at or nearer the drawn slide; none beyond reach
+            h = self._reach(params)[:, None] / _GRID
+            node = _GRID + np.trunc(turn / h)
+            node = np.where(np.abs(node - _GRID) <= _GRID, node, -1).astype(int)
+            move = self._moves(params, turn).reshape(m * k, 2)
+        else:
+            turn = turn % (2 * math.pi)
+            node = np.minimum(np.floor(turn / h).astype(int), _GRID)
+            move = turn.reshape(-1)
+        start = np.take_along_axis(nodes, np.maximum(node, 0)[:, :, None],
+                                   axis=1).reshape(m * k, n)
+        start = np.where((node >= 0).reshape(-1, 1), start, np.nan)
         rows = np.repeat(drawn, k, axis=0)
-        z, ok = self._newton(rows, turn.reshape(-1), np.nan_to_num(start),
+        z, ok = self._newton(rows, move, np.nan_to_num(start),
                              np.repeat(normals, k, axis=0))
         z = np.where((ok & np.all(np.isfinite(start), axis=1))[:, None], z, np.nan)
-        motions = self._state_motions(rows, turn.reshape(-1), z)
+        motions = self._state_motions(rows, move, z)
         return {x: None if v is None else (v[0].reshape(m, k), v[1].reshape(m, k),
                                            (v[2][0].reshape(m, k), v[2][1].reshape(m, k)),
                                            (v[3][0].reshape(m, k), v[3][1].reshape(m, k)))

@@ -34,7 +34,7 @@ from scipy.optimize import differential_evolution, least_squares  # type: ignore
 
 from chaingraph.synthesis.family import Family
 
-__all__ = ["TaskFrame", "MAX_RATIO", "curve", "ordered_distance", "objective",
+__all__ = ["TaskFrame", "MAX_RATIO", "curve", "sample_steps", "ordered_distance", "objective",
            "coarse_search", "global_search", "fit_start", "least_squares_fit", "Fit",
            "predicted_defect", "BETWEEN"]
 
@@ -83,18 +83,30 @@ class TaskFrame:
 
 def curve(family: Family, params: npt.ArrayLike,
           steps: int) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
-    """The tracing point's path over one turn of the input from the drawn pose:
+    """The tracing point's path over one turn of the input from the drawn pose (a
+    sliding input's: over the slides that assemble, :meth:`Family.sweep`):
     ``theta`` (M, steps), ``x``, ``y`` (NaN where unassembled)."""
     params = np.atleast_2d(params)
-    theta = family.first_input(params)[:, None] + np.linspace(0.0, 2 * math.pi, steps,
-                                                              endpoint=False)
+    theta = family.sweep(params, steps)
     x, y = family.positions(params, theta)
     return theta, x, y
 
 
-def _segment_distances(x, y, targets):
+def sample_steps(family: Family, theta: np.ndarray, turns: npt.ArrayLike) -> np.ndarray:
+    """Input steps ``turns`` (radians; a sliding input's: slides) as steps of the
+    samples ``theta`` (M, K) of :func:`curve`: (N,) for a turn, (M, N) for a slide."""
+    turns = np.asarray(turns, dtype=float)
+    k = theta.shape[1]
+    if not family.sliding:
+        return (turns / (2 * math.pi) * k) % k
+    with np.errstate(all="ignore"):
+        return turns[None, :] / (theta[:, 1:2] - theta[:, :1])
+
+
+def _segment_distances(x, y, targets, open_path=False):
     """(M, N, K) squared distances from each target to each segment k (sample k to k+1,
-    the last closing the turn), and where along it the nearest point is (0..1)."""
+    the last closing the turn; on an ``open_path``, none: infinity), and where along it
+    the nearest point is (0..1)."""
     ax, ay = x[:, None, :], y[:, None, :]
     bx, by = np.roll(x, -1, axis=1)[:, None, :], np.roll(y, -1, axis=1)[:, None, :]
     tx, ty = targets[None, :, 0, None], targets[None, :, 1, None]
@@ -104,23 +116,29 @@ def _segment_distances(x, y, targets):
         u = np.clip(((tx - ax) * vx + (ty - ay) * vy) / length2, 0.0, 1.0)
     u = np.where(length2 > 0, u, 0.0)
     dx, dy = ax + u * vx - tx, ay + u * vy - ty
-    return dx * dx + dy * dy, u
+    d2 = dx * dx + dy * dy
+    if open_path:
+        d2[..., -1] = np.inf
+    return d2, u
 
 
 @overload
 def ordered_distance(x: np.ndarray, y: np.ndarray, targets: np.ndarray, *,
                      assign: Literal[False] = False,
-                     timed: npt.ArrayLike | None = None) -> np.ndarray: ...
+                     timed: npt.ArrayLike | None = None,
+                     open_path: bool = False) -> np.ndarray: ...
 
 
 @overload
 def ordered_distance(x: np.ndarray, y: np.ndarray, targets: np.ndarray, *,
                      assign: Literal[True], timed: npt.ArrayLike | None = None,
+                     open_path: bool = False,
                      ) -> tuple[np.ndarray, np.ndarray, np.ndarray]: ...
 
 
 def ordered_distance(x: np.ndarray, y: np.ndarray, targets: np.ndarray, *,
                      assign: bool = False, timed: npt.ArrayLike | None = None,
+                     open_path: bool = False,
                      ) -> np.ndarray | tuple[np.ndarray, np.ndarray, np.ndarray]:
     """The in-order distance from the targets to each traced path (module docstring).
 
@@ -133,9 +151,13 @@ def ordered_distance(x: np.ndarray, y: np.ndarray, targets: np.ndarray, *,
     assign : bool
         Also return, per mechanism and target, the sample step (a float: segment plus
         the place along it) where the target is met.
-    timed : (N,) array, optional
+    timed : (N,) or (M, N) array, optional
         Targets met at these sample steps after the first target's nearest (a timing):
         the distances there, no search.
+    open_path : bool
+        The samples are a path from end to end (a sliding input's), not a closed turn:
+        no segment joins the last sample to the first, and the targets are met along it
+        without wrapping round.
 
     Returns
     -------
@@ -144,18 +166,24 @@ def ordered_distance(x: np.ndarray, y: np.ndarray, targets: np.ndarray, *,
     """
     m, k = x.shape
     n = len(targets)
-    d2, u = _segment_distances(x, y, targets)
+    d2, u = _segment_distances(x, y, targets, open_path)
     d2 = np.where(np.isfinite(d2), d2, np.inf)
     first = np.argmin(d2[:, 0, :], axis=1)
     if timed is not None:     # target i at the first's sample plus its turn
-        step = (first[:, None] + np.asarray(timed, dtype=float)[None, :]) % k
+        step = first[:, None] + np.atleast_2d(np.asarray(timed, dtype=float))
+        outside = ~np.isfinite(step) | (step < 0) | (step > k - 1) if open_path else False
+        step = np.where(np.isfinite(step), step, 0.0) % k
         at = np.floor(step).astype(int) % k
-        total = np.take_along_axis(d2, at[:, :, None], 2)[..., 0].mean(axis=1)
+        near = np.take_along_axis(d2, at[:, :, None], 2)[..., 0]
+        total = np.where(outside, np.inf, near).mean(axis=1)
         return (total, step, np.ones(m)) if assign else total
     best_cost, best_steps, best_way = np.full(m, np.inf), np.zeros((m, n)), np.ones(m)
     for way in (1, -1):
-        order = (first[:, None] + way * np.arange(k)[None, :]) % k      # (M, K)
+        ahead = first[:, None] + way * np.arange(k)[None, :]
+        order = ahead % k      # (M, K)
         dd = np.take_along_axis(d2, np.broadcast_to(order[:, None, :], (m, n, k)), 2)
+        if open_path:          # no wrapping round an open path's ends
+            dd = np.where(((ahead < 0) | (ahead > k - 1))[:, None, :], np.inf, dd)
         cost = np.full((m, k), np.inf)
         cost[:, 0] = dd[:, 0, 0]
         args = []
@@ -201,20 +229,27 @@ def objective(family: Family, params: npt.ArrayLike, targets: np.ndarray, *, ste
     """The in-order rms distance from the targets to each mechanism's path (task units),
     plus penalties: an input that cannot turn fully (:data:`_BIG` and the share of the
     turn unassembled), a transmission angle out of ``[min, 180 - min]`` over the turn
-    (its excess in degrees over 90), a link ratio over :data:`MAX_RATIO`. ``timing``: the
-    input's turn (radians) from the first target to each. ``turns`` (poses): the
-    carrier's turn (radians) from the first target to each, its rms miss (where the path
-    comes nearest each target) added."""
+    (a sliding input's: between the first target and the last; its excess in degrees
+    over 90), a link ratio over :data:`MAX_RATIO`. ``timing``: the input's turn
+    (radians; a sliding input's slide) from the first target to each. ``turns``
+    (poses): the carrier's turn (radians) from the first target to each, its rms miss
+    (where the path comes nearest each target) added."""
     params = np.atleast_2d(params)
     theta, x, y = curve(family, params, steps)
     unassembled = np.mean(~np.isfinite(x), axis=1)
-    timed = None
-    if timing is not None:
-        timed = (np.asarray(timing) / (2 * math.pi) * steps) % steps
+    timed = None if timing is None else sample_steps(family, theta, timing)
     with np.errstate(all="ignore"):
-        cost = np.sqrt(ordered_distance(np.nan_to_num(x), np.nan_to_num(y), targets,
-                                        timed=timed))
         mu = family.transmission(params, theta)
+        if family.sliding:      # its ends are limits: bounds between the targets only
+            cost, at, _ = ordered_distance(np.nan_to_num(x), np.nan_to_num(y), targets,
+                                           timed=timed, open_path=True, assign=True)
+            cost = np.sqrt(cost)
+            k = np.arange(theta.shape[1])[None, :]
+            lo, hi = np.floor(at.min(axis=1))[:, None], np.ceil(at.max(axis=1))[:, None]
+            mu = np.where((k >= lo) & (k <= hi), mu, 90.0)
+        else:
+            cost = np.sqrt(ordered_distance(np.nan_to_num(x), np.nan_to_num(y), targets,
+                                            timed=timed))
         excess = np.nanmax(np.maximum(min_transmission - mu, mu - (180.0 - min_transmission)),
                            axis=1)
         if turns is not None:
@@ -418,15 +453,19 @@ def fit_start(family: Family, params: npt.ArrayLike, targets: np.ndarray, *, ste
     unwrapped the way the path is run): ``(params (M, size), inputs (M, N))``."""
     params = np.atleast_2d(params)
     theta, x, y = curve(family, params, steps)
-    timed = None if timing is None else (np.asarray(timing) / (2 * math.pi) * steps) % steps
+    timed = None if timing is None else sample_steps(family, theta, timing)
     with np.errstate(all="ignore"):
         _, at, way = ordered_distance(np.nan_to_num(x), np.nan_to_num(y), targets,
-                                      assign=True, timed=timed)
-    turn = 2 * math.pi / steps
-    ahead = ((at - at[:, :1]) * way[:, None]) % steps * way[:, None]
+                                      assign=True, timed=timed, open_path=family.sliding)
+    if family.sliding:          # a step of the samples, per mechanism; no wrapping round
+        turn = (theta[:, 1:2] - theta[:, :1])
+        ahead = at - at[:, :1]
+    else:
+        turn = np.full((len(params), 1), 2 * math.pi / steps)
+        ahead = ((at - at[:, :1]) * way[:, None]) % steps * way[:, None]
     if timing is not None:
-        ahead = np.broadcast_to(np.asarray(timing) / turn, at.shape)
-    first = theta[:, 0] + at[:, 0] * turn
+        ahead = np.broadcast_to(np.asarray(timing), at.shape) / turn
+    first = theta[:, 0] + at[:, 0] * turn[:, 0]
     return family.posed(params, first), first[:, None] + ahead * turn
 
 
@@ -436,6 +475,13 @@ def predicted_defect(family: Family, fit: Fit, *, steps: int = 720) -> str | Non
     within a turn, ``"branch defect"`` when the drawn assembly is lost between the first
     target and the last; None when it looks right."""
     d = np.asarray(fit.inputs) - fit.inputs[0]
+    if family.sliding:          # a slide does not come round: one way, no wrapping
+        steps_between = np.diff(d)
+        if not (np.all(steps_between > 0) or np.all(steps_between < 0)):
+            return "order defect"
+        theta = np.linspace(fit.inputs[0], fit.inputs[-1], steps)
+        x, _ = family.positions(fit.params[None, :], theta[None, :])
+        return None if np.all(np.isfinite(x)) else "branch defect"
     for way in (1.0, -1.0):
         ahead = (way * d) % (2 * math.pi)
         ahead[0] = 0.0

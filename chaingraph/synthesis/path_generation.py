@@ -53,7 +53,7 @@ from chaingraph.synthesis.result import Searched, Solution, Synthesis, ranked
 from chaingraph.synthesis.task import PathTask, check_options, drawn_seed, path_task
 
 __all__ = ["path", "path_search_task", "EXACT", "synthesise_path", "Budget", "BUDGET",
-           "screened_fits", "first_certified", "least_transmission"]
+           "screened_fits", "first_certified", "least_transmission", "slide_span"]
 
 #: a fit passes its points exactly when every distance is within this of the task's size
 EXACT = 1e-9
@@ -120,11 +120,14 @@ def path(*, points: Iterable[tuple[float, float]],
 def path_search_task(*, points: Iterable[tuple[float, float]],
                      timing: Iterable[float] | None, closed: bool, kind: str,
                      solutions: int, seed: int | None, units: str,
-                     min_transmission: float) -> PathTask:
+                     min_transmission: float, slides: bool = False) -> PathTask:
     """The checked task of a path search (:func:`path`'s parameters, ``solutions``
-    checked too), its seed drawn when None (:func:`~chaingraph.synthesis.task.drawn_seed`)."""
+    checked too), its seed drawn when None (:func:`~chaingraph.synthesis.task.drawn_seed`);
+    ``slides``: the timing may be a sliding input's (see
+    :func:`~chaingraph.synthesis.task.path_task`)."""
     task = path_task(points=points, timing=timing, closed=closed, kind=kind,
-                     seed=drawn_seed(seed), units=units, min_transmission=min_transmission)
+                     seed=drawn_seed(seed), units=units, min_transmission=min_transmission,
+                     slides=slides)
     check_options(solutions=solutions, min_transmission=min_transmission, units=units,
                   kind="path")
     return task
@@ -160,8 +163,10 @@ def synthesise_path(task: PathTask, family: Family, *, solutions: int,
     exact = task.exact
     budget = BUDGET[exact] if budget is None else budget
     steps = _STEPS[exact]
-    turns = (None if task.timing is None
-             else np.radians(np.asarray(task.timing) - task.timing[0]))
+    turns = None
+    if task.timing is not None:     # a turn in degrees; a slide in file units
+        turns = np.asarray(task.timing, dtype=float) - task.timing[0]
+        turns = turns / frame.scale if family.sliding else np.radians(turns)
     common: dict[str, Any] = dict(steps=steps, min_transmission=task.min_transmission,
                                   timing=turns)
     starts, _ = coarse_search(family, targets, rng, count=budget.samples,
@@ -255,7 +260,7 @@ def _certified(task, family, frame, fit):
     dims = family.dimensions(world)
     sizes = ", ".join(f"{k} {v:.6g}" for k, v in dims.items())
     chain = family.chain(world, name=f"{family.title}: {how}",
-                         units=task.units,
+                         units=task.units, span=slide_span(family, frame, fit),
                          notes=f"Designed by chaingraph (path generation, {family.name}): "
                                f"{sizes}; drawn at the first target; the coupler point "
                                f"{family.point} passes the targets in order.", task=table)
@@ -263,14 +268,27 @@ def _certified(task, family, frame, fit):
                      min_transmission=task.min_transmission)
     if isinstance(result, Rejected):
         return result
-    if task.timing is not None and not _on_time(task, result):
+    if task.timing is not None and not _on_time(task, result, family.sliding):
         return Rejected("timing", "the targets are not met at the timing's input values")
     return _solution(result, dims)
 
 
-def _on_time(task, c: Certified) -> bool:
+def slide_span(family: Family, frame: TaskFrame, fit: Fit) -> tuple[float, float] | None:
+    """A sliding input's sweep in the written file: from the first target (the drawn
+    pose, 0) to the last, in file units; None for a turning input (its whole turn)."""
+    if not family.sliding:
+        return None
+    return 0.0, float((fit.inputs[-1] - fit.inputs[0]) * frame.scale)
+
+
+def _on_time(task, c: Certified, sliding: bool = False) -> bool:
+    """Whether the targets are met at the timing's input values (up to one constant:
+    the first's); a sliding input's are slides (file units), not angles."""
     got = np.asarray(c.reached_at) - c.reached_at[0]
     want = np.asarray(task.timing) - task.timing[0]
+    if sliding:     # to rounding of the task's size (exact), or a thousandth of it
+        tol = (1e3 * EXACT if task.exact else 1e-3) * task.size
+        return bool(np.all(np.abs(got - want) <= tol))
     tol = _TIMING if task.exact else 1.0    # a fit meets its targets near its timing
     return bool(np.all(np.abs((got - want + 180.0) % 360.0 - 180.0) <= tol))
 

@@ -34,6 +34,7 @@ from chaingraph.synthesis.path_generation import (
     first_certified,
     least_transmission,
     screened_fits,
+    slide_span,
 )
 from chaingraph.synthesis.result import Curve, Searched, Solution, Synthesis, ranked
 from chaingraph.synthesis.task import MotionTask
@@ -83,12 +84,16 @@ def _certified(task, family, frame, fit):
     chain = family.chain(
         world, name=f"{family.title}: motion through "
                     f"{len(task.poses)} poses", units=task.units,
+        span=slide_span(family, frame, fit),
         notes=f"Designed by chaingraph (motion generation, {family.name}): {sizes}; "
               f"drawn at the first pose; link {family.carrier} passes the poses in order "
               f"(its point {family.point}).", task=task.to_dict())
     ref = chain.reference_direction(family.carrier)
     angles = tuple(ref + a - task.poses[0][2] for _, _, a in task.poses)
-    claimed = tuple(float(v) for v in np.degrees(frame.input_to_world(fit.inputs)))
+    if family.sliding:      # the solver's slide from the drawn pose (the first target)
+        claimed = tuple(float(v) for v in (fit.inputs - fit.inputs[0]) * frame.scale)
+    else:
+        claimed = tuple(float(v) for v in np.degrees(frame.input_to_world(fit.inputs)))
     result = certify(chain, PoseTargets(tuple((x, y) for x, y, _ in task.poses), angles,
                                         family.point, family.carrier, claimed),
                      min_transmission=task.min_transmission)

@@ -56,10 +56,11 @@ class Solution:
     its ``error``, ``reached_at`` (the input at each target), ``transmission_angle``
     ``(min, max)`` between the first target and the last (None where the mechanism has
     no four-link loop at its output), ``grashof`` (a four-bar's Grashof words, else
-    None), ``input`` (``"turns fully"`` or ``"rocks"``), ``names`` (catalog names of its
-    structure), ``atlas`` (where a type synthesis found it, else None), ``curve``
-    (what its drawing plots) and ``dimensions`` (its lengths and starting values by
-    name; not in the JSON, whose ``mechanism`` holds them all)."""
+    None), ``input`` (``"turns fully"``, ``"rocks"`` or, a sliding input,
+    ``"slides"``: its ``reached_at`` are then slides, file units), ``names`` (catalog
+    names of its structure), ``atlas`` (where a type synthesis found it, else None),
+    ``curve`` (what its drawing plots) and ``dimensions`` (its lengths and starting
+    values by name; not in the JSON, whose ``mechanism`` holds them all)."""
 
     rank: int
     mechanism: Chain

@@ -271,8 +271,11 @@ def _check_seed(seed: object, what: str) -> None:
 
 def path_task(*, points: Iterable[tuple[float, float]], timing: Iterable[float] | None = None,
               closed: bool = False, kind: str = "four-bar", seed: int | None = None,
-              units: str = "mm", min_transmission: float = 30.0) -> PathTask:
-    """Check a path generator's task (see :func:`chaingraph.synthesis.path`)."""
+              units: str = "mm", min_transmission: float = 30.0,
+              slides: bool = False) -> PathTask:
+    """Check a path generator's task (see :func:`chaingraph.synthesis.path`); with
+    ``slides`` (a search that drives some chains by a sliding input) the timing's values
+    may be slides (file units) too, so they are not held within a turn."""
     what = "path"
     if kind not in PATH_KINDS:
         raise DesignError(f"unknown kind {kind!r} (expected one of {', '.join(PATH_KINDS)})",
@@ -301,7 +304,7 @@ def path_task(*, points: Iterable[tuple[float, float]], timing: Iterable[float] 
                 raise DesignError(f"points {i + 1} and {j + 1} are the same point "
                                   f"({p[0]:g}, {p[1]:g}): a path needs distinct points",
                                   kind=what, parameter="points")
-    turns = None if timing is None else _timing(timing, len(targets), what)
+    turns = None if timing is None else _timing(timing, len(targets), what, slides)
     return PathTask(targets, turns, bool(closed), kind, seed, units, mt)
 
 
@@ -316,9 +319,10 @@ def _point(p, k, what):
             _number(y, "points", f"point {k}'s y", what))
 
 
-def _timing(timing, count, what):
+def _timing(timing, count, what, slides=False):
     """The input's values at the points: as many as the points, finite, all moving one
-    way, less than a turn (a whole turn at most for a closed curve) from first to last."""
+    way, less than a turn (a whole turn at most for a closed curve) from first to last
+    (unless they may be ``slides``)."""
     try:
         values = list(timing)
     except TypeError:
@@ -333,7 +337,7 @@ def _timing(timing, count, what):
         raise DesignError("timing must move one way (every value above the one before, or "
                           f"every value below), got {'; '.join(f'{v:g}' for v in out)}",
                           kind=what, parameter="timing")
-    if abs(out[-1] - out[0]) >= 360.0:
+    if abs(out[-1] - out[0]) >= 360.0 and not slides:
         raise DesignError(f"timing spans {abs(out[-1] - out[0]):g} degrees: the points are "
                           "met within one turn of the input", kind=what, parameter="timing")
     return out

@@ -6,8 +6,10 @@ The space (:func:`atlas_space`): the chains of the atlas with ``links`` links (w
 ``prismatic`` sliding pairs: the sliding atlas's), each chain's inversions (the orbits of
 its links under its automorphisms, as the atlas counts them; the first link of each
 orbit fixed), each inversion's drivers (a link turning about the fixed link on a
-turning pair, one per orbit of (fixed, driver) pairs) and carriers (every link not
-jointed to the fixed link: a link turning about a fixed pivot traces circles only). A
+turning pair, or sliding on it on a sliding pair: a *sliding input*, its value a slide
+in file units; one per orbit of (fixed, driver) pairs) and carriers (every link not
+jointed to the fixed link: a link turning about a fixed pivot traces circles only, one
+sliding on it lines). A
 (chain, fixed, driver, carrier) choice is a *family*: an
 :class:`~chaingraph.synthesis.family.AtlasFamily` when its chain is solved dyad by dyad
 from its fixed link and driver in closed form (every Watt inversion, the Stephenson I,
@@ -16,10 +18,15 @@ RRP, PRR, RPR, PRP, RPP, PPR), a :class:`~chaingraph.synthesis.family.LoopFamily
 the group beyond its driver is a triad (the Stephenson III, the Stephenson II driven by
 its binary link, with or without sliding pairs: Newton's method, continued along the
 input, on a smaller budget, :data:`NEWTON_BUDGETS`). Both are screens: every solution is
-certified by the kernel's solver from its written file. The driver always turns (a
-sliding pair is never the input); a chain with no turning pair on its fixed link has no
-family. A family neither solves (a joint of three or more links: not in the atlases of
-single joints searched here) would be counted in ``rejected`` as :data:`UNSOLVED`.
+certified by the kernel's solver from its written file. A sliding input's families are
+solved alike, dyad by dyad or by Newton's method continued both ways from the drawn
+slide, their path swept over the slides that assemble, from limit to limit
+(:meth:`~chaingraph.synthesis.family.Family.sweep`). A family neither class solves (a
+joint of three or more links: not in the atlases of single joints searched here) would
+be counted in ``rejected`` as :data:`UNSOLVED`. A
+closed curve needs a turning input (a slide does not come back by going on): for a
+``closed`` task the families driven by a slide are not searched, the inversions that
+have them counted under :data:`SLIDING_CLOSED`.
 
 Each family is one independent job (:func:`search_family`: the coarse search, the
 global search and least squares of :mod:`chaingraph.synthesis.optimiser` on a budget,
@@ -45,7 +52,12 @@ from chaingraph.model.chain import Chain
 from chaingraph.naming.atlas import atlas_names
 from chaingraph.structure.atlas import atlas
 from chaingraph.structure.isomorphism import automorphism_orbits, pair_orbits
-from chaingraph.synthesis.family import AtlasFamily, LoopFamily, driven_about_fixed, dyad_plan
+from chaingraph.synthesis.family import (
+    AtlasFamily,
+    LoopFamily,
+    dyad_plan,
+    input_kind,
+)
 from chaingraph.synthesis.motion_generation import motion as four_bar_motion
 from chaingraph.synthesis.path_generation import Budget, path_search_task, synthesise_path
 from chaingraph.synthesis.path_generation import path as four_bar_path
@@ -55,7 +67,7 @@ from chaingraph.synthesis.task import MotionTask, PathTask, check_options, drawn
 
 __all__ = ["path", "motion", "LINKS", "Choice", "Space", "atlas_space", "search_family",
            "path_types", "check_links", "BUDGETS", "NEWTON_BUDGETS",
-           "UNSOLVED", "TRIADS_SKIPPED", "NOT_CHOSEN", "UNDRIVEN"]
+           "UNSOLVED", "TRIADS_SKIPPED", "NOT_CHOSEN", "UNDRIVEN", "SLIDING_CLOSED"]
 
 #: the sizes a synthesis searches (4: the four-bar; 6 and 8: through the atlas)
 LINKS = (4, 6, 8)
@@ -63,8 +75,12 @@ LINKS = (4, 6, 8)
 UNSOLVED = "families not solved"
 #: the reason a triad family is counted under when ``triads`` is False (a quicker search)
 TRIADS_SKIPPED = "triads not searched"
-#: the reason an inversion with no turning pair on its fixed link (no input) is counted under
-UNDRIVEN = "inversions with no turning input"
+#: the reason an inversion with no binary turning or sliding pair on its fixed link (no
+#: input) is counted under
+UNDRIVEN = "inversions with no input"
+#: the reason the inversions searched only through a sliding input are counted under for a
+#: closed curve (its families, driven by a slide, are not searched)
+SLIDING_CLOSED = "inversions with a sliding input: a closed curve needs a turning input"
 #: the reason a family left out by ``families`` (see :func:`path_types`) is counted under
 NOT_CHOSEN = "families not chosen"
 #: how hard one family is searched, exact (up to five points) and fitted
@@ -100,12 +116,19 @@ class Choice:
         """Whether the family is searched (its motion found by dyads or by Newton)."""
         return bool(self.method)
 
+    @property
+    def sliding(self) -> bool:
+        """Whether the driver slides on the fixed link (a sliding input: its values are
+        slides, in file units) rather than turning about it."""
+        return input_kind(self.chain, self.fixed, self.driver) == "P"
+
 
 @dataclass(frozen=True)
 class Space:
     """The space a type synthesis searches: ``links``, ``prismatic``, the atlas's
     ``chains`` and ``inversions`` (counts), the ``choices`` and the number of
-    inversions with no family (``undriven``: no turning pair on the fixed link)."""
+    inversions with no family (``undriven``: no binary turning or sliding pair on the
+    fixed link)."""
 
     links: int
     prismatic: int
@@ -138,12 +161,16 @@ def atlas_space(links: int, prismatic: int | str | None = None) -> Space:
     (2, 5, 25, 25)
     >>> s = atlas_space(6, 1)       # one sliding pair
     >>> s.chains, s.inversions, len(s.choices), sum(c.method == "newton" for c in s.choices)
-    (6, 25, 118, 32)
-    >>> atlas_space(6, "all").undriven
-    20
+    (6, 25, 141, 40)
+    >>> sliding = [c.method for c in s.choices if c.sliding]   # driven by a slide
+    >>> len(sliding), sliding.count("dyads")
+    (23, 15)
+    >>> atlas_space(6, "all").undriven      # every fixed link has a turning or sliding pair
+    0
     """
     chains = list(atlas(links=links, prismatic=prismatic))
     choices: list[Choice] = []
+    sliding: list[Choice] = []
     inversions = 0
     for number, chain in enumerate(chains, 1):
         named = atlas_names(chain)
@@ -153,17 +180,22 @@ def atlas_space(links: int, prismatic: int | str | None = None) -> Space:
         for k, orbit in enumerate(orbits, 1):
             fixed = orbit[0]
             names = tuple(named["chain"]) + by_link.get(fixed, ())
-            choices += _choices(chain, number, k, fixed, names)
+            choices += _choices(chain, number, k, fixed, names, "R")
+            sliding += _choices(chain, number, k, fixed, names, "P")
+    # the sliding inputs' families after every turning input's, so that each of these
+    # keeps its number (its random stream) in the space
+    choices += sliding
     p = 0 if prismatic is None else (-1 if prismatic == "all" else int(prismatic))
     driven = len({(c.chain_id, c.inversion) for c in choices})
     return Space(links, p, len(chains), inversions, tuple(choices), inversions - driven)
 
 
-def _choices(chain, number, inversion, fixed, names) -> list[Choice]:
-    """An inversion's families: one driver per orbit of (fixed, driver) pairs, every
-    carrier not jointed to the fixed link."""
+def _choices(chain, number, inversion, fixed, names, kind) -> list[Choice]:
+    """An inversion's families driven through a pair of ``kind`` on the fixed link (R: a
+    link turning about it; P: sliding on it, a sliding input): one driver per orbit of
+    (fixed, driver) pairs, every carrier not jointed to the fixed link."""
     drivers = [next(x for x in j.links if x != fixed) for j in chain.joints
-               if fixed in j.links and len(j.links) == 2 and j.kind == "R"]
+               if fixed in j.links and len(j.links) == 2 and j.kind == kind]
     seen: set[str] = set()
     kept = []
     for orbit in pair_orbits(chain, [(fixed, d) for d in drivers], oriented=False):
@@ -178,10 +210,11 @@ def _choices(chain, number, inversion, fixed, names) -> list[Choice]:
 
 
 def _method(chain, fixed, driver) -> str:
-    """How a family's motion is found (see :class:`Choice`)."""
+    """How a family's motion is found (see :class:`Choice`), for a turning or a
+    sliding input alike."""
     if dyad_plan(chain, fixed, driver) is not None:
         return "dyads"
-    if driven_about_fixed(chain, fixed, driver):
+    if input_kind(chain, fixed, driver) is not None:
         return "newton"
     return ""
 
@@ -257,7 +290,8 @@ def path(*, points: Iterable[tuple[float, float]], timing: Iterable[float] | Non
                              min_transmission=min_transmission)
     task = path_search_task(points=points, timing=timing, closed=closed, kind=kind,
                             solutions=solutions, seed=seed, units=units,
-                            min_transmission=min_transmission)
+                            min_transmission=min_transmission,
+                            slides=prismatic not in (None, 0))
     return path_types(task, links=links, prismatic=prismatic, solutions=solutions,
                       runner=runner, triads=triads, families=families, budget=budget)
 
@@ -318,9 +352,14 @@ def path_types(task: PathTask | MotionTask, *, links: int, prismatic: int | str 
     what the whole search finds in it."""
     space = atlas_space(links, prismatic)
     task = replace(task, mechanism=_mechanism(links, prismatic))
+    closed = getattr(task, "closed", False)
     jobs = [_Job(task, c, k, links, space.prismatic, solutions, triads, budget)
-            for k, c in enumerate(space.choices) if families is None or families(c)]
-    left_out = len(space.choices) - len(jobs)
+            for k, c in enumerate(space.choices) if (families is None or families(c))
+            and not (closed and c.sliding)]
+    # a closed curve: the families driven by a slide are left out, counted by inversion
+    sliding_only = _sliding_inversions(space.choices) if closed else 0
+    left_out = len(space.choices) - len(jobs) - (
+        sum(c.sliding for c in space.choices) if closed else 0)
     results: dict[int, tuple] = {}
     # the slow families (Newton's) first, so that workers do not wait on one at the end
     order = sorted(range(len(jobs)), key=lambda i: jobs[i].choice.method != "newton")
@@ -340,12 +379,19 @@ def path_types(task: PathTask | MotionTask, *, links: int, prismatic: int | str 
         sampled += n
     if left_out:
         rejected[NOT_CHOSEN] += left_out
+    if sliding_only:
+        rejected[SLIDING_CLOSED] += sliding_only
     if space.undriven:
         rejected[UNDRIVEN] += space.undriven
     tolerance = 1e-9 * task.size if _exact(task) else 0.0
     return Synthesis(task, ranked(found, solutions, tolerance=tolerance),
                      dict(sorted(rejected.items())),
                      Searched(space.chains, space.inversions, sampled))
+
+
+def _sliding_inversions(choices: Sequence[Choice]) -> int:
+    """The inversions with families driven by a sliding input."""
+    return len({(c.chain_id, c.inversion) for c in choices if c.sliding})
 
 
 def _exact(task) -> bool:

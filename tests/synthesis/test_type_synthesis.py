@@ -56,28 +56,38 @@ def test_every_family_traces_what_the_solver_traces(links, prismatic, every):
     triads (Stephenson III, II by its binary link, with or without sliding pairs) by
     Newton: a mechanism sampled from each family (every ``every``-th of the space) traced
     over a turn from its drawn pose as the solver traces it from its written file (the
-    point after a whole turn left out: a circuit may take two turns to close)."""
+    point after a whole turn left out: a circuit may take two turns to close); a
+    sliding input's over its slides, within its limits."""
     rng = np.random.default_rng(7)
     space = atlas_space(links, prismatic)
     assert all(c.solvable for c in space.choices)
+    turning = [c for c in space.choices if not c.sliding]
+    sliding = [c for c in space.choices if c.sliding]
     checked = 0
-    for c in space.choices[::every]:
+    for c in turning[::every] + sliding[::every]:
         kind = AtlasFamily if c.method == "dyads" else LoopFamily
         family = kind(c.chain, c.fixed, c.driver, c.carrier)
         params = family.sample(rng, 1) * 50.0
         for p in params:
-            chain = family.chain(p, name="sampled", units="mm", notes="")
+            drawn = float(family.first_input(p[None, :])[0])
+            span = None
+            if c.sliding:       # within the slides that assemble (a slide may run on)
+                ends = family.sweep(p[None, :], 2)[0] - drawn
+                span = (0.95 * ends[0], 0.95 * ends[1])
+            chain = family.chain(p, name="sampled", units="mm", notes="", span=span)
             m = chaingraph.solve(chain, steps=24, summary=False)
-            drawn = math.degrees(float(family.first_input(p[None, :])[0]))
-            if abs(m["theta"][0] - drawn) > 1e-6:     # not a whole turn (a rare draw)
+            if c.sliding:       # the solver's slides from the drawn pose, file units
+                theta = drawn + m["theta"][None, :-1]
+            elif abs(m["theta"][0] - math.degrees(drawn)) > 1e-6:   # not a whole turn
                 continue
-            theta = np.radians(m["theta"])[None, :-1]
+            else:
+                theta = np.radians(m["theta"])[None, :-1]
             x, y = family.positions(p[None, :], theta)
             assert np.allclose(x[0], m["x:P"][:-1], atol=1e-9 * 50)
             assert np.allclose(y[0], m["y:P"][:-1], atol=1e-9 * 50)
             checked += 1
-    assert checked >= 0.8 * len(space.choices[::every])
-    methods = {c.method for c in space.choices[::every]}
+    assert checked >= 0.8 * len(turning[::every]) + len(sliding[::every])
+    methods = {c.method for c in turning[::every]}
     assert methods == ({"dyads", "newton"} if links == 6 else {"dyads"})
 
 
