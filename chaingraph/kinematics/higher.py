@@ -197,10 +197,13 @@ def derived_inputs(chain: Chain, inputs: Sequence[tuple[str, str, str, str]], na
         if len(left) == len(pairs):
             p = left[0]
             what = (f"the gear pair {p.id!r}: neither gear's joint with the carrier "
-                    f"{p.carrier!r}" if isinstance(p, GearPair) else
-                    f"the cam {p.id!r}: the cam's turning joint")
-            raise MechanismError(f"{what} is an input or driven through another pair, so "
-                                 "the pair's motion cannot be derived from the inputs",
+                    f"{p.carrier!r} is an input or driven through another pair"
+                    if isinstance(p, GearPair) else
+                    f"the cam {p.id!r}: the cam's turning joint is neither an input nor "
+                    "driven through another pair")
+            raise MechanismError(f"{what}, so the pair's motion cannot be derived from the "
+                                 "inputs (the solver drives a higher pair from its driving "
+                                 "link: a cam from the cam, a gear from a gear)",
                                  mechanism=name)
         pairs = left
     ids = {g.id for g in chain.gears} | {c.id for c in chain.cams}

@@ -24,7 +24,7 @@ def _distance_to_polygon(p, polygon):
 
 
 def test_the_roller_touches_the_turning_profile_in_every_frame():
-    chain = chaingraph.load("examples/cam-rocker.toml")
+    chain = chaingraph.load("catalog/cam-rocker.toml")
     m = chaingraph.solve(chain, steps=24)
     scene = Scene.of_motion(m)
     cam = chain.cams[0]
@@ -52,7 +52,7 @@ def test_the_roller_touches_the_turning_profile_in_every_frame():
 
 
 def test_gears_turn_on_their_axes():
-    chain = chaingraph.load("examples/geared-five-bar.toml")
+    chain = chaingraph.load("catalog/geared-five-bar.toml")
     m = chaingraph.solve(chain, start=0.0, stop=90.0, steps=6)
     scene = Scene.of_motion(m)
     for k in range(m.theta.size):

@@ -16,8 +16,8 @@ from chaingraph.kinematics.higher import cam_contact
 
 from ..conftest import run_cli
 
-CAM_ROCKER = "examples/cam-rocker.toml"
-FIVE_BAR = "examples/geared-five-bar.toml"
+CAM_ROCKER = "catalog/cam-rocker.toml"
+FIVE_BAR = "catalog/geared-five-bar.toml"
 
 
 def _load_power(chain, motion):

@@ -18,8 +18,8 @@ from chaingraph.kinematics.plan import build_plan
 
 from ..conftest import catalog_path, run_cli
 
-FIVE_BAR = "examples/geared-five-bar.toml"
-CAM_ROCKER = "examples/cam-rocker.toml"
+FIVE_BAR = "catalog/geared-five-bar.toml"
+CAM_ROCKER = "catalog/cam-rocker.toml"
 
 
 def _text(path):
