@@ -315,3 +315,16 @@ def test_no_function_is_over_80_lines():
                     long.append(f"{path.relative_to(package.parent)}:{node.lineno} "
                                 f"{node.name} ({lines} lines)")
     assert long == []
+
+
+def test_every_subpackage_is_installed():
+    """Every folder of the package with an ``__init__.py`` is in pyproject's list of
+    packages (a regular install ships only those: a subpackage left out is missing from
+    ``make report``'s install, whatever the tests, which import the source tree, say)."""
+    import tomllib
+    root = Path(__file__).resolve().parent.parent
+    listed = set(tomllib.loads((root / "pyproject.toml").read_text())
+                 ["tool"]["setuptools"]["packages"])
+    found = {".".join(p.parent.relative_to(root).parts)
+             for p in (root / "chaingraph").rglob("__init__.py")}
+    assert found <= listed, sorted(found - listed)
