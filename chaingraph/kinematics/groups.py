@@ -394,11 +394,17 @@ def _trace(plan, step, pose, theta, head, q, t, end, direction, h_deg,
     return ts, qs, dqs, fold
 
 
+#: the halvings of the arc that bracket a fold: to about 1e-8 of the step along the arc,
+#: where :func:`fold_point` (Newton's method on the extended system, regular at the
+#: fold) takes over and converges in a step or two
+_FOLD_HALVINGS = 26
+
+
 def _fold(branch, z, tau, ds, direction):
     """The fold between z and z + ds tau along the arc (where the input turns back),
     by bisection on the sign of the tangent's input component: (input degrees, q)."""
     lo, hi, best = 0.0, ds, None
-    for _ in range(40):
+    for _ in range(_FOLD_HALVINGS):
         mid = 0.5 * (lo + hi)
         x = branch.correct(z + mid * tau, tau, tol=1e-12)
         here = None if x is None else branch.tangent(x, like=tau)
