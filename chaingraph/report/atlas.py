@@ -227,10 +227,10 @@ def _page_html(entry, chain, names, rows, sections, animate):
 
 
 #: seconds of one core to solve and animate an inversion, by links: 6 and 8 measured
-#: with ``chaingraph atlas --links N --prismatic ... --out DIR --workers 2`` (234
-#: inversions of 6 links in 33 s, the 575 of 8 links with one sliding pair in 3 min 0 s),
-#: the others between and below them (4 and 5 links take seconds in all)
-SECONDS_PER_INVERSION = {4: 0.1, 5: 0.2, 6: 0.3, 7: 0.45, 8: 0.65}
+#: with ``chaingraph atlas --links N --prismatic ... --out DIR --workers 2`` (the 234
+#: inversions of 6 links in 22 s, 40 s of CPU; the 575 of 8 links with one sliding pair
+#: in 1 min 26 s, 168 s of CPU), the others between and below them
+SECONDS_PER_INVERSION = {4: 0.08, 5: 0.12, 6: 0.17, 7: 0.24, 8: 0.33}
 
 
 def animation_seconds(result: SlidingAtlas, *, workers: int = 1) -> float:
