@@ -9,7 +9,7 @@ from typing import Any
 
 from chaingraph.errors import ChainFileError
 from chaingraph.model.chain import Chain
-from chaingraph.model.chainfile import Document, parse_document, toml_text
+from chaingraph.model.chainfile import Document, file_bytes, parse_document, toml_text
 from chaingraph.files.native import place
 
 __all__ = ["Imported", "imported", "model_text", "model_kind"]
@@ -54,17 +54,11 @@ def imported(keys: dict[str, Any], notes: list[str], *, source: str) -> Imported
 def model_text(path: str | os.PathLike[str]) -> str:
     """The text of another tool's model file (UTF-8), or ChainFileError naming it."""
     source = os.fspath(path)
+    raw = file_bytes(source, what="model file")
     try:
-        with open(source, encoding="utf-8") as f:
-            return f.read()
-    except FileNotFoundError:
-        raise ChainFileError("no such file", source=source) from None
-    except IsADirectoryError:
-        raise ChainFileError("is a folder, not a model file", source=source) from None
+        return raw.decode("utf-8")
     except UnicodeDecodeError as e:
         raise ChainFileError(f"is not UTF-8 text (byte {e.start})", source=source) from None
-    except OSError as e:
-        raise ChainFileError(f"cannot be read ({e.strerror})", source=source) from None
 
 
 def model_kind(text: str) -> str | None:

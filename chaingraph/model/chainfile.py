@@ -27,7 +27,7 @@ from chaingraph.model.dimensions import Dimensions, parse_dimensions
 from chaingraph.model.gears import GearPair, gear_entry, gear_pair
 from chaingraph.model.values import LARGEST, Fail, number, shown, type_name
 
-__all__ = ["Document", "parse_file", "parse_text", "parse_document", "dumps", "save",
+__all__ = ["Document", "parse_file", "file_bytes", "parse_text", "parse_document", "dumps", "save",
            "toml_text", "chain_document"]
 
 TOP_KEYS = ("name", "family", "units", "space", "notes", "naming", "joints", "points",
@@ -59,18 +59,25 @@ class Document:
     points: tuple[Point, ...] = ()
 
 
-def parse_file(path: str | os.PathLike[str]) -> Document:
-    """The :class:`Document` of a chain file (reads, checks; solves nothing)."""
+def file_bytes(path: str | os.PathLike[str], *, what: str = "chain file") -> bytes:
+    """The bytes of the file at ``path``, or ChainFileError saying why not (no such
+    file, a folder, not readable), ``what`` naming what the file should have been."""
     source = os.fspath(path)
     try:
         with open(source, "rb") as f:
-            raw = f.read()
+            return f.read()
     except FileNotFoundError:
         raise ChainFileError("no such file", source=source) from None
     except IsADirectoryError:
-        raise ChainFileError("is a folder, not a chain file", source=source) from None
+        raise ChainFileError(f"is a folder, not a {what}", source=source) from None
     except OSError as e:
         raise ChainFileError(f"cannot be read ({e.strerror})", source=source) from None
+
+
+def parse_file(path: str | os.PathLike[str]) -> Document:
+    """The :class:`Document` of a chain file (reads, checks; solves nothing)."""
+    source = os.fspath(path)
+    raw = file_bytes(source)
     if raw[:2] in (b"\xff\xfe", b"\xfe\xff"):
         raise ChainFileError("is UTF-16 text (it starts with a UTF-16 byte-order mark): save "
                              "it as UTF-8", source=source)
