@@ -6,8 +6,10 @@ import sys
 import ezdxf
 import pytest
 
+import chaingraph
 from chaingraph.cli import export
 from chaingraph.naming.catalog import catalog_path
+from chaingraph.structure.isomorphism import is_isomorphic
 
 from ..conftest import run_cli
 
@@ -75,8 +77,6 @@ def test_a_writer_of_the_chain_alone_is_one_more_format(tmp_path, monkeypatch):
 def test_export_to_a_peer_and_import_back_gives_the_same_mechanism(tmp_path, to):
     """`export --to pylinkage|pyslvs` then `import --from` the same: an isomorphic chain
     with every joint where it was drawn (to 1e-9 of the size), its driver the same."""
-    import chaingraph
-    from chaingraph.structure.isomorphism import is_isomorphic
     source = catalog_path("watt-i-mechanism")
     out, back = tmp_path / f"watt.{to}", tmp_path / "back.toml"
     code, _, err = run_cli("export", source, "--to", to, "-o", out)
