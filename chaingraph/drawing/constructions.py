@@ -51,7 +51,7 @@ def draw_centres(centres: InstantCentres, path: str | os.PathLike[str] | None = 
     fig, (ax, circle) = plt.subplots(1, 2, figsize=(12, 6),
                                      gridspec_kw={"width_ratios": [3, 2]})
     scene = Scene.of_pose(state)
-    centre_of_view, edge, shown = _centres_view(centres)
+    centre_of_view, edge, shown = _centres_view(centres, scene)
     lo, hi = centre_of_view - edge, centre_of_view + edge
     for c in centres.centres:
         if isinstance(c.found, str):             # from a joint, or not by Kennedy
@@ -74,11 +74,13 @@ def draw_centres(centres: InstantCentres, path: str | os.PathLike[str] | None = 
     return finish(plt, fig, path)
 
 
-def _centres_view(centres):
+def _centres_view(centres, scene):
     """The view of the centres' picture, a square (its centre, half its edge): the
-    mechanism and the centres within 2.5 times its reach; and those centres."""
+    mechanism (its joints, and what the ``scene`` draws round them: a guide's travel, a
+    cam's profile, a gear's pitch circle) and the centres within 2.5 times its reach;
+    and those centres."""
     state = centres.state
-    points = np.array(list(state.positions.values()))
+    points = np.array([*state.positions.values(), scene.lo, scene.hi])
     middle = (points.min(axis=0) + points.max(axis=0)) / 2
     reach = max(float(np.ptp(points, axis=0).max()) / 2, 1e-9 * state.plan.size) * 1.6
     shown = [c for c in centres.centres if c.at is not None and
