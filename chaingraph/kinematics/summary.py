@@ -464,12 +464,42 @@ def _raw_summary(plan, output, omega, c, *, sweep=None):
                            "minima in a cycle, so no single forward and return stroke "
                            "(and no time ratio) is defined")
         return summary
-    a = (hi_e["input"] - lo_e["input"]) % c.period
-    b = c.period - a
+    lo_in, lo_out = _dwell(theta, u, lo_e, summary["stroke"], c.period)
+    hi_in, hi_out = _dwell(theta, u, hi_e, summary["stroke"], c.period)
+    a = (hi_in - lo_out) % c.period                  # from the minimum to the maximum
+    b = (lo_in - hi_out) % c.period                  # and back
+    if (lo_in, hi_in) != (lo_out, hi_out):
+        summary["note"] = (f"the output dwells at its extremes ({(lo_out - lo_in) % c.period:.6g} "
+                           f"and {(hi_out - hi_in) % c.period:.6g} {plan.lead_unit} of the "
+                           "input): the strokes are taken between the dwells")
     forward, back = max(a, b), min(a, b)
     summary.update(forward_deg=forward, return_deg=back,
                    time_ratio=forward / back if back > 0 else None)
     return summary
+
+
+def _dwell(theta, u, extreme, stroke, period):
+    """Where the output arrives at the ``extreme`` and where it leaves it (input
+    values, in the sweep's terms): the ends of a dwell, the run of the sweep's points
+    at the extreme's value (to 1e-9 of the stroke) round it, three points or more (a
+    smooth extreme is that flat over a single point of a fine grid); else the
+    extreme's input twice."""
+    at = extreme["input"]
+    flat = np.abs(u - extreme["value"]) <= 1e-9 * stroke
+    k = int(np.argmin(np.abs((theta - at + 0.5 * period) % period - 0.5 * period)))
+    n = theta.size - 1 if abs(theta[-1] - theta[0] - period) < 1e-9 else theta.size
+    if n < 3 or not flat[k] or flat[:n].all():
+        return at, at
+    lo = hi = k
+    while flat[(lo - 1) % n] and (k - lo) < n:
+        lo -= 1
+    while flat[(hi + 1) % n] and (hi - k) < n:
+        hi += 1
+    if hi - lo < 2:
+        return at, at
+    start = theta[lo % n] + period * (lo // n)
+    end = theta[hi % n] + period * (hi // n)
+    return float(start), float(end)
 
 
 def _input_range(plan, theta, c):

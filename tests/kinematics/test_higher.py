@@ -182,3 +182,14 @@ def test_the_command_line_refuses_in_one_line(tmp_path):
         code, out, err = run_cli("solve", *args)
         assert code == 2 and out == "" and len(err.strip().splitlines()) == 1, err
         assert said in err
+
+
+def test_a_follower_s_dwells_are_not_counted_in_its_strokes():
+    """The catalog's cams rise over 120 degrees of cam turn and fall over 120, with a
+    dwell of 60 at each end: forward and return strokes of 120 each (time ratio 1),
+    the dwells said, not a stroke of 240 from the middle of one dwell to the other."""
+    for name in ("disc-cam-roller-follower", "cam-rocker"):
+        s = chaingraph.solve(chaingraph.load(f"catalog/{name}.toml")).summary
+        assert abs(s.forward_deg - 120.0) < 1e-6 and abs(s.return_deg - 120.0) < 1e-6, name
+        assert abs(s.time_ratio - 1.0) < 1e-6
+        assert "dwells at its extremes (60 and 60 degrees" in s.note
