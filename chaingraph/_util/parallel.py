@@ -87,9 +87,22 @@ def _restore(mask: set[int | signal.Signals] | None) -> None:
 
 
 def _stop(pool: ProcessPoolExecutor) -> None:
-    """Ctrl-C or a failure: stop every worker now, leave nothing running."""
-    for process in list(getattr(pool, "_processes", {}).values()):
+    """Ctrl-C or a failure: stop every worker now, leave nothing running.
+
+    A worker stopped while it sent a result leaves part of a message in the results'
+    pipe, and the pool's reader waits for the rest, which no process will write: the
+    shutdown below would wait for that reader for ever. So the workers are waited for
+    once stopped, and then this process's own end of that pipe is closed (the pool reads
+    results only; it is the last writer left): the reader sees the pipe end, takes the
+    pool for broken and ends."""
+    processes = list(getattr(pool, "_processes", {}).values())
+    for process in processes:
         process.terminate()
+    for process in processes:
+        process.join(timeout=10)
+    writer = getattr(getattr(pool, "_result_queue", None), "_writer", None)
+    if writer is not None:
+        writer.close()
     try:
         pool.shutdown(wait=True, cancel_futures=True)
     except RuntimeError:

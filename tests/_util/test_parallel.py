@@ -78,3 +78,31 @@ def test_a_sigterm_before_a_worker_is_ready_runs_no_handler_of_the_main_process_
     # the main process's handler ran once: in the main process, not in a worker
     assert err.count("the main process's handler ran") == 1, err
     assert proc.returncode == 3
+
+
+_CUT_SHORT = """
+import os, struct, time
+from concurrent.futures import ProcessPoolExecutor
+from chaingraph._util import parallel
+pool = ProcessPoolExecutor(max_workers=1, initializer=parallel.prepare_worker,
+                           initargs=(os.getpid(),))
+pool.submit(time.sleep, 30)
+time.sleep(0.5)
+# what a worker stopped while it sent its result leaves in the pipe: a message's length
+# and part of it
+os.write(pool._result_queue._writer.fileno(), struct.pack("!i", 1000) + b"x" * 10)
+time.sleep(0.3)
+parallel._stop(pool)
+print("stopped", flush=True)
+"""
+
+
+def test_a_worker_stopped_while_it_sent_a_result_leaves_no_wait_behind():
+    """Ctrl-C while a worker was sending a result: the pool's reader waited for the rest
+    of the message for ever, and the interrupted atlas never exited (seen once in the
+    suite: test_ctrl_c_leaves_no_worker_and_a_resumable_folder timed out). The stop
+    closes this process's end of the results' pipe once the workers are gone; here a
+    message cut short is written as such a worker would leave it."""
+    done = subprocess.run([sys.executable, "-c", _CUT_SHORT], capture_output=True,
+                          text=True, timeout=60)
+    assert done.returncode == 0 and done.stdout == "stopped\n", done.stderr
