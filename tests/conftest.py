@@ -18,7 +18,7 @@ settings.load_profile(os.environ.get("HYPOTHESIS_PROFILE", "derandomized"))
 
 from chaingraph.naming.catalog import catalog_files, catalog_path  # noqa: F401  (used by the tests)
 from chaingraph.cli.main import main
-from chaingraph.report.gears import is_gear_train
+from chaingraph.kinematics.gears import is_gear_train
 
 #: the test files that take longest, longest first (``pytest --durations=0``, summed by
 #: file): `make test` runs them first, each on one worker (``--dist loadfile

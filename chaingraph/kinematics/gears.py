@@ -32,7 +32,7 @@ from chaingraph.errors import AssemblyError, MechanismError
 from chaingraph.model.chain import Chain
 from chaingraph.model.gears import GearPair
 
-__all__ = ["GearTrain", "TrainSpeeds", "TableRow", "gear_train", "train_kind",
+__all__ = ["GearTrain", "TrainSpeeds", "TableRow", "gear_train", "is_gear_train", "train_kind",
            "willis_speeds", "tabular_speeds", "train_speeds", "solve_exact"]
 
 KINDS = ("simple", "compound", "reverted", "epicyclic")
@@ -93,6 +93,25 @@ class TrainSpeeds:
                 raise MechanismError(f"no link {link!r} in the train (links: "
                                      f"{', '.join(self.train.links)})", parameter="ratio")
         return None if self.speeds[b] == 0 else self.speeds[a] / self.speeds[b]
+
+
+def is_gear_train(chain: Chain) -> bool:
+    """Whether ``chain`` is a gear train: it has gear pairs (``[[gears]]``) and its
+    turning and sliding pairs close no loop (their joint equivalents are fewer than its
+    links), so that its links move only through the gears. A linkage with gears in it
+    (a geared five-bar) is not one: the position solver moves it.
+
+    Examples
+    --------
+    >>> from chaingraph.naming.catalog import catalog_path
+    >>> from chaingraph.files import load
+    >>> is_gear_train(load(catalog_path("simple-gear-train")))
+    True
+    >>> is_gear_train(load(catalog_path("four-bar-chain")))
+    False
+    """
+    lower = sum(len(j.links) - 1 for j in chain.joints if j.kind in ("R", "P"))
+    return bool(chain.gears) and lower < len(chain.links)
 
 
 def gear_train(chain: Chain) -> GearTrain:

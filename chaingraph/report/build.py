@@ -41,11 +41,12 @@ from chaingraph.files import load
 from chaingraph.graphical.centres import InstantCentres, centres_of
 from chaingraph.graphical.polygons import Polygons, polygons_of
 from chaingraph.kinematics import Motion, solve
+from chaingraph.kinematics.gears import is_gear_train
 from chaingraph.kinematics.grid import input_grid
 from chaingraph.kinematics.pose import pose_motion
 from chaingraph.model.chain import Chain
 from chaingraph.naming.inversion_classes import Inversions, inversions
-from chaingraph.report.gears import TrainWay, is_gear_train, train_fixed, train_ways
+from chaingraph.report.gears import TrainWay, train_fixed, train_ways
 from chaingraph.report.pages import entry_page, index_page
 from chaingraph.structure.classification import Classification, classify
 from chaingraph.synthesis.function_generation import structural_error

@@ -21,26 +21,7 @@ from chaingraph.errors import ChainGraphError
 from chaingraph.kinematics.gears import TrainSpeeds, train_kind, train_speeds
 from chaingraph.model.chain import Chain
 
-__all__ = ["is_gear_train", "train_fixed", "TrainWay", "train_ways", "gears_section"]
-
-
-def is_gear_train(chain: Chain) -> bool:
-    """Whether ``chain`` is a gear train: it has gear pairs (``[[gears]]``) and its
-    turning and sliding pairs close no loop (their joint equivalents are fewer than its
-    links), so that its links move only through the gears. A linkage with gears in it
-    (a geared five-bar) is not one: the position solver moves it.
-
-    Examples
-    --------
-    >>> from chaingraph.naming.catalog import catalog_path
-    >>> from chaingraph.files import load
-    >>> is_gear_train(load(catalog_path("simple-gear-train")))
-    True
-    >>> is_gear_train(load(catalog_path("four-bar-chain")))
-    False
-    """
-    lower = sum(len(j.links) - 1 for j in chain.joints if j.kind in ("R", "P"))
-    return bool(chain.gears) and lower < len(chain.links)
+__all__ = ["train_fixed", "TrainWay", "train_ways", "gears_section"]
 
 
 def train_fixed(chain: Chain) -> str:

@@ -10,10 +10,18 @@ import pytest
 
 import chaingraph
 from chaingraph import Chain, Joint, LinkMass, Load, Mechanism
-from chaingraph.drawing.forces import cycle_of, energy_lobes, plot_shaking, plot_turning_moment
+from chaingraph.drawing.forces import (
+    closed_cycle,
+    cycle_of,
+    energy_lobes,
+    plot_shaking,
+    plot_turning_moment,
+)
+from chaingraph.dynamics.balance import balance
 from chaingraph.naming.catalog import catalog_path
 
 from ..conftest import run_cli
+from ..dynamics.test_balance import crank_rocker
 
 
 def engine(torque):
@@ -42,7 +50,6 @@ def test_the_sweep_is_laid_over_its_cycle_from_zero():
 
 
 def test_the_cycle_is_closed_at_zero_and_its_end():
-    from chaingraph.drawing.forces import closed_cycle
     x = np.array([10.0, 130.0, 250.0, 370.0])            # a sweep from 10 degrees, wrapped
     v = np.array([1.0, 2.0, 3.0, 1.0])
     xs, vs = closed_cycle(x, v, 360.0)
@@ -101,9 +108,6 @@ def test_the_polar_diagram_is_the_tip_of_the_shaking_force(tmp_path):
 
 
 def test_the_polar_diagram_of_a_balanced_four_bar_draws_both():
-    from chaingraph.dynamics.balance import balance
-
-    from ..dynamics.test_balance import crank_rocker
     f = chaingraph.forces(crank_rocker(), steps=72, omega=20.0)
     b = balance(f)
     fig = plot_shaking(f, balanced=b.result)

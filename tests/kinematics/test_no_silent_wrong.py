@@ -15,7 +15,7 @@ from hypothesis import strategies as st
 import chaingraph
 from chaingraph import AssemblyError, Chain, Joint, Mechanism
 from chaingraph.naming.catalog import catalog_path
-from chaingraph.report.gears import is_gear_train
+from chaingraph.kinematics.gears import is_gear_train
 
 from ..conftest import run_cli
 

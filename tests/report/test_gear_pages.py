@@ -12,7 +12,8 @@ import pytest
 import chaingraph
 from chaingraph.naming.catalog import catalog_dir, catalog_files, catalog_path
 from chaingraph.report.build import build_report
-from chaingraph.report.gears import is_gear_train, train_fixed, train_ways
+from chaingraph.kinematics.gears import is_gear_train
+from chaingraph.report.gears import train_fixed, train_ways
 
 from ..conftest import solver_takes
 
