@@ -286,14 +286,21 @@ class _Reader:
     def bad(self, problem: str, where: str | None = None) -> InterchangeError:
         return InterchangeError(problem, format="pylinkage", source=self.source, where=where)
 
+    def typed(self, what: str, k: int, entry: Any, types: Sequence[str],
+              default: str) -> tuple[str, str]:
+        """A joint's or link's entry checked for its id and type: (where, type)."""
+        if not isinstance(entry, dict) or not isinstance(entry.get("id"), str) \
+                or not entry["id"]:
+            raise self.bad(f"a {what} needs an object with a string 'id'", f"{what} #{k + 1}")
+        where = f"{what} {entry['id']!r}"
+        kind = entry.get("type", default)
+        if kind not in types:
+            raise self.bad(f"unknown type {kind!r} (expected one of {', '.join(types)})",
+                           where)
+        return where, kind
+
     def joint(self, k: int, j: Any) -> dict[str, Any]:
-        if not isinstance(j, dict) or not isinstance(j.get("id"), str) or not j["id"]:
-            raise self.bad("a joint needs an object with a string 'id'", f"joint #{k + 1}")
-        where = f"joint {j['id']!r}"
-        kind = j.get("type", "revolute")
-        if kind not in JOINT_TYPES:
-            raise self.bad(f"unknown type {kind!r} (expected one of "
-                           f"{', '.join(JOINT_TYPES)})", where)
+        where, kind = self.typed("joint", k, j, JOINT_TYPES, "revolute")
         if kind != "tracker" and not _pair(j.get("position")):
             raise self.bad("its position is not two finite numbers", where)
         if kind == "prismatic" and not (_pair(j.get("axis", [1.0, 0.0]))
@@ -304,13 +311,7 @@ class _Reader:
         return {**j, "type": kind}
 
     def link(self, k: int, x: Any) -> dict[str, Any]:
-        if not isinstance(x, dict) or not isinstance(x.get("id"), str) or not x["id"]:
-            raise self.bad("a link needs an object with a string 'id'", f"link #{k + 1}")
-        where = f"link {x['id']!r}"
-        kind = x.get("type", "link")
-        if kind not in LINK_TYPES:
-            raise self.bad(f"unknown type {kind!r} (expected one of "
-                           f"{', '.join(LINK_TYPES)})", where)
+        where, kind = self.typed("link", k, x, LINK_TYPES, "link")
         ids = x.get("joints", [])
         if not isinstance(ids, list) or any(i not in self.joints for i in ids):
             missing = [i for i in ids if i not in self.joints] if isinstance(ids, list) else []
