@@ -5,16 +5,13 @@ from __future__ import annotations
 
 import argparse
 import sys
-from collections.abc import Callable, Sequence
+from collections.abc import Callable
 
 from chaingraph.cli.outputs import output_file, write_text
-from chaingraph.files import Imported, pylinkage_json, pyslvs_expression, read_pylinkage, \
-    read_pyslvs
-from chaingraph.files.imported import model_text
+from chaingraph.files import pylinkage_json, pyslvs_expression, read_model
 from chaingraph.model.chain import Chain
 
-__all__ = ["import_command", "cmd_import", "peer_writers", "read_model", "input_pair",
-           "PEERS"]
+__all__ = ["import_command", "cmd_import", "peer_writers", "input_pair", "PEERS"]
 
 #: the tools whose models come in and go out
 PEERS = ("pylinkage", "pyslvs")
@@ -62,20 +59,6 @@ def input_pair(text: str) -> tuple[int, int]:
     return int(base), int(drive)
 
 
-def read_model(path: str, peer: str, *, driver: str | None = None,
-               inputs: Sequence[tuple[int, int]] | None = None,
-               name: str | None = None) -> Imported:
-    """The model in ``path`` written by ``peer``, placed (a drawn pose that does not
-    close is refused as a chain file's is)."""
-    text = model_text(path)
-    if peer == "pylinkage":
-        model = read_pylinkage(text, source=path)
-    else:
-        model = read_pyslvs(text, source=path, driver=driver, inputs=inputs, name=name)
-    model.chain                          # placed: a pose that cannot be is an error here
-    return model
-
-
 def cmd_import(args: argparse.Namespace) -> int:
     if args.peer == "pylinkage" and (args.driver or args.inputs or args.name):
         print("chaingraph import: error: --driver, --input and --name are for --from "
@@ -85,6 +68,7 @@ def cmd_import(args: argparse.Namespace) -> int:
         output_file(args.out, what="chain file")
     model = read_model(args.file, args.peer, driver=args.driver, inputs=args.inputs,
                        name=args.name)
+    model.chain                          # placed: a pose that cannot be is an error here
     for note in model.notes:
         print(f"chaingraph import: note: {note}", file=sys.stderr)
     if args.out:

@@ -15,7 +15,7 @@ from collections.abc import Callable
 
 from chaingraph.cli.text import error_text, print_json
 from chaingraph.errors import ChainGraphError
-from chaingraph.files import model_kind, model_text, read_pylinkage, read_pyslvs
+from chaingraph.files import model_kind, model_text, read_model
 from chaingraph.model.chainfile import Document, parse_file
 from chaingraph.naming import finding_lines, lint
 
@@ -44,14 +44,8 @@ def lint_command(sub: argparse._SubParsersAction,
 
 def _document(path: str) -> Document:
     """The chain file at ``path``, or the model of another tool there, read as one."""
-    if path.endswith(".toml"):
-        return parse_file(path)
-    text = model_text(path)
-    kind = model_kind(text)
-    if kind == "pylinkage":
-        return read_pylinkage(text, source=path).document
-    if kind == "pyslvs":
-        return read_pyslvs(text, source=path).document
+    if not path.endswith(".toml") and model_kind(model_text(path)) is not None:
+        return read_model(path).document
     return parse_file(path)
 
 
