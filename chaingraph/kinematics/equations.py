@@ -10,7 +10,7 @@ from __future__ import annotations
 
 import math
 from collections.abc import Mapping, Sequence
-from typing import TypeAlias
+from typing import Any, TypeAlias
 
 import numpy as np
 
@@ -251,11 +251,13 @@ class _GroupForm:
         self.size = 3 * len(self.bodies)
 
     def residual(self, pose: Pose) -> np.ndarray:
-        out = list(_group_residual_of(self.others, pose).T) if self.others else []
+        out = [e for c in self.others for e in constraint_residuals(c, pose)]
         for _, x, px, y, py, length, _, _ in self.bars:
             wx, wy = world(pose, x, px), world(pose, y, py)
             d2 = (wx[0] - wy[0]) ** 2 + (wx[1] - wy[1]) ** 2
             out.append((d2 - length * length) / (2 * length))
+        if not any(isinstance(e, np.ndarray) and e.ndim for e in out):
+            return np.array(out, dtype=float)           # one point, in numbers
         return np.stack(np.broadcast_arrays(*out), axis=-1)
 
     def rows(self, pose: Pose) -> list[Row]:
@@ -290,6 +292,16 @@ class _GroupForm:
         full = dict(pose)
         for k, link in enumerate(self.bodies):
             full[link] = make_pose(q[:, 3 * k], q[:, 3 * k + 1], q[:, 3 * k + 2])
+        return full
+
+    def set_bodies_at(self, pose: Pose, q: Sequence[float]) -> dict[str, PoseEntry]:
+        """:meth:`set_bodies` at one point: ``pose`` in numbers (:func:`pose_at_point`)
+        and ``q`` one point's reduced coordinates."""
+        full = dict(pose)
+        for k, link in enumerate(self.bodies):
+            phi = float(q[3 * k + 2])
+            full[link] = (float(q[3 * k]), float(q[3 * k + 1]), phi, math.cos(phi),
+                          math.sin(phi))
         return full
 
     def complete(self, pose: dict[str, PoseEntry]) -> dict[str, PoseEntry]:
@@ -344,10 +356,6 @@ def group_form(step: Step) -> _GroupForm:
 
 
 # -- Newton's method for groups ------------------------------------------------------
-def _group_residual_of(constraints: Sequence[Constraint], pose: Pose) -> np.ndarray:
-    return np.stack([e for c in constraints for e in constraint_residuals(c, pose)], axis=-1)
-
-
 def with_group(pose: Pose, step: Step, q: np.ndarray) -> dict[str, PoseEntry]:
     """The pose with the group's bodies at the reduced coordinates ``q`` (n, 3 bodies)."""
     return group_form(step).set_bodies(pose, q)
@@ -356,6 +364,38 @@ def with_group(pose: Pose, step: Step, q: np.ndarray) -> dict[str, PoseEntry]:
 def group_residual(step: Step, pose: Pose) -> np.ndarray:
     """The group's equations at the pose (n, equations)."""
     return group_form(step).residual(pose)
+
+
+def pose_at_point(pose: Mapping[str, Sequence[Any]]) -> dict[str, Any]:
+    """A pose (or rates) of one point, each entry a number or an array of one, in
+    Python numbers: the equations then cost a few microseconds of arithmetic instead of
+    a numpy call per term (a group's continuation evaluates them one point at a time)."""
+    def number(v):
+        if v is None or isinstance(v, float):
+            return v
+        return float(v[0]) if isinstance(v, np.ndarray) and v.ndim else float(v)
+    return {link: tuple(number(v) for v in entry) for link, entry in pose.items()}
+
+
+def group_rows_at(step: Step, pose: Pose) -> tuple[np.ndarray, list[Row]]:
+    """The group's Jacobian in its reduced coordinates at one point (equations, 3
+    bodies) and each row's entries on the links it does not solve (the known links and
+    the inputs), from a pose in numbers (:func:`pose_at_point`)."""
+    form = group_form(step)
+    col = {link: 3 * k for k, link in enumerate(form.bodies)}
+    rows = form.rows(pose)
+    mat = np.zeros((len(rows), form.size))
+    known: list[Row] = []
+    for i, coef in enumerate(rows):
+        other: Row = {}
+        for link, cf in coef.items():
+            k = col.get(link)
+            if k is None:
+                other[link] = cf
+            else:
+                mat[i, k:k + 3] = cf
+        known.append(other)
+    return mat, known
 
 
 def group_jacobian(step: Step, pose: Pose, n: int) -> np.ndarray:

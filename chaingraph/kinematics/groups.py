@@ -18,15 +18,18 @@ from numpy.typing import ArrayLike
 from chaingraph.kinematics.equations import (
     Pose,
     batched_inverse,
+    dot3,
     group_form,
     group_jacobian,
     group_residual,
+    group_rows_at,
     newton_step,
+    pose_at_point,
     slice,
     with_group,
 )
 from chaingraph.kinematics.plan import Plan, Step
-from chaingraph.kinematics.rates import Factor, rates
+from chaingraph.kinematics.rates import rates
 
 if TYPE_CHECKING:                       # tracking imports this module
     from chaingraph.kinematics.tracking import Evaluation
@@ -248,42 +251,44 @@ class _Branch:
 
     def __init__(self, plan, step, pose, theta, head):
         self.plan, self.step, self.pose, self.theta, self.head = plan, step, pose, theta, head
-        m = group_form(step).size
+        self.form = group_form(step)
+        m = self.form.size
         self.scale = np.tile([plan.size, plan.size, 1.0], m // 3)
         self.head_steps = plan.steps[:plan.steps.index(step)]
         self._last = None
 
-    def _full(self, z):
-        # the last point's poses kept: Newton's method asks the residual and the
-        # Jacobian at the same point
+    def _at(self, z):
+        """(the head's poses, the group's pose in numbers) at z: the last point's kept,
+        as Newton's method asks the residual and the Jacobian at the same point."""
         key = z.tobytes()
         if self._last is not None and self._last[0] == key:
             return self._last[1]
         known = _known_along(self.plan, self.step, self.pose, self.theta,
                              np.array([math.degrees(z[-1])]), self.head)
-        full = with_group(known, self.step, (self.scale * z[:-1])[None])
-        self._last = (key, full)
-        return full
+        at = (known, self.form.set_bodies_at(pose_at_point(known), self.scale * z[:-1]))
+        self._last = (key, at)
+        return at
 
     def residual(self, z):
-        return group_residual(self.step, self._full(z))[0] / self.plan.size
+        return self.form.residual(self._at(z)[1]) / self.plan.size
 
     def in_unknowns(self, z):
         """d(residual)/d(q / scale): the group's Jacobian in its own unknowns."""
-        return group_jacobian(self.step, self._full(z), 1)[0] * self.scale / self.plan.size
+        return group_rows_at(self.step, self._at(z)[1])[0] * self.scale / self.plan.size
 
     def jacobian(self, z):
         """d(residual)/dz: the group's Jacobian in its unknowns, and its derivative in
-        the input, which is minus the velocity equations' right-hand side at unit
-        input rate."""
-        full = self._full(z)
+        the input: the known links' terms of the velocity equations at unit input rate
+        (the head's velocities)."""
+        known, point = self._at(z)
         # the input's rate that moves tau by one radian per second
-        vel, _, _ = rates(self.plan, full, self.plan.rate_scale * 180.0 / math.pi, 1,
+        vel, _, _ = rates(self.plan, known, self.plan.rate_scale * 180.0 / math.pi, 1,
                           steps=self.head_steps, measure=False, accelerations=False)
-        f = Factor(self.step, full, 1, self.plan.size)
-        ft = -np.array([float(np.broadcast_to(v, (1,))[0])
-                        for v in f.right_hand_sides(vel)])
-        return np.column_stack([f.mat[0] * self.scale, ft]) / self.plan.size
+        rate = pose_at_point(vel)
+        mat, others = group_rows_at(self.step, point)
+        ft = np.array([float(sum(dot3(cf, rate[link]) for link, cf in row.items()))
+                       for row in others])
+        return np.column_stack([mat * self.scale, ft]) / self.plan.size
 
     def tangent(self, z, like=None, direction=1.0):
         jac = self.jacobian(z)
