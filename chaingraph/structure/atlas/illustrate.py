@@ -30,12 +30,15 @@ __all__ = ["generic_pose", "natural_input", "inversion_mechanism", "link_layout"
 
 def link_layout(chain: Chain) -> dict[str, _Point]:
     """Positions of the chain's links (a dict), about 100 units across."""
+    # the links as their numbers: networkx's planar embedding iterates over sets of
+    # nodes, whose order for names would change with Python's hash seed from run to run
+    number = {x: k for k, x in enumerate(chain.links)}
     g = nx.Graph()
-    g.add_nodes_from(chain.links)
+    g.add_nodes_from(range(len(chain.links)))
     for j in chain.joints:
         for i, a in enumerate(j.links):
             for b in j.links[i + 1:]:
-                g.add_edge(a, b)
+                g.add_edge(number[a], number[b])
     planar, _ = nx.check_planarity(g)
     if planar:
         # a planar drawing, evened out by a spring layout from it when that keeps it
@@ -46,7 +49,7 @@ def link_layout(chain: Chain) -> dict[str, _Point]:
             pos = spread
     else:
         pos = nx.spring_layout(g, seed=1, iterations=200)
-    xy = np.array([pos[x] for x in chain.links], dtype=float)
+    xy = np.array([pos[number[x]] for x in chain.links], dtype=float)
     span = max(float(np.ptp(xy[:, 0])), float(np.ptp(xy[:, 1])), 1e-9)
     xy = (xy - xy.mean(axis=0)) * (100.0 / span)
     return {x: (float(p[0]), float(p[1])) for x, p in zip(chain.links, xy)}
