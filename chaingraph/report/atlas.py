@@ -227,10 +227,10 @@ def _page_html(entry, chain, names, rows, sections, animate):
 
 
 #: seconds of one core to solve and animate an inversion, by links: 6 and 8 measured
-#: with ``chaingraph atlas --links N --prismatic ... --out DIR --workers 2`` (the 234
-#: inversions of 6 links in 22 s, 40 s of CPU; the 575 of 8 links with one sliding pair
-#: in 1 min 26 s, 168 s of CPU), the others between and below them
-SECONDS_PER_INVERSION = {4: 0.08, 5: 0.12, 6: 0.17, 7: 0.24, 8: 0.33}
+#: (``chaingraph atlas --links 6 --prismatic all --out DIR --workers 2``: the 234
+#: inversions in 31 s of CPU; ``python benchmarks/atlas_pages.py --links 8 --stride
+#: 397``: 0.22 s of CPU per inversion), the others between and below them
+SECONDS_PER_INVERSION = {4: 0.06, 5: 0.09, 6: 0.13, 7: 0.17, 8: 0.22}
 
 
 def animation_seconds(result: SlidingAtlas, *, workers: int = 1) -> float:
