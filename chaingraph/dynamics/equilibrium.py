@@ -10,7 +10,9 @@ along the line of action, |tangential| tan(pressure angle) (the pair's
 ``pressure_angle``, 20 degrees by default), is then added as a known force) and one effort per input (a couple between the input's two links for an R
 input, a force along the guide for a P input). Three equations per moving link,
 the forces and the moment about the drawing's origin, in SI units: one linear solve per
-step, all steps at once. Friction's sign follows the normal force's sign, found by
+step, all steps at once; over a sweep, group by group as the textbook solves it (the
+last dyad placed first, back to the input: a dyad's six equations at a time), where
+the plan's groups split the system so. Friction's sign follows the normal force's sign, found by
 iterating the signs per step until they agree (every combination tried where they do
 not settle).
 """
@@ -30,7 +32,8 @@ from chaingraph.kinematics.plan import InputJoint, Plan
 from chaingraph.kinematics.pose import LinkState
 from chaingraph.model.chain import Chain, Joint, Load, mass_centre
 
-__all__ = ["UNIT_METRES", "KinematicState", "Solution", "solve_equilibrium", "load_table_value"]
+__all__ = ["UNIT_METRES", "KinematicState", "Solution", "solve_equilibrium", "load_table_value",
+           "solve_block_triangular"]
 
 #: metres per length unit of a chain file
 UNIT_METRES = {"mm": 1e-3, "cm": 1e-2, "m": 1.0, "in": 0.0254}
@@ -99,21 +102,29 @@ class Solution:
 
 
 def solve_equilibrium(chain: Chain, plan: Plan, state: KinematicState, *, static: bool = False,
-                      metres: float = 1.0, mean_torque: float = 0.0) -> Solution:
+                      metres: float = 1.0, mean_torque: float = 0.0,
+                      by_groups: bool = True) -> Solution:
     """The reactions and efforts of ``chain`` (its masses, gravity, loads, friction) at
     the ``state``'s steps; ``plan`` gives the fixed link and the inputs; ``metres`` is
     the length unit in metres; drawn coordinates are taken about ``plan.origin``;
-    ``mean_torque`` (N m) is the torque of a ``torque = "mean"`` load."""
-    layout = _layout(chain, plan, state.n, metres)
+    ``mean_torque`` (N m) is the torque of a ``torque = "mean"`` load.
+
+    With ``by_groups`` (the default), the steps whose dead centres the motion gives
+    (``state.rates_known``) are solved as the textbook does, group by group from the
+    last the plan places back to the input (a dyad's six equations, then the next),
+    each group's reactions at the links placed after it being known by then; the
+    whole system at once where the equations do not split so, and with ``by_groups``
+    false (the same answers, to rounding)."""
+    layout = _layout(chain, plan, state.n, metres, by_groups=by_groups and state.rates_known)
     joints = _joint_geometry(chain, layout, state)
     known = _known_forces(chain, layout, state, joints, static=static,
                           mean_torque=mean_torque)
-    x, singular, settled, sigma = _solve_with_friction(layout, joints, -known.rhs,
-                                                       _known_singular(layout, state))
+    dead = _known_singular(layout, state)
+    x, singular, settled, sigma = _solve_with_friction(layout, joints, -known.rhs, dead)
     parting = _parting_forces(layout, joints, x)
     if parting is not None:     # the gears' radial forces: the reactions at their axes
         x, singular, settled, sigma = _solve_with_friction(
-            layout, joints, -known.rhs - parting, _known_singular(layout, state))
+            layout, joints, -known.rhs - parting, dead)
     at_rest = _at_rest(joints, layout, state)
     jammed = ~settled & ~singular
     undetermined = singular | jammed
@@ -134,7 +145,12 @@ class _Layout:
     """The linear system's layout at ``n`` steps: ``cols`` one (kind, joint, extra) per
     unknown, ``row`` each moving link's first row (its x force, y force and moment
     equations); drawn points are taken in metres about ``origin`` (``drawn``), and
-    moments are divided by ``size`` (m) so that every row is a force."""
+    moments are divided by ``size`` (m) so that every row is a force.
+
+    ``groups``, when the system splits as the plan places the links (see
+    :func:`_split`): the equations and the unknowns laid out group by group in the
+    order they are solved, from the last group placed back to the input, and where
+    each group's ends (its rows and its columns alike: as many unknowns as equations)."""
 
     n: int
     fixed: str
@@ -143,6 +159,7 @@ class _Layout:
     origin: tuple
     metres: float
     size: float
+    groups: tuple[int, ...] | None = None
 
     @property
     def rows(self) -> int:
@@ -174,10 +191,11 @@ class _Layout:
         a[:, self.row[link] + 2, col] += sign * c / self.size
 
 
-def _layout(chain, plan, n, metres):
+def _layout(chain, plan, n, metres, *, by_groups=False):
     """The unknowns (two reaction components per pair of an R joint's links; a P joint's
     normal force and couple; a higher pair's force; an effort per input) and the
-    equations (three per moving link); refuses another joint (a rolling pair), and
+    equations (three per moving link), laid out group by group with ``by_groups`` where
+    the system splits so (:func:`_split`); refuses another joint (a rolling pair), and
     inputs that do not hold the mechanism."""
     cols: list[tuple[str, Joint | InputJoint, int | None]] = []   # (kind, joint, extra)
     for j in chain.joints:
@@ -194,15 +212,74 @@ def _layout(chain, plan, n, metres):
     for item in plan.inputs:
         cols.append(("effort", item, None))
     moving = [x for x in chain.links if x != plan.fixed]
+    split = _split(plan, moving, cols) if by_groups else None
+    if split is not None:
+        moving, cols = split[0], split[1]
     layout = _Layout(n=n, fixed=plan.fixed, row={link: 3 * i for i, link in enumerate(moving)},
                      cols=tuple(cols), origin=plan.origin, metres=metres,
-                     size=max(plan.size * metres, 1e-300))
+                     size=max(plan.size * metres, 1e-300),
+                     groups=None if split is None else split[2])
     if layout.rows > len(cols):
         raise MechanismError(
             f"the inputs do not hold the mechanism: {len(cols)} unknown reactions and "
             f"efforts for {layout.rows} equations of equilibrium (give one input per degree "
             "of freedom)", mechanism=chain.source or chain.name)
     return layout
+
+
+def _split(plan, moving, cols):
+    """The system in the textbook's order, group by group from the last the plan places
+    back to the input: each group's equations (three per link) with the unknowns they
+    alone leave once the groups placed after it are solved (its own joints' reactions,
+    those joining it to the links placed before it, its input's effort). As (the moving
+    links, the unknowns, each group's end) so ordered, the matrix is block triangular:
+    a small system per group (a dyad's six equations) gives the whole system's answer.
+    None where the system does not split so (a group leaving more or fewer unknowns
+    than its equations, links no step places, a statically indeterminate chain)."""
+    if len(cols) != 3 * len(moving):
+        return None
+    touches = [_column_links(kind, j, k) - {plan.fixed} for kind, j, k in cols]
+    links: list[str] = []
+    order: list[int] = []
+    ends = []
+    for step in reversed(plan.steps):
+        group = [x for x in step.links if x != plan.fixed]
+        # (in the layout's order: a reaction's two components stay side by side, as
+        # :func:`_reactions` reads them)
+        mine = [c for c, t in enumerate(touches) if t.intersection(group) and c not in order]
+        if not group or len(mine) != 3 * len(group) or set(group) & set(links):
+            return None
+        links += group
+        order += mine
+        ends.append(len(order))
+    if set(links) != set(moving):
+        return None
+    return links, [cols[c] for c in order], tuple(ends)
+
+
+def _column_links(kind, j, k):
+    """The links whose equations the unknown (kind, joint, extra) enters."""
+    if kind in ("Fx", "Fy"):                    # on j.links[k], by the last
+        return {j.links[k], j.links[-1]}
+    if kind == "effort":                        # between the input's two links
+        return {j.a, j.b}
+    return set(j.links)                         # a sliding or a higher pair's
+
+
+def solve_block_triangular(a: np.ndarray, b: np.ndarray, ends: tuple[int, ...]) -> np.ndarray:
+    """x with a x = b per step, as :func:`numpy.linalg.solve` (a of shape (n, m, m), b
+    (n, m, 1)), for a block lower triangular a whose diagonal blocks end at ``ends``:
+    one small system per block, forward. Raises :class:`numpy.linalg.LinAlgError` where
+    a block is singular."""
+    x = np.empty(b.shape)
+    lo = 0
+    for hi in ends:
+        rhs = b[:, lo:hi]
+        if lo:
+            rhs = rhs - a[:, lo:hi, :lo] @ x[:, :lo]
+        x[:, lo:hi] = np.linalg.solve(a[:, lo:hi, lo:hi], rhs)
+        lo = hi
+    return x
 
 
 # -- where the joints are, how the slides move --------------------------------------------
@@ -497,7 +574,7 @@ def _solve_with_friction(layout, joints, b, known):
     normal forces', then every combination tried at the steps that did not settle."""
     base = _base_matrix(layout, joints)
     sigma = {j.id: np.ones(layout.n) for j in joints.friction}
-    x, singular = _solve(_with_friction(layout, joints, base, sigma), b, known)
+    x, singular = _solve(_with_friction(layout, joints, base, sigma), b, known, layout.groups)
     settled = np.ones(layout.n, dtype=bool)
     if not joints.friction:
         return x, singular, settled, sigma
@@ -507,7 +584,7 @@ def _solve_with_friction(layout, joints, b, known):
         if all((new[k] == sigma[k]).all() for k in sigma):
             break
         sigma = new
-        x, singular = _solve(_with_friction(layout, joints, base, sigma), b, known)
+        x, singular = _solve(_with_friction(layout, joints, base, sigma), b, known, layout.groups)
     for k in sigma:
         settled &= (_signs(x, cols[k]) == sigma[k]) | (x[:, cols[k]] == 0)
     if not settled.all():
@@ -525,7 +602,7 @@ def _every_sign(layout, joints, base, b, known, found):
     for combo in itertools.product((1.0, -1.0), repeat=len(sigma)):
         trial = {k: np.full(bad.size, s) for k, s in zip(sigma, combo)}
         xs, sing = _solve(_with_friction(layout, joints, base, trial, bad), b[bad],
-                          None if known is None else known[bad])
+                          None if known is None else known[bad], layout.groups)
         ok = np.ones(bad.size, dtype=bool)
         for k, s in zip(sigma, combo):
             ok &= _signs(xs, cols[k]) == s
@@ -629,11 +706,14 @@ def _speed_scale(state):
     return max([v for v in vals if math.isfinite(v)] + [1e-300])
 
 
-def _solve(a, b, known=None):
+def _solve(a, b, known=None, groups=None):
     """x with a x = b per step (with more unknowns than equations, the least-norm x),
     and which steps are singular (x NaN there). ``known``: the steps already known to
     be singular (the motion's dead centres, where its rates are not finite), so that
-    the others need no test of their own."""
+    the others need no test of their own; there, ``groups`` (the ends of the diagonal
+    blocks of a block triangular a, see :func:`_split`), when given, solves the system
+    block by block (the whole system where a block is exactly singular, then as
+    without ``groups``)."""
     n = a.shape[0]
     x = np.full((n, a.shape[2]), np.nan)
     good = np.isfinite(a).all(axis=(1, 2)) & np.isfinite(b).all(axis=1)
@@ -642,14 +722,16 @@ def _solve(a, b, known=None):
         use = good & ~known
         singular |= known
         if use.any():
-            try:
-                if use.all():
-                    x = np.linalg.solve(a, b[:, :, None])[:, :, 0]
-                else:
-                    x[use] = np.linalg.solve(a[use], b[use][:, :, None])[:, :, 0]
-                return x, singular
-            except np.linalg.LinAlgError:     # a singular step the motion did not flag
-                pass
+            au, bu = (a, b[:, :, None]) if use.all() else (a[use], b[use][:, :, None])
+            solvers = [np.linalg.solve]
+            if groups is not None:
+                solvers.insert(0, lambda a, b: solve_block_triangular(a, b, groups))
+            for solve in solvers:
+                try:
+                    x[use] = solve(au, bu)[:, :, 0]
+                    return x, singular
+                except np.linalg.LinAlgError:     # a singular step the motion did not flag
+                    pass
         else:
             return x, singular
     if good.any():
