@@ -119,21 +119,26 @@ def test_by_groups_with_friction_at_every_sliding_pair(name):
     agree(grouped, whole, sweep)
 
 
-def test_the_dyads_are_solved_six_equations_at_a_time(monkeypatch):
-    """The Whitworth drive with its ram (crank, then the block and lever's RPR dyad, then
-    the rod and ram's RRP dyad): no system of more than six equations is solved."""
-    sizes = []
+@pytest.mark.parametrize("name, sizes", [
+    # the rod and ram's RRP dyad, the block and lever's RPR dyad in closed form, the
+    # crank by Cramer's rule: no LU, but the whole system's (for the comparison)
+    ("whitworth-quick-return-with-ram", [15]),
+    # the triad's group of four links by LU, then the crank
+    ("stephenson-iii-mechanism", [12, 15])])
+def test_the_systems_solved_by_groups(monkeypatch, name, sizes):
+    """The batched LU solves of a sweep by groups, then of the whole system: a dyad's
+    and a single link's equations are solved in closed form, a larger group's by LU."""
+    found = []
     solve = np.linalg.solve
 
     def spy(a, b):
-        sizes.append(a.shape[-1])
+        found.append(a.shape[-1])
         return solve(a, b)
-    chain = loaded("whitworth-quick-return-with-ram", friction=False)
+    chain = loaded(name, friction=False)
     sweep = swept(chain, 12)
     monkeypatch.setattr(np.linalg, "solve", spy)
     both(chain, 12, False, sweep)
-    assert sorted(set(sizes)) == [3, 6, 15]       # by groups, then the whole (compared)
-    assert sizes[:3] == [6, 6, 3]                 # the last dyad placed first
+    assert found == sizes
 
 
 def test_a_singular_block_raises_as_the_whole_solve():
@@ -147,6 +152,29 @@ def test_a_singular_block_raises_as_the_whole_solve():
     b = rng.normal(size=(20, 15, 1))
     assert np.allclose(solve_block_triangular(a, b, ends), np.linalg.solve(a, b), rtol=1e-10,
                        atol=1e-10)
+    single = a.copy()
     a[4, 6:12, 8] = 0.0                           # a column of the second block
     with pytest.raises(np.linalg.LinAlgError):
         solve_block_triangular(a, b, ends)
+    single[7, 12:, 13] = 0.0                      # of the last (solved by Cramer's rule)
+    with pytest.raises(np.linalg.LinAlgError):
+        solve_block_triangular(single, b, ends)
+
+
+def test_a_dyad_in_closed_form_equals_the_lu():
+    """Dyads [[E1, 0, I1], [0, E2, I2]] at random (3 x 2 blocks): the closed form equals
+    numpy's LU; one whose first link's own unknowns act along the same line (E1 of rank
+    one: the dyad is singular) is refused (the solve then takes the whole system, as
+    without groups)."""
+    rng = np.random.default_rng(5)
+    n = 50
+    a = rng.normal(size=(n, 9, 9))
+    a[:, :6, 6:] = 0.0                            # blocks (6, 9): a dyad, then a single
+    a[:, 0:3, 2:4] = 0.0
+    a[:, 3:6, 0:2] = 0.0
+    b = rng.normal(size=(n, 9, 1))
+    x = solve_block_triangular(a, b, (6, 9), dyads=(True, False))
+    assert np.allclose(x, np.linalg.solve(a, b), rtol=1e-9, atol=1e-9)
+    a[3, 0:3, 1] = 2.0 * a[3, 0:3, 0]
+    with pytest.raises(np.linalg.LinAlgError):
+        solve_block_triangular(a, b, (6, 9), dyads=(True, False))
