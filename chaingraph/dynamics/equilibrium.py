@@ -10,7 +10,9 @@ along the line of action, |tangential| tan(pressure angle) (the pair's
 ``pressure_angle``, 20 degrees by default), is then added as a known force) and one effort per input (a couple between the input's two links for an R
 input, a force along the guide for a P input). Three equations per moving link,
 the forces and the moment about the drawing's origin, in SI units: one linear solve per
-step, all steps at once. Friction's sign follows the normal force's sign, found by
+step, all steps at once; over a sweep, group by group as the textbook solves it (the
+last dyad placed first, back to the input: a dyad's six equations at a time), where
+the plan's groups split the system so. Friction's sign follows the normal force's sign, found by
 iterating the signs per step until they agree (every combination tried where they do
 not settle).
 """
@@ -25,12 +27,14 @@ import numpy as np
 
 from chaingraph.errors import MechanismError
 from chaingraph.geometry import Vec, cross, rotate, unit_deg
+from chaingraph.kinematics.equations import dot3
 from chaingraph.kinematics.higher import HIGHER_KINDS, cam_contact, cam_frame
 from chaingraph.kinematics.plan import InputJoint, Plan
 from chaingraph.kinematics.pose import LinkState
 from chaingraph.model.chain import Chain, Joint, Load, mass_centre
 
-__all__ = ["UNIT_METRES", "KinematicState", "Solution", "solve_equilibrium", "load_table_value"]
+__all__ = ["UNIT_METRES", "KinematicState", "Solution", "solve_equilibrium", "load_table_value",
+           "solve_block_triangular"]
 
 #: metres per length unit of a chain file
 UNIT_METRES = {"mm": 1e-3, "cm": 1e-2, "m": 1.0, "in": 0.0254}
@@ -39,6 +43,12 @@ UNIT_METRES = {"mm": 1e-3, "cm": 1e-2, "m": 1.0, "in": 0.0254}
 #: (or, with more unknowns than equations, whose smallest singular value over its
 #: largest) is below this is singular: a dead centre, where the effort is unbounded
 _SINGULAR = 1e-10
+
+#: steps solved at a time by groups: the closed forms' temporaries (some tens of arrays
+#: over the steps) kept small beside the matrix, so that they do not grow the heap
+#: (on glibc, a heap grown past its trim threshold is given back and faulted in
+#: again at every sweep: a third of the slider crank's force sweep)
+_CHUNK = 1024
 
 
 @dataclass(frozen=True)
@@ -99,21 +109,29 @@ class Solution:
 
 
 def solve_equilibrium(chain: Chain, plan: Plan, state: KinematicState, *, static: bool = False,
-                      metres: float = 1.0, mean_torque: float = 0.0) -> Solution:
+                      metres: float = 1.0, mean_torque: float = 0.0,
+                      by_groups: bool = True) -> Solution:
     """The reactions and efforts of ``chain`` (its masses, gravity, loads, friction) at
     the ``state``'s steps; ``plan`` gives the fixed link and the inputs; ``metres`` is
     the length unit in metres; drawn coordinates are taken about ``plan.origin``;
-    ``mean_torque`` (N m) is the torque of a ``torque = "mean"`` load."""
-    layout = _layout(chain, plan, state.n, metres)
+    ``mean_torque`` (N m) is the torque of a ``torque = "mean"`` load.
+
+    With ``by_groups`` (the default), the steps whose dead centres the motion gives
+    (``state.rates_known``) are solved as the textbook does, group by group from the
+    last the plan places back to the input (a dyad's six equations, then the next),
+    each group's reactions at the links placed after it being known by then; the
+    whole system at once where the equations do not split so, and with ``by_groups``
+    false (the same answers, to rounding)."""
+    layout = _layout(chain, plan, state.n, metres, by_groups=by_groups and state.rates_known)
     joints = _joint_geometry(chain, layout, state)
     known = _known_forces(chain, layout, state, joints, static=static,
                           mean_torque=mean_torque)
-    x, singular, settled, sigma = _solve_with_friction(layout, joints, -known.rhs,
-                                                       _known_singular(layout, state))
+    dead = _known_singular(layout, state)
+    x, singular, settled, sigma = _solve_with_friction(layout, joints, -known.rhs, dead)
     parting = _parting_forces(layout, joints, x)
     if parting is not None:     # the gears' radial forces: the reactions at their axes
         x, singular, settled, sigma = _solve_with_friction(
-            layout, joints, -known.rhs - parting, _known_singular(layout, state))
+            layout, joints, -known.rhs - parting, dead)
     at_rest = _at_rest(joints, layout, state)
     jammed = ~settled & ~singular
     undetermined = singular | jammed
@@ -134,7 +152,14 @@ class _Layout:
     """The linear system's layout at ``n`` steps: ``cols`` one (kind, joint, extra) per
     unknown, ``row`` each moving link's first row (its x force, y force and moment
     equations); drawn points are taken in metres about ``origin`` (``drawn``), and
-    moments are divided by ``size`` (m) so that every row is a force."""
+    moments are divided by ``size`` (m) so that every row is a force.
+
+    ``groups``, when the system splits as the plan places the links (see
+    :func:`_split`): the equations and the unknowns laid out group by group in the
+    order they are solved, from the last group placed back to the input, and where
+    each group's ends (its rows and its columns alike: as many unknowns as equations);
+    ``dyads`` whether each group is a dyad laid out as :func:`solve_block_triangular`
+    solves it in closed form."""
 
     n: int
     fixed: str
@@ -143,6 +168,8 @@ class _Layout:
     origin: tuple
     metres: float
     size: float
+    groups: tuple[int, ...] | None = None
+    dyads: tuple[bool, ...] = ()
 
     @property
     def rows(self) -> int:
@@ -174,10 +201,11 @@ class _Layout:
         a[:, self.row[link] + 2, col] += sign * c / self.size
 
 
-def _layout(chain, plan, n, metres):
+def _layout(chain, plan, n, metres, *, by_groups=False):
     """The unknowns (two reaction components per pair of an R joint's links; a P joint's
     normal force and couple; a higher pair's force; an effort per input) and the
-    equations (three per moving link); refuses another joint (a rolling pair), and
+    equations (three per moving link), laid out group by group with ``by_groups`` where
+    the system splits so (:func:`_split`); refuses another joint (a rolling pair), and
     inputs that do not hold the mechanism."""
     cols: list[tuple[str, Joint | InputJoint, int | None]] = []   # (kind, joint, extra)
     for j in chain.joints:
@@ -194,15 +222,160 @@ def _layout(chain, plan, n, metres):
     for item in plan.inputs:
         cols.append(("effort", item, None))
     moving = [x for x in chain.links if x != plan.fixed]
+    split = _split(plan, moving, cols) if by_groups else None
+    if split is not None:
+        moving, cols = split[0], split[1]
     layout = _Layout(n=n, fixed=plan.fixed, row={link: 3 * i for i, link in enumerate(moving)},
                      cols=tuple(cols), origin=plan.origin, metres=metres,
-                     size=max(plan.size * metres, 1e-300))
+                     size=max(plan.size * metres, 1e-300),
+                     groups=None if split is None else split[2],
+                     dyads=() if split is None else split[3])
     if layout.rows > len(cols):
         raise MechanismError(
             f"the inputs do not hold the mechanism: {len(cols)} unknown reactions and "
             f"efforts for {layout.rows} equations of equilibrium (give one input per degree "
             "of freedom)", mechanism=chain.source or chain.name)
     return layout
+
+
+def _split(plan, moving, cols):
+    """The system in the textbook's order, group by group from the last the plan places
+    back to the input: each group's equations (three per link) with the unknowns they
+    alone leave once the groups placed after it are solved (its own joints' reactions,
+    those joining it to the links placed before it, its input's effort). As (the moving
+    links, the unknowns, each group's end, whether it is a dyad) so ordered, the matrix
+    is block triangular: a small system per group (a dyad's six equations) gives the
+    whole system's answer. A dyad whose links each keep two unknowns of their own (a
+    pair's, to the links placed before) and share two (their own pair's) has them in
+    that order (the first link's, the second's, the shared), as
+    :func:`solve_block_triangular` solves it. None where the system does not split so
+    (a group leaving more or fewer unknowns than its equations, links no step places, a
+    statically indeterminate chain)."""
+    if len(cols) != 3 * len(moving):
+        return None
+    touches = [_column_links(kind, j, k) - {plan.fixed} for kind, j, k in cols]
+    links: list[str] = []
+    order: list[int] = []
+    ends, dyads = [], []
+    for step in reversed(plan.steps):
+        group = [x for x in step.links if x != plan.fixed]
+        # (in the layout's order: a reaction's two components stay side by side, as
+        # :func:`_reactions` reads them)
+        mine = [c for c, t in enumerate(touches) if t.intersection(group) and c not in order]
+        if not group or len(mine) != 3 * len(group) or set(group) & set(links):
+            return None
+        if len(group) == 2:         # the first link's own, the second's, the shared
+            parts = [[c for c in mine if touches[c] & set(group) == want]
+                     for want in ({group[0]}, {group[1]}, set(group))]
+            dyads.append([len(part) for part in parts] == [2, 2, 2])
+            if dyads[-1]:
+                mine = [c for part in parts for c in part]
+        else:
+            dyads.append(False)
+        links += group
+        order += mine
+        ends.append(len(order))
+    if set(links) != set(moving):
+        return None
+    return links, [cols[c] for c in order], tuple(ends), tuple(dyads)
+
+
+def _column_links(kind, j, k):
+    """The links whose equations the unknown (kind, joint, extra) enters."""
+    if kind in ("Fx", "Fy"):                    # on j.links[k], by the last
+        return {j.links[k], j.links[-1]}
+    if kind == "effort":                        # between the input's two links
+        return {j.a, j.b}
+    return set(j.links)                         # a sliding or a higher pair's
+
+
+def solve_block_triangular(a: np.ndarray, b: np.ndarray, ends: tuple[int, ...], *,
+                           dyads: tuple[bool, ...] = ()) -> np.ndarray:
+    """x with a x = b per step, as :func:`numpy.linalg.solve` (a of shape (n, m, m), b
+    (n, m, 1)), for a block lower triangular a whose diagonal blocks end at ``ends``:
+    one small system per block, forward. A block of three (a single link's) by Cramer's
+    rule; a block that ``dyads`` marks, [[E1, 0, I1], [0, E2, I2]] in blocks of 3 x 2
+    (two links' equations, each link's own two unknowns, then the two they share), in
+    closed form as :func:`_dyad` says; another by LU. Raises
+    :class:`numpy.linalg.LinAlgError` where a block is singular."""
+    x = np.empty(b.shape)
+    for k in range(0, a.shape[0], _CHUNK):
+        _forward(a[k:k + _CHUNK], b[k:k + _CHUNK], x[k:k + _CHUNK], ends, dyads)
+    return x
+
+
+def _forward(a, b, x, ends, dyads):
+    """:func:`solve_block_triangular` at some steps, into ``x``."""
+    lo = 0
+    for g, hi in enumerate(ends):
+        rhs = b[:, lo:hi]
+        if lo:
+            rhs = rhs - a[:, lo:hi, :lo] @ x[:, :lo]
+        block = a[:, lo:hi, lo:hi]
+        if hi - lo == 3:
+            x[:, lo:hi] = _cramer3(block, rhs)
+        elif g < len(dyads) and dyads[g]:
+            x[:, lo:hi] = _dyad(block, rhs)
+        else:
+            x[:, lo:hi] = np.linalg.solve(block, rhs)
+        lo = hi
+
+
+def _dyad(d, r):
+    """x with d x = r per step for a dyad's six equations (d (n, 6, 6) laid out as
+    :func:`solve_block_triangular` says, r (n, 6, 1)), as the textbook does: each link's
+    equations taken about the line its own two unknowns leave free (the cross product of
+    their columns, n1 and n2: the moment about the pair they act at, for a turning pair)
+    give the two shared unknowns (2 x 2, by Cramer's rule); then each link's own two from
+    what remains of its equations. A quarter of a batched LU's time (3,601 steps). Raises
+    :class:`numpy.linalg.LinAlgError` where the 2 x 2 determinant is nil (a singular
+    dyad)."""
+    def col(row, c):
+        return (d[:, row, c], d[:, row + 1, c], d[:, row + 2, c])
+    e1, f1, e2, f2 = col(0, 0), col(0, 1), col(3, 2), col(3, 3)
+    s1, t1, s2, t2 = col(0, 4), col(0, 5), col(3, 4), col(3, 5)
+    r1 = (r[:, 0, 0], r[:, 1, 0], r[:, 2, 0])
+    r2 = (r[:, 3, 0], r[:, 4, 0], r[:, 5, 0])
+    n1, n2 = _cross3(e1, f1), _cross3(e2, f2)
+    m00, m01, m10, m11 = dot3(n1, s1), dot3(n1, t1), dot3(n2, s2), dot3(n2, t2)
+    q0, q1 = dot3(n1, r1), dot3(n2, r2)
+    det = m00 * m11 - m01 * m10
+    if not det.all():
+        raise np.linalg.LinAlgError("Singular matrix")
+    x = np.empty(r.shape)
+    g = x[:, 4, 0], x[:, 5, 0]
+    np.divide(q0 * m11 - m01 * q1, det, out=g[0])
+    np.divide(m00 * q1 - m10 * q0, det, out=g[1])
+    for c, e, f, s, t, rr, nn in ((0, e1, f1, s1, t1, r1, n1), (2, e2, f2, s2, t2, r2, n2)):
+        rest = tuple(rr[k] - s[k] * g[0] - t[k] * g[1] for k in range(3))
+        size = dot3(nn, nn)        # rest = u e + v f: rest x f = u n, e x rest = v n
+        x[:, c, 0] = dot3(_cross3(rest, f), nn) / size
+        x[:, c + 1, 0] = dot3(_cross3(e, rest), nn) / size
+    return x
+
+
+def _cross3(u, v):
+    """The cross product of two 3-vectors given as their components' arrays."""
+    return (u[1] * v[2] - u[2] * v[1], u[2] * v[0] - u[0] * v[2], u[0] * v[1] - u[1] * v[0])
+
+
+def _cramer3(a, b):
+    """x with a x = b per step for 3 x 3 systems (a (n, 3, 3), b (n, 3, 1)) by Cramer's
+    rule (the adjugate over the determinant): a seventh of a batched LU's time (3,601
+    steps). Raises :class:`numpy.linalg.LinAlgError` where a determinant is nil."""
+    (a00, a01, a02), (a10, a11, a12), (a20, a21, a22) = (
+        [a[:, i, j] for j in range(3)] for i in range(3))
+    c00, c01, c02 = a11 * a22 - a12 * a21, a12 * a20 - a10 * a22, a10 * a21 - a11 * a20
+    det = a00 * c00 + a01 * c01 + a02 * c02
+    if not det.all():
+        raise np.linalg.LinAlgError("Singular matrix")
+    b0, b1, b2 = b[:, 0, 0], b[:, 1, 0], b[:, 2, 0]
+    x = np.empty(b.shape)
+    x[:, 0, 0] = b0 * c00 + b1 * (a02 * a21 - a01 * a22) + b2 * (a01 * a12 - a02 * a11)
+    x[:, 1, 0] = b0 * c01 + b1 * (a00 * a22 - a02 * a20) + b2 * (a02 * a10 - a00 * a12)
+    x[:, 2, 0] = b0 * c02 + b1 * (a01 * a20 - a00 * a21) + b2 * (a00 * a11 - a01 * a10)
+    x /= det[:, None, None]
+    return x
 
 
 # -- where the joints are, how the slides move --------------------------------------------
@@ -497,7 +670,7 @@ def _solve_with_friction(layout, joints, b, known):
     normal forces', then every combination tried at the steps that did not settle."""
     base = _base_matrix(layout, joints)
     sigma = {j.id: np.ones(layout.n) for j in joints.friction}
-    x, singular = _solve(_with_friction(layout, joints, base, sigma), b, known)
+    x, singular = _solve(_with_friction(layout, joints, base, sigma), b, known, layout)
     settled = np.ones(layout.n, dtype=bool)
     if not joints.friction:
         return x, singular, settled, sigma
@@ -507,7 +680,7 @@ def _solve_with_friction(layout, joints, b, known):
         if all((new[k] == sigma[k]).all() for k in sigma):
             break
         sigma = new
-        x, singular = _solve(_with_friction(layout, joints, base, sigma), b, known)
+        x, singular = _solve(_with_friction(layout, joints, base, sigma), b, known, layout)
     for k in sigma:
         settled &= (_signs(x, cols[k]) == sigma[k]) | (x[:, cols[k]] == 0)
     if not settled.all():
@@ -525,7 +698,7 @@ def _every_sign(layout, joints, base, b, known, found):
     for combo in itertools.product((1.0, -1.0), repeat=len(sigma)):
         trial = {k: np.full(bad.size, s) for k, s in zip(sigma, combo)}
         xs, sing = _solve(_with_friction(layout, joints, base, trial, bad), b[bad],
-                          None if known is None else known[bad])
+                          None if known is None else known[bad], layout)
         ok = np.ones(bad.size, dtype=bool)
         for k, s in zip(sigma, combo):
             ok &= _signs(xs, cols[k]) == s
@@ -629,11 +802,13 @@ def _speed_scale(state):
     return max([v for v in vals if math.isfinite(v)] + [1e-300])
 
 
-def _solve(a, b, known=None):
+def _solve(a, b, known=None, layout=None):
     """x with a x = b per step (with more unknowns than equations, the least-norm x),
     and which steps are singular (x NaN there). ``known``: the steps already known to
     be singular (the motion's dead centres, where its rates are not finite), so that
-    the others need no test of their own."""
+    the others need no test of their own; there, a ``layout`` whose ``groups`` split the
+    system (see :func:`_split`) has it solved group by group (the whole system where a
+    group's is exactly singular, then as without)."""
     n = a.shape[0]
     x = np.full((n, a.shape[2]), np.nan)
     good = np.isfinite(a).all(axis=(1, 2)) & np.isfinite(b).all(axis=1)
@@ -642,14 +817,17 @@ def _solve(a, b, known=None):
         use = good & ~known
         singular |= known
         if use.any():
-            try:
-                if use.all():
-                    x = np.linalg.solve(a, b[:, :, None])[:, :, 0]
-                else:
-                    x[use] = np.linalg.solve(a[use], b[use][:, :, None])[:, :, 0]
-                return x, singular
-            except np.linalg.LinAlgError:     # a singular step the motion did not flag
-                pass
+            au, bu = (a, b[:, :, None]) if use.all() else (a[use], b[use][:, :, None])
+            solvers = [np.linalg.solve]
+            if layout is not None and layout.groups is not None:
+                solvers.insert(0, lambda a, b: solve_block_triangular(
+                    a, b, layout.groups, dyads=layout.dyads))
+            for solve in solvers:
+                try:
+                    x[use] = solve(au, bu)[:, :, 0]
+                    return x, singular
+                except np.linalg.LinAlgError:     # a singular step the motion did not flag
+                    pass
         else:
             return x, singular
     if good.any():
