@@ -194,11 +194,36 @@ def free_body_shapes(result: PoseForces) -> tuple[list[Shape], View]:
 
 
 def _content(body, forces, scale):
-    """The box (x0, y0, x1, y1) of a link's body and its arrows' tails (drawn pose)."""
+    """The box (x0, y0, x1, y1) of a link's body and its arrows (drawn pose)."""
     pts = list(body.members)
-    pts += [(q[0] - f[0] * scale, q[1] - f[1] * scale) for _, _, q, f in forces]
+    for _, key, q, f in forces:
+        pts += arrow_ends(q, f, scale, _middle(body), key)
     return (min(p[0] for p in pts), min(p[1] for p in pts), max(p[0] for p in pts),
             max(p[1] for p in pts))
+
+
+def _middle(body):
+    """The middle of the box round a body's points."""
+    xs, ys = [p[0] for p in body.members], [p[1] for p in body.members]
+    return (0.5 * (max(xs) + min(xs)), 0.5 * (max(ys) + min(ys)))
+
+
+def arrow_ends(q: _Point, f: _Point, scale: float, middle: _Point, key: str
+               ) -> tuple[_Point, _Point]:
+    """(tail, head) of the arrow of the force ``f`` acting at ``q`` on a body whose
+    middle is ``middle``, as a textbook draws it, off the body: a push ends at its
+    point, coming from outside; a pull starts at its point, going out (so that a
+    two-force member's arrows lie beyond its pins, not along it). A weight or an
+    inertia force starts at the centre of mass."""
+    head_at = (q, (q[0] - f[0] * scale, q[1] - f[1] * scale))     # (head, tail)
+    tail_at = ((q[0] + f[0] * scale, q[1] + f[1] * scale), q)
+    if key in ("weight", "inertia force"):
+        return tail_at[1], tail_at[0]
+    # the end away from the point: whichever lies farther from the body's middle
+    if math.dist(tail_at[0], middle) > math.dist(head_at[1], middle) + 1e-9 * scale * \
+            math.hypot(*f):
+        return tail_at[1], tail_at[0]
+    return head_at[1], head_at[0]
 
 
 def _panel(result, link, body, forces, place, size, scale, labels, *, colour):
@@ -209,8 +234,7 @@ def _panel(result, link, body, forces, place, size, scale, labels, *, colour):
     title_room = 6.0 * size
     cx, cy = 0.5 * (content[0] + content[2]), 0.5 * (content[1] + content[3])
     ox, oy = lo[0] + 0.5 * cw - cx, lo[1] + 0.5 * (ch - title_room) - cy
-    xs, ys = [p[0] for p in body.members], [p[1] for p in body.members]
-    bx, by = 0.5 * (max(xs) + min(xs)), 0.5 * (max(ys) + min(ys))
+    bx, by = _middle(body)
 
     def at(p: _Point) -> _Point:
         return (p[0] + ox, p[1] + oy)
@@ -237,8 +261,7 @@ def _panel(result, link, body, forces, place, size, scale, labels, *, colour):
         if math.hypot(*f) * scale < 0.5 * size:
             small.append(f"{what} {_newtons(f)}")
             continue
-        head = at(q)
-        tail = (head[0] - f[0] * scale, head[1] - f[1] * scale)
+        tail, head = (at(p) for p in arrow_ends(q, f, scale, (bx, by), key))
         arrows.append((tail, head, what, key, f))
         labels.avoid_segment(tail, head, 0.6 * size)
     if small:                                  # too short to draw to the scale (its

@@ -97,3 +97,38 @@ def test_a_ternary_link_is_a_plate():
     assert ternary
     plates = {dict(s.data)["link"] for s in shapes if s.cls == "plate"}
     assert set(ternary) <= plates
+
+
+@pytest.mark.parametrize("path", WITH_MASSES, ids=lambda p: p.stem)
+def test_every_arrow_lies_off_its_body_as_a_textbook_draws_it(path):
+    """A reaction or a load at a pin is drawn from outside the body: a push ends at its
+    pin, a pull starts there and goes out (a connecting rod's arrows lie beyond its
+    pins, not along it); a weight or an inertia force starts at the centre of mass.
+    Checked from the drawing: each arrow's far end (its tail, or its head for a pull)
+    is farther from the middle of its body's pins than the end at its point."""
+    chain = chaingraph.load(path)
+    f = chaingraph.forces(chain, steps=4, omega=30.0).pose(1)
+    shapes, _ = free_body_shapes(f)
+    pins: dict[str, list] = {}
+    for s in shapes:
+        if s.cls == "pin":
+            pins.setdefault(dict(s.data)["link"], []).append(s.points[0])
+    checked = 0
+    for s, head in zip(shapes, shapes[1:]):
+        if s.cls != "force":
+            continue
+        link, what = dict(s.data)["link"], dict(s.data)["force"]
+        key = next(k for w, k, _, _ in forces_on(f, link) if w == what)
+        tail, tip = s.points[0], head.points[0]
+        if key in ("weight", "inertia force"):
+            continue
+        xs, ys = [p[0] for p in pins[link]], [p[1] for p in pins[link]]
+        middle = (0.5 * (max(xs) + min(xs)), 0.5 * (max(ys) + min(ys)))
+        at_point = min((tail, tip), key=lambda p: min(math.dist(p, q) for q in pins[link])) \
+            if len(pins[link]) > 1 else None
+        if at_point is None or min(math.dist(at_point, q) for q in pins[link]) > 1e-9:
+            continue                        # not at a pin (a block's, a load's point)
+        far = tip if at_point is tail else tail
+        assert math.dist(far, middle) >= math.dist(at_point, middle) - 1e-9, (link, what)
+        checked += 1
+    assert checked
