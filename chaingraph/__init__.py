@@ -17,6 +17,10 @@ import sys
 from typing import TYPE_CHECKING, Any
 
 from chaingraph._util.lazy import lazy_attribute
+from chaingraph._util.memory import keep_freed_memory
+
+keep_freed_memory()             # a sweep's arrays reuse the heap (see chaingraph._util.memory)
+
 from chaingraph.dynamics import PoseForces, SweepForces, forces
 from chaingraph.errors import (
     AssemblyError,

@@ -8,12 +8,14 @@ names a package's face loads when first used.
 * :mod:`.progress` the progress bar on standard error;
 * :mod:`.disjoint` union-find (:class:`DisjointSets`);
 * :mod:`.atomic` files and folders that appear whole;
-* :mod:`.lazy` PEP 562 names loaded when first used.
+* :mod:`.lazy` PEP 562 names loaded when first used;
+* :mod:`.memory` the C library's allocator told to keep freed memory for the next arrays.
 """
 
 from chaingraph._util.atomic import INDEX, staged, withdraw, write_atomic
 from chaingraph._util.disjoint import DisjointSets
 from chaingraph._util.lazy import lazy_attribute
+from chaingraph._util.memory import keep_freed_memory
 from chaingraph._util.numbers import tidy
 from chaingraph._util.parallel import (
     ignore_interrupts,
@@ -26,4 +28,5 @@ from chaingraph._util.text import counted, csv_text, freedom, short_list, write_
 
 __all__ = ["counted", "csv_text", "freedom", "short_list", "write_columns", "tidy", "serial",
            "process_runner", "ignore_interrupts", "prepare_worker", "ProgressBar",
-           "DisjointSets", "write_atomic", "withdraw", "staged", "INDEX", "lazy_attribute"]
+           "DisjointSets", "write_atomic", "withdraw", "staged", "INDEX", "lazy_attribute",
+           "keep_freed_memory"]
