@@ -17,13 +17,22 @@ driven joint is one more input of the plan (a :class:`Derived`, its key ``"@deri
 in pose and rate tables), whose value, rate and acceleration follow by the chain rule:
 ``f(x)``, ``f'(x) x'`` and ``f''(x) x'^2 + f'(x) x''``. The position kernel, the rates
 and everything above them then move the mechanism as for any input.
+
+When no input drives the pair, its driving member may be moved by the linkage (Watt's
+sun and planet: the planet fixed to the connecting rod, the crank arm its carrier, the
+sun on the crankshaft's pivot): the driving motion is then the rotation of the driving
+link relative to the pair's link ``F`` (the carrier, the cam's frame) as the solve
+places them (a Derived with ``after``), and the plan places the driven link after both.
+A gear's angle follows exactly from Willis's equation integrated from the drawn pose,
+``theta_b = theta_c + ratio (theta_a - theta_c)``, with ``theta_a - theta_c`` followed
+continuously along the path (its whole turns count when the ratio is not whole).
 """
 
 from __future__ import annotations
 
 import math
 from collections.abc import Mapping, Sequence
-from dataclasses import dataclass
+from dataclasses import dataclass, replace
 
 import numpy as np
 from numpy.typing import ArrayLike
@@ -36,7 +45,7 @@ from chaingraph.model.cams import Cam
 from chaingraph.model.chain import Chain, Joint
 from chaingraph.model.gears import GearPair
 
-__all__ = ["Derived", "derived_inputs", "CamFrame", "cam_frame", "HIGHER_KINDS",
+__all__ = ["Derived", "derived_inputs", "derived_options", "not_derived", "CamFrame", "cam_frame", "HIGHER_KINDS",
            "cam_contact"]
 
 #: the joint kinds a chain may have as higher pairs solved as derived inputs
@@ -53,7 +62,9 @@ class Derived:
     derived joint's), ``by_sign`` turns it into the driving link's own motion (the cam's
     turn on F, the driving gear's rotation on the carrier). ``pair`` names the higher
     pair; ``ratio`` a gear pair's, or ``cam`` and ``sign`` (+1, or -1 where the P
-    joint's guide is the follower) a cam's."""
+    joint's guide is the follower) a cam's. ``after`` = (on, link), for a pair that no
+    input drives: the driving motion is link's rotation less on's, as the solve places
+    them (``by`` is then empty)."""
 
     joint: str
     kind: str
@@ -65,6 +76,7 @@ class Derived:
     ratio: float | None = None
     cam: Cam | None = None
     sign: float = 1.0
+    after: tuple[str, str] | None = None
 
     @property
     def key(self) -> str:
@@ -72,8 +84,19 @@ class Derived:
         return "@derived:" + self.joint
 
     def driving(self, table: Mapping[str, tuple]) -> np.ndarray:
-        """The driving link's motion (radians) from a table's entry of ``by``."""
+        """The driving link's motion (radians) from a table's entry of ``by`` (or the
+        difference of the ``after`` links' entries: in a pose table, to whole turns)."""
+        if self.after is not None:
+            on, link = self.after
+            return np.asarray(table[link][2], dtype=float) - \
+                np.asarray(table[on][2], dtype=float)
         return self.by_sign * np.asarray(table[self.by][2], dtype=float)
+
+    def ready(self, table: Mapping[str, object]) -> bool:
+        """Whether ``table`` holds what the driving motion is read from."""
+        if self.after is not None:
+            return self.after[0] in table and self.after[1] in table
+        return self.by in table
 
     def value(self, x: ArrayLike) -> np.ndarray:
         """The joint's value at the driving motion ``x`` (radians)."""
@@ -94,9 +117,8 @@ class Derived:
     def rates(self, pose: Mapping[str, tuple], vel: Mapping[str, tuple],
               acc: Mapping[str, tuple]) -> tuple[tuple, tuple]:
         """The joint's (velocity, acceleration) table entries, by the chain rule."""
-        x = self.driving(pose)
-        xr = self.by_sign * np.asarray(vel[self.by][2], dtype=float)
-        xa = self.by_sign * np.asarray(acc[self.by][2], dtype=float)
+        x = self.driving(pose)        # (to whole turns: a cam's program repeats each turn)
+        xr, xa = self.driving(vel), self.driving(acc)
         d1, d2 = self.slopes(x)
         return (0.0, 0.0, d1 * xr), (0.0, 0.0, d2 * xr * xr + d1 * xa)
 
@@ -106,11 +128,17 @@ def _r_joint(chain: Chain, one: str, other: str) -> Joint | None:
                  if j.kind == "R" and one in j.links and other in j.links), None)
 
 
-def _entry(known: Mapping[str, tuple[str, str, str]], joint: Joint, on: str, link: str
-           ) -> tuple[str, float] | None:
+def _pair(joint: str, a: str, b: str) -> tuple[str, frozenset[str]]:
+    """The key of the pair of links a, b at ``joint`` among the known motions (a joint
+    of several links may have several: the arm's on the frame, the sun's on the arm)."""
+    return joint, frozenset((a, b))
+
+
+def _entry(known: Mapping[tuple[str, frozenset[str]], tuple[str, str, str]], joint: Joint,
+           on: str, link: str) -> tuple[str, float] | None:
     """(table key, sign) giving ``link``'s rotation on ``on`` at ``joint``, when the
     joint's motion is known (an input or derived between those two links)."""
-    got = known.get(joint.id)
+    got = known.get(_pair(joint.id, on, link))
     if got is None:
         return None
     key, a, b = got
@@ -134,7 +162,7 @@ def _gear(chain: Chain, g: GearPair, known, name: str) -> Derived | None:
         by = _entry(known, drive, c, a if drive is ja else b)
         if by is None:
             continue
-        if driven.id in known:
+        if _pair(driven.id, c, b if driven is jb else a) in known:
             raise MechanismError(
                 f"the gear pair {g.id!r} drives joint {driven.id!r}, whose motion is "
                 "already an input or driven by another pair (a closed loop of gears, or "
@@ -163,7 +191,7 @@ def _cam(chain: Chain, cam: Cam, known, name: str) -> Derived | None:
     by = _entry(known, jc, f, cam.cam)
     if by is None:
         return None
-    if jf.id in known:
+    if _pair(jf.id, f, cam.follower) in known:
         raise MechanismError(f"the cam {cam.id!r} drives joint {jf.id!r}, whose motion is "
                              "already an input or driven by another pair", mechanism=name)
     if jf.kind == "R":
@@ -176,13 +204,10 @@ def _cam(chain: Chain, cam: Cam, known, name: str) -> Derived | None:
                    sign=sign)
 
 
-def derived_inputs(chain: Chain, inputs: Sequence[tuple[str, str, str, str]], name: str
-                   ) -> tuple[Derived, ...]:
-    """Every higher pair of ``chain`` as a :class:`Derived` joint, in the order they
-    follow from the ``inputs`` (each ``(joint, key, a, b)``: the joint, its table key,
-    and the links whose relative motion it gives). Refuses a pair no input drives."""
-    known = {j: (key, a, b) for j, key, a, b in inputs}
-    pairs: list[GearPair | Cam] = [*chain.gears, *chain.cams]
+def _early(chain: Chain, pairs: Sequence[GearPair | Cam], known: dict, name: str
+           ) -> tuple[list[Derived], list[GearPair | Cam]]:
+    """The pairs that follow from the ``known`` joints' motions (added to ``known``), in
+    the order they follow, and the pairs left."""
     out: list[Derived] = []
     while pairs:
         left = []
@@ -193,25 +218,96 @@ def derived_inputs(chain: Chain, inputs: Sequence[tuple[str, str, str, str]], na
                 left.append(p)
             else:
                 out.append(d)
-                known[d.joint] = (d.key, d.a, d.b)
+                known[_pair(d.joint, d.a, d.b)] = (d.key, d.a, d.b)
         if len(left) == len(pairs):
-            p = left[0]
-            what = (f"the gear pair {p.id!r}: neither gear's joint with the carrier "
-                    f"{p.carrier!r} is an input or driven through another pair"
-                    if isinstance(p, GearPair) else
-                    f"the cam {p.id!r}: the cam's turning joint is neither an input nor "
-                    "driven through another pair")
-            raise MechanismError(f"{what}, so the pair's motion cannot be derived from the "
-                                 "inputs (the solver drives a higher pair from its driving "
-                                 "link: a cam from the cam, a gear from a gear)",
-                                 mechanism=name)
+            return out, left
         pairs = left
+    return out, []
+
+
+def _late(chain: Chain, p: GearPair | Cam, known: Mapping, name: str) -> list[Derived]:
+    """The ways the pair ``p`` may be driven by its driving link's rotation as the solve
+    places it (no input driving it): a gear pair either way, a cam by the cam."""
+    if isinstance(p, Cam):
+        jc, jf, f = _cam_joints(chain, p, name)
+        if _pair(jf.id, f, p.follower) in known:
+            return []
+        d = _cam(chain, p, {_pair(jc.id, f, p.cam): ("", f, p.cam)}, name)
+        assert d is not None
+        return [replace(d, by="", by_sign=1.0, after=(f, p.cam))]
+    c = p.carrier
+    a, b = p.links
+    ja, jb = _r_joint(chain, a, c), _r_joint(chain, b, c)
+    if ja is None or jb is None:
+        raise MechanismError(f"the gear pair {p.id!r} needs each gear on an R joint with "
+                             f"its carrier {c!r} to be solved", mechanism=name)
+    ratio = p.sign * p.teeth[0] / p.teeth[1]       # (w_b - w_c) / (w_a - w_c)
+    return [Derived(driven.id, "R", c, gear, p.id, "", 1.0, ratio=r, after=(c, other))
+            for driven, gear, other, r in ((jb, b, a, ratio), (ja, a, b, 1.0 / ratio))
+            if _pair(driven.id, c, gear) not in known]
+
+
+def _options(chain: Chain, pairs: Sequence[GearPair | Cam], known: dict, name: str
+             ) -> list[tuple[Derived, ...]]:
+    out, left = _early(chain, pairs, known, name)
+    if not left:
+        return [tuple(out)]
+    found = []
+    for d in _late(chain, left[0], known, name):
+        rest = _options(chain, left[1:], {**known, _pair(d.joint, d.a, d.b): (d.key, d.a, d.b)},
+                        name)
+        found.extend((*out, d, *r) for r in rest)
+    return found
+
+
+def _check_tables(chain: Chain, name: str) -> None:
     ids = {g.id for g in chain.gears} | {c.id for c in chain.cams}
     stray = [j.id for j in chain.joints if j.kind in HIGHER_KINDS and j.id not in ids]
     if stray:
         raise MechanismError(f"the higher pair {stray[0]!r} has no [[cams]] or [[gears]] "
                              "table saying how it moves", mechanism=name)
+
+
+def derived_options(chain: Chain, inputs: Sequence[tuple[str, str, str, str]], name: str
+                    ) -> list[tuple[Derived, ...]]:
+    """Every way of deriving the higher pairs of ``chain`` (see :func:`derived_inputs`),
+    those the inputs drive first: a pair no input drives is driven by its driving
+    link's rotation as the solve places it (``Derived.after``), a gear pair either
+    way (the plan takes the first way it can place). Empty when a pair can be driven
+    neither way (its joints both inputs or driven)."""
+    _check_tables(chain, name)
+    known = {_pair(j, a, b): (key, a, b) for j, key, a, b in inputs}
+    return _options(chain, [*chain.gears, *chain.cams], known, name)
+
+
+def derived_inputs(chain: Chain, inputs: Sequence[tuple[str, str, str, str]], name: str
+                   ) -> tuple[Derived, ...]:
+    """Every higher pair of ``chain`` as a :class:`Derived` joint, in the order they
+    follow from the ``inputs`` (each ``(joint, key, a, b)``: the joint, its table key,
+    and the links whose relative motion it gives). Refuses a pair no input drives
+    (:func:`derived_options` gives the ways the solve may drive it through the
+    linkage)."""
+    _check_tables(chain, name)
+    known = {_pair(j, a, b): (key, a, b) for j, key, a, b in inputs}
+    out, left = _early(chain, [*chain.gears, *chain.cams], known, name)
+    if left:
+        raise not_derived(left[0], name)
     return tuple(out)
+
+
+def not_derived(p: GearPair | Cam, name: str, *, loop: bool = False) -> MechanismError:
+    """The refusal of a higher pair that neither an input nor the links placed before
+    it drive (``loop``: the links its driving motion needs are placed only with it)."""
+    what = (f"the gear pair {p.id!r}: neither gear's joint with the carrier "
+            f"{p.carrier!r} is an input or driven through another pair"
+            if isinstance(p, GearPair) else
+            f"the cam {p.id!r}: the cam's turning joint is neither an input nor "
+            "driven through another pair")
+    how = (", nor do the links placed before it turn its driving member (a closed loop "
+           "through the pair, solved only with it)" if loop else "")
+    return MechanismError(f"{what}{how}, so the pair's motion cannot be derived from the "
+                          "inputs (the solver drives a higher pair from its driving "
+                          "link: a cam from the cam, a gear from a gear)", mechanism=name)
 
 
 # -- a cam's place in the drawing ------------------------------------------------------

@@ -33,10 +33,41 @@ def _known_poses(plan, theta):
     pose: dict[str, PoseEntry] = {plan.fixed: FIXED}
     for item, delta in zip(plan.inputs, plan.deltas(theta)):
         pose[item.key] = (0.0, 0.0, np.broadcast_to(delta, theta.shape), 1.0, 0.0)
-    for d in plan.derived:            # the higher pairs' joints, from the inputs
-        pose[d.key] = (0.0, 0.0, np.broadcast_to(d.value(d.driving(pose)), theta.shape),
-                       1.0, 0.0)
+    _derive(plan, pose, theta, {}, None)    # the higher pairs' joints, from the inputs
     return pose
+
+
+def _derive(plan, pose, theta, group_q, near):
+    """Each higher pair's derived joint whose driving motion ``pose`` now holds and that
+    it does not (a pair driven through the linkage, once the links it is read from are
+    placed). Such a driving motion, a rotation between two links, is followed to whole
+    turns and kept in ``group_q`` (key -1 - its index: continued from there): along the
+    path from ``near(n)`` (its value at the path's first point, None from the drawn
+    pose) when ``near`` is None... else nearest ``near(n)`` point by point."""
+    for n, d in enumerate(plan.derived):
+        if d.key in pose or not d.ready(pose):
+            continue
+        x = d.driving(pose)
+        if d.after is not None:
+            x = np.array(np.broadcast_to(x, theta.shape), dtype=float)
+            x = _followed(x, group_q.get(-1 - n) if near is None else None,
+                          None if near is None else near(n))
+            group_q[-1 - n] = x
+        pose[d.key] = (0.0, 0.0, np.broadcast_to(d.value(x), theta.shape), 1.0, 0.0)
+
+
+def _followed(x, first, near):
+    """Angles ``x`` (known to whole turns) made continuous: along a path from ``first``
+    (its first point's value, else as found), or point by point nearest ``near``."""
+    if near is not None:
+        near = np.broadcast_to(np.asarray(near, dtype=float), x.shape)
+        return near + np.remainder(x - near + math.pi, 2 * math.pi) - math.pi
+    if not x.size:
+        return x
+    x = np.unwrap(x)
+    if first is not None:
+        x += 2 * math.pi * np.round((float(first) - x[0]) / (2 * math.pi))
+    return x
 
 
 class Reference:
@@ -92,6 +123,7 @@ def _evaluate_at(plan, theta, ref, upto, double):
         group_q: dict[int, np.ndarray] = {}
         ok: bool | np.ndarray           # where each step assembles (a single link: all)
         for i, step in enumerate(plan.steps[:upto]):
+            _derive(plan, pose, theta, group_q, lambda n: ref.group_q[-1 - n])
             if step.kind == "single":
                 pose.update(single_link(step, pose))
                 ok = True
@@ -235,10 +267,13 @@ def _evaluate(plan, theta, start):
         at_drawn = np.flatnonzero(theta == plan.theta0)
         if not at_drawn.size:
             at_drawn = None
+    turns = {} if start is None else {k: q for k, q in start.group_q.items() if k < 0}
     for i, step in enumerate(plan.steps):
         if at_drawn is not None and i:
             _as_drawn(pose, plan.steps[i - 1].links, at_drawn, theta.shape,
                       group_q.get(i - 1))
+        _derive(plan, pose, theta, turns, None)
+        group_q.update(turns)
         if step.kind == "single":
             pose.update(single_link(step, pose))
             continue
