@@ -33,6 +33,7 @@ from __future__ import annotations
 import math
 from collections.abc import Mapping, Sequence
 from dataclasses import dataclass, replace
+from fractions import Fraction
 
 import numpy as np
 from numpy.typing import ArrayLike
@@ -45,7 +46,8 @@ from chaingraph.model.cams import Cam
 from chaingraph.model.chain import Chain, Joint
 from chaingraph.model.gears import GearPair
 
-__all__ = ["Derived", "derived_inputs", "derived_options", "not_derived", "CamFrame", "cam_frame", "HIGHER_KINDS",
+__all__ = ["Derived", "derived_inputs", "derived_options", "not_derived",
+           "gear_cycle_turns", "CamFrame", "cam_frame", "HIGHER_KINDS",
            "cam_contact"]
 
 #: the joint kinds a chain may have as higher pairs solved as derived inputs
@@ -252,7 +254,7 @@ def _options(chain: Chain, pairs: Sequence[GearPair | Cam], known: dict, name: s
     out, left = _early(chain, pairs, known, name)
     if not left:
         return [tuple(out)]
-    found = []
+    found: list[tuple[Derived, ...]] = []
     for d in _late(chain, left[0], known, name):
         rest = _options(chain, left[1:], {**known, _pair(d.joint, d.a, d.b): (d.key, d.a, d.b)},
                         name)
@@ -308,6 +310,24 @@ def not_derived(p: GearPair | Cam, name: str, *, loop: bool = False) -> Mechanis
     return MechanismError(f"{what}{how}, so the pair's motion cannot be derived from the "
                           "inputs (the solver drives a higher pair from its driving "
                           "link: a cam from the cam, a gear from a gear)", mechanism=name)
+
+
+def gear_cycle_turns(derived: Sequence[Derived]) -> int | None:
+    """The turns of the driving motions after which every gear of a train whose higher
+    pairs are all gear pairs is back where drawn: the least common multiple of the
+    denominators of each gear's ratio to the motion that drives it through the train
+    (the product of the ratios along the way, exact from the teeth). None when a cam
+    is among the pairs, or no pair."""
+    if not derived or any(d.cam is not None or d.ratio is None for d in derived):
+        return None
+    factor: dict[str, Fraction] = {}
+    turns = 1
+    for d in derived:
+        r = Fraction(float(d.ratio or 0.0)).limit_denominator(10 ** 6) * \
+            (1 if d.after is not None else factor.get(d.by, Fraction(1)))
+        factor[d.key] = r
+        turns = math.lcm(turns, r.denominator)
+    return turns
 
 
 # -- a cam's place in the drawing ------------------------------------------------------

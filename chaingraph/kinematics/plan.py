@@ -691,14 +691,13 @@ def _freedom(moving, constraints, size, *, with_inputs=False, generic=False, der
                     continue              # added below, with its driving joint's
             rows.append(row)
     for d in derived:
+        by = drive_rows.get(d.by)
         if d.after is not None:           # the rotation of one link less another's
             by = np.zeros(3 * len(moving))
             for link, sign in zip(d.after, (-1.0, 1.0)):
                 if link in col:
                     by[col[link] + 2] += sign
-        else:
-            by = drive_rows.get(d.by)
-        if by is None:                    # an input left out: its row, as drawn
+        elif by is None:                  # an input left out: its row, as drawn
             by = _drive_row(constraints, d.by, col, size, len(moving))
         slope = float(d.slopes(0.0)[0])
         rows.append(drive_rows[d.key] - slope * d.by_sign * by)

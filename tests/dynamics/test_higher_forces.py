@@ -137,3 +137,17 @@ def test_a_gear_pairs_pressure_angle_tilts_its_tooth_force_and_leaves_the_effort
     code, out, err = run_cli("solve", bad)
     assert code == 2 and len(err.strip().splitlines()) == 1
     assert "key 'pressure_angle' must be a number of degrees from 0 to less than 45" in err
+
+
+@pytest.mark.parametrize("static", [True, False])
+def test_sun_and_planet_effort_by_virtual_work(static):
+    """Watt's sun and planet: the arm's effort balances the power of the load on the
+    sun's rim and of the rod's and the sun's inertia, the sun turned by the gear pair
+    that the linkage drives (the planet fixed to the rod, the arm its carrier)."""
+    chain = chaingraph.load("examples/sun-and-planet.toml")
+    f = chaingraph.forces(chain, static=static, steps=72)
+    m = f.motion
+    others = _load_power(chain, m) + (0.0 if static else _inertia_power(chain, m))
+    assert np.abs(others).max() > 0.1
+    np.testing.assert_allclose(f.solution.efforts["O"] * m.omega, -others,
+                               atol=1e-9 * np.abs(others).max())

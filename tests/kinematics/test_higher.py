@@ -15,6 +15,7 @@ import chaingraph
 from chaingraph.errors import MechanismError
 from chaingraph.kinematics.cams import follower_motion
 from chaingraph.kinematics.plan import build_plan
+from chaingraph.kinematics.sweep import cycle
 
 from ..conftest import catalog_path, run_cli
 
@@ -193,3 +194,108 @@ def test_a_follower_s_dwells_are_not_counted_in_its_strokes():
         assert abs(s.forward_deg - 120.0) < 1e-6 and abs(s.return_deg - 120.0) < 1e-6, name
         assert abs(s.time_ratio - 1.0) < 1e-6
         assert "dwells at its extremes (60 and 60 degrees" in s.note
+
+
+# -- pairs driven through the linkage (Watt's sun and planet) --------------------------
+SUN_AND_PLANET = "examples/sun-and-planet.toml"
+
+
+def _turning(m, centre, point):
+    """The direction (radians, unwrapped) of the line from joint ``centre`` to the
+    joint or point ``point``, from the solved positions alone."""
+    c, p = m.point(centre), m.point(point)
+    return np.unwrap(np.arctan2(p.y - c.y, p.x - c.x))
+
+
+def _sun_and_planet(teeth=(20, 20)):
+    text = _text(SUN_AND_PLANET).replace("teeth = [20, 20]", f"teeth = [{teeth[0]}, {teeth[1]}]")
+    return chaingraph.loads(text)
+
+
+def test_watt_s_sun_turns_twice_for_each_turn_of_the_arm():
+    """The planet is fixed to the rod, the arm carries it round the sun: Willis's
+    equation (w_sun - w_arm) / (w_rod - w_arm) = -20/20 gives w_sun = 2 w_arm - w_rod,
+    and as the rod only rocks, two turns of the sun for each turn of the arm. The
+    angles are measured here from the solved positions alone: the arm's along OB, the
+    rod's along BC, the sun's along OT (T on its rim)."""
+    m = chaingraph.solve(chaingraph.load(SUN_AND_PLANET), steps=360)
+    arm, rod, sun = _turning(m, "O", "B"), _turning(m, "B", "C"), _turning(m, "O", "T")
+    arm, rod, sun = arm - arm[0], rod - rod[0], sun - sun[0]
+    np.testing.assert_allclose(arm, np.radians(m.theta - m.theta[0]), atol=1e-12)
+    np.testing.assert_allclose(sun, 2 * arm - rod, atol=1e-9)
+    assert sun[-1] == pytest.approx(4 * math.pi, abs=1e-9)        # two turns
+    assert rod[-1] == pytest.approx(0.0, abs=1e-9) and np.ptp(rod) < math.pi
+    # the rolling of the pitch circles: the planet's centre stays at 40 from O
+    np.testing.assert_allclose(np.hypot(m.joint("B").x, m.joint("B").y), 40.0, atol=1e-9)
+    np.testing.assert_allclose(m.link("sun").omega,
+                               2 * m.link("arm").omega - m.link("rod").omega, atol=1e-12)
+    assert [s.pattern for s in m.plan.steps] == ["WR", "RRR", "WR"]   # the sun last
+    assert m.plan.mobility == 1 and m.plan.numeric_mobility == 1
+
+
+def test_a_geared_four_bar_s_sun_follows_willis_to_whole_turns():
+    """Gears of 16 and 24 teeth (the ratio -2/3, not whole): the sun turns by
+    theta_arm - 2/3 (theta_rod - theta_arm), 5/3 turns per turn of the arm, so the
+    mechanism is back as drawn after three turns (1080 degrees), not one."""
+    chain = _sun_and_planet((16, 24))
+    m = chaingraph.solve(chain, start=0.0, stop=1080.0, steps=1080)
+    arm, rod, sun = _turning(m, "O", "B"), _turning(m, "B", "C"), _turning(m, "O", "T")
+    arm, rod, sun = arm - arm[0], rod - rod[0], sun - sun[0]
+    np.testing.assert_allclose(sun, arm - 2 / 3 * (rod - arm), atol=1e-9)
+    assert sun[360] == pytest.approx(2 * math.pi * 5 / 3, abs=1e-9)
+    assert sun[-1] == pytest.approx(10 * math.pi, abs=1e-9)
+    assert cycle(m.plan).period == pytest.approx(1080.0)
+
+
+@pytest.mark.parametrize("teeth", [(20, 20), (16, 24)])
+def test_sun_and_planet_rates_are_the_derivatives_of_its_positions(teeth):
+    m = chaingraph.solve(_sun_and_planet(teeth), start=20.0, stop=80.0, steps=600)
+    assert np.all(np.diff(m.theta) == pytest.approx(0.1))
+    _check_finite_differences(m, ("T", "C"), 0.1, rtol_a=1e-4)
+
+
+def test_the_beam_drives_the_sun_as_the_engine_does():
+    """Watt's engine drives the beam, not the arm: the beam's rocking places the rod
+    and the arm (a dyad), then the sun, by the same equation."""
+    m = chaingraph.solve(chaingraph.load(SUN_AND_PLANET), inputs=["Q"], steps=60)
+    arm, rod, sun = _turning(m, "O", "B"), _turning(m, "B", "C"), _turning(m, "O", "T")
+    np.testing.assert_allclose(sun - sun[0], 2 * (arm - arm[0]) - (rod - rod[0]), atol=1e-9)
+    assert m.plan.steps[-1].links == ("sun",)
+
+
+def test_sun_and_planet_relabelled_moves_alike():
+    chain = chaingraph.load(SUN_AND_PLANET)
+    other = chain.relabelled(links={"sun": "wheel", "rod": "pitman", "arm": "carrier"},
+                             joints={"O": "shaft", "G": "mesh", "B": "pin"})
+    a, b = chaingraph.solve(chain, steps=72), chaingraph.solve(other, steps=72)
+    np.testing.assert_allclose(a.point("T").x, b.point("T").x, atol=1e-12)
+    np.testing.assert_allclose(a.link("sun").alpha, b.link("wheel").alpha, atol=1e-9)
+
+
+def test_a_gear_loop_the_linkage_cannot_place_first_is_refused_saying_why():
+    with pytest.raises(MechanismError, match="gear pair 'G'") as e:
+        build_plan(chaingraph.load(FIVE_BAR), inputs=[chaingraph.Input("C")])
+    assert "nor do the links placed before it turn its driving member" in str(e.value)
+
+
+# -- a gear train's cycle from its teeth -----------------------------------------------
+def test_a_train_of_ratio_5_2_is_solved_over_its_whole_cycle():
+    """The catalog's simple train: the idler turns -20/35 = -4/7 of the driver, the
+    driven gear 2/5: all three are back as drawn only after lcm(7, 5) = 35 turns of
+    the driver, which the cycle takes from the teeth (the search stopped at four)."""
+    chain = chaingraph.load(catalog_path("simple-gear-train"))
+    plan = build_plan(chain, fixed="frame", driver="driver")
+    assert cycle(plan).period == pytest.approx(35 * 360.0)
+    m = chaingraph.solve(chain, fixed="frame", driver="driver", start=0.0, stop=35 * 360.0,
+                         steps=35 * 8)
+    turn = np.radians(m.theta - m.theta[0])
+    for link, ratio, turns in (("idler", -4 / 7, -20), ("driven", 2 / 5, 14)):
+        angle = m.link(link).angle
+        np.testing.assert_allclose(angle - angle[0], ratio * turn, atol=1e-9)
+        assert angle[-1] - angle[0] == pytest.approx(2 * math.pi * turns, abs=1e-9)
+        inside = (angle[8::8] - angle[0]) / (2 * math.pi)        # after each whole turn
+        whole = np.abs(inside - np.round(inside)) < 1e-9
+        assert whole.sum() == (5 if link == "idler" else 7)       # at 7k turns, or 5k
+    assert "input range         0 to 12600 degrees" in run_cli(
+        "solve", catalog_path("simple-gear-train"), "--fixed", "frame", "--driver",
+        "driver")[1]
