@@ -232,7 +232,7 @@ def _late(chain: Chain, p: GearPair | Cam, known: Mapping, name: str) -> list[De
     places it (no input driving it): a gear pair either way, a cam by the cam."""
     if isinstance(p, Cam):
         jc, jf, f = _cam_joints(chain, p, name)
-        if _pair(jf.id, f, p.follower) in known:
+        if _pair(jf.id, f, p.follower) in known or not _moved_by_linkage(chain, p.cam, f):
             return []
         d = _cam(chain, p, {_pair(jc.id, f, p.cam): ("", f, p.cam)}, name)
         assert d is not None
@@ -246,7 +246,15 @@ def _late(chain: Chain, p: GearPair | Cam, known: Mapping, name: str) -> list[De
     ratio = p.sign * p.teeth[0] / p.teeth[1]       # (w_b - w_c) / (w_a - w_c)
     return [Derived(driven.id, "R", c, gear, p.id, "", 1.0, ratio=r, after=(c, other))
             for driven, gear, other, r in ((jb, b, a, ratio), (ja, a, b, 1.0 / ratio))
-            if _pair(driven.id, c, gear) not in known]
+            if _pair(driven.id, c, gear) not in known and _moved_by_linkage(chain, other, c)]
+
+
+def _moved_by_linkage(chain: Chain, link: str, on: str) -> bool:
+    """Whether ``link`` has a lower pair with a link other than ``on`` (the pair's
+    carrier or frame), through which the linkage may turn it: a driving gear or cam
+    joined only to its axis is turned by nothing but the pair itself."""
+    return any(j.kind in ("R", "P") and link in j.links and set(j.links) - {link, on}
+               for j in chain.joints)
 
 
 def _options(chain: Chain, pairs: Sequence[GearPair | Cam], known: dict, name: str
@@ -304,7 +312,9 @@ def not_derived(p: GearPair | Cam, name: str, *, loop: bool = False) -> Mechanis
             f"{p.carrier!r} is an input or driven through another pair"
             if isinstance(p, GearPair) else
             f"the cam {p.id!r}: the cam's turning joint is neither an input nor "
-            "driven through another pair")
+            "driven through another pair, nor is the cam turned by the linkage (a "
+            "follower does not drive its cam: a program's dwells and the ends of its "
+            "rises, where the follower stands still as the cam turns, have no inverse)")
     how = (", nor do the links placed before it turn its driving member (a closed loop "
            "through the pair, solved only with it)" if loop else "")
     return MechanismError(f"{what}{how}, so the pair's motion cannot be derived from the "

@@ -299,3 +299,15 @@ def test_a_train_of_ratio_5_2_is_solved_over_its_whole_cycle():
     assert "input range         0 to 12600 degrees" in run_cli(
         "solve", catalog_path("simple-gear-train"), "--fixed", "frame", "--driver",
         "driver")[1]
+
+
+def test_a_follower_driving_its_cam_is_refused_saying_why():
+    """The rocker as the input of the cam-driven rocker would have its follower turn
+    the cam: the program's dwells have no inverse, so the solver refuses, saying so."""
+    chain = chaingraph.load(CAM_ROCKER)
+    with pytest.raises(MechanismError, match="the cam 'K'") as e:
+        build_plan(chain, inputs=[chaingraph.Input("H")])
+    assert "a follower does not drive its cam" in str(e.value)
+    code, out, err = run_cli("solve", CAM_ROCKER, "--input", "H")
+    assert code == 2 and len(err.strip().splitlines()) == 1
+    assert "have no inverse" in err
