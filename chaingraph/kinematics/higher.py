@@ -8,9 +8,9 @@ A gear pair or a cam fixes the relative motion of one joint as a function of ano
   its axis joint with c is ``ratio`` times that of a on its own;
 * a disc cam turning on an R joint on a link F (the frame) and its follower sliding in
   a P joint on F, or swinging about an R joint on F: the follower's slide (or angle)
-  from the drawn pose is the program's ``s(theta)``, theta the cam's turn on F from the
-  drawn pose (the drawing shows the cam at the start of its program, theta = 0, the
-  follower at its lowest).
+  from the drawn pose is the program's ``s(theta0 + theta) - s(theta0)``, theta the
+  cam's turn on F from the drawn pose, theta0 where in its program the drawing shows the
+  cam (the table's ``drawn``; 0, the start, the follower at its lowest, by default).
 
 When the driving joint's motion is known (an input, or driven through other pairs), the
 driven joint is one more input of the plan (a :class:`Derived`, its key ``"@derived:J"``
@@ -105,7 +105,9 @@ class Derived:
         x = np.asarray(x, dtype=float)
         if self.cam is None:
             return float(self.ratio or 0.0) * x
-        s = follower_motion(self.cam, np.atleast_1d(x))[0]
+        at = self.cam.drawn + np.atleast_1d(x)         # the place in the program
+        s = follower_motion(self.cam, at)[0] - \
+            follower_motion(self.cam, np.array([self.cam.drawn]))[0][0]
         return self.sign * s.reshape(x.shape)
 
     def slopes(self, x: ArrayLike) -> tuple[np.ndarray, np.ndarray]:
@@ -113,7 +115,7 @@ class Derived:
         x = np.asarray(x, dtype=float)
         if self.cam is None:
             return np.full(x.shape, float(self.ratio or 0.0)), np.zeros(x.shape)
-        _, ds, dds, _ = follower_motion(self.cam, np.atleast_1d(x))
+        _, ds, dds, _ = follower_motion(self.cam, self.cam.drawn + np.atleast_1d(x))
         return self.sign * ds.reshape(x.shape), self.sign * dds.reshape(x.shape)
 
     def rates(self, pose: Mapping[str, tuple], vel: Mapping[str, tuple],
@@ -196,9 +198,9 @@ def _cam(chain: Chain, cam: Cam, known, name: str) -> Derived | None:
     if _pair(jf.id, f, cam.follower) in known:
         raise MechanismError(f"the cam {cam.id!r} drives joint {jf.id!r}, whose motion is "
                              "already an input or driven by another pair", mechanism=name)
+    frame = cam_frame(chain, cam)         # (refuses a drawing the table disagrees with)
     if jf.kind == "R":
         return Derived(jf.id, "R", f, cam.follower, cam.id, by[0], by[1], cam=cam)
-    frame = cam_frame(chain, cam)
     up = (math.cos(math.radians(jf.axis or 0.0)), math.sin(math.radians(jf.axis or 0.0)))
     along = 1.0 if up[0] * frame.up[0] + up[1] * frame.up[1] > 0 else -1.0
     sign = along if jf.links[0] == f else -along
@@ -352,6 +354,14 @@ class CamFrame:
     right: tuple[float, float]
     up: tuple[float, float]
     on: str
+    turn: float = 0.0
+
+    def on_cam(self, p: ArrayLike) -> np.ndarray:
+        """Points ``p`` (n x 2) of the cam's own frame (:func:`analyse_cam`'s, the cam at
+        the start of its program), in the drawing: turned by ``turn``, where in its
+        program the drawing shows the cam."""
+        p = np.asarray(p, dtype=float).reshape(-1, 2)
+        return self.drawn(_turned(p, np.full(len(p), self.turn)))
 
     def drawn(self, p: ArrayLike) -> np.ndarray:
         """Points ``p`` (n x 2) of the cam's frame, in the drawing."""
@@ -390,7 +400,7 @@ def cam_frame(chain: Chain, cam: Cam) -> CamFrame:
                 f"{math.hypot(px, py):g} from it", mechanism=name)
         turn = math.atan2(q[1], q[0]) - math.atan2(py, px)
         c, s = math.cos(turn), math.sin(turn)
-        return CamFrame(o, (c, s), (-s, c), f)
+        return _checked(chain, cam, CamFrame(o, (c, s), (-s, c), f, cam.drawn), size)
     u = (math.cos(math.radians(jf.axis or 0.0)), math.sin(math.radians(jf.axis or 0.0)))
     ahead = [j.at for j in chain.joints if cam.follower in j.links and j.at is not None
              and j.kind not in HIGHER_KINDS]
@@ -404,7 +414,28 @@ def cam_frame(chain: Chain, cam: Cam) -> CamFrame:
             f"{tidy(offset, size):g} to the "
             f"right of the cam's centre (looking along the follower); its 'offset' is "
             f"{cam.offset:g}", mechanism=name)
-    return CamFrame(o, right, up, f)
+    return _checked(chain, cam, CamFrame(o, right, up, f, cam.drawn), size)
+
+
+def _checked(chain: Chain, cam: Cam, frame: CamFrame, size: float) -> CamFrame:
+    """``frame``, once the drawn contact (the cam pair's joint) is where the program
+    puts it at the cam's drawn place (``drawn``): as far from the cam's centre as the
+    profile touches the follower there (else refused, naming both distances)."""
+    k = next((j for j in chain.joints if j.id == cam.id and j.kind == "cam"), None)
+    if k is None or k.at is None:
+        return frame
+    r = analyse_cam(cam, np.array([cam.drawn]))
+    touch = float(np.hypot(*r.profile[0]))
+    drawn = math.dist(k.at, frame.centre)
+    if abs(drawn - touch) > 1e-6 * size:
+        s = float(follower_motion(cam, np.array([cam.drawn]))[0][0])
+        lift = f"{math.degrees(s):.6g} degrees" if cam.moves == "oscillating" else f"{s:.6g}"
+        raise MechanismError(
+            f"the cam {cam.id!r}: its contact {k.id!r} is drawn {tidy(drawn, size):g} from "
+            f"the cam's centre, but {math.degrees(cam.drawn):g} degrees into its program "
+            f"(its 'drawn'), the follower {lift} above its lowest, the cam touches it "
+            f"{tidy(touch, size):g} from the centre", mechanism=chain.source or chain.name)
+    return frame
 
 
 def _turned(v: np.ndarray, angle: np.ndarray) -> np.ndarray:
@@ -415,12 +446,13 @@ def _turned(v: np.ndarray, angle: np.ndarray) -> np.ndarray:
 
 def cam_contact(chain: Chain, cam: Cam, theta: ArrayLike
                 ) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
-    """At the cam's turns ``theta`` (radians from the drawn pose), in the drawing with
+    """At the cam's turns ``theta`` (radians from the drawn pose, where the cam is
+    ``cam.drawn`` into its program), in the drawing with
     the link F held where drawn: the contact point (n x 2), the common normal there
     (unit, from the cam towards the follower) and the follower's reference point (the
     roller's centre, the knife's tip, the flat face's foot)."""
     frame = cam_frame(chain, cam)
-    theta = np.atleast_1d(np.asarray(theta, dtype=float))
+    theta = cam.drawn + np.atleast_1d(np.asarray(theta, dtype=float))   # in the program
     r = analyse_cam(cam, theta)
     w, c = _turned(r.pitch, theta), _turned(r.profile, theta)   # the cam's frame, turned
     if cam.moves == "translating":

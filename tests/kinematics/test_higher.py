@@ -7,6 +7,7 @@ between its pivots, its coupler's joint on that line), kinematics/cams.py's prog
 relabelling."""
 
 import math
+import tomllib
 
 import numpy as np
 import pytest
@@ -14,8 +15,10 @@ import pytest
 import chaingraph
 from chaingraph.errors import MechanismError
 from chaingraph.kinematics.cams import follower_motion
+from chaingraph.kinematics.higher import cam_contact
 from chaingraph.kinematics.plan import build_plan
 from chaingraph.kinematics.sweep import cycle
+from chaingraph.model.chainfile import toml_text
 
 from ..conftest import catalog_path, run_cli
 
@@ -311,3 +314,59 @@ def test_a_follower_driving_its_cam_is_refused_saying_why():
     code, out, err = run_cli("solve", CAM_ROCKER, "--input", "H")
     assert code == 2 and len(err.strip().splitlines()) == 1
     assert "have no inverse" in err
+
+
+# -- a cam drawn anywhere in its program ----------------------------------------------
+def _redrawn(path, turn, *, contact=None):
+    """The mechanism of ``path`` drawn with its cam ``turn`` degrees into its program:
+    every joint and point where the solve of the original puts it there (the cam's
+    contact K where the profile touches the follower), and ``drawn = turn``."""
+    chain = chaingraph.load(path)
+    m = chaingraph.solve(chain, start=90.0 + turn, stop=90.0 + turn, steps=1)
+    doc = tomllib.loads(_text(path))
+    cam = chain.cams[0]
+    k = cam_contact(chain, cam, np.radians([turn]))[0][0] if contact is None else contact
+    for j in doc["joints"]:
+        j["at"] = [float(v) for v in k] if j["id"] == cam.id else \
+            [float(m[f"x:{j['id']}"][0]), float(m[f"y:{j['id']}"][0])]
+    for p in doc.get("points", []):
+        p["at"] = [float(m[f"x:{p['id']}"][0]), float(m[f"y:{p['id']}"][0])]
+    doc["cams"][0]["drawn"] = float(turn)
+    return chaingraph.loads(toml_text(doc))
+
+
+@pytest.mark.parametrize("turn", [60.0, 150.0, 250.0])
+def test_a_cam_drawn_into_its_program_moves_as_drawn_at_its_start_shifted(turn):
+    """The cam-driven rocker drawn with its cam 60, 150 or 250 degrees into its program
+    (the rise, the dwell at the top, the fall): turned t from its drawing, it is where
+    the one drawn at the start is turned turn + t."""
+    first = chaingraph.load(CAM_ROCKER)
+    moved = _redrawn(CAM_ROCKER, turn)
+    assert moved.cams[0].drawn == pytest.approx(math.radians(turn))
+    b = chaingraph.solve(moved, steps=72)
+    t = b.theta - b.theta[0]                                   # the cam's turn from its drawing
+    a = chaingraph.solve(first, start=90.0 + turn, stop=90.0 + turn + 360.0, steps=72)
+    for joint in ("F", "G"):
+        for c in ("x", "y"):
+            np.testing.assert_allclose(b[f"{c}:{joint}"], a[f"{c}:{joint}"], atol=1e-9)
+    np.testing.assert_allclose(b.link("rocker").omega, a.link("rocker").omega, atol=1e-9)
+    np.testing.assert_allclose(b.link("rocker").alpha, a.link("rocker").alpha, atol=1e-7)
+    # the slide from the drawing: the program from where the cam is drawn
+    s = follower_motion(first.cams[0], np.radians(turn + t))[0]
+    s0 = follower_motion(first.cams[0], np.radians([turn]))[0][0]
+    np.testing.assert_allclose(b.slide("S").s, s - s0, atol=1e-12)
+    # the roller's centre (the pair's columns) where the first one's is
+    np.testing.assert_allclose(b["y:K"], a["y:K"], atol=1e-9)
+
+
+def test_a_cam_drawn_where_its_program_does_not_put_the_follower_is_refused():
+    """Drawn 60 degrees into the rise with the contact still on the base circle: the
+    follower is drawn at its lowest, where the program has it 3.12 up."""
+    moved = _redrawn(CAM_ROCKER, 60.0, contact=(0.0, 30.0))
+    with pytest.raises(MechanismError) as e:
+        chaingraph.solve(moved, steps=10)
+    said = str(e.value)
+    assert "its contact 'K' is drawn 30 from the cam's centre" in said
+    s = float(follower_motion(moved.cams[0], np.radians([60.0]))[0][0])
+    assert f"60 degrees into its program (its 'drawn'), the follower {s:.6g} above" in said
+    assert chaingraph.loads(chaingraph.dumps(moved)).cams[0].drawn == moved.cams[0].drawn
