@@ -361,7 +361,7 @@ def test_a_cam_drawn_into_its_program_moves_as_drawn_at_its_start_shifted(turn):
 
 def test_a_cam_drawn_where_its_program_does_not_put_the_follower_is_refused():
     """Drawn 60 degrees into the rise with the contact still on the base circle: the
-    follower is drawn at its lowest, where the program has it 3.12 up."""
+    follower is drawn at its lowest, where the program has it 12.5 up."""
     moved = _redrawn(CAM_ROCKER, 60.0, contact=(0.0, 30.0))
     with pytest.raises(MechanismError) as e:
         chaingraph.solve(moved, steps=10)
