@@ -370,3 +370,48 @@ def test_a_cam_drawn_where_its_program_does_not_put_the_follower_is_refused():
     s = float(follower_motion(moved.cams[0], np.radians([60.0]))[0][0])
     assert f"60 degrees into its program (its 'drawn'), the follower {s:.6g} above" in said
     assert chaingraph.loads(chaingraph.dumps(moved)).cams[0].drawn == moved.cams[0].drawn
+
+
+_CAM_ON_A_CRANK = '''
+[[joints]]
+id = "B"
+kind = "R"
+links = ["cam", "coupler"]
+at = [-20.0, 0.0]
+
+[[joints]]
+id = "D"
+kind = "R"
+links = ["coupler", "lever"]
+at = [-76.60910972640129, 19.884886119469233]
+
+[[joints]]
+id = "E"
+kind = "R"
+links = ["lever", "frame"]
+at = [-80.0, -30.0]
+'''
+
+
+def test_a_cam_the_linkage_turns_drives_its_follower_by_the_program():
+    """The cam-driven rocker's cam keyed to the crank of a crank-rocker four-bar (O B D
+    E) whose lever is the input: the four-bar turns the cam, the follower slides by
+    the program at the cam's turn, measured here along OB from the solved positions."""
+    text = _text(CAM_ROCKER).replace("[[cams]]", _CAM_ON_A_CRANK + "\n[[cams]]")
+    chain = chaingraph.loads(text)
+    m = chaingraph.solve(chain, inputs=["E"], steps=400)
+    assert m.plan.derived[0].after == ("frame", "cam")
+    turn = _turning(m, "O", "B") - math.pi           # from the drawing (B drawn at 180)
+    assert np.ptp(turn) > math.radians(60.0)
+    s = follower_motion(chain.cams[0], turn)[0]
+    np.testing.assert_allclose(m.slide("S").s, s, atol=1e-12)
+    np.testing.assert_allclose(m.joint("F").y, 100.0 + s, atol=1e-9)
+    # the rate by the chain rule: ds/dt = s'(theta) times the cam's own speed
+    np.testing.assert_allclose(m.slide("S").v,
+                               follower_motion(chain.cams[0], turn)[1] * m.link("cam").omega,
+                               atol=1e-9)
+    low, high = m.theta[0], m.theta[-1]                 # the lever's limits
+    middle = 0.5 * (low + high)
+    b = chaingraph.solve(chain, inputs=[("E", middle - 10.0, middle + 10.0)], steps=400)
+    assert np.ptp(b.slide("S").s) > 10.0                 # down the fall
+    _check_finite_differences(b, ("F", "G"), 0.05, rtol_a=1e-3)
