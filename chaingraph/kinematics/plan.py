@@ -276,12 +276,14 @@ def _steps(chain, fixed, constraints, closed_form=True, needs=None):
             return [c for c in remaining if u in (c.a, c.b) and c.other(u) in known
                     and needs.get(c.drive, frozenset()) <= known]
         step = None
-        for u in (unknown if closed_form else []):
+        for u in unknown:
             att = attachments(u)
-            welded = [c for c in att if c.drive is not None]
-            if welded:
+            welded = [c for c in att if c.drive is not None and (closed_form or needs.get(c.drive))]
+            if welded:          # (without closed forms: only a pair driven through the linkage)
                 step = Step("single", (u,), (welded[0],), "W" + welded[0].kind)
                 break
+            if not closed_form:
+                continue
             if len(att) >= 2 and not (att[0].kind == att[1].kind == "P"
                                       and _parallel(att[0], att[1])):
                 if att[0].kind == "P" and att[1].kind == "R":
@@ -305,7 +307,13 @@ def _steps(chain, fixed, constraints, closed_form=True, needs=None):
                 if step is not None:
                     break
         if step is None:
-            group = _smallest_group(unknown, known, remaining) if closed_form else unknown
+            # (without closed forms every link but those a pair driven through the
+            # linkage places after it)
+            group = _smallest_group(unknown, known, remaining) if closed_form else \
+                [u for u in unknown if not any(needs.get(c.drive) and u in (c.a, c.b)
+                                               and u not in needs[c.drive] for c in remaining)]
+            if not group:
+                return None
             inside = set(group) | known
             cons = tuple(c for c in remaining if (c.a in group or c.b in group)
                          and c.a in inside and c.b in inside)

@@ -17,7 +17,9 @@ from chaingraph.errors import MechanismError
 from chaingraph.kinematics.cams import follower_motion
 from chaingraph.kinematics.higher import cam_contact
 from chaingraph.kinematics.plan import build_plan
+from chaingraph.kinematics.rates import rates
 from chaingraph.kinematics.sweep import cycle
+from chaingraph.kinematics.tracking import evaluate
 from chaingraph.model.chainfile import toml_text
 
 from ..conftest import catalog_path, run_cli
@@ -415,3 +417,39 @@ def test_a_cam_the_linkage_turns_drives_its_follower_by_the_program():
     b = chaingraph.solve(chain, inputs=[("E", middle - 10.0, middle + 10.0)], steps=400)
     assert np.ptp(b.slide("S").s) > 10.0                 # down the fall
     _check_finite_differences(b, ("F", "G"), 0.05, rtol_a=1e-3)
+
+
+def test_sun_and_planet_by_newton_agrees_with_its_closed_forms():
+    """Without closed forms the four-bar is one group solved by Newton's method, the sun
+    still placed after it: the same poses and rates."""
+    chain = _sun_and_planet((16, 24))
+    closed, newton = build_plan(chain), build_plan(chain, closed_form=False)
+    assert [s.kind for s in newton.steps] == ["group", "single"]
+    theta = closed.theta0 + np.linspace(0.0, 720.0, 241)
+    e1, e2 = evaluate(closed, theta), evaluate(newton, theta)
+    assert e2.feasible.all()
+    v1, a1, _ = rates(closed, e1.pose, 1.5, theta.size)
+    v2, a2, _ = rates(newton, e2.pose, 1.5, theta.size)
+    for link in chain.links:
+        for j in (0, 1):
+            np.testing.assert_allclose(np.broadcast_to(e1.pose[link][j], theta.shape),
+                                       np.broadcast_to(e2.pose[link][j], theta.shape),
+                                       atol=1e-7)
+        for j in range(3):
+            np.testing.assert_allclose(v1[link][j], v2[link][j], atol=1e-6)
+            np.testing.assert_allclose(a1[link][j], a2[link][j], atol=1e-5)
+
+
+def test_sun_and_planet_poses_do_not_depend_on_where_the_sweep_starts():
+    """The 16/24 sun, its angle followed to whole turns over its three-turn cycle: the
+    same at an input angle from any sweep, or from one pose."""
+    chain = _sun_and_planet((16, 24))
+    whole = chaingraph.solve(chain, start=0.0, stop=1080.0, steps=1080)
+    for start, stop, steps in ((500.0, 860.0, 4), (-220.0, 140.0, 9), (1000.0, 1400.0, 8)):
+        part = chaingraph.solve(chain, start=start, stop=stop, steps=steps)
+        k = np.mod(np.round(part.theta).astype(int), 1080)
+        for column in ("x:T", "y:T", "omega:sun", "alpha:sun"):
+            np.testing.assert_allclose(part[column], whole[column][k], atol=1e-9)
+    pose = chaingraph.pose_motion(chain, at=500.0)
+    assert pose.positions["T"] == pytest.approx((whole["x:T"][500], whole["y:T"][500]),
+                                                abs=1e-9)
