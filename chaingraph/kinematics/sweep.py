@@ -278,7 +278,8 @@ def cycle(plan: Plan) -> Cycle:
     ------
     AssemblyError
         When the driver neither returns to the drawn pose nor reaches a limit within
-        four turns either way.
+        four turns either way (a gear train's cycle known from its teeth when longer:
+        :func:`~chaingraph.kinematics.higher.gear_cycle_turns`).
     """
     return _cycle(plan)
 
