@@ -38,12 +38,15 @@ def _known_poses(plan, theta):
 
 
 def _derive(plan, pose, theta, group_q, near):
-    """Each higher pair's derived joint whose driving motion ``pose`` now holds and that
-    it does not (a pair driven through the linkage, once the links it is read from are
-    placed). Such a driving motion, a rotation between two links, is followed to whole
-    turns and kept in ``group_q`` (key -1 - its index: continued from there): along the
-    path from ``near(n)`` (its value at the path's first point, None from the drawn
-    pose) when ``near`` is None... else nearest ``near(n)`` point by point."""
+    """Put in ``pose`` each higher pair's derived joint whose driving motion it now
+    holds (a pair driven through the linkage: once the links it is read from are
+    placed). Such a driving motion, the rotation of one link less another's, is known
+    from the poses only to whole turns: it is followed and kept in ``group_q`` (key
+    -1 - the pair's index, where a path or a reference continues it from). With
+    ``near`` None, along the path (theta a path sampled finely enough to unwrap), from
+    ``group_q``'s value at its first point if it holds one (a path continued from a
+    :class:`Start`), else as found (a path from the drawn pose, where it is 0);
+    otherwise point by point, the nearest to ``near(n)`` (a reference's values)."""
     for n, d in enumerate(plan.derived):
         if d.key in pose or not d.ready(pose):
             continue
