@@ -15,6 +15,7 @@ import chaingraph
 from chaingraph.kinematics.higher import cam_contact
 
 from ..conftest import run_cli
+from ..kinematics.test_higher import drawn_into_its_program
 
 CAM_ROCKER = "catalog/cam-rocker.toml"
 FIVE_BAR = "catalog/geared-five-bar.toml"
@@ -151,3 +152,17 @@ def test_sun_and_planet_effort_by_virtual_work(static):
     assert np.abs(others).max() > 0.1
     np.testing.assert_allclose(f.solution.efforts["O"] * m.omega, -others,
                                atol=1e-9 * np.abs(others).max())
+
+
+def test_a_cam_drawn_into_its_program_bears_the_same_forces():
+    """The cam-driven rocker drawn 60 degrees into its program (kinematics'
+    test_higher) balances its loads with the same effort and contact force as the one
+    drawn at the start, 60 degrees on (statically: its masses' centres stay where the
+    original's are drawn)."""
+    a = chaingraph.forces(chaingraph.load(CAM_ROCKER), start=150.0, stop=510.0, steps=36,
+                          static=True)
+    b = chaingraph.forces(drawn_into_its_program(CAM_ROCKER, 60.0), steps=36, static=True)
+    for got, want in ((b.solution.efforts["O"], a.solution.efforts["O"]),
+                      (b.solution.normal["K"], a.solution.normal["K"])):
+        np.testing.assert_allclose(got, want, atol=1e-9 * np.abs(want).max())
+    assert np.ptp(a.solution.normal["K"]) > 1.0

@@ -319,7 +319,7 @@ def test_a_follower_driving_its_cam_is_refused_saying_why():
 
 
 # -- a cam drawn anywhere in its program ----------------------------------------------
-def _redrawn(path, turn, *, contact=None):
+def drawn_into_its_program(path, turn, *, contact=None):
     """The mechanism of ``path`` drawn with its cam ``turn`` degrees into its program:
     every joint and point where the solve of the original puts it there (the cam's
     contact K where the profile touches the follower), and ``drawn = turn``."""
@@ -343,7 +343,7 @@ def test_a_cam_drawn_into_its_program_moves_as_drawn_at_its_start_shifted(turn):
     (the rise, the dwell at the top, the fall): turned t from its drawing, it is where
     the one drawn at the start is turned turn + t."""
     first = chaingraph.load(CAM_ROCKER)
-    moved = _redrawn(CAM_ROCKER, turn)
+    moved = drawn_into_its_program(CAM_ROCKER, turn)
     assert moved.cams[0].drawn == pytest.approx(math.radians(turn))
     b = chaingraph.solve(moved, steps=72)
     t = b.theta - b.theta[0]                                   # the cam's turn from its drawing
@@ -364,7 +364,7 @@ def test_a_cam_drawn_into_its_program_moves_as_drawn_at_its_start_shifted(turn):
 def test_a_cam_drawn_where_its_program_does_not_put_the_follower_is_refused():
     """Drawn 60 degrees into the rise with the contact still on the base circle: the
     follower is drawn at its lowest, where the program has it 12.5 up."""
-    moved = _redrawn(CAM_ROCKER, 60.0, contact=(0.0, 30.0))
+    moved = drawn_into_its_program(CAM_ROCKER, 60.0, contact=(0.0, 30.0))
     with pytest.raises(MechanismError) as e:
         chaingraph.solve(moved, steps=10)
     said = str(e.value)
