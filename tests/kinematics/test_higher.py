@@ -453,3 +453,43 @@ def test_sun_and_planet_poses_do_not_depend_on_where_the_sweep_starts():
     pose = chaingraph.pose_motion(chain, at=500.0)
     assert pose.positions["T"] == pytest.approx((whole["x:T"][500], whole["y:T"][500]),
                                                 abs=1e-9)
+
+
+_SUN_DRIVES_A_SLIDER = '''
+[[joints]]
+id = "E"
+kind = "R"
+links = ["sun", "pitman"]
+at = [0.0, -20.0]
+
+[[joints]]
+id = "S"
+kind = "P"
+links = ["frame", "block"]
+at = [70.0, -20.0]
+axis = 0.0
+
+[[joints]]
+id = "F"
+kind = "R"
+links = ["pitman", "block"]
+at = [70.0, -20.0]
+'''
+
+
+def test_a_linkage_goes_on_from_a_gear_the_linkage_drives():
+    """The sun of the sun and planet drives a slider-crank (its pin E 20 from O, a
+    pitman of 70 to a block sliding on the line y = -20): the sun is placed after the
+    four-bar, then the slider-crank from it, the block where the slider-crank's
+    closed form puts it for the sun's angle."""
+    text = _text(SUN_AND_PLANET).replace("[[gears]]", _SUN_DRIVES_A_SLIDER + "\n[[gears]]")
+    m = chaingraph.solve(chaingraph.loads(text), steps=180)
+    assert [s.pattern for s in m.plan.steps][-2:] == ["WR", "RRP"]
+    phi = _turning(m, "O", "E")
+    sun = _turning(m, "O", "T")
+    np.testing.assert_allclose(phi - phi[0], sun - sun[0], atol=1e-9)
+    x = 20 * np.cos(phi) + np.sqrt(70.0 ** 2 - (20 * np.sin(phi) + 20) ** 2)
+    np.testing.assert_allclose(m.joint("F").x, x, atol=1e-9)
+    np.testing.assert_allclose(m.joint("F").y, -20.0, atol=1e-9)
+    assert sun[-1] - sun[0] == pytest.approx(4 * math.pi, abs=1e-9)
+    assert m.plan.mobility == 1
