@@ -278,8 +278,10 @@ def _steps(chain, fixed, constraints, closed_form=True, needs=None):
         step = None
         for u in unknown:
             att = attachments(u)
-            welded = [c for c in att if c.drive is not None and (closed_form or needs.get(c.drive))]
-            if welded:          # (without closed forms: only a pair driven through the linkage)
+            # (without closed forms: only the weld of a pair driven through the linkage)
+            welded = [c for c in att if c.drive is not None
+                      and (closed_form or needs.get(c.drive))]
+            if welded:
                 step = Step("single", (u,), (welded[0],), "W" + welded[0].kind)
                 break
             if not closed_form:
