@@ -46,7 +46,7 @@ from chaingraph.model.cams import Cam
 from chaingraph.model.chain import Chain, Joint
 from chaingraph.model.gears import GearPair
 
-__all__ = ["Derived", "derived_inputs", "derived_options", "not_derived",
+__all__ = ["Derived", "derived_inputs", "derived_options", "not_derived", "rise_at",
            "gear_cycle_turns", "CamFrame", "cam_frame", "HIGHER_KINDS",
            "cam_contact"]
 
@@ -66,7 +66,9 @@ class Derived:
     pair; ``ratio`` a gear pair's, or ``cam`` and ``sign`` (+1, or -1 where the P
     joint's guide is the follower) a cam's. ``after`` = (on, link), for a pair that no
     input drives: the driving motion is link's rotation less on's, as the solve places
-    them (``by`` is then empty)."""
+    them (``by`` is then empty). ``inverse``: a follower driving its cam (the joint is
+    the cam's, ``by`` the follower's), through the rise or fall the cam is drawn in,
+    where the program is invertible; beyond it the joint has no value (NaN)."""
 
     joint: str
     kind: str
@@ -79,6 +81,7 @@ class Derived:
     cam: Cam | None = None
     sign: float = 1.0
     after: tuple[str, str] | None = None
+    inverse: bool = False
 
     @property
     def key(self) -> str:
@@ -105,6 +108,8 @@ class Derived:
         x = np.asarray(x, dtype=float)
         if self.cam is None:
             return float(self.ratio or 0.0) * x
+        if self.inverse:
+            return _program_inverse(self.cam, self.sign * x) - self.cam.drawn
         at = self.cam.drawn + np.atleast_1d(x)         # the place in the program
         s = follower_motion(self.cam, at)[0] - \
             follower_motion(self.cam, np.array([self.cam.drawn]))[0][0]
@@ -115,6 +120,12 @@ class Derived:
         x = np.asarray(x, dtype=float)
         if self.cam is None:
             return np.full(x.shape, float(self.ratio or 0.0)), np.zeros(x.shape)
+        if self.inverse:           # x(u) of u = s(x): x' = 1 / s', x'' = -s'' / s'^3
+            turn = self.cam.drawn + self.value(x)
+            _, ds, dds, _ = follower_motion(self.cam, np.atleast_1d(turn))
+            with np.errstate(divide="ignore", invalid="ignore"):
+                d1, d2 = self.sign / ds, -dds / ds ** 3
+            return d1.reshape(x.shape), d2.reshape(x.shape)
         _, ds, dds, _ = follower_motion(self.cam, self.cam.drawn + np.atleast_1d(x))
         return self.sign * ds.reshape(x.shape), self.sign * dds.reshape(x.shape)
 
@@ -208,6 +219,61 @@ def _cam(chain: Chain, cam: Cam, known, name: str) -> Derived | None:
                    sign=sign)
 
 
+def rise_at(cam: Cam, turn: float) -> tuple[float, float] | None:
+    """The rise or fall of ``cam``'s program that the cam's ``turn`` (radians) lies
+    strictly inside, as (its start, its end) in radians of cam turn, or None (in a
+    dwell, or at a segment's end, where the follower stands still or may)."""
+    start = 0.0
+    for seg in cam.motion:
+        end = start + seg.over
+        if seg.kind != "dwell" and start < turn < end:
+            return start, end
+        start = end
+    return None
+
+
+def _program_inverse(cam: Cam, u: np.ndarray) -> np.ndarray:
+    """The cam's turns (radians, inside the rise or fall it is drawn in) at which the
+    follower stands ``u`` from where it is drawn (file units, or radians), by bisection
+    on that segment (monotone there); NaN where the segment does not reach."""
+    u = np.atleast_1d(np.asarray(u, dtype=float))
+    seg = rise_at(cam, cam.drawn)
+    assert seg is not None, "a cam driven by its follower is drawn inside a rise or fall"
+    ends = follower_motion(cam, np.array([seg[0], seg[1] - 1e-15 * seg[1]]))[0]
+    s0 = follower_motion(cam, np.array([cam.drawn]))[0][0]
+    target = s0 + u
+    up = 1.0 if ends[1] > ends[0] else -1.0
+    lo, hi = np.full(u.shape, seg[0]), np.full(u.shape, seg[1])
+    for _ in range(64):
+        mid = 0.5 * (lo + hi)
+        below = up * (follower_motion(cam, mid)[0] - target) < 0
+        lo, hi = np.where(below, mid, lo), np.where(below, hi, mid)
+    out = 0.5 * (lo + hi)
+    reach = (target - min(ends)) * (target - max(ends)) <= 1e-12 * max(1.0, abs(s0))
+    return np.where(reach, out, np.nan)
+
+
+def _cam_by_follower(chain: Chain, cam: Cam, known, name: str) -> Derived | None:
+    """The cam's turning joint driven by its follower's, when that is known and the
+    cam is drawn inside a rise or fall (where the program has an inverse)."""
+    jc, jf, f = _cam_joints(chain, cam, name)
+    pair = (f, cam.follower) if jf.kind == "R" else tuple(jf.links)
+    by = _entry(known, jf, *pair)
+    if by is None or _pair(jc.id, f, cam.cam) in known:
+        return None
+    if rise_at(cam, cam.drawn) is None:
+        raise MechanismError(
+            f"the cam {cam.id!r} is drawn {math.degrees(cam.drawn):g} degrees into its "
+            "program, in a dwell or at the end of a rise or fall, so its follower cannot "
+            "drive it (the follower stands still there as the cam turns: the program has "
+            "no inverse); draw it inside a rise or fall (its 'drawn') to drive it by the "
+            "follower, or drive the cam", mechanism=name)
+    forward = _cam(chain, cam, {_pair(jc.id, f, cam.cam): ("", f, cam.cam)}, name)
+    assert forward is not None
+    return Derived(jc.id, "R", f, cam.cam, cam.id, by[0], by[1], cam=cam,
+                   sign=forward.sign, inverse=True)
+
+
 def _early(chain: Chain, pairs: Sequence[GearPair | Cam], known: dict, name: str
            ) -> tuple[list[Derived], list[GearPair | Cam]]:
     """The pairs that follow from the ``known`` joints' motions (added to ``known``), in
@@ -217,7 +283,7 @@ def _early(chain: Chain, pairs: Sequence[GearPair | Cam], known: dict, name: str
         left = []
         for p in pairs:
             d = _gear(chain, p, known, name) if isinstance(p, GearPair) else \
-                _cam(chain, p, known, name)
+                _cam(chain, p, known, name) or _cam_by_follower(chain, p, known, name)
             if d is None:
                 left.append(p)
             else:
@@ -314,8 +380,9 @@ def not_derived(p: GearPair | Cam, name: str, *, loop: bool = False) -> Mechanis
             f"{p.carrier!r} is an input or driven through another pair"
             if isinstance(p, GearPair) else
             f"the cam {p.id!r}: the cam's turning joint is neither an input nor "
-            "driven through another pair, nor is the cam turned by the linkage (a "
-            "follower does not drive its cam: a program's dwells and the ends of its "
+            "driven through another pair, nor is the cam turned by the linkage, nor is "
+            "the follower's joint an input (a follower drives its cam only as an input, "
+            "the cam drawn inside a rise or fall: a program's dwells and the ends of its "
             "rises, where the follower stands still as the cam turns, have no inverse)")
     how = (", nor do the links placed before it turn its driving member (a closed loop "
            "through the pair, solved only with it)" if loop else "")

@@ -28,12 +28,11 @@ __all__ = ["Evaluation", "Reference", "Start", "evaluate", "evaluate_at", "faili
 # -- the sweep -----------------------------------------------------------------------
 def _known_poses(plan, theta):
     """The fixed link, and each input's value (its delta, in the rotation's place) at
-    the path parameters ``theta``, and each joint a higher pair derives from them:
-    everything else is found from these."""
+    the path parameters ``theta``: everything else is found from these (the joints
+    higher pairs derive from them by :func:`_derive`, before each step)."""
     pose: dict[str, PoseEntry] = {plan.fixed: FIXED}
     for item, delta in zip(plan.inputs, plan.deltas(theta)):
         pose[item.key] = (0.0, 0.0, np.broadcast_to(delta, theta.shape), 1.0, 0.0)
-    _derive(plan, pose, theta, {}, None)    # the higher pairs' joints, from the inputs
     return pose
 
 
@@ -46,7 +45,10 @@ def _derive(plan, pose, theta, group_q, near):
     ``near`` None, along the path (theta a path sampled finely enough to unwrap), from
     ``group_q``'s value at its first point if it holds one (a path continued from a
     :class:`Start`), else as found (a path from the drawn pose, where it is 0);
-    otherwise point by point, the nearest to ``near(n)`` (a reference's values)."""
+    otherwise point by point, the nearest to ``near(n)`` (a reference's values).
+    Returns where every joint derived has a value (a follower drives its cam only over
+    the rise or fall the cam is drawn in)."""
+    ok = np.ones(theta.shape, dtype=bool)
     for n, d in enumerate(plan.derived):
         if d.key in pose or not d.ready(pose):
             continue
@@ -56,7 +58,11 @@ def _derive(plan, pose, theta, group_q, near):
             x = _followed(x, group_q.get(-1 - n) if near is None else None,
                           None if near is None else near(n))
             group_q[-1 - n] = x
-        pose[d.key] = (0.0, 0.0, np.broadcast_to(d.value(x), theta.shape), 1.0, 0.0)
+        value = np.broadcast_to(d.value(x), theta.shape)
+        if d.inverse:
+            ok &= np.isfinite(value)
+        pose[d.key] = (0.0, 0.0, value, 1.0, 0.0)
+    return ok
 
 
 def _followed(x, first, near):
@@ -126,7 +132,7 @@ def _evaluate_at(plan, theta, ref, upto, double):
         group_q: dict[int, np.ndarray] = {}
         ok: bool | np.ndarray           # where each step assembles (a single link: all)
         for i, step in enumerate(plan.steps[:upto]):
-            _derive(plan, pose, theta, group_q, lambda n: ref.group_q[-1 - n])
+            feasible &= _derive(plan, pose, theta, group_q, lambda n: ref.group_q[-1 - n])
             if step.kind == "single":
                 pose.update(single_link(step, pose))
                 ok = True
@@ -275,7 +281,7 @@ def _evaluate(plan, theta, start):
         if at_drawn is not None and i:
             _as_drawn(pose, plan.steps[i - 1].links, at_drawn, theta.shape,
                       group_q.get(i - 1))
-        _derive(plan, pose, theta, turns, None)
+        feasible &= _derive(plan, pose, theta, turns, None)
         group_q.update(turns)
         if step.kind == "single":
             pose.update(single_link(step, pose))

@@ -306,16 +306,61 @@ def test_a_train_of_ratio_5_2_is_solved_over_its_whole_cycle():
         "driver")[1]
 
 
-def test_a_follower_driving_its_cam_is_refused_saying_why():
-    """The rocker as the input of the cam-driven rocker would have its follower turn
-    the cam: the program's dwells have no inverse, so the solver refuses, saying so."""
+def test_a_follower_the_linkage_moves_does_not_drive_its_cam():
+    """The rocker as the input of the cam-driven rocker would have the linkage move the
+    follower and the follower turn the cam: refused, saying when a follower drives its
+    cam (as an input, the cam drawn inside a rise or fall)."""
     chain = chaingraph.load(CAM_ROCKER)
     with pytest.raises(MechanismError, match="the cam 'K'") as e:
         build_plan(chain, inputs=[chaingraph.Input("H")])
-    assert "a follower does not drive its cam" in str(e.value)
+    assert "a follower drives its cam only as an input" in str(e.value)
     code, out, err = run_cli("solve", CAM_ROCKER, "--input", "H")
     assert code == 2 and len(err.strip().splitlines()) == 1
     assert "have no inverse" in err
+
+
+def test_a_follower_drives_its_cam_through_the_rise_the_cam_is_drawn_in():
+    """The cam-driven rocker drawn 60 degrees into its cycloidal rise (25 over 120),
+    its follower's slide S the input: the cam turns by the program's inverse over the
+    rise, the slide from -12.5 to 12.5 (the rise's ends, where the cam would turn
+    infinitely fast, are the limits); the mechanism stands where the cam-driven one
+    does at the same cam angle, and the cam's speed is the slide's over s'."""
+    chain = drawn_into_its_program(CAM_ROCKER, 60.0)
+    cam = chain.cams[0]
+    m = chaingraph.solve(chain, inputs=["S"], steps=200)
+    slide = m.slide("S").s
+    assert (slide[0], slide[-1]) == (pytest.approx(-12.5, abs=1e-9),
+                                     pytest.approx(12.5, abs=1e-9))
+    turn = m.link("cam").angle - math.radians(chain.reference_direction("cam"))
+    s = follower_motion(cam, math.radians(60.0) + turn)
+    np.testing.assert_allclose(s[0] - 12.5, slide, atol=1e-9)
+    inside = slice(1, -1)
+    np.testing.assert_allclose(m.link("cam").omega[inside],
+                               m.slide("S").v[inside] / s[1][inside], rtol=1e-9)
+    by_cam = chaingraph.solve(chain, steps=8)   # the same chain with the cam driving
+    for k in (20, 77, 150):
+        at = chaingraph.pose_motion(chain, at=by_cam.theta[0] + math.degrees(turn[k]))
+        assert at.positions["G"] == pytest.approx((m["x:G"][k], m["y:G"][k]), abs=1e-9)
+    # and against differences of its angle, away from the ends (where it is unbounded)
+    h = np.diff(slide)[0] / m.omega
+    angle, middle = m.link("cam").angle, slice(40, -40)
+    np.testing.assert_allclose(((angle[2:] - angle[:-2]) / (2 * h))[middle],
+                               m.link("cam").omega[inside][middle], rtol=1e-4)
+    np.testing.assert_allclose(((angle[2:] - 2 * angle[1:-1] + angle[:-2]) / h ** 2)[middle],
+                               m.link("cam").alpha[inside][middle], rtol=1e-3, atol=1e-6)
+
+
+@pytest.mark.parametrize("turn", [0.0, 150.0])
+def test_a_follower_does_not_drive_a_cam_drawn_where_it_stands_still(turn):
+    """Drawn at the start of the rise (0) or in the dwell at the top (150), the slide
+    cannot turn the cam: refused, naming the cam's place in its program."""
+    chain = chaingraph.load(CAM_ROCKER) if turn == 0.0 else \
+        drawn_into_its_program(CAM_ROCKER, turn)
+    with pytest.raises(MechanismError) as e:
+        build_plan(chain, inputs=[chaingraph.Input("S")])
+    said = str(e.value)
+    assert f"the cam 'K' is drawn {turn:g} degrees into its program, in a dwell" in said
+    assert "its follower cannot drive it" in said
 
 
 # -- a cam drawn anywhere in its program ----------------------------------------------
