@@ -135,7 +135,8 @@ class Derived:
         x = self.driving(pose)        # (to whole turns: a cam's program repeats each turn)
         xr, xa = self.driving(vel), self.driving(acc)
         d1, d2 = self.slopes(x)
-        return (0.0, 0.0, d1 * xr), (0.0, 0.0, d2 * xr * xr + d1 * xa)
+        with np.errstate(invalid="ignore"):     # (a cam its follower drives, at the ends
+            return (0.0, 0.0, d1 * xr), (0.0, 0.0, d2 * xr * xr + d1 * xa)   # of its rise)
 
 
 def _r_joint(chain: Chain, one: str, other: str) -> Joint | None:

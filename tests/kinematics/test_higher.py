@@ -124,6 +124,32 @@ def test_oscillating_follower_swings_by_the_program(write):
     np.testing.assert_allclose(rocker - rocker[0], s, atol=1e-12)
 
 
+def test_an_oscillating_follower_drives_its_cam_through_the_rise(write):
+    """The oscillating example drawn 75 degrees into its program (halfway up its rise
+    of 20 degrees over 150), the rocker's pivot Q the input: the rocker swings from -10
+    to 10 degrees of its drawing, turning the cam by the program's inverse, -75 to 75."""
+    text = _text("examples/cam-oscillating-roller.toml")
+    text = text.replace('links = ["frame", "cam"]', 'links = ["frame", "cam"]\nat = [0.0, 0.0]')
+    text = text.replace('links = ["frame", "rocker"]',
+                        'links = ["frame", "rocker"]\nat = [70.0, 20.0]')
+    first = chaingraph.loads(text.replace('links = ["cam", "rocker"]',
+                                          'links = ["cam", "rocker"]\nat = [0.0, 30.0]'))
+    k = cam_contact(first, first.cams[0], np.radians([75.0]))[0][0]
+    text = text.replace('links = ["cam", "rocker"]',
+                        f'links = ["cam", "rocker"]\nat = [{float(k[0])!r}, {float(k[1])!r}]')
+    text = text.replace("pivot = [70.0, 20.0]", "pivot = [70.0, 20.0]\ndrawn = 75.0")
+    text += '\n[mechanism]\nfixed = "frame"\ndriver = "cam"\noutput = "rocker"\n'
+    chain = chaingraph.load(write(text))
+    m = chaingraph.solve(chain, inputs=["Q"], steps=50)
+    cam = m.link("cam").angle - math.radians(chain.reference_direction("cam"))
+    rocker = m.link("rocker").angle - math.radians(chain.reference_direction("rocker"))
+    assert np.degrees(rocker[[0, -1]]) == pytest.approx([-10.0, 10.0], abs=1e-9)
+    assert np.degrees(cam[[0, -1]]) == pytest.approx([-75.0, 75.0], abs=1e-6)
+    s = follower_motion(chain.cams[0], math.radians(75.0) + cam)[0]
+    np.testing.assert_allclose(s - s[25], rocker, atol=1e-10)
+    assert s[25] == pytest.approx(math.radians(10.0), abs=1e-12)
+
+
 def test_relabelled_chains_move_alike():
     chain = chaingraph.load(CAM_ROCKER)
     other = chain.relabelled(links={"cam": "disc", "follower": "tappet", "rocker": "lever"},
