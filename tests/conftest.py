@@ -85,9 +85,8 @@ def solver_takes(chain):
     and cams and gear pairs with their [[cams]] and [[gears]] tables (moved as inputs
     derived from the others: kinematics/higher.py); a higher pair without one (a cam
     and follower written for their structure alone) it refuses in one line. A gear
-    train (whose turning pairs close no loop) it solves too, but its speeds are
-    `chaingraph gears`' (a train of ratio 5/2 returns to its pose after five turns
-    of its input, past the solver's search for a cycle)."""
+    train (whose turning pairs close no loop) it solves too (its cycle from its teeth:
+    35 turns of the simple train's driver), but its speeds are `chaingraph gears`'."""
     tabled = {c.id for c in chain.cams} | {g.id for g in chain.gears}
     if is_gear_train(chain):
         return False      # a gear train (no loop of lower pairs): `chaingraph gears`

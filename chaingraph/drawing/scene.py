@@ -324,7 +324,7 @@ def _higher_parts(chain):
         frame = cam_frame(chain, cam)
         centre = next(j for j in chain.joints if j.kind == "R" and set(j.links) ==
                       {cam.cam, frame.on})
-        profile = frame.drawn(analyse_cam(cam, turn_angles(cam, 180)).profile)
+        profile = frame.on_cam(analyse_cam(cam, turn_angles(cam, 180)).profile)
         reach = float(np.max(np.hypot(*(profile - centre.at).T)))
         out.append(_Part("cam", cam.cam, centre.id, profile, reach=reach))
         if cam.contact == "roller":

@@ -37,8 +37,10 @@ import networkx as nx
 import numpy as np
 from numpy.typing import ArrayLike
 
+from chaingraph._util.disjoint import DisjointSets
 from chaingraph.errors import MechanismError
-from chaingraph.kinematics.higher import HIGHER_KINDS, Derived, derived_inputs
+from chaingraph.kinematics.higher import (HIGHER_KINDS, Derived, derived_inputs,
+                                          derived_options, not_derived)
 from chaingraph.model.chain import Chain, Input, chosen_inputs
 from chaingraph.model.snap import check_link_sizes, size_of
 
@@ -221,7 +223,10 @@ def _constraints(chain, fixed, inputs, origin, derived=()):
         item = driven.get(j.id)
         if j.kind in HIGHER_KINDS:         # a higher pair: its derived joint's input
             continue
-        if j.kind == "R":
+        on_joint = [i for i in (*inputs, *derived) if i.joint == j.id]
+        if j.kind == "R" and len(on_joint) > 1:
+            out.extend(_shared_joint(j, on_joint, fixed, local(j.at)))
+        elif j.kind == "R":
             ref = item.a if item else fixed if fixed in j.links else j.links[0]
             for x in j.links:
                 if x == ref:
@@ -234,27 +239,53 @@ def _constraints(chain, fixed, inputs, origin, derived=()):
     return out
 
 
+def _shared_joint(j, items, fixed, point):
+    """The pairs of an R joint of several links that several inputs or derived joints
+    drive (the arm on the frame an input and the sun on the arm a gear's, at one
+    pivot): one constraint per driven pair, then each link not yet held by them
+    pinned to the first link (the fixed link when it is on the joint)."""
+    held = DisjointSets(j.links)
+    out = []
+    for i in items:
+        if held.join(i.a, i.b):
+            out.append(Constraint("R", j.id, i.a, i.b, point, drive=i.key))
+    ref = fixed if fixed in j.links else j.links[0]
+    for x in j.links:
+        if held.join(ref, x):
+            out.append(Constraint("R", j.id, ref, x, point))
+    return out
+
+
 def _parallel(c1, c2):
     return abs(math.sin(math.radians(c1.axis - c2.axis))) < 1e-9
 
 
-def _steps(chain, fixed, constraints, closed_form=True):
+def _steps(chain, fixed, constraints, closed_form=True, needs=None):
+    """The plan's steps; ``needs`` maps a derived joint's key to the links its value
+    is read from (a higher pair driven through the linkage): its joint places a link
+    only once those are placed."""
     known = {fixed}
     remaining = list(constraints)
     steps = []
     order = list(chain.links)
+    needs = needs or {}
     while len(known) < len(order):
         unknown = [x for x in order if x not in known]
 
         def attachments(u):
-            return [c for c in remaining if u in (c.a, c.b) and c.other(u) in known]
+            return [c for c in remaining if u in (c.a, c.b) and c.other(u) in known
+                    and needs.get(c.drive, frozenset()) <= known]
         step = None
-        for u in (unknown if closed_form else []):
+        for u in unknown:
             att = attachments(u)
-            welded = [c for c in att if c.drive is not None]
+            # (without closed forms: only the weld of a pair driven through the linkage)
+            welded = [c for c in att if c.drive is not None
+                      and (closed_form or needs.get(c.drive))]
             if welded:
                 step = Step("single", (u,), (welded[0],), "W" + welded[0].kind)
                 break
+            if not closed_form:
+                continue
             if len(att) >= 2 and not (att[0].kind == att[1].kind == "P"
                                       and _parallel(att[0], att[1])):
                 if att[0].kind == "P" and att[1].kind == "R":
@@ -278,11 +309,19 @@ def _steps(chain, fixed, constraints, closed_form=True):
                 if step is not None:
                     break
         if step is None:
-            group = _smallest_group(unknown, known, remaining) if closed_form else unknown
+            # (without closed forms every link but those a pair driven through the
+            # linkage places after it)
+            group = _smallest_group(unknown, known, remaining) if closed_form else \
+                [u for u in unknown if not any(needs.get(c.drive) and u in (c.a, c.b)
+                                               and u not in needs[c.drive] for c in remaining)]
+            if not group:
+                return None
             inside = set(group) | known
             cons = tuple(c for c in remaining if (c.a in group or c.b in group)
                          and c.a in inside and c.b in inside)
             step = Step("group", tuple(group), cons, "group of %d links" % len(group))
+            if any(not needs.get(c.drive, frozenset()) <= known for c in cons):
+                return None       # a pair's driving member placed only with its joint
         steps.append(step)
         known |= set(step.links)
         used = set(step.constraints)
@@ -494,8 +533,7 @@ def build_plan(chain: Chain, fixed: str | None = None, driver: str | None = None
     size = size_of(where)
     xs, ys = [p[0] for p in where.values()], [p[1] for p in where.values()]
     origin = (0.5 * (max(xs) + min(xs)), 0.5 * (max(ys) + min(ys)))
-    derived = derived_inputs(chain, [(i.joint, i.key, i.a, i.b) for i in items], name)
-    constraints = tuple(_constraints(chain, fixed, items, origin, derived))
+    derived, constraints, steps = _placed(chain, fixed, items, origin, name, closed_form)
     # Kutzbach: a lower pair takes 2 freedoms, a higher pair (cam, gear) 1
     mobility = 3 * (len(chain.links) - 1) - sum((3 - (j.pair.planar_freedom or 1))
                                                 * (j.order - 1) for j in chain.joints)
@@ -503,12 +541,46 @@ def build_plan(chain: Chain, fixed: str | None = None, driver: str | None = None
                                 derived=derived)
     _check_inputs_hold(chain, fixed, items, constraints, size, mobility=mobility,
                        numeric=numeric, driver=driver, from_driver=from_driver)
-    steps = _steps(chain, fixed, constraints, closed_form)
+    if steps is None:
+        raise _refuse_unplaced(chain, derived, name)
     lead, line, tau0 = _line(items, size)
     return Plan(chain=chain, fixed=fixed, driver=lone.b if lone else None, inputs=items,
                 lead=lead, line=line, theta0=tau0, steps=steps, constraints=constraints,
                 size=size, mobility=mobility, numeric_mobility=numeric, origin=origin,
                 from_driver=from_driver, derived=derived)
+
+
+def _needs(derived):
+    """Each derived joint's key: the links its value is read from (none for a joint
+    the inputs alone drive)."""
+    out: dict[str, frozenset[str]] = {}
+    for d in derived:
+        out[d.key] = frozenset(d.after) if d.after is not None else out.get(d.by, frozenset())
+    return out
+
+
+def _placed(chain, fixed, items, origin, name, closed_form):
+    """The higher pairs' derived joints, the constraints and the steps: the first way
+    of driving the pairs (:func:`~chaingraph.kinematics.higher.derived_options`) whose
+    pairs driven through the linkage each place their driven link after the links they
+    are read from. Refuses a pair that no way drives."""
+    options = derived_options(chain, [(i.joint, i.key, i.a, i.b) for i in items], name)
+    for derived in options:
+        constraints = tuple(_constraints(chain, fixed, items, origin, derived))
+        steps = _steps(chain, fixed, constraints, closed_form, _needs(derived))
+        if steps is not None:
+            return derived, constraints, steps
+    if not options:     # the pair the inputs cannot drive, said as before
+        derived_inputs(chain, [(i.joint, i.key, i.a, i.b) for i in items], name)
+    derived = options[0]
+    return derived, tuple(_constraints(chain, fixed, items, origin, derived)), None
+
+
+def _refuse_unplaced(chain, derived, name):
+    """The refusal of a plan whose pairs driven through the linkage cannot be placed."""
+    late = next(d for d in derived if d.after is not None)
+    pair = next(p for p in (*chain.gears, *chain.cams) if p.id == late.pair)
+    return not_derived(pair, name, loop=True)
 
 
 def _check_solvable(chain: Chain, fixed: str | None, inputs: Sequence[Input] | None,
@@ -630,7 +702,12 @@ def _freedom(moving, constraints, size, *, with_inputs=False, generic=False, der
             rows.append(row)
     for d in derived:
         by = drive_rows.get(d.by)
-        if by is None:                    # an input left out: its row, as drawn
+        if d.after is not None:           # the rotation of one link less another's
+            by = np.zeros(3 * len(moving))
+            for link, sign in zip(d.after, (-1.0, 1.0)):
+                if link in col:
+                    by[col[link] + 2] += sign
+        elif by is None:                  # an input left out: its row, as drawn
             by = _drive_row(constraints, d.by, col, size, len(moving))
         slope = float(d.slopes(0.0)[0])
         rows.append(drive_rows[d.key] - slope * d.by_sign * by)

@@ -14,6 +14,7 @@ from numpy.typing import ArrayLike
 from chaingraph.errors import AssemblyError, UnboundedRangeError
 from chaingraph.kinematics import groups
 from chaingraph.kinematics.closed_form import dyad_roots
+from chaingraph.kinematics.higher import gear_cycle_turns
 from chaingraph.kinematics.plan import Plan
 from chaingraph.kinematics.roots import bracketed_roots
 from chaingraph.kinematics.tracking import (
@@ -118,14 +119,27 @@ def _returns(plan, pose, k):
     return True
 
 
+def _turns_searched(plan):
+    """How many turns the driver is followed each way: ``_MAX_TURNS``, or a gear
+    train's cycle known from its teeth (``gear_cycle_turns``; times ``_MAX_TURNS``
+    where the linkage drives a pair: the linkage's own cycle may be several turns)."""
+    lead = plan.inputs[plan.lead]
+    known = gear_cycle_turns(plan.derived) if lead.kind == "R" and \
+        plan.moving_inputs == 1 else None
+    if known is None:
+        return _MAX_TURNS
+    late = any(d.after is not None for d in plan.derived)
+    return max(_MAX_TURNS, known * (_MAX_TURNS if late else 1))
+
+
 def _walk(plan, direction):
     """Follow the inputs from the anchor one way: (limit, None) where the motion
     stops, (None, period) where it returns to the anchor's pose, (None, None) if
-    neither within ``_MAX_TURNS`` turns."""
+    neither within :func:`_turns_searched` turns."""
     home = anchor(plan)
     t, start = home.tau, home.state
     steps = int(round(360.0 / _GRID_DEG))
-    for m in range(1, _MAX_TURNS + 1):
+    for m in range(1, _turns_searched(plan) + 1):
         path = t + direction * np.linspace(0.0, 360.0, steps + 1)
         ev = evaluate(plan, path, start=start)
         if not ev.feasible.all():
@@ -264,7 +278,8 @@ def cycle(plan: Plan) -> Cycle:
     ------
     AssemblyError
         When the driver neither returns to the drawn pose nor reaches a limit within
-        four turns either way.
+        four turns either way (a gear train's cycle known from its teeth when longer:
+        :func:`~chaingraph.kinematics.higher.gear_cycle_turns`).
     """
     return _cycle(plan)
 
@@ -278,7 +293,7 @@ def _cycle(plan):
     low, _ = _walk(plan, -1.0) if high is not None else (None, None)
     if high is None or low is None:
         lead = plan.inputs[plan.lead]
-        how = (f"turns {_MAX_TURNS} times" if lead.kind == "R" else
+        how = (f"turns {_turns_searched(plan)} times" if lead.kind == "R" else
                f"slides {_MAX_TURNS * 2 * math.pi:.4g} times the mechanism's size")
         raise UnboundedRangeError(
             f"{plan.describe()} {how} without returning to the drawn pose or reaching a "

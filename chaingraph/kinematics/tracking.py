@@ -28,15 +28,55 @@ __all__ = ["Evaluation", "Reference", "Start", "evaluate", "evaluate_at", "faili
 # -- the sweep -----------------------------------------------------------------------
 def _known_poses(plan, theta):
     """The fixed link, and each input's value (its delta, in the rotation's place) at
-    the path parameters ``theta``, and each joint a higher pair derives from them:
-    everything else is found from these."""
+    the path parameters ``theta``: everything else is found from these (the joints
+    higher pairs derive from them by :func:`_derive`, before each step)."""
     pose: dict[str, PoseEntry] = {plan.fixed: FIXED}
     for item, delta in zip(plan.inputs, plan.deltas(theta)):
         pose[item.key] = (0.0, 0.0, np.broadcast_to(delta, theta.shape), 1.0, 0.0)
-    for d in plan.derived:            # the higher pairs' joints, from the inputs
-        pose[d.key] = (0.0, 0.0, np.broadcast_to(d.value(d.driving(pose)), theta.shape),
-                       1.0, 0.0)
     return pose
+
+
+def _derive(plan, pose, theta, group_q, near):
+    """Put in ``pose`` each higher pair's derived joint whose driving motion it now
+    holds (a pair driven through the linkage: once the links it is read from are
+    placed). Such a driving motion, the rotation of one link less another's, is known
+    from the poses only to whole turns: it is followed and kept in ``group_q`` (key
+    -1 - the pair's index, where a path or a reference continues it from). With
+    ``near`` None, along the path (theta a path sampled finely enough to unwrap), from
+    ``group_q``'s value at its first point if it holds one (a path continued from a
+    :class:`Start`), else as found (a path from the drawn pose, where it is 0);
+    otherwise point by point, the nearest to ``near(n)`` (a reference's values).
+    Returns where every joint derived has a value (a follower drives its cam only over
+    the rise or fall the cam is drawn in)."""
+    ok = np.ones(theta.shape, dtype=bool)
+    for n, d in enumerate(plan.derived):
+        if d.key in pose or not d.ready(pose):
+            continue
+        x = d.driving(pose)
+        if d.after is not None:
+            x = np.array(np.broadcast_to(x, theta.shape), dtype=float)
+            x = _followed(x, group_q.get(-1 - n) if near is None else None,
+                          None if near is None else near(n))
+            group_q[-1 - n] = x
+        value = np.broadcast_to(d.value(x), theta.shape)
+        if d.inverse:
+            ok &= np.isfinite(value)
+        pose[d.key] = (0.0, 0.0, value, 1.0, 0.0)
+    return ok
+
+
+def _followed(x, first, near):
+    """Angles ``x`` (known to whole turns) made continuous: along a path from ``first``
+    (its first point's value, else as found), or point by point nearest ``near``."""
+    if near is not None:
+        near = np.broadcast_to(np.asarray(near, dtype=float), x.shape)
+        return near + np.remainder(x - near + math.pi, 2 * math.pi) - math.pi
+    if not x.size:
+        return x
+    x = np.unwrap(x)
+    if first is not None:
+        x += 2 * math.pi * np.round((float(first) - x[0]) / (2 * math.pi))
+    return x
 
 
 class Reference:
@@ -92,6 +132,7 @@ def _evaluate_at(plan, theta, ref, upto, double):
         group_q: dict[int, np.ndarray] = {}
         ok: bool | np.ndarray           # where each step assembles (a single link: all)
         for i, step in enumerate(plan.steps[:upto]):
+            feasible &= _derive(plan, pose, theta, group_q, lambda n: ref.group_q[-1 - n])
             if step.kind == "single":
                 pose.update(single_link(step, pose))
                 ok = True
@@ -235,10 +276,13 @@ def _evaluate(plan, theta, start):
         at_drawn = np.flatnonzero(theta == plan.theta0)
         if not at_drawn.size:
             at_drawn = None
+    turns = {} if start is None else {k: q for k, q in start.group_q.items() if k < 0}
     for i, step in enumerate(plan.steps):
         if at_drawn is not None and i:
             _as_drawn(pose, plan.steps[i - 1].links, at_drawn, theta.shape,
                       group_q.get(i - 1))
+        feasible &= _derive(plan, pose, theta, turns, None)
+        group_q.update(turns)
         if step.kind == "single":
             pose.update(single_link(step, pose))
             continue

@@ -24,7 +24,7 @@ __all__ = ["Cam", "Segment", "LAWS", "CONTACTS", "CAM_KEYS", "read_cam", "cam_en
 LAWS = ("uniform", "shm", "parabolic", "cycloidal", "poly345", "poly4567")
 CONTACTS = ("knife", "roller", "flat")
 CAM_KEYS = ("id", "cam", "follower", "contact", "roller", "base", "offset", "motion",
-            "arm", "pivot")
+            "arm", "pivot", "drawn")
 _TURN_TOLERANCE = 1e-9       # degrees: segments must sum to 360 within this
 _LIFT_TOLERANCE = 1e-9       # relative: the program must come back to its start
 
@@ -56,6 +56,8 @@ class Cam:
     from the cam's centre) or ``"oscillating"`` (it swings on an R joint at ``pivot``,
     measured from the cam's centre, the contact ``arm`` from it). ``base`` is the base
     circle's radius, ``roller`` the roller's (0 unless ``contact`` is ``"roller"``).
+    ``drawn`` is where in its program the drawing shows the cam (radians of cam turn,
+    0: at the start, the follower at its lowest).
     """
 
     id: str
@@ -69,6 +71,7 @@ class Cam:
     offset: float = 0.0
     arm: float | None = None
     pivot: tuple[float, float] | None = None
+    drawn: float = 0.0
 
     @property
     def stroke(self) -> float:
@@ -194,8 +197,13 @@ def read_cam(table: object, index: int, joints: Sequence[Any], fail: Fail) -> Ca
              f"({base + roller:g})", where + " key 'offset'")
     arm, pivot = _swing(table, moves, contact, base + roller, where, fail)
     motion = _program(table["motion"], where, fail, moves == "oscillating")
+    drawn = number(table.get("drawn", 0.0), where + " key 'drawn'", fail)
+    if not 0.0 <= drawn < 360.0:
+        fail(f"'drawn' is the cam's place in its program, from 0 to less than 360 degrees, "
+             f"got {drawn:g}", where + " key 'drawn'")
     return Cam(names["id"], names["cam"], names["follower"], contact, base, motion,
-               moves=moves, roller=roller, offset=offset, arm=arm, pivot=pivot)
+               moves=moves, roller=roller, offset=offset, arm=arm, pivot=pivot,
+               drawn=math.radians(drawn))
 
 
 def _swing(table: dict[str, Any], moves: str, contact: str, prime: float, where: str,
@@ -251,4 +259,6 @@ def cam_entry(cam: Cam) -> dict[str, Any]:
         out["arm"] = cam.arm
         out["pivot"] = list(cam.pivot or (0.0, 0.0))
     out["motion"] = motion
+    if cam.drawn:
+        out["drawn"] = degrees(cam.drawn)
     return out

@@ -15,6 +15,7 @@ import chaingraph
 from chaingraph.kinematics.higher import cam_contact
 
 from ..conftest import run_cli
+from ..kinematics.test_higher import drawn_into_its_program
 
 CAM_ROCKER = "catalog/cam-rocker.toml"
 FIVE_BAR = "catalog/geared-five-bar.toml"
@@ -137,3 +138,31 @@ def test_a_gear_pairs_pressure_angle_tilts_its_tooth_force_and_leaves_the_effort
     code, out, err = run_cli("solve", bad)
     assert code == 2 and len(err.strip().splitlines()) == 1
     assert "key 'pressure_angle' must be a number of degrees from 0 to less than 45" in err
+
+
+@pytest.mark.parametrize("static", [True, False])
+def test_sun_and_planet_effort_by_virtual_work(static):
+    """Watt's sun and planet: the arm's effort balances the power of the load on the
+    sun's rim and of the rod's and the sun's inertia, the sun turned by the gear pair
+    that the linkage drives (the planet fixed to the rod, the arm its carrier)."""
+    chain = chaingraph.load("examples/sun-and-planet.toml")
+    f = chaingraph.forces(chain, static=static, steps=72)
+    m = f.motion
+    others = _load_power(chain, m) + (0.0 if static else _inertia_power(chain, m))
+    assert np.abs(others).max() > 0.1
+    np.testing.assert_allclose(f.solution.efforts["O"] * m.omega, -others,
+                               atol=1e-9 * np.abs(others).max())
+
+
+def test_a_cam_drawn_into_its_program_bears_the_same_forces():
+    """The cam-driven rocker drawn 60 degrees into its program (kinematics'
+    test_higher) balances its loads with the same effort and contact force as the one
+    drawn at the start, 60 degrees on (statically: its masses' centres stay where the
+    original's are drawn)."""
+    a = chaingraph.forces(chaingraph.load(CAM_ROCKER), start=150.0, stop=510.0, steps=36,
+                          static=True)
+    b = chaingraph.forces(drawn_into_its_program(CAM_ROCKER, 60.0), steps=36, static=True)
+    for got, want in ((b.solution.efforts["O"], a.solution.efforts["O"]),
+                      (b.solution.normal["K"], a.solution.normal["K"])):
+        np.testing.assert_allclose(got, want, atol=1e-9 * np.abs(want).max())
+    assert np.ptp(a.solution.normal["K"]) > 1.0
