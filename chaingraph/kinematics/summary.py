@@ -486,6 +486,8 @@ def _dwell(theta, u, extreme, stroke, period):
     extreme's input twice."""
     at = extreme["input"]
     flat = np.abs(u - extreme["value"]) <= 1e-9 * stroke
+    if np.count_nonzero(flat) < 3:       # no run of three (a smooth extreme): no dwell
+        return at, at
     k = int(np.argmin(np.abs((theta - at + 0.5 * period) % period - 0.5 * period)))
     n = theta.size - 1 if abs(theta[-1] - theta[0] - period) < 1e-9 else theta.size
     if n < 3 or not flat[k] or flat[:n].all():
