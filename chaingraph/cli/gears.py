@@ -12,6 +12,7 @@ from fractions import Fraction
 from pathlib import Path
 
 from chaingraph._util import freedom
+from chaingraph._util.parallel import process_runner
 from chaingraph._util.atomic import withdraw, write_atomic
 from chaingraph.cli.outputs import Writing, output_folder, svg_file
 from chaingraph.cli.text import print_json, table
@@ -20,14 +21,19 @@ from chaingraph.errors import ChainGraphError, MechanismError
 from chaingraph.files import load
 from chaingraph.kinematics.gears import TrainSpeeds, train_speeds
 from chaingraph.naming.gear_trains import gear_train_names
-from chaingraph.structure.atlas.gears import GearAtlas, gear_atlas, gear_atlas_dict
+from chaingraph.structure.atlas import DaskRunner
+from chaingraph.structure.atlas.gears import (
+    GearAtlas,
+    check_gear_size,
+    gear_atlas,
+    gear_atlas_dict,
+)
 
 __all__ = ["gears_command", "cmd_gears", "speed_argument", "cmd_gear_atlas"]
 
 #: the flags of ``atlas`` that mean nothing for gear trains
 _NOT_FOR_GEARS = (("prismatic", "--prismatic"), ("oriented", "--oriented"),
-                  ("multiple", "--multiple"), ("scheduler", "--scheduler"),
-                  ("resume", "--resume"), ("illustrate", "--illustrate"),
+                  ("multiple", "--multiple"), ("resume", "--resume"), ("illustrate", "--illustrate"),
                   ("chain_files", "--chain-files"))
 
 
@@ -148,8 +154,10 @@ def _gear_index(atlas: GearAtlas, no_fractionated: bool, named: dict[int, list[s
             "c carries them.</p>" + "".join(cells) + "</body></html>\n")
 
 
-def cmd_gear_atlas(args: argparse.Namespace) -> int:
-    """``chaingraph atlas --gears``: the epicyclic gear trains of N links."""
+def cmd_gear_atlas(args: argparse.Namespace, *, workers: int = 1) -> int:
+    """``chaingraph atlas --gears``: the epicyclic gear trains of N links, searched one
+    tree of turning pairs per task on ``workers`` local processes or on the Dask
+    cluster of ``args.scheduler``."""
     for name, flag in _NOT_FOR_GEARS:
         if getattr(args, name, None):
             raise ChainGraphError(f"--gears enumerates gear trains (turning and gear "
@@ -157,7 +165,12 @@ def cmd_gear_atlas(args: argparse.Namespace) -> int:
     if args.out:
         output_folder(args.out, what="atlas")
     start = time.perf_counter()
-    atlas = gear_atlas(args.links, args.dof)
+    check_gear_size(args.links, args.dof)
+    if args.scheduler is not None:
+        with DaskRunner(args.scheduler, workers=workers) as runner:
+            atlas = gear_atlas(args.links, args.dof, runner=runner)
+    else:
+        atlas = gear_atlas(args.links, args.dof, runner=process_runner(workers))
     elapsed = time.perf_counter() - start
     record = gear_atlas_dict(atlas, no_fractionated=args.no_fractionated)
     named = dict(zip((e.id for e in atlas), gear_train_names(atlas)))

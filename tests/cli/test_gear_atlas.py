@@ -55,7 +55,7 @@ def test_out_writes_the_json_and_an_index(tmp_path):
 
 
 @pytest.mark.parametrize("flag", [["--prismatic", "1"], ["--multiple"], ["--oriented"],
-                                  ["--scheduler", "local"], ["--resume"]])
+                                  ["--resume"]])
 def test_other_atlas_flags_are_refused(flag):
     code, out, err = run_cli("atlas", "--gears", "--links", "5", *flag)
     assert code == 2 and out == ""
@@ -96,3 +96,16 @@ def test_gears_draw_refuses_a_train_whose_axes_are_not_placed(tmp_path):
                              "driver=100", "--draw", tmp_path / "t.svg")
     assert code == 2 and out == "" and err.count("\n") == 1
     assert "axes are not placed" in err and not (tmp_path / "t.svg").exists()
+
+
+def test_workers_give_the_atlas_of_one_process():
+    """Split by tree over two processes, six links give the trains of one process, in
+    the same order, with the same arrangements (the pieces are merged in tree order)."""
+    runs = []
+    for workers in ("1", "2"):
+        code, out, err = run_cli("atlas", "--gears", "--links", "6", "--workers", workers,
+                                 "--json")
+        assert code == 0, err
+        runs.append(json.loads(out))
+    assert [t["key"] for t in runs[0]["trains"]] == [t["key"] for t in runs[1]["trains"]]
+    assert len(runs[0]["trains"]) == 27 and runs[0] == runs[1]
