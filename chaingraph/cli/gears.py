@@ -8,6 +8,7 @@ import json
 import math
 import time
 from collections.abc import Callable
+from dataclasses import replace
 from fractions import Fraction
 from pathlib import Path
 
@@ -22,8 +23,10 @@ from chaingraph.files import load
 from chaingraph.kinematics.gears import TrainSpeeds, train_speeds
 from chaingraph.naming.gear_trains import gear_train_names
 from chaingraph.structure.atlas import DaskRunner
+from chaingraph.structure.atlas.gear_chains import gear_chain_text
 from chaingraph.structure.atlas.gears import (
     GearAtlas,
+    GearEntry,
     check_gear_size,
     gear_atlas,
     gear_atlas_dict,
@@ -154,6 +157,24 @@ def _gear_index(atlas: GearAtlas, no_fractionated: bool, named: dict[int, list[s
             "c carries them.</p>" + "".join(cells) + "</body></html>\n")
 
 
+def chain_file_name(i: int, count: int) -> str:
+    """The name of the ``i``-th train's chain file among ``count`` (as the atlas of
+    chains names them: ``chain-07.toml``)."""
+    return f"chain-{i:0{len(str(count))}d}.toml"
+
+
+def _write_chains(out: Path, shown: list[GearEntry], dof: int) -> list[Path]:
+    """One chain file per train shown, numbered as listed, under ``out/chains``."""
+    folder = out / "chains"
+    folder.mkdir(exist_ok=True)
+    paths = []
+    for i, e in enumerate(shown, start=1):
+        path = folder / chain_file_name(i, len(shown))
+        write_atomic(path, gear_chain_text(replace(e, id=i), dof))
+        paths.append(path)
+    return paths
+
+
 def cmd_gear_atlas(args: argparse.Namespace, *, workers: int = 1) -> int:
     """``chaingraph atlas --gears``: the epicyclic gear trains of N links, searched one
     tree of turning pairs per task on ``workers`` local processes or on the Dask
@@ -183,6 +204,7 @@ def cmd_gear_atlas(args: argparse.Namespace, *, workers: int = 1) -> int:
             withdraw(out)
             write_atomic(out / "atlas.json",
                          json.dumps(record, indent=2, ensure_ascii=False) + "\n")
+            files = _write_chains(out, shown, args.dof) if args.chain_files is not False else []
             write_atomic(out / "index.html", _gear_index(atlas, args.no_fractionated, named))
     if args.json or args.summary:
         if args.summary:
@@ -201,6 +223,7 @@ def cmd_gear_atlas(args: argparse.Namespace, *, workers: int = 1) -> int:
         print(table(rows, ["id", "gear pairs (a-b/carrier)", "turning pairs (simplest)",
                            "arrangements", "inversions", "fractionated"]))
     if args.out:
-        print(f"written: {Path(args.out) / 'atlas.json'}, {Path(args.out) / 'index.html'}")
+        chains = f", {len(files)} chain files in {out / 'chains'}" if files else ""
+        print(f"written: {out / 'atlas.json'}, {out / 'index.html'}{chains}")
     return 0
 

@@ -109,3 +109,18 @@ def test_workers_give_the_atlas_of_one_process():
         runs.append(json.loads(out))
     assert [t["key"] for t in runs[0]["trains"]] == [t["key"] for t in runs[1]["trains"]]
     assert len(runs[0]["trains"]) == 27 and runs[0] == runs[1]
+
+
+def test_out_writes_a_chain_file_per_train_that_gears_solves(tmp_path):
+    code, out, err = run_cli("atlas", "--gears", "--links", "4", "--out", tmp_path / "g")
+    assert code == 0, err
+    files = sorted((tmp_path / "g" / "chains").glob("*.toml"))
+    assert [f.name for f in files] == ["chain-1.toml", "chain-2.toml"]
+    assert "2 chain files in" in out
+    for f in files:
+        code, out, err = run_cli("gears", f)
+        assert code == 0, err
+        assert "1 degree of freedom" in out
+    code, out, err = run_cli("atlas", "--gears", "--links", "4", "--out", tmp_path / "h",
+                             "--no-chain-files")
+    assert code == 0 and not (tmp_path / "h" / "chains").exists()

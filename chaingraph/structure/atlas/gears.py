@@ -48,6 +48,7 @@ from __future__ import annotations
 import random
 from collections.abc import Hashable, Iterator, Sequence
 from dataclasses import dataclass
+from fractions import Fraction
 from typing import Any
 
 import networkx as nx
@@ -59,7 +60,8 @@ from chaingraph.model.chain import Chain
 
 __all__ = ["GearEntry", "GearAtlas", "gear_atlas", "gear_trains", "train_key",
            "train_levels", "train_verdict", "gear_atlas_dict", "MAX_GEAR_LINKS",
-           "chain_graph", "fractionated", "check_gear_size", "rotation_key"]
+           "chain_graph", "fractionated", "check_gear_size", "rotation_key",
+           "gear_axes", "drivers"]
 
 #: the largest train enumerated (8 links take minutes here; 9, hours)
 MAX_GEAR_LINKS = 8
@@ -234,6 +236,11 @@ class _Equations:
         k = self.ratios[(a, b)]
         v = [0] * self.links
         v[a], v[b], v[c] = 1, k, (-1 - k) % _PRIME
+        return self.with_row(v)
+
+    def with_row(self, v: list[int]) -> _Equations | None:
+        """These equations and ``v`` (its coefficients on the links' speeds), or None
+        when it depends on them."""
         v = self.reduce(v)
         pivot = next((i for i, x in enumerate(v) if x), None)
         if pivot is None:
@@ -482,6 +489,60 @@ def gear_atlas_dict(atlas: GearAtlas, *, chains: bool = True,
     if chains:
         out["trains"] = [dict(e.to_dict(), id=i) for i, e in enumerate(entries, start=1)]
     return out
+
+
+def gear_axes(links: int, turning: Sequence[tuple[int, int]], gears: Sequence[Gear],
+              ) -> tuple[tuple[int, ...], list[tuple[int, int]]]:
+    """The axes of a train: the level of each turning pair (:func:`train_levels`) and,
+    for each gear pair ``(a, b, c)``, the levels of a's axis and of b's axis on the
+    carrier (the turning pairs from a to c, and from c to b).
+
+    Examples
+    --------
+    >>> gear_axes(4, [(0, 1), (0, 2), (0, 3)], [(1, 3, 0), (2, 3, 0)])
+    ((0, 1, 2), [(0, 2), (1, 2)])
+    """
+    levels = train_levels(links, turning, gears)
+    index = {frozenset(t): i for i, t in enumerate(turning)}
+    tree = nx.Graph(list(turning))
+    tree.add_nodes_from(range(links))
+    paths = _paths(tree)
+    out = []
+    for a, b, c in gears:
+        left, right = _sides((min(a, b), max(a, b), c), index, paths)
+        pair = (levels[left[0]], levels[right[0]])
+        out.append(pair if a < b else pair[::-1])
+    return levels, out
+
+
+def drivers(links: int, gears: Sequence[Gear], ratios: Sequence[Fraction], fixed: int,
+            candidates: Sequence[int]) -> list[int] | None:
+    """The first of ``candidates`` whose speeds, with ``fixed`` at rest, fix every
+    link's speed through the gear pairs (each ``(a, b, c)`` with its ratio
+    ``(w_a - w_c) / (w_b - w_c)``): one per degree of freedom; None when the gear
+    pairs' equations depend on each other with these ratios, or two links turn
+    together (exact modulo a prime of 61 bits)."""
+    ratios_mod = {g[:2]: (-r.numerator * pow(r.denominator, _PRIME - 2, _PRIME)) % _PRIME
+                  for g, r in zip(gears, ratios)}
+    equations: _Equations | None = _Equations(links, ratios_mod)
+    for g in gears:
+        equations = equations.with_gear(g) if equations is not None else None
+    if equations is None or equations.bound():
+        return None
+
+    def unit(v: int) -> list[int]:
+        return [int(i == v) for i in range(links)]
+    equations = equations.with_row(unit(fixed))
+    chosen: list[int] = []
+    for v in candidates:
+        if equations is None or len(equations.rows) == links:
+            break
+        more = equations.with_row(unit(v))
+        if more is not None:
+            equations, chosen = more, chosen + [v]
+    if equations is None or len(equations.rows) < links:
+        return None
+    return chosen
 
 
 def chain_graph(chain: Chain) -> tuple[list[str], list[tuple[int, int]], list[Gear]]:
