@@ -8,6 +8,11 @@ import pytest
 from chaingraph.naming.catalog import catalog_path
 from chaingraph.structure.atlas.gears import gear_atlas, train_verdict
 
+
+def _fixed(e):
+    """The link the atlas's chain file fixes: the one in most turning pairs."""
+    return max(range(e.links), key=lambda v: (sum(v in p for p in e.turning), -v))
+
 from ..conftest import run_cli
 
 
@@ -50,7 +55,13 @@ def test_out_writes_the_json_and_an_index(tmp_path):
     data = json.loads((tmp_path / "g" / "atlas.json").read_text())
     assert data["count"] == 6 and len(data["trains"]) == 6
     page = (tmp_path / "g" / "index.html").read_text()
-    assert page.count("<svg") == 6 and page.count('class="gear"') == 6 * 3
+    # each train's schematic (a bar per gear of a pair) and graph (an arc per pair)
+    assert page.count("<svg") == 2 * 6 and page.count('class="gear"') == 6 * 3 * (2 + 1)
+    assert page.count('class="arm"') == sum(               # a moving carrier: one arm
+        len({c for *_, c in e.gears} - {_fixed(e)}) for e in gear_atlas(5, 1))
+    for i in range(1, 7):
+        assert f'href="chains/chain-{i}.toml"' in page
+    assert "Compound gear train" in page
     assert "written:" in out
 
 
