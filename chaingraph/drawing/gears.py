@@ -80,26 +80,46 @@ def _free(box: tuple[float, float, float, float], placed: list[tuple[float, ...]
 _ANGLES = (90, 60, 120, 30, 150, 0, 180, 300, 240, 270, 45, 135, 210, 330)
 
 
+def _meets(box: tuple[float, ...], p: Point, q: Point) -> bool:
+    """Whether the segment ``p``-``q`` passes through the box (Liang and Barsky's
+    clipping)."""
+    t0, t1 = 0.0, 1.0
+    d = (q[0] - p[0], q[1] - p[1])
+    for k, lo, hi in ((0, box[0], box[2]), (1, box[1], box[3])):
+        if abs(d[k]) < 1e-12:
+            if not lo <= p[k] <= hi:
+                return False
+            continue
+        a, b = (lo - p[k]) / d[k], (hi - p[k]) / d[k]
+        t0, t1 = max(t0, min(a, b)), min(t1, max(a, b))
+        if t0 > t1:
+            return False
+    return True
+
+
 def _place(text: str, centre: Point, reach: float, size: float,
-           placed: list[tuple[float, ...]], *, below: bool = False) -> Shape:
+           placed: list[tuple[float, ...]], *, below: bool = False,
+           avoid: Sequence[tuple[Point, Point]] = ()) -> Shape:
     """A label round ``centre`` at ``reach``, at the first angle (top first, or bottom
-    first when ``below``) whose box meets no label placed before; farther out when
-    every angle is taken."""
+    first when ``below``) whose box meets no label placed before, nor (where it can)
+    the segments to ``avoid``; farther out when every angle is taken."""
     w = len(text) * 0.62 * size
-    for ring in (1.0, 1.4, 2.0, 2.8, 4.0, 5.6, 8.0, 11.0):
-        for deg in ((270, *_ANGLES[:9], *_ANGLES[10:]) if below else _ANGLES):
-            a = math.radians(deg)
-            away = reach * ring + 0.3 * size + (ring - 1.0) * size
-            cx = centre[0] + away * math.cos(a)
-            cy = centre[1] + away * math.sin(a)
-            x = cx if math.cos(a) > 0.3 else cx - w if math.cos(a) < -0.3 else cx - 0.5 * w
-            y = cy if math.sin(a) > 0.3 else cy - 0.8 * size if math.sin(a) < -0.3 \
-                else cy - 0.3 * size
-            box = label_box(x, y, text, size)
-            if _free(box, placed, 0.15 * size):
-                placed.append(box)
-                return Shape("text", "label", ((x, y),), text=text, size=size,
-                             halo=0.25 * size)
+    for strict in ((True, False) if avoid else (False,)):
+        for ring in (1.0, 1.4, 2.0, 2.8, 4.0, 5.6, 8.0, 11.0)[:4 if strict else 8]:
+            for deg in ((270, *_ANGLES[:9], *_ANGLES[10:]) if below else _ANGLES):
+                a = math.radians(deg)
+                away = reach * ring + 0.3 * size + (ring - 1.0) * size
+                cx = centre[0] + away * math.cos(a)
+                cy = centre[1] + away * math.sin(a)
+                x = cx if math.cos(a) > 0.3 else cx - w if math.cos(a) < -0.3 else cx - 0.5 * w
+                y = cy if math.sin(a) > 0.3 else cy - 0.8 * size if math.sin(a) < -0.3 \
+                    else cy - 0.3 * size
+                box = label_box(x, y, text, size)
+                if _free(box, placed, 0.15 * size) and not (
+                        strict and any(_meets(box, p, q) for p, q in avoid)):
+                    placed.append(box)
+                    return Shape("text", "label", ((x, y),), text=text, size=size,
+                                 halo=0.25 * size)
     box = label_box(centre[0], centre[1], text, size)
     placed.append(box)
     return Shape("text", "label", (centre,), text=text, size=size, halo=0.25 * size)
@@ -527,6 +547,8 @@ def schematic_shapes(chain: Chain, *, fixed: str | None = None,
     teeth = {(g.id, x): z for g in chain.gears for x, z in zip(g.links, g.teeth)}
     placed: list[tuple[float, ...]] = []
     size = 8.0 * u
+    avoid = [(q, r) for shape in out if shape.cls in ("shaft", "arm", "gear", "annulus")
+             for q, r in zip(shape.points, shape.points[1:])]
     labels = [_place(str(teeth[(p, x)]), (where[p], h + r), 1.2 * u, size, placed)
               for p, x, h, r, _ in circles]
     for link in chain.links:
@@ -541,7 +563,8 @@ def schematic_shapes(chain: Chain, *, fixed: str | None = None,
         else:
             _, h, cols = max(spans)
             spot = (0.5 * (min(cols) + max(cols)), level(link, h))
-        label = _place(link, spot, 1.5 * u, size, placed, below=link == fixed)
+        label = _place(link, spot, 1.5 * u, size, placed, below=link == fixed,
+                       avoid=avoid)
         labels.append(replace(label, cls="name", data=(("link", link),)))
     return out + labels
 

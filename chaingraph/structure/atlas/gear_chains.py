@@ -6,9 +6,8 @@ train_levels`: the links that turn about one line) are one R joint holding all t
 on that axis (a multiple joint of k links counts k - 1 turning pairs, the first link
 holding the others, so the tree of turning pairs keeps its axes: where the links of an
 axis form a star in the atlas's tree, the file's pairs are the atlas's). The axes are
-parallel and drawn in one plane, each at a height: the axis that holds most links at 0,
-the others in the order a breadth-first walk over the gear pairs meets them, 36 mm
-apart. Every gear pair is external, of module 2 mm: its centre distance, the distance
+parallel and drawn in one plane, each at a height, 36 mm apart, in the order that keeps
+the meshing axes nearest (:func:`_heights`). Every gear pair is external, of module 2 mm: its centre distance, the distance
 between the two axes, is the sum of the pitch radii, ``m (z_a + z_b) / 2``, so the teeth
 add up to the distance in millimetres (36 for neighbouring axes), split in a proportion
 that varies from pair to pair (never below 12 teeth, the least an involute pinion of
@@ -23,6 +22,7 @@ F degrees of freedom the file names one driver and its notes the F links to driv
 
 from __future__ import annotations
 
+import itertools
 from collections import deque
 from fractions import Fraction
 
@@ -39,6 +39,8 @@ MODULE = 2.0
 AXIS_STEP = 36
 #: the fewest teeth a gear of the atlas's files has
 MIN_TEETH = 12
+#: the most axes whose every order is tried for the nearest gear pairs
+_ORDERED_UP_TO = 6
 
 #: the share of a pair's teeth its first gear takes, tried in turn pair by pair
 _SHARES = (Fraction(1, 3), Fraction(4, 9), Fraction(5, 12), Fraction(7, 18),
@@ -47,8 +49,11 @@ _SHARES = (Fraction(1, 3), Fraction(4, 9), Fraction(5, 12), Fraction(7, 18),
 
 def _heights(levels: tuple[int, ...], axes: list[tuple[int, int]],
              turning: tuple[tuple[int, int], ...]) -> dict[int, int]:
-    """Each axis's height (mm): the axis holding most links at 0, the others one step
-    apart in the order a breadth-first walk over the gear pairs meets them."""
+    """Each axis's height (mm), one step apart: in the order that puts the gear pairs'
+    axes nearest (the least sum of the steps between them, then the least largest
+    step: the smallest wheels), the axes taken first as a breadth-first walk over the
+    gear pairs meets them from the axis that holds most links (that walk's order alone
+    beyond :data:`_ORDERED_UP_TO` axes)."""
     count = max(levels) + 1
     holds: list[set[int]] = [set() for _ in range(count)]
     for (a, b), level in zip(turning, levels):
@@ -62,6 +67,12 @@ def _heights(levels: tuple[int, ...], axes: list[tuple[int, int]],
             seen.add(y)
             queue.append(y)
     order += [x for x in range(count) if x not in seen]
+    if count <= _ORDERED_UP_TO:
+        def cost(p: tuple[int, ...]) -> tuple[int, int]:
+            place = {x: i for i, x in enumerate(p)}
+            steps = [abs(place[a] - place[b]) for a, b in axes]
+            return sum(steps), max(steps)
+        order = list(min(itertools.permutations(order), key=cost))
     return {x: AXIS_STEP * i for i, x in enumerate(order)}
 
 
