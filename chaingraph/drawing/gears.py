@@ -547,8 +547,10 @@ def schematic_shapes(chain: Chain, *, fixed: str | None = None,
     teeth = {(g.id, x): z for g in chain.gears for x, z in zip(g.links, g.teeth)}
     placed: list[tuple[float, ...]] = []
     size = 8.0 * u
-    avoid = [(q, r) for shape in out if shape.cls in ("shaft", "arm", "gear", "annulus")
-             for q, r in zip(shape.points, shape.points[1:])]
+    avoid: list[tuple[Point, Point]] = [
+        ((float(q[0]), float(q[1])), (float(r[0]), float(r[1]))) for shape in out
+        if shape.cls in ("shaft", "arm", "gear", "annulus")
+        for q, r in zip(shape.points, shape.points[1:])]
     labels = [_place(str(teeth[(p, x)]), (where[p], h + r), 1.2 * u, size, placed)
               for p, x, h, r, _ in circles]
     for link in chain.links:
