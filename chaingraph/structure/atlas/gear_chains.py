@@ -24,7 +24,7 @@ from __future__ import annotations
 
 import itertools
 from collections import deque
-from collections.abc import Sequence
+from collections.abc import Iterable
 from fractions import Fraction
 
 from chaingraph.model.chain import Chain, Joint, Mechanism
@@ -69,7 +69,7 @@ def _heights(levels: tuple[int, ...], axes: list[tuple[int, int]],
             queue.append(y)
     order += [x for x in range(count) if x not in seen]
     if count <= _ORDERED_UP_TO:
-        def cost(p: Sequence[int]) -> tuple[int, int]:
+        def cost(p: Iterable[int]) -> tuple[int, int]:
             place = {x: i for i, x in enumerate(p)}
             steps = [abs(place[a] - place[b]) for a, b in axes]
             return sum(steps), max(steps)
