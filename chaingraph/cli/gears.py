@@ -25,6 +25,7 @@ from chaingraph.kinematics.gears import TrainSpeeds, train_speeds
 from chaingraph.naming.gear_trains import gear_train_names
 from chaingraph.structure.atlas import DaskRunner
 from chaingraph.structure.atlas.gear_chains import gear_chain
+from chaingraph.structure.atlas.output import FIGURES_UP_TO
 from chaingraph.structure.atlas.gears import (
     GearAtlas,
     GearEntry,
@@ -149,7 +150,7 @@ def _gear_index(atlas: GearAtlas, shown: list[GearEntry], chains: list[Chain],
     (drawn from its chain file) and its graph, all at one scale, with its gear pairs,
     its names in the catalog and a link to its chain file."""
     cells = []
-    for i, (e, chain) in enumerate(zip(shown, chains), start=1):
+    for i, (e, chain) in enumerate(zip(shown[:FIGURES_UP_TO], chains), start=1):
         schematic = schematic_svg(chain, unit=1.0, scale=_SCHEMATIC_SCALE)
         graph = train_graph_svg([str(x + 1) for x in range(atlas.links)], e.turning,
                                 e.gears, title=f"train {i}: graph", scale=_GRAPH_SCALE)
@@ -181,7 +182,11 @@ def _gear_index(atlas: GearAtlas, shown: list[GearEntry], chains: list[Chain],
             "file), thin edges turning pairs, each with the letter of its axis (the "
             "chain file's joint of that letter), thick arcs gear pairs, each with the "
             "number of its carrier (the transfer vertex). Gears a-b/c: a and b mesh, "
-            "c carries them.</p><div class=\"grid\">" + "".join(cells)
+            "c carries them.</p>"
+            + ("" if len(cells) == len(shown) else
+               f"<p>The first {len(cells):,} trains are drawn below; every train is in "
+               "atlas.json and has its chain file.</p>")
+            + "<div class=\"grid\">" + "".join(cells)
             + "</div></body></html>\n")
 
 

@@ -43,6 +43,9 @@ def test_the_file_is_the_train_and_its_geometry_holds(links, dof, i, tmp_path):
     assert rotation_key(links, gears) == rotation_key(links, entry.gears)
     assert train_verdict(links, turning, gears, dof=dof) is None
     assert max(train_levels(links, turning, gears)) == max(entry.levels)
+    number = {x: int(x[1:]) - 1 for x in names}               # L1 is the atlas's link 0
+    assert {tuple(sorted((number[names[a]], number[names[b]]))) for a, b in turning} == \
+        set(entry.turning)
     for g in chain.gears:
         assert min(g.teeth) >= MIN_TEETH and not g.internal
         a, b = (_axis(chain, x, g.carrier) for x in g.links)
