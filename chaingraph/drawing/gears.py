@@ -478,16 +478,13 @@ def _gear_bar(x: float, h: float, r: float, annulus: bool, column: float, u: flo
 
 def schematic_shapes(chain: Chain, *, fixed: str | None = None,
                      unit: float | None = None) -> list[Shape]:
-    """The train's functional schematic, as the textbook prints it: the axes as
-    horizontal centre lines at their heights, each link's shaft along each axis it
-    turns about (coaxial links a little apart, the first of the axis's joint on the
-    line), each gear a vertical bar of its pitch diameter on its shaft in the gear
-    pair's column (so meshing bars touch at the pitch point), an annulus a bracket
-    opening inward, each moving carrier an arm in a column of its own joining its axes,
-    the fixed link's bearings hatched (in column 0), pins where a link turns on another,
-    and the links' names and teeth, no two labels overlapping. ``unit``: the length
-    (file units) of the line widths and gaps, by default the train's size over 150
-    (give one unit to draw several trains at one scale)."""
+    """The train's functional schematic as the textbook prints it (docs/gears.md): axes
+    as centre lines at their heights, shafts along them (coaxial links a little apart),
+    each gear a bar of its pitch diameter in its pair's column (bars in mesh touch), an
+    annulus a bracket opening inward, a moving carrier an arm in a column of its own,
+    the fixed link's bearings hatched, pins, the names and teeth, no two labels
+    overlapping. ``unit``: the line widths' and gaps' length (file units; by default
+    the train's size over 150: give one to draw several trains at one scale)."""
     if fixed is None and chain.mechanism is not None:
         fixed = chain.mechanism.fixed
     joints = [j for j in chain.joints if j.kind == "R" and j.at is not None]
@@ -544,31 +541,44 @@ def schematic_shapes(chain: Chain, *, fixed: str | None = None,
     for (x, h), at in pins:
         out.append(Shape("circle", "pin", ((at, level(x, h)),), data=(("link", x),),
                          radius=1.5 * u, fill="white", stroke="#222222", width=0.6 * u))
-    teeth = {(g.id, x): z for g in chain.gears for x, z in zip(g.links, g.teeth)}
-    placed: list[tuple[float, ...]] = []
-    size = 8.0 * u
-    avoid: list[tuple[Point, Point]] = [
-        ((float(q[0]), float(q[1])), (float(r[0]), float(r[1]))) for shape in out
-        if shape.cls in ("shaft", "arm", "gear", "annulus")
-        for q, r in zip(shape.points, shape.points[1:])]
-    labels = [_place(str(teeth[(p, x)]), (where[p], h + r), 1.2 * u, size, placed)
-              for p, x, h, r, _ in circles]
+    spots = {}
     for link in chain.links:
         spans = [(max(cols) - min(cols), h, cols) for (x, h), cols in own.items()
                  if x == link and cols]
         if link == fixed or not spans:
             h = max(on.get(link, [0.0]))
-            spot = (0.0, min(level(x, h) for x in axes[h]) - 6 * u) if h in axes \
+            spots[link] = (0.0, min(level(x, h) for x in axes[h]) - 6 * u) if h in axes \
                 else (0.0, 0.0)
         elif link in arm:
-            spot = (arm[link], 0.5 * sum(level(link, h) for h in on[link][:2]))
+            spots[link] = (arm[link], 0.5 * sum(level(link, h) for h in on[link][:2]))
         else:
             _, h, cols = max(spans)
-            spot = (0.5 * (min(cols) + max(cols)), level(link, h))
-        label = _place(link, spot, 1.5 * u, size, placed, below=link == fixed,
+            spots[link] = (0.5 * (min(cols) + max(cols)), level(link, h))
+    return out + _schematic_labels(chain, out, [(p, where[p], x, h, r) for p, x, h, r, _
+                                                in circles], spots, fixed, u)
+
+
+def _schematic_labels(chain: Chain, shapes: Sequence[Shape],
+                      bars: Sequence[tuple[str, float, str, float, float]],
+                      spots: dict[str, Point], fixed: str | None, u: float) -> list[Shape]:
+    """The schematic's labels: each gear's teeth over its bar (``(pair, column, link,
+    axis height, radius)``), each link's name by its spot (the
+    fixed link's below), none overlapping another, the names kept off the drawn
+    ``shapes`` where they can."""
+    teeth = {(g.id, x): z for g in chain.gears for x, z in zip(g.links, g.teeth)}
+    placed: list[tuple[float, ...]] = []
+    size = 8.0 * u
+    avoid: list[tuple[Point, Point]] = [
+        ((float(q[0]), float(q[1])), (float(r[0]), float(r[1]))) for shape in shapes
+        if shape.cls in ("shaft", "arm", "gear", "annulus")
+        for q, r in zip(shape.points, shape.points[1:])]
+    labels = [_place(str(teeth[(pair, link)]), (x, h + r), 1.2 * u, size, placed)
+              for pair, x, link, h, r in bars]
+    for link in chain.links:
+        label = _place(link, spots[link], 1.5 * u, size, placed, below=link == fixed,
                        avoid=avoid)
         labels.append(replace(label, cls="name", data=(("link", link),)))
-    return out + labels
+    return labels
 
 
 def schematic_svg(chain: Chain, *, fixed: str | None = None, unit: float | None = None,
