@@ -157,11 +157,13 @@ def _gear_index(atlas: GearAtlas, shown: list[GearEntry], chains: list[Chain],
         link = (f' <a href="chains/{chain_file_name(i, len(shown))}">chain file</a>'
                 if files else "")
         names = "".join(f"<br><b>{html.escape(x)}</b>" for x in named[e.id])
+        m = chain.mechanism
+        held = f"; {m.fixed} fixed, {m.driver} driving" if m is not None else ""
         cells.append(f'<figure id="train-{i}"><div class="pics">{_inline(schematic)}'
                      f'{_inline(graph)}</div><figcaption><b>{i}</b>: gears '
                      f'{html.escape(e.key)}; {e.inversions} inversions, {e.arrangements} '
-                     f'arrangements{"; fractionated" if e.fractionated else ""}{link}'
-                     f"{names}</figcaption></figure>")
+                     f'arrangements{"; fractionated" if e.fractionated else ""}'
+                     f"{html.escape(held)}{link}{names}</figcaption></figure>")
     title = (f"{len(shown)} epicyclic gear trains of {atlas.links} links and "
              f"{freedom(atlas.dof)}")
     return ("<!DOCTYPE html>\n<html lang=\"en\"><head><meta charset=\"utf-8\"><title>"
