@@ -80,7 +80,7 @@ from chaingraph.synthesis import KINDS, PathTask
 from chaingraph.synthesis.path_generation import EXACT
 from chaingraph.variation import length_values, vary
 
-__all__ = ['cmd_classify', 'cmd_inversions', 'cmd_identify', 'cmd_solve', 'cmd_centres', 'cmd_polygons', 'cmd_assemble', 'cmd_measure', 'cmd_report', 'cmd_atlas', 'cmd_design', 'cmd_design_function', 'cmd_design_motion']
+__all__ = ['cmd_classify', 'cmd_inversions', 'cmd_identify', 'cmd_solve', 'cmd_centres', 'cmd_polygons', 'cmd_assemble', 'cmd_measure', 'cmd_report', 'cmd_atlas', 'atlas_workers', 'cmd_design', 'cmd_design_function', 'cmd_design_motion']
 
 
 def cmd_classify(args: argparse.Namespace) -> int:
@@ -417,17 +417,22 @@ def workers_asked(value: int, *, flag: str = "--workers") -> int:
               file=sys.stderr)
     return min(value, cpus)
 
+def atlas_workers(args: argparse.Namespace) -> int:
+    """The workers an atlas runs on: local ones capped at the CPUs, a remote cluster's
+    as asked (its cores are its own), refused below 1."""
+    if args.scheduler is None or args.scheduler == "local":
+        return workers_asked(args.workers)
+    return args.workers if args.workers >= 1 else workers_asked(args.workers)
+
+
 def cmd_atlas(args: argparse.Namespace) -> int:
     if args.gears:
-        return cmd_gear_atlas(args)
+        return cmd_gear_atlas(args, workers=atlas_workers(args))
     joints = joints_for(args.links, args.dof)   # a size with no chain: exit 2 with the reason
     wanted = prismatic_counts(args.links, args.dof, joints, args.prismatic, args.oriented)
     if wanted is not None or args.multiple:
         return _sliding(args, wanted or (0,))
-    if args.scheduler is None or args.scheduler == "local":
-        workers = workers_asked(args.workers)
-    else:                        # a remote cluster's cores are its own; refused below 1
-        workers = args.workers if args.workers >= 1 else workers_asked(args.workers)
+    workers = atlas_workers(args)
     check_size(args.links, args.dof, cores=workers, cluster=args.scheduler is not None,
                hours=args.max_hours)
     if args.resume and not args.out:

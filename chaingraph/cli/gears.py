@@ -8,26 +8,37 @@ import json
 import math
 import time
 from collections.abc import Callable
+from dataclasses import replace
 from fractions import Fraction
 from pathlib import Path
 
 from chaingraph._util import freedom
+from chaingraph._util.parallel import process_runner
 from chaingraph._util.atomic import withdraw, write_atomic
 from chaingraph.cli.outputs import Writing, output_folder, svg_file
 from chaingraph.cli.text import print_json, table
-from chaingraph.drawing.gears import train_graph_svg, train_svg
+from chaingraph.drawing.gears import schematic_svg, train_graph_svg, train_svg
 from chaingraph.errors import ChainGraphError, MechanismError
-from chaingraph.files import load
+from chaingraph.model.chain import Chain
+from chaingraph.files import dumps, load
 from chaingraph.kinematics.gears import TrainSpeeds, train_speeds
 from chaingraph.naming.gear_trains import gear_train_names
-from chaingraph.structure.atlas.gears import GearAtlas, gear_atlas, gear_atlas_dict
+from chaingraph.structure.atlas import DaskRunner
+from chaingraph.structure.atlas.gear_chains import gear_chain
+from chaingraph.structure.atlas.output import FIGURES_UP_TO
+from chaingraph.structure.atlas.gears import (
+    GearAtlas,
+    GearEntry,
+    check_gear_size,
+    gear_atlas,
+    gear_atlas_dict,
+)
 
 __all__ = ["gears_command", "cmd_gears", "speed_argument", "cmd_gear_atlas"]
 
 #: the flags of ``atlas`` that mean nothing for gear trains
 _NOT_FOR_GEARS = (("prismatic", "--prismatic"), ("oriented", "--oriented"),
-                  ("multiple", "--multiple"), ("scheduler", "--scheduler"),
-                  ("resume", "--resume"), ("illustrate", "--illustrate"),
+                  ("multiple", "--multiple"), ("resume", "--resume"), ("illustrate", "--illustrate"),
                   ("chain_files", "--chain-files"))
 
 
@@ -125,31 +136,84 @@ def cmd_gears(args: argparse.Namespace) -> int:
     return 0
 
 
-def _gear_index(atlas: GearAtlas, no_fractionated: bool, named: dict[int, list[str]]) -> str:
-    """The HTML page of ``atlas --gears --out``: each train's graph, pairs and names."""
+#: pixels per millimetre of the schematics, and per unit of the graphs, on the index
+_SCHEMATIC_SCALE, _GRAPH_SCALE = 1.5, 58.0
+
+
+def _inline(svg: str) -> str:
+    return svg.split("\n", 1)[1]                        # inline: no XML declaration
+
+
+def _gear_index(atlas: GearAtlas, shown: list[GearEntry], chains: list[Chain],
+                named: dict[int, list[str]], files: bool) -> str:
+    """The HTML page of ``atlas --gears --out``: each train's functional schematic
+    (drawn from its chain file) and its graph, all at one scale, with its gear pairs,
+    its names in the catalog and a link to its chain file."""
     cells = []
-    shown = [e for e in atlas if not (no_fractionated and e.fractionated)]
-    for i, e in enumerate(shown, start=1):
-        names = [str(x + 1) for x in range(atlas.links)]
-        svg = train_graph_svg(names, e.turning, e.gears, title=f"train {i}", width=220)
-        svg = svg.split("\n", 1)[1]                      # inline: no XML declaration
-        cells.append(f'<figure id="train-{i}">{svg}<figcaption>{i}: gears '
-                     f'{html.escape(e.key)}{" (fractionated)" if e.fractionated else ""}'
-                     f'{"".join("<br>" + html.escape(x) for x in named[e.id])}'
-                     f"</figcaption></figure>")
+    for i, (e, chain) in enumerate(zip(shown[:FIGURES_UP_TO], chains), start=1):
+        schematic = schematic_svg(chain, unit=1.0, scale=_SCHEMATIC_SCALE)
+        graph = train_graph_svg([str(x + 1) for x in range(atlas.links)], e.turning,
+                                e.gears, title=f"train {i}: graph", scale=_GRAPH_SCALE)
+        link = (f' <a href="chains/{chain_file_name(i, len(shown))}">chain file</a>'
+                if files else "")
+        names = "".join(f"<br><b>{html.escape(x)}</b>" for x in named[e.id])
+        m = chain.mechanism
+        held = f"; {m.fixed} fixed, {m.driver} driving" if m is not None else ""
+        cells.append(f'<figure id="train-{i}"><div class="pics">{_inline(schematic)}'
+                     f'{_inline(graph)}</div><figcaption><b>{i}</b>: gears '
+                     f'{html.escape(e.key)}; {e.inversions} inversions, {e.arrangements} '
+                     f'arrangements{"; fractionated" if e.fractionated else ""}'
+                     f"{html.escape(held)}{link}{names}</figcaption></figure>")
     title = (f"{len(shown)} epicyclic gear trains of {atlas.links} links and "
              f"{freedom(atlas.dof)}")
-    return ("<!DOCTYPE html>\n<html><head><meta charset=\"utf-8\"><title>"
-            f"{html.escape(title)}</title><style>figure{{display:inline-block;margin:6px;"
-            "width:230px;font:12px sans-serif;vertical-align:top}</style></head><body>"
-            f"<h1>{html.escape(title)}</h1><p>Vertices are links; thin edges turning "
-            "pairs (letters: their axes), thick arcs gear pairs, each with the number "
-            "of its carrier (the transfer vertex). Gears a-b/c: a and b mesh, "
-            "c carries them.</p>" + "".join(cells) + "</body></html>\n")
+    return ("<!DOCTYPE html>\n<html lang=\"en\"><head><meta charset=\"utf-8\"><title>"
+            f"{html.escape(title)}</title><style>"
+            "body{font-family:Georgia,serif;margin:2em;color:#1b1b1b}"
+            "h1{font-family:Arial,sans-serif;color:#1f4e79}"
+            ".grid{display:flex;flex-wrap:wrap;gap:10px;align-items:flex-start}"
+            "figure{margin:0;border:1px solid #ddd;padding:4px}"
+            ".pics{display:flex;align-items:center;gap:6px}"
+            "figcaption{font-size:12px;max-width:420px}</style></head><body>"
+            f"<h1>{html.escape(title)}</h1><p>Each train twice, at one scale for all. Left, "
+            "its functional schematic, drawn from its chain file: the axes are the "
+            "dash-dotted lines, each link a shaft along the axes it turns about (coaxial "
+            "links drawn a little apart), each gear a bar of its pitch diameter (its "
+            "teeth above it) in its pair's column, so gears in mesh touch; a carrier "
+            "is an arm joining its axes, the fixed link's bearings are hatched, circles "
+            "are pins. Right, its graph: vertices are links (L1, L2, ... in the chain "
+            "file), thin edges turning pairs, each with the letter of its axis (the "
+            "chain file's joint of that letter), thick arcs gear pairs, each with the "
+            "number of its carrier (the transfer vertex). Gears a-b/c: a and b mesh, "
+            "c carries them.</p>"
+            + ("" if len(cells) == len(shown) else
+               f"<p>The first {len(cells):,} trains are drawn below; every train is in "
+               "atlas.json and has its chain file.</p>")
+            + "<div class=\"grid\">" + "".join(cells)
+            + "</div></body></html>\n")
 
 
-def cmd_gear_atlas(args: argparse.Namespace) -> int:
-    """``chaingraph atlas --gears``: the epicyclic gear trains of N links."""
+def chain_file_name(i: int, count: int) -> str:
+    """The name of the ``i``-th train's chain file among ``count`` (as the atlas of
+    chains names them: ``chain-07.toml``)."""
+    return f"chain-{i:0{len(str(count))}d}.toml"
+
+
+def _write_chains(out: Path, chains: list[Chain]) -> list[Path]:
+    """One chain file per train shown, numbered as listed, under ``out/chains``."""
+    folder = out / "chains"
+    folder.mkdir(exist_ok=True)
+    paths = []
+    for i, chain in enumerate(chains, start=1):
+        path = folder / chain_file_name(i, len(chains))
+        write_atomic(path, dumps(chain))
+        paths.append(path)
+    return paths
+
+
+def cmd_gear_atlas(args: argparse.Namespace, *, workers: int = 1) -> int:
+    """``chaingraph atlas --gears``: the epicyclic gear trains of N links, searched one
+    tree of turning pairs per task on ``workers`` local processes or on the Dask
+    cluster of ``args.scheduler``."""
     for name, flag in _NOT_FOR_GEARS:
         if getattr(args, name, None):
             raise ChainGraphError(f"--gears enumerates gear trains (turning and gear "
@@ -157,7 +221,12 @@ def cmd_gear_atlas(args: argparse.Namespace) -> int:
     if args.out:
         output_folder(args.out, what="atlas")
     start = time.perf_counter()
-    atlas = gear_atlas(args.links, args.dof)
+    check_gear_size(args.links, args.dof)
+    if args.scheduler is not None:
+        with DaskRunner(args.scheduler, workers=workers) as runner:
+            atlas = gear_atlas(args.links, args.dof, runner=runner)
+    else:
+        atlas = gear_atlas(args.links, args.dof, runner=process_runner(workers))
     elapsed = time.perf_counter() - start
     record = gear_atlas_dict(atlas, no_fractionated=args.no_fractionated)
     named = dict(zip((e.id for e in atlas), gear_train_names(atlas)))
@@ -170,7 +239,11 @@ def cmd_gear_atlas(args: argparse.Namespace) -> int:
             withdraw(out)
             write_atomic(out / "atlas.json",
                          json.dumps(record, indent=2, ensure_ascii=False) + "\n")
-            write_atomic(out / "index.html", _gear_index(atlas, args.no_fractionated, named))
+            chains = [gear_chain(replace(e, id=i), args.dof)
+                      for i, e in enumerate(shown, start=1)]
+            files = _write_chains(out, chains) if args.chain_files is not False else []
+            write_atomic(out / "index.html", _gear_index(atlas, shown, chains, named,
+                                                         bool(files)))
     if args.json or args.summary:
         if args.summary:
             record.pop("trains")
@@ -188,6 +261,7 @@ def cmd_gear_atlas(args: argparse.Namespace) -> int:
         print(table(rows, ["id", "gear pairs (a-b/carrier)", "turning pairs (simplest)",
                            "arrangements", "inversions", "fractionated"]))
     if args.out:
-        print(f"written: {Path(args.out) / 'atlas.json'}, {Path(args.out) / 'index.html'}")
+        also = f", {len(files)} chain files in {out / 'chains'}" if files else ""
+        print(f"written: {out / 'atlas.json'}, {out / 'index.html'}{also}")
     return 0
 

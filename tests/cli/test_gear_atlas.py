@@ -8,6 +8,11 @@ import pytest
 from chaingraph.naming.catalog import catalog_path
 from chaingraph.structure.atlas.gears import gear_atlas, train_verdict
 
+
+def _fixed(e):
+    """The link the atlas's chain file fixes: the one in most turning pairs."""
+    return max(range(e.links), key=lambda v: (sum(v in p for p in e.turning), -v))
+
 from ..conftest import run_cli
 
 
@@ -50,12 +55,18 @@ def test_out_writes_the_json_and_an_index(tmp_path):
     data = json.loads((tmp_path / "g" / "atlas.json").read_text())
     assert data["count"] == 6 and len(data["trains"]) == 6
     page = (tmp_path / "g" / "index.html").read_text()
-    assert page.count("<svg") == 6 and page.count('class="gear"') == 6 * 3
+    # each train's schematic (a bar per gear of a pair) and graph (an arc per pair)
+    assert page.count("<svg") == 2 * 6 and page.count('class="gear"') == 6 * 3 * (2 + 1)
+    assert page.count('class="arm"') == sum(               # a moving carrier: one arm
+        len({c for *_, c in e.gears} - {_fixed(e)}) for e in gear_atlas(5, 1))
+    for i in range(1, 7):
+        assert f'href="chains/chain-{i}.toml"' in page
+    assert "Compound gear train" in page
     assert "written:" in out
 
 
 @pytest.mark.parametrize("flag", [["--prismatic", "1"], ["--multiple"], ["--oriented"],
-                                  ["--scheduler", "local"], ["--resume"]])
+                                  ["--resume"]])
 def test_other_atlas_flags_are_refused(flag):
     code, out, err = run_cli("atlas", "--gears", "--links", "5", *flag)
     assert code == 2 and out == ""
@@ -96,3 +107,31 @@ def test_gears_draw_refuses_a_train_whose_axes_are_not_placed(tmp_path):
                              "driver=100", "--draw", tmp_path / "t.svg")
     assert code == 2 and out == "" and err.count("\n") == 1
     assert "axes are not placed" in err and not (tmp_path / "t.svg").exists()
+
+
+def test_workers_give_the_atlas_of_one_process():
+    """Split by tree over two processes, six links give the trains of one process, in
+    the same order, with the same arrangements (the pieces are merged in tree order)."""
+    runs = []
+    for workers in ("1", "2"):
+        code, out, err = run_cli("atlas", "--gears", "--links", "6", "--workers", workers,
+                                 "--json")
+        assert code == 0, err
+        runs.append(json.loads(out))
+    assert [t["key"] for t in runs[0]["trains"]] == [t["key"] for t in runs[1]["trains"]]
+    assert len(runs[0]["trains"]) == 27 and runs[0] == runs[1]
+
+
+def test_out_writes_a_chain_file_per_train_that_gears_solves(tmp_path):
+    code, out, err = run_cli("atlas", "--gears", "--links", "4", "--out", tmp_path / "g")
+    assert code == 0, err
+    files = sorted((tmp_path / "g" / "chains").glob("*.toml"))
+    assert [f.name for f in files] == ["chain-1.toml", "chain-2.toml"]
+    assert "2 chain files in" in out
+    for f in files:
+        code, out, err = run_cli("gears", f)
+        assert code == 0, err
+        assert "1 degree of freedom" in out
+    code, out, err = run_cli("atlas", "--gears", "--links", "4", "--out", tmp_path / "h",
+                             "--no-chain-files")
+    assert code == 0 and not (tmp_path / "h" / "chains").exists()

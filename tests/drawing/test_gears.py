@@ -10,6 +10,7 @@ import pytest
 
 from chaingraph.drawing.gears import (
     gear_circles,
+    schematic_shapes,
     label_boxes,
     train_graph_shapes,
     train_shapes,
@@ -99,3 +100,54 @@ def test_the_document_has_the_schematic_and_the_graph():
     assert "<title>Differential gear train: gear train, frame fixed</title>" in svg
     assert 'class="gear"' in train_svg(chain, graph=False)
     assert 'class="vertex"' not in train_svg(chain, graph=False)
+
+
+def _atlas_chains():
+    """The chain files of the atlas's trains: 4 and 5 links, every third of 6."""
+    from chaingraph.structure.atlas.gear_chains import gear_chain
+    return ([gear_chain(e) for n in (4, 5) for e in gear_atlas(n, 1)]
+            + [gear_chain(e) for e in gear_atlas(6, 1)[::3]])
+
+
+ATLAS = _atlas_chains()
+
+
+@pytest.mark.parametrize("chain", ATLAS + [load(p) for p in TRAINS],
+                         ids=lambda c: c.name.replace(" ", "-"))
+def test_schematic_names_every_link_once_and_labels_do_not_overlap(chain):
+    fixed = chain.mechanism.fixed if chain.mechanism else "frame"
+    shapes = schematic_shapes(chain, fixed=fixed)
+    names = [s.text for s in shapes if s.cls == "name"]
+    assert sorted(names) == sorted(chain.links)
+    teeth = [s.text for s in shapes if s.kind == "text" and s.cls != "name"]
+    assert sorted(teeth) == sorted(str(z) for g in chain.gears for z in g.teeth)
+    for a, b in itertools.combinations(label_boxes(shapes), 2):
+        assert not _overlap(a, b)
+
+
+@pytest.mark.parametrize("chain", ATLAS, ids=lambda c: c.name.replace(" ", "-"))
+def test_schematic_gears_in_mesh_touch_in_their_column(chain):
+    """Each gear pair's two bars share a column and meet at one point (the pitch point:
+    the axes' distance is the sum of the pitch radii); each axis is a centre line."""
+    bars = {}
+    for s in schematic_shapes(chain):
+        if s.cls == "gear":
+            (x0, y0), (x1, y1) = s.points
+            assert x0 == x1
+            bars.setdefault(x0, []).append((min(y0, y1), max(y0, y1)))
+    assert len(bars) == len(chain.gears)
+    for column in bars.values():
+        (lo1, hi1), (lo2, hi2) = sorted(column)
+        assert math.isclose(hi1, lo2, abs_tol=1e-9)
+    axes = {s.points[0][1] for s in schematic_shapes(chain) if s.cls == "axis"}
+    assert axes == {j.at[1] for j in chain.joints if j.kind == "R"}
+
+
+@pytest.mark.parametrize("links, dof", [(4, 1), (5, 1), (6, 1), (6, 2)])
+def test_graph_labels_do_not_overlap(links, dof):
+    for e in gear_atlas(links, dof):
+        shapes = train_graph_shapes([str(i + 1) for i in range(links)], e.turning, e.gears)
+        boxes = label_boxes(shapes)
+        assert len([s for s in shapes if s.cls == "carrier"]) == len(e.gears)
+        for a, b in itertools.combinations(boxes, 2):
+            assert not _overlap(a, b), e.key

@@ -244,3 +244,18 @@ def test_the_housed_epicyclic_train_has_an_idle_housing():
     # gear pair: as a train of its own, the housing is a freedom of its own (module text)
     links, turning, gears = chain_graph(load(catalog_path("epicyclic-gear-train")))
     assert "neither meshes nor carries" in train_verdict(len(links), turning, gears)
+
+
+def test_the_atlas_is_the_same_whatever_order_its_pieces_finish_in():
+    """The search split by tree, its pieces finishing last first (as workers may),
+    gives the atlas of the serial run: the same trains, in the same order, with the
+    same arrangements and inversions."""
+    calls = []
+
+    def backwards(fn, tasks, on_result):
+        calls.append(len(tasks))
+        for i in reversed(range(len(tasks))):
+            on_result(i, fn(tasks[i]))
+    for links, dof in ((6, 1), (6, 2)):
+        assert gear_atlas(links, dof, runner=backwards) == gear_atlas(links, dof)
+    assert calls == [6, 6]                      # one task per tree of six vertices

@@ -48,17 +48,20 @@ from __future__ import annotations
 import random
 from collections.abc import Hashable, Iterator, Sequence
 from dataclasses import dataclass
+from fractions import Fraction
 from typing import Any
 
 import networkx as nx
 
 from chaingraph._util.disjoint import DisjointSets
+from chaingraph._util.parallel import Runner, serial
 from chaingraph.errors import AtlasSizeError
 from chaingraph.model.chain import Chain
 
 __all__ = ["GearEntry", "GearAtlas", "gear_atlas", "gear_trains", "train_key",
            "train_levels", "train_verdict", "gear_atlas_dict", "MAX_GEAR_LINKS",
-           "chain_graph", "fractionated", "check_gear_size", "rotation_key"]
+           "chain_graph", "fractionated", "check_gear_size", "rotation_key",
+           "gear_axes", "drivers"]
 
 #: the largest train enumerated (8 links take minutes here; 9, hours)
 MAX_GEAR_LINKS = 8
@@ -233,6 +236,11 @@ class _Equations:
         k = self.ratios[(a, b)]
         v = [0] * self.links
         v[a], v[b], v[c] = 1, k, (-1 - k) % _PRIME
+        return self.with_row(v)
+
+    def with_row(self, v: list[int]) -> _Equations | None:
+        """These equations and ``v`` (its coefficients on the links' speeds), or None
+        when it depends on them."""
         v = self.reduce(v)
         pivot = next((i for i, x in enumerate(v) if x), None)
         if pivot is None:
@@ -354,13 +362,36 @@ def gear_trains(links: int, dof: int = 1, *, seed: int = 39) -> Iterator[
         tuple[tuple[tuple[int, int], ...], tuple[Gear, ...]]]:
     """Every admissible labelled train on each tree of ``links`` vertices (the trees up
     to isomorphism), as (turning pairs, gear pairs): the same train several times over;
-    :func:`gear_atlas` keeps each once."""
+    :func:`gear_atlas` keeps each once. Each tree draws its random ratios from its own
+    stream (``seed`` and the tree's place), so a tree's trains do not depend on which
+    trees were searched before it (the atlas is split by tree over workers)."""
     gears = check_gear_size(links, dof)
-    rng = random.Random(seed)
-    for tree in nx.nonisomorphic_trees(links):
+    for i, tree in enumerate(nx.nonisomorphic_trees(links)):
         turning = tuple(sorted(tuple(sorted(e)) for e in tree.edges))
-        for chosen in _trains_on(tree, links, gears, rng):
+        for chosen in _trains_on(tree, links, gears, random.Random(f"{seed}-{i}")):
             yield turning, chosen
+
+
+def _tree_task(task: tuple[int, int, int, tuple[tuple[int, int], ...], int],
+               ) -> dict[Hashable, dict[str, Any]]:
+    """One piece of the atlas: the trains on one tree (``(links, dof, index, tree's
+    edges, seed)``), each once by its rotation graph's key, with its canonical gear
+    pairs, its links' orbits, the canonical trees that carry it and the keys of those
+    arrangements."""
+    links, dof, index, edges, seed = task
+    tree = nx.Graph(list(edges))
+    tree.add_nodes_from(range(links))
+    found: dict[Hashable, dict[str, Any]] = {}
+    rng = random.Random(f"{seed}-{index}")
+    for chosen in _trains_on(tree, links, links - 1 - dof, rng):
+        cert, order, orbits = train_key(links, (), chosen)
+        at = {v: i for i, v in enumerate(order)}
+        item = found.setdefault(cert, {"gears": tuple(sorted(
+            (*sorted((at[a], at[b])), at[c]) for a, b, c in chosen)), "orbits": orbits,
+            "trees": set(), "layouts": set()})
+        item["trees"].add(tuple(sorted(tuple(sorted((at[a], at[b]))) for a, b in edges)))
+        item["layouts"].add(train_key(links, edges, chosen)[0])
+    return found
 
 
 def _simplest(links: int, trees: set[tuple[tuple[int, int], ...]],
@@ -373,11 +404,15 @@ def _simplest(links: int, trees: set[tuple[tuple[int, int], ...]],
     return min(trees, key=rank)
 
 
-def gear_atlas(links: int, dof: int = 1) -> GearAtlas:
+def gear_atlas(links: int, dof: int = 1, *, runner: Runner | None = None,
+               seed: int = 39) -> GearAtlas:
     """The non-isomorphic epicyclic gear trains of ``links`` links and ``dof`` degrees
     of freedom (module text), by how many carriers they have, then by their canonical
     gear pairs; each with the turning pairs of its simplest arrangement and how many
-    arrangements of turning pairs (trees, up to isomorphism) it has.
+    arrangements of turning pairs (trees, up to isomorphism) it has. The search is split
+    by tree of turning pairs, one task per tree run by ``runner`` (a
+    :data:`~chaingraph._util.parallel.Runner`: local processes, a Dask cluster; by
+    default here), the pieces merged in the trees' order: the same atlas however run.
 
     Examples
     --------
@@ -387,15 +422,17 @@ def gear_atlas(links: int, dof: int = 1) -> GearAtlas:
     [(((1, 3, 0), (2, 3, 0)), ((0, 1), (0, 2), (0, 3))),
      (((0, 2, 3), (1, 3, 2)), ((0, 3), (1, 2), (2, 3)))]
     """
+    check_gear_size(links, dof)
+    tasks = [(links, dof, i, tuple(sorted(tuple(sorted(e)) for e in tree.edges)), seed)
+             for i, tree in enumerate(nx.nonisomorphic_trees(links))]
+    parts: dict[int, dict[Hashable, dict[str, Any]]] = {}
+    (runner or serial)(_tree_task, tasks, parts.__setitem__)
     found: dict[Hashable, dict[str, Any]] = {}
-    for turning, chosen in gear_trains(links, dof):
-        cert, order, orbits = train_key(links, (), chosen)
-        at = {v: i for i, v in enumerate(order)}
-        item = found.setdefault(cert, {"gears": tuple(sorted(
-            (*sorted((at[a], at[b])), at[c]) for a, b, c in chosen)), "orbits": orbits,
-            "trees": set(), "layouts": set()})
-        item["trees"].add(tuple(sorted(tuple(sorted((at[a], at[b]))) for a, b in turning)))
-        item["layouts"].add(train_key(links, turning, chosen)[0])
+    for i in range(len(tasks)):                       # merged in the trees' order
+        for cert, item in parts[i].items():
+            have = found.setdefault(cert, {**item, "trees": set(), "layouts": set()})
+            have["trees"] |= item["trees"]
+            have["layouts"] |= item["layouts"]
     ordered = sorted(found.values(), key=lambda d: (len({g[2] for g in d["gears"]}),
                                                     d["gears"]))
     entries = tuple(GearEntry(i, links, _simplest(links, d["trees"]), d["gears"],
@@ -452,6 +489,60 @@ def gear_atlas_dict(atlas: GearAtlas, *, chains: bool = True,
     if chains:
         out["trains"] = [dict(e.to_dict(), id=i) for i, e in enumerate(entries, start=1)]
     return out
+
+
+def gear_axes(links: int, turning: Sequence[tuple[int, int]], gears: Sequence[Gear],
+              ) -> tuple[tuple[int, ...], list[tuple[int, int]]]:
+    """The axes of a train: the level of each turning pair (:func:`train_levels`) and,
+    for each gear pair ``(a, b, c)``, the levels of a's axis and of b's axis on the
+    carrier (the turning pairs from a to c, and from c to b).
+
+    Examples
+    --------
+    >>> gear_axes(4, [(0, 1), (0, 2), (0, 3)], [(1, 3, 0), (2, 3, 0)])
+    ((0, 1, 2), [(0, 2), (1, 2)])
+    """
+    levels = train_levels(links, turning, gears)
+    index = {frozenset(t): i for i, t in enumerate(turning)}
+    tree = nx.Graph(list(turning))
+    tree.add_nodes_from(range(links))
+    paths = _paths(tree)
+    out = []
+    for a, b, c in gears:
+        left, right = _sides((min(a, b), max(a, b), c), index, paths)
+        pair = (levels[left[0]], levels[right[0]])
+        out.append(pair if a < b else pair[::-1])
+    return levels, out
+
+
+def drivers(links: int, gears: Sequence[Gear], ratios: Sequence[Fraction], fixed: int,
+            candidates: Sequence[int]) -> list[int] | None:
+    """The first of ``candidates`` whose speeds, with ``fixed`` at rest, fix every
+    link's speed through the gear pairs (each ``(a, b, c)`` with its ratio
+    ``(w_a - w_c) / (w_b - w_c)``): one per degree of freedom; None when the gear
+    pairs' equations depend on each other with these ratios, or two links turn
+    together (exact modulo a prime of 61 bits)."""
+    ratios_mod = {g[:2]: (-r.numerator * pow(r.denominator, _PRIME - 2, _PRIME)) % _PRIME
+                  for g, r in zip(gears, ratios)}
+    equations: _Equations | None = _Equations(links, ratios_mod)
+    for g in gears:
+        equations = equations.with_gear(g) if equations is not None else None
+    if equations is None or equations.bound():
+        return None
+
+    def unit(v: int) -> list[int]:
+        return [int(i == v) for i in range(links)]
+    equations = equations.with_row(unit(fixed))
+    chosen: list[int] = []
+    for v in candidates:
+        if equations is None or len(equations.rows) == links:
+            break
+        more = equations.with_row(unit(v))
+        if more is not None:
+            equations, chosen = more, chosen + [v]
+    if equations is None or len(equations.rows) < links:
+        return None
+    return chosen
 
 
 def chain_graph(chain: Chain) -> tuple[list[str], list[tuple[int, int]], list[Gear]]:
