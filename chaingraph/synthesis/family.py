@@ -38,7 +38,8 @@ from chaingraph.kinematics.equations import newton_step
 from chaingraph.model.chain import Chain, Input, Joint, Mechanism, Point
 
 __all__ = ["Family", "FourBar", "FOUR_BAR", "AtlasFamily", "LoopFamily", "DyadStep", "dyad_plan",
-           "DYADS", "driven_about_fixed", "input_kind"]
+           "DYADS", "driven_about_fixed", "input_kind", "CylinderFamily",
+           "cylinder_joints"]
 
 
 class Family(ABC):
@@ -358,6 +359,25 @@ def input_kind(chain: Chain, fixed: str, driver: str) -> str | None:
     return kinds[0] if len(kinds) == 1 else None
 
 
+def cylinder_joints(chain: Chain, fixed: str) -> list[str]:
+    """The sliding pairs of ``chain`` between two links other than ``fixed`` (each a
+    possible cylinder input: :class:`CylinderFamily`), every joint a turning or sliding
+    pair of two links; else none.
+
+    Examples
+    --------
+    >>> from chaingraph.structure.atlas import atlas
+    >>> slider_crank, = atlas(links=4, prismatic=1)
+    >>> [j.links for j in slider_crank.joints if j.kind == "P"]
+    [('L1', 'L2')]
+    >>> cylinder_joints(slider_crank, "L3"), cylinder_joints(slider_crank, "L1")
+    (['J1'], [])
+    """
+    if not all(j.kind in ("R", "P") and len(j.links) == 2 for j in chain.joints):
+        return []
+    return [j.id for j in chain.joints if j.kind == "P" and fixed not in j.links]
+
+
 def _next_dyad(chain: Chain, known: set[str]) -> DyadStep | None:
     """The first dyad (in joint order) of two unknown links whose other ends are known."""
     def outer(link, middle):
@@ -400,22 +420,24 @@ class AtlasFamily(Family):
         self._carrier_frame = frames[carrier]
 
     def _setup(self, chain: Chain, fixed: str, driver: str, carrier: str,
-               name: str | None) -> None:
-        """What every family of a chain keeps: its template, links, pivot and the
-        input's reference line, the sliding pairs' parameter rows."""
+               name: str | None, pivot: str | None = None) -> None:
+        """What every family of a chain keeps: its template, links, pivot (the input's
+        joint: by default the driver's with the fixed link) and the input's reference
+        line, the sliding pairs' parameter rows."""
         self.template = tuple(Joint(j.id, j.kind, j.links) for j in chain.joints)
         self.fixed, self.driver, self.carrier = fixed, driver, carrier
         self.name = name or f"{chain.name}, {fixed} fixed"
         self.family_name = chain.family or chain.name
         self._index = {j.id: k for k, j in enumerate(self.template)}
-        self._pivot = next(j.id for j in chain.joints if set(j.links) == {fixed, driver})
+        self._pivot = pivot or next(j.id for j in chain.joints
+                                    if set(j.links) == {fixed, driver})
         on = sorted(j.id for j in chain.joints if driver in j.links and j.id != self._pivot)
         # the solver's input: the line from the pivot to the driver's first other joint;
         # a sliding input's: that joint's place along the guide (the block's slide)
         self._reference = (self._pivot, on[0])
         pair = chain.joint(self._pivot)
         self.sliding = pair.kind == "P"
-        if self.sliding:
+        if self.sliding and fixed in pair.links:
             self.name += f", driven by its sliding pair {self._pivot}"
         # a slide of the block (the pair's second link) along the guide (its first)
         self._sign = 1.0 if pair.links[1] == driver else -1.0
@@ -826,12 +848,21 @@ class LoopFamily(AtlasFamily):
                              "a chain of binary pairs driven on the fixed link")
         self.plan = ()
         self._setup(chain, fixed, driver, carrier, name)
+        self._loop_setup([x for x in self._links if x not in (fixed, driver)],
+                         [j for j in self.template if j.id != self._pivot],
+                         [j for j in self.template if not set(j.links) & {fixed, driver}])
+
+    def _loop_setup(self, unknown: list[str], equations: list[Joint],
+                    middles: list[Joint]) -> None:
+        """The loop-closure equations' bookkeeping: the ``unknown`` links (three
+        unknowns each), the joints that give ``equations`` (two each) and those whose
+        angle between their links is a transmission angle (``middles``)."""
+        driver = self.driver
         self._kept: tuple | None = None
-        self._unknown = [x for x in self._links if x not in (fixed, driver)]
+        self._unknown = unknown
         self._anchor = {x: self._index[next(j.id for j in self.template if x in j.links)]
                         for x in self._unknown}
-        self._equations = [(self._index[j.id], j.links) for j in self.template
-                           if j.id != self._pivot]
+        self._equations = [(self._index[j.id], j.links) for j in equations]
         self._carrier_frame = None
         col = {x: i for i, x in enumerate(self._links)}
         self._driver_col = col[driver]
@@ -847,7 +878,6 @@ class LoopFamily(AtlasFamily):
                                         for x in self._unknown]
                                        for _, links in self._equations])
                              for side in (0, 1))
-        middles = [j for j in self.template if not set(j.links) & {fixed, driver}]
         self._middles = [(self._index[j.id], [self._index[next(k.id for k in self.template
                                                               if x in k.links and k.id != j.id)]
                                               for x in j.links]) for j in middles]
@@ -1027,7 +1057,8 @@ class LoopFamily(AtlasFamily):
             h = self._reach(params)[:, None] / _GRID
             node = _GRID + np.trunc(turn / h)
             node = np.where(np.abs(node - _GRID) <= _GRID, node, -1).astype(int)
-            move = self._moves(params, turn).reshape(m * k, 2)
+            move = self._moves(params, turn)
+            move = move.reshape((m * k,) + move.shape[2:])
         else:
             turn = turn % (2 * math.pi)
             node = np.minimum(np.floor(turn / h).astype(int), _GRID)
@@ -1063,3 +1094,71 @@ class LoopFamily(AtlasFamily):
             with np.errstate(invalid="ignore"):
                 worst = np.where(np.abs(mu - 90.0) > np.abs(worst - 90.0), mu, worst)
         return np.where(np.isfinite(worst), worst, np.nan)
+
+
+class CylinderFamily(LoopFamily):
+    """A chain driven by a sliding pair between two moving links (a hydraulic cylinder:
+    the inverted slider crank driven by its cylinder's extension, a boom lifted by a
+    cylinder, a six-bar driven by one): the input ``joint`` (a P pair, neither of whose
+    links is ``fixed``), its value the slide of its block (its second link) along its
+    guide (its first) from the drawn pose, in the parameters' units, as the solver reads
+    it from the file (``inputs = [{joint, from, to}]``). Every moving link is an unknown
+    of the loop-closure equations (:class:`LoopFamily`'s, with the input pair's slide as
+    one more equation), continued both ways from the drawn slide as a sliding input's;
+    the transmission angles those at the joints between two moving links other than the
+    cylinder's own. A screen, as :class:`LoopFamily`: every answer is certified by the
+    kernel's solver from its written file."""
+
+    def __init__(self, chain: Chain, fixed: str, joint: str, carrier: str, *,
+                 name: str | None = None) -> None:
+        pair = chain.joint(joint)
+        if (pair.kind != "P" or fixed in pair.links
+                or not all(j.kind in ("R", "P") and len(j.links) == 2 for j in chain.joints)):
+            raise ValueError(f"{joint} of {chain.name} is not a sliding pair of two links "
+                             f"other than {fixed} in a chain of binary pairs")
+        self.plan = ()
+        self._setup(chain, fixed, pair.links[1], carrier, name, pivot=joint)
+        self.name += f", driven by its cylinder {joint}"
+        self._loop_setup([x for x in self._links if x != fixed], list(self.template),
+                         [j for j in self.template if fixed not in j.links and j.id != joint])
+        self._input = next(e for e, (k, _) in enumerate(self._equations)
+                           if self.template[k].id == joint)
+        self._input_slide = self._slides.index(self._input)
+
+    def first_input(self, params: np.ndarray) -> np.ndarray:
+        """0: the slide is read from the drawn pose (as the solver reads it)."""
+        return np.zeros(len(np.atleast_2d(params)))
+
+    def _moves(self, params, slide):
+        """The cylinder's slides themselves (its links are unknowns: no lead)."""
+        return np.asarray(slide, dtype=float)
+
+    def _closure(self, drawn, turn, z, normals=None):
+        """:meth:`LoopFamily._closure` (every joint's equations, the driver an unknown
+        too) and one row more: the block's slide along the guide's turned axis less
+        ``turn`` (the asked slide, (R,))."""
+        f, jac = super()._closure(drawn, turn, z, normals)
+        k, (a, b) = self._equations[self._input]
+        placed = []
+        for x in (a, b):
+            i = self._unknown.index(x)
+            q = drawn[:, self._anchor[x]]
+            c, s = np.cos(z[:, 3 * i + 2]), np.sin(z[:, 3 * i + 2])
+            vx, vy = drawn[:, k, 0] - q[:, 0], drawn[:, k, 1] - q[:, 1]
+            rx, ry = c * vx - s * vy, s * vx + c * vy
+            placed.append((i, c, s, q[:, 0] + z[:, 3 * i] + rx, q[:, 1] + z[:, 3 * i + 1] + ry,
+                           rx, ry))
+        (ia, ca, sa, xa, ya, rax, ray), (ib, _, _, xb, yb, rbx, rby) = placed
+        n = normals[:, self._input_slide]
+        ex, ey = n[:, 1], -n[:, 0]                        # the drawn axis
+        tx, ty = ca * ex - sa * ey, sa * ex + ca * ey      # turned with the guide
+        gx, gy = xb - xa, yb - ya
+        row = np.zeros((len(z), jac.shape[2]))
+        row[:, 3 * ib], row[:, 3 * ib + 1] = tx, ty
+        row[:, 3 * ia] -= tx
+        row[:, 3 * ia + 1] -= ty
+        row[:, 3 * ib + 2] += tx * -rby + ty * rbx
+        row[:, 3 * ia + 2] += (-ty * gx + tx * gy) - (tx * -ray + ty * rax)
+        slide = tx * gx + ty * gy - np.asarray(turn, dtype=float).reshape(len(z))
+        return (np.concatenate([f, slide[:, None]], axis=1),
+                np.concatenate([jac, row[:, None, :]], axis=1))
