@@ -1083,17 +1083,27 @@ class LoopFamily(AtlasFamily):
         drawn = self._drawn(params)
         worst = np.full(np.shape(theta), 90.0)
         for k, (i, j) in self._middles:
-            jt = self.template[k]
-            pts = [_moved(motions[x], (drawn[:, o, 0][:, None], drawn[:, o, 1][:, None]))
-                   for x, o in zip(jt.links, (i, j))]
-            mx, my = _moved(motions[jt.links[0]], (drawn[:, k, 0][:, None],
-                                                   drawn[:, k, 1][:, None]))
-            ux, uy = pts[0][0] - mx, pts[0][1] - my
-            vx, vy = pts[1][0] - mx, pts[1][1] - my
-            mu = np.degrees(np.arctan2(np.abs(ux * vy - uy * vx), ux * vx + uy * vy))
             with np.errstate(invalid="ignore"):
+                mu = self._joint_angle(params, motions, k, (i, j))
                 worst = np.where(np.abs(mu - 90.0) > np.abs(worst - 90.0), mu, worst)
         return np.where(np.isfinite(worst), worst, np.nan)
+
+    def _lines(self, params, motions, k, others):
+        """The lines (vectors (x, y)) from joint ``k`` to the ``others`` (one joint of
+        each of its links, drawn rows), at the motions."""
+        drawn = self._drawn(params)
+        jt = self.template[k]
+        pts = [_moved(motions[x], (drawn[:, o, 0][:, None], drawn[:, o, 1][:, None]))
+               for x, o in zip(jt.links, others)]
+        mx, my = _moved(motions[jt.links[0]], (drawn[:, k, 0][:, None],
+                                               drawn[:, k, 1][:, None]))
+        return [(x - mx, y - my) for x, y in pts]
+
+    def _joint_angle(self, params, motions, k, others) -> np.ndarray:
+        """The angle (degrees) at joint ``k`` between its two links' lines to
+        ``others``."""
+        (ux, uy), (vx, vy) = self._lines(params, motions, k, others)
+        return np.degrees(np.arctan2(np.abs(ux * vy - uy * vx), ux * vx + uy * vy))
 
 
 class CylinderFamily(LoopFamily):
@@ -1162,3 +1172,19 @@ class CylinderFamily(LoopFamily):
         slide = tx * gx + ty * gy - np.asarray(turn, dtype=float).reshape(len(z))
         return (np.concatenate([f, slide[:, None]], axis=1),
                 np.concatenate([jac, row[:, None, :]], axis=1))
+
+    def _joint_angle(self, params, motions, k, others) -> np.ndarray:
+        """As :meth:`LoopFamily._joint_angle`; at a joint of a link of the cylinder, the
+        angle (within [0, 90]) between the cylinder's axis (the force's line) and the
+        other link's line (as the certification measures a boom's)."""
+        links = self.template[k].links
+        pair = self.template[self._index[self._pivot]]
+        if not set(links) & set(pair.links):
+            return super()._joint_angle(params, motions, k, others)
+        lines = self._lines(params, motions, k, others)
+        ux, uy = lines[1] if links[0] in pair.links else lines[0]
+        ex, ey = self._axis(params, self._pivot)
+        c, s = _turn_of(motions[pair.links[0]])
+        tx, ty = c * ex - s * ey, s * ex + c * ey
+        cos = np.abs(ux * tx + uy * ty) / np.hypot(ux, uy)
+        return np.degrees(np.arccos(np.clip(cos, 0.0, 1.0)))
