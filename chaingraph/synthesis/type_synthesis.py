@@ -73,7 +73,7 @@ from chaingraph.synthesis.result import Searched, Solution, Synthesis, ranked
 from chaingraph.synthesis.task import MotionTask, PathTask, check_options, drawn_seed, motion_task
 
 __all__ = ["path", "motion", "LINKS", "Choice", "Space", "atlas_space", "search_family",
-           "path_types", "check_links", "BUDGETS", "NEWTON_BUDGETS",
+           "path_types", "check_links", "BUDGETS", "NEWTON_BUDGETS", "CYLINDER_BUDGETS",
            "UNSOLVED", "TRIADS_SKIPPED", "NOT_CHOSEN", "UNDRIVEN", "SLIDING_CLOSED"]
 
 #: the sizes a synthesis searches (4: the four-bar; 6 and 8: through the atlas)
@@ -96,6 +96,10 @@ BUDGETS = {True: Budget(samples=1500, starts=24), False: Budget(samples=2000, st
 #: how hard a family solved by Newton's method (slower) is searched
 NEWTON_BUDGETS = {True: Budget(samples=200, starts=4, fitted=2, generations=5),
                   False: Budget(samples=200, starts=6, fitted=1, generations=5)}
+#: how hard a family driven by a cylinder (Newton's method over every moving link, its
+#: continuation both ways along the slide: the slowest) is searched
+CYLINDER_BUDGETS = {True: Budget(samples=60, starts=1, fitted=1, generations=5),
+                    False: Budget(samples=60, starts=2, fitted=1, generations=5)}
 _KEPT = 2         # certified solutions kept per family
 
 
@@ -289,7 +293,9 @@ def search_family(job: _Job) -> tuple[list[Solution], dict[str, int], int]:
         kind = AtlasFamily if c.method == "dyads" else LoopFamily
         family = kind(c.chain, c.fixed, c.driver, c.carrier, name=name)
     rng = np.random.default_rng([job.task.seed, job.number])
-    budget = job.budget or (BUDGETS if c.method == "dyads" else NEWTON_BUDGETS)[_exact(job.task)]
+    budgets = CYLINDER_BUDGETS if c.cylinder else (BUDGETS if c.method == "dyads"
+                                                   else NEWTON_BUDGETS)
+    budget = job.budget or budgets[_exact(job.task)]
     search = synthesise_motion if job.task.kind == "motion" else synthesise_path
     kept = _KEPT if c.method == "dyads" else 1      # a triad's certification is slow
     found = search(job.task, family, solutions=min(job.solutions, kept), budget=budget,
