@@ -39,7 +39,7 @@ from chaingraph.model.chain import Chain, Input, Joint, Mechanism, Point
 
 __all__ = ["Family", "FourBar", "FOUR_BAR", "AtlasFamily", "LoopFamily", "DyadStep", "dyad_plan",
            "DYADS", "driven_about_fixed", "input_kind", "CylinderFamily",
-           "cylinder_joints"]
+           "CylinderDyads", "cylinder_joints", "cylinder_plan"]
 
 
 class Family(ABC):
@@ -1188,3 +1188,96 @@ class CylinderFamily(LoopFamily):
         tx, ty = c * ex - s * ey, s * ex + c * ey
         cos = np.abs(ux * tx + uy * ty) / np.hypot(ux, uy)
         return np.degrees(np.arccos(np.clip(cos, 0.0, 1.0)))
+
+
+def cylinder_plan(chain: Chain, fixed: str, joint: str) -> tuple[DyadStep, ...] | None:
+    """The dyads that solve ``chain`` driven by the cylinder ``joint`` (a sliding pair of
+    two moving links) once its slide is given: its two links one rigid link (named as
+    the guide), the rest found two links at a time from ``fixed`` (as
+    :func:`dyad_plan`), every dyad of turning pairs (RRR); None when the chain is not
+    solved so (a triad, a dyad with a sliding pair, or two joints between the same two
+    links once the cylinder's are one).
+
+    Examples
+    --------
+    >>> from chaingraph.structure.atlas import atlas
+    >>> slider_crank, = atlas(links=4, prismatic=1)     # L3 fixed: a boom's cylinder
+    >>> [(s.first, s.second, s.pattern) for s in cylinder_plan(slider_crank, "L3", "J1")]
+    [('L1', 'L4', 'RRR')]
+    """
+    guide, block = chain.joint(joint).links
+    joints = [Joint(j.id, j.kind, tuple(guide if x == block else x for x in j.links))
+              for j in chain.joints if j.id != joint]
+    if len({frozenset(j.links) for j in joints}) < len(joints):
+        return None
+    merged = Chain(chain.name, tuple(joints))
+    known = {fixed}
+    steps: list[DyadStep] = []
+    while len(known) < len(merged.links):
+        step = _next_dyad(merged, known)
+        if step is None or step.pattern != "RRR":
+            return None
+        steps.append(step)
+        known |= {step.first, step.second}
+    return tuple(steps)
+
+
+class CylinderDyads(CylinderFamily):
+    """A :class:`CylinderFamily` solved in closed form (:func:`cylinder_plan`): at each
+    slide the cylinder's two links move as one link (in its frame, the block's joints
+    drawn moved along the axis by the slide), found with the rest dyad by dyad (RRR)
+    from the fixed link; vectorised over mechanisms and slides as the atlas's dyad
+    families, so searched on their budget."""
+
+    def __init__(self, chain: Chain, fixed: str, joint: str, carrier: str, *,
+                 name: str | None = None) -> None:
+        super().__init__(chain, fixed, joint, carrier, name=name)
+        plan = cylinder_plan(chain, fixed, joint)
+        if plan is None:
+            raise ValueError(f"{chain.name} driven by its cylinder {joint} with {fixed} "
+                             "fixed is not solved dyad by dyad")
+        self.plan = plan
+        self._guide, self._block = chain.joint(joint).links
+        self._on_block = {j.id for j in self.template
+                          if self._block in j.links and j.id != joint}
+
+    def _solve(self, params, theta):
+        """Every link's motion at the slides ``theta`` ((M, K), from the drawn pose):
+        the RRR dyads of :func:`cylinder_plan`, each link's joints where its own frame
+        draws them (the merged link's block joints moved along the axis by the slide);
+        the block's motion the merged link's after that move."""
+        drawn = self._drawn(params)
+        slide = np.asarray(theta, dtype=float) - self.first_input(params)[:, None]
+        ex, ey = self._axis(params, self._pivot)
+        shift = (slide * ex, slide * ey)
+        zero = 0.0 * slide
+
+        def d(jid, link, moved=True):
+            k = self._index[jid]
+            x, y = drawn[:, k, 0][:, None], drawn[:, k, 1][:, None]
+            if moved and link == self._guide and jid in self._on_block:
+                return x + shift[0], y + shift[1]
+            return x + zero, y + zero
+        motions: dict[str, tuple | None] = {self.fixed: None}
+        for s in self.plan:
+            with np.errstate(all="ignore"):
+                a = _moved(motions[s.first_known], d(s.first_joint, s.first_known))
+                b = _moved(motions[s.second_known], d(s.second_joint, s.second_known))
+                a0, m1 = d(s.first_joint, s.first), d(s.middle, s.first)
+                b0, m2 = d(s.second_joint, s.second), d(s.middle, s.second)
+                # the assembly mode: the drawn pose's (every joint where it is drawn)
+                (ax, ay), (bx, by), (mx0, my0) = (d(j, s.first, False) for j in
+                                                  (s.first_joint, s.second_joint, s.middle))
+                mode = np.where((bx - ax) * (my0 - ay) - (by - ay) * (mx0 - ax) >= 0, 1.0, -1.0)
+                (mx, my), (nx, ny), raw = circle_circle(
+                    a, np.hypot(m1[0] - a0[0], m1[1] - a0[1]),
+                    b, np.hypot(m2[0] - b0[0], m2[1] - b0[1]))
+                root = mode * np.sqrt(np.where(raw >= 0, raw, np.nan))
+                m = (mx + root * nx, my + root * ny)
+                motions[s.first] = _rigid(a0, m1, a, m)
+                motions[s.second] = _rigid(b0, m2, b, m)
+        guide = motions[self._guide]
+        assert guide is not None            # a moving link, found by a dyad
+        c, sn, p, q = guide
+        motions[self._block] = (c, sn, p, (q[0] - shift[0], q[1] - shift[1]))
+        return motions

@@ -59,9 +59,11 @@ from chaingraph.structure.isomorphism import (
 )
 from chaingraph.synthesis.family import (
     AtlasFamily,
+    CylinderDyads,
     CylinderFamily,
     LoopFamily,
     cylinder_joints,
+    cylinder_plan,
     dyad_plan,
     input_kind,
 )
@@ -182,9 +184,10 @@ def atlas_space(links: int, prismatic: int | str | None = None) -> Space:
     (2, 5, 25, 25)
     >>> s = atlas_space(6, 1)       # one sliding pair
     >>> s.chains, s.inversions, len(s.choices), sum(c.method == "newton" for c in s.choices)
-    (6, 25, 184, 83)
-    >>> sum(bool(c.cylinder) for c in s.choices)   # driven by a cylinder (by Newton)
-    43
+    (6, 25, 184, 68)
+    >>> cylinders = [c.method for c in s.choices if c.cylinder]   # driven by a cylinder
+    >>> len(cylinders), cylinders.count("dyads")
+    (43, 15)
     >>> sliding = [c.method for c in s.choices if c.sliding]   # driven by a slide
     >>> len(sliding), sliding.count("dyads")
     (23, 15)
@@ -238,7 +241,9 @@ def _cylinder_choices(chain, number, inversion, fixed, names) -> list[Choice]:
     """An inversion's families driven by a cylinder: each sliding pair between two
     moving links (one per orbit of (fixed, pair) under the automorphisms the
     generators give that keep the fixed link), every carrier not jointed to the fixed
-    link; solved by Newton's method."""
+    link; solved dyad by dyad where the cylinder's links as one leave dyads of turning
+    pairs (:func:`~chaingraph.synthesis.family.cylinder_plan`), else by Newton's
+    method."""
     joints = cylinder_joints(chain, fixed)
     same = DisjointSets(joints)
     for g in automorphism_generators(chain, oriented=False):
@@ -250,7 +255,7 @@ def _cylinder_choices(chain, number, inversion, fixed, names) -> list[Choice]:
     grounded = {x for j in chain.joints if fixed in j.links for x in j.links}
     carriers = [x for x in chain.links if x not in grounded]
     return [Choice(chain, number, inversion, fixed, chain.joint(j).links[1], c, names,
-                   "newton", cylinder=j)
+                   "dyads" if cylinder_plan(chain, fixed, j) else "newton", cylinder=j)
             for j in same.blocks() for c in carriers]
 
 
@@ -287,13 +292,13 @@ def search_family(job: _Job) -> tuple[list[Solution], dict[str, int], int]:
         return [], {TRIADS_SKIPPED: 1}, 0
     name = c.names[-1] if len(c.names) > 1 else None    # None: the family's own
     if c.cylinder:
-        family: AtlasFamily = CylinderFamily(c.chain, c.fixed, c.cylinder, c.carrier,
-                                             name=name)
+        cylinder = CylinderDyads if c.method == "dyads" else CylinderFamily
+        family: AtlasFamily = cylinder(c.chain, c.fixed, c.cylinder, c.carrier, name=name)
     else:
         kind = AtlasFamily if c.method == "dyads" else LoopFamily
         family = kind(c.chain, c.fixed, c.driver, c.carrier, name=name)
     rng = np.random.default_rng([job.task.seed, job.number])
-    budgets = CYLINDER_BUDGETS if c.cylinder else (BUDGETS if c.method == "dyads"
+    budgets = BUDGETS if c.method == "dyads" else (CYLINDER_BUDGETS if c.cylinder
                                                    else NEWTON_BUDGETS)
     budget = job.budget or budgets[_exact(job.task)]
     search = synthesise_motion if job.task.kind == "motion" else synthesise_path

@@ -15,8 +15,7 @@ from chaingraph.model.chainfile import toml_text
 from chaingraph.structure.atlas import atlas
 from chaingraph.synthesis import PointTargets, certify, path
 from chaingraph.synthesis.certification import transmission_angles
-from chaingraph.synthesis.family import CylinderFamily, cylinder_joints
-from chaingraph.synthesis.path_generation import Budget
+from chaingraph.synthesis.family import CylinderDyads, CylinderFamily, cylinder_joints
 from chaingraph.synthesis.type_synthesis import NOT_CHOSEN, atlas_space
 
 #: the cylinder's extensions (mm, from the drawn pose) at which the boom is sampled
@@ -66,11 +65,13 @@ def test_the_space_adds_every_cylinder_between_moving_links():
     driving, the point on L2); six links, one sliding pair: 43 families driven by a
     cylinder in 16 of the 25 inversions, after the 141 driven on the fixed link (their
     numbers, so their random streams, as before), each's input a sliding pair of two
-    moving links."""
+    moving links; 15 solved dyad by dyad (the cylinder's links as one leave RRR dyads),
+    28 by Newton's method."""
     chain, = atlas(links=4, prismatic=1)
     assert cylinder_joints(chain, "L3") == ["J1"] and cylinder_joints(chain, "L1") == []
     cyl = [c for c in atlas_space(4, 1).choices if c.cylinder]
-    assert [(c.fixed, c.cylinder, c.driver, c.carrier) for c in cyl] == [("L3", "J1", "L2", "L2")]
+    assert [(c.fixed, c.cylinder, c.driver, c.carrier, c.method) for c in cyl] == [
+        ("L3", "J1", "L2", "L2", "dyads")]
     space = atlas_space(6, 1)
     cyl = [c for c in space.choices if c.cylinder]
     assert len(space.choices) == 141 + 43 and len(cyl) == 43
@@ -79,15 +80,18 @@ def test_the_space_adds_every_cylinder_between_moving_links():
     for c in cyl:
         pair = c.chain.joint(c.cylinder)
         assert pair.kind == "P" and c.fixed not in pair.links and c.slides and not c.sliding
-        assert c.method == "newton"
+    assert [c.method for c in cyl].count("dyads") == 15
+    assert [c.method for c in cyl].count("newton") == 28
 
 
-def test_the_family_traces_and_measures_what_the_solver_does():
-    """The boom's family: its point and its transmission angle (the cylinder's axis
-    against the boom) at extensions either way of the drawn pose, and the limits of
-    its sweep, as the kernel solves them from the file."""
+@pytest.mark.parametrize("kind", [CylinderDyads, CylinderFamily])
+def test_the_family_traces_and_measures_what_the_solver_does(kind):
+    """The boom's family, in closed form and by Newton's method: its point and its
+    transmission angle (the cylinder's axis against the boom) at extensions either way
+    of the drawn pose, and the limits of its sweep, as the kernel solves them from the
+    file."""
     boom = _boom()
-    family = CylinderFamily(boom, "L3", "J1", "L2")
+    family = kind(boom, "L3", "J1", "L2")
     params = _params(boom)
     slides = [-300.0, -120.0, 0.0, 75.0, 210.0, 400.0]
     points, rows = _sampled(boom, slides)
@@ -106,44 +110,44 @@ def test_the_family_traces_and_measures_what_the_solver_does():
 
 
 def test_six_link_cylinder_families_trace_what_the_solver_traces():
-    """A mechanism drawn from a six-link family driven by a cylinder, the first of each
-    of the six chains (each has one), traced over its extensions (within its limits) as
-    the solver traces it from its written file (its input's values, the slides, read
-    from the solver's columns)."""
+    """A mechanism drawn from a six-link family driven by a cylinder, the first of the
+    chains 1 (solved dyad by dyad) and 4 (by Newton's method), traced
+    over the extensions the solver sweeps from its written file (its whole range, the
+    limits left out) as the solver traces it."""
     rng = np.random.default_rng(7)
     seen = set()
     for c in atlas_space(6, 1).choices:
-        if not c.cylinder or c.chain_id in seen:
+        if not c.cylinder or c.chain_id not in (1, 4) or c.chain_id in {i for i, _ in seen}:
             continue
-        seen.add(c.chain_id)
-        family = CylinderFamily(c.chain, c.fixed, c.cylinder, c.carrier)
+        seen.add((c.chain_id, c.method))
+        kind = CylinderDyads if c.method == "dyads" else CylinderFamily
+        family = kind(c.chain, c.fixed, c.cylinder, c.carrier)
         p = family.sample(rng, 1)[0] * 50.0
-        ends = family.sweep(p[None, :], 2)[0]
-        chain = family.chain(p, name="sampled", units="mm", notes="",
-                             span=(0.95 * ends[0], 0.95 * ends[1]))
-        m = chaingraph.solve(chain, steps=12, summary=False)
+        chain = family.chain(p, name="sampled", units="mm", notes="")
+        m = chaingraph.solve(chain, steps=14, summary=False)    # its whole range
         slides = m[f"input:{c.cylinder}"]
         x, y = family.positions(p[None, :], np.asarray(slides)[None, :])
+        x, y, slides = x[:, 1:-1], y[:, 1:-1], slides[1:-1]      # the limits left out
+        m = {k: m[k][1:-1] for k in ("x:P", "y:P")}
         # a screen: Newton's method may miss a pose a hair from a fold (the kernel
         # certifies every answer); everywhere else, the solver's points
         ok = np.isfinite(x[0])
         assert ok.sum() >= len(ok) - 1, c
         assert np.allclose(x[0][ok], m["x:P"][ok], atol=1e-9 * 50), c
         assert np.allclose(y[0][ok], m["y:P"][ok], atol=1e-9 * 50), c
-    assert len(seen) == 6
+    assert seen == {(1, "dyads"), (4, "newton")}
 
 
 @pytest.mark.slow
 def test_a_task_of_the_boom_is_passed_by_a_cylinder_driven_chain():
-    """--links 4 --prismatic 1, the family driven by the cylinder alone (a small
-    budget): four points of the boom's rod passed exactly by an inverted slider crank
+    """--links 4 --prismatic 1, the family driven by the cylinder alone (solved dyad by
+    dyad): four points of the boom's rod passed exactly by an inverted slider crank
     driven by its cylinder, re-solved from its file at its reported extensions, its
     input the cylinder's pair swept from the first target to the last."""
     points, _ = _sampled(_boom(), SLIDES)
     size = max(math.dist(p, q) for p in points for q in points)
     found = path(points=points, links=4, prismatic=1, seed=1, solutions=1,
-                 families=lambda c: bool(c.cylinder),
-                 budget=Budget(samples=60, starts=1, fitted=1, generations=5))
+                 families=lambda c: bool(c.cylinder))
     assert found.rejected[NOT_CHOSEN] == 4
     s, = found.solutions
     assert s.error.max <= 1e-9 * size and s.input == "slides"
