@@ -111,6 +111,11 @@ class Family(ABC):
         """``count`` random mechanisms whose input turns fully, about the origin, their
         tracing point's path about unit size."""
 
+    def slide_direction(self, params: np.ndarray) -> np.ndarray:
+        """The direction (radians, (M,)) in which a sliding input on the fixed link
+        moves its block as its value grows; NaN for other inputs."""
+        return np.full(len(np.atleast_2d(params)), np.nan)
+
     def link_ratio(self, params: np.ndarray) -> np.ndarray:
         """The longest link (the distance between two joints of one link) over the
         shortest, per mechanism ((M,))."""
@@ -619,6 +624,23 @@ class AtlasFamily(Family):
             ex, ey = self._axis(params, self._pivot)
             return self._sign * (drawn[:, b, 0] * ex[:, 0] + drawn[:, b, 1] * ey[:, 0])
         return np.arctan2(drawn[:, b, 1] - drawn[:, a, 1], drawn[:, b, 0] - drawn[:, a, 0])
+
+    def slide_direction(self, params: np.ndarray) -> np.ndarray:
+        """As :meth:`Family.slide_direction`: the guide's axis, its sign the slide's."""
+        p = np.atleast_2d(params)
+        if not self.sliding or self.fixed not in self.template[self._index[self._pivot]].links:
+            return super().slide_direction(p)
+        ex, ey = self._axis(p, self._pivot)
+        return np.arctan2(self._sign * ey[:, 0], self._sign * ex[:, 0])
+
+    def params_of(self, at: dict[str, tuple[float, float]], axes: dict[str, float],
+                  point: tuple[float, float]) -> np.ndarray:
+        """One row of parameters from the joints' places ``at`` (by id), the sliding
+        pairs' ``axes`` (radians, by id) and the tracing point's place."""
+        row = [v for j in self.template for v in at[j.id]]
+        for jid, _ in sorted(self._axis_row.items(), key=lambda kv: kv[1]):
+            row += [at[jid][0] + math.cos(axes[jid]), at[jid][1] + math.sin(axes[jid])]
+        return np.array(row + list(point), dtype=float)
 
     def sweep(self, params: np.ndarray, steps: int) -> np.ndarray:
         """As :meth:`Family.sweep`; a sliding input's range found by probing

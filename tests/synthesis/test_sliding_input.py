@@ -16,6 +16,7 @@ from chaingraph.files import loads
 from chaingraph.model.chainfile import toml_text
 from chaingraph.synthesis import PointTargets, certify, motion, path
 from chaingraph.synthesis.family import AtlasFamily, LoopFamily
+from chaingraph.synthesis.optimiser import timed_guides
 from chaingraph.synthesis.type_synthesis import NOT_CHOSEN, SLIDING_CLOSED, atlas_space
 
 #: slides of the engine's piston (mm) at which its point is sampled: 680 mm in all, more
@@ -137,6 +138,41 @@ def test_a_timing_in_slides_is_kept():
         assert s.error.max <= 1e-9 * _size(points)
         assert np.allclose(np.diff(s.reached_at), np.diff(SLIDES[:4]), atol=1e-6)
         _reproduced(s, points)
+
+
+def test_five_points_timed_in_slides_find_the_engine():
+    """Five points with the piston's slides as the timing: ten equations on the engine
+    driven by its piston's nine dimensions (a slide has no start of its own), so its
+    solutions are isolated and random seeds missed them; seeded as the textbooks
+    reduce timed path generation to motion generation (the guide and the rod's pin
+    where the targets less the slides are concyclic, the crank a Burmester point of
+    the rod's five poses), the engine is found at those slides, exactly, whatever the
+    seed."""
+    points = _sampled(_engine(), SLIDES)
+    for seed in (1, 2):
+        found = path(points=points, timing=SLIDES, links=4, prismatic=1, seed=seed,
+                     solutions=1, families=lambda c: c.sliding)
+        s, = found.solutions
+        assert s.error.max <= 1e-9 * _size(points)
+        assert np.allclose(np.diff(s.reached_at), np.diff(SLIDES), atol=1e-6)
+        chain = _reproduced(s, points)
+        crank = sorted(math.dist(a.at, b.at) for a in chain.joints for b in chain.joints
+                       if a.kind == b.kind == "R" and len(set(a.links) & set(b.links)) == 1)
+        assert min(crank) == pytest.approx(800.0, rel=1e-6)   # the engine's crank
+
+
+def test_the_guide_of_timed_slides_is_where_the_targets_are_concyclic():
+    """The engine's points less its piston's slides along its guide (the x axis) lie
+    on a circle about the rod's pin (radius the pin to P): the guide's direction, the
+    pin and the radius found first among the candidates, to the rounding of a fit of
+    squares."""
+    points = np.array(_sampled(_engine(), SLIDES))
+    (phi, cx, cy, r), *_ = timed_guides(points, np.array(SLIDES))
+    j4 = (800 * math.cos(math.radians(60)), 800 * math.sin(math.radians(60)))
+    pin = (j4[0] + math.sqrt(2400 ** 2 - j4[1] ** 2), 0.0)
+    assert math.remainder(phi, 2 * math.pi) == pytest.approx(0.0, abs=1e-7)
+    assert (cx, cy) == pytest.approx(pin, abs=1e-8 * 2400)     # a fit of squares
+    assert r == pytest.approx(math.dist(pin, points[0]), rel=1e-8)
 
 
 def test_the_triads_driven_by_a_slide_trace_what_the_solver_traces():
