@@ -101,7 +101,7 @@ NEWTON_BUDGETS = {True: Budget(samples=200, starts=4, fitted=2, generations=5),
 #: how hard a family driven by a cylinder (Newton's method over every moving link, its
 #: continuation both ways along the slide: the slowest) is searched
 CYLINDER_BUDGETS = {True: Budget(samples=60, starts=1, fitted=1, generations=5),
-                    False: Budget(samples=60, starts=2, fitted=1, generations=5)}
+                    False: Budget(samples=60, starts=6, fitted=1, generations=5)}
 _KEPT = 2         # certified solutions kept per family
 
 
