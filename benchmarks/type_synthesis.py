@@ -7,12 +7,16 @@ the atlas; where the time goes and how it grows with the number of families sear
     PYTHONPATH=$PWD python benchmarks/type_synthesis.py --links 8 --every 25
     PYTHONPATH=$PWD python benchmarks/type_synthesis.py --workers 2     # and the whole run
     PYTHONPATH=$PWD python benchmarks/type_synthesis.py --links 6 --prismatic 1 --open --only sliding
+    PYTHONPATH=$PWD python benchmarks/type_synthesis.py --links 6 --prismatic 1 --open --only cylinder
+    PYTHONPATH=$PWD python benchmarks/type_synthesis.py --count     # the spaces' families
 
 ``--open`` searches an open path instead (20 points of the same curve over half its
 turn), which the families driven by a sliding input also search (a closed curve leaves
-them out); ``--only sliding`` or ``--only turning`` searches only the families driven by
-a slide on the fixed link, or only those driven by a turn; ``--method dyads|newton``
-only the families solved so.
+them out); ``--only sliding``, ``--only cylinder`` or ``--only turning`` searches only
+the families driven by a slide on the fixed link, by a cylinder (a sliding pair between
+two moving links), or by a turn; ``--method dyads|newton`` only the families solved so.
+``--count`` prints each space's families by input and by method (how the cylinders grew
+the space), and searches nothing.
 
 Each family is searched alone, one after another in this process, exactly as the whole
 search searches it (its number in the space, its random stream, its budget):
@@ -67,6 +71,35 @@ def task_points(open_task: bool):
     return crank_rocker_points(range(0, 180, 9) if open_task else range(0, 360, 18))
 
 
+def _input(c) -> str:
+    """How a family is driven: "turn", "slide" (on the fixed link) or "cylinder"."""
+    return "cylinder" if c.cylinder else "slide" if c.sliding else "turn"
+
+
+def _only(c, only: str | None) -> bool:
+    """Whether a family is of those ``only`` names (None: all)."""
+    return only is None or _input(c) == {"turning": "turn", "sliding": "slide",
+                                         "cylinder": "cylinder"}[only]
+
+
+SPACES = ((4, 1), (4, 2), (6, 1), (6, 2), (8, 1))
+
+
+def count_spaces() -> None:
+    """Each space's families by input (and by how they are solved), with the
+    inversions that have a cylinder."""
+    for links, prismatic in SPACES:
+        space = atlas_space(links, prismatic)
+        by: dict[str, dict[str, int]] = defaultdict(lambda: defaultdict(int))
+        for c in space.choices:
+            by[_input(c)][c.method] += 1
+        cyl = len({(c.chain_id, c.inversion) for c in space.choices if c.cylinder})
+        parts = "; ".join(f"{k} {sum(v.values())} {dict(v)}" for k, v in by.items())
+        print(f"--links {links} --prismatic {prismatic}: {space.chains} chains, "
+              f"{space.inversions} inversions ({cyl} with a cylinder), "
+              f"{len(space.choices)} families: {parts}", flush=True)
+
+
 def per_family(links: int, prismatic, every: int, seed: int = 1, open_task: bool = False,
                only: str | None = None, method: str | None = None):
     """Every ``every``-th family (of those ``only`` names: driven by a slide or by a
@@ -76,12 +109,13 @@ def per_family(links: int, prismatic, every: int, seed: int = 1, open_task: bool
     space = atlas_space(links, prismatic)
     rows = []
     chosen = [(k, c) for k, c in enumerate(space.choices)
-              if (only is None or c.sliding == (only == "sliding"))
-              and (method is None or c.method == method)]
+              if _only(c, only) and (method is None or c.method == method)]
     sliding = sum(c.sliding for c in space.choices)
+    cylinders = sum(bool(c.cylinder) for c in space.choices)
     print(f"families: {len(space.choices)}, of which {sliding} driven by a slide "
           f"({sum(c.sliding and c.solvable for c in space.choices)} solvable), "
-          f"{len(space.choices) - sliding} by a turn", flush=True)
+          f"{cylinders} by a cylinder, {len(space.choices) - sliding - cylinders} by a turn",
+          flush=True)
     for k, c in chosen[::every]:
         profile = cProfile.Profile()
         t = time.process_time()
@@ -94,7 +128,7 @@ def per_family(links: int, prismatic, every: int, seed: int = 1, open_task: bool
         best = min((s.error.max for s in found.solutions), default=float("nan"))
         rows.append((k, c.method, c.names[-1] if c.names else "", cpu, len(found.solutions),
                      best / size, _stages(pstats.Stats(profile))))
-        print(f"{k:5d} {c.method or '-':7s} {'slide' if c.sliding else 'turn':5s} "
+        print(f"{k:5d} {c.method or '-':7s} {_input(c):8s} "
               f"{rows[-1][2][:34]:34s} {cpu:7.1f} s  "
               f"{len(found.solutions)} certified  best {best / size:.4f} of the size",
               flush=True)
@@ -113,7 +147,7 @@ def summary(space, rows, every: int, only: str | None = None) -> None:
             stages[method][name] += v
     counts = defaultdict(int)
     for c in space.choices:
-        if only is None or c.sliding == (only == "sliding"):
+        if _only(c, only):
             counts[c.method] += 1
     print(f"\nspace: {space.chains} chains, {space.inversions} inversions, "
           f"{len(space.choices)} families {dict(counts)}; searched every {every}")
@@ -155,9 +189,13 @@ def main() -> None:
     parser.add_argument("--every", type=int, default=1)
     parser.add_argument("--workers", type=int, default=0)
     parser.add_argument("--open", action="store_true")
-    parser.add_argument("--only", choices=("sliding", "turning"), default=None)
+    parser.add_argument("--only", choices=("sliding", "cylinder", "turning"), default=None)
+    parser.add_argument("--count", action="store_true")
     parser.add_argument("--method", choices=("dyads", "newton"), default=None)
     args = parser.parse_args()
+    if args.count:
+        count_spaces()
+        return
     prismatic = (None if args.prismatic is None else
                  args.prismatic if args.prismatic == "all" else int(args.prismatic))
     space, rows = per_family(args.links, prismatic, args.every, open_task=args.open,

@@ -375,8 +375,10 @@ def transmission_angles(chain: Chain,
     within [0, 90], the angle to the normal of the guide: of the coupler, for a block on
     a fixed guide (slider crank); of the line from the block's fixed pivot to the
     coupler's pin, for a coupler sliding in a block that turns about a fixed pivot; of
-    the rocker, for a coupler sliding in the input link (each 0 where the input meets a
-    limit); None for other mechanisms."""
+    the rocker, for a coupler sliding in the input link, or the angle between the
+    rocker and the axis of a cylinder driving it (a sliding input between two moving
+    links: the force's line) (each 0 where the input meets a limit); None for other
+    mechanisms."""
     m = chain.mechanism
     loop = four_link_loop(chain)
     lead = _input_link(chain)
@@ -388,6 +390,8 @@ def transmission_angles(chain: Chain,
     rocker = next(x for x in free if x != coupler)
     back = next(j for j in chain.joints_of(coupler) if j.id != joint.id)
     ahead = next(j for j in chain.joints_of(rocker) if j.id != joint.id)
+    cylinder = (m.driver is None and bool(m.inputs) and back.id == m.inputs[0].joint
+                and m.fixed not in back.links)
     values = []
     for motion in motions:
         def xy(j):
@@ -402,6 +406,8 @@ def transmission_angles(chain: Chain,
             mu = _to_normal(np.subtract(xy(back), xy(ahead)), _guide(chain, motion, joint))
         elif joint.kind == "R" and back.kind == "P" and ahead.kind == "R":
             mu = _to_normal(np.subtract(xy(ahead), xy(joint)), _guide(chain, motion, back))
+            if cylinder:        # the force's line is the cylinder's axis, not its normal
+                mu = 90.0 - mu
         else:
             return None
         values.append(np.asarray(mu, dtype=float).reshape(-1))

@@ -38,7 +38,8 @@ from chaingraph.kinematics.equations import newton_step
 from chaingraph.model.chain import Chain, Input, Joint, Mechanism, Point
 
 __all__ = ["Family", "FourBar", "FOUR_BAR", "AtlasFamily", "LoopFamily", "DyadStep", "dyad_plan",
-           "DYADS", "driven_about_fixed", "input_kind"]
+           "DYADS", "driven_about_fixed", "input_kind", "CylinderFamily",
+           "CylinderDyads", "cylinder_joints", "cylinder_plan"]
 
 
 class Family(ABC):
@@ -109,6 +110,11 @@ class Family(ABC):
     def sample(self, rng: np.random.Generator, count: int) -> np.ndarray:
         """``count`` random mechanisms whose input turns fully, about the origin, their
         tracing point's path about unit size."""
+
+    def slide_direction(self, params: np.ndarray) -> np.ndarray:
+        """The direction (radians, (M,)) in which a sliding input on the fixed link
+        moves its block as its value grows; NaN for other inputs."""
+        return np.full(len(np.atleast_2d(params)), np.nan)
 
     def link_ratio(self, params: np.ndarray) -> np.ndarray:
         """The longest link (the distance between two joints of one link) over the
@@ -358,6 +364,25 @@ def input_kind(chain: Chain, fixed: str, driver: str) -> str | None:
     return kinds[0] if len(kinds) == 1 else None
 
 
+def cylinder_joints(chain: Chain, fixed: str) -> list[str]:
+    """The sliding pairs of ``chain`` between two links other than ``fixed`` (each a
+    possible cylinder input: :class:`CylinderFamily`), every joint a turning or sliding
+    pair of two links; else none.
+
+    Examples
+    --------
+    >>> from chaingraph.structure.atlas import atlas
+    >>> slider_crank, = atlas(links=4, prismatic=1)
+    >>> [j.links for j in slider_crank.joints if j.kind == "P"]
+    [('L1', 'L2')]
+    >>> cylinder_joints(slider_crank, "L3"), cylinder_joints(slider_crank, "L1")
+    (['J1'], [])
+    """
+    if not all(j.kind in ("R", "P") and len(j.links) == 2 for j in chain.joints):
+        return []
+    return [j.id for j in chain.joints if j.kind == "P" and fixed not in j.links]
+
+
 def _next_dyad(chain: Chain, known: set[str]) -> DyadStep | None:
     """The first dyad (in joint order) of two unknown links whose other ends are known."""
     def outer(link, middle):
@@ -400,22 +425,24 @@ class AtlasFamily(Family):
         self._carrier_frame = frames[carrier]
 
     def _setup(self, chain: Chain, fixed: str, driver: str, carrier: str,
-               name: str | None) -> None:
-        """What every family of a chain keeps: its template, links, pivot and the
-        input's reference line, the sliding pairs' parameter rows."""
+               name: str | None, pivot: str | None = None) -> None:
+        """What every family of a chain keeps: its template, links, pivot (the input's
+        joint: by default the driver's with the fixed link) and the input's reference
+        line, the sliding pairs' parameter rows."""
         self.template = tuple(Joint(j.id, j.kind, j.links) for j in chain.joints)
         self.fixed, self.driver, self.carrier = fixed, driver, carrier
         self.name = name or f"{chain.name}, {fixed} fixed"
         self.family_name = chain.family or chain.name
         self._index = {j.id: k for k, j in enumerate(self.template)}
-        self._pivot = next(j.id for j in chain.joints if set(j.links) == {fixed, driver})
+        self._pivot = pivot or next(j.id for j in chain.joints
+                                    if set(j.links) == {fixed, driver})
         on = sorted(j.id for j in chain.joints if driver in j.links and j.id != self._pivot)
         # the solver's input: the line from the pivot to the driver's first other joint;
         # a sliding input's: that joint's place along the guide (the block's slide)
         self._reference = (self._pivot, on[0])
         pair = chain.joint(self._pivot)
         self.sliding = pair.kind == "P"
-        if self.sliding:
+        if self.sliding and fixed in pair.links:
             self.name += f", driven by its sliding pair {self._pivot}"
         # a slide of the block (the pair's second link) along the guide (its first)
         self._sign = 1.0 if pair.links[1] == driver else -1.0
@@ -597,6 +624,23 @@ class AtlasFamily(Family):
             ex, ey = self._axis(params, self._pivot)
             return self._sign * (drawn[:, b, 0] * ex[:, 0] + drawn[:, b, 1] * ey[:, 0])
         return np.arctan2(drawn[:, b, 1] - drawn[:, a, 1], drawn[:, b, 0] - drawn[:, a, 0])
+
+    def slide_direction(self, params: np.ndarray) -> np.ndarray:
+        """As :meth:`Family.slide_direction`: the guide's axis, its sign the slide's."""
+        p = np.atleast_2d(params)
+        if not self.sliding or self.fixed not in self.template[self._index[self._pivot]].links:
+            return super().slide_direction(p)
+        ex, ey = self._axis(p, self._pivot)
+        return np.arctan2(self._sign * ey[:, 0], self._sign * ex[:, 0])
+
+    def params_of(self, at: dict[str, tuple[float, float]], axes: dict[str, float],
+                  point: tuple[float, float]) -> np.ndarray:
+        """One row of parameters from the joints' places ``at`` (by id), the sliding
+        pairs' ``axes`` (radians, by id) and the tracing point's place."""
+        row = [v for j in self.template for v in at[j.id]]
+        for jid, _ in sorted(self._axis_row.items(), key=lambda kv: kv[1]):
+            row += [at[jid][0] + math.cos(axes[jid]), at[jid][1] + math.sin(axes[jid])]
+        return np.array(row + list(point), dtype=float)
 
     def sweep(self, params: np.ndarray, steps: int) -> np.ndarray:
         """As :meth:`Family.sweep`; a sliding input's range found by probing
@@ -826,12 +870,21 @@ class LoopFamily(AtlasFamily):
                              "a chain of binary pairs driven on the fixed link")
         self.plan = ()
         self._setup(chain, fixed, driver, carrier, name)
+        self._loop_setup([x for x in self._links if x not in (fixed, driver)],
+                         [j for j in self.template if j.id != self._pivot],
+                         [j for j in self.template if not set(j.links) & {fixed, driver}])
+
+    def _loop_setup(self, unknown: list[str], equations: list[Joint],
+                    middles: list[Joint]) -> None:
+        """The loop-closure equations' bookkeeping: the ``unknown`` links (three
+        unknowns each), the joints that give ``equations`` (two each) and those whose
+        angle between their links is a transmission angle (``middles``)."""
+        driver = self.driver
         self._kept: tuple | None = None
-        self._unknown = [x for x in self._links if x not in (fixed, driver)]
+        self._unknown = unknown
         self._anchor = {x: self._index[next(j.id for j in self.template if x in j.links)]
                         for x in self._unknown}
-        self._equations = [(self._index[j.id], j.links) for j in self.template
-                           if j.id != self._pivot]
+        self._equations = [(self._index[j.id], j.links) for j in equations]
         self._carrier_frame = None
         col = {x: i for i, x in enumerate(self._links)}
         self._driver_col = col[driver]
@@ -847,7 +900,6 @@ class LoopFamily(AtlasFamily):
                                         for x in self._unknown]
                                        for _, links in self._equations])
                              for side in (0, 1))
-        middles = [j for j in self.template if not set(j.links) & {fixed, driver}]
         self._middles = [(self._index[j.id], [self._index[next(k.id for k in self.template
                                                               if x in k.links and k.id != j.id)]
                                               for x in j.links]) for j in middles]
@@ -1027,7 +1079,8 @@ class LoopFamily(AtlasFamily):
             h = self._reach(params)[:, None] / _GRID
             node = _GRID + np.trunc(turn / h)
             node = np.where(np.abs(node - _GRID) <= _GRID, node, -1).astype(int)
-            move = self._moves(params, turn).reshape(m * k, 2)
+            move = self._moves(params, turn)
+            move = move.reshape((m * k,) + move.shape[2:])
         else:
             turn = turn % (2 * math.pi)
             node = np.minimum(np.floor(turn / h).astype(int), _GRID)
@@ -1052,14 +1105,201 @@ class LoopFamily(AtlasFamily):
         drawn = self._drawn(params)
         worst = np.full(np.shape(theta), 90.0)
         for k, (i, j) in self._middles:
-            jt = self.template[k]
-            pts = [_moved(motions[x], (drawn[:, o, 0][:, None], drawn[:, o, 1][:, None]))
-                   for x, o in zip(jt.links, (i, j))]
-            mx, my = _moved(motions[jt.links[0]], (drawn[:, k, 0][:, None],
-                                                   drawn[:, k, 1][:, None]))
-            ux, uy = pts[0][0] - mx, pts[0][1] - my
-            vx, vy = pts[1][0] - mx, pts[1][1] - my
-            mu = np.degrees(np.arctan2(np.abs(ux * vy - uy * vx), ux * vx + uy * vy))
             with np.errstate(invalid="ignore"):
+                mu = self._joint_angle(params, motions, k, (i, j))
                 worst = np.where(np.abs(mu - 90.0) > np.abs(worst - 90.0), mu, worst)
         return np.where(np.isfinite(worst), worst, np.nan)
+
+    def _lines(self, params, motions, k, others):
+        """The lines (vectors (x, y)) from joint ``k`` to the ``others`` (one joint of
+        each of its links, drawn rows), at the motions."""
+        drawn = self._drawn(params)
+        jt = self.template[k]
+        pts = [_moved(motions[x], (drawn[:, o, 0][:, None], drawn[:, o, 1][:, None]))
+               for x, o in zip(jt.links, others)]
+        mx, my = _moved(motions[jt.links[0]], (drawn[:, k, 0][:, None],
+                                               drawn[:, k, 1][:, None]))
+        return [(x - mx, y - my) for x, y in pts]
+
+    def _joint_angle(self, params, motions, k, others) -> np.ndarray:
+        """The angle (degrees) at joint ``k`` between its two links' lines to
+        ``others``."""
+        (ux, uy), (vx, vy) = self._lines(params, motions, k, others)
+        return np.degrees(np.arctan2(np.abs(ux * vy - uy * vx), ux * vx + uy * vy))
+
+
+class CylinderFamily(LoopFamily):
+    """A chain driven by a sliding pair between two moving links (a hydraulic cylinder:
+    the inverted slider crank driven by its cylinder's extension, a boom lifted by a
+    cylinder, a six-bar driven by one): the input ``joint`` (a P pair, neither of whose
+    links is ``fixed``), its value the slide of its block (its second link) along its
+    guide (its first) from the drawn pose, in the parameters' units, as the solver reads
+    it from the file (``inputs = [{joint, from, to}]``). Every moving link is an unknown
+    of the loop-closure equations (:class:`LoopFamily`'s, with the input pair's slide as
+    one more equation), continued both ways from the drawn slide as a sliding input's;
+    the transmission angles those at the joints between two moving links other than the
+    cylinder's own. A screen, as :class:`LoopFamily`: every answer is certified by the
+    kernel's solver from its written file."""
+
+    def __init__(self, chain: Chain, fixed: str, joint: str, carrier: str, *,
+                 name: str | None = None) -> None:
+        pair = chain.joint(joint)
+        if (pair.kind != "P" or fixed in pair.links
+                or not all(j.kind in ("R", "P") and len(j.links) == 2 for j in chain.joints)):
+            raise ValueError(f"{joint} of {chain.name} is not a sliding pair of two links "
+                             f"other than {fixed} in a chain of binary pairs")
+        self.plan = ()
+        self._setup(chain, fixed, pair.links[1], carrier, name, pivot=joint)
+        self.name += f", driven by its cylinder {joint}"
+        self._loop_setup([x for x in self._links if x != fixed], list(self.template),
+                         [j for j in self.template if fixed not in j.links and j.id != joint])
+        self._input = next(e for e, (k, _) in enumerate(self._equations)
+                           if self.template[k].id == joint)
+        self._input_slide = self._slides.index(self._input)
+
+    def first_input(self, params: np.ndarray) -> np.ndarray:
+        """0: the slide is read from the drawn pose (as the solver reads it)."""
+        return np.zeros(len(np.atleast_2d(params)))
+
+    def _moves(self, params, slide):
+        """The cylinder's slides themselves (its links are unknowns: no lead)."""
+        return np.asarray(slide, dtype=float)
+
+    def _closure(self, drawn, turn, z, normals=None):
+        """:meth:`LoopFamily._closure` (every joint's equations, the driver an unknown
+        too) and one row more: the block's slide along the guide's turned axis less
+        ``turn`` (the asked slide, (R,))."""
+        f, jac = super()._closure(drawn, turn, z, normals)
+        k, (a, b) = self._equations[self._input]
+        placed = []
+        for x in (a, b):
+            i = self._unknown.index(x)
+            q = drawn[:, self._anchor[x]]
+            c, s = np.cos(z[:, 3 * i + 2]), np.sin(z[:, 3 * i + 2])
+            vx, vy = drawn[:, k, 0] - q[:, 0], drawn[:, k, 1] - q[:, 1]
+            rx, ry = c * vx - s * vy, s * vx + c * vy
+            placed.append((i, c, s, q[:, 0] + z[:, 3 * i] + rx, q[:, 1] + z[:, 3 * i + 1] + ry,
+                           rx, ry))
+        (ia, ca, sa, xa, ya, rax, ray), (ib, _, _, xb, yb, rbx, rby) = placed
+        n = normals[:, self._input_slide]
+        ex, ey = n[:, 1], -n[:, 0]                        # the drawn axis
+        tx, ty = ca * ex - sa * ey, sa * ex + ca * ey      # turned with the guide
+        gx, gy = xb - xa, yb - ya
+        row = np.zeros((len(z), jac.shape[2]))
+        row[:, 3 * ib], row[:, 3 * ib + 1] = tx, ty
+        row[:, 3 * ia] -= tx
+        row[:, 3 * ia + 1] -= ty
+        row[:, 3 * ib + 2] += tx * -rby + ty * rbx
+        row[:, 3 * ia + 2] += (-ty * gx + tx * gy) - (tx * -ray + ty * rax)
+        slide = tx * gx + ty * gy - np.asarray(turn, dtype=float).reshape(len(z))
+        return (np.concatenate([f, slide[:, None]], axis=1),
+                np.concatenate([jac, row[:, None, :]], axis=1))
+
+    def _joint_angle(self, params, motions, k, others) -> np.ndarray:
+        """As :meth:`LoopFamily._joint_angle`; at a joint of a link of the cylinder, the
+        angle (within [0, 90]) between the cylinder's axis (the force's line) and the
+        other link's line (as the certification measures a boom's)."""
+        links = self.template[k].links
+        pair = self.template[self._index[self._pivot]]
+        if not set(links) & set(pair.links):
+            return super()._joint_angle(params, motions, k, others)
+        lines = self._lines(params, motions, k, others)
+        ux, uy = lines[1] if links[0] in pair.links else lines[0]
+        ex, ey = self._axis(params, self._pivot)
+        c, s = _turn_of(motions[pair.links[0]])
+        tx, ty = c * ex - s * ey, s * ex + c * ey
+        cos = np.abs(ux * tx + uy * ty) / np.hypot(ux, uy)
+        return np.degrees(np.arccos(np.clip(cos, 0.0, 1.0)))
+
+
+def cylinder_plan(chain: Chain, fixed: str, joint: str) -> tuple[DyadStep, ...] | None:
+    """The dyads that solve ``chain`` driven by the cylinder ``joint`` (a sliding pair of
+    two moving links) once its slide is given: its two links one rigid link (named as
+    the guide), the rest found two links at a time from ``fixed`` (as
+    :func:`dyad_plan`), every dyad of turning pairs (RRR); None when the chain is not
+    solved so (a triad, a dyad with a sliding pair, or two joints between the same two
+    links once the cylinder's are one).
+
+    Examples
+    --------
+    >>> from chaingraph.structure.atlas import atlas
+    >>> slider_crank, = atlas(links=4, prismatic=1)     # L3 fixed: a boom's cylinder
+    >>> [(s.first, s.second, s.pattern) for s in cylinder_plan(slider_crank, "L3", "J1")]
+    [('L1', 'L4', 'RRR')]
+    """
+    guide, block = chain.joint(joint).links
+    joints = [Joint(j.id, j.kind, tuple(guide if x == block else x for x in j.links))
+              for j in chain.joints if j.id != joint]
+    if len({frozenset(j.links) for j in joints}) < len(joints):
+        return None
+    merged = Chain(chain.name, tuple(joints))
+    known = {fixed}
+    steps: list[DyadStep] = []
+    while len(known) < len(merged.links):
+        step = _next_dyad(merged, known)
+        if step is None or step.pattern != "RRR":
+            return None
+        steps.append(step)
+        known |= {step.first, step.second}
+    return tuple(steps)
+
+
+class CylinderDyads(CylinderFamily):
+    """A :class:`CylinderFamily` solved in closed form (:func:`cylinder_plan`): at each
+    slide the cylinder's two links move as one link (in its frame, the block's joints
+    drawn moved along the axis by the slide), found with the rest dyad by dyad (RRR)
+    from the fixed link; vectorised over mechanisms and slides as the atlas's dyad
+    families, so searched on their budget."""
+
+    def __init__(self, chain: Chain, fixed: str, joint: str, carrier: str, *,
+                 name: str | None = None) -> None:
+        super().__init__(chain, fixed, joint, carrier, name=name)
+        plan = cylinder_plan(chain, fixed, joint)
+        if plan is None:
+            raise ValueError(f"{chain.name} driven by its cylinder {joint} with {fixed} "
+                             "fixed is not solved dyad by dyad")
+        self.plan = plan
+        self._guide, self._block = chain.joint(joint).links
+        self._on_block = {j.id for j in self.template
+                          if self._block in j.links and j.id != joint}
+
+    def _solve(self, params, theta):
+        """Every link's motion at the slides ``theta`` ((M, K), from the drawn pose):
+        the RRR dyads of :func:`cylinder_plan`, each link's joints where its own frame
+        draws them (the merged link's block joints moved along the axis by the slide);
+        the block's motion the merged link's after that move."""
+        drawn = self._drawn(params)
+        slide = np.asarray(theta, dtype=float) - self.first_input(params)[:, None]
+        ex, ey = self._axis(params, self._pivot)
+        shift = (slide * ex, slide * ey)
+        zero = 0.0 * slide
+
+        def d(jid, link, moved=True):
+            k = self._index[jid]
+            x, y = drawn[:, k, 0][:, None], drawn[:, k, 1][:, None]
+            if moved and link == self._guide and jid in self._on_block:
+                return x + shift[0], y + shift[1]
+            return x + zero, y + zero
+        motions: dict[str, tuple | None] = {self.fixed: None}
+        for s in self.plan:
+            with np.errstate(all="ignore"):
+                a = _moved(motions[s.first_known], d(s.first_joint, s.first_known))
+                b = _moved(motions[s.second_known], d(s.second_joint, s.second_known))
+                a0, m1 = d(s.first_joint, s.first), d(s.middle, s.first)
+                b0, m2 = d(s.second_joint, s.second), d(s.middle, s.second)
+                # the assembly mode: the drawn pose's (every joint where it is drawn)
+                (ax, ay), (bx, by), (mx0, my0) = (d(j, s.first, False) for j in
+                                                  (s.first_joint, s.second_joint, s.middle))
+                mode = np.where((bx - ax) * (my0 - ay) - (by - ay) * (mx0 - ax) >= 0, 1.0, -1.0)
+                (mx, my), (nx, ny), raw = circle_circle(
+                    a, np.hypot(m1[0] - a0[0], m1[1] - a0[1]),
+                    b, np.hypot(m2[0] - b0[0], m2[1] - b0[1]))
+                root = mode * np.sqrt(np.where(raw >= 0, raw, np.nan))
+                m = (mx + root * nx, my + root * ny)
+                motions[s.first] = _rigid(a0, m1, a, m)
+                motions[s.second] = _rigid(b0, m2, b, m)
+        guide = motions[self._guide]
+        assert guide is not None            # a moving link, found by a dyad
+        c, sn, p, q = guide
+        motions[self._block] = (c, sn, p, (q[0] - shift[0], q[1] - shift[1]))
+        return motions

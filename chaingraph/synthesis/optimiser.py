@@ -30,13 +30,17 @@ from typing import Literal, overload
 
 import numpy as np
 import numpy.typing as npt
-from scipy.optimize import differential_evolution, least_squares  # type: ignore[import-untyped]
+from scipy.optimize import (  # type: ignore[import-untyped]
+    differential_evolution,
+    least_squares,
+    minimize_scalar,
+)
 
 from chaingraph.synthesis.family import Family
 
 __all__ = ["TaskFrame", "MAX_RATIO", "curve", "sample_steps", "ordered_distance", "objective",
            "coarse_search", "global_search", "fit_start", "least_squares_fit", "Fit",
-           "predicted_defect", "BETWEEN"]
+           "predicted_defect", "BETWEEN", "timed_guides"]
 
 #: the longest link over the shortest, at most
 MAX_RATIO = 20.0
@@ -490,3 +494,41 @@ def predicted_defect(family: Family, fit: Fit, *, steps: int = 720) -> str | Non
             x, _ = family.positions(fit.params[None, :], theta[None, :])
             return None if np.all(np.isfinite(x)) else "branch defect"
     return "order defect"
+
+
+def timed_guides(targets: np.ndarray, slides: npt.ArrayLike, *, count: int = 4,
+                 samples: int = 720) -> np.ndarray:
+    """Directions (radians) a guide may have for a point carried by a link pinned to a
+    block that slides by ``slides`` (from the first target) to reach ``targets``: seen
+    from the block, the point moves on a circle about the pin, so the targets less
+    the block's slides along the guide are concyclic. The ``count`` directions where
+    they come nearest to a circle (the least squares circle's largest miss: local
+    minima over ``samples`` directions, each refined, best first), rows (direction,
+    the circle's centre x, y: the pin at the first target, its radius). Five timed targets
+    give two conditions on the one direction: a slider crank driven by its slider is
+    then over-determined by one (its solutions exist only for a consistent task,
+    isolated), which random seeds rarely find."""
+    pts = np.asarray(targets, dtype=float)
+    s = np.asarray(slides, dtype=float)
+
+    def miss(phi):
+        phi = np.atleast_1d(phi)
+        u = np.stack([np.cos(phi), np.sin(phi)], axis=1)
+        q = pts[None, :, :] - s[None, :, None] * u[:, None, :]
+        # the least squares circle x^2 + y^2 = 2 cx x + 2 cy y + k of each one's points
+        a = np.concatenate([2 * q, np.ones(q.shape[:2] + (1,))], axis=2)
+        b = np.sum(q * q, axis=2)
+        c = np.array([np.linalg.lstsq(a[k], b[k], rcond=None)[0] for k in range(len(q))])
+        r = np.sqrt(np.maximum(c[:, 2] + c[:, 0] ** 2 + c[:, 1] ** 2, 0.0))
+        return (np.abs(np.hypot(q[..., 0] - c[:, None, 0], q[..., 1] - c[:, None, 1])
+                       - r[:, None]).max(axis=1), c[:, :2], r)
+    phi = np.linspace(0.0, 2 * math.pi, samples, endpoint=False)
+    dist = miss(phi)[0]
+    local = np.flatnonzero((dist <= np.roll(dist, 1)) & (dist <= np.roll(dist, -1)))
+    step = 2 * math.pi / samples
+    refined = [minimize_scalar(lambda v: float(miss(v)[0][0]), bounds=(phi[k] - step, phi[k] + step),
+                               method="bounded", options={"xatol": 1e-10}) for k in local]
+    order = np.argsort([r.fun for r in refined], kind="stable")[:count]
+    best = np.array([refined[k].x for k in order])
+    _, centre, radius = miss(best)
+    return np.column_stack([best, centre, radius])

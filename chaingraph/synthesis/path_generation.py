@@ -29,6 +29,7 @@ recomputed: the largest and rms distance from the targets to the solved path).
 
 from __future__ import annotations
 
+import math
 from collections import Counter
 from collections.abc import Callable, Iterable
 from dataclasses import dataclass
@@ -36,9 +37,11 @@ from typing import Any
 
 import numpy as np
 
+from chaingraph.errors import DesignError
 from chaingraph.naming import identify
+from chaingraph.synthesis.burmester import burmester_points
 from chaingraph.synthesis.certification import Certified, PointTargets, Rejected, certify
-from chaingraph.synthesis.family import FOUR_BAR, Family
+from chaingraph.synthesis.family import FOUR_BAR, AtlasFamily, Family
 from chaingraph.synthesis.optimiser import (
     MAX_RATIO,
     Fit,
@@ -48,6 +51,7 @@ from chaingraph.synthesis.optimiser import (
     global_search,
     least_squares_fit,
     predicted_defect,
+    timed_guides,
 )
 from chaingraph.synthesis.result import Searched, Solution, Synthesis, ranked
 from chaingraph.synthesis.task import PathTask, check_options, drawn_seed, path_task
@@ -171,6 +175,10 @@ def synthesise_path(task: PathTask, family: Family, *, solutions: int,
                                   timing=turns)
     starts, _ = coarse_search(family, targets, rng, count=budget.samples,
                               keep=budget.starts, **common)
+    if turns is not None and family.sliding and exact and len(targets) == 5:
+        # five targets timed in slides: seeds built as the textbooks build them
+        starts = np.concatenate([timed_slider_seeds(family, targets, turns,
+                                                    timed_guides(targets, turns)), starts])
     if not exact:
         best, _ = global_search(family, targets, starts, rng,
                                 generations=budget.generations, **common)
@@ -236,6 +244,66 @@ def first_certified(fits: list[Fit], solutions: int,
             rejected[outcome.reason] += 1
         else:
             found.append(outcome)
+    return found
+
+
+def timed_slider_seeds(family: Family, targets: np.ndarray, slides: np.ndarray,
+                       guides: np.ndarray) -> np.ndarray:
+    """Slider cranks driven by their slider through five targets at timed ``slides``,
+    built as the textbooks reduce timed path generation to motion generation: each of
+    the ``guides`` (:func:`~chaingraph.synthesis.optimiser.timed_guides`: the slide's
+    direction, the block's pin and the point's circle about it) gives the coupler's
+    five poses (the pin slid along the guide, the coupler turned about it to the
+    target), and each of their Burmester points (an RR dyad,
+    :func:`~chaingraph.synthesis.burmester.burmester_points`) a crank; rows of
+    ``family``'s parameters drawn at the first target (none unless the family is the
+    four-link chain driven by a slide on its fixed link, its carrier pinned to the
+    block and to a crank turning about the fixed link). Five timed targets
+    over-determine the slider crank by one, so its solutions are isolated: random
+    seeds rarely find them, these do when the task has one."""
+    parts = _slider_crank_joints(family)
+    if parts is None or not isinstance(family, AtlasFamily):
+        return np.zeros((0, family.size))
+    pair, pin, crank, pivot = parts
+    rows = []
+    for phi, cx, cy, _ in guides:
+        u = np.array([math.cos(phi), math.sin(phi)])
+        q = targets - slides[:, None] * u[None, :]
+        turn = np.arctan2(q[:, 1] - cy, q[:, 0] - cx)
+        poses = [(cx + v * u[0], cy + v * u[1], t - turn[0]) for v, t in zip(slides, turn)]
+        try:
+            dyads = burmester_points(poses)
+        except DesignError:
+            continue
+        for d in dyads:
+            if d.kind != "RR" or d.centre is None or d.circle is None:
+                continue
+            at = {pair: (cx, cy), pin: (cx, cy), crank: d.circle, pivot: d.centre}
+            row = family.params_of(at, {pair: phi}, tuple(targets[0]))
+            if abs(math.remainder(float(family.slide_direction(row[None, :])[0]) - phi,
+                                  2 * math.pi)) > 1.0:    # the block slides the other way
+                row = family.params_of(at, {pair: phi + math.pi}, tuple(targets[0]))
+            rows.append(row)
+    return np.array(rows).reshape(-1, family.size)
+
+
+def _slider_crank_joints(family: Family) -> tuple[str, str, str, str] | None:
+    """The four-link chain driven by a slide on its fixed link, its carrier pinned to
+    the block and to a crank about the fixed link: the joints' ids (the sliding pair,
+    the block's pin, the crank's pin, the crank's pivot); else None."""
+    joints = family.template
+    if len(joints) != 4 or not isinstance(family, AtlasFamily) or not family.sliding:
+        return None
+    fixed, driver, carrier = family.fixed, family.driver, family.carrier
+
+    def joint(a, b, kind):
+        return next((j.id for j in joints if set(j.links) == {a, b} and j.kind == kind), None)
+    crank = next((x for j in joints for x in j.links
+                  if carrier in j.links and x not in (carrier, driver)), None)
+    found = (joint(fixed, driver, "P"), joint(carrier, driver, "R"),
+             joint(carrier, crank, "R"), joint(crank, fixed, "R"))
+    if crank is None or None in found:
+        return None
     return found
 
 

@@ -46,15 +46,24 @@ from typing import Any
 
 import numpy as np
 
+from chaingraph._util.disjoint import DisjointSets
 from chaingraph._util.parallel import Runner, serial
 from chaingraph.errors import DesignError
 from chaingraph.model.chain import Chain
 from chaingraph.naming.atlas import atlas_names
 from chaingraph.structure.atlas import atlas
-from chaingraph.structure.isomorphism import automorphism_orbits, pair_orbits
+from chaingraph.structure.isomorphism import (
+    automorphism_generators,
+    automorphism_orbits,
+    pair_orbits,
+)
 from chaingraph.synthesis.family import (
     AtlasFamily,
+    CylinderDyads,
+    CylinderFamily,
     LoopFamily,
+    cylinder_joints,
+    cylinder_plan,
     dyad_plan,
     input_kind,
 )
@@ -66,7 +75,7 @@ from chaingraph.synthesis.result import Searched, Solution, Synthesis, ranked
 from chaingraph.synthesis.task import MotionTask, PathTask, check_options, drawn_seed, motion_task
 
 __all__ = ["path", "motion", "LINKS", "Choice", "Space", "atlas_space", "search_family",
-           "path_types", "check_links", "BUDGETS", "NEWTON_BUDGETS",
+           "path_types", "check_links", "BUDGETS", "NEWTON_BUDGETS", "CYLINDER_BUDGETS",
            "UNSOLVED", "TRIADS_SKIPPED", "NOT_CHOSEN", "UNDRIVEN", "SLIDING_CLOSED"]
 
 #: the sizes a synthesis searches (4: the four-bar; 6 and 8: through the atlas)
@@ -89,6 +98,10 @@ BUDGETS = {True: Budget(samples=1500, starts=24), False: Budget(samples=2000, st
 #: how hard a family solved by Newton's method (slower) is searched
 NEWTON_BUDGETS = {True: Budget(samples=200, starts=4, fitted=2, generations=5),
                   False: Budget(samples=200, starts=6, fitted=1, generations=5)}
+#: how hard a family driven by a cylinder (Newton's method over every moving link, its
+#: continuation both ways along the slide: the slowest) is searched
+CYLINDER_BUDGETS = {True: Budget(samples=60, starts=1, fitted=1, generations=5),
+                    False: Budget(samples=60, starts=6, fitted=1, generations=5)}
 _KEPT = 2         # certified solutions kept per family
 
 
@@ -100,7 +113,10 @@ class Choice:
     then the inversion's) and how its motion is found: ``method`` ``"dyads"`` (closed
     form, :class:`~chaingraph.synthesis.family.AtlasFamily`), ``"newton"`` (a triad,
     :class:`~chaingraph.synthesis.family.LoopFamily`) or ``""`` (not searched, counted
-    under :data:`UNSOLVED`)."""
+    under :data:`UNSOLVED`). ``cylinder``: the input is this sliding pair between two
+    moving links (a hydraulic cylinder, ``driver`` its block;
+    :class:`~chaingraph.synthesis.family.CylinderFamily`, by Newton's method), not the
+    driver's pair with the fixed link."""
 
     chain: Chain
     chain_id: int
@@ -110,6 +126,7 @@ class Choice:
     carrier: str
     names: tuple[str, ...]
     method: str
+    cylinder: str = ""
 
     @property
     def solvable(self) -> bool:
@@ -120,7 +137,13 @@ class Choice:
     def sliding(self) -> bool:
         """Whether the driver slides on the fixed link (a sliding input: its values are
         slides, in file units) rather than turning about it."""
-        return input_kind(self.chain, self.fixed, self.driver) == "P"
+        return not self.cylinder and input_kind(self.chain, self.fixed, self.driver) == "P"
+
+    @property
+    def slides(self) -> bool:
+        """Whether the input is a sliding pair (on the fixed link, or a cylinder's):
+        its values are slides, its path open."""
+        return self.sliding or bool(self.cylinder)
 
 
 @dataclass(frozen=True)
@@ -161,7 +184,10 @@ def atlas_space(links: int, prismatic: int | str | None = None) -> Space:
     (2, 5, 25, 25)
     >>> s = atlas_space(6, 1)       # one sliding pair
     >>> s.chains, s.inversions, len(s.choices), sum(c.method == "newton" for c in s.choices)
-    (6, 25, 141, 40)
+    (6, 25, 184, 68)
+    >>> cylinders = [c.method for c in s.choices if c.cylinder]   # driven by a cylinder
+    >>> len(cylinders), cylinders.count("dyads")
+    (43, 15)
     >>> sliding = [c.method for c in s.choices if c.sliding]   # driven by a slide
     >>> len(sliding), sliding.count("dyads")
     (23, 15)
@@ -171,6 +197,7 @@ def atlas_space(links: int, prismatic: int | str | None = None) -> Space:
     chains = list(atlas(links=links, prismatic=prismatic))
     choices: list[Choice] = []
     sliding: list[Choice] = []
+    cylinders: list[Choice] = []
     inversions = 0
     for number, chain in enumerate(chains, 1):
         named = atlas_names(chain)
@@ -182,9 +209,10 @@ def atlas_space(links: int, prismatic: int | str | None = None) -> Space:
             names = tuple(named["chain"]) + by_link.get(fixed, ())
             choices += _choices(chain, number, k, fixed, names, "R")
             sliding += _choices(chain, number, k, fixed, names, "P")
-    # the sliding inputs' families after every turning input's, so that each of these
-    # keeps its number (its random stream) in the space
-    choices += sliding
+            cylinders += _cylinder_choices(chain, number, k, fixed, names)
+    # the sliding inputs' families after every turning input's, the cylinders' last, so
+    # that each of these keeps its number (its random stream) in the space
+    choices += sliding + cylinders
     p = 0 if prismatic is None else (-1 if prismatic == "all" else int(prismatic))
     driven = len({(c.chain_id, c.inversion) for c in choices})
     return Space(links, p, len(chains), inversions, tuple(choices), inversions - driven)
@@ -207,6 +235,28 @@ def _choices(chain, number, inversion, fixed, names, kind) -> list[Choice]:
     carriers = [x for x in chain.links if x not in grounded]
     return [Choice(chain, number, inversion, fixed, d, c, names, _method(chain, fixed, d))
             for d in kept for c in carriers]
+
+
+def _cylinder_choices(chain, number, inversion, fixed, names) -> list[Choice]:
+    """An inversion's families driven by a cylinder: each sliding pair between two
+    moving links (one per orbit of (fixed, pair) under the automorphisms the
+    generators give that keep the fixed link), every carrier not jointed to the fixed
+    link; solved dyad by dyad where the cylinder's links as one leave dyads of turning
+    pairs (:func:`~chaingraph.synthesis.family.cylinder_plan`), else by Newton's
+    method."""
+    joints = cylinder_joints(chain, fixed)
+    same = DisjointSets(joints)
+    for g in automorphism_generators(chain, oriented=False):
+        if g[("link", fixed)] == ("link", fixed):
+            for j in joints:
+                image = g[("joint", j)][1]
+                if image in same.parent:
+                    same.join(j, image)
+    grounded = {x for j in chain.joints if fixed in j.links for x in j.links}
+    carriers = [x for x in chain.links if x not in grounded]
+    return [Choice(chain, number, inversion, fixed, chain.joint(j).links[1], c, names,
+                   "dyads" if cylinder_plan(chain, fixed, j) else "newton", cylinder=j)
+            for j in same.blocks() for c in carriers]
 
 
 def _method(chain, fixed, driver) -> str:
@@ -240,11 +290,17 @@ def search_family(job: _Job) -> tuple[list[Solution], dict[str, int], int]:
         return [], {UNSOLVED: 1}, 0
     if c.method == "newton" and not job.triads:
         return [], {TRIADS_SKIPPED: 1}, 0
-    kind = AtlasFamily if c.method == "dyads" else LoopFamily
-    family = kind(c.chain, c.fixed, c.driver, c.carrier,
-                  name=c.names[-1] if len(c.names) > 1 else None)   # None: the family's own
+    name = c.names[-1] if len(c.names) > 1 else None    # None: the family's own
+    if c.cylinder:
+        cylinder = CylinderDyads if c.method == "dyads" else CylinderFamily
+        family: AtlasFamily = cylinder(c.chain, c.fixed, c.cylinder, c.carrier, name=name)
+    else:
+        kind = AtlasFamily if c.method == "dyads" else LoopFamily
+        family = kind(c.chain, c.fixed, c.driver, c.carrier, name=name)
     rng = np.random.default_rng([job.task.seed, job.number])
-    budget = job.budget or (BUDGETS if c.method == "dyads" else NEWTON_BUDGETS)[_exact(job.task)]
+    budgets = BUDGETS if c.method == "dyads" else (CYLINDER_BUDGETS if c.cylinder
+                                                   else NEWTON_BUDGETS)
+    budget = job.budget or budgets[_exact(job.task)]
     search = synthesise_motion if job.task.kind == "motion" else synthesise_path
     kept = _KEPT if c.method == "dyads" else 1      # a triad's certification is slow
     found = search(job.task, family, solutions=min(job.solutions, kept), budget=budget,
@@ -355,11 +411,11 @@ def path_types(task: PathTask | MotionTask, *, links: int, prismatic: int | str 
     closed = getattr(task, "closed", False)
     jobs = [_Job(task, c, k, links, space.prismatic, solutions, triads, budget)
             for k, c in enumerate(space.choices) if (families is None or families(c))
-            and not (closed and c.sliding)]
+            and not (closed and c.slides)]
     # a closed curve: the families driven by a slide are left out, counted by inversion
     sliding_only = _sliding_inversions(space.choices) if closed else 0
     left_out = len(space.choices) - len(jobs) - (
-        sum(c.sliding for c in space.choices) if closed else 0)
+        sum(c.slides for c in space.choices) if closed else 0)
     results: dict[int, tuple] = {}
     # the slow families (Newton's) first, so that workers do not wait on one at the end
     order = sorted(range(len(jobs)), key=lambda i: jobs[i].choice.method != "newton")
@@ -390,8 +446,8 @@ def path_types(task: PathTask | MotionTask, *, links: int, prismatic: int | str 
 
 
 def _sliding_inversions(choices: Sequence[Choice]) -> int:
-    """The inversions with families driven by a sliding input."""
-    return len({(c.chain_id, c.inversion) for c in choices if c.sliding})
+    """The inversions with families driven by a sliding input (or a cylinder)."""
+    return len({(c.chain_id, c.inversion) for c in choices if c.slides})
 
 
 def _exact(task) -> bool:
