@@ -44,12 +44,6 @@ UNIT_METRES = {"mm": 1e-3, "cm": 1e-2, "m": 1.0, "in": 0.0254}
 #: largest) is below this is singular: a dead centre, where the effort is unbounded
 _SINGULAR = 1e-10
 
-#: steps solved at a time by groups: the closed forms' temporaries (some tens of arrays
-#: over the steps) kept small beside the matrix, so that they do not grow the heap
-#: (on glibc, a heap grown past its trim threshold is given back and faulted in
-#: again at every sweep: a third of the slider crank's force sweep)
-_CHUNK = 1024
-
 
 @dataclass(frozen=True)
 class KinematicState:
@@ -190,9 +184,26 @@ class _Layout:
         if link == self.fixed:
             return
         r = self.row[link]
-        a[:, r, col] += sign * f[0]
-        a[:, r + 1, col] += sign * f[1]
-        a[:, r + 2, col] += sign * cross(q, f) / self.size    # moments over the size
+        m = cross(q, f)
+        m /= self.size                                       # moments over the size
+        if sign != 1.0:
+            f, m = (sign * f[0], sign * f[1]), sign * m
+        a[:, r, col] += f[0]
+        a[:, r + 1, col] += f[1]
+        a[:, r + 2, col] += m
+
+    def put_pair(self, a, on, by, col, f, q):
+        """Add the force f at q on ``on`` and its reaction on ``by`` (the moment worked
+        out once; no entry on the fixed link)."""
+        m = cross(q, f)
+        m /= self.size
+        for link, add in ((on, np.add), (by, np.subtract)):
+            if link == self.fixed:
+                continue
+            r = self.row[link]
+            add(a[:, r, col], f[0], out=a[:, r, col])
+            add(a[:, r + 1, col], f[1], out=a[:, r + 1, col])
+            add(a[:, r + 2, col], m, out=a[:, r + 2, col])
 
     def put_couple(self, a, link, col, c, sign=1.0):
         """Add the couple c on ``link`` to column ``col`` of ``a``."""
@@ -299,8 +310,9 @@ def solve_block_triangular(a: np.ndarray, b: np.ndarray, ends: tuple[int, ...], 
     closed form as :func:`_dyad` says; another by LU. Raises
     :class:`numpy.linalg.LinAlgError` where a block is singular."""
     x = np.empty(b.shape)
-    for k in range(0, a.shape[0], _CHUNK):
-        _forward(a[k:k + _CHUNK], b[k:k + _CHUNK], x[k:k + _CHUNK], ends, dyads)
+    # (all steps at once: in chunks, to keep the temporaries off the heap's top, cost a
+    # fifth more once glibc keeps freed memory, see chaingraph._util.memory)
+    _forward(a, b, x, ends, dyads)
     return x
 
 
@@ -486,26 +498,22 @@ def _base_matrix(layout, joints):
         if kind in ("Fx", "Fy"):
             f = (one, zero) if kind == "Fx" else (zero, one)
             q = where[j.id]
-            layout.put(a, j.links[k], c, f, q)
-            layout.put(a, j.links[-1], c, f, q, -1.0)
+            layout.put_pair(a, j.links[k], j.links[-1], c, f, q)
         elif kind == "N":
             t = axis[j.id]
-            layout.put(a, j.links[0], c, (-t[1], t[0]), where[j.id])
-            layout.put(a, j.links[1], c, (-t[1], t[0]), where[j.id], -1.0)
+            layout.put_pair(a, j.links[0], j.links[1], c, (-t[1], t[0]), where[j.id])
         elif kind == "M":
             layout.put_couple(a, j.links[0], c, one * layout.size)
             layout.put_couple(a, j.links[1], c, one * layout.size, -1.0)
         elif kind == "contact":
             h = joints.higher[j.id]
-            layout.put(a, h.on, c, h.direction, h.point)
-            layout.put(a, h.by, c, h.direction, h.point, -1.0)
+            layout.put_pair(a, h.on, h.by, c, h.direction, h.point)
         elif j.kind == "R":                      # an R input's effort: a couple
             layout.put_couple(a, j.b, c, one)
             layout.put_couple(a, j.a, c, one, -1.0)
         else:                                    # a P input's effort: along the guide
             t = axis[j.joint]
-            layout.put(a, j.b, c, t, where[j.joint])
-            layout.put(a, j.a, c, t, where[j.joint], -1.0)
+            layout.put_pair(a, j.b, j.a, c, t, where[j.joint])
     return a
 
 
@@ -520,8 +528,7 @@ def _with_friction(layout, joints, base, sigma, steps=slice(None)):
         s = joints.friction_share(j, sigma, steps)
         f = (s * t[0][steps], s * t[1][steps])
         q = (where[0][steps], where[1][steps])
-        layout.put(a, j.links[0], c, f, q)
-        layout.put(a, j.links[1], c, f, q, -1.0)
+        layout.put_pair(a, j.links[0], j.links[1], c, f, q)
     return a
 
 
@@ -539,7 +546,9 @@ class _Known:
 
 def _known_forces(chain, layout, state, joints, *, static, mean_torque=0.0):
     """Gravity, the loads and (unless ``static``) the inertia forces and couples."""
-    known = _Known(np.zeros((layout.n, layout.rows, 1)), np.zeros(layout.n), [], [])
+    # step-last, as the matrix (each entry's steps contiguous)
+    rhs = np.zeros((layout.rows, 1, layout.n)).transpose(2, 0, 1)
+    known = _Known(rhs, np.zeros(layout.n), [], [])
     _masses(chain, layout, state, known, static=static)
     _loads(chain, layout, state, joints, known, mean_torque)
     return replace(known, rhs=known.rhs[:, :, 0])
@@ -720,13 +729,12 @@ def _parting_forces(layout, joints, x):
              if kind == "contact" and joints.higher[j.id].radial is not None]
     if not gears:
         return None
-    share = np.zeros((layout.n, layout.rows, 1))
+    share = np.zeros((layout.rows, 1, layout.n)).transpose(2, 0, 1)
     for c, h in gears:
         r = np.nan_to_num(np.abs(x[:, c])) * math.tan(h.pressure)
         assert h.radial is not None
         f = (r * h.radial[0], r * h.radial[1])
-        layout.put(share, h.on, 0, f, h.point)
-        layout.put(share, h.by, 0, f, h.point, -1.0)
+        layout.put_pair(share, h.on, h.by, 0, f, h.point)
     return share[:, :, 0]
 
 
