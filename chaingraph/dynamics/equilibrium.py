@@ -195,15 +195,14 @@ class _Layout:
     def put_pair(self, a, on, by, col, f, q):
         """Add the force f at q on ``on`` and its reaction on ``by`` (the moment worked
         out once; no entry on the fixed link)."""
-        m = cross(q, f)
-        m /= self.size
+        m = cross(q, f) / self.size
         for link, add in ((on, np.add), (by, np.subtract)):
             if link == self.fixed:
                 continue
             r = self.row[link]
-            add(a[:, r, col], f[0], out=a[:, r, col])
-            add(a[:, r + 1, col], f[1], out=a[:, r + 1, col])
-            add(a[:, r + 2, col], m, out=a[:, r + 2, col])
+            for k, v in enumerate((f[0], f[1], m)):
+                if not (isinstance(v, float) and v == 0.0):     # (a unit force's zero)
+                    add(a[:, r + k, col], v, out=a[:, r + k, col])
 
     def put_couple(self, a, link, col, c, sign=1.0):
         """Add the couple c on ``link`` to column ``col`` of ``a``."""
@@ -489,14 +488,14 @@ def _at_rest(joints, layout, state):
 def _base_matrix(layout, joints):
     """The equilibrium matrix without friction: one column per unknown."""
     n = layout.n
-    one, zero = np.ones(n), np.zeros(n)
+    one = np.ones(n)
     # laid out step-last, so that each entry's steps are contiguous (every write below
     # is one entry over the steps), and seen step-first as the solve takes it
     a = np.zeros((layout.rows, len(layout.cols), n)).transpose(2, 0, 1)
     where, axis = joints.where, joints.axis
     for c, (kind, j, k) in enumerate(layout.cols):
         if kind in ("Fx", "Fy"):
-            f = (one, zero) if kind == "Fx" else (zero, one)
+            f = (1.0, 0.0) if kind == "Fx" else (0.0, 1.0)
             q = where[j.id]
             layout.put_pair(a, j.links[k], j.links[-1], c, f, q)
         elif kind == "N":

@@ -13,11 +13,12 @@ from __future__ import annotations
 import math
 from collections.abc import Sequence
 from dataclasses import dataclass, field
+from functools import cached_property
 
 import numpy as np
 
 from chaingraph.errors import AssemblyError
-from chaingraph.geometry import rotate, turn_by
+from chaingraph.geometry import turn_by
 from chaingraph.kinematics.columns import LinkStates, Trajectories, reference_link
 from chaingraph.kinematics.equations import check_poses
 from chaingraph.kinematics.inputs import Drive, InputsGiven, pose_drive
@@ -47,11 +48,20 @@ class LinkState:
     acceleration: tuple[float, float]
     alpha: float
 
+    @cached_property
+    def turn(self) -> tuple[float, float]:
+        """(cos, sin) of ``angle``, worked out once (a sweep's are arrays)."""
+        c, s = np.cos(self.angle), np.sin(self.angle)
+        if not isinstance(self.angle, np.ndarray):
+            c, s = float(c), float(s)
+        return c, s
+
     def moved(self, offset: tuple[float, float]) -> tuple[float, float]:
         """Where the link's point is now that was drawn at ``offset`` from where
         ``point`` was drawn: point + R(angle) offset."""
-        r = rotate(offset, self.angle)
-        return (self.point[0] + r[0], self.point[1] + r[1])
+        c, s = self.turn
+        return (self.point[0] + (c * offset[0] - s * offset[1]),
+                self.point[1] + (s * offset[0] + c * offset[1]))
 
     def velocity_at(self, p: tuple[float, float]) -> tuple[float, float]:
         """Velocity of the link's point now at ``p``: v_O + omega k x (p - O)."""
