@@ -6,14 +6,16 @@ import json
 import pytest
 
 from chaingraph.naming.catalog import catalog_path
+from chaingraph.structure.atlas import DaskRunner
+from chaingraph.structure.atlas import run as atlas_run
 from chaingraph.structure.atlas.gears import gear_atlas, train_verdict
+
+from ..conftest import run_cli
 
 
 def _fixed(e):
     """The link the atlas's chain file fixes: the one in most turning pairs."""
     return max(range(e.links), key=lambda v: (sum(v in p for p in e.turning), -v))
-
-from ..conftest import run_cli
 
 
 
@@ -135,3 +137,21 @@ def test_out_writes_a_chain_file_per_train_that_gears_solves(tmp_path):
     code, out, err = run_cli("atlas", "--gears", "--links", "4", "--out", tmp_path / "h",
                              "--no-chain-files")
     assert code == 0 and not (tmp_path / "h" / "chains").exists()
+
+
+def test_a_local_dask_cluster_gives_the_atlas_of_one_process():
+    """The gear search split by tree of turning pairs on a Dask cluster (a local one of
+    two workers) gives the trains one process gives, in the same order."""
+    alone = gear_atlas(6, 1)
+    with DaskRunner("local", workers=2) as runner:
+        cluster = gear_atlas(6, 1, runner=runner)
+    assert [e.to_dict() for e in cluster] == [e.to_dict() for e in alone]
+    assert len(cluster) == 27
+
+
+def test_an_unreachable_scheduler_is_one_line(monkeypatch):
+    monkeypatch.setattr(atlas_run, "CONNECT_TIMEOUT", 1.0)  # nothing listens there anyway
+    code, out, err = run_cli("atlas", "--gears", "--links", "5", "--scheduler",
+                             "tcp://127.0.0.1:9", "-q")
+    assert code == 2 and "Traceback" not in err
+    assert err.strip().count("\n") == 0 and "cannot reach the Dask scheduler" in err
