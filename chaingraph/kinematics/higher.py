@@ -165,15 +165,22 @@ def _entry(known: Mapping[tuple[str, frozenset[str]], tuple[str, str, str]], joi
     return None
 
 
-def _gear(chain: Chain, g: GearPair, known, name: str) -> Derived | None:
-    """The gear pair as a derived joint, once one of its gears' axis joints is known."""
+def _gear_axes(chain: Chain, g: GearPair, name: str) -> tuple[Joint, Joint, float]:
+    """Each gear's R joint with the carrier, and the ratio (w_b - w_c) / (w_a - w_c)."""
     c = g.carrier
     a, b = g.links
     ja, jb = _r_joint(chain, a, c), _r_joint(chain, b, c)
     if ja is None or jb is None:
         raise MechanismError(f"the gear pair {g.id!r} needs each gear on an R joint with "
                              f"its carrier {c!r} to be solved", mechanism=name)
-    ratio = g.sign * g.teeth[0] / g.teeth[1]       # (w_b - w_c) / (w_a - w_c)
+    return ja, jb, g.sign * g.teeth[0] / g.teeth[1]
+
+
+def _gear(chain: Chain, g: GearPair, known, name: str) -> Derived | None:
+    """The gear pair as a derived joint, once one of its gears' axis joints is known."""
+    c = g.carrier
+    a, b = g.links
+    ja, jb, ratio = _gear_axes(chain, g, name)
     for (drive, driven, r) in ((ja, jb, ratio), (jb, ja, 1.0 / ratio)):
         by = _entry(known, drive, c, a if drive is ja else b)
         if by is None:
@@ -308,11 +315,7 @@ def _late(chain: Chain, p: GearPair | Cam, known: Mapping, name: str) -> list[De
         return [replace(d, by="", by_sign=1.0, after=(f, p.cam))]
     c = p.carrier
     a, b = p.links
-    ja, jb = _r_joint(chain, a, c), _r_joint(chain, b, c)
-    if ja is None or jb is None:
-        raise MechanismError(f"the gear pair {p.id!r} needs each gear on an R joint with "
-                             f"its carrier {c!r} to be solved", mechanism=name)
-    ratio = p.sign * p.teeth[0] / p.teeth[1]       # (w_b - w_c) / (w_a - w_c)
+    ja, jb, ratio = _gear_axes(chain, p, name)
     return [Derived(driven.id, "R", c, gear, p.id, "", 1.0, ratio=r, after=(c, other))
             for driven, gear, other, r in ((jb, b, a, ratio), (ja, a, b, 1.0 / ratio))
             if _pair(driven.id, c, gear) not in known and _moved_by_linkage(chain, other, c)]

@@ -17,12 +17,11 @@ from chaingraph.errors import MechanismError
 from chaingraph.kinematics.cams import follower_motion
 from chaingraph.kinematics.higher import cam_contact
 from chaingraph.kinematics.plan import build_plan
-from chaingraph.kinematics.rates import rates
 from chaingraph.kinematics.sweep import cycle
-from chaingraph.kinematics.tracking import evaluate
 from chaingraph.model.chainfile import toml_text
 
 from ..conftest import catalog_path, run_cli
+from .newton_check import assert_newton_agrees_with_closed_forms
 
 FIVE_BAR = "catalog/geared-five-bar.toml"
 CAM_ROCKER = "catalog/cam-rocker.toml"
@@ -493,22 +492,8 @@ def test_a_cam_the_linkage_turns_drives_its_follower_by_the_program():
 def test_sun_and_planet_by_newton_agrees_with_its_closed_forms():
     """Without closed forms the four-bar is one group solved by Newton's method, the sun
     still placed after it: the same poses and rates."""
-    chain = _sun_and_planet((16, 24))
-    closed, newton = build_plan(chain), build_plan(chain, closed_form=False)
-    assert [s.kind for s in newton.steps] == ["group", "single"]
-    theta = closed.theta0 + np.linspace(0.0, 720.0, 241)
-    e1, e2 = evaluate(closed, theta), evaluate(newton, theta)
-    assert e2.feasible.all()
-    v1, a1, _ = rates(closed, e1.pose, 1.5, theta.size)
-    v2, a2, _ = rates(newton, e2.pose, 1.5, theta.size)
-    for link in chain.links:
-        for j in (0, 1):
-            np.testing.assert_allclose(np.broadcast_to(e1.pose[link][j], theta.shape),
-                                       np.broadcast_to(e2.pose[link][j], theta.shape),
-                                       atol=1e-7)
-        for j in range(3):
-            np.testing.assert_allclose(v1[link][j], v2[link][j], atol=1e-6)
-            np.testing.assert_allclose(a1[link][j], a2[link][j], atol=1e-5)
+    assert_newton_agrees_with_closed_forms(_sun_and_planet((16, 24)), ["group", "single"],
+                                           720.0, 241)
 
 
 def test_sun_and_planet_poses_do_not_depend_on_where_the_sweep_starts():

@@ -23,6 +23,7 @@ from chaingraph.kinematics.rates import rates
 from chaingraph.kinematics.tracking import evaluate
 
 from ..conftest import run_cli, solver_takes
+from .newton_check import assert_newton_agrees_with_closed_forms
 
 SOLVABLE = [p for p in catalog_files()
             if (c := chaingraph.load(p)).mechanism is not None and c.mechanism.driver
@@ -390,21 +391,8 @@ def test_cli_sweep_past_range_exits_1():
 @pytest.mark.parametrize("stem", ["beam-engine", "shaper-crank-and-slotted-lever",
                                   "oldhams-coupling", "crank-rocker-with-slider"])
 def test_newton_agrees_with_closed_form(stem):
-    chain = chaingraph.load(catalog_path(stem))
-    closed, newton = build_plan(chain), build_plan(chain, closed_form=False)
-    assert [s.kind for s in newton.steps] == ["group"]
-    theta = closed.theta0 + np.linspace(0.0, 360.0, 181)
-    e1, e2 = evaluate(closed, theta), evaluate(newton, theta)
-    assert e2.feasible.all()
-    v1, a1, _ = rates(closed, e1.pose, 1.5, theta.size)
-    v2, a2, _ = rates(newton, e2.pose, 1.5, theta.size)
-    for link in chain.links:
-        for j in (0, 1):
-            assert np.allclose(np.broadcast_to(e1.pose[link][j], theta.shape),
-                               np.broadcast_to(e2.pose[link][j], theta.shape), atol=1e-7)
-        for j in range(3):
-            assert np.allclose(v1[link][j], v2[link][j], atol=1e-6, rtol=1e-6)
-            assert np.allclose(a1[link][j], a2[link][j], atol=1e-5, rtol=1e-6)
+    assert_newton_agrees_with_closed_forms(chaingraph.load(catalog_path(stem)), ["group"],
+                                           360.0, 181)
 
 
 def stephenson_three():
