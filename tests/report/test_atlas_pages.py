@@ -190,8 +190,9 @@ def test_named_four_link_inversions_move_as_named(four_link_pages):
 def six_link_pages(tmp_path_factory):
     """The 6-link atlas with every number of sliding pairs, drawn and animated."""
     out = tmp_path_factory.mktemp("atlas6") / "atlas"
+    # one process: the suite's other worker has the other core
     code, said, err = run_cli("atlas", "--links", "6", "--prismatic", "all", "--out", out,
-                              "--workers", "2", "-q")
+                              "--workers", "1", "-q")
     assert code == 0, err
     return out, said
 
@@ -336,8 +337,9 @@ def test_names_survive_relabelling_the_links_and_joints():
 def test_larger_runs_are_animated_when_asked(tmp_path, capsys, monkeypatch):
     """Every inversion up to 8 links is animated unless that is estimated to take more
     than the hour an atlas run takes without asking (every K at 8 links: about 40
-    minutes on two workers, an hour and a half on one); then the pages are drawn all the same, and the run says what
-    it left out, how long it would take and how to ask for it."""
+    minutes on two workers, an hour and a half on one); then the pages are drawn all the
+    same, and the run says what it left out, how long it would take and how to ask for
+    it."""
     six = sliding_atlas(atlas_graphs(6, 1), prismatic=range(8))
     seven = sliding_atlas(atlas_graphs(7, 2), prismatic=5)
     eight = sliding_atlas(atlas_graphs(8, 1), prismatic=range(11))
