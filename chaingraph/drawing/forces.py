@@ -31,7 +31,7 @@ from chaingraph.drawing.scene import (
     svg_elements,
 )
 from chaingraph.dynamics.reactions import PoseForces, SweepForces
-from chaingraph.geometry import convex_hull, polygon_area
+from chaingraph.geometry import convex_hull, polygon_area, segment_distance
 
 if TYPE_CHECKING:                   # matplotlib is imported only when a plot is drawn
     from matplotlib.figure import Figure
@@ -151,7 +151,8 @@ def _bodies(result: PoseForces, links: list[str]) -> dict[str, _Body]:
 
 def free_body_shapes(result: PoseForces) -> tuple[list[Shape], View]:
     """The free bodies of a :class:`~chaingraph.dynamics.PoseForces` as shapes: each
-    moving link in a panel of its own (two to a row), drawn with its real shape (a bar,
+    moving link in a panel of its own (two to a row, a row as high as its tallest),
+    drawn with its real shape (a bar,
     a plate for a link of three or more joints, a block for a slider, the slots it
     carries) and its forces as arrows, lengths and forces each to one scale over every
     panel, each arrow labelled where it collides with no other label, and a force scale
@@ -170,36 +171,78 @@ def free_body_shapes(result: PoseForces) -> tuple[list[Shape], View]:
     biggest = max([math.hypot(*f) for fs in forces.values() for _, _, _, f in fs] + [1e-300])
     arrow = 0.9 * extent                       # the largest force's length
     scale = arrow / biggest
-    # each panel holds its body and its arrows' tails, centred; all panels one size
-    boxes = {link: _content(bodies[link], forces[link], scale) for link in links}
+    # each panel holds its body and its arrows, centred; the panels of a row as high as
+    # its highest content, every column as wide as the widest
+    arrows = {link: _arrows(bodies[link], forces[link], scale, 0.04 * extent)
+              for link in links}
+    boxes = {link: _content(bodies[link], arrows[link]) for link in links}
     wide = max(b[2] - b[0] for b in boxes.values())
-    high = max(b[3] - b[1] for b in boxes.values())
-    margin = 0.18 * max(wide, high, 0.3 * extent)
-    cell = (wide + 2 * margin, high + 2.3 * margin)
-    size = 0.011 * cell[0]                     # a pin's radius, the text's scale
     cols = min(PANEL_COLUMNS, len(links))
-    rows = math.ceil(len(links) / cols)
+    rows = [links[k:k + cols] for k in range(0, len(links), cols)]
+    highs = [max(boxes[x][3] - boxes[x][1] for x in row) for row in rows]
+    margin = 0.18 * max(wide, min(highs), 0.3 * extent)
+    width = wide + 2 * margin
+    size = 0.011 * width                       # a pin's radius, the text's scale
     labels = _Labels(size)
     shapes: list[Shape] = []
-    for i, link in enumerate(links):
-        lo = ((i % cols) * cell[0], -(i // cols + 1) * cell[1])
-        shapes += _panel(result, link, bodies[link], forces[link], (lo, cell, boxes[link]),
-                         size, scale, labels,
-                         colour=COLOURS[result.chain.links.index(link) % len(COLOURS)])
+    top = 0.0
+    for row, high in zip(rows, highs):
+        cell = (width, high + 2.3 * margin)
+        top -= cell[1]
+        for k, link in enumerate(row):
+            shapes += _panel(result, link, bodies[link],
+                             list(zip(forces[link], arrows[link])),
+                             ((k * width, top), cell, boxes[link]), size, scale, labels,
+                             colour=COLOURS[result.chain.links.index(link) % len(COLOURS)])
     strip = 12 * size
-    shapes += _force_scale(biggest, scale, (3 * size, -rows * cell[1] - 0.6 * strip), size,
-                           labels)
-    view = View((0.0, -rows * cell[1] - strip), (cols * cell[0], 0.0), size)
+    shapes += _force_scale(biggest, scale, (3 * size, top - 0.6 * strip), size, labels)
+    view = View((0.0, top - strip), (cols * width, 0.0), size)
     return shapes, view
 
 
-def _content(body, forces, scale):
-    """The box (x0, y0, x1, y1) of a link's body and its arrows (drawn pose)."""
-    pts = list(body.members)
-    for _, key, q, f in forces:
-        pts += arrow_ends(q, f, scale, _middle(body), key)
+def _content(body, arrows):
+    """The box (x0, y0, x1, y1) of a link's body and its ``arrows`` (drawn pose)."""
+    pts = list(body.members) + [p for tail, head in arrows for p in (tail, head)]
     return (min(p[0] for p in pts), min(p[1] for p in pts), max(p[0] for p in pts),
             max(p[1] for p in pts))
+
+
+def _arrows(body, forces, scale, near):
+    """(tail, head) of each of a link's ``forces`` in the drawn pose, in their order:
+    placed as :func:`arrow_ends` prefers, unless its shaft runs along the body or along
+    an arrow placed before it (the larger forces first) more than the other way round
+    does (the arrow then starts at its point where it would end there, or the other
+    way): within ``near`` of them."""
+    middle = _middle(body)
+    pts = list(body.members)
+    hull = convex_hull(pts) if len(pts) >= 3 else []
+    if len(hull) >= 3:
+        lines = list(zip(hull, hull[1:] + hull[:1]))
+    else:
+        lines = [max(((p, q) for p in pts for q in pts), key=lambda e: math.dist(*e))]
+    out: dict[int, tuple[_Point, _Point]] = {}
+    order = sorted(range(len(forces)), key=lambda i: -math.hypot(*forces[i][3]))
+    for i in order:
+        _, key, q, f = forces[i]
+        first = arrow_ends(q, f, scale, middle, key)
+        far = (q[0] - f[0] * scale, q[1] - f[1] * scale) if first[0] == q else \
+            (q[0] + f[0] * scale, q[1] + f[1] * scale)
+        other = (far, q) if first[0] == q else (q, far)
+        best = min((first, other), key=lambda e: _crowding(e, q, lines, near))
+        out[i] = best
+        lines.append(best)
+    return [out[i] for i in range(len(forces))]
+
+
+def _crowding(ends, q, lines, near):
+    """How much of the arrow ``ends`` (away from its point q) runs within ``near`` of
+    the ``lines``: samples along its shaft."""
+    far = ends[1] if ends[0] == q else ends[0]
+    count = 0
+    for t in (0.2, 0.4, 0.6, 0.8, 1.0):
+        p = (q[0] + t * (far[0] - q[0]), q[1] + t * (far[1] - q[1]))
+        count += any(segment_distance(p, a, b) < near for a, b in lines)
+    return count
 
 
 def _middle(body):
@@ -255,13 +298,13 @@ def _panel(result, link, body, forces, place, size, scale, labels, *, colour):
             for p, q in zip(pts, pts[1:]):
                 labels.avoid_segment(p, q, 0.5 * (s.width or 0.0))
     arrows, small = [], []
-    for what, key, q, f in forces:
+    for (what, key, q, f), ends in forces:
         if math.hypot(*f) * scale < 1e-9 * cw:         # nothing (rounding)
             continue
         if math.hypot(*f) * scale < 0.5 * size:
             small.append(f"{what} {_newtons(f)}")
             continue
-        tail, head = (at(p) for p in arrow_ends(q, f, scale, (bx, by), key))
+        tail, head = (at(p) for p in ends)
         arrows.append((tail, head, what, key, f))
         labels.avoid_segment(tail, head, 0.6 * size)
     if small:                                  # too short to draw to the scale (its
@@ -455,13 +498,18 @@ class _Labels:
         return self._place(text, tried, panel, (("force", text), *data), "force-label")
 
     def near(self, text, c, panel, data, *, cls) -> Shape:
-        """A label near the point c (a couple's, by the link's middle)."""
+        """A label near the point c (a couple's, by the link's middle): its box's near
+        side (not its middle) at each distance tried, so that a long label beside a
+        link is clear of it."""
+        x0, y0, x1, y1 = label_box(0.0, 0.0, text, self.font)
+        hw, hh = 0.5 * (x1 - x0), 0.5 * (y1 - y0)
         tried = []
-        for ring, d in enumerate((3.0, 6.0, 10.0, 15.0)):
+        for ring, d in enumerate((1.5, 3.0, 6.0, 10.0, 15.0)):
             for k in range(8):
                 a = math.pi / 2 + k * math.pi / 4
-                tried.append((ring + 0.1 * k, (c[0] + d * self.size * math.cos(a),
-                                               c[1] + d * self.size * math.sin(a))))
+                u = (math.cos(a), math.sin(a))
+                reach = d * self.size + abs(u[0]) * hw + abs(u[1]) * hh
+                tried.append((ring + 0.1 * k, (c[0] + reach * u[0], c[1] + reach * u[1])))
         return self._place(text, tried, panel, data, cls)
 
 
