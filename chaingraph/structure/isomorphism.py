@@ -31,7 +31,8 @@ from chaingraph.errors import ChainStructureError
 from chaingraph.model.chain import Chain
 
 __all__ = ["Canon", "canonical", "canonical_form", "is_isomorphic", "isomorphism",
-           "automorphism_orbits", "automorphism_generators", "pair_orbits"]
+           "automorphism_orbits", "automorphism_generators", "pair_orbits",
+           "link_joint_orbits"]
 
 #: a node of the link-joint graph: ("link", name) or ("joint", id)
 _Node = tuple[str, str]
@@ -341,6 +342,17 @@ def pair_orbits(chain: Chain, pairs: Iterable[tuple[str, str]], *, oriented: boo
     """Orbits of ordered link pairs (for example (fixed, input)) under the automorphisms."""
     gens = automorphism_generators(chain, oriented=oriented)
     items = [(("link", a), ("link", b)) for a, b in pairs]
+    return _group(items, gens, key=lambda p: (p[0][1], p[1][1]),
+                  act=lambda g, p: (g[p[0]], g[p[1]]))
+
+
+def link_joint_orbits(chain: Chain, *, oriented: bool = True
+                      ) -> list[tuple[tuple[str, str], ...]]:
+    """Orbits of (link, joint) pairs under the automorphisms: every pair, so that the
+    orbits are the whole group's (a pair's orbit under the automorphisms that keep its
+    link is the members of its orbit with that link)."""
+    gens = automorphism_generators(chain, oriented=oriented)
+    items = [(("link", x), ("joint", j.id)) for x in chain.links for j in chain.joints]
     return _group(items, gens, key=lambda p: (p[0][1], p[1][1]),
                   act=lambda g, p: (g[p[0]], g[p[1]]))
 

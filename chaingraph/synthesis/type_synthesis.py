@@ -46,15 +46,14 @@ from typing import Any
 
 import numpy as np
 
-from chaingraph._util.disjoint import DisjointSets
 from chaingraph._util.parallel import Runner, serial
 from chaingraph.errors import DesignError
 from chaingraph.model.chain import Chain
 from chaingraph.naming.atlas import atlas_names
 from chaingraph.structure.atlas import atlas
 from chaingraph.structure.isomorphism import (
-    automorphism_generators,
     automorphism_orbits,
+    link_joint_orbits,
     pair_orbits,
 )
 from chaingraph.synthesis.family import (
@@ -239,24 +238,23 @@ def _choices(chain, number, inversion, fixed, names, kind) -> list[Choice]:
 
 def _cylinder_choices(chain, number, inversion, fixed, names) -> list[Choice]:
     """An inversion's families driven by a cylinder: each sliding pair between two
-    moving links (one per orbit of (fixed, pair) under the automorphisms the
-    generators give that keep the fixed link), every carrier not jointed to the fixed
+    moving links (one per orbit of (fixed, pair) under the automorphisms that keep the
+    fixed link: :func:`~chaingraph.structure.isomorphism.link_joint_orbits`), every carrier not jointed to the fixed
     link; solved dyad by dyad where the cylinder's links as one leave dyads of turning
     pairs (:func:`~chaingraph.synthesis.family.cylinder_plan`), else by Newton's
     method."""
-    joints = cylinder_joints(chain, fixed)
-    same = DisjointSets(joints)
-    for g in automorphism_generators(chain, oriented=False):
-        if g[("link", fixed)] == ("link", fixed):
-            for j in joints:
-                image = g[("joint", j)][1]
-                if image in same.parent:
-                    same.join(j, image)
+    joints = set(cylinder_joints(chain, fixed))
+    kept = []
+    for orbit in link_joint_orbits(chain, oriented=False):
+        mine = [j for f, j in orbit if f == fixed and j in joints]
+        if mine:
+            kept.append(mine[0])
+    kept.sort(key=[j.id for j in chain.joints].index)
     grounded = {x for j in chain.joints if fixed in j.links for x in j.links}
     carriers = [x for x in chain.links if x not in grounded]
     return [Choice(chain, number, inversion, fixed, chain.joint(j).links[1], c, names,
                    "dyads" if cylinder_plan(chain, fixed, j) else "newton", cylinder=j)
-            for j in same.blocks() for c in carriers]
+            for j in kept for c in carriers]
 
 
 def _method(chain, fixed, driver) -> str:

@@ -4,6 +4,7 @@ extension, a boom lifted by a cylinder). The space's families, the family's scre
 against the kernel's solver (points and transmission angles), and a task taken from a
 known cylinder-driven boom found again exactly, re-solved from its written file."""
 
+import itertools
 import math
 
 import numpy as np
@@ -163,3 +164,42 @@ def test_a_task_of_the_boom_is_passed_by_a_cylinder_driven_chain():
     again = certify(chain, PointTargets(tuple(points), "P"))
     assert again.input == "slides"
     assert again.error_max == pytest.approx(s.error.max, abs=1e-9 * size)
+
+
+def _automorphisms(chain):
+    """Every automorphism of a small chain, by brute force over the links' permutations:
+    (link map, joint map) pairs that carry every joint to a joint of the same kind on
+    the mapped links."""
+    links = list(chain.links)
+    by_links = {(frozenset(j.links), j.kind): j.id for j in chain.joints}
+    for image in itertools.permutations(links):
+        m = dict(zip(links, image))
+        joints = {}
+        for j in chain.joints:
+            target = by_links.get((frozenset(m[x] for x in j.links), j.kind))
+            if target is None:
+                break
+            joints[j.id] = target
+        else:
+            yield m, joints
+
+
+def test_one_cylinder_family_per_orbit_under_the_whole_group():
+    """Six links, two sliding pairs: the cylinder families of each inversion are one per
+    orbit of its cylinders under every automorphism that keeps the fixed link, found by
+    brute force over the links' permutations (chain 3 with L5 or L6 fixed has two
+    cylinders in one orbit: the generators that keep the fixed link alone made them two
+    families)."""
+    space = atlas_space(6, 2)
+    kept: dict = {}
+    for c in space.choices:
+        if c.cylinder:
+            kept.setdefault((c.chain_id, c.fixed), set()).add(c.cylinder)
+    assert kept
+    for (chain_id, fixed), mine in kept.items():
+        chain = next(c.chain for c in space.choices if c.chain_id == chain_id)
+        autos = [jm for lm, jm in _automorphisms(chain) if lm[fixed] == fixed]
+        every = set(cylinder_joints(chain, fixed))
+        orbits = {frozenset(g[j] for g in autos) for j in every}
+        assert len(mine) == len(orbits), (chain_id, fixed, mine, orbits)
+        assert all(len(mine & o) == 1 for o in orbits), (chain_id, fixed)
