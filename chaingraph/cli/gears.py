@@ -38,8 +38,7 @@ __all__ = ["gears_command", "cmd_gears", "speed_argument", "cmd_gear_atlas"]
 
 #: the flags of ``atlas`` that mean nothing for gear trains
 _NOT_FOR_GEARS = (("prismatic", "--prismatic"), ("oriented", "--oriented"),
-                  ("multiple", "--multiple"), ("resume", "--resume"), ("illustrate", "--illustrate"),
-                  ("chain_files", "--chain-files"))
+                  ("multiple", "--multiple"), ("resume", "--resume"), ("illustrate", "--illustrate"))
 
 
 def speed_argument(text: str) -> tuple[str, float]:

@@ -19,7 +19,15 @@ from dataclasses import replace
 
 import numpy as np
 
-from chaingraph.drawing.scene import COLOURS, Shape, View, label_box, svg_document, svg_elements
+from chaingraph.drawing.scene import (
+    COLOURS,
+    Shape,
+    View,
+    label_box,
+    segments_meet_boxes,
+    svg_document,
+    svg_elements,
+)
 from chaingraph.errors import MechanismError
 from chaingraph.geometry import segment_distance
 from chaingraph.model.chain import Chain, Joint
@@ -80,23 +88,6 @@ def _free(box: tuple[float, float, float, float], placed: list[tuple[float, ...]
 _ANGLES = (90, 60, 120, 30, 150, 0, 180, 300, 240, 270, 45, 135, 210, 330)
 
 
-def _meets(box: tuple[float, ...], p: Point, q: Point) -> bool:
-    """Whether the segment ``p``-``q`` passes through the box (Liang and Barsky's
-    clipping)."""
-    t0, t1 = 0.0, 1.0
-    d = (q[0] - p[0], q[1] - p[1])
-    for k, lo, hi in ((0, box[0], box[2]), (1, box[1], box[3])):
-        if abs(d[k]) < 1e-12:
-            if not lo <= p[k] <= hi:
-                return False
-            continue
-        a, b = (lo - p[k]) / d[k], (hi - p[k]) / d[k]
-        t0, t1 = max(t0, min(a, b)), min(t1, max(a, b))
-        if t0 > t1:
-            return False
-    return True
-
-
 def _place(text: str, centre: Point, reach: float, size: float,
            placed: list[tuple[float, ...]], *, below: bool = False,
            avoid: Sequence[tuple[Point, Point]] = ()) -> Shape:
@@ -104,6 +95,7 @@ def _place(text: str, centre: Point, reach: float, size: float,
     first when ``below``) whose box meets no label placed before, nor (where it can)
     the segments to ``avoid``; farther out when every angle is taken."""
     w = len(text) * 0.62 * size
+    lines = np.array([(*p, *q, 0.0) for p, q in avoid], dtype=float).reshape(-1, 5)
     for strict in ((True, False) if avoid else (False,)):
         for ring in (1.0, 1.4, 2.0, 2.8, 4.0, 5.6, 8.0, 11.0)[:4 if strict else 8]:
             for deg in ((270, *_ANGLES[:9], *_ANGLES[10:]) if below else _ANGLES):
@@ -116,7 +108,7 @@ def _place(text: str, centre: Point, reach: float, size: float,
                     else cy - 0.3 * size
                 box = label_box(x, y, text, size)
                 if _free(box, placed, 0.15 * size) and not (
-                        strict and any(_meets(box, p, q) for p, q in avoid)):
+                        strict and segments_meet_boxes(lines, np.array([box])).any()):
                     placed.append(box)
                     return Shape("text", "label", ((x, y),), text=text, size=size,
                                  halo=0.25 * size)

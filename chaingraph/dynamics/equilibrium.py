@@ -179,15 +179,12 @@ class _Layout:
         """A drawn point in metres about the origin."""
         return ((p[0] - self.origin[0]) * self.metres, (p[1] - self.origin[1]) * self.metres)
 
-    def put(self, a, link, col, f, q, sign=1.0):
+    def put(self, a, link, col, f, q):
         """Add the force f (Fx, Fy arrays) at q on ``link`` to column ``col`` of ``a``."""
         if link == self.fixed:
             return
         r = self.row[link]
-        m = cross(q, f)
-        m /= self.size                                       # moments over the size
-        if sign != 1.0:
-            f, m = (sign * f[0], sign * f[1]), sign * m
+        m = cross(q, f) / self.size                          # moments over the size
         a[:, r, col] += f[0]
         a[:, r + 1, col] += f[1]
         a[:, r + 2, col] += m
@@ -309,14 +306,6 @@ def solve_block_triangular(a: np.ndarray, b: np.ndarray, ends: tuple[int, ...], 
     closed form as :func:`_dyad` says; another by LU. Raises
     :class:`numpy.linalg.LinAlgError` where a block is singular."""
     x = np.empty(b.shape)
-    # (all steps at once: in chunks, to keep the temporaries off the heap's top, cost a
-    # fifth more once glibc keeps freed memory, see chaingraph._util.memory)
-    _forward(a, b, x, ends, dyads)
-    return x
-
-
-def _forward(a, b, x, ends, dyads):
-    """:func:`solve_block_triangular` at some steps, into ``x``."""
     lo = 0
     for g, hi in enumerate(ends):
         rhs = b[:, lo:hi]
@@ -330,6 +319,7 @@ def _forward(a, b, x, ends, dyads):
         else:
             x[:, lo:hi] = np.linalg.solve(block, rhs)
         lo = hi
+    return x
 
 
 def _dyad(d, r):

@@ -59,9 +59,8 @@ class LinkState:
     def moved(self, offset: tuple[float, float]) -> tuple[float, float]:
         """Where the link's point is now that was drawn at ``offset`` from where
         ``point`` was drawn: point + R(angle) offset."""
-        c, s = self.turn
-        return (self.point[0] + (c * offset[0] - s * offset[1]),
-                self.point[1] + (s * offset[0] + c * offset[1]))
+        r = turn_by((0.0, 0.0, self.angle, *self.turn), offset)
+        return (self.point[0] + r[0], self.point[1] + r[1])
 
     def velocity_at(self, p: tuple[float, float]) -> tuple[float, float]:
         """Velocity of the link's point now at ``p``: v_O + omega k x (p - O)."""

@@ -137,6 +137,11 @@ def test_out_writes_a_chain_file_per_train_that_gears_solves(tmp_path):
     code, out, err = run_cli("atlas", "--gears", "--links", "4", "--out", tmp_path / "h",
                              "--no-chain-files")
     assert code == 0 and not (tmp_path / "h" / "chains").exists()
+    # asked for explicitly, they are written as by default (not refused)
+    code, out, err = run_cli("atlas", "--gears", "--links", "4", "--out", tmp_path / "i",
+                             "--chain-files")
+    assert code == 0, err
+    assert len(list((tmp_path / "i" / "chains").glob("*.toml"))) == 2
 
 
 def test_a_local_dask_cluster_gives_the_atlas_of_one_process():
