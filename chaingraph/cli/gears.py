@@ -25,6 +25,7 @@ from chaingraph.kinematics.gears import TrainSpeeds, train_speeds
 from chaingraph.naming.gear_trains import gear_train_names
 from chaingraph.structure.atlas import DaskRunner
 from chaingraph.structure.atlas.gear_chains import gear_chain
+from chaingraph.structure.atlas.entry import chain_file_name
 from chaingraph.structure.atlas.output import FIGURES_UP_TO
 from chaingraph.structure.atlas.gears import (
     GearAtlas,
@@ -189,12 +190,6 @@ def _gear_index(atlas: GearAtlas, shown: list[GearEntry], chains: list[Chain],
                "atlas.json and has its chain file.</p>")
             + "<div class=\"grid\">" + "".join(cells)
             + "</div></body></html>\n")
-
-
-def chain_file_name(i: int, count: int) -> str:
-    """The name of the ``i``-th train's chain file among ``count`` (as the atlas of
-    chains names them: ``chain-07.toml``)."""
-    return f"chain-{i:0{len(str(count))}d}.toml"
 
 
 def _write_chains(out: Path, chains: list[Chain]) -> list[Path]:

@@ -11,7 +11,7 @@ import numpy.typing as npt
 from chaingraph.model.chain import Chain, Joint
 from chaingraph.structure.classification import order_name
 
-__all__ = ["AtlasEntry", "graph6_line", "graph6_lines", "encode_chains", "order_counts"]
+__all__ = ["AtlasEntry", "graph6_line", "graph6_lines", "encode_chains", "order_counts", "chain_file_name"]
 
 
 @dataclass(frozen=True)
@@ -115,3 +115,13 @@ def _orders_of_degrees(degrees: list[int]) -> dict[str, int]:
     for d in sorted(degrees):
         counts[order_name(d)] = counts.get(order_name(d), 0) + 1
     return counts
+
+
+def chain_file_name(number: int, count: int) -> str:
+    """The name of an atlas's ``number``-th chain file among ``count``, numbered to the
+    same width so that they sort in order (``chain-07.toml`` of 12).
+
+    >>> chain_file_name(7, 12), chain_file_name(7, 9)
+    ('chain-07.toml', 'chain-7.toml')
+    """
+    return f"chain-{number:0{len(str(count))}d}.toml"

@@ -15,7 +15,12 @@ from typing import IO, Any
 from chaingraph._util.atomic import withdraw
 from chaingraph._util.text import freedom
 from chaingraph.geometry import segment_distance
-from chaingraph.structure.atlas.entry import AtlasEntry, encode_chains, order_counts
+from chaingraph.structure.atlas.entry import (
+    AtlasEntry,
+    chain_file_name,
+    encode_chains,
+    order_counts,
+)
 from chaingraph.structure.atlas.run import Atlas, AtlasCounts, ring_of
 
 __all__ = ["atlas_dict", "write_atlas", "chains_of", "CHAIN_FILES_UP_TO",
@@ -143,7 +148,6 @@ def write_atlas(atlas: Atlas | AtlasCounts, out_dir: str | os.PathLike[str], *,
     by_assortment: dict[str, list[int]] = {}
     figures: list[AtlasEntry] = []
     total = 0
-    width = len(str(count))
     with json_file, g6_file:
         json_file.write("{" + json.dumps(header)[1:-1] + ', "chains": [\n')
         for i, (line, g6, record) in enumerate(_records(atlas, shard_dir, no_fractionated)):
@@ -163,7 +167,7 @@ def write_atlas(atlas: Atlas | AtlasCounts, out_dir: str | os.PathLike[str], *,
                 if len(figures) < FIGURES_UP_TO:
                     figures.append(entry)
             if chain_files:
-                path = paths["chain_dir"] / f"chain-{i + 1:0{width}d}.toml"
+                path = paths["chain_dir"] / chain_file_name(i + 1, count)
                 path.write_text(chain_text(entry, atlas.dof), encoding="utf-8")
                 paths["chains"].append(path)
         json_file.write(f'\n], "distinct_inversions": {total}}}\n')

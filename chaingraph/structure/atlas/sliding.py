@@ -45,7 +45,7 @@ from chaingraph.errors import AtlasSizeError
 from chaingraph.model.chain import Chain, Joint
 from chaingraph.model.chainfile import dumps
 from chaingraph.structure.atlas.admissibility import REASONS, admissible, verdicts
-from chaingraph.structure.atlas.entry import order_counts
+from chaingraph.structure.atlas.entry import chain_file_name, order_counts
 from chaingraph.structure.atlas.generic import generic_verdicts
 from chaingraph.structure.classification import order_name
 from chaingraph.structure.isomorphism import (
@@ -553,9 +553,8 @@ def write_sliding(result: SlidingAtlas, out_dir: str | os.PathLike[str], *,
     written: list[Path] = []
     if len(result) <= chain_files_up_to:
         chain_dir.mkdir(exist_ok=True)
-        width = len(str(len(result)))
         for e in result:
-            file = chain_dir / f"chain-{e.id:0{width}d}.toml"
+            file = chain_dir / chain_file_name(e.id, len(result))
             file.write_text(dumps(e.chain(result.dof)), encoding="utf-8")
             written.append(file)
     return {"json": path, "chain_dir": chain_dir, "chains": written}
