@@ -129,6 +129,13 @@ class Derived:
         _, ds, dds, _ = follower_motion(self.cam, self.cam.drawn + np.atleast_1d(x))
         return self.sign * ds.reshape(x.shape), self.sign * dds.reshape(x.shape)
 
+    def velocity(self, pose: Mapping[str, tuple], vel: Mapping[str, tuple]) -> tuple:
+        """The joint's velocity table entry, by the chain rule (the accelerations not
+        yet known: a pair driven through the linkage, during the velocity solve)."""
+        d1, _ = self.slopes(self.driving(pose))
+        with np.errstate(invalid="ignore"):
+            return (0.0, 0.0, d1 * self.driving(vel))
+
     def rates(self, pose: Mapping[str, tuple], vel: Mapping[str, tuple],
               acc: Mapping[str, tuple]) -> tuple[tuple, tuple]:
         """The joint's (velocity, acceleration) table entries, by the chain rule."""

@@ -416,16 +416,16 @@ def rates(plan: Plan, pose: Pose, omega: float, n: int, *,
         vel[item.key] = (0.0, 0.0, k * tau_rate)
         acc[item.key] = (0.0, 0.0, 0.0)
     late = [d for d in plan.derived if not d.ready(vel)]    # driven through the linkage
-    for d in plan.derived:         # a higher pair's joint: by the chain rule
-        if d not in late:
-            vel[d.key], acc[d.key] = d.rates(pose, vel, acc)
+    early = [d for d in plan.derived if d.key not in {x.key for x in late}]
+    for d in early:                # a higher pair's joint: by the chain rule
+        vel[d.key], acc[d.key] = d.rates(pose, vel, acc)
     measures: list[np.ndarray] = []           # left empty unless ``measure``
     factors: list[_PointDyad | _Weld | Factor] = []
     f: _PointDyad | _Weld | Factor
     for step in (plan.steps if steps is None else steps):
         for d in late:             # its rate once its links' are known
             if d.key not in vel and d.ready(vel):
-                vel[d.key] = d.rates(pose, vel, vel)[0]
+                vel[d.key] = d.velocity(pose, vel)
         if step.kind == "dyad" and step.pattern == "RRR" and _POINT_DYADS:
             f = _PointDyad(step, pose, n, plan.size)
             vel.update(f.solve_velocity(vel))
