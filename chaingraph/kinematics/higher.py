@@ -406,8 +406,9 @@ def gear_cycle_turns(derived: Sequence[Derived]) -> int | None:
     """The turns of the driving motions after which every gear of a train whose higher
     pairs are all gear pairs is back where drawn: the least common multiple of the
     denominators of each gear's ratio to the motion that drives it through the train
-    (the product of the ratios along the way, exact from the teeth). None when a cam
-    is among the pairs, or no pair."""
+    (the product of the ratios along the way: each ratio of teeth recovered exactly from
+    its float by the nearest fraction of denominator at most a million, which is the
+    teeth's own for any gears made). None when a cam is among the pairs, or no pair."""
     if not derived or any(d.cam is not None or d.ratio is None for d in derived):
         return None
     factor: dict[str, Fraction] = {}
