@@ -209,7 +209,7 @@ def _content(body, arrows):
 
 def _arrows(body, forces, scale, near):
     """(tail, head) of each of a link's ``forces`` in the drawn pose, in their order:
-    placed as :func:`arrow_ends` prefers, unless its shaft runs along the body or along
+    placed the way :func:`arrow_ends` gives first, unless its shaft runs along the body or along
     an arrow placed before it (the larger forces first) more than the other way round
     does (the arrow then starts at its point where it would end there, or the other
     way): within ``near`` of them."""
@@ -224,11 +224,8 @@ def _arrows(body, forces, scale, near):
     order = sorted(range(len(forces)), key=lambda i: -math.hypot(*forces[i][3]))
     for i in order:
         _, key, q, f = forces[i]
-        first = arrow_ends(q, f, scale, middle, key)
-        far = (q[0] - f[0] * scale, q[1] - f[1] * scale) if first[0] == q else \
-            (q[0] + f[0] * scale, q[1] + f[1] * scale)
-        other = (far, q) if first[0] == q else (q, far)
-        best = min((first, other), key=lambda e: _crowding(e, q, lines, near))
+        best = min(arrow_ends(q, f, scale, middle, key),
+                   key=lambda e: _crowding(e, q, lines, near))
         out[i] = best
         lines.append(best)
     return [out[i] for i in range(len(forces))]
@@ -252,21 +249,21 @@ def _middle(body):
 
 
 def arrow_ends(q: _Point, f: _Point, scale: float, middle: _Point, key: str
-               ) -> tuple[_Point, _Point]:
-    """(tail, head) of the arrow of the force ``f`` acting at ``q`` on a body whose
-    middle is ``middle``, as a textbook draws it, off the body: a push ends at its
-    point, coming from outside; a pull starts at its point, going out (so that a
-    two-force member's arrows lie beyond its pins, not along it). A weight or an
-    inertia force starts at the centre of mass."""
-    head_at = (q, (q[0] - f[0] * scale, q[1] - f[1] * scale))     # (head, tail)
-    tail_at = ((q[0] + f[0] * scale, q[1] + f[1] * scale), q)
+               ) -> tuple[tuple[_Point, _Point], tuple[_Point, _Point]]:
+    """The two ways to draw the arrow of the force ``f`` acting at ``q`` on a body whose
+    middle is ``middle``, each (tail, head), the one a textbook draws first (off the
+    body): a push ends at its point, coming from outside; a pull starts at its point,
+    going out (so that a two-force member's arrows lie beyond its pins, not along it);
+    a weight or an inertia force starts at the centre of mass."""
+    head_at = ((q[0] - f[0] * scale, q[1] - f[1] * scale), q)
+    tail_at = (q, (q[0] + f[0] * scale, q[1] + f[1] * scale))
     if key in ("weight", "inertia force"):
-        return tail_at[1], tail_at[0]
+        return tail_at, head_at
     # the end away from the point: whichever lies farther from the body's middle
-    if math.dist(tail_at[0], middle) > math.dist(head_at[1], middle) + 1e-9 * scale * \
+    if math.dist(tail_at[1], middle) > math.dist(head_at[0], middle) + 1e-9 * scale * \
             math.hypot(*f):
-        return tail_at[1], tail_at[0]
-    return head_at[1], head_at[0]
+        return tail_at, head_at
+    return head_at, tail_at
 
 
 def _panel(result, link, body, forces, place, size, scale, labels, *, colour):
