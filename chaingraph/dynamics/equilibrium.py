@@ -815,16 +815,18 @@ def _solve(a, b, known=None, layout=None):
         singular |= known
         if use.any():
             au, bu = (a, b[:, :, None]) if use.all() else (a[use], b[use][:, :, None])
-            solvers = [np.linalg.solve]
             if layout is not None and layout.groups is not None:
-                solvers.insert(0, lambda a, b: solve_block_triangular(
-                    a, b, layout.groups, dyads=layout.dyads))
-            for solve in solvers:
                 try:
-                    x[use] = solve(au, bu)[:, :, 0]
+                    x[use] = solve_block_triangular(au, bu, layout.groups,
+                                                    dyads=layout.dyads)[:, :, 0]
                     return x, singular
-                except np.linalg.LinAlgError:     # a singular step the motion did not flag
+                except np.linalg.LinAlgError:     # a group's system singular: the whole
                     pass
+            try:
+                x[use] = np.linalg.solve(au, bu)[:, :, 0]
+                return x, singular
+            except np.linalg.LinAlgError:         # a singular step the motion did not flag
+                pass
         else:
             return x, singular
     if good.any():
