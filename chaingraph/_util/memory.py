@@ -17,12 +17,16 @@ import ctypes.util
 import os
 import sys
 
-__all__ = ["KEPT", "keep_freed_memory"]
+__all__ = ["KEPT", "MAPPED", "keep_freed_memory"]
 
 #: the freed memory the heap keeps before giving it back (bytes)
 KEPT = 64 * 1024 * 1024
 
-_M_TRIM_THRESHOLD = -1          # mallopt's parameter number (malloc.h)
+#: blocks at least this large (bytes) are mapped on their own: glibc's largest dynamic
+#: threshold, which setting the trim threshold would otherwise freeze at 128 kB
+MAPPED = 32 * 1024 * 1024
+
+_M_TRIM_THRESHOLD, _M_MMAP_THRESHOLD = -1, -3     # mallopt's parameter numbers (malloc.h)
 
 
 def keep_freed_memory(kept: int = KEPT) -> bool:
@@ -48,4 +52,8 @@ def keep_freed_memory(kept: int = KEPT) -> bool:
         return False
     mallopt.argtypes = (ctypes.c_int, ctypes.c_int)
     mallopt.restype = ctypes.c_int
+    if "MALLOC_MMAP_THRESHOLD_" not in os.environ:
+        # (setting the trim threshold stops glibc raising its mapping threshold as it
+        # does by itself; raised here as far as it would go, large arrays are kept too)
+        mallopt(_M_MMAP_THRESHOLD, MAPPED)
     return bool(mallopt(_M_TRIM_THRESHOLD, kept))

@@ -39,7 +39,9 @@ def test_glibc_is_told_and_a_repeated_sweep_takes_no_memory_from_the_system():
                           env=env, check=True)
     told, given_back, kept = json.loads(done.stdout.strip().splitlines()[-1])
     assert told == [True, True]
-    assert given_back >= 100 and kept < 25, (given_back, kept)   # five calls each
+    # five calls each: kept, (almost) none; given back, about 300 here (glibc trims its
+    # heap's top past 128 kB free), though another C library may not trim at all
+    assert kept < 25 and kept <= given_back, (given_back, kept)
 
 
 def test_a_process_that_sets_the_threshold_itself_keeps_its_choice(monkeypatch):
