@@ -110,10 +110,10 @@ class Derived:
             return float(self.ratio or 0.0) * x
         if self.inverse:
             return _program_inverse(self.cam, self.sign * x) - self.cam.drawn
-        at = self.cam.drawn + np.atleast_1d(x)         # the place in the program
-        s = follower_motion(self.cam, at)[0] - \
-            follower_motion(self.cam, np.array([self.cam.drawn]))[0][0]
-        return self.sign * s.reshape(x.shape)
+        # the places in the program, the drawn one first: one evaluation for both
+        at = self.cam.drawn + np.concatenate([[0.0], np.ravel(x)])
+        s = follower_motion(self.cam, at)[0]
+        return self.sign * (s[1:] - s[0]).reshape(x.shape)
 
     def slopes(self, x: ArrayLike) -> tuple[np.ndarray, np.ndarray]:
         """df/dx and d2f/dx2 at the driving motion ``x``."""
