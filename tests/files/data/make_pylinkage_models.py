@@ -61,10 +61,9 @@ def watt():
 
 
 def stephenson():
-    """Stephenson III: the crank drives a ternary link tied to the ternary rocker by two
-    binary links... here Stephenson I: four-bar whose crank... the ternary frame? The
-    six-bar of two ternary links not joined directly: coupler B-C-E (ternary), frame
-    A-D-G, binary links E F and F G."""
+    """A Stephenson six-bar: its two ternary links, the coupler (pins at the crank, the
+    rocker and link 5) and the frame (pivots A, D, G), are not joined directly; the
+    crank and the rocker on the frame, links 5 and 6 from the coupler back to G."""
     b = MechanismBuilder(name="Stephenson six-bar")
     b.add_ground_link("ground", ports={"A": (0.0, 0.0), "D": (90.0, 0.0),
                                        "G": (40.0, -70.0)})
