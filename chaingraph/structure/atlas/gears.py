@@ -368,8 +368,15 @@ def gear_trains(links: int, dof: int = 1, *, seed: int = 39) -> Iterator[
     gears = check_gear_size(links, dof)
     for i, tree in enumerate(nx.nonisomorphic_trees(links)):
         turning = tuple(sorted(tuple(sorted(e)) for e in tree.edges))
-        for chosen in _trains_on(tree, links, gears, random.Random(f"{seed}-{i}")):
+        for chosen in _tree_trains(tree, links, gears, i, seed):
             yield turning, chosen
+
+
+def _tree_trains(tree: nx.Graph, links: int, gears: int, index: int, seed: int
+                 ) -> Iterator[tuple[Gear, ...]]:
+    """The admissible trains on the ``index``-th tree, its random ratios drawn from its
+    own stream (``seed`` and the tree's place)."""
+    return _trains_on(tree, links, gears, random.Random(f"{seed}-{index}"))
 
 
 def _tree_task(task: tuple[int, int, int, tuple[tuple[int, int], ...], int],
@@ -382,8 +389,7 @@ def _tree_task(task: tuple[int, int, int, tuple[tuple[int, int], ...], int],
     tree = nx.Graph(list(edges))
     tree.add_nodes_from(range(links))
     found: dict[Hashable, dict[str, Any]] = {}
-    rng = random.Random(f"{seed}-{index}")
-    for chosen in _trains_on(tree, links, links - 1 - dof, rng):
+    for chosen in _tree_trains(tree, links, check_gear_size(links, dof), index, seed):
         cert, order, orbits = train_key(links, (), chosen)
         at = {v: i for i, v in enumerate(order)}
         item = found.setdefault(cert, {"gears": tuple(sorted(
