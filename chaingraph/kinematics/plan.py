@@ -565,15 +565,17 @@ def _placed(chain, fixed, items, origin, name, closed_form):
     pairs driven through the linkage each place their driven link after the links they
     are read from. Refuses a pair that no way drives."""
     options = derived_options(chain, [(i.joint, i.key, i.a, i.b) for i in items], name)
+    if not options:     # the pair the inputs cannot drive, said as before (it raises)
+        derived_inputs(chain, [(i.joint, i.key, i.a, i.b) for i in items], name)
+    first = None
     for derived in options:
         constraints = tuple(_constraints(chain, fixed, items, origin, derived))
         steps = _steps(chain, fixed, constraints, closed_form, _needs(derived))
         if steps is not None:
             return derived, constraints, steps
-    if not options:     # the pair the inputs cannot drive, said as before
-        derived_inputs(chain, [(i.joint, i.key, i.a, i.b) for i in items], name)
-    derived = options[0]
-    return derived, tuple(_constraints(chain, fixed, items, origin, derived)), None
+        first = first or (derived, constraints)
+    assert first is not None, "derived_inputs refuses a chain with no way to drive it"
+    return (*first, None)
 
 
 def _refuse_unplaced(chain, derived, name):
