@@ -449,7 +449,7 @@ def _higher_lines(chain, layout, state):
         on = state.links[frame.on]
         turn = np.broadcast_to(np.asarray(state.links[cam.cam].angle, dtype=float)
                                - np.asarray(on.angle, dtype=float), (n,))
-        point, normal, _ = cam_contact(chain, cam, turn)
+        point, normal, _ = cam_contact(chain, cam, turn, frame=frame)
         where = on.moved(layout.drawn((point[:, 0], point[:, 1])))
         out[cam.id] = _Line(where, rotate((normal[:, 0], normal[:, 1]), on.angle),
                             cam.follower, cam.cam)

@@ -523,14 +523,16 @@ def _turned(v: np.ndarray, angle: np.ndarray) -> np.ndarray:
     return np.stack([x, y], axis=1)
 
 
-def cam_contact(chain: Chain, cam: Cam, theta: ArrayLike
+def cam_contact(chain: Chain, cam: Cam, theta: ArrayLike, *,
+                frame: CamFrame | None = None
                 ) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
     """At the cam's turns ``theta`` (radians from the drawn pose, where the cam is
     ``cam.drawn`` into its program), in the drawing with
     the link F held where drawn: the contact point (n x 2), the common normal there
     (unit, from the cam towards the follower) and the follower's reference point (the
-    roller's centre, the knife's tip, the flat face's foot)."""
-    frame = cam_frame(chain, cam)
+    roller's centre, the knife's tip, the flat face's foot). ``frame``: the cam's
+    :func:`cam_frame`, when the caller has it already."""
+    frame = frame or cam_frame(chain, cam)
     theta = cam.drawn + np.atleast_1d(np.asarray(theta, dtype=float))   # in the program
     r = analyse_cam(cam, theta)
     w, c = _turned(r.pitch, theta), _turned(r.profile, theta)   # the cam's frame, turned
