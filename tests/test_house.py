@@ -1,6 +1,7 @@
 """The house's rules, checked on the code itself (docs/developers.md states them)."""
 
 import ast
+import functools
 import re
 import subprocess
 import sys
@@ -14,9 +15,16 @@ MODULES = sorted(PACKAGE.rglob("*.py"))
 HEAVY = ("matplotlib", "pandas", "dask", "distributed", "pynauty", "IPython", "ezdxf")
 
 
+@functools.lru_cache(maxsize=None)
+def _parsed(path: Path) -> ast.Module:
+    """A module's syntax tree, parsed once for every test that reads it (the walks
+    below only read the trees)."""
+    return ast.parse(path.read_text(encoding="utf-8"))
+
+
 def _trees():
     for path in MODULES:
-        yield path.relative_to(PACKAGE.parent), ast.parse(path.read_text(encoding="utf-8"))
+        yield path.relative_to(PACKAGE.parent), _parsed(path)
 
 
 def test_the_layers_hold():
@@ -293,7 +301,7 @@ def test_dyads_and_newton_steps_are_the_kernel_s_alone():
             continue
         if f"{path.parent.name}/{path.name}" in screens:
             continue
-        for node in ast.walk(ast.parse(path.read_text(encoding="utf-8"))):
+        for node in ast.walk(_parsed(path)):
             names = ([a.name for a in node.names] if isinstance(node, ast.ImportFrom)
                      else [getattr(node, "id", None) or getattr(node, "attr", None)]
                      if isinstance(node, (ast.Name, ast.Attribute)) else [])
@@ -308,7 +316,7 @@ def test_no_function_is_over_80_lines():
     package = Path(sys.modules["chaingraph"].__file__).parent
     long = []
     for path in sorted(package.rglob("*.py")):
-        for node in ast.walk(ast.parse(path.read_text(encoding="utf-8"))):
+        for node in ast.walk(_parsed(path)):
             if isinstance(node, (ast.FunctionDef, ast.AsyncFunctionDef)):
                 lines = node.end_lineno - node.lineno + 1
                 if lines > 80:
