@@ -25,18 +25,18 @@ from chaingraph.kinematics.gears import is_gear_train
 #: --no-loadscope-reorder``), so that no long file starts last while the other worker
 #: has nothing left to do; a scheduling order only, nothing is left out
 LONGEST_FIRST = (
-    "tests/report/test_atlas_pages.py",
-    "tests/report/test_report.py",
-    "tests/structure/test_sliding.py",
-    "tests/kinematics/test_inputs.py",
     "tests/structure/test_atlas.py",
-    "tests/naming/test_bounded_behaviour.py",
-    "tests/kinematics/test_no_silent_wrong.py",
-    "tests/test_house.py",
+    "tests/report/test_report.py",
+    "tests/report/test_atlas_pages.py",
+    "tests/kinematics/test_inputs.py",
     "tests/cli/test_errors.py",
-    "tests/kinematics/test_dead_centres.py",
-    "tests/structure/test_rigidity.py",
+    "tests/synthesis/test_type_synthesis.py",
+    "tests/kinematics/test_no_silent_wrong.py",
+    "tests/structure/test_sliding.py",
     "tests/synthesis/test_path.py",
+    "tests/naming/test_bounded_behaviour.py",
+    "tests/synthesis/test_sliding_input.py",
+    "tests/test_readme.py",
 )
 
 
