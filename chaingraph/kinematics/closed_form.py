@@ -34,7 +34,7 @@ from chaingraph.geometry import (
     world,
 )
 from chaingraph.kinematics.equations import Pose
-from chaingraph.kinematics.plan import Constraint, Step
+from chaingraph.kinematics.plan import Constraint, Plan, Step
 
 
 class ModeKeys(Sequence[np.ndarray]):
@@ -308,6 +308,45 @@ def _rpp_roots(links: tuple[str, str], constraints: tuple[Constraint, Constraint
         known[a] = pa
         return {a: pa, b: _two_lines(known, b, cb, cj)}
     return None, build, np.isfinite(wa[0]), None
+
+
+def met_by_construction(step: Step) -> tuple[Constraint, ...]:
+    """The turning pairs that a closed-form step's poses meet by construction: each
+    link the step places is put with one of its points on a known point (by
+    ``from_point``, or as the first point of ``fit_two_points``: :func:`single_link`,
+    :func:`dyad_roots`), so that pair's residual is rounding alone at any pose the step
+    builds (and NaN only where the link's other points are NaN too: a pair the step
+    does not meet by construction then says so). A welded input's turning pair, its
+    relative rotation included; the first pair of a link placed by two turning pairs;
+    a dyad's turning pairs with known links (both of an RRR or RPR dyad, the turning
+    one of RRP, PRR, RPP, PPR). Never a pair that an input drives, except in its weld,
+    and nothing of a group (solved by Newton's method).
+    """
+    cons = step.constraints
+    if step.kind == "single" and step.pattern[0] == "W":
+        return (cons[0],) if cons[0].kind == "R" and not cons[0].turn else ()
+    if step.kind == "single":
+        return (cons[0],) if step.pattern == "RR" and cons[0].drive is None else ()
+    if step.kind != "dyad":
+        return ()
+    return tuple(c for c in cons[:2] if c.kind == "R" and c.drive is None)
+
+
+def closure_checks(plan: Plan) -> tuple[Constraint, ...]:
+    """The pairs whose closure a pose the plan's steps build must be checked for
+    (:func:`~chaingraph.kinematics.equations.check_poses`): every pair but those a
+    closed-form step meets by construction (:func:`met_by_construction`). For a
+    four-bar driven by its crank, the coupler-rocker pin alone.
+
+    >>> import chaingraph
+    >>> from chaingraph.naming.catalog import catalog_path
+    >>> from chaingraph.kinematics.inputs import plan_of
+    >>> plan = plan_of(chaingraph.load(catalog_path("log10-function-generator")), None, None)
+    >>> [c.joint for c in plan.constraints], [c.joint for c in closure_checks(plan)]
+    (['A', 'B', 'C', 'D'], ['C'])
+    """
+    met = {c for step in plan.steps for c in met_by_construction(step)}
+    return tuple(c for c in plan.constraints if c not in met)
 
 
 def initial_sign(keys: Sequence[np.ndarray], drawn: Vec) -> float:

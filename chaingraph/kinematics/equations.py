@@ -486,12 +486,14 @@ def slice(pose: Pose, idx: int | np.ndarray) -> dict[str, PoseEntry]:
 
 
 
-def _closes(plan: Plan, pose: Pose, tol: float) -> np.ndarray:
-    """Where every constraint's residual is at most ``tol`` (as :func:`residuals`
-    measures it, compared without its square roots and remainders, which cost more
-    than the rest of the check): False where one is larger or not a number."""
+def _closes(plan: Plan, pose: Pose, tol: float,
+            constraints: Sequence[Constraint]) -> np.ndarray:
+    """Where every one of ``constraints`` has a residual of at most ``tol`` (as
+    :func:`residuals` measures it, compared without its square roots and remainders,
+    which cost more than the rest of the check): False where one is larger or not a
+    number."""
     ok = np.ones(np.shape(pose[plan.fixed][0]) or (), dtype=bool)
-    for c in plan.constraints:
+    for c in constraints:
         if c.kind != "R":
             eqs = constraint_residuals(c, pose)
             ok = ok & (np.abs(eqs[1]) <= tol) & (np.abs(eqs[0]) * plan.size <= tol)
@@ -508,10 +510,14 @@ def _closes(plan: Plan, pose: Pose, tol: float) -> np.ndarray:
     return ok
 
 
-def check_poses(plan: Plan, pose: Pose, feasible: np.ndarray) -> None:
+def check_poses(plan: Plan, pose: Pose, feasible: np.ndarray, *,
+                constraints: Sequence[Constraint] | None = None) -> None:
     """Raise AssemblyError where a returned pose does not close its loops (a residual,
-    as :func:`residuals` measures it, over 1e-9 of the size)."""
-    bad = feasible & ~_closes(plan, pose, 1e-9 * plan.size)
+    as :func:`residuals` measures it, over 1e-9 of the size). ``constraints``: only
+    these pairs (by default every one; the pose's builder knows which it met by
+    construction: :func:`~chaingraph.kinematics.closed_form.closure_checks`)."""
+    pairs = plan.constraints if constraints is None else constraints
+    bad = feasible & ~_closes(plan, pose, 1e-9 * plan.size, pairs)
     if bad.any():
         res = residuals(plan, pose)
         i = int(np.argmax(bad))

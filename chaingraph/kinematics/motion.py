@@ -25,6 +25,7 @@ from chaingraph.kinematics.columns import (
     SlideMotion,
     Trajectories,
 )
+from chaingraph.kinematics.closed_form import closure_checks
 from chaingraph.kinematics.equations import check_poses
 from chaingraph.kinematics.inputs import Drive, InputsGiven, plan_of, sweep_drive
 from chaingraph.kinematics.plan import InputJoint, Plan
@@ -301,7 +302,7 @@ def _swept(drive: Drive, steps, summary):
         else:
             theta = np.linspace(lo, c.high, steps + 1)   # both ends exact (a rocker's limits)
     ev = evaluate_sweep(plan, theta) if c is not None else evaluate_near(plan, theta)
-    check_poses(plan, ev.pose, ev.feasible)
+    check_poses(plan, ev.pose, ev.feasible, constraints=closure_checks(plan))
     return c, theta, ev, on_grid
 
 

@@ -20,6 +20,7 @@ import numpy as np
 from chaingraph.errors import AssemblyError
 from chaingraph.geometry import turn_by
 from chaingraph.kinematics.columns import LinkStates, Trajectories, reference_link
+from chaingraph.kinematics.closed_form import closure_checks
 from chaingraph.kinematics.equations import check_poses
 from chaingraph.kinematics.inputs import Drive, InputsGiven, pose_drive
 from chaingraph.kinematics.plan import Plan
@@ -228,7 +229,7 @@ def pose_motion(chain: Chain, *, at: float | Sequence[float] | None = None,
     plan, omega = drive.plan, float(drive.omega)
     theta = np.array([drive.tau])
     ev = _assembled(drive, theta, chain.source or chain.name)
-    check_poses(plan, ev.pose, ev.feasible)
+    check_poses(plan, ev.pose, ev.feasible, constraints=closure_checks(plan))
     vel, acc, _ = rates(plan, ev.pose, omega, 1, measure=False)
     states = LinkStates(theta, ev.pose, vel, acc, speed=omega)
     now = Trajectories.of_states(plan, states)

@@ -76,3 +76,66 @@ def test_a_plan_s_hash_is_the_fields_and_is_not_pickled():
     assert "_hash" not in again.__dict__ and again == plan and hash(again) == h
     moved = replace(plan, theta0=(plan.theta0 or 0.0) + 1.0)
     assert moved != plan and "_hash" not in moved.__dict__
+
+
+def _inversions(chain):
+    """Every (fixed link, link pinned to it) of a chain."""
+    for fixed in chain.links:
+        for j in chain.joints:
+            if j.kind == "R" and fixed in j.links:
+                yield from ((fixed, d) for d in j.links if d != fixed)
+
+
+def test_the_pairs_a_step_meets_by_construction_are_met_in_every_inversion():
+    """The sweep checks the closure of only the pairs its closed-form steps do not meet
+    by construction (closure_checks): every other pair is met to rounding, in every
+    inversion of every catalog chain of up to 8 links that solves (a pair wrongly taken
+    as met would show here as a residual of the size of a step's error)."""
+    from chaingraph.errors import AssemblyError, MechanismError
+    from chaingraph.kinematics.closed_form import closure_checks
+    from chaingraph.kinematics.equations import constraint_residuals
+    from chaingraph.kinematics.gears import is_gear_train
+    from chaingraph.kinematics.inputs import plan_of
+    from chaingraph.naming.catalog import catalog_files
+    seen = 0
+    for path in catalog_files():
+        chain = chaingraph.load(path)
+        if not chain.has_pose or len(chain.links) > 8 or is_gear_train(chain):
+            continue
+        for fixed, driver in _inversions(chain):
+            try:
+                plan = plan_of(chain, fixed, driver)
+                if any(s.kind == "group" for s in plan.steps):
+                    continue            # (Newton's method meets no pair by construction)
+                v0 = plan.inputs[plan.lead].value0      # a few degrees about the drawing
+                m = chaingraph.solve(chain, fixed=fixed, driver=driver, start=v0 - 3.0,
+                                     stop=v0 + 3.0, steps=6, summary=False)
+            except (MechanismError, AssemblyError):   # (a rocker drawn near its limit)
+                continue
+            plan, pose = m.plan, m.states.pose
+            checked = closure_checks(plan)
+            for c in plan.constraints:
+                if c in checked:
+                    continue
+                seen += 1
+                worst = max(float(np.nanmax(np.abs(np.broadcast_to(e, m.theta.shape))))
+                            for e in constraint_residuals(c, pose))
+                assert worst <= 1e-12 * plan.size, (path.name, fixed, driver, c.joint, worst)
+    assert seen > 1000
+
+
+def test_a_pose_off_at_a_checked_pair_is_refused():
+    from chaingraph.errors import AssemblyError
+    from chaingraph.kinematics.closed_form import closure_checks
+    from chaingraph.kinematics.equations import check_poses
+    m = chaingraph.solve(chaingraph.load(catalog_path("log10-function-generator")),
+                         steps=12, summary=False)
+    plan, pose = m.plan, dict(m.states.pose)
+    assert [c.joint for c in closure_checks(plan)] == ["C"]
+    check_poses(plan, pose, np.ones(13, dtype=bool), constraints=closure_checks(plan))
+    x, y, *rest = pose["rocker"]
+    x = np.array(x, dtype=float)
+    x[5] += 1e-7 * plan.size                  # the rocker off its pin C at one step
+    pose["rocker"] = (x, y, *rest)
+    with pytest.raises(AssemblyError, match="loop closure fails at step 5"):
+        check_poses(plan, pose, np.ones(13, dtype=bool), constraints=closure_checks(plan))
