@@ -313,6 +313,86 @@ def test_the_textbook_task_in_the_textbook_s_own_angles(tmp_path):
         assert abs(_near(got, want) - want) < 1e-9
 
 
+def test_a_lecture_s_worked_example_with_its_printed_dimensions(tmp_path):
+    """A published worked example and its printed answer: "Lecture Problem: 3 Position
+    Synthesis" and its "Solution", slides 12-13 of ME 3751 (Kinematics and mechanisms),
+    Lecture 12, "Analytical synthesis of 4-bar with three rocker positions", The Ohio State
+    University (the PDF's author: Robert A. Siston; after Waldron, Kinzel and Agrawal,
+    Kinematics, Dynamics, and Design of Machinery, section 3.2), published with
+    https://github.com/haijunsu-osu/rocker_synthesis_4bar ("Lecture 12 Three position
+    synthesis.pdf", commit 9658bb0).
+
+    The slide prints the task as three positions of the input and output links, theta =
+    35.02, 67.50, 100.0 and phi = 91.21, 101.79, 117.19 degrees, with the base link r1 =
+    4.5 inches, and the answer: z1, z2, z3 = 5.150, 11.20, 5.321; r2, r3, r4 = 0.0893,
+    0.9329, 0.1879 (r1 = 1); R2, R3, R4 = 0.4018, 4.198, 0.8456 inches. Its angles are
+    chaingraph's own: theta the input link's at O2, phi the output link's at O4 (from O4
+    to its pin), both CCW from the base line O2 -> O4 (+x), so nothing is converted; its
+    equation z1 + z2 cos(phi) - z3 cos(theta) = cos(theta - phi), z2 = r1/r2, z3 = r1/r4,
+    z1 = (r1^2 + r2^2 + r4^2 - r3^2) / (2 r2 r4), is Freudenstein's.
+
+    The slide names no function, but its numbers are a function generator's: y = x**2 for
+    1 <= x <= 2.5, three Chebyshev points, the input turning 75 degrees from 30, the
+    output 30 degrees from 90. Its precision points round to every printed angle, and its
+    3x3 system to every printed entry of the slide's matrix. The slide solved from those
+    unrounded angles: from the printed, rounded ones r2 comes out 1% smaller (the system's
+    condition number is about 320, so an angle's last printed digit moves r2 and r4 by
+    about 1%). chaingraph's design of that task gives every printed figure to its last
+    digit: seven rounded, two truncated (z3 = 5.32159 and r3 = 0.93298 printed 5.321 and
+    0.9329, not 5.322 and 0.9330); the exact figures are right, and the slide's r4 and R3,
+    computed from them, agree with the exact ones."""
+    xs = precision_x((1.0, 2.5), 3, "chebyshev")
+    theta = 30.0 + 75.0 * (xs - 1.0) / 1.5
+    phi = 90.0 + 30.0 * (xs * xs - 1.0) / (2.5 ** 2 - 1.0)
+    assert [round(float(v), 2) for v in theta[:2]] == [35.02, 67.5]
+    assert round(float(theta[2]), 1) == 100.0
+    assert [round(float(v), 2) for v in phi] == [91.21, 101.79, 117.19]
+    t, p = np.radians(theta), np.radians(phi)
+    matrix = np.stack([np.ones(3), np.cos(p), -np.cos(t)], axis=1)    # the slide's layout
+    printed = [[1, -0.0210, -0.8189], [1, -0.2043, -0.3827], [1, -0.4569, 0.1732]]
+    assert np.abs(matrix - printed).max() <= 5e-5
+    assert np.abs(np.cos(t - p) - [0.5566, 0.8262, 0.9552]).max() <= 5e-5
+    z = np.linalg.solve(matrix, np.cos(t - p))
+    r2, r4 = 1 / z[1], 1 / z[2]
+    r3 = math.sqrt(1 + r2 * r2 + r4 * r4 - 2 * r2 * r4 * z[0])
+    assert 300 < np.linalg.cond(matrix) < 330
+
+    s = function(function="x**2", x=(1.0, 2.5), swing=(75.0, 30.0), start=(30.0, 90.0),
+                 solutions=1)
+    best = s.solutions[0]
+    dim = best.dimensions
+    a, b, c, d = (dim[k] for k in ("crank", "coupler", "rocker", "frame"))
+    assert (a / d, b / d, c / d) == pytest.approx((r2, r3, r4), rel=1e-9)
+    assert (dim["input_start"], dim["output_start"]) == (30.0, 90.0)   # no link turned
+    # chaingraph's R3, R1, R2 are the slide's z1, z2, z3; its figures, r1 = 4.5 inches,
+    # each the exact one to its last printed digit, rounded but z3 and r3, truncated
+    figures = {"z1": ((a * a - b * b + c * c + d * d) / (2 * a * c), 5.150, 3),
+               "z2": (d / a, 11.20, 2), "z3": (d / c, 5.321, 3), "r2": (a / d, 0.0893, 4),
+               "r3": (b / d, 0.9329, 4), "r4": (c / d, 0.1879, 4),
+               "R2": (4.5 * a / d, 0.4018, 4), "R3": (4.5 * b / d, 4.198, 3),
+               "R4": (4.5 * c / d, 0.8456, 4)}
+    rounded = [k for k, (got, shown, n) in figures.items() if round(got, n) == shown]
+    truncated = [k for k, (got, shown, n) in figures.items()
+                 if math.floor(got * 10 ** n) / 10 ** n == shown and k not in rounded]
+    assert len(rounded) == 7 and truncated == ["z3", "r3"]
+    # from the printed, rounded angles instead: r2 1% smaller than the slide's
+    t0, p0 = np.radians([35.02, 67.50, 100.0]), np.radians([91.21, 101.79, 117.19])
+    z0 = np.linalg.solve(np.stack([np.ones(3), np.cos(p0), -np.cos(t0)], axis=1),
+                         np.cos(t0 - p0))
+    assert 0.985 < (1 / z0[1]) / (a / d) < 0.995
+
+    # the written file, solved: the rocker's angle is the slide's phi at each theta
+    assert best.reached_at == pytest.approx(list(theta), abs=1e-9)
+    path = tmp_path / "lecture12.toml"
+    path.write_text(dumps(best.mechanism))
+    chain = chaingraph.load(path)
+    for th, want in zip(theta, phi):
+        m = chaingraph.solve(chain, start=float(th), stop=float(th), steps=1,
+                             summary=False)
+        got = _rocker(m)[0]
+        assert abs(_near(got, want) - want) < 1e-9
+
+
 def test_the_library_names_the_parameter():
     with pytest.raises(DesignError) as e:
         function(function="sqrt(x)", x=(-1, 1), swing=(60, 90))
