@@ -56,6 +56,12 @@ class ModeKeys(Sequence[np.ndarray]):
     def __len__(self) -> int:
         return 2
 
+    @property
+    def off(self) -> Vec:
+        """The offset of the first mode's key from the middle of the two (the second's
+        is its negative)."""
+        return self._parts[1]
+
     def first(self) -> tuple[Vec, Vec]:
         """The two keys at the first point only (``self[0][0]``, ``self[1][0]``)."""
         (mx, my), (ox, oy) = (tuple(float(np.ravel(v)[0]) for v in part)

@@ -295,15 +295,17 @@ def _evaluate(plan, theta, start):
             drawn = (1.0, 0.0) if step.pattern == "RPR" else step.constraints[2].point
             sign0 = start.signs[i] if start is not None else initial_sign(keys, drawn)
             ref = Evaluation(theta, pose, feasible, signs, group_q, switches)
-            chosen, ok, found, touching = _track(
+            chosen, ok, found, touching, coincident = _track(
                 plan, i, step, ref, disc if feasible.all() else np.where(feasible, disc, np.nan),
-                sign0)
+                sign0, off=keys.off if step.pattern == "RRR" else None)
             feasible &= ok
             signs[i] = chosen
             switches[i] = found
             if touching.any():       # samples at a touch: the double root, not the
                 build = dyad_roots(step, pose, plan.size, double=touching)[1]   # sqrt
             pose.update(build(chosen))
+            if coincident.size:
+                _limits_at(plan, i, step, ref, pose, coincident, chosen, found)
             continue
         q0 = start.group_q[i] if start is not None else np.zeros(group_form(step).size)
         head = Evaluation(theta, pose, feasible, signs, group_q, switches)
@@ -320,6 +322,40 @@ def _evaluate(plan, theta, start):
         first_bad = int(np.argmin(feasible))
         feasible[first_bad:] = False
     return Evaluation(theta, pose, feasible, signs, group_q, switches, folds)
+
+
+_LIMIT_STEP = 1e-6        # degrees either side of a sampled turn, to take its limit
+
+
+def _limits_at(plan, i, step, head, pose, samples, signs, switches):
+    """Put dyad step i's links, at the ``samples`` where its two known points coincide
+    (:func:`_flips`), in their pose's limit: the mean of the poses just either side,
+    each in its own label (the pose there, to the square of ``_LIMIT_STEP``)."""
+    theta = head.theta
+    direction = 1.0 if theta[-1] >= theta[0] else -1.0
+    for k in map(int, samples):
+        h = _LIMIT_STEP * direction * max(1.0, abs(float(theta[k])))
+        ts = np.array([theta[k] - h, theta[k] + h])
+        side = np.full(2, float(signs[k - 1]))    # the labels either side of the switch
+        for t in switches:
+            if direction * (t - theta[k - 1]) > 0:
+                side = np.where(direction * (ts - t) > 0, -side, side)
+        ref = head.reference(np.full(2, k - 1))
+        near, feasible, _ = evaluate_at(plan, ts, ref, upto=i)
+        keys, build, ok, _ = dyad_roots(step, near, plan.size)
+        if not (np.all(feasible) and np.all(ok)):
+            continue
+        for link, entry in build(side).items():
+            values = [np.array(v, dtype=float) if np.ndim(v) else v for v in pose[link]]
+            mean = [0.5 * (np.ravel(e)[0] + np.ravel(e)[-1]) for e in entry]
+            norm = math.hypot(mean[3], mean[4])
+            mean[3], mean[4] = mean[3] / norm, mean[4] / norm
+            mean[2] = math.atan2(mean[4], mean[3]) + 2 * math.pi * round(
+                (float(np.ravel(entry[2])[0]) - math.atan2(mean[4], mean[3])) / (2 * math.pi))
+            for v, m in zip(values, mean):
+                if np.ndim(v):
+                    v[k] = m
+            pose[link] = tuple(values)
 
 
 def _as_drawn(pose, links, drawn, shape, q=None):
@@ -340,51 +376,155 @@ def _as_drawn(pose, links, drawn, shape, q=None):
         q[drawn] = 0.0
 
 
-def _track(plan, i, step, head, disc, sign0):
+def _track(plan, i, step, head, disc, sign0, off=None):
     """Mode signs of dyad step i along the path, where it can be assembled, and the
     angles where its label switches.
 
     ``head`` is the path's evaluation so far (the steps before i); ``disc`` the dyad's
-    sampled discriminant (NaN where an earlier step failed). Returns (signs, ok,
-    switches, touching), ``touching`` the samples that lie on a touch of the two modes
-    (their discriminant zero to rounding): there the pose is the double root, where
-    the computed discriminant's rounding, of either sign, would put the joint off by
-    its square root (a parallelogram at its change point, sampled there).
+    sampled discriminant (NaN where an earlier step failed); ``off`` an RRR dyad's
+    offset from the middle of its two modes' points (None for other dyads). Returns
+    (signs, ok, switches, touching, coincident): ``touching`` the samples that lie on a
+    touch of the two modes (their discriminant zero to rounding): there the pose is the
+    double root, where the computed discriminant's rounding, of either sign, would put
+    the joint off by its square root (a parallelogram at its change point, sampled
+    there); ``coincident`` the samples (indices) where an RRR dyad's two known points
+    coincide (:func:`_flips`), whose pose is its limit either side.
     """
     theta = head.theta
     n = theta.size
     ok = disc >= -DISC_TOL
-    last = n if ok.all() else int(np.argmin(ok))
     direction = 1.0 if n < 2 or theta[-1] >= theta[0] else -1.0
+    flips: dict[int, float] = {}
+    coincident = np.zeros(0, dtype=np.intp)
+    if off is not None and n >= 3:
+        flips, coincident = _flips(plan, i, step, head, disc, off, bool(ok.all()))
+        ok[coincident] = True
+    last = n if ok.all() else int(np.argmin(ok))
     found: list[float] = []
     touching = np.zeros(n, dtype=bool)
     if last >= 2:
         d = disc[:last]
-        low = d < _TOUCH_CANDIDATE
-        candidates = np.zeros(0, dtype=np.intp)
-        if low.any():               # (most dyads stay far from a touch: nothing to look at)
-            left = np.concatenate(([np.inf], d[:-1]))
-            right = np.concatenate((d[1:], [np.inf if last == n else -np.inf]))
-            candidates = np.nonzero((d <= left) & (d <= right) & low)[0]
-        for k in candidates:
-            lo, hi = theta[max(k - 1, 0)], theta[min(k + 1, last - 1)]
-            tstar, dmin = _zoom_minimum(plan, i, step, head, int(k), lo, hi)
-            if dmin < -DISC_TOL:          # a window where it cannot be assembled
-                last = min(last, int(np.argmax(direction * (theta - tstar) >= 0)))
-                break
-            if dmin <= DISC_TOL:
+        events = sorted([(int(k), "touch") for k in _touch_candidates(theta[:last], d, last == n)]
+                        + [(int(k), "flip") for k in flips if k < last])
+        for k, kind in events:
+            sign = sign0 * (-1.0) ** len(found)
+            if kind == "flip":
+                tstar = flips[k]
+            else:
+                lo, hi = theta[max(k - 1, 0)], theta[min(k + 1, last - 1)]
+                tstar, dmin = _zoom_minimum(plan, i, step, head, k, lo, hi)
+                if dmin < -DISC_TOL:          # a window where it cannot be assembled
+                    last = min(last, int(np.argmax(direction * (theta - tstar) >= 0)))
+                    break
+                if dmin > DISC_TOL:
+                    continue
                 touching[k] = abs(d[k]) <= DISC_TOL
-                tstar = _touch_vertex(plan, i, step, head, int(k), tstar)
-                sign = sign0 * (-1.0) ** len(found)
-                if _switches_label(plan, i, step, head, int(k), tstar, direction, sign):
-                    if not found or abs(tstar - found[-1]) > 1e-7:
-                        found.append(float(tstar))
+                tstar = _touch_vertex(plan, i, step, head, k, tstar)
+            if _switches_label(plan, i, step, head, k, tstar, direction, sign):
+                if not found or abs(tstar - found[-1]) > 1e-7:
+                    found.append(float(tstar))
     signs = np.full(n, float(sign0))
     for t in found:
         signs = np.where(direction * (theta - t) > 0, -signs, signs)
     ok = np.zeros(n, dtype=bool)
     ok[:last] = True
-    return signs, ok, found, touching & ok
+    return signs, ok, found, touching & ok, coincident[coincident < last]
+
+
+def _flips(plan, i, step, head, disc, off, assembled):
+    """Where an RRR dyad's two known points pass over each other (a chain's two joints
+    meeting, as a symmetric chain's multiple joints do): there the line through them,
+    and with it the side each mode's label names, turns over, and the motion goes on
+    smoothly only in the other label (a label switch, as at a touch of the modes).
+    Found as a turn of the modes' offset (more than a right angle) between two samples,
+    placed by bisection (``assembled``: the dyad assembles at every sample, so that
+    none is undefined). Returns ({sample before the turn: its angle}, the samples at
+    the turn itself: where the points coincide to rounding, the offset's direction
+    undefined or noise)."""
+    theta = head.theta
+    ox, oy = off
+    if np.ndim(ox) == 0 or np.ndim(oy) == 0:            # (an offset along an axis)
+        ox, oy = np.broadcast_to(ox, theta.shape), np.broadcast_to(oy, theta.shape)
+    turned = ox[:-1] * ox[1:] + oy[:-1] * oy[1:] < 0
+    at: dict[int, float] = {}
+    coincident: set[int] = set()
+    if not assembled:
+        finite = np.isfinite(disc)
+        undefined = ~finite[1:-1] & finite[:-2] & finite[2:]
+        for k in map(int, np.flatnonzero(undefined) + 1):   # a sample exactly on the turn
+            if ox[k - 1] * ox[k + 1] + oy[k - 1] * oy[k + 1] < 0:
+                at[k - 1] = float(theta[k])
+                coincident.add(k)
+    if not at and not turned.any():
+        return {}, np.zeros(0, dtype=np.intp)
+    for k in map(int, np.flatnonzero(turned)):
+        if k in coincident or k - 1 in at or k in at:
+            continue
+        t = _turn_point(plan, i, step, head, k, (float(ox[k]), float(oy[k])))
+        near = 1e-9 * max(1.0, abs(t))
+        for j in (k, k + 1):
+            if abs(theta[j] - t) <= near:          # the sample on the turn: noise there
+                coincident.add(j)
+        at[k] = t
+    return at, np.array(sorted(coincident), dtype=np.intp)
+
+
+def _turn_point(plan, i, step, head, k, ref_off):
+    """Where the RRR dyad's offset turns over between samples k and k + 1 (its side of
+    ``ref_off``, the offset at sample k, changes), by bisection to rounding."""
+    lo, hi = float(head.theta[k]), float(head.theta[k + 1])
+    for _ in range(10):
+        ts = np.linspace(lo, hi, _ZOOM_POINTS)
+        keys, _ = _head_roots(plan, i, step, head, k, ts)
+        ox, oy = keys.off
+        same = ~(ox * ref_off[0] + oy * ref_off[1] < 0)
+        j = int(np.argmin(same)) if not same.all() else ts.size - 1
+        lo, hi = float(ts[max(j - 1, 0)]), float(ts[j])
+        if hi == lo or abs(hi - lo) <= 1e-13 * max(1.0, abs(hi)):
+            break
+    return hi
+
+
+def _touch_candidates(theta: np.ndarray, d: np.ndarray, whole: bool) -> list[int]:
+    """The samples of a dyad's discriminant ``d`` along a path (at ``theta``) where its
+    two modes may touch between samples: each local minimum below
+    ``_TOUCH_CANDIDATE``, or whose V through it and its neighbours dips below it (the
+    V with the slope of the steeper side, through the other neighbour: a touch's
+    discriminant falls to zero at least as steeply as that, and on a coarse path its
+    samples can all lie well above zero). Only a sample within the largest step of
+    ``d`` from ``_TOUCH_CANDIDATE`` can be one (most dyads stay far from a touch: a
+    few array operations). ``whole``: ``d`` is the whole path (else it stops where the
+    dyad cannot be assembled, and its last sample, on the way down to that, is no
+    minimum)."""
+    if d.size < 2:
+        return []
+    low = d < _TOUCH_CANDIDATE + np.fmax.reduce(np.abs(np.diff(d)))
+    if not low.any():
+        return []
+    left = np.concatenate(([np.inf], d[:-1]))
+    right = np.concatenate((d[1:], [np.inf if whole else -np.inf]))
+    out = []
+    for k in map(int, np.flatnonzero((d <= left) & (d <= right) & low)):
+        if d[k] < _TOUCH_CANDIDATE or (0 < k < d.size - 1 and _v_vertex(
+                theta[k - 1:k + 2], d[k - 1:k + 2]) < _TOUCH_CANDIDATE):
+            out.append(k)
+    return out
+
+
+def _v_vertex(t: np.ndarray, v: np.ndarray) -> float:
+    """The least value of the V through three samples (the middle one least) with the
+    slope of its steeper side: where it meets the gentler side's sample."""
+    (t0, t1, t2), (a, b, c) = (float(x) for x in t), (float(x) for x in v)
+    h_l, h_r, rise_l, rise_r = abs(t1 - t0), abs(t2 - t1), a - b, c - b
+    if not (h_l > 0 and h_r > 0):
+        return b
+    if rise_l * h_r >= rise_r * h_l:         # the left side the steeper
+        slope, h, rise = rise_l / h_l, h_r, rise_r
+    else:
+        slope, h, rise = rise_r / h_r, h_l, rise_l
+    if not slope > 0:
+        return b
+    return b - slope * 0.5 * (h - rise / slope)
 
 
 def _head_roots(plan, i, step, head, k, ts):

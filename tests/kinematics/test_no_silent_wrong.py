@@ -392,3 +392,57 @@ def test_group_solver_failures_are_assembly_errors_or_answers(name, fixed, drive
     code, _, err = run_cli(*["solve", str(CASES / f"{name}.toml"), "--fixed", fixed,
                             "--driver", driver, "--json"])
     assert code in (0, 1) and "Traceback" not in err
+
+
+def _isolated_jumps(motion, chain):
+    """(link, input, jump in degrees) wherever a link's angle jumps between two
+    samples by more than 20 degrees and ten times either neighbouring step: a
+    discontinuity, not a fast motion."""
+    out = []
+    for link in chain.links:
+        step = np.degrees(np.abs(np.diff(np.unwrap(np.radians(motion[f"angle:{link}"])))))
+        for k in np.flatnonzero(step > 20.0):
+            around = max(step[k - 1] if k else 0.0, step[k + 1] if k + 1 < step.size else 0.0)
+            if step[k] > 10.0 * around:
+                out.append((link, float(motion.theta[k]), float(step[k])))
+    return out
+
+
+@pytest.mark.parametrize("name", ["watt-six-bar-chain", "six-link-two-ternary-joints"])
+def test_no_link_jumps_in_any_inversion(name):
+    """Every inversion of two chains that once jumped: the Watt chain drawn with a
+    parallelogram loop (a sharp touch of a dyad's modes that the cycle's coarse walk
+    missed, so that the limit's pose was in the other label), and the chain whose two
+    ternary joints pass over each other (the dyad on them turned over at once)."""
+    chain = chaingraph.load(catalog_path(name))
+    solved = 0
+    for fixed in chain.links:
+        for j in chain.joints:
+            if j.kind != "R" or fixed not in j.links:
+                continue
+            for driver in (x for x in j.links if x != fixed):
+                m = chaingraph.solve(chain, fixed=fixed, driver=driver, steps=360,
+                                     summary=False)
+                assert _isolated_jumps(m, chain) == [], (fixed, driver)
+                solved += 1
+    assert solved >= 10
+
+
+def test_a_sample_where_two_joints_meet_is_the_motion_s_limit_there():
+    """Ternary joints T1 and T2 meet half way through the range (d fixed, f driving):
+    there the dyad b-e on them is undetermined by its lengths, and the closed form's
+    line through the two points has no direction. The sample exactly there (the middle
+    one of 12 steps, limit to limit) is the pose the motion passes through, as a fine
+    sweep about it shows; the motion after it goes on smoothly (b turns on, by 17.5
+    degrees a step, not over by half a turn)."""
+    chain = chaingraph.load(catalog_path("six-link-two-ternary-joints"))
+    m = chaingraph.solve(chain, fixed="d", driver="f", steps=12, summary=False)
+    t = float(m.theta[6])
+    near = chaingraph.solve(chain, fixed="d", driver="f", start=t - 1e-3, stop=t + 1e-3,
+                            steps=2, summary=False)
+    for column in ("angle:b", "angle:e", "x:Y", "y:Y"):
+        assert m[column][6] == pytest.approx(near[column][1], abs=1e-6), column
+        assert near[column][0] < near[column][1] < near[column][2] or \
+            near[column][0] > near[column][1] > near[column][2], column
+    turn = np.diff(np.unwrap(np.radians(m["angle:b"])))
+    assert np.degrees(np.abs(turn[:-1])).max() < 40.0
