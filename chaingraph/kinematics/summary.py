@@ -314,7 +314,7 @@ def output_signal(plan: Plan, output: str | None, columns: Columns, *,
             if j.kind == "P" and set(j.links) == {output, plan.fixed}:
                 return OutputSignal(output, "slide", j.id, units)
         angle = columns[f"angle:{output}"]
-        if np.ptp(angle) > 1e-9:
+        if np.max(angle) - np.min(angle) > 1e-9:      # (np.ptp's, at a third of its cost)
             return OutputSignal(output, "angle", output, "deg")
         name = chain.joints_of(output)[0].id
     elif output in chain._joint_index and chain.joint(output).kind == "P":
@@ -436,8 +436,10 @@ def _raw_summary(plan, output, omega, c, *, sweep=None):
         summary["output_turns_fully"] = True
         summary["note"] = "the output turns fully, so it has no stroke or time ratio"
         return summary
-    scale = max(np.nanmax(du), -np.nanmin(du))       # np.nanmax(np.abs(du))
-    if not np.isfinite(scale) or np.nanmax(u) - np.nanmin(u) <= 1e-12 * max(
+    # np.nanmax(np.abs(du)), and u's range without NaN (fmax and fmin skip NaN, as
+    # nanmax and nanmin do, at a tenth of their cost)
+    scale = max(np.fmax.reduce(du), -np.fmin.reduce(du))
+    if not np.isfinite(scale) or np.fmax.reduce(u) - np.fmin.reduce(u) <= 1e-12 * max(
             plan.size if kind != "angle" else 360.0, 1e-300):
         summary.update(stroke=0.0, note="the output does not move")
         return summary
