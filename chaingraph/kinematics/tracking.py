@@ -365,10 +365,13 @@ def _as_drawn(pose, links, drawn, shape, q=None):
     for link in links:
         entry = []
         for v, rest in zip(pose[link], (0.0, 0.0, 0.0, 1.0, 0.0)):
-            if isinstance(v, np.ndarray) and v.shape == shape and v.dtype == float:
-                v = v.copy()                      # a copy: v may be shared
-            else:
+            if not (isinstance(v, np.ndarray) and v.shape == shape and v.dtype == float):
                 v = np.array(np.broadcast_to(v, shape), dtype=float)
+            elif not v.flags.writeable or v.base is not None:
+                v = v.copy()                      # an input's, or a view: not this one's
+            # (an array of this path's own may be another link's too, a rotation
+            # carried across a sliding pair: that link is drawn there as well, its
+            # values there the same drawn ones)
             v[drawn] = rest
             entry.append(v)
         pose[link] = tuple(entry)
