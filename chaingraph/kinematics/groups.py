@@ -142,6 +142,8 @@ def newton_path(plan: Plan, step: Step, pose: Pose, theta: np.ndarray, q0: Array
             continue
         if not ok[i - 1] or past[i]:
             break
+        if _filled_back(plan, step, pose, theta, head, q, ok, i, past):
+            continue
         qi = _approach(plan, step, pose, theta, head, float(theta[i - 1]), q[i - 1],
                        float(theta[i]))
         if qi is None:
@@ -162,6 +164,27 @@ def newton_path(plan: Plan, step: Step, pose: Pose, theta: np.ndarray, q0: Array
 #: how many times a path whose trace ended with no fold is traced again from a point
 #: approached past its end
 _RETRACES = 8
+
+
+def _filled_back(plan, step, pose, theta, head, q, ok, i, past):
+    """Fill the run of points from ``i`` that the trace's correction missed, when the
+    trace's points go on after it: each approached from the next, back along the
+    branch the trace followed (in place; True if the whole run was filled). From the
+    point before the run instead, a path that starts next to a fold (a drawn pose a
+    hair from its limit) would step out onto either of the two branches that meet
+    there; the trace went along one."""
+    j = i
+    while j < theta.size and not ok[j] and not past[j]:
+        j += 1
+    if j == theta.size or not ok[j]:
+        return False
+    for m in range(j - 1, i - 1, -1):
+        qm = _approach(plan, step, pose, theta, head, float(theta[m + 1]), q[m + 1],
+                       float(theta[m]))
+        if qm is None:
+            return False
+        q[m], ok[m] = qm, True
+    return True
 
 
 def _leading_run(ok):

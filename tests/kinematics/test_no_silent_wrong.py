@@ -446,3 +446,22 @@ def test_a_sample_where_two_joints_meet_is_the_motion_s_limit_there():
             near[column][0] > near[column][1] > near[column][2], column
     turn = np.diff(np.unwrap(np.radians(m["angle:b"])))
     assert np.degrees(np.abs(turn[:-1])).max() < 40.0
+
+
+def test_a_group_drawn_a_hair_from_its_fold_keeps_its_branch():
+    """An eight-link chain of the atlas (one sliding pair) drawn 0.0002 degrees from a
+    fold of its group (L3 fixed, L4 driving: the range starts there). Stepping out of
+    the drawn pose, next to the fold, Newton's method lands on either of the two
+    branches that meet there; the points the trace's correction missed are approached
+    back from the trace's own, so the sweep to the limit is the one a fine sweep from
+    inside the range traces (it jumped to the other branch for four steps, L1 by 31
+    degrees)."""
+    chain = chaingraph.load(CASES / "atlas8p1-51-near-fold.toml")
+    m = chaingraph.solve(chain, fixed="L3", driver="L4", steps=720, summary=False)
+    assert _isolated_jumps(m, chain) == []
+    lo = float(m.theta[0])
+    fine = chaingraph.solve(chain, fixed="L3", driver="L4", start=float(m.theta[6]),
+                            stop=lo, steps=600, summary=False)
+    for k in range(1, 6):
+        got, want = m["angle:L1"][k], fine["angle:L1"][600 - 100 * k]
+        assert got == pytest.approx(want, abs=1e-6), k
