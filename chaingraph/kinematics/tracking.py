@@ -407,7 +407,10 @@ def _track(plan, i, step, head, disc, sign0, off=None):
     touching = np.zeros(n, dtype=bool)
     if last >= 2:
         d = disc[:last]
-        events = sorted([(int(k), "touch") for k in _touch_candidates(theta[:last], d, last == n)]
+        # the path stops at ``last`` for an earlier step (NaN) or for this dyad: only
+        # then is its last sample on the way down to where it cannot be assembled
+        ends = last == n or bool(np.isnan(disc[last]))
+        events = sorted([(int(k), "touch") for k in _touch_candidates(theta[:last], d, ends)]
                         + [(int(k), "flip") for k in flips if k < last])
         for k, kind in events:
             sign = sign0 * (-1.0) ** len(found)
@@ -496,9 +499,9 @@ def _touch_candidates(theta: np.ndarray, d: np.ndarray, whole: bool) -> list[int
     discriminant falls to zero at least as steeply as that, and on a coarse path its
     samples can all lie well above zero). Only a sample within the largest step of
     ``d`` from ``_TOUCH_CANDIDATE`` can be one (most dyads stay far from a touch: a
-    few array operations). ``whole``: ``d`` is the whole path (else it stops where the
-    dyad cannot be assembled, and its last sample, on the way down to that, is no
-    minimum)."""
+    few array operations). ``whole``: ``d`` is the whole path, or stops where an earlier
+    step cannot be assembled (else it stops where this dyad cannot be, and its last
+    sample, on the way down to that, is no minimum)."""
     if d.size < 2:
         return []
     low = d < _TOUCH_CANDIDATE + np.fmax.reduce(np.abs(np.diff(d)))

@@ -465,3 +465,21 @@ def test_a_group_drawn_a_hair_from_its_fold_keeps_its_branch():
     for k in range(1, 6):
         got, want = m["angle:L1"][k], fine["angle:L1"][600 - 100 * k]
         assert got == pytest.approx(want, abs=1e-6), k
+
+
+@pytest.mark.parametrize("fixed, driver", [("L4", "L6"), ("L6", "L4")])
+def test_a_window_seen_only_between_a_coarse_path_s_last_samples_ends_the_range(fixed, driver):
+    """Chain 18 of the eight-link atlas with multiple joints: with L4 fixed and L6
+    driving, the dyad L3-L7 cannot be assembled in a narrow window (its discriminant
+    dips to -2e-4) near the end of the range the dyad L1-L8 allows. The cycle's coarse
+    walk stopped for L1-L8 one sample past the window, and a dyad's last sample before
+    a stop was never refined (as if the stop were its own): the range ran through the
+    window, and the default sweep, finer, refused its own range. The range ends at the
+    window; the default sweep solves; its ends are the range's."""
+    chain = chaingraph.load(CASES / "atlas8m-18-window.toml")
+    m = chaingraph.solve(chain, fixed=fixed, driver=driver, steps=720)
+    low, high = m.summary["input_range"]
+    assert (m.theta[0], m.theta[-1]) == (low, high)
+    with pytest.raises(AssemblyError, match="leaves the range"):
+        chaingraph.solve(chain, fixed=fixed, driver=driver, start=low, stop=high + 0.05,
+                         steps=4, summary=False)
