@@ -45,7 +45,8 @@ class Scaled(Protocol):
 
 def _chord(plan, step, known, q, iterations=8):
     """Newton's method with the Jacobian inverted once at the guesses (the chord
-    method): cheap for many points near their solutions. Returns (q, converged)."""
+    method): cheap for many points near their solutions. Returns (q, converged:
+    residual <= 1e-11 of the size)."""
     tol = 1e-12 * plan.size
     full = with_group(known, step, q)
     mat = group_jacobian(step, full, q.shape[0])
@@ -59,7 +60,11 @@ def _chord(plan, step, known, q, iterations=8):
         if np.all(np.abs(r).max(axis=1) <= tol):
             break
     err = np.abs(group_residual(step, with_group(known, step, q))).max(axis=1)
-    return q, err <= 1e-9 * plan.size
+    # converged to near the rounding, as Newton's method takes a point: the chord's
+    # convergence is linear, and a point it left at 1e-9 of the size (near a fold) is
+    # finished by Newton's method, not taken as it is (its joints would close only to
+    # about that, and the check of the poses asks 1e-9 of their distance)
+    return q, err <= 1e-11 * plan.size
 
 
 def newton(plan: Scaled, step: Step, known: Pose, q: np.ndarray, iterations: int = 40,

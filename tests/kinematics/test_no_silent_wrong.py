@@ -483,3 +483,15 @@ def test_a_window_seen_only_between_a_coarse_path_s_last_samples_ends_the_range(
     with pytest.raises(AssemblyError, match="leaves the range"):
         chaingraph.solve(chain, fixed=fixed, driver=driver, start=low, stop=high + 0.05,
                          steps=4, summary=False)
+
+
+def test_a_group_near_its_fold_closes_its_loops_as_the_check_asks():
+    """Chain 43 of the eight-link atlas with one sliding pair, L4 fixed, L8 driving: a
+    group of six links (Newton's method). Near the fold at the low end of its range the
+    chord method, whose convergence is linear, left points whose equations held to
+    8.8e-10 of the size and took them as converged; their joints closed to 1.09e-9 of
+    it, and the check of the poses refused the default sweep. The chord now hands such
+    points to Newton's method, which finishes them."""
+    chain = chaingraph.load(CASES / "atlas8p1-43-group-near-fold.toml")
+    m = chaingraph.solve(chain, fixed="L4", driver="L8", steps=720, summary=False)
+    assert np.isfinite(m["x:J1"]).all() and m.theta.size == 721
