@@ -190,6 +190,8 @@ class Plan:
 
     def value(self, tau: ArrayLike) -> np.ndarray:
         """The lead input's value at ``tau`` (what the summary is expressed in)."""
+        if self.inputs[self.lead].kind == "R":
+            return np.asarray(tau, dtype=float)     # (tau is its angle: as values says)
         return self.values(tau)[self.lead]
 
     def tau(self, value: float) -> float:
