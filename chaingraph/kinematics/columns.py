@@ -255,7 +255,8 @@ def point_of_states(plan: Plan, states: LinkStates, name: str) -> PointMotion:
     # a file by its lengths places its points with its joints)
     assert at is not None, f"{name!r} has a position in a solved chain's pose"
     if link == plan.fixed:
-        return PointMotion(name, *(np.full(n, v) for v in (at[0], at[1], 0.0, 0.0, 0.0, 0.0)))
+        return PointMotion(name, np.full(n, at[0]), np.full(n, at[1]),
+                           *(np.zeros(n) for _ in range(4)))
     p = plan.local(at)
     ox, oy = plan.origin
     solved = states.points.get((link, p))
@@ -380,4 +381,8 @@ def _continuous(phi, n):
 
 
 def _array(v, n):
-    return np.full(n, float(v)) if np.ndim(v) == 0 else v
+    if np.ndim(v):
+        return v
+    v = float(v)
+    # (np.zeros costs a third of np.full; -0.0 kept as it is)
+    return np.zeros(n) if v == 0.0 and math.copysign(1.0, v) > 0 else np.full(n, v)
