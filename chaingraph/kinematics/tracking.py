@@ -469,8 +469,8 @@ def _flips(plan, i, step, head, disc, off, assembled):
         t = _turn_point(plan, i, step, head, k, (float(ox[k]), float(oy[k])))
         near = 1e-9 * max(1.0, abs(t))
         for j in (k, k + 1):
-            if abs(theta[j] - t) <= near:          # the sample on the turn: noise there
-                coincident.add(j)
+            if j and abs(theta[j] - t) <= near:    # the sample on the turn: noise there
+                coincident.add(j)                  # (not the path's first: its start)
         at[k] = t
     return at, np.array(sorted(coincident), dtype=np.intp)
 
