@@ -470,13 +470,16 @@ class AtlasFamily(Family):
         return (dx / n)[:, None], (dy / n)[:, None]
 
     def _motions(self, params, theta):
-        """:meth:`_solve`, the last answer kept: a fit asks for the points, the
-        transmission angles and the turns of the same mechanisms at the same inputs."""
+        """:meth:`_solve`, every link's motion NaN where any link's is (the chain
+        assembles only where all of it does: a dyad that does not carry the point
+        limits the input as the solver finds), the last answer kept: a fit asks for the
+        points, the transmission angles and the turns of the same mechanisms at the
+        same inputs."""
         p = np.ascontiguousarray(params, dtype=float)
         th = np.ascontiguousarray(theta, dtype=float)
         key = (p.shape, p.tobytes(), th.shape, th.tobytes())
         if self._last is None or self._last[0] != key:
-            self._last = (key, self._solve(p, th))
+            self._last = (key, _assembled(self._solve(p, th)))
         return self._last[1]
 
     def _solve(self, params, theta):
@@ -773,6 +776,25 @@ def _moved(motion, point):
     c, s, (px, py), (qx, qy) = motion
     dx, dy = point[0] - qx, point[1] - qy
     return px + c * dx - s * dy, py + s * dx + c * dy
+
+
+def _assembled(motions: dict[str, tuple | None]) -> dict[str, tuple | None]:
+    """Every link's motion (as :meth:`AtlasFamily._solve` gives them) made NaN where
+    some link's is not finite."""
+    moving = [v for v in motions.values() if v is not None]
+    if not moving:
+        return motions
+    ok = np.ones(np.broadcast_shapes(*(np.shape(v[0]) for v in moving)), dtype=bool)
+    for c, s, (px, py), _ in moving:
+        ok &= np.isfinite(c) & np.isfinite(s) & np.isfinite(px) & np.isfinite(py)
+    if ok.all():
+        return motions
+
+    def masked(v):
+        return np.where(ok, v, np.nan)
+    return {x: None if v is None else (masked(v[0]), masked(v[1]),
+                                       (masked(v[2][0]), masked(v[2][1])), v[3])
+            for x, v in motions.items()}
 
 
 def _mirrored(s: DyadStep) -> DyadStep:
