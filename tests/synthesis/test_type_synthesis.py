@@ -295,3 +295,24 @@ def test_a_six_link_chain_with_a_sliding_pair_passes_four_points():
     assert best.error.max <= 1e-9 * size
     again = certify(best.mechanism, PointTargets(tuple(FOUR), "P"))
     assert again.error_max <= 1e-9 * size
+
+
+def test_a_family_assembles_only_where_every_link_does():
+    """Six links, one sliding pair, chain 1, L1 fixed, L2 sliding on it: a dyad that
+    does not carry the point limits the slide too. The family's sweep tested only the
+    point's links, so its range ran past the solver's (at this draw: to +28 mm, the
+    solver's to +3.6 mm); sampled over three draws, the family's range is within the
+    solver's, and as long to its probing's 0.1 %."""
+    space = atlas_space(6, 1)
+    c = next(c for c in space.choices if c.sliding and c.chain_id == 1
+             and (c.fixed, c.driver) == ("L1", "L2"))
+    family = AtlasFamily(c.chain, c.fixed, c.driver, c.carrier)
+    rng = np.random.default_rng(8)
+    for p in family.sample(rng, 3) * 50.0:
+        drawn = float(family.first_input(p[None, :])[0])
+        lo, hi = family.sweep(p[None, :], 2)[0] - drawn
+        chain = family.chain(p, name="sampled", units="mm", notes="",
+                             span=(0.999 * lo, 0.999 * hi))
+        m = chaingraph.solve(chain, steps=4, summary=True)   # refused past its range
+        low, high = m.summary["input_range"]     # (the slide from the solver's origin)
+        assert 0.999 * (high - low) <= hi - lo <= high - low
