@@ -319,14 +319,27 @@ class _Branch:
         return np.column_stack([mat * self.scale, ft]) / self.plan.size
 
     def tangent(self, z, like=None, direction=1.0):
+        found = self.oriented_tangent(z, like, direction)
+        return None if found is None else found[0]
+
+    def oriented_tangent(self, z, like=None, direction=1.0):
+        """(the branch's unit tangent at z, oriented like ``like`` or along the input's
+        ``direction``; the sign of det [J; tangent]), or None: the sign stays along a
+        branch, folds included, and changes where the path crosses onto another
+        branch (at a bifurcation, or through the narrow gap where two pass close)."""
         jac = self.jacobian(z)
         if not np.isfinite(jac).all():
             return None
         _, _, vt = np.linalg.svd(jac)
         tau = vt[-1]
         if like is not None:
-            return tau if tau @ like >= 0 else -tau
-        return tau if tau[-1] * direction >= 0 else -tau
+            tau = tau if tau @ like >= 0 else -tau
+        else:
+            tau = tau if tau[-1] * direction >= 0 else -tau
+        augmented = np.vstack([jac, tau])
+        if augmented.shape[0] != augmented.shape[1]:      # (more equations than unknowns)
+            return tau, 0.0
+        return tau, float(np.sign(np.linalg.det(augmented)))
 
     def correct(self, zp, tau, tol=1e-11):
         """Newton's method from the predicted zp on the branch and the hyperplane
@@ -379,9 +392,10 @@ def _trace(plan, step, pose, theta, head, q, t, end, direction, h_deg,
     link ``runaway`` sizes from the drawing's centre."""
     branch = _Branch(plan, step, pose, theta, head)
     z = np.append(q / branch.scale, math.radians(t))
-    tau = branch.tangent(z, direction=direction)
-    if tau is None:
+    found = branch.oriented_tangent(z, direction=direction)
+    if found is None:
         return [t], [q], [np.zeros_like(q)], None
+    tau, side = found
     ts, qs, dqs = [t], [q], [branch.dq(tau)]
     fold = None
     h = math.radians(h_deg)
@@ -411,20 +425,31 @@ def _trace(plan, step, pose, theta, head, q, t, end, direction, h_deg,
             # on any path, within the smallest step)
             ds /= 2
             continue
-        tau_new = branch.tangent(x, like=tau)
-        if tau_new is None or tau_new @ tau < 0.9:
+        found = branch.oriented_tangent(x, like=tau)
+        if found is None or found[0] @ tau < 0.9:
+            ds /= 2
+            continue
+        tau_new, side_new = found
+        if side_new != side and ds > _CROSSING_STEP * h:
+            # onto another branch: through the gap where two pass close (or across a
+            # bifurcation, passed at the smallest step): a shorter step keeps this one
             ds /= 2
             continue
         if tau_new[-1] * direction <= 0 and tau[-1] * direction > 0:
             # the input turned back between z and x: a fold, where the path ends
             fold = _fold(branch, z, tau, ds, direction)
             break
-        z, tau = x, tau_new
+        z, tau, side = x, tau_new, side_new
         ts.append(math.degrees(z[-1]))
         qs.append(branch.scale * z[:-1])
         dqs.append(branch.dq(tau))
         ds = min(h_here, 1.5 * ds)
     return ts, qs, dqs, fold
+
+
+#: the step along the arc, of the trace's own, below which a crossing onto another
+#: branch is taken as a bifurcation the branch goes through (a change point), not a gap
+_CROSSING_STEP = 1e-4
 
 
 #: the halvings of the arc that bracket a fold: to about 1e-8 of the step along the arc,

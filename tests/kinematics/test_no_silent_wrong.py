@@ -495,3 +495,20 @@ def test_a_group_near_its_fold_closes_its_loops_as_the_check_asks():
     chain = chaingraph.load(CASES / "atlas8p1-43-group-near-fold.toml")
     m = chaingraph.solve(chain, fixed="L4", driver="L8", steps=720, summary=False)
     assert np.isfinite(m["x:J1"]).all() and m.theta.size == 721
+
+
+def test_a_group_keeps_its_branch_where_another_passes_close():
+    """A Stephenson III sampled by type synthesis (six links, L1 fixed, L2 driving, a
+    point P on L6): near 248.6 degrees the group's Jacobian has a singular value of
+    0.0041 on a mechanism of about 50 mm, another branch passing within about 1e-4 of
+    the size, and the trace's step crossed onto it (P at (-12.806, -28.276) at 256.07
+    degrees). A crossing changes the sign of det [J; tangent], which a branch keeps,
+    folds included; the trace now shortens its step there. The answer is an independent
+    continuation's (a Newton continuation of the written file with finite-difference
+    Jacobians, at 1, 0.2 and 0.1 degree steps, all three agreeing): (-12.384, -25.462)."""
+    chain = chaingraph.load(CASES / "stephenson-iii-near-bifurcation.toml")
+    m = chaingraph.solve(chain, steps=720, summary=False)
+    k = int(np.argmin(np.abs(m.theta - 256.07)))
+    assert abs(m.theta[k] - 256.066) < 1e-3
+    assert (m["x:P"][k], m["y:P"][k]) == pytest.approx((-12.384, -25.462), abs=2e-3)
+    assert _isolated_jumps(m, chain) == []
