@@ -13,6 +13,8 @@ from chaingraph.kinematics import summary
 from chaingraph.kinematics.columns import LinkStates, point_of_states
 from chaingraph.naming.catalog import catalog_path
 
+from .inversions import pinned_pairs
+
 #: catalog mechanisms with an RRR dyad: a crank-rocker, a parallelogram (dead centres:
 #: its rates are NaN there), a six-bar
 DYADS = ["beam-engine", "coupling-rod-of-a-locomotive", "watt-i-mechanism"]
@@ -78,14 +80,6 @@ def test_a_plan_s_hash_is_the_fields_and_is_not_pickled():
     assert moved != plan and "_hash" not in moved.__dict__
 
 
-def _inversions(chain):
-    """Every (fixed link, link pinned to it) of a chain."""
-    for fixed in chain.links:
-        for j in chain.joints:
-            if j.kind == "R" and fixed in j.links:
-                yield from ((fixed, d) for d in j.links if d != fixed)
-
-
 def test_the_pairs_a_step_meets_by_construction_are_met_in_every_inversion():
     """The sweep checks the closure of only the pairs its closed-form steps do not meet
     by construction (closure_checks): every other pair is met to rounding, in every
@@ -102,7 +96,7 @@ def test_the_pairs_a_step_meets_by_construction_are_met_in_every_inversion():
         chain = chaingraph.load(path)
         if not chain.has_pose or len(chain.links) > 8 or is_gear_train(chain):
             continue
-        for fixed, driver in _inversions(chain):
+        for fixed, driver in pinned_pairs(chain):
             try:
                 plan = plan_of(chain, fixed, driver)
                 if any(s.kind == "group" for s in plan.steps):

@@ -18,6 +18,7 @@ from chaingraph.naming.catalog import catalog_path
 from chaingraph.kinematics.gears import is_gear_train
 
 from ..conftest import run_cli
+from .inversions import pinned_pairs
 
 CASES = Path(__file__).parents[1] / "data" / "solver"
 
@@ -230,35 +231,23 @@ def test_every_input_of_every_inversion_of_every_catalog_chain_solves_or_is_refu
             continue
         if is_gear_train(chain):        # its speeds are `chaingraph gears`' (conftest)
             continue
-        for fixed in chain.links:
-            for j in chain.joints:
-                if j.kind != "R" or fixed not in j.links:
-                    continue
-                for driver in j.links:
-                    if driver == fixed:
-                        continue
-                    try:
-                        m = chaingraph.solve(chain, fixed=fixed, driver=driver, steps=12)
-                    except MechanismError as e:
-                        assert ("mobility" in str(e) or "only R and P" in str(e)
-                                or "cannot be derived from the inputs" in str(e)), (path, e)
-                        continue
-                    assert all(np.isfinite(m[f"x:{k.id}"]).all() for k in chain.joints)
-                    solved += 1
+        for fixed, driver in pinned_pairs(chain):
+            try:
+                m = chaingraph.solve(chain, fixed=fixed, driver=driver, steps=12)
+            except MechanismError as e:
+                assert ("mobility" in str(e) or "only R and P" in str(e)
+                        or "cannot be derived from the inputs" in str(e)), (path, e)
+                continue
+            assert all(np.isfinite(m[f"x:{k.id}"]).all() for k in chain.joints)
+            solved += 1
     assert solved >= 300
 
 
 def test_every_rocking_input_of_the_stephenson_chain_solves():
     chain = chaingraph.load(catalog_path("stephenson-six-bar-chain"))
-    for fixed in chain.links:
-        for j in chain.joints:
-            if fixed not in j.links or j.kind != "R":
-                continue
-            for driver in j.links:
-                if driver == fixed:
-                    continue
-                m = chaingraph.solve(chain, fixed=fixed, driver=driver, steps=12)
-                assert m.theta.size == 13
+    for fixed, driver in pinned_pairs(chain):
+        m = chaingraph.solve(chain, fixed=fixed, driver=driver, steps=12)
+        assert m.theta.size == 13
 
 
 # -- item 5: a singular drawn pose ----------------------------------------------------
@@ -416,15 +405,10 @@ def test_no_link_jumps_in_any_inversion(name):
     ternary joints pass over each other (the dyad on them turned over at once)."""
     chain = chaingraph.load(catalog_path(name))
     solved = 0
-    for fixed in chain.links:
-        for j in chain.joints:
-            if j.kind != "R" or fixed not in j.links:
-                continue
-            for driver in (x for x in j.links if x != fixed):
-                m = chaingraph.solve(chain, fixed=fixed, driver=driver, steps=360,
-                                     summary=False)
-                assert _isolated_jumps(m, chain) == [], (fixed, driver)
-                solved += 1
+    for fixed, driver in pinned_pairs(chain):
+        m = chaingraph.solve(chain, fixed=fixed, driver=driver, steps=360, summary=False)
+        assert _isolated_jumps(m, chain) == [], (fixed, driver)
+        solved += 1
     assert solved >= 10
 
 
