@@ -444,9 +444,12 @@ def _raw_summary(plan, output, omega, c, *, sweep=None):
         summary.update(stroke=0.0, note="the output does not move")
         return summary
     extremes = _output_extremes(plan, ev, signal, u, du, ddu, scale, c)
-    values = [e["value"] for e in extremes]
-    hi_e = extremes[int(np.argmax(values))]
-    lo_e = extremes[int(np.argmin(values))]
+    # the highest and the lowest, the first in input order among equals (to rounding:
+    # a toggle's two equal maxima are not told apart by their last bits)
+    values = np.array([e["value"] for e in extremes])
+    same = 1e-12 * (360.0 if kind == "angle" else plan.size)
+    hi_e = extremes[int(np.argmax(values >= values.max() - same))]
+    lo_e = extremes[int(np.argmax(values <= values.min() + same))]
     summary["stroke"] = hi_e["value"] - lo_e["value"]
     summary["extremes"] = [_turn(plan, lo_e["input"], c), _turn(plan, hi_e["input"], c)]
     summary["extreme_positions"] = [dict(e, input=_turn(plan, e["input"], c))
@@ -559,23 +562,14 @@ def _output_extremes(plan, ev, signal, u, du, ddu, scale, c):
         ta = theta[ka]
         slope_a, slope_b = ddu[ka] * plan.rate_scale, ddu[kb] * plan.rate_scale
         guess = _cubic_roots(ta, tb, du[ka], du[kb], slope_a, slope_b)
-        states, _, _ = _pointwise(plan, ev, ka, guess)
-        at_guess, rate, second = signal.of_states(plan, states)
-        with np.errstate(divide="ignore", invalid="ignore"):   # (checked below)
-            step = -rate / (second * plan.rate_scale)
-            t = guess + step
-            # u moves by -rate^2 / (2 second) on the way to the root (rate = du / d input)
-            value = at_guess - 0.5 * rate * rate / second
-        good = (np.isfinite(t) & np.isfinite(value) & ((t - ta) * (t - tb) <= 0)
-                & (np.abs(step) <= 1e-3 * np.abs(tb - ta)))
-        if not good.all():
-            bad = np.nonzero(~good)[0]
-            kbad = ka[bad]
-            t[bad] = bracketed_roots(
-                lambda tt: _rate_and_slope(plan, ev, kbad, tt, signal),
-                ta[bad], tb[bad], du[kbad], du[kb[bad]], newton=True)
-            redo, _, _ = _pointwise(plan, ev, kbad, t[bad])
-            value[bad] = signal.of_states(plan, redo)[0]
+        scales = (360.0 if plan.inputs[plan.lead].kind == "R" else plan.size,
+                  360.0 if signal.kind == "angle" else plan.size)
+        t, value, sure = _interpolated_extremes(theta, u, du, ddu, ka, kb, guess,
+                                                plan.rate_scale, scales)
+        if not sure.all():
+            rest = np.flatnonzero(~sure)
+            t[rest], value[rest] = _finished_extremes(plan, ev, signal, ka[rest], kb[rest],
+                                                      ta[rest], tb[rest], guess[rest], du)
         if signal.kind == "angle":      # the same turn as the sweep's own values
             value = u[ka] + np.remainder(value - u[ka] + 180.0, 360.0) - 180.0
         found = [{"input": float(ti), "value": float(vi), "kind": "max" if sign[k] > 0 else "min"}
@@ -589,6 +583,89 @@ def _output_extremes(plan, ev, signal, u, du, ddu, scale, c):
                       "kind": "max"},
                      {"input": float(theta[int(np.argmin(u))]), "value": float(np.min(u)),
                       "kind": "min"}]
+
+
+def _finished_extremes(plan, ev, signal, ka, kb, ta, tb, guess, du):
+    """The stationary points (inputs, values) in the brackets [ta, tb] finished on the
+    mechanism itself: one Newton step on the exact rate at the ``guess``, and where that
+    does not land inside the bracket, Newton's method safeguarded by bisection."""
+    states, _, _ = _pointwise(plan, ev, ka, guess)
+    at_guess, rate, second = signal.of_states(plan, states)
+    with np.errstate(divide="ignore", invalid="ignore"):   # (checked below)
+        step = -rate / (second * plan.rate_scale)
+        t = guess + step
+        # u moves by -rate^2 / (2 second) on the way to the root (rate = du / d input)
+        value = at_guess - 0.5 * rate * rate / second
+    good = (np.isfinite(t) & np.isfinite(value) & ((t - ta) * (t - tb) <= 0)
+            & (np.abs(step) <= 1e-3 * np.abs(tb - ta)))
+    if not good.all():
+        bad = np.nonzero(~good)[0]
+        kbad = ka[bad]
+        t[bad] = bracketed_roots(
+            lambda tt: _rate_and_slope(plan, ev, kbad, tt, signal),
+            ta[bad], tb[bad], du[kbad], du[kb[bad]], newton=True)
+        redo, _, _ = _pointwise(plan, ev, kbad, t[bad])
+        value[bad] = signal.of_states(plan, redo)[0]
+    return t, value
+
+
+_SURE = 1e-13       # an interpolated extreme is kept within this of its scales (x 10)
+
+
+def _interpolated_extremes(theta, u, du, ddu, ka, kb, guess, rate_scale, scales):
+    """The stationary points in the brackets between the samples ``ka`` and ``kb`` from
+    the sweep's own values, rates and accelerations, where its grid is fine enough:
+    (inputs, values, sure), starting from the rate's cubic roots ``guess``.
+
+    With h the step and dNu the output's N-th derivative along the path: the rate's
+    cubic (Hermite) is off the rate by h^4 d5u s^2 (1 - s)^2 / 24 across the bracket,
+    which the third difference of the accelerations at the four samples round it
+    (~ h^3 d5u) corrects, leaving about h^5 |d6u| / 384; two Newton steps on the
+    corrected cubic place the extreme, off by that over |d2u| (the rates alone: the
+    values' rounding would move it more). The value is the quintic's through the value,
+    rate and acceleration at both samples, off by at most h^6 |d6u| / 46080 (an error in
+    the place moves it by its square only). h^4 d6u is estimated by the fourth
+    difference of the accelerations at the six samples round the bracket. An extreme is
+    *sure* where both errors, ten times over, are within 1e-13 of the input's and the
+    output's ``scales`` (360 degrees, or the chain's size): a fine sweep's extremes to
+    rounding without solving the mechanism again. Only a bracket of consecutive samples
+    on an even grid, two samples more either side, is judged; the rest, and every
+    bracket of a coarse grid or near a fold, are finished on the mechanism
+    (:func:`_finished_extremes`)."""
+    n = u.size
+    if n < 6:
+        return guess.copy(), np.full(ka.size, np.nan), np.zeros(ka.size, dtype=bool)
+    sure = (kb == ka + 1) & (ka >= 2) & (kb + 2 < n)
+    k = np.where(sure, ka, 2)[:, None] + np.arange(-2, 4)        # ka - 2 .. kb + 2
+    steps = np.diff(theta[k], axis=1)
+    h = steps[:, 2]
+    g = ddu[k] * (rate_scale * rate_scale)               # d2u per unit of the path squared
+    with np.errstate(divide="ignore", invalid="ignore", over="ignore"):
+        sure &= (np.abs(steps - h[:, None]) <= 1e-9 * np.abs(h[:, None])).all(axis=1)
+        third = np.diff(g[:, 1:5], 3, axis=1)[:, 0]                  # ~ h^3 d5u
+        fourth = np.abs(np.diff(g, 4, axis=1)).max(axis=1)          # ~ h^4 d6u
+        off = h * fourth / 384.0 / np.minimum(np.abs(g[:, 2]), np.abs(g[:, 3]))
+        err = h * h * fourth / 46080.0
+        r0, r1 = du[k[:, 2]] * rate_scale, du[k[:, 3]] * rate_scale
+        b0, b1, b2, b3 = _hermite_cubic(0.0, 1.0, r0, r1, g[:, 2] * h, g[:, 3] * h)
+        bump = h * third / 24.0                          # the rate's error s^2 (1 - s)^2
+        s = (guess - theta[k[:, 2]]) / h
+        for _ in range(2):
+            q = s * (1.0 - s)
+            rate = b0 + s * (b1 + s * (b2 + s * b3)) + bump * q * q
+            slope = b1 + s * (2 * b2 + 3 * s * b3) + bump * 2 * q * (1.0 - 2 * s)
+            s = s - rate / slope
+        # the quintic past u at ka, in s across the bracket: d the values' difference
+        m0, m1 = r0 * h, r1 * h
+        c0, c1 = g[:, 2] * h * h, g[:, 3] * h * h
+        d = u[k[:, 3]] - u[k[:, 2]]
+        a3 = 10 * d - 6 * m0 - 4 * m1 - 1.5 * c0 + 0.5 * c1
+        a4 = -15 * d + 8 * m0 + 7 * m1 + 1.5 * c0 - c1
+        a5 = 6 * d - 3 * m0 - 3 * m1 - 0.5 * c0 + 0.5 * c1
+        value = u[k[:, 2]] + s * (m0 + s * (0.5 * c0 + s * (a3 + s * (a4 + s * a5))))
+        sure &= (np.isfinite(value) & (s >= 0.0) & (s <= 1.0)
+                 & (10.0 * off <= _SURE * scales[0]) & (10.0 * err <= _SURE * scales[1]))
+    return theta[k[:, 2]] + s * h, value, sure
 
 
 _FEW_BRACKETS = 8     # up to so many brackets, the cubics are solved one by one in floats

@@ -5,6 +5,7 @@ import dataclasses
 import json
 import math
 
+import numpy as np
 import pytest
 
 import chaingraph
@@ -128,3 +129,49 @@ def test_output_on_the_command_line():
     assert status == 0 and "straightness" in out
     status, out, err = run_cli("solve", catalog_path("reciprocating-engine"), "--output", "Z")
     assert status == 2 and "no link, joint or point" in err and "--output NAME" in err
+
+
+def test_a_fine_sweep_s_extremes_from_its_own_samples_are_the_mechanism_s(monkeypatch):
+    """Where the sweep's grid is fine, the summary takes an extreme from the sweep's own
+    values, rates and accelerations (summary._interpolated_extremes) instead of solving
+    the mechanism there again: every catalog mechanism's extremes are then those found
+    on the mechanism (Newton's method on the exact rate) to 1e-12 of the scale (what
+    tidy rounds within), and most extremes are taken so (the path is exercised)."""
+    from chaingraph.kinematics import summary as module
+    from chaingraph.naming.catalog import catalog_files
+    interpolate = module._interpolated_extremes
+    taken = []
+
+    def counted(*args):
+        t, value, sure = interpolate(*args)
+        taken.append(int(sure.sum()))
+        return t, value, sure
+
+    def never(theta, u, du, ddu, ka, kb, guess, *rest):
+        return guess.copy(), np.full(ka.size, np.nan), np.zeros(ka.size, dtype=bool)
+    compared = 0
+    for path in catalog_files():
+        chain = chaingraph.load(path)
+        if chain.mechanism is None or chain.mechanism.output is None:
+            continue
+        monkeypatch.setattr(module, "_interpolated_extremes", counted)
+        fine = chaingraph.solve(chain).summary
+        monkeypatch.setattr(module, "_interpolated_extremes", never)
+        exact = chaingraph.solve(chain).summary
+        if exact.extreme_positions is None:
+            continue
+        lead = 360.0 if exact.input_unit == "degrees" else fine_scale(chain)
+        out = 360.0 if exact.stroke_unit == "deg" else fine_scale(chain)
+        assert len(fine.extreme_positions) == len(exact.extreme_positions), path.name
+        for a, b in zip(fine.extreme_positions, exact.extreme_positions):
+            assert a.kind == b.kind
+            assert a.input == pytest.approx(b.input, rel=0, abs=1e-12 * lead), path.name
+            assert a.value == pytest.approx(b.value, rel=0, abs=1e-12 * out), path.name
+        assert fine.stroke == pytest.approx(exact.stroke, rel=0, abs=1e-12 * out)
+        compared += len(exact.extreme_positions)
+    assert compared >= 40 and sum(taken) >= compared // 3, (compared, sum(taken))
+
+
+def fine_scale(chain):
+    """The chain's size, as the plan takes it (the scale of its lengths)."""
+    return chaingraph.build_plan(chain).size
