@@ -629,43 +629,52 @@ def _interpolated_extremes(theta, u, du, ddu, ka, kb, guess, rate_scale, scales)
     *sure* where both errors, ten times over, are within 1e-13 of the input's and the
     output's ``scales`` (360 degrees, or the chain's size): a fine sweep's extremes to
     rounding without solving the mechanism again. Only a bracket of consecutive samples
-    on an even grid, two samples more either side, is judged; the rest, and every
-    bracket of a coarse grid or near a fold, are finished on the mechanism
-    (:func:`_finished_extremes`)."""
-    n = u.size
-    if n < 6:
-        return guess.copy(), np.full(ka.size, np.nan), np.zeros(ka.size, dtype=bool)
-    sure = (kb == ka + 1) & (ka >= 2) & (kb + 2 < n)
-    k = np.where(sure, ka, 2)[:, None] + np.arange(-2, 4)        # ka - 2 .. kb + 2
-    steps = np.diff(theta[k], axis=1)
-    h = steps[:, 2]
-    g = ddu[k] * (rate_scale * rate_scale)               # d2u per unit of the path squared
-    with np.errstate(divide="ignore", invalid="ignore", over="ignore"):
-        sure &= (np.abs(steps - h[:, None]) <= 1e-9 * np.abs(h[:, None])).all(axis=1)
-        third = np.diff(g[:, 1:5], 3, axis=1)[:, 0]                  # ~ h^3 d5u
-        fourth = np.abs(np.diff(g, 4, axis=1)).max(axis=1)          # ~ h^4 d6u
-        off = h * fourth / 384.0 / np.minimum(np.abs(g[:, 2]), np.abs(g[:, 3]))
-        err = h * h * fourth / 46080.0
-        r0, r1 = du[k[:, 2]] * rate_scale, du[k[:, 3]] * rate_scale
-        b0, b1, b2, b3 = _hermite_cubic(0.0, 1.0, r0, r1, g[:, 2] * h, g[:, 3] * h)
-        bump = h * third / 24.0                          # the rate's error s^2 (1 - s)^2
-        s = (guess - theta[k[:, 2]]) / h
-        for _ in range(2):
-            q = s * (1.0 - s)
-            rate = b0 + s * (b1 + s * (b2 + s * b3)) + bump * q * q
-            slope = b1 + s * (2 * b2 + 3 * s * b3) + bump * 2 * q * (1.0 - 2 * s)
-            s = s - rate / slope
-        # the quintic past u at ka, in s across the bracket: d the values' difference
-        m0, m1 = r0 * h, r1 * h
-        c0, c1 = g[:, 2] * h * h, g[:, 3] * h * h
-        d = u[k[:, 3]] - u[k[:, 2]]
-        a3 = 10 * d - 6 * m0 - 4 * m1 - 1.5 * c0 + 0.5 * c1
-        a4 = -15 * d + 8 * m0 + 7 * m1 + 1.5 * c0 - c1
-        a5 = 6 * d - 3 * m0 - 3 * m1 - 0.5 * c0 + 0.5 * c1
-        value = u[k[:, 2]] + s * (m0 + s * (0.5 * c0 + s * (a3 + s * (a4 + s * a5))))
-        sure &= (np.isfinite(value) & (s >= 0.0) & (s <= 1.0)
-                 & (10.0 * off <= _SURE * scales[0]) & (10.0 * err <= _SURE * scales[1]))
-    return theta[k[:, 2]] + s * h, value, sure
+    on an even grid, two samples more either side, is judged, and only up to
+    ``_FEW_BRACKETS`` of them (in floats, one by one); the rest, and every bracket of a
+    coarse grid or near a fold, are finished on the mechanism (:func:`_finished_extremes`)."""
+    t, value = guess.copy(), np.full(ka.size, np.nan)
+    sure = np.zeros(ka.size, dtype=bool)
+    if ka.size > _FEW_BRACKETS:
+        return t, value, sure
+    for i, (k, k1, at) in enumerate(zip(ka.tolist(), kb.tolist(), guess.tolist())):
+        if k1 == k + 1 and k >= 2 and k1 + 2 < u.size:
+            t[i], value[i], sure[i] = _interpolated_extreme(
+                theta[k - 2:k + 4].tolist(), float(u[k]), float(u[k1]), float(du[k]),
+                float(du[k1]), (ddu[k - 2:k + 4] * (rate_scale * rate_scale)).tolist(),
+                at, rate_scale, scales)
+    return t, value, sure
+
+
+def _interpolated_extreme(theta, u0, u1, du0, du1, g, at, rate_scale, scales):
+    """:func:`_interpolated_extremes` of one bracket, in floats: ``theta`` and ``g``
+    (the accelerations per unit of the path squared) at the six samples round it."""
+    h = theta[3] - theta[2]
+    if not all(abs(theta[i + 1] - theta[i] - h) <= 1e-9 * abs(h) for i in range(5)):
+        return at, math.nan, False
+    fourth = max(abs(g[i] - 4 * g[i + 1] + 6 * g[i + 2] - 4 * g[i + 3] + g[i + 4])
+                 for i in (0, 1))                                    # ~ h^4 d6u
+    bend = min(abs(g[2]), abs(g[3]))
+    if not (bend > 0 and 10.0 * h * fourth / 384.0 <= _SURE * scales[0] * bend
+            and 10.0 * h * h * fourth / 46080.0 <= _SURE * scales[1]):
+        return at, math.nan, False
+    r0, r1 = du0 * rate_scale, du1 * rate_scale
+    b0, b1, b2, b3 = _hermite_cubic(0.0, 1.0, r0, r1, g[2] * h, g[3] * h)
+    bump = h * (g[4] - 3 * g[3] + 3 * g[2] - g[1]) / 24.0   # ~ h^4 d5u / 24
+    s = (at - theta[2]) / h
+    for _ in range(2):
+        q = s * (1.0 - s)
+        rate = b0 + s * (b1 + s * (b2 + s * b3)) + bump * q * q
+        slope = b1 + s * (2 * b2 + 3 * s * b3) + bump * 2 * q * (1.0 - 2 * s)
+        s = s - _ratio(rate, slope)
+    # the quintic past u0, in s across the bracket: d the values' difference
+    m0, m1, c0, c1, d = r0 * h, r1 * h, g[2] * h * h, g[3] * h * h, u1 - u0
+    a3 = 10 * d - 6 * m0 - 4 * m1 - 1.5 * c0 + 0.5 * c1
+    a4 = -15 * d + 8 * m0 + 7 * m1 + 1.5 * c0 - c1
+    a5 = 6 * d - 3 * m0 - 3 * m1 - 0.5 * c0 + 0.5 * c1
+    value = u0 + s * (m0 + s * (0.5 * c0 + s * (a3 + s * (a4 + s * a5))))
+    if not (math.isfinite(value) and 0.0 <= s <= 1.0):
+        return at, math.nan, False
+    return theta[2] + s * h, value, True
 
 
 _FEW_BRACKETS = 8     # up to so many brackets, the cubics are solved one by one in floats
