@@ -768,16 +768,18 @@ def _transmission(plan, cols, out):
     x = cols[f"x:{cj.joint}"], cols[f"y:{cj.joint}"]        # the joint between the two
     ax, ay = cols[f"x:{ca.joint}"] - x[0], cols[f"y:{ca.joint}"] - x[1]
     bx, by = cols[f"x:{cb.joint}"] - x[0], cols[f"y:{cb.joint}"] - x[1]
-    # |a x b| and a . b worked out in place (the fewer temporaries, the less memory a
-    # call takes): a x b = ax by - ay bx, a . b = ax bx + ay by
-    cross = ax * by
-    dot = np.multiply(ax, bx, out=ax)
-    cross -= np.multiply(ay, bx, out=bx)
-    dot += np.multiply(ay, by, out=ay)
-    mu = np.arctan2(np.abs(cross, out=cross), dot, out=by)
-    np.degrees(mu, out=mu)
-    return {"min": _refined_extreme(mu, np.argmin(mu)),
-            "max": _refined_extreme(mu, np.argmax(mu))}
+    # the angle between a and b, atan2(|a x b|, a . b), falls as a . b rises (|a| and |b|
+    # are the links' own lengths): the extremes of a . b are its, the angle worked out
+    # at them and their neighbours only
+    dot = ax * bx
+    dot += ay * by
+
+    def angle_near(k):
+        near = slice(max(int(k) - 1, 0), int(k) + 2)
+        a, b = (ax[near], ay[near]), (bx[near], by[near])
+        mu = np.degrees(np.arctan2(np.abs(a[0] * b[1] - a[1] * b[0]), a[0] * b[0] + a[1] * b[1]))
+        return _refined_extreme(mu, min(int(k), 1))
+    return {"min": angle_near(np.argmax(dot)), "max": angle_near(np.argmin(dot))}
 
 
 def _refined_extreme(y, k):
