@@ -812,6 +812,8 @@ def _dead_centres(plan, ev, measure, c):
         inner[[0, -1]] = False
     roots = []
     for i, m in enumerate(measure):
+        if np.ndim(m) == 0 and m != 0 and math.isfinite(m):
+            continue                     # (an input's weld: never singular)
         m = np.asarray(m, dtype=float)
         valid = inner & np.isfinite(m) & (m != 0)
         if valid.all():                  # (as below, without gathering the samples)
