@@ -182,8 +182,9 @@ def synthesise_path(task: PathTask, family: Family, *, solutions: int,
         starts = np.concatenate([timed_slider_seeds(family, targets, turns,
                                                     timed_guides(targets, turns)), starts])
     fits = []
-    if not exact and turns is not None and spare_unknowns(family, len(targets), timed=True) >= 0:
-        # more unknowns than timed equations: the family passes the targets exactly
+    spare = spare_unknowns(family, len(targets), timed=True)
+    if not exact and turns is not None and spare is not None and spare >= 0:
+        # as many unknowns as timed equations or more: the family passes them exactly
         fits = passing_fits(family, targets, starts, turns, steps=steps,
                             min_transmission=task.min_transmission, wanted=solutions)
     if not exact and len(fits) < solutions:
@@ -225,16 +226,18 @@ def _fitted(task: PathTask, family: Family, targets: np.ndarray, starts: np.ndar
     return fits
 
 
-def spare_unknowns(family: Family, count: int, *, timed: bool) -> int:
+def spare_unknowns(family: Family, count: int, *, timed: bool) -> int | None:
     """How many more unknowns than equations passing ``count`` targets exactly gives a
-    family: its parameters (the drawn pose at the first target: its dimensions and the
-    input there), and without a timing the input's ``count - 1`` steps, against two
-    equations per target (a sliding pair's second point of its line, which may slide
-    along it, is no unknown). Zero or more: the targets can be passed exactly (by a set of
-    mechanisms of that dimension, in general); the four-bar has 10 parameters (five
-    timed points), a six-bar 16 (eight)."""
-    gauges = sum(j.kind == "P" for j in family.template)     # a line's second point
-    return family.size - gauges + (0 if timed else count - 1) - 2 * count
+    family of turning pairs: its parameters (the drawn pose at the first target: its
+    dimensions and the input there), and without a timing the input's ``count - 1``
+    steps, against two equations per target. Zero or more: the targets can be passed
+    exactly (by a set of mechanisms of that dimension, in general); the four-bar has 10
+    parameters (five timed points), a six-bar 16 (eight). None for a family with
+    sliding pairs (its drawn parameters hold more than its dimensions: a line's
+    second point, a block's pair along its line)."""
+    if any(j.kind != "R" for j in family.template):
+        return None
+    return family.size + (0 if timed else count - 1) - 2 * count
 
 
 def passing_fits(family: Family, targets: np.ndarray, starts: np.ndarray,
