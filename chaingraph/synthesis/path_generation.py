@@ -144,12 +144,15 @@ class Budget:
     """How hard the optimiser searches one family: random mechanisms in the coarse
     search (``samples``), least-squares starts and differential evolution's population
     (``starts``), fitted starts certified from (``fitted``), differential evolution's
-    ``generations``."""
+    ``generations``; ``passing``: the most evaluations least squares makes from each
+    start onto a family's set of solutions where it has spare unknowns
+    (:func:`passing_fits`; 0: not tried, the targets fitted only)."""
 
     samples: int
     starts: int
     fitted: int = _FITTED
     generations: int = 100
+    passing: int = _PASSING_EVALUATIONS
 
 
 #: the four-bar's budget, exact (up to five points) and fitted
@@ -183,10 +186,11 @@ def synthesise_path(task: PathTask, family: Family, *, solutions: int,
                                                     timed_guides(targets, turns)), starts])
     fits = []
     spare = spare_unknowns(family, len(targets), timed=True)
-    if not exact and turns is not None and spare is not None and spare >= 0:
+    if not exact and turns is not None and spare is not None and spare >= 0 and budget.passing:
         # as many unknowns as timed equations or more: the family passes them exactly
         fits = passing_fits(family, targets, starts, turns, steps=steps,
-                            min_transmission=task.min_transmission, wanted=solutions)
+                            min_transmission=task.min_transmission, wanted=solutions,
+                            evaluations=budget.passing)
     if not exact and len(fits) < solutions:
         best, _ = global_search(family, targets, starts, rng,
                                 generations=budget.generations, **common)
@@ -242,10 +246,10 @@ def spare_unknowns(family: Family, count: int, *, timed: bool) -> int | None:
 
 def passing_fits(family: Family, targets: np.ndarray, starts: np.ndarray,
                  timing: np.ndarray, *, steps: int, min_transmission: float,
-                 wanted: int) -> list[Fit]:
+                 wanted: int, evaluations: int = _PASSING_EVALUATIONS) -> list[Fit]:
     """Fits that pass timed ``targets`` to rounding (:data:`EXACT`), solved by least
-    squares from each of ``starts`` (best first) with :data:`_PASSING_EVALUATIONS` at
-    most, for a family with spare unknowns (:func:`spare_unknowns`: its solutions a set,
+    squares from each of ``starts`` (best first) with ``evaluations`` at most, for a
+    family with spare unknowns (:func:`spare_unknowns`: its solutions a set,
     so that least squares converges onto it where the fitted search would stop near
     it); the search stops once ``wanted`` of them look right by the family's own
     kinematics (no predicted defect, the transmission angle and the link ratio within
@@ -257,7 +261,7 @@ def passing_fits(family: Family, targets: np.ndarray, starts: np.ndarray,
         if not np.all(np.isfinite(p)):
             continue
         fit = least_squares_fit(family, targets, p, th, timing=timing, exact=True,
-                                evaluations=_PASSING_EVALUATIONS)
+                                evaluations=evaluations)
         if fit is None or fit.residual > EXACT / 10:
             continue
         fits.append(fit)
