@@ -64,6 +64,9 @@ def test_the_points_are_the_examples_and_the_count_of_unknowns_says_who_can():
     assert spare_unknowns(six, 6, timed=True) == 4                 # a set of six-bars
     assert spare_unknowns(six, 8, timed=True) == 0
     assert spare_unknowns(FOUR_BAR, 9, timed=False) == 0           # Burmester's nine
+    c = next(c for c in atlas_space(4, 1).choices if c.method == "dyads")
+    slider = AtlasFamily(c.chain, c.fixed, c.driver, c.carrier)
+    assert spare_unknowns(slider, 6, timed=True) is None           # sliding: not counted
 
 
 @pytest.mark.parametrize("seed, min_transmission", [(1, 30.0), (2, 30.0), (1, 0.0)])
