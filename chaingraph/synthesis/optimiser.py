@@ -343,7 +343,8 @@ def least_squares_fit(family: Family, targets: npt.ArrayLike, params: np.ndarray
                       inputs: npt.ArrayLike, *, timing: npt.ArrayLike | None = None,
                       exact: bool, min_transmission: float | None = None,
                       closed: bool = False,
-                      turns: npt.ArrayLike | None = None) -> Fit | None:
+                      turns: npt.ArrayLike | None = None,
+                      evaluations: int | None = None) -> Fit | None:
     """Solve ``position(params, theta_i) = target_i`` by least squares from ``params``
     and ``inputs`` (radians at each target, running one way; the first is the drawn
     pose's); to rounding when ``exact`` (else the least squares of the distances). The
@@ -355,7 +356,9 @@ def least_squares_fit(family: Family, targets: npt.ArrayLike, params: np.ndarray
     the last (over the whole turn when ``closed``). None when the fit leaves the family
     (a mechanism that cannot be assembled at a target). ``turns`` (poses): the carrier
     also turns by these (radians) from the first target to each (the residual in
-    radians, as a distance of the task's unit size)."""
+    radians, as a distance of the task's unit size). ``evaluations``: the most
+    evaluations of the residuals least squares makes (by default 50 when ``exact``, else
+    100)."""
     targets = np.asarray(targets, dtype=float)
     size = family.size
     free_inputs = timing is None
@@ -394,7 +397,7 @@ def least_squares_fit(family: Family, targets: npt.ArrayLike, params: np.ndarray
     tol = 1e-15 if exact else 1e-9
     found = least_squares(lambda z: residuals(z[None, :])[0][0], z0, jac=jacobian,
                           method="dogbox", x_scale="jac", xtol=tol, ftol=tol, gtol=tol,
-                          max_nfev=50 if exact else 100)
+                          max_nfev=evaluations or (50 if exact else 100))
     r, th = residuals(found.x[None, :])
     n = len(targets)
     r = r[:, :2 * n + (0 if turns is None else n - 1)]

@@ -57,7 +57,8 @@ from chaingraph.synthesis.result import Searched, Solution, Synthesis, ranked
 from chaingraph.synthesis.task import PathTask, check_options, drawn_seed, path_task
 
 __all__ = ["path", "path_search_task", "EXACT", "synthesise_path", "Budget", "BUDGET",
-           "screened_fits", "first_certified", "least_transmission", "slide_span"]
+           "screened_fits", "first_certified", "least_transmission", "slide_span",
+           "spare_unknowns", "passing_fits"]
 
 #: a fit passes its points exactly when every distance is within this of the task's size
 EXACT = 1e-9
@@ -67,6 +68,7 @@ _STEPS = {True: 96, False: 96}           # samples of a path over a turn
 _FITTED = 8                              # fitted starts certified from, without exactness
 _CERTIFIED = 3                           # candidates certified per solution asked for
 _TIMING = 1e-6                           # degrees: a target's input against its timing
+_PASSING_EVALUATIONS = 300               # least squares's, onto a family's set of solutions
 
 
 def path(*, points: Iterable[tuple[float, float]],
@@ -142,12 +144,15 @@ class Budget:
     """How hard the optimiser searches one family: random mechanisms in the coarse
     search (``samples``), least-squares starts and differential evolution's population
     (``starts``), fitted starts certified from (``fitted``), differential evolution's
-    ``generations``."""
+    ``generations``; ``passing``: the most evaluations least squares makes from each
+    start onto a family's set of solutions where it has spare unknowns
+    (:func:`passing_fits`; 0: not tried, the targets fitted only)."""
 
     samples: int
     starts: int
     fitted: int = _FITTED
     generations: int = 100
+    passing: int = _PASSING_EVALUATIONS
 
 
 #: the four-bar's budget, exact (up to five points) and fitted
@@ -179,10 +184,39 @@ def synthesise_path(task: PathTask, family: Family, *, solutions: int,
         # five targets timed in slides: seeds built as the textbooks build them
         starts = np.concatenate([timed_slider_seeds(family, targets, turns,
                                                     timed_guides(targets, turns)), starts])
-    if not exact:
+    fits = []
+    spare = spare_unknowns(family, len(targets), timed=True)
+    if not exact and turns is not None and spare is not None and spare >= 0 and budget.passing:
+        # as many unknowns as timed equations or more: the family passes them exactly
+        fits = passing_fits(family, targets, starts, turns, steps=steps,
+                            min_transmission=task.min_transmission, wanted=solutions,
+                            evaluations=budget.passing)
+    if not exact and len(fits) < solutions:
         best, _ = global_search(family, targets, starts, rng,
                                 generations=budget.generations, **common)
         starts = np.concatenate([best[None, :], starts[:budget.fitted - 1]])
+    elif not exact:             # passed exactly: nothing left to fit
+        starts = starts[:0]
+    if len(starts):
+        fits += _fitted(task, family, targets, starts, turns, steps=steps)
+    fits, rejected = screened_fits(family, fits)
+    # the fits that pass the targets exactly first, the best transmission first; then
+    # the others, the nearest first
+    fits.sort(key=lambda f: (0.0, -least_transmission(family, f))
+              if f.residual <= EXACT / 10 else (1.0, f.residual))
+    found = first_certified(fits, solutions, lambda f: _certified(task, family, frame, f),
+                            rejected, tried=_CERTIFIED * solutions)
+    size = task.size
+    return Synthesis(task, ranked(found, solutions,
+                                  tolerance=EXACT * size if exact else 0.0),
+                     dict(sorted(rejected.items())), Searched(1, 1, budget.samples))
+
+
+def _fitted(task: PathTask, family: Family, targets: np.ndarray, starts: np.ndarray,
+            turns: np.ndarray | None, *, steps: int) -> list[Fit]:
+    """Least squares from each start: to rounding for an exact task (the fits that do
+    not reach it dropped), else the least squares of the distances."""
+    exact = task.exact
     posed, inputs = fit_start(family, starts, targets, steps=steps, timing=turns)
     fits = []
     for p, th in zip(posed, inputs):
@@ -193,17 +227,50 @@ def synthesise_path(task: PathTask, family: Family, *, solutions: int,
                                 closed=task.closed)
         if fit is not None and (not exact or fit.residual <= EXACT / 10):
             fits.append(fit)
-    fits, rejected = screened_fits(family, fits)
-    if exact:
-        fits.sort(key=lambda f: -least_transmission(family, f))
-    else:
-        fits.sort(key=lambda f: f.residual)
-    found = first_certified(fits, solutions, lambda f: _certified(task, family, frame, f),
-                            rejected, tried=_CERTIFIED * solutions)
-    size = task.size
-    return Synthesis(task, ranked(found, solutions,
-                                  tolerance=EXACT * size if exact else 0.0),
-                     dict(sorted(rejected.items())), Searched(1, 1, budget.samples))
+    return fits
+
+
+def spare_unknowns(family: Family, count: int, *, timed: bool) -> int | None:
+    """How many more unknowns than equations passing ``count`` targets exactly gives a
+    family of turning pairs: its parameters (the drawn pose at the first target: its
+    dimensions and the input there), and without a timing the input's ``count - 1``
+    steps, against two equations per target. Zero or more: the targets can be passed
+    exactly (by a set of mechanisms of that dimension, in general); the four-bar has 10
+    parameters (five timed points), a six-bar 16 (eight). None for a family with
+    sliding pairs (its drawn parameters hold more than its dimensions: a line's
+    second point, a block's pair along its line)."""
+    if any(j.kind != "R" for j in family.template):
+        return None
+    return family.size + (0 if timed else count - 1) - 2 * count
+
+
+def passing_fits(family: Family, targets: np.ndarray, starts: np.ndarray,
+                 timing: np.ndarray, *, steps: int, min_transmission: float,
+                 wanted: int, evaluations: int = _PASSING_EVALUATIONS) -> list[Fit]:
+    """Fits that pass timed ``targets`` to rounding (:data:`EXACT`), solved by least
+    squares from each of ``starts`` (best first) with ``evaluations`` at most, for a
+    family with spare unknowns (:func:`spare_unknowns`: its solutions a set,
+    so that least squares converges onto it where the fitted search would stop near
+    it); the search stops once ``wanted`` of them look right by the family's own
+    kinematics (no predicted defect, the transmission angle and the link ratio within
+    bounds)."""
+    posed, inputs = fit_start(family, starts, targets, steps=steps, timing=timing)
+    fits: list[Fit] = []
+    good = 0
+    for p, th in zip(posed, inputs):
+        if not np.all(np.isfinite(p)):
+            continue
+        fit = least_squares_fit(family, targets, p, th, timing=timing, exact=True,
+                                evaluations=evaluations)
+        if fit is None or fit.residual > EXACT / 10:
+            continue
+        fits.append(fit)
+        good += (predicted_defect(family, fit) is None
+                 and least_transmission(family, fit) >= min_transmission
+                 and family.link_ratio(fit.params[None, :])[0] <= MAX_RATIO)
+        if good >= wanted:
+            break
+    return fits
 
 
 def _distinct(fits: list[Fit]) -> list[Fit]:
