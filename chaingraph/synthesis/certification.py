@@ -27,7 +27,7 @@ from scipy.optimize import minimize_scalar  # type: ignore[import-untyped]
 
 from chaingraph.errors import AssemblyError, PoseAdjustedWarning
 from chaingraph.files import dumps, loads
-from chaingraph.kinematics import Motion, solve
+from chaingraph.kinematics import Motion, build_plan, solve
 from chaingraph.kinematics.behaviour import behaviour, four_link_loop, turning_links
 from chaingraph.model.chain import Chain
 from chaingraph.synthesis.result import Curve, Error, Solution
@@ -377,13 +377,16 @@ def transmission_angles(chain: Chain,
     coupler's pin, for a coupler sliding in a block that turns about a fixed pivot; of
     the rocker, for a coupler sliding in the input link, or the angle between the
     rocker and the axis of a cylinder driving it (a sliding input between two moving
-    links: the force's line) (each 0 where the input meets a limit); None for other
-    mechanisms."""
+    links: the force's line) (each 0 where the input meets a limit); for a mechanism of
+    more than four links, its dyads' and groups' (:func:`_dyads_transmission`); None
+    for other mechanisms."""
     m = chain.mechanism
     loop = four_link_loop(chain)
     lead = _input_link(chain)
-    if m is None or loop is None or lead is None:
+    if m is None or lead is None:
         return None
+    if loop is None:
+        return _dyads_transmission(chain, motions)
     free = [x for x in loop[0] if x not in (m.fixed, lead)]
     joint = next(j for j in chain.joints if set(j.links) == set(free))
     coupler = next(x for x in free if any(lead in j.links for j in chain.joints_of(x)))
@@ -411,6 +414,43 @@ def transmission_angles(chain: Chain,
         else:
             return None
         values.append(np.asarray(mu, dtype=float).reshape(-1))
+    mu = np.concatenate(values)
+    return float(np.min(mu)), float(np.max(mu))
+
+
+def _dyads_transmission(chain: Chain,
+                        motions: Sequence[Motion]) -> tuple[float, float] | None:
+    """The transmission angles' range (degrees) of a mechanism of more than four links
+    (a six- or eight-bar), over the rows of ``motions``: at the middle joint of each
+    dyad of turning pairs its solution places (:func:`build_plan`), the angle between
+    its two links (their lines to the joints that carry them); at each turning pair
+    between two links of a group solved together (a triad), the angle between the two
+    links' lines to another of their joints (the first in the chain's order), as the
+    atlas families measure them for their screen. Dyads with a sliding pair are not
+    measured; None where nothing is."""
+    plan = build_plan(chain)
+    lines: list[tuple[str, str, str]] = []       # (at, along one link, along the other)
+    for step in plan.steps:
+        if step.kind == "dyad" and step.pattern == "RRR":
+            ca, cb, cj = step.constraints
+            lines.append((cj.joint, ca.joint, cb.joint))
+        elif step.kind == "group":
+            inside = set(step.links)
+            for j in chain.joints:
+                if j.kind == "R" and set(j.links) <= inside and len(j.links) == 2:
+                    ends = [next(k.id for k in chain.joints if x in k.links and k.id != j.id)
+                            for x in j.links]
+                    lines.append((j.id, ends[0], ends[1]))
+    if not lines:
+        return None
+    values = []
+    for motion in motions:
+        for at, one, other in lines:
+            cx, cy = motion[f"x:{at}"], motion[f"y:{at}"]
+            ux, uy = motion[f"x:{one}"] - cx, motion[f"y:{one}"] - cy
+            vx, vy = motion[f"x:{other}"] - cx, motion[f"y:{other}"] - cy
+            mu = np.degrees(np.arctan2(np.abs(ux * vy - uy * vx), ux * vx + uy * vy))
+            values.append(np.asarray(mu, dtype=float).reshape(-1))
     mu = np.concatenate(values)
     return float(np.min(mu)), float(np.max(mu))
 

@@ -344,7 +344,7 @@ def least_squares_fit(family: Family, targets: npt.ArrayLike, params: np.ndarray
                       exact: bool, min_transmission: float | None = None,
                       closed: bool = False,
                       turns: npt.ArrayLike | None = None,
-                      evaluations: int | None = None) -> Fit | None:
+                      evaluations: int | None = None, bounded: bool = False) -> Fit | None:
     """Solve ``position(params, theta_i) = target_i`` by least squares from ``params``
     and ``inputs`` (radians at each target, running one way; the first is the drawn
     pose's); to rounding when ``exact`` (else the least squares of the distances). The
@@ -358,7 +358,10 @@ def least_squares_fit(family: Family, targets: npt.ArrayLike, params: np.ndarray
     also turns by these (radians) from the first target to each (the residual in
     radians, as a distance of the task's unit size). ``evaluations``: the most
     evaluations of the residuals least squares makes (by default 50 when ``exact``, else
-    100)."""
+    100). ``bounded``: an exact fit keeps the link ratio and the transmission angle
+    within bounds too, by the same further residuals (for a family with more unknowns
+    than equations, whose solutions are a set: they are then sought on it where the
+    bounds hold)."""
     targets = np.asarray(targets, dtype=float)
     size = family.size
     free_inputs = timing is None
@@ -382,6 +385,9 @@ def least_squares_fit(family: Family, targets: npt.ArrayLike, params: np.ndarray
         if not exact:
             r = np.concatenate([r, _penalties(family, p, th, min_transmission, closed),
                                 _between(family, p, th, targets, closed)], axis=1)
+        elif bounded:
+            r = np.concatenate([r, _penalties(family, p, th, min_transmission, closed)],
+                               axis=1)
         return np.where(np.isfinite(r), r, 10.0), th
 
     def jacobian(z):            # central differences, every column in one call

@@ -58,7 +58,7 @@ from chaingraph.synthesis.task import PathTask, check_options, drawn_seed, path_
 
 __all__ = ["path", "path_search_task", "EXACT", "synthesise_path", "Budget", "BUDGET",
            "screened_fits", "first_certified", "least_transmission", "slide_span",
-           "spare_unknowns", "passing_fits"]
+           "spare_unknowns", "passing_fits", "within_bounds", "MARGIN"]
 
 #: a fit passes its points exactly when every distance is within this of the task's size
 EXACT = 1e-9
@@ -69,6 +69,11 @@ _FITTED = 8                              # fitted starts certified from, without
 _CERTIFIED = 3                           # candidates certified per solution asked for
 _TIMING = 1e-6                           # degrees: a target's input against its timing
 _PASSING_EVALUATIONS = 300               # least squares's, onto a family's set of solutions
+#: degrees: an exact fit's transmission angle is sought within the bound by so much
+#: where it has unknowns to spare (sampled more finely, the certification's may be a
+#: little worse)
+MARGIN = 2.0
+_MOVE_EVALUATIONS = 200                  # least squares's, along a set into the bounds
 
 
 def path(*, points: Iterable[tuple[float, float]],
@@ -260,8 +265,8 @@ def passing_fits(family: Family, targets: np.ndarray, starts: np.ndarray,
     for p, th in zip(posed, inputs):
         if not np.all(np.isfinite(p)):
             continue
-        fit = least_squares_fit(family, targets, p, th, timing=timing, exact=True,
-                                evaluations=evaluations)
+        fit = within_bounds(family, targets, p, th, timing=timing,
+                            min_transmission=min_transmission, evaluations=evaluations)
         if fit is None or fit.residual > EXACT / 10:
             continue
         fits.append(fit)
@@ -271,6 +276,28 @@ def passing_fits(family: Family, targets: np.ndarray, starts: np.ndarray,
         if good >= wanted:
             break
     return fits
+
+
+def within_bounds(family: Family, targets: np.ndarray, params: np.ndarray,
+                  inputs: np.ndarray, *, min_transmission: float,
+                  timing: np.ndarray | None = None, turns: np.ndarray | None = None,
+                  evaluations: int | None = None) -> Fit | None:
+    """An exact fit (:func:`least_squares_fit`) from ``params`` and ``inputs``, and where
+    it passes the targets but its transmission angle or link ratio is out of bounds,
+    least squares again from it, onto the same set of solutions where the bounds hold
+    (by :data:`MARGIN`; a family with unknowns to spare can move along its set): that
+    fit if it passes the targets still, else the first (the certification judges it)."""
+    fit = least_squares_fit(family, targets, params, inputs, timing=timing, turns=turns,
+                            exact=True, evaluations=evaluations)
+    if (fit is None or fit.residual > EXACT / 10
+            or (least_transmission(family, fit) >= min_transmission
+                and family.link_ratio(fit.params[None, :])[0] <= MAX_RATIO)):
+        return fit
+    moved = least_squares_fit(family, targets, fit.params, fit.inputs, timing=timing,
+                              turns=turns, exact=True, bounded=True,
+                              evaluations=max(evaluations or 0, _MOVE_EVALUATIONS),
+                              min_transmission=min_transmission + MARGIN)
+    return moved if moved is not None and moved.residual <= EXACT / 10 else fit
 
 
 def _distinct(fits: list[Fit]) -> list[Fit]:

@@ -26,7 +26,6 @@ from chaingraph.synthesis.optimiser import (
     TaskFrame,
     coarse_search,
     fit_start,
-    least_squares_fit,
 )
 from chaingraph.synthesis.path_generation import (
     EXACT,
@@ -35,6 +34,7 @@ from chaingraph.synthesis.path_generation import (
     least_transmission,
     screened_fits,
     slide_span,
+    within_bounds,
 )
 from chaingraph.synthesis.result import Curve, Searched, Solution, Synthesis, ranked
 from chaingraph.synthesis.task import MotionTask
@@ -62,7 +62,8 @@ def synthesise_motion(task: MotionTask, family: Family, *, solutions: int, budge
     for p, th in zip(posed, inputs):
         if not np.all(np.isfinite(p)):
             continue
-        fit = least_squares_fit(family, targets, p, th, exact=True, turns=turns)
+        fit = within_bounds(family, targets, p, th, turns=turns,
+                            min_transmission=task.min_transmission)
         if fit is not None and fit.residual <= EXACT / 10:
             fits.append(fit)
     kept, rejected = screened_fits(family, fits)

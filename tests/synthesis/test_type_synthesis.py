@@ -203,19 +203,22 @@ SIX_BAR_CURVE = [(-49.8, 17.7), (-49.9, 25.1), (-43.3, 20.4), (-31.9, 9.6), (-15
 
 
 @pytest.mark.slow
-def test_a_six_bar_beats_every_four_bar_where_the_task_needs_it():
-    """The whole four-bar search against one six-bar family (what the whole --links 6
-    search finds is at least as good: it ranks this family's solution with the rest)."""
+def test_a_self_crossing_closed_curve_is_fitted_not_passed():
+    """Sixteen points of a Watt I six-bar's self-crossing closed curve, untimed, are 32
+    equations for a four-bar's 25 unknowns and a six-bar's 31: neither passes them, both
+    only fit them (docs/synthesis.md). The four-bar's search certifies a fit at seed 57,
+    within 0.03 of the curve's size; the Stephenson I family carrying the point on L1
+    lists none there: its best fits turn the transmission angle under 30 degrees (which
+    the certification measures for a six-bar's dyads too) or reach the points out of
+    order (a six-bar listed here before, 0.0045 of the size off, was one of them)."""
     points = SIX_BAR_CURVE
+    size = max(math.dist(p, q) for p in points for q in points)
     four = path(points=points, closed=True, seed=57, solutions=1)
+    assert four.solutions and four.solutions[0].error.max <= 0.03 * size
     six = path(points=points, closed=True, seed=57, solutions=1, links=6,
                families=lambda c: c.names[-1] == "Stephenson I six-bar mechanism"
                and c.carrier == "L1")
-    assert six.solutions
-    best_six = six.solutions[0].error.max
-    best_four = four.solutions[0].error.max if four.solutions else math.inf
-    assert best_six < 0.5 * best_four
-    assert six.solutions[0].atlas["links"] == 6
+    assert six.solutions == () and six.rejected.get("transmission angle", 0) >= 1
 
 
 def six_bar_poses(count):
