@@ -653,19 +653,14 @@ class AtlasFamily(Family):
         p = np.atleast_2d(np.asarray(params, dtype=float))
         if not self.sliding:
             return super().sweep(p, steps)
-        s0 = self.first_input(p)
-        drawn = self._drawn(p)
-        spread = np.max(np.ptp(drawn, axis=1), axis=1)
-        probe = s0[:, None] + _REACH * spread[:, None] * np.linspace(-1.0, 1.0,
-                                                                     2 * _PROBES + 1)
-        with np.errstate(all="ignore"):
-            ok = np.isfinite(self.positions(p, probe)[0])
+        probe, ok = self._probed(p)
+        half = probe.shape[1] // 2
         rows = np.arange(len(p))
         ends = []
         for side in (1, -1):        # the last probe that assembles, and the next beyond
-            run = np.cumprod(ok[:, _PROBES::side], axis=1).sum(axis=1)
-            last = _PROBES + side * np.maximum(run - 1, 0)
-            beyond = np.clip(last + side, 0, 2 * _PROBES)
+            run = np.cumprod(ok[:, half::side], axis=1).sum(axis=1)
+            last = half + side * np.maximum(run - 1, 0)
+            beyond = np.clip(last + side, 0, 2 * half)
             good, bad = probe[rows, last], probe[rows, beyond]
             for _ in range(_ENDS):
                 mid = 0.5 * (good + bad)
@@ -675,7 +670,18 @@ class AtlasFamily(Family):
             ends.append(good)
         hi, lo = ends
         theta = lo[:, None] + (hi - lo)[:, None] * np.linspace(0.0, 1.0, steps)
-        return np.where(ok[:, _PROBES:_PROBES + 1], theta, np.nan)
+        return np.where(ok[:, half:half + 1], theta, np.nan)
+
+    def _probed(self, p):
+        """A sliding input's probes (M, 2 * :data:`_PROBES` + 1: :data:`_REACH` times
+        the mechanism's spread either way of the drawn slide, evenly) and where the
+        chain assembles there."""
+        s0 = self.first_input(p)
+        spread = np.max(np.ptp(self._drawn(p), axis=1), axis=1)
+        probe = s0[:, None] + _REACH * spread[:, None] * np.linspace(-1.0, 1.0,
+                                                                     2 * _PROBES + 1)
+        with np.errstate(all="ignore"):
+            return probe, np.isfinite(self.positions(p, probe)[0])
 
     def sample(self, rng: np.random.Generator, count: int) -> np.ndarray:
         """Random mechanisms of the chain that turn their input fully: the joints
@@ -863,6 +869,10 @@ def _to_normal(u, axis):
 _GRID = 24        # steps of the continuation over a turn of the input
 _NEWTON = 6       # Newton iterations per step (and at each asked input)
 _CLOSED = 1e-9    # a loop closes when every joint is within this (of the unit size)
+_CORRECTION = 0.02  # the largest correction of a continuation step's prediction kept
+_HALVINGS = 8     # halvings of a continuation step before a mechanism stops there
+_OPEN_HALVINGS = 4  # the same where the step's loop does not close at all
+_MARCHES = 400    # steps (kept or halved) of one continuation before it stops
 
 
 class LoopFamily(AtlasFamily):
@@ -1046,8 +1056,9 @@ class LoopFamily(AtlasFamily):
     def _nodes(self, params):
         """The continuation over a turn from the drawn pose: the unknowns at
         :data:`_GRID` + 1 even steps of the input (M, G + 1, 3U; NaN past where a
-        mechanism stops closing), and the sliding pairs' normals. The last mechanisms'
-        are kept: a fit asks for their points, transmission angles and turns in turn."""
+        mechanism stops closing), their rates per unit input there (the same shape) and
+        the sliding pairs' normals. The last mechanisms' are kept: a fit asks for their
+        points, transmission angles and turns in turn."""
         p = np.ascontiguousarray(params, dtype=float)
         key = (p.shape, p.tobytes())
         if self._kept is not None and self._kept[0] == key:
@@ -1058,62 +1069,142 @@ class LoopFamily(AtlasFamily):
         if self.sliding:        # both ways from the drawn slide, centre node _GRID
             nodes = np.full((m, 2 * _GRID + 1, n), np.nan)
             nodes[:, _GRID] = 0.0
+            rates = np.full_like(nodes, np.nan)
             for way in (1, -1):
-                self._continued(p, drawn, normals, nodes, way * self._reach(p) / _GRID, way)
+                self._continued(p, drawn, normals, (nodes, rates),
+                                way * self._reach(p) / _GRID, way)
         else:
             nodes = np.full((m, _GRID + 1, n), np.nan)
             nodes[:, 0] = 0.0
-            self._continued(p, drawn, normals, nodes, np.full(m, 2 * math.pi / _GRID), 1)
-        self._kept = (key, (nodes, normals))
-        return nodes, normals
+            rates = np.full_like(nodes, np.nan)
+            self._continued(p, drawn, normals, (nodes, rates),
+                            np.full(m, 2 * math.pi / _GRID), 1)
+        self._kept = (key, (nodes, rates, normals))
+        return nodes, rates, normals
 
     def _reach(self, params):
         """A sliding input's slides continued either way (M,): as far as
         :meth:`AtlasFamily.sweep` probes."""
         return _REACH * np.max(np.ptp(self._drawn(params), axis=1), axis=1)
 
-    def _continued(self, params, drawn, normals, nodes, h, way):
-        """The continuation (in place) from the node of the drawn pose (``nodes``' first
-        for a turn, its middle for a slide) by steps ``h`` (M,) of the input, ``way`` by
-        ``way`` node, NaN past where a mechanism stops closing."""
+    def _probed(self, p):
+        """As :meth:`AtlasFamily._probed`, the probes the continuation's nodes (where
+        it closes: the run from the drawn slide to a fold, which the solver's range
+        ends at too)."""
+        nodes, _, _ = self._nodes(p)
+        probe = (self.first_input(p)[:, None] + (self._reach(p) / _GRID)[:, None]
+                 * np.arange(-_GRID, _GRID + 1))
+        return probe, np.all(np.isfinite(nodes), axis=2)
+
+    def _continued(self, params, drawn, normals, table, h, way):
+        """The continuation (in place: ``table`` the nodes and their rates) from the
+        node of the drawn pose (the first for a turn, the middle for a slide) by steps
+        ``h`` (M,) of the input, ``way`` by ``way`` node (each step :meth:`_marched`),
+        NaN past where a mechanism stops closing."""
+        nodes, rates = table
         m, n = len(params), nodes.shape[2]
         start = 0 if not self.sliding else _GRID
         z = np.zeros((m, n))
+        dz = self._rate(params, drawn, normals, z, h)
         alive = np.ones(m, dtype=bool)
         for g in range(1, _GRID + 1):
-            move = self._moves(params, (g * h)[:, None])[:, 0]
-            z, ok = self._newton(drawn, move, z, normals, settled=1e-7)
+            z, dz, ok = self._marched(params, drawn, normals, (z, dz), (g - 1) * h, g * h)
             alive &= ok
-            z = np.where(alive[:, None], z, 0.0)
+            z, dz = (np.where(alive[:, None], v, 0.0) for v in (z, dz))
             nodes[:, start + way * g] = np.where(alive[:, None], z, np.nan)
+            rates[:, start + way * g] = np.where(alive[:, None], dz, np.nan)
+        rates[:, start] = rates[:, start + way]     # (the drawn node's: its neighbour's)
+
+    def _rate(self, params, drawn, normals, z, h):
+        """The unknowns' rates per unit input (R, 3U) at the drawn pose (``z``, input
+        0): the loop-closure equations' tangent, their change with the input by a
+        central difference (a millionth of the step ``h`` (R,) either way)."""
+        d = 1e-6 * h
+        f = [self._closure(drawn, self._moves(params, v[:, None])[:, 0], z, normals)
+             for v in (d, -d, 0.0 * d)]
+        rate = newton_step(f[2][1], (f[0][0] - f[1][0]) / (2.0 * d[:, None]))
+        return np.where(np.isfinite(rate), rate, 0.0)
+
+    def _marched(self, params, drawn, normals, state, u, end, *, settled=1e-7,
+                 halvings=_HALVINGS):
+        """Rows' unknowns continued from the input ``u`` (R,; from the drawn pose) to
+        ``end`` (R,): each step predicted along the rate (``state``: the unknowns and
+        their rates per unit input) and corrected by :meth:`_newton`, kept where the
+        correction is within :data:`_CORRECTION` (radians, or of the mechanism's
+        spread) and halved where not (so a branch passing near another, or turning
+        fast, is not left for it), at most ``halvings`` times; every row corrected
+        at least once (to ``settled``: :meth:`_newton`'s). Returns the unknowns, their
+        rates and whether each row got there."""
+        z, dz = (np.array(v, dtype=float) for v in state)
+        u, end = np.array(u, dtype=float), np.asarray(end, dtype=float)
+        spread = np.max(np.ptp(drawn, axis=1), axis=1)
+        scale = np.tile(np.stack([spread, spread, np.ones(len(z))], axis=1),
+                        (1, len(self._unknown)))
+        full = np.abs(end - u)
+        step = full.copy()
+        ok = np.ones(len(z), dtype=bool)
+        done = np.zeros(len(z), dtype=bool)
+        for _ in range(_MARCHES):
+            i = np.nonzero(ok & ~done)[0]
+            if not i.size:
+                break
+            left = end[i] - u[i]
+            s = np.sign(left) * np.minimum(step[i], np.abs(left))
+            guess = z[i] + dz[i] * s[:, None]
+            move = self._moves(params[i], (u[i] + s)[:, None])[:, 0]
+            zn, conv = self._newton(drawn[i], move, guess, normals[i], settled=settled)
+            with np.errstate(invalid="ignore"):
+                fix = np.max(np.abs(zn - guess) / scale[i], axis=1)
+                good = conv & (fix <= _CORRECTION)
+            a, r = i[good], i[~good]
+            moved = s[good] != 0.0
+            dz[a[moved]] = (zn[good][moved] - z[a[moved]]) / s[good][moved][:, None]
+            z[a] = zn[good]
+            u[a] = np.where(np.abs(s[good]) >= np.abs(left[good]), end[a], u[a] + s[good])
+            done[a] = u[a] == end[a]
+            step[a] = np.minimum(2.0 * np.abs(s[good]), full[a])
+            step[r] = 0.5 * np.abs(s[~good])
+            # a step that does not close is halved twice at most (a fold, where the
+            # mechanism stops, is the usual cause); one that closes far from its
+            # prediction (another branch near) up to ``halvings`` times
+            ok[r] = step[r] >= full[r] / 2.0 ** np.where(conv[~good], halvings, _OPEN_HALVINGS)
+        return z, dz, ok & done
 
     def _solve(self, params, theta):
         """As :meth:`AtlasFamily._solve`, by continuation from the drawn pose (see the
-        class); the asked inputs taken modulo a turn."""
+        class): from the node at or before each asked input (nearer the drawn pose),
+        :meth:`_marched` there; the asked inputs taken modulo a turn."""
         drawn = self._drawn(params)
         theta = np.asarray(theta, dtype=float)
         m, k = theta.shape
         n = 3 * len(self._unknown)
-        h = 2 * math.pi / _GRID
-        nodes, normals = self._nodes(params)
+        h = np.full((m, 1), 2 * math.pi / _GRID)
+        nodes, rates, normals = self._nodes(params)
         turn = theta - self.first_input(params)[:, None]
         if self.sliding:        # the node at or nearer the drawn slide; none beyond reach
             h = self._reach(params)[:, None] / _GRID
             node = _GRID + np.trunc(turn / h)
             node = np.where(np.abs(node - _GRID) <= _GRID, node, -1).astype(int)
+            at = (node - _GRID) * h
             move = self._moves(params, turn)
             move = move.reshape((m * k,) + move.shape[2:])
         else:
             turn = turn % (2 * math.pi)
             node = np.minimum(np.floor(turn / h).astype(int), _GRID)
+            at = node * h
             move = turn.reshape(-1)
-        start = np.take_along_axis(nodes, np.maximum(node, 0)[:, :, None],
-                                   axis=1).reshape(m * k, n)
-        start = np.where((node >= 0).reshape(-1, 1), start, np.nan)
-        rows = np.repeat(drawn, k, axis=0)
-        z, ok = self._newton(rows, move, np.nan_to_num(start),
-                             np.repeat(normals, k, axis=0))
-        z = np.where((ok & np.all(np.isfinite(start), axis=1))[:, None], z, np.nan)
+        start, rate = (np.take_along_axis(v, np.maximum(node, 0)[:, :, None],
+                                          axis=1).reshape(m * k, n) for v in (nodes, rates))
+        known = (node >= 0).reshape(-1) & np.all(np.isfinite(start), axis=1)
+        rows, params_rows = np.repeat(drawn, k, axis=0), np.repeat(params, k, axis=0)
+        normal_rows = np.repeat(normals, k, axis=0)
+        z = np.zeros((m * k, n))
+        if known.any():
+            z[known], _, known[known] = self._marched(
+                params_rows[known], rows[known], normal_rows[known],
+                (start[known], np.nan_to_num(rate[known])), at.reshape(-1)[known],
+                turn.reshape(-1)[known], settled=1e-14)
+        z = np.where(known[:, None], z, np.nan)
         motions = self._state_motions(rows, move, z)
         return {x: None if v is None else (v[0].reshape(m, k), v[1].reshape(m, k),
                                            (v[2][0].reshape(m, k), v[2][1].reshape(m, k)),
