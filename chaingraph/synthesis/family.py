@@ -1107,8 +1107,10 @@ class LoopFamily(AtlasFamily):
         z = np.zeros((m, n))
         dz = self._rate(params, drawn, normals, z, h)
         alive = np.ones(m, dtype=bool)
+        step = np.abs(h)
         for g in range(1, _GRID + 1):
-            z, dz, ok = self._marched(params, drawn, normals, (z, dz), (g - 1) * h, g * h)
+            z, dz, ok, step = self._marched(params, drawn, normals, (z, dz), (g - 1) * h,
+                                            g * h, first=2.0 * step)
             alive &= ok
             z, dz = (np.where(alive[:, None], v, 0.0) for v in (z, dz))
             nodes[:, start + way * g] = np.where(alive[:, None], z, np.nan)
@@ -1126,22 +1128,24 @@ class LoopFamily(AtlasFamily):
         return np.where(np.isfinite(rate), rate, 0.0)
 
     def _marched(self, params, drawn, normals, state, u, end, *, settled=1e-7,
-                 halvings=_HALVINGS):
+                 halvings=_HALVINGS, first=None):
         """Rows' unknowns continued from the input ``u`` (R,; from the drawn pose) to
         ``end`` (R,): each step predicted along the rate (``state``: the unknowns and
         their rates per unit input) and corrected by :meth:`_newton`, kept where the
         correction is within :data:`_CORRECTION` (radians, or of the mechanism's
         spread) and halved where not (so a branch passing near another, or turning
         fast, is not left for it), at most ``halvings`` times; every row corrected
-        at least once (to ``settled``: :meth:`_newton`'s). Returns the unknowns, their
-        rates and whether each row got there."""
+        at least once (to ``settled``: :meth:`_newton`'s); the first step ``first``
+        (R,) when given (the last kept before, doubled), else the whole way. Returns the
+        unknowns, their rates, whether each row got there and its last step kept."""
         z, dz = (np.array(v, dtype=float) for v in state)
         u, end = np.array(u, dtype=float), np.asarray(end, dtype=float)
         spread = np.max(np.ptp(drawn, axis=1), axis=1)
         scale = np.tile(np.stack([spread, spread, np.ones(len(z))], axis=1),
                         (1, len(self._unknown)))
         full = np.abs(end - u)
-        step = full.copy()
+        step = full.copy() if first is None else np.minimum(first, full)
+        kept = step.copy()
         ok = np.ones(len(z), dtype=bool)
         done = np.zeros(len(z), dtype=bool)
         for _ in range(_MARCHES):
@@ -1162,13 +1166,14 @@ class LoopFamily(AtlasFamily):
             z[a] = zn[good]
             u[a] = np.where(np.abs(s[good]) >= np.abs(left[good]), end[a], u[a] + s[good])
             done[a] = u[a] == end[a]
+            kept[a] = np.abs(s[good])
             step[a] = np.minimum(2.0 * np.abs(s[good]), full[a])
             step[r] = 0.5 * np.abs(s[~good])
             # a step that does not close is halved twice at most (a fold, where the
             # mechanism stops, is the usual cause); one that closes far from its
             # prediction (another branch near) up to ``halvings`` times
             ok[r] = step[r] >= full[r] / 2.0 ** np.where(conv[~good], halvings, _OPEN_HALVINGS)
-        return z, dz, ok & done
+        return z, dz, ok & done, kept
 
     def _solve(self, params, theta):
         """As :meth:`AtlasFamily._solve`, by continuation from the drawn pose (see the
@@ -1200,7 +1205,7 @@ class LoopFamily(AtlasFamily):
         normal_rows = np.repeat(normals, k, axis=0)
         z = np.zeros((m * k, n))
         if known.any():
-            z[known], _, known[known] = self._marched(
+            z[known], _, known[known], _ = self._marched(
                 params_rows[known], rows[known], normal_rows[known],
                 (start[known], np.nan_to_num(rate[known])), at.reshape(-1)[known],
                 turn.reshape(-1)[known], settled=1e-14)
