@@ -1381,6 +1381,11 @@ class CylinderDyads(CylinderFamily):
         self._on_block = {j.id for j in self.template
                           if self._block in j.links and j.id != joint}
 
+    def _probed(self, p):
+        """As :meth:`AtlasFamily._probed`: the closed form at even probes (no
+        continuation's nodes)."""
+        return AtlasFamily._probed(self, p)
+
     def _solve(self, params, theta):
         """Every link's motion at the slides ``theta`` ((M, K), from the drawn pose):
         the RRR dyads of :func:`cylinder_plan`, each link's joints where its own frame
