@@ -873,6 +873,7 @@ _CORRECTION = 0.02  # the largest correction of a continuation step's prediction
 _HALVINGS = 8     # halvings of a continuation step before a mechanism stops there
 _OPEN_HALVINGS = 4  # the same where the step's loop does not close at all
 _MARCHES = 400    # steps (kept or halved) of one continuation before it stops
+_ENOUGH = 1e-7   # a continuation's nodes closed to this (of the unit size) need no more
 
 
 class LoopFamily(AtlasFamily):
@@ -977,24 +978,25 @@ class LoopFamily(AtlasFamily):
         the guide's) and their Jacobian (R, 2E, 3U), from the unknowns."""
         rows = len(z)
         unknown = len(self._unknown)
+        links = len(self._links)
         d = drawn[:, self._joint_rows]                                   # (R, E, 2)
+        # every link's motion (c, s, p, q) once: the fixed link's the identity
+        c, s = np.ones((rows, links)), np.zeros((rows, links))
+        p, q = np.zeros((rows, links, 2)), np.zeros((rows, links, 2))
+        lead = self._lead(drawn[:, self._index[self._pivot]], turn)
+        c[:, self._driver_col], s[:, self._driver_col] = lead[0], lead[1]
+        p[:, self._driver_col], q[:, self._driver_col] = lead[2], lead[3]
+        cols = self._unknown_cols
+        q[:, cols] = drawn[:, self._anchor_rows]
+        p[:, cols] = q[:, cols] + z.reshape(rows, unknown, 3)[:, :, :2]
+        c[:, cols], s[:, cols] = np.cos(z[:, 2::3]), np.sin(z[:, 2::3])
         sides = []
-        for links in (self._first, self._second):
-            c, s, p, q = (np.ones((rows, len(self._links))), np.zeros((rows, len(self._links))),
-                          np.zeros((rows, len(self._links), 2)), np.zeros((rows, len(self._links), 2)))
-            pivot = drawn[:, self._index[self._pivot]]
-            lead = self._lead(pivot, turn)
-            c[:, self._driver_col], s[:, self._driver_col] = lead[0], lead[1]
-            p[:, self._driver_col], q[:, self._driver_col] = lead[2], lead[3]
-            cols = self._unknown_cols
-            q[:, cols] = drawn[:, self._anchor_rows]
-            p[:, cols] = q[:, cols] + z.reshape(rows, unknown, 3)[:, :, :2]
-            c[:, cols], s[:, cols] = (np.cos(z[:, 2::3]), np.sin(z[:, 2::3]))
-            v = d - q[:, links]
-            cl, sl = c[:, links], s[:, links]
+        for side in (self._first, self._second):
+            v = d - q[:, side]
+            cl, sl = c[:, side], s[:, side]
             moved = np.stack([cl * v[..., 0] - sl * v[..., 1], sl * v[..., 0] + cl * v[..., 1]],
                              axis=2)
-            sides.append((p[:, links] + moved, moved))
+            sides.append((p[:, side] + moved, moved))
         (pa, ra), (pb, rb) = sides
         f = pa - pb
         jac = np.zeros((rows, len(self._first), 2, unknown, 3))
@@ -1031,19 +1033,46 @@ class LoopFamily(AtlasFamily):
         rows[:, :, 1, :, 2] = sb - sa
         jac[:, e] = rows
 
-    def _newton(self, drawn, turn, z, normals=None, *, settled: float = 1e-14):
-        """Newton's iterations on the loop-closure equations from ``z`` (until no
-        unknown moves by more than ``settled``): the unknowns and whether they close
-        (to :data:`_CLOSED`)."""
+    def _newton(self, drawn, turn, z, normals=None, *, settled: float = 1e-14,
+                enough: float | None = None):
+        """Newton's iterations on the loop-closure equations from ``z``, each row's
+        until none of its unknowns moves by more than ``settled`` or (when ``enough``
+        is given) its equations are within ``enough`` (of the unit size; then with no
+        step more): a row that has settled is left as it is, its answer not depending
+        on the others'. The unknowns and whether they close (to ``settled`` or
+        :data:`_CLOSED`)."""
+        z = np.array(z, dtype=float)
+        size = np.maximum(1.0, np.abs(drawn).max(axis=(1, 2)))
+        gap = np.full(len(z), np.nan)
+        live = np.arange(len(z))
+        stale = []              # the rows stepped since their equations were last found
         for _ in range(_NEWTON):
-            f, jac = self._closure(drawn, turn, z, normals)
+            if live.size == len(z):
+                f, jac = self._closure(drawn, turn, z, normals)
+            else:
+                f, jac = self._closure(drawn[live], turn[live], z[live],
+                                       None if normals is None else normals[live])
+            gap[live] = np.max(np.abs(f), axis=1)
+            if enough is not None:
+                going = ~(gap[live] <= enough * size[live])
+                live, f, jac = live[going], f[going], jac[going]
+                if not live.size:
+                    break
             step = newton_step(jac, f)         # the kernel's step (NaN where not finite)
-            z = z + step
-            if not np.any(np.abs(step[np.isfinite(step)]) > settled):
+            z[live] += step
+            with np.errstate(invalid="ignore"):
+                moving = np.any(np.abs(step) > settled, axis=1)
+            stale.append(live[~moving])
+            live = live[moving]
+            if not live.size:
                 break
-        f, _ = self._closure(drawn, turn, z, normals)
-        gap = np.max(np.abs(f), axis=1)
-        return z, gap <= max(settled, _CLOSED) * np.maximum(1.0, np.abs(drawn).max(axis=(1, 2)))
+        stale.append(live)
+        last = np.concatenate(stale)
+        if last.size:
+            f, _ = self._closure(drawn[last], turn[last], z[last],
+                                 None if normals is None else normals[last])
+            gap[last] = np.max(np.abs(f), axis=1)
+        return z, gap <= max(settled, _CLOSED) * size
 
     def _normals(self, params):
         """The sliding pairs' drawn normals (M, S, 2), in :meth:`_closure`'s order."""
@@ -1056,9 +1085,9 @@ class LoopFamily(AtlasFamily):
     def _nodes(self, params):
         """The continuation over a turn from the drawn pose: the unknowns at
         :data:`_GRID` + 1 even steps of the input (M, G + 1, 3U; NaN past where a
-        mechanism stops closing), their rates per unit input there (the same shape) and
-        the sliding pairs' normals. The last mechanisms' are kept: a fit asks for their
-        points, transmission angles and turns in turn."""
+        mechanism stops closing), the prediction's state there (M, G + 1, 6U + 1: see
+        :meth:`_marched`) and the sliding pairs' normals. The last mechanisms' are kept:
+        a fit asks for their points, transmission angles and turns in turn."""
         p = np.ascontiguousarray(params, dtype=float)
         key = (p.shape, p.tobytes())
         if self._kept is not None and self._kept[0] == key:
@@ -1066,19 +1095,15 @@ class LoopFamily(AtlasFamily):
         drawn = self._drawn(p)
         m, n = len(p), 3 * len(self._unknown)
         normals = self._normals(p)
-        if self.sliding:        # both ways from the drawn slide, centre node _GRID
-            nodes = np.full((m, 2 * _GRID + 1, n), np.nan)
-            nodes[:, _GRID] = 0.0
-            rates = np.full_like(nodes, np.nan)
-            for way in (1, -1):
-                self._continued(p, drawn, normals, (nodes, rates),
-                                way * self._reach(p) / _GRID, way)
-        else:
-            nodes = np.full((m, _GRID + 1, n), np.nan)
-            nodes[:, 0] = 0.0
-            rates = np.full_like(nodes, np.nan)
-            self._continued(p, drawn, normals, (nodes, rates),
-                            np.full(m, 2 * math.pi / _GRID), 1)
+        centre = _GRID if self.sliding else 0       # a slide's both ways from the middle
+        nodes = np.full((m, centre + _GRID + 1, n), np.nan)
+        nodes[:, centre] = 0.0
+        rates = np.full((m, centre + _GRID + 1, 2 * n + 1), np.nan)
+        h = self._reach(p) / _GRID if self.sliding else np.full(m, 2 * math.pi / _GRID)
+        rates[:, centre] = 0.0
+        rates[:, centre, :n] = self._rate(p, drawn, normals, np.zeros((m, n)), h)
+        for way in ((1, -1) if self.sliding else (1,)):
+            self._continued(p, drawn, normals, (nodes, rates), way * h, way)
         self._kept = (key, (nodes, rates, normals))
         return nodes, rates, normals
 
@@ -1097,25 +1122,24 @@ class LoopFamily(AtlasFamily):
         return probe, np.all(np.isfinite(nodes), axis=2)
 
     def _continued(self, params, drawn, normals, table, h, way):
-        """The continuation (in place: ``table`` the nodes and their rates) from the
-        node of the drawn pose (the first for a turn, the middle for a slide) by steps
-        ``h`` (M,) of the input, ``way`` by ``way`` node (each step :meth:`_marched`),
-        NaN past where a mechanism stops closing."""
+        """The continuation (in place: ``table`` the nodes and the prediction's state
+        there) from the node of the drawn pose (the first for a turn, the middle for a
+        slide; its state the tangent) by steps ``h`` (M,) of the input, ``way`` by
+        ``way`` node (each step :meth:`_marched`, only the rows still closing), NaN past
+        where a mechanism stops closing."""
         nodes, rates = table
-        m, n = len(params), nodes.shape[2]
         start = 0 if not self.sliding else _GRID
-        z = np.zeros((m, n))
-        dz = self._rate(params, drawn, normals, z, h)
-        alive = np.ones(m, dtype=bool)
+        z, rate = nodes[:, start], rates[:, start]
         step = np.abs(h)
+        a = np.arange(len(params))
         for g in range(1, _GRID + 1):
-            z, dz, ok, step = self._marched(params, drawn, normals, (z, dz), (g - 1) * h,
-                                            g * h, first=2.0 * step)
-            alive &= ok
-            z, dz = (np.where(alive[:, None], v, 0.0) for v in (z, dz))
-            nodes[:, start + way * g] = np.where(alive[:, None], z, np.nan)
-            rates[:, start + way * g] = np.where(alive[:, None], dz, np.nan)
-        rates[:, start] = rates[:, start + way]     # (the drawn node's: its neighbour's)
+            z, rate, ok, step = self._marched(params[a], drawn[a], normals[a], (z, rate),
+                                              (g - 1) * h[a], g * h[a], first=step)
+            a, z, rate, step = a[ok], z[ok], rate[ok], step[ok]
+            if not a.size:
+                break
+            nodes[a, start + way * g] = z
+            rates[a, start + way * g] = rate
 
     def _rate(self, params, drawn, normals, z, h):
         """The unknowns' rates per unit input (R, 3U) at the drawn pose (``z``, input
@@ -1130,22 +1154,27 @@ class LoopFamily(AtlasFamily):
     def _marched(self, params, drawn, normals, state, u, end, *, settled=1e-7,
                  halvings=_HALVINGS, first=None):
         """Rows' unknowns continued from the input ``u`` (R,; from the drawn pose) to
-        ``end`` (R,): each step predicted along the rate (``state``: the unknowns and
-        their rates per unit input) and corrected by :meth:`_newton`, kept where the
-        correction is within :data:`_CORRECTION` (radians, or of the mechanism's
-        spread) and halved where not (so a branch passing near another, or turning
-        fast, is not left for it), at most ``halvings`` times; every row corrected
-        at least once (to ``settled``: :meth:`_newton`'s); the first step ``first``
-        (R,) when given (the last kept before, doubled), else the whole way. Returns the
-        unknowns, their rates, whether each row got there and its last step kept."""
-        z, dz = (np.array(v, dtype=float) for v in state)
+        ``end`` (R,). ``state``: the unknowns (R, N) and the prediction's state (R,
+        2N + 1: the unknowns' rate d1 per unit input, its change d2 and the last step t,
+        so that the unknowns a step s on are predicted z + s (d1 + d2 (s + t)): the
+        quadratic through the last three points, or the tangent at the drawn pose).
+        Each step is predicted so and corrected by :meth:`_newton` (each row to
+        ``settled``), kept where the correction is within :data:`_CORRECTION` (radians,
+        or of the mechanism's spread) and halved where not (so a branch passing near
+        another, or turning fast, is not left for it), at most ``halvings`` times; a
+        kept step's next is sized for a correction of half that (the correction grows
+        as the step's cube), at most doubled. Only the rows still marching are
+        computed. The first step ``first`` (R,) when given (the step before), else the
+        whole way. Returns the unknowns, the prediction's state, whether each row got
+        there and the step to try next."""
+        z, rate = (np.array(v, dtype=float) for v in state)
+        n = z.shape[1]
         u, end = np.array(u, dtype=float), np.asarray(end, dtype=float)
         spread = np.max(np.ptp(drawn, axis=1), axis=1)
         scale = np.tile(np.stack([spread, spread, np.ones(len(z))], axis=1),
                         (1, len(self._unknown)))
         full = np.abs(end - u)
-        step = full.copy() if first is None else np.minimum(first, full)
-        kept = step.copy()
+        step = full.copy() if first is None else np.array(first, dtype=float)
         ok = np.ones(len(z), dtype=bool)
         done = np.zeros(len(z), dtype=bool)
         for _ in range(_MARCHES):
@@ -1153,27 +1182,38 @@ class LoopFamily(AtlasFamily):
             if not i.size:
                 break
             left = end[i] - u[i]
-            s = np.sign(left) * np.minimum(step[i], np.abs(left))
-            guess = z[i] + dz[i] * s[:, None]
+            # the step, or the rest of the way in one or two (no short last one)
+            reach = np.abs(left) <= step[i] * (1.0 + 1e-9)
+            s = np.where(reach, left, np.where(np.abs(left) <= 2.0 * step[i], 0.5 * left,
+                                                np.sign(left) * step[i]))
+            d1, d2, t = rate[i, :n], rate[i, n:2 * n], rate[i, 2 * n]
+            guess = z[i] + s[:, None] * (d1 + d2 * (s + t)[:, None])
             move = self._moves(params[i], (u[i] + s)[:, None])[:, 0]
-            zn, conv = self._newton(drawn[i], move, guess, normals[i], settled=settled)
-            with np.errstate(invalid="ignore"):
+            zn, conv = self._newton(drawn[i], move, guess, normals[i], settled=settled,
+                                    enough=settled if settled >= _ENOUGH else None)
+            with np.errstate(invalid="ignore", divide="ignore"):
                 fix = np.max(np.abs(zn - guess) / scale[i], axis=1)
                 good = conv & (fix <= _CORRECTION)
-            a, r = i[good], i[~good]
-            moved = s[good] != 0.0
-            dz[a[moved]] = (zn[good][moved] - z[a[moved]]) / s[good][moved][:, None]
+                grow = np.minimum((0.5 * _CORRECTION / fix[good]) ** (1.0 / 3.0), 2.0)
+            a, r, sa = i[good], i[~good], s[good]
+            moved = sa != 0.0
+            span = sa + t[good]
+            with np.errstate(invalid="ignore", divide="ignore"):
+                d1n = (zn[good] - z[a]) / sa[:, None]
+                d2n = np.where((span != 0.0)[:, None], (d1n - d1[good]) / span[:, None], 0.0)
+            rate[a] = np.where(moved[:, None], np.concatenate([d1n, d2n, sa[:, None]], axis=1),
+                               rate[a])
             z[a] = zn[good]
-            u[a] = np.where(np.abs(s[good]) >= np.abs(left[good]), end[a], u[a] + s[good])
-            done[a] = u[a] == end[a]
-            kept[a] = np.abs(s[good])
-            step[a] = np.minimum(2.0 * np.abs(s[good]), full[a])
+            u[a] = np.where(reach[good], end[a], u[a] + sa)
+            done[a] = reach[good]
+            # a step cut short at the end does not shorten the next
+            step[a] = np.maximum(np.abs(sa) * grow, np.where(reach[good], step[a], 0.0))
             step[r] = 0.5 * np.abs(s[~good])
-            # a step that does not close is halved twice at most (a fold, where the
+            # a step that does not close is halved four times at most (a fold, where the
             # mechanism stops, is the usual cause); one that closes far from its
             # prediction (another branch near) up to ``halvings`` times
             ok[r] = step[r] >= full[r] / 2.0 ** np.where(conv[~good], halvings, _OPEN_HALVINGS)
-        return z, dz, ok & done, kept
+        return z, rate, ok & done, step
 
     def _solve(self, params, theta):
         """As :meth:`AtlasFamily._solve`, by continuation from the drawn pose (see the
@@ -1199,7 +1239,7 @@ class LoopFamily(AtlasFamily):
             at = node * h
             move = turn.reshape(-1)
         start, rate = (np.take_along_axis(v, np.maximum(node, 0)[:, :, None],
-                                          axis=1).reshape(m * k, n) for v in (nodes, rates))
+                                          axis=1).reshape(m * k, -1) for v in (nodes, rates))
         known = (node >= 0).reshape(-1) & np.all(np.isfinite(start), axis=1)
         rows, params_rows = np.repeat(drawn, k, axis=0), np.repeat(params, k, axis=0)
         normal_rows = np.repeat(normals, k, axis=0)
@@ -1207,7 +1247,7 @@ class LoopFamily(AtlasFamily):
         if known.any():
             z[known], _, known[known], _ = self._marched(
                 params_rows[known], rows[known], normal_rows[known],
-                (start[known], np.nan_to_num(rate[known])), at.reshape(-1)[known],
+                (start[known], rate[known]), at.reshape(-1)[known],
                 turn.reshape(-1)[known], settled=1e-14)
         z = np.where(known[:, None], z, np.nan)
         motions = self._state_motions(rows, move, z)
