@@ -876,6 +876,14 @@ _MARCHES = 400    # steps (kept or halved) of one continuation before it stops
 _ENOUGH = 1e-7   # a continuation's nodes closed to this (of the unit size) need no more
 
 
+def _det_sign(jac: np.ndarray) -> np.ndarray:
+    """The signs of stacked square matrices' determinants (0 where singular or not
+    finite)."""
+    with np.errstate(all="ignore"):
+        sign = np.linalg.slogdet(np.nan_to_num(jac, nan=0.0, posinf=0.0, neginf=0.0))[0]
+    return np.where(np.isfinite(jac).all(axis=(1, 2)), sign, 0.0)
+
+
 class LoopFamily(AtlasFamily):
     """A chain of turning pairs whose links beyond the driver are not found dyad by dyad
     (a triad: the Stephenson III, the Stephenson II driven by its binary link): every
@@ -1039,11 +1047,13 @@ class LoopFamily(AtlasFamily):
         until none of its unknowns moves by more than ``settled`` or (when ``enough``
         is given) its equations are within ``enough`` (of the unit size; then with no
         step more): a row that has settled is left as it is, its answer not depending
-        on the others'. The unknowns and whether they close (to ``settled`` or
-        :data:`_CLOSED`)."""
+        on the others'. The unknowns, whether they close (to ``settled`` or
+        :data:`_CLOSED`) and the sign of the equations' Jacobian determinant there (a
+        branch's, which changes where a step crossed onto another branch)."""
         z = np.array(z, dtype=float)
         size = np.maximum(1.0, np.abs(drawn).max(axis=(1, 2)))
         gap = np.full(len(z), np.nan)
+        sign = np.zeros(len(z))
         live = np.arange(len(z))
         stale = []              # the rows stepped since their equations were last found
         for _ in range(_NEWTON):
@@ -1055,6 +1065,7 @@ class LoopFamily(AtlasFamily):
             gap[live] = np.max(np.abs(f), axis=1)
             if enough is not None:
                 going = ~(gap[live] <= enough * size[live])
+                sign[live[~going]] = _det_sign(jac[~going])
                 live, f, jac = live[going], f[going], jac[going]
                 if not live.size:
                     break
@@ -1069,10 +1080,11 @@ class LoopFamily(AtlasFamily):
         stale.append(live)
         last = np.concatenate(stale)
         if last.size:
-            f, _ = self._closure(drawn[last], turn[last], z[last],
-                                 None if normals is None else normals[last])
+            f, jac = self._closure(drawn[last], turn[last], z[last],
+                                   None if normals is None else normals[last])
             gap[last] = np.max(np.abs(f), axis=1)
-        return z, gap <= max(settled, _CLOSED) * size
+            sign[last] = _det_sign(jac)
+        return z, gap <= max(settled, _CLOSED) * size, sign
 
     def _normals(self, params):
         """The sliding pairs' drawn normals (M, S, 2), in :meth:`_closure`'s order."""
@@ -1085,7 +1097,7 @@ class LoopFamily(AtlasFamily):
     def _nodes(self, params):
         """The continuation over a turn from the drawn pose: the unknowns at
         :data:`_GRID` + 1 even steps of the input (M, G + 1, 3U; NaN past where a
-        mechanism stops closing), the prediction's state there (M, G + 1, 6U + 1: see
+        mechanism stops closing), the prediction's state there (M, G + 1, 6U + 2: see
         :meth:`_marched`) and the sliding pairs' normals. The last mechanisms' are kept:
         a fit asks for their points, transmission angles and turns in turn."""
         p = np.ascontiguousarray(params, dtype=float)
@@ -1098,10 +1110,11 @@ class LoopFamily(AtlasFamily):
         centre = _GRID if self.sliding else 0       # a slide's both ways from the middle
         nodes = np.full((m, centre + _GRID + 1, n), np.nan)
         nodes[:, centre] = 0.0
-        rates = np.full((m, centre + _GRID + 1, 2 * n + 1), np.nan)
+        rates = np.full((m, centre + _GRID + 1, 2 * n + 2), np.nan)
         h = self._reach(p) / _GRID if self.sliding else np.full(m, 2 * math.pi / _GRID)
         rates[:, centre] = 0.0
-        rates[:, centre, :n] = self._rate(p, drawn, normals, np.zeros((m, n)), h)
+        rates[:, centre, :n], rates[:, centre, -1] = self._rate(p, drawn, normals,
+                                                                np.zeros((m, n)), h)
         for way in ((1, -1) if self.sliding else (1,)):
             self._continued(p, drawn, normals, (nodes, rates), way * h, way)
         self._kept = (key, (nodes, rates, normals))
@@ -1144,24 +1157,27 @@ class LoopFamily(AtlasFamily):
     def _rate(self, params, drawn, normals, z, h):
         """The unknowns' rates per unit input (R, 3U) at the drawn pose (``z``, input
         0): the loop-closure equations' tangent, their change with the input by a
-        central difference (a millionth of the step ``h`` (R,) either way)."""
+        central difference (a millionth of the step ``h`` (R,) either way); and the
+        sign of their Jacobian determinant there (R,)."""
         d = 1e-6 * h
         f = [self._closure(drawn, self._moves(params, v[:, None])[:, 0], z, normals)
              for v in (d, -d, 0.0 * d)]
         rate = newton_step(f[2][1], (f[0][0] - f[1][0]) / (2.0 * d[:, None]))
-        return np.where(np.isfinite(rate), rate, 0.0)
+        return np.where(np.isfinite(rate), rate, 0.0), _det_sign(f[2][1])
 
     def _marched(self, params, drawn, normals, state, u, end, *, settled=1e-7,
                  halvings=_HALVINGS, first=None):
         """Rows' unknowns continued from the input ``u`` (R,; from the drawn pose) to
         ``end`` (R,). ``state``: the unknowns (R, N) and the prediction's state (R,
-        2N + 1: the unknowns' rate d1 per unit input, its change d2 and the last step t,
+        2N + 2: the unknowns' rate d1 per unit input, its change d2, the last step t,
         so that the unknowns a step s on are predicted z + s (d1 + d2 (s + t)): the
-        quadratic through the last three points, or the tangent at the drawn pose).
-        Each step is predicted so and corrected by :meth:`_newton` (each row to
-        ``settled``), kept where the correction is within :data:`_CORRECTION` (radians,
-        or of the mechanism's spread) and halved where not (so a branch passing near
-        another, or turning fast, is not left for it), at most ``halvings`` times; a
+        quadratic through the last three points, or the tangent at the drawn pose; and
+        the sign of the equations' Jacobian determinant). Each step is predicted so and
+        corrected by :meth:`_newton` (each row to ``settled``), kept where the
+        correction is within :data:`_CORRECTION` (radians, or of the mechanism's
+        spread) and the determinant keeps its sign, halved where not (so a branch
+        passing near another, or turning fast, is not left for it: the kernel's trace
+        keeps the sign alike), at most ``halvings`` times; a
         kept step's next is sized for a correction of half that (the correction grows
         as the step's cube), at most doubled. Only the rows still marching are
         computed. The first step ``first`` (R,) when given (the step before), else the
@@ -1189,11 +1205,12 @@ class LoopFamily(AtlasFamily):
             d1, d2, t = rate[i, :n], rate[i, n:2 * n], rate[i, 2 * n]
             guess = z[i] + s[:, None] * (d1 + d2 * (s + t)[:, None])
             move = self._moves(params[i], (u[i] + s)[:, None])[:, 0]
-            zn, conv = self._newton(drawn[i], move, guess, normals[i], settled=settled,
-                                    enough=settled if settled >= _ENOUGH else None)
+            zn, conv, sign = self._newton(drawn[i], move, guess, normals[i],
+                                          settled=settled,
+                                          enough=settled if settled >= _ENOUGH else None)
             with np.errstate(invalid="ignore", divide="ignore"):
                 fix = np.max(np.abs(zn - guess) / scale[i], axis=1)
-                good = conv & (fix <= _CORRECTION)
+                good = conv & (fix <= _CORRECTION) & ~(sign * rate[i, -1] < 0.0)
                 grow = np.minimum((0.5 * _CORRECTION / fix[good]) ** (1.0 / 3.0), 2.0)
             a, r, sa = i[good], i[~good], s[good]
             moved = sa != 0.0
@@ -1201,8 +1218,8 @@ class LoopFamily(AtlasFamily):
             with np.errstate(invalid="ignore", divide="ignore"):
                 d1n = (zn[good] - z[a]) / sa[:, None]
                 d2n = np.where((span != 0.0)[:, None], (d1n - d1[good]) / span[:, None], 0.0)
-            rate[a] = np.where(moved[:, None], np.concatenate([d1n, d2n, sa[:, None]], axis=1),
-                               rate[a])
+            rate[a] = np.where(moved[:, None], np.concatenate(
+                [d1n, d2n, sa[:, None], sign[good][:, None]], axis=1), rate[a])
             z[a] = zn[good]
             u[a] = np.where(reach[good], end[a], u[a] + sa)
             done[a] = reach[good]
