@@ -888,10 +888,12 @@ class LoopFamily(AtlasFamily):
     """A chain of turning pairs whose links beyond the driver are not found dyad by dyad
     (a triad: the Stephenson III, the Stephenson II driven by its binary link): every
     moving link's rigid motion from its drawn pose solved together by Newton's method,
-    continued along the input from the drawn pose over a turn (:data:`_GRID` steps, so
-    the drawn circuit is tracked; a sliding input's both ways from the drawn slide, as
-    far as :meth:`AtlasFamily.sweep` probes), then refined at each asked input from the
-    step before it (nearer the drawn pose); vectorised over mechanisms.
+    continued along the input from the drawn pose over a turn (its :data:`_GRID` nodes
+    kept, so the drawn circuit is tracked; a sliding input's both ways from the drawn
+    slide, as far as :meth:`AtlasFamily.sweep` probes) by a predictor-corrector (see
+    :meth:`_marched`: steps as long as the branch allows, shorter where it turns fast or
+    another passes near), then continued to each asked input from the node before it
+    (nearer the drawn pose) the same way; vectorised over mechanisms.
 
     A *screen*, not a solver: it scores thousands of candidate mechanisms at once (an
     array row per mechanism, which the kernel's solver, one chain at a time, cannot),
@@ -1137,22 +1139,16 @@ class LoopFamily(AtlasFamily):
     def _continued(self, params, drawn, normals, table, h, way):
         """The continuation (in place: ``table`` the nodes and the prediction's state
         there) from the node of the drawn pose (the first for a turn, the middle for a
-        slide; its state the tangent) by steps ``h`` (M,) of the input, ``way`` by
-        ``way`` node (each step :meth:`_marched`, only the rows still closing), NaN past
-        where a mechanism stops closing."""
+        slide; its state the tangent) through the next :data:`_GRID` nodes, ``h`` (M,)
+        of the input apart, ``way`` by ``way`` node (:meth:`_marched`), NaN past where a
+        mechanism stops closing."""
         nodes, rates = table
         start = 0 if not self.sliding else _GRID
-        z, rate = nodes[:, start], rates[:, start]
-        step = np.abs(h)
-        a = np.arange(len(params))
-        for g in range(1, _GRID + 1):
-            z, rate, ok, step = self._marched(params[a], drawn[a], normals[a], (z, rate),
-                                              (g - 1) * h[a], g * h[a], first=step)
-            a, z, rate, step = a[ok], z[ok], rate[ok], step[ok]
-            if not a.size:
-                break
-            nodes[a, start + way * g] = z
-            rates[a, start + way * g] = rate
+        stops = h[:, None] * np.arange(1, _GRID + 1)
+        z, rate = self._marched(params, drawn, normals, (nodes[:, start], rates[:, start]),
+                                np.zeros(len(params)), stops)
+        at = start + way * np.arange(1, _GRID + 1)
+        nodes[:, at], rates[:, at] = z, rate
 
     def _rate(self, params, drawn, normals, z, h):
         """The unknowns' rates per unit input (R, 3U) at the drawn pose (``z``, input
@@ -1165,39 +1161,41 @@ class LoopFamily(AtlasFamily):
         rate = newton_step(f[2][1], (f[0][0] - f[1][0]) / (2.0 * d[:, None]))
         return np.where(np.isfinite(rate), rate, 0.0), _det_sign(f[2][1])
 
-    def _marched(self, params, drawn, normals, state, u, end, *, settled=1e-7,
-                 halvings=_HALVINGS, first=None):
-        """Rows' unknowns continued from the input ``u`` (R,; from the drawn pose) to
-        ``end`` (R,). ``state``: the unknowns (R, N) and the prediction's state (R,
-        2N + 2: the unknowns' rate d1 per unit input, its change d2, the last step t,
-        so that the unknowns a step s on are predicted z + s (d1 + d2 (s + t)): the
-        quadratic through the last three points, or the tangent at the drawn pose; and
-        the sign of the equations' Jacobian determinant). Each step is predicted so and
-        corrected by :meth:`_newton` (each row to ``settled``), kept where the
-        correction is within :data:`_CORRECTION` (radians, or of the mechanism's
-        spread) and the determinant keeps its sign, halved where not (so a branch
-        passing near another, or turning fast, is not left for it: the kernel's trace
-        keeps the sign alike), at most ``halvings`` times; a
-        kept step's next is sized for a correction of half that (the correction grows
-        as the step's cube), at most doubled. Only the rows still marching are
-        computed. The first step ``first`` (R,) when given (the step before), else the
-        whole way. Returns the unknowns, the prediction's state, whether each row got
-        there and the step to try next."""
+    def _marched(self, params, drawn, normals, state, u, stops, *, settled=1e-7):
+        """Rows' unknowns continued from the input ``u`` (R,; from the drawn pose)
+        through ``stops`` (R, K; inputs one way from ``u``). ``state``: the unknowns (R,
+        N) and the prediction's state (R, 2N + 2: the unknowns' rate d1 per unit input,
+        its change d2, the last step t, so that the unknowns a step s on are predicted
+        z + s (d1 + d2 (s + t)): the quadratic through the last three points, or the
+        tangent at the drawn pose; and the sign of the equations' Jacobian determinant).
+        Each step is predicted so and corrected by :meth:`_newton` (each row to
+        ``settled``), kept where the correction is within :data:`_CORRECTION` (radians,
+        or of the mechanism's spread) and the determinant keeps its sign, halved where
+        not (so a branch passing near another, or turning fast, is not left for it: the
+        kernel's trace keeps the sign alike), at most :data:`_HALVINGS` times below the
+        way between two stops (:data:`_OPEN_HALVINGS` where the loop does not close: a
+        fold, where the mechanism stops, is the usual cause); a kept step's next is
+        sized for a correction of half the largest (the correction grows as the step's
+        cube), at most doubled; the rows march independently (only those still marching
+        computed). Returns the unknowns and the prediction's state at every stop (R, K,
+        ...; NaN from where a row stopped)."""
         z, rate = (np.array(v, dtype=float) for v in state)
+        rows, k = stops.shape
         n = z.shape[1]
-        u, end = np.array(u, dtype=float), np.asarray(end, dtype=float)
+        u = np.array(u, dtype=float)
+        bounds = np.concatenate([u[:, None], stops], axis=1)
+        spans = np.abs(np.diff(bounds, axis=1))             # (R, K): between stops
         spread = np.max(np.ptp(drawn, axis=1), axis=1)
-        scale = np.tile(np.stack([spread, spread, np.ones(len(z))], axis=1),
+        scale = np.tile(np.stack([spread, spread, np.ones(rows)], axis=1),
                         (1, len(self._unknown)))
-        full = np.abs(end - u)
-        step = full.copy() if first is None else np.array(first, dtype=float)
-        ok = np.ones(len(z), dtype=bool)
-        done = np.zeros(len(z), dtype=bool)
-        for _ in range(_MARCHES):
-            i = np.nonzero(ok & ~done)[0]
+        out = np.full((rows, k, n), np.nan), np.full((rows, k, rate.shape[1]), np.nan)
+        step = spans[:, 0].copy()
+        at = np.zeros(rows, dtype=int)                      # each row's next stop
+        i = np.arange(rows)                                 # the rows still marching
+        for _ in range(_MARCHES * k):
             if not i.size:
                 break
-            left = end[i] - u[i]
+            left = stops[i, at[i]] - u[i]
             # the step, or the rest of the way in one or two (no short last one)
             reach = np.abs(left) <= step[i] * (1.0 + 1e-9)
             s = np.where(reach, left, np.where(np.abs(left) <= 2.0 * step[i], 0.5 * left,
@@ -1205,32 +1203,31 @@ class LoopFamily(AtlasFamily):
             d1, d2, t = rate[i, :n], rate[i, n:2 * n], rate[i, 2 * n]
             guess = z[i] + s[:, None] * (d1 + d2 * (s + t)[:, None])
             move = self._moves(params[i], (u[i] + s)[:, None])[:, 0]
-            zn, conv, sign = self._newton(drawn[i], move, guess, normals[i],
-                                          settled=settled,
+            zn, conv, sign = self._newton(drawn[i], move, guess, normals[i], settled=settled,
                                           enough=settled if settled >= _ENOUGH else None)
             with np.errstate(invalid="ignore", divide="ignore"):
                 fix = np.max(np.abs(zn - guess) / scale[i], axis=1)
                 good = conv & (fix <= _CORRECTION) & ~(sign * rate[i, -1] < 0.0)
                 grow = np.minimum((0.5 * _CORRECTION / fix[good]) ** (1.0 / 3.0), 2.0)
             a, r, sa = i[good], i[~good], s[good]
-            moved = sa != 0.0
             span = sa + t[good]
             with np.errstate(invalid="ignore", divide="ignore"):
                 d1n = (zn[good] - z[a]) / sa[:, None]
                 d2n = np.where((span != 0.0)[:, None], (d1n - d1[good]) / span[:, None], 0.0)
-            rate[a] = np.where(moved[:, None], np.concatenate(
+            rate[a] = np.where((sa != 0.0)[:, None], np.concatenate(
                 [d1n, d2n, sa[:, None], sign[good][:, None]], axis=1), rate[a])
             z[a] = zn[good]
-            u[a] = np.where(reach[good], end[a], u[a] + sa)
-            done[a] = reach[good]
-            # a step cut short at the end does not shorten the next
+            u[a] = np.where(reach[good], stops[a, at[a]], u[a] + sa)
+            # a step cut short at a stop does not shorten the next
             step[a] = np.maximum(np.abs(sa) * grow, np.where(reach[good], step[a], 0.0))
             step[r] = 0.5 * np.abs(s[~good])
-            # a step that does not close is halved four times at most (a fold, where the
-            # mechanism stops, is the usual cause); one that closes far from its
-            # prediction (another branch near) up to ``halvings`` times
-            ok[r] = step[r] >= full[r] / 2.0 ** np.where(conv[~good], halvings, _OPEN_HALVINGS)
-        return z, rate, ok & done, step
+            stopped = a[reach[good]]
+            out[0][stopped, at[stopped]] = z[stopped]
+            out[1][stopped, at[stopped]] = rate[stopped]
+            at[stopped] += 1
+            least = spans[r, at[r]] / 2.0 ** np.where(conv[~good], _HALVINGS, _OPEN_HALVINGS)
+            i = np.concatenate([a[at[a] < k], r[step[r] >= least]])
+        return out
 
     def _solve(self, params, theta):
         """As :meth:`AtlasFamily._solve`, by continuation from the drawn pose (see the
@@ -1262,10 +1259,11 @@ class LoopFamily(AtlasFamily):
         normal_rows = np.repeat(normals, k, axis=0)
         z = np.zeros((m * k, n))
         if known.any():
-            z[known], _, known[known], _ = self._marched(
+            z[known] = self._marched(
                 params_rows[known], rows[known], normal_rows[known],
                 (start[known], rate[known]), at.reshape(-1)[known],
-                turn.reshape(-1)[known], settled=1e-14)
+                turn.reshape(-1)[known][:, None], settled=1e-14)[0][:, 0]
+            known &= np.all(np.isfinite(z), axis=1)
         z = np.where(known[:, None], z, np.nan)
         motions = self._state_motions(rows, move, z)
         return {x: None if v is None else (v[0].reshape(m, k), v[1].reshape(m, k),
