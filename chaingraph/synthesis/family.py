@@ -1004,8 +1004,9 @@ class LoopFamily(AtlasFamily):
         for side in (self._first, self._second):
             v = d - q[:, side]
             cl, sl = c[:, side], s[:, side]
-            moved = np.stack([cl * v[..., 0] - sl * v[..., 1], sl * v[..., 0] + cl * v[..., 1]],
-                             axis=2)
+            moved = np.empty_like(v)
+            moved[..., 0] = cl * v[..., 0] - sl * v[..., 1]
+            moved[..., 1] = sl * v[..., 0] + cl * v[..., 1]
             sides.append((p[:, side] + moved, moved))
         (pa, ra), (pb, rb) = sides
         f = pa - pb
@@ -1067,7 +1068,8 @@ class LoopFamily(AtlasFamily):
             gap[live] = np.max(np.abs(f), axis=1)
             if enough is not None:
                 going = ~(gap[live] <= enough * size[live])
-                sign[live[~going]] = _det_sign(jac[~going])
+                if not going.all():
+                    sign[live[~going]] = _det_sign(jac[~going])
                 live, f, jac = live[going], f[going], jac[going]
                 if not live.size:
                     break
