@@ -653,19 +653,14 @@ class AtlasFamily(Family):
         p = np.atleast_2d(np.asarray(params, dtype=float))
         if not self.sliding:
             return super().sweep(p, steps)
-        s0 = self.first_input(p)
-        drawn = self._drawn(p)
-        spread = np.max(np.ptp(drawn, axis=1), axis=1)
-        probe = s0[:, None] + _REACH * spread[:, None] * np.linspace(-1.0, 1.0,
-                                                                     2 * _PROBES + 1)
-        with np.errstate(all="ignore"):
-            ok = np.isfinite(self.positions(p, probe)[0])
+        probe, ok = self._probed(p)
+        half = probe.shape[1] // 2
         rows = np.arange(len(p))
         ends = []
         for side in (1, -1):        # the last probe that assembles, and the next beyond
-            run = np.cumprod(ok[:, _PROBES::side], axis=1).sum(axis=1)
-            last = _PROBES + side * np.maximum(run - 1, 0)
-            beyond = np.clip(last + side, 0, 2 * _PROBES)
+            run = np.cumprod(ok[:, half::side], axis=1).sum(axis=1)
+            last = half + side * np.maximum(run - 1, 0)
+            beyond = np.clip(last + side, 0, 2 * half)
             good, bad = probe[rows, last], probe[rows, beyond]
             for _ in range(_ENDS):
                 mid = 0.5 * (good + bad)
@@ -675,7 +670,18 @@ class AtlasFamily(Family):
             ends.append(good)
         hi, lo = ends
         theta = lo[:, None] + (hi - lo)[:, None] * np.linspace(0.0, 1.0, steps)
-        return np.where(ok[:, _PROBES:_PROBES + 1], theta, np.nan)
+        return np.where(ok[:, half:half + 1], theta, np.nan)
+
+    def _probed(self, p):
+        """A sliding input's probes (M, 2 * :data:`_PROBES` + 1: :data:`_REACH` times
+        the mechanism's spread either way of the drawn slide, evenly) and where the
+        chain assembles there."""
+        s0 = self.first_input(p)
+        spread = np.max(np.ptp(self._drawn(p), axis=1), axis=1)
+        probe = s0[:, None] + _REACH * spread[:, None] * np.linspace(-1.0, 1.0,
+                                                                     2 * _PROBES + 1)
+        with np.errstate(all="ignore"):
+            return probe, np.isfinite(self.positions(p, probe)[0])
 
     def sample(self, rng: np.random.Generator, count: int) -> np.ndarray:
         """Random mechanisms of the chain that turn their input fully: the joints
@@ -863,16 +869,31 @@ def _to_normal(u, axis):
 _GRID = 24        # steps of the continuation over a turn of the input
 _NEWTON = 6       # Newton iterations per step (and at each asked input)
 _CLOSED = 1e-9    # a loop closes when every joint is within this (of the unit size)
+_CORRECTION = 0.02  # the largest correction of a continuation step's prediction kept
+_HALVINGS = 8     # halvings of a continuation step before a mechanism stops there
+_OPEN_HALVINGS = 4  # the same where the step's loop does not close at all
+_MARCHES = 400    # steps (kept or halved) of one continuation before it stops
+_ENOUGH = 1e-7   # a continuation's nodes closed to this (of the unit size) need no more
+
+
+def _det_sign(jac: np.ndarray) -> np.ndarray:
+    """The signs of stacked square matrices' determinants (0 where singular or not
+    finite)."""
+    with np.errstate(all="ignore"):
+        sign = np.linalg.slogdet(np.nan_to_num(jac, nan=0.0, posinf=0.0, neginf=0.0))[0]
+    return np.where(np.isfinite(jac).all(axis=(1, 2)), sign, 0.0)
 
 
 class LoopFamily(AtlasFamily):
     """A chain of turning pairs whose links beyond the driver are not found dyad by dyad
     (a triad: the Stephenson III, the Stephenson II driven by its binary link): every
     moving link's rigid motion from its drawn pose solved together by Newton's method,
-    continued along the input from the drawn pose over a turn (:data:`_GRID` steps, so
-    the drawn circuit is tracked; a sliding input's both ways from the drawn slide, as
-    far as :meth:`AtlasFamily.sweep` probes), then refined at each asked input from the
-    step before it (nearer the drawn pose); vectorised over mechanisms.
+    continued along the input from the drawn pose over a turn (its :data:`_GRID` nodes
+    kept, so the drawn circuit is tracked; a sliding input's both ways from the drawn
+    slide, as far as :meth:`AtlasFamily.sweep` probes) by a predictor-corrector (see
+    :meth:`_marched`: steps as long as the branch allows, shorter where it turns fast or
+    another passes near), then continued to each asked input from the node before it
+    (nearer the drawn pose) the same way; vectorised over mechanisms.
 
     A *screen*, not a solver: it scores thousands of candidate mechanisms at once (an
     array row per mechanism, which the kernel's solver, one chain at a time, cannot),
@@ -967,24 +988,26 @@ class LoopFamily(AtlasFamily):
         the guide's) and their Jacobian (R, 2E, 3U), from the unknowns."""
         rows = len(z)
         unknown = len(self._unknown)
+        links = len(self._links)
         d = drawn[:, self._joint_rows]                                   # (R, E, 2)
+        # every link's motion (c, s, p, q) once: the fixed link's the identity
+        c, s = np.ones((rows, links)), np.zeros((rows, links))
+        p, q = np.zeros((rows, links, 2)), np.zeros((rows, links, 2))
+        lead = self._lead(drawn[:, self._index[self._pivot]], turn)
+        c[:, self._driver_col], s[:, self._driver_col] = lead[0], lead[1]
+        p[:, self._driver_col], q[:, self._driver_col] = lead[2], lead[3]
+        cols = self._unknown_cols
+        q[:, cols] = drawn[:, self._anchor_rows]
+        p[:, cols] = q[:, cols] + z.reshape(rows, unknown, 3)[:, :, :2]
+        c[:, cols], s[:, cols] = np.cos(z[:, 2::3]), np.sin(z[:, 2::3])
         sides = []
-        for links in (self._first, self._second):
-            c, s, p, q = (np.ones((rows, len(self._links))), np.zeros((rows, len(self._links))),
-                          np.zeros((rows, len(self._links), 2)), np.zeros((rows, len(self._links), 2)))
-            pivot = drawn[:, self._index[self._pivot]]
-            lead = self._lead(pivot, turn)
-            c[:, self._driver_col], s[:, self._driver_col] = lead[0], lead[1]
-            p[:, self._driver_col], q[:, self._driver_col] = lead[2], lead[3]
-            cols = self._unknown_cols
-            q[:, cols] = drawn[:, self._anchor_rows]
-            p[:, cols] = q[:, cols] + z.reshape(rows, unknown, 3)[:, :, :2]
-            c[:, cols], s[:, cols] = (np.cos(z[:, 2::3]), np.sin(z[:, 2::3]))
-            v = d - q[:, links]
-            cl, sl = c[:, links], s[:, links]
-            moved = np.stack([cl * v[..., 0] - sl * v[..., 1], sl * v[..., 0] + cl * v[..., 1]],
-                             axis=2)
-            sides.append((p[:, links] + moved, moved))
+        for side in (self._first, self._second):
+            v = d - q[:, side]
+            cl, sl = c[:, side], s[:, side]
+            moved = np.empty_like(v)
+            moved[..., 0] = cl * v[..., 0] - sl * v[..., 1]
+            moved[..., 1] = sl * v[..., 0] + cl * v[..., 1]
+            sides.append((p[:, side] + moved, moved))
         (pa, ra), (pb, rb) = sides
         f = pa - pb
         jac = np.zeros((rows, len(self._first), 2, unknown, 3))
@@ -1021,19 +1044,51 @@ class LoopFamily(AtlasFamily):
         rows[:, :, 1, :, 2] = sb - sa
         jac[:, e] = rows
 
-    def _newton(self, drawn, turn, z, normals=None, *, settled: float = 1e-14):
-        """Newton's iterations on the loop-closure equations from ``z`` (until no
-        unknown moves by more than ``settled``): the unknowns and whether they close
-        (to :data:`_CLOSED`)."""
+    def _newton(self, drawn, turn, z, normals=None, *, settled: float = 1e-14,
+                enough: float | None = None):
+        """Newton's iterations on the loop-closure equations from ``z``, each row's
+        until none of its unknowns moves by more than ``settled`` or (when ``enough``
+        is given) its equations are within ``enough`` (of the unit size; then with no
+        step more): a row that has settled is left as it is, its answer not depending
+        on the others'. The unknowns, whether they close (to ``settled`` or
+        :data:`_CLOSED`) and the sign of the equations' Jacobian determinant there (a
+        branch's, which changes where a step crossed onto another branch)."""
+        z = np.array(z, dtype=float)
+        size = np.maximum(1.0, np.abs(drawn).max(axis=(1, 2)))
+        gap = np.full(len(z), np.nan)
+        sign = np.zeros(len(z))
+        live = np.arange(len(z))
+        stale = []              # the rows stepped since their equations were last found
         for _ in range(_NEWTON):
-            f, jac = self._closure(drawn, turn, z, normals)
+            if live.size == len(z):
+                f, jac = self._closure(drawn, turn, z, normals)
+            else:
+                f, jac = self._closure(drawn[live], turn[live], z[live],
+                                       None if normals is None else normals[live])
+            gap[live] = np.max(np.abs(f), axis=1)
+            if enough is not None:
+                going = ~(gap[live] <= enough * size[live])
+                if not going.all():
+                    sign[live[~going]] = _det_sign(jac[~going])
+                live, f, jac = live[going], f[going], jac[going]
+                if not live.size:
+                    break
             step = newton_step(jac, f)         # the kernel's step (NaN where not finite)
-            z = z + step
-            if not np.any(np.abs(step[np.isfinite(step)]) > settled):
+            z[live] += step
+            with np.errstate(invalid="ignore"):
+                moving = np.any(np.abs(step) > settled, axis=1)
+            stale.append(live[~moving])
+            live = live[moving]
+            if not live.size:
                 break
-        f, _ = self._closure(drawn, turn, z, normals)
-        gap = np.max(np.abs(f), axis=1)
-        return z, gap <= max(settled, _CLOSED) * np.maximum(1.0, np.abs(drawn).max(axis=(1, 2)))
+        stale.append(live)
+        last = np.concatenate(stale)
+        if last.size:
+            f, jac = self._closure(drawn[last], turn[last], z[last],
+                                   None if normals is None else normals[last])
+            gap[last] = np.max(np.abs(f), axis=1)
+            sign[last] = _det_sign(jac)
+        return z, gap <= max(settled, _CLOSED) * size, sign
 
     def _normals(self, params):
         """The sliding pairs' drawn normals (M, S, 2), in :meth:`_closure`'s order."""
@@ -1046,8 +1101,9 @@ class LoopFamily(AtlasFamily):
     def _nodes(self, params):
         """The continuation over a turn from the drawn pose: the unknowns at
         :data:`_GRID` + 1 even steps of the input (M, G + 1, 3U; NaN past where a
-        mechanism stops closing), and the sliding pairs' normals. The last mechanisms'
-        are kept: a fit asks for their points, transmission angles and turns in turn."""
+        mechanism stops closing), the prediction's state there (M, G + 1, 6U + 2: see
+        :meth:`_marched`) and the sliding pairs' normals. The last mechanisms' are kept:
+        a fit asks for their points, transmission angles and turns in turn."""
         p = np.ascontiguousarray(params, dtype=float)
         key = (p.shape, p.tobytes())
         if self._kept is not None and self._kept[0] == key:
@@ -1055,65 +1111,162 @@ class LoopFamily(AtlasFamily):
         drawn = self._drawn(p)
         m, n = len(p), 3 * len(self._unknown)
         normals = self._normals(p)
-        if self.sliding:        # both ways from the drawn slide, centre node _GRID
-            nodes = np.full((m, 2 * _GRID + 1, n), np.nan)
-            nodes[:, _GRID] = 0.0
-            for way in (1, -1):
-                self._continued(p, drawn, normals, nodes, way * self._reach(p) / _GRID, way)
-        else:
-            nodes = np.full((m, _GRID + 1, n), np.nan)
-            nodes[:, 0] = 0.0
-            self._continued(p, drawn, normals, nodes, np.full(m, 2 * math.pi / _GRID), 1)
-        self._kept = (key, (nodes, normals))
-        return nodes, normals
+        centre = _GRID if self.sliding else 0       # a slide's both ways from the middle
+        nodes = np.full((m, centre + _GRID + 1, n), np.nan)
+        nodes[:, centre] = 0.0
+        rates = np.full((m, centre + _GRID + 1, 2 * n + 2), np.nan)
+        h = self._reach(p) / _GRID if self.sliding else np.full(m, 2 * math.pi / _GRID)
+        rates[:, centre] = 0.0
+        rates[:, centre, :n], rates[:, centre, -1] = self._rate(p, drawn, normals,
+                                                                np.zeros((m, n)), h)
+        for way in ((1, -1) if self.sliding else (1,)):
+            self._continued(p, drawn, normals, (nodes, rates), way * h, way)
+        self._kept = (key, (nodes, rates, normals))
+        return nodes, rates, normals
 
     def _reach(self, params):
         """A sliding input's slides continued either way (M,): as far as
         :meth:`AtlasFamily.sweep` probes."""
         return _REACH * np.max(np.ptp(self._drawn(params), axis=1), axis=1)
 
-    def _continued(self, params, drawn, normals, nodes, h, way):
-        """The continuation (in place) from the node of the drawn pose (``nodes``' first
-        for a turn, its middle for a slide) by steps ``h`` (M,) of the input, ``way`` by
-        ``way`` node, NaN past where a mechanism stops closing."""
-        m, n = len(params), nodes.shape[2]
+    def _probed(self, p):
+        """As :meth:`AtlasFamily._probed`, the probes the continuation's nodes (where
+        it closes: the run from the drawn slide to a fold, which the solver's range
+        ends at too)."""
+        nodes, _, _ = self._nodes(p)
+        probe = (self.first_input(p)[:, None] + (self._reach(p) / _GRID)[:, None]
+                 * np.arange(-_GRID, _GRID + 1))
+        return probe, np.all(np.isfinite(nodes), axis=2)
+
+    def _continued(self, params, drawn, normals, table, h, way):
+        """The continuation (in place: ``table`` the nodes and the prediction's state
+        there) from the node of the drawn pose (the first for a turn, the middle for a
+        slide; its state the tangent) through the next :data:`_GRID` nodes, ``h`` (M,)
+        of the input apart, ``way`` by ``way`` node (:meth:`_marched`), NaN past where a
+        mechanism stops closing."""
+        nodes, rates = table
         start = 0 if not self.sliding else _GRID
-        z = np.zeros((m, n))
-        alive = np.ones(m, dtype=bool)
-        for g in range(1, _GRID + 1):
-            move = self._moves(params, (g * h)[:, None])[:, 0]
-            z, ok = self._newton(drawn, move, z, normals, settled=1e-7)
-            alive &= ok
-            z = np.where(alive[:, None], z, 0.0)
-            nodes[:, start + way * g] = np.where(alive[:, None], z, np.nan)
+        stops = h[:, None] * np.arange(1, _GRID + 1)
+        z, rate = self._marched(params, drawn, normals, (nodes[:, start], rates[:, start]),
+                                np.zeros(len(params)), stops)
+        at = start + way * np.arange(1, _GRID + 1)
+        nodes[:, at], rates[:, at] = z, rate
+
+    def _rate(self, params, drawn, normals, z, h):
+        """The unknowns' rates per unit input (R, 3U) at the drawn pose (``z``, input
+        0): the loop-closure equations' tangent, their change with the input by a
+        central difference (a millionth of the step ``h`` (R,) either way); and the
+        sign of their Jacobian determinant there (R,)."""
+        d = 1e-6 * h
+        f = [self._closure(drawn, self._moves(params, v[:, None])[:, 0], z, normals)
+             for v in (d, -d, 0.0 * d)]
+        rate = newton_step(f[2][1], (f[0][0] - f[1][0]) / (2.0 * d[:, None]))
+        return np.where(np.isfinite(rate), rate, 0.0), _det_sign(f[2][1])
+
+    def _marched(self, params, drawn, normals, state, u, stops, *, settled=1e-7):
+        """Rows' unknowns continued from the input ``u`` (R,; from the drawn pose)
+        through ``stops`` (R, K; inputs one way from ``u``). ``state``: the unknowns (R,
+        N) and the prediction's state (R, 2N + 2: the unknowns' rate d1 per unit input,
+        its change d2, the last step t, so that the unknowns a step s on are predicted
+        z + s (d1 + d2 (s + t)): the quadratic through the last three points, or the
+        tangent at the drawn pose; and the sign of the equations' Jacobian determinant).
+        Each step is predicted so and corrected by :meth:`_newton` (each row to
+        ``settled``), kept where the correction is within :data:`_CORRECTION` (radians,
+        or of the mechanism's spread) and the determinant keeps its sign, halved where
+        not (so a branch passing near another, or turning fast, is not left for it: the
+        kernel's trace keeps the sign alike), at most :data:`_HALVINGS` times below the
+        way between two stops (:data:`_OPEN_HALVINGS` where the loop does not close: a
+        fold, where the mechanism stops, is the usual cause); a kept step's next is
+        sized for a correction of half the largest (the correction grows as the step's
+        cube), at most doubled; the rows march independently (only those still marching
+        computed). Returns the unknowns and the prediction's state at every stop (R, K,
+        ...; NaN from where a row stopped)."""
+        z, rate = (np.array(v, dtype=float) for v in state)
+        rows, k = stops.shape
+        n = z.shape[1]
+        u = np.array(u, dtype=float)
+        bounds = np.concatenate([u[:, None], stops], axis=1)
+        spans = np.abs(np.diff(bounds, axis=1))             # (R, K): between stops
+        spread = np.max(np.ptp(drawn, axis=1), axis=1)
+        scale = np.tile(np.stack([spread, spread, np.ones(rows)], axis=1),
+                        (1, len(self._unknown)))
+        out = np.full((rows, k, n), np.nan), np.full((rows, k, rate.shape[1]), np.nan)
+        step = spans[:, 0].copy()
+        at = np.zeros(rows, dtype=int)                      # each row's next stop
+        i = np.arange(rows)                                 # the rows still marching
+        for _ in range(_MARCHES * k):
+            if not i.size:
+                break
+            left = stops[i, at[i]] - u[i]
+            # the step, or the rest of the way in one or two (no short last one)
+            reach = np.abs(left) <= step[i] * (1.0 + 1e-9)
+            s = np.where(reach, left, np.where(np.abs(left) <= 2.0 * step[i], 0.5 * left,
+                                                np.sign(left) * step[i]))
+            d1, d2, t = rate[i, :n], rate[i, n:2 * n], rate[i, 2 * n]
+            guess = z[i] + s[:, None] * (d1 + d2 * (s + t)[:, None])
+            move = self._moves(params[i], (u[i] + s)[:, None])[:, 0]
+            zn, conv, sign = self._newton(drawn[i], move, guess, normals[i], settled=settled,
+                                          enough=settled if settled >= _ENOUGH else None)
+            with np.errstate(invalid="ignore", divide="ignore"):
+                fix = np.max(np.abs(zn - guess) / scale[i], axis=1)
+                good = conv & (fix <= _CORRECTION) & ~(sign * rate[i, -1] < 0.0)
+                grow = np.minimum((0.5 * _CORRECTION / fix[good]) ** (1.0 / 3.0), 2.0)
+            a, r, sa = i[good], i[~good], s[good]
+            span = sa + t[good]
+            with np.errstate(invalid="ignore", divide="ignore"):
+                d1n = (zn[good] - z[a]) / sa[:, None]
+                d2n = np.where((span != 0.0)[:, None], (d1n - d1[good]) / span[:, None], 0.0)
+            rate[a] = np.where((sa != 0.0)[:, None], np.concatenate(
+                [d1n, d2n, sa[:, None], sign[good][:, None]], axis=1), rate[a])
+            z[a] = zn[good]
+            u[a] = np.where(reach[good], stops[a, at[a]], u[a] + sa)
+            # a step cut short at a stop does not shorten the next
+            step[a] = np.maximum(np.abs(sa) * grow, np.where(reach[good], step[a], 0.0))
+            step[r] = 0.5 * np.abs(s[~good])
+            stopped = a[reach[good]]
+            out[0][stopped, at[stopped]] = z[stopped]
+            out[1][stopped, at[stopped]] = rate[stopped]
+            at[stopped] += 1
+            least = spans[r, at[r]] / 2.0 ** np.where(conv[~good], _HALVINGS, _OPEN_HALVINGS)
+            i = np.concatenate([a[at[a] < k], r[step[r] >= least]])
+        return out
 
     def _solve(self, params, theta):
         """As :meth:`AtlasFamily._solve`, by continuation from the drawn pose (see the
-        class); the asked inputs taken modulo a turn."""
+        class): from the node at or before each asked input (nearer the drawn pose),
+        :meth:`_marched` there; the asked inputs taken modulo a turn."""
         drawn = self._drawn(params)
         theta = np.asarray(theta, dtype=float)
         m, k = theta.shape
         n = 3 * len(self._unknown)
-        h = 2 * math.pi / _GRID
-        nodes, normals = self._nodes(params)
+        h = np.full((m, 1), 2 * math.pi / _GRID)
+        nodes, rates, normals = self._nodes(params)
         turn = theta - self.first_input(params)[:, None]
         if self.sliding:        # the node at or nearer the drawn slide; none beyond reach
             h = self._reach(params)[:, None] / _GRID
             node = _GRID + np.trunc(turn / h)
             node = np.where(np.abs(node - _GRID) <= _GRID, node, -1).astype(int)
+            at = (node - _GRID) * h
             move = self._moves(params, turn)
             move = move.reshape((m * k,) + move.shape[2:])
         else:
             turn = turn % (2 * math.pi)
             node = np.minimum(np.floor(turn / h).astype(int), _GRID)
+            at = node * h
             move = turn.reshape(-1)
-        start = np.take_along_axis(nodes, np.maximum(node, 0)[:, :, None],
-                                   axis=1).reshape(m * k, n)
-        start = np.where((node >= 0).reshape(-1, 1), start, np.nan)
-        rows = np.repeat(drawn, k, axis=0)
-        z, ok = self._newton(rows, move, np.nan_to_num(start),
-                             np.repeat(normals, k, axis=0))
-        z = np.where((ok & np.all(np.isfinite(start), axis=1))[:, None], z, np.nan)
+        start, rate = (np.take_along_axis(v, np.maximum(node, 0)[:, :, None],
+                                          axis=1).reshape(m * k, -1) for v in (nodes, rates))
+        known = (node >= 0).reshape(-1) & np.all(np.isfinite(start), axis=1)
+        rows, params_rows = np.repeat(drawn, k, axis=0), np.repeat(params, k, axis=0)
+        normal_rows = np.repeat(normals, k, axis=0)
+        z = np.zeros((m * k, n))
+        if known.any():
+            z[known] = self._marched(
+                params_rows[known], rows[known], normal_rows[known],
+                (start[known], rate[known]), at.reshape(-1)[known],
+                turn.reshape(-1)[known][:, None], settled=1e-14)[0][:, 0]
+            known &= np.all(np.isfinite(z), axis=1)
+        z = np.where(known[:, None], z, np.nan)
         motions = self._state_motions(rows, move, z)
         return {x: None if v is None else (v[0].reshape(m, k), v[1].reshape(m, k),
                                            (v[2][0].reshape(m, k), v[2][1].reshape(m, k)),
@@ -1284,6 +1437,11 @@ class CylinderDyads(CylinderFamily):
         self._guide, self._block = chain.joint(joint).links
         self._on_block = {j.id for j in self.template
                           if self._block in j.links and j.id != joint}
+
+    def _probed(self, p):
+        """As :meth:`AtlasFamily._probed`: the closed form at even probes (no
+        continuation's nodes)."""
+        return AtlasFamily._probed(self, p)
 
     def _solve(self, params, theta):
         """Every link's motion at the slides ``theta`` ((M, K), from the drawn pose):
