@@ -285,7 +285,11 @@ def six_bar_poses(count):
             for k in range(count)]
 
 
+@pytest.mark.slow
 def test_poses_of_a_six_bar_link_are_passed_by_a_six_bar(tmp_path):
+    """Four poses of a Stephenson I's link: a six-bar passes them to rounding, re-solved
+    from its written file (slow: its exact fits are moved along their set of solutions
+    into the transmission angle's bound, some ten seconds of least squares)."""
     poses = six_bar_poses(4)
     found = motion(poses=poses, links=6, seed=1, solutions=1,
                    families=lambda c: c.names[-1] == "Stephenson I six-bar mechanism"
