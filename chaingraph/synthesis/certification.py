@@ -21,6 +21,7 @@ import math
 import warnings
 from collections.abc import Callable, Sequence
 from dataclasses import dataclass
+from functools import partial
 
 import numpy as np
 from scipy.optimize import minimize_scalar  # type: ignore[import-untyped]
@@ -421,38 +422,64 @@ def transmission_angles(chain: Chain,
 def _dyads_transmission(chain: Chain,
                         motions: Sequence[Motion]) -> tuple[float, float] | None:
     """The transmission angles' range (degrees) of a mechanism of more than four links
-    (a six- or eight-bar), over the rows of ``motions``: at the middle joint of each
-    dyad of turning pairs its solution places (:func:`build_plan`), the angle between
-    its two links (their lines to the joints that carry them); at each turning pair
-    between two links of a group solved together (a triad), the angle between the two
-    links' lines to another of their joints (the first in the chain's order), as the
-    atlas families measure them for their screen. Dyads with a sliding pair are not
-    measured; None where nothing is."""
+    (a six- or eight-bar), over the rows of ``motions``, as the atlas families measure
+    them for their screen: at the middle joint of each dyad its solution places
+    (:func:`build_plan`), the angle between its two links (their lines to the joints
+    that carry them); with a sliding pair (within [0, 90]), the angle between the
+    turning link and the guide's normal (RRP), between the line through the two pivots
+    and the guide's normal (RPR), or between the two guides (PRP, RPP); at each turning
+    pair between two links of a group solved together (a triad), the angle between the
+    two links' lines to another of their joints (the first in the chain's order). None
+    where nothing is measured."""
     plan = build_plan(chain)
-    lines: list[tuple[str, str, str]] = []       # (at, along one link, along the other)
+    measures: list[Callable[[Motion], np.ndarray]] = []
     for step in plan.steps:
-        if step.kind == "dyad" and step.pattern == "RRR":
-            ca, cb, cj = step.constraints
-            lines.append((cj.joint, ca.joint, cb.joint))
+        if step.kind == "dyad":
+            measures.append(_dyad_angle(chain, step.pattern, *step.constraints))
         elif step.kind == "group":
             inside = set(step.links)
             for j in chain.joints:
                 if j.kind == "R" and set(j.links) <= inside and len(j.links) == 2:
                     ends = [next(k.id for k in chain.joints if x in k.links and k.id != j.id)
                             for x in j.links]
-                    lines.append((j.id, ends[0], ends[1]))
-    if not lines:
+                    measures.append(partial(_angle_at, at=j.id, one=ends[0], other=ends[1]))
+    if not measures:
         return None
-    values = []
-    for motion in motions:
-        for at, one, other in lines:
-            cx, cy = motion[f"x:{at}"], motion[f"y:{at}"]
-            ux, uy = motion[f"x:{one}"] - cx, motion[f"y:{one}"] - cy
-            vx, vy = motion[f"x:{other}"] - cx, motion[f"y:{other}"] - cy
-            mu = np.degrees(np.arctan2(np.abs(ux * vy - uy * vx), ux * vx + uy * vy))
-            values.append(np.asarray(mu, dtype=float).reshape(-1))
-    mu = np.concatenate(values)
+    mu = np.concatenate([np.asarray(f(m), dtype=float).reshape(-1)
+                         for m in motions for f in measures])
     return float(np.min(mu)), float(np.max(mu))
+
+
+def _dyad_angle(chain: Chain, pattern: str, ca, cb, cj) -> Callable[[Motion], np.ndarray]:
+    """One dyad's transmission angle over a motion (see :func:`_dyads_transmission`):
+    ``ca`` and ``cb`` attach its links to known ones, ``cj`` joins them."""
+    if pattern in ("PRR", "PPR"):           # (the R-first form, as the solver mirrors it)
+        ca, cb, pattern = cb, ca, pattern[::-1]
+    first, middle, second = (chain.joint(c.joint) for c in (ca, cj, cb))
+
+    def xy(m, j):
+        return np.array([m[f"x:{j.id}"], m[f"y:{j.id}"]])
+    if pattern == "RRR":
+        return lambda m: _angle_at(m, middle.id, first.id, second.id)
+    if pattern == "RRP":
+        return lambda m: _to_normal(xy(m, first) - xy(m, middle), _guide(chain, m, second))
+    if pattern == "RPR":
+        return lambda m: _to_normal(xy(m, second) - xy(m, first), _guide(chain, m, middle))
+    one = first if pattern == "PRP" else middle          # PRP, RPP: the two guides
+
+    def guides(m):
+        between = _guide(chain, m, one) - _guide(chain, m, second)
+        return np.degrees(np.arccos(np.clip(np.abs(np.cos(between)), 0.0, 1.0)))
+    return guides
+
+
+def _angle_at(motion: Motion, at: str, one: str, other: str) -> np.ndarray:
+    """The angle (degrees) at joint ``at`` between the lines to joints ``one`` and
+    ``other`` over a motion."""
+    cx, cy = motion[f"x:{at}"], motion[f"y:{at}"]
+    ux, uy = motion[f"x:{one}"] - cx, motion[f"y:{one}"] - cy
+    vx, vy = motion[f"x:{other}"] - cx, motion[f"y:{other}"] - cy
+    return np.degrees(np.arctan2(np.abs(ux * vy - uy * vx), ux * vx + uy * vy))
 
 
 def _input_link(chain) -> str | None:

@@ -54,3 +54,31 @@ def test_a_six_bar_whose_transmission_leaves_the_bound_is_rejected():
     assert not isinstance(certify(chain, targets, min_transmission=worst - 0.5), Rejected)
     refused = certify(chain, targets, min_transmission=worst + 0.5)
     assert isinstance(refused, Rejected) and refused.reason == "transmission angle"
+
+
+def test_a_sliding_dyad_s_angle_is_its_rod_s_to_the_guide_s_normal():
+    """A four-bar driving a slider through a rod from its coupler-rocker pin B (six
+    links, a multiple joint): the four-bar's angle at B, and the rod's (B to D) angle
+    to the normal of the slider's fixed guide (along x: its normal is y), within
+    [0, 90] as the certification measures a slider crank's."""
+    chain = chaingraph.load(catalog_path("crank-rocker-with-slider"))
+    m = chaingraph.solve(chain, steps=90, summary=False)
+    at_b = angle_at(m, "B", "A", "O4")
+    rod_x, rod_y = m["x:D"] - m["x:B"], m["y:D"] - m["y:B"]
+    to_normal = np.degrees(np.arccos(np.abs(rod_y) / np.hypot(rod_x, rod_y)))
+    mu = np.concatenate([at_b, to_normal])
+    assert transmission_angles(chain, [m]) == pytest.approx((mu.min(), mu.max()), abs=1e-9)
+
+
+def test_a_shaper_s_angles_are_its_slotted_lever_s_and_its_ram_s():
+    """The crank and slotted lever with its ram (two dyads with sliding pairs, no
+    four-link loop): the block's dyad (RPR) measures the line through the crank pin B
+    and the lever's pivot A against the slot's normal, 90 degrees all the way (the slot
+    runs through A); the ram's (RRP) the link (P to R) against the normal of the ram's
+    guide (along x)."""
+    chain = chaingraph.load(catalog_path("shaper-crank-and-slotted-lever"))
+    m = chaingraph.solve(chain, steps=90, summary=False)
+    link_x, link_y = m["x:R"] - m["x:P"], m["y:R"] - m["y:P"]
+    ram = np.degrees(np.arccos(np.abs(link_y) / np.hypot(link_x, link_y)))
+    assert ram.max() < 90.0 - 1e-3          # (so its 90 is the slotted lever's)
+    assert transmission_angles(chain, [m]) == pytest.approx((ram.min(), 90.0), abs=1e-9)
