@@ -270,9 +270,8 @@ def passing_fits(family: Family, targets: np.ndarray, starts: np.ndarray,
         if fit is None or fit.residual > EXACT / 10:
             continue
         fits.append(fit)
-        good += (predicted_defect(family, fit) is None
-                 and least_transmission(family, fit) >= min_transmission
-                 and family.link_ratio(fit.params[None, :])[0] <= MAX_RATIO)
+        good += predicted_defect(family, fit) is None and _in_bounds(family, fit,
+                                                                    min_transmission)
         if good >= wanted:
             break
     return fits
@@ -289,15 +288,20 @@ def within_bounds(family: Family, targets: np.ndarray, params: np.ndarray,
     fit if it passes the targets still, else the first (the certification judges it)."""
     fit = least_squares_fit(family, targets, params, inputs, timing=timing, turns=turns,
                             exact=True, evaluations=evaluations)
-    if (fit is None or fit.residual > EXACT / 10
-            or (least_transmission(family, fit) >= min_transmission
-                and family.link_ratio(fit.params[None, :])[0] <= MAX_RATIO)):
+    if fit is None or fit.residual > EXACT / 10 or _in_bounds(family, fit, min_transmission):
         return fit
     moved = least_squares_fit(family, targets, fit.params, fit.inputs, timing=timing,
                               turns=turns, exact=True, bounded=True,
                               evaluations=max(evaluations or 0, _MOVE_EVALUATIONS),
                               min_transmission=min_transmission + MARGIN)
     return moved if moved is not None and moved.residual <= EXACT / 10 else fit
+
+
+def _in_bounds(family: Family, fit: Fit, min_transmission: float) -> bool:
+    """Whether a fit's transmission angle (by the family's kinematics, from the first
+    target to the last) and its link ratio are within bounds."""
+    return (least_transmission(family, fit) >= min_transmission
+            and family.link_ratio(fit.params[None, :])[0] <= MAX_RATIO)
 
 
 def _distinct(fits: list[Fit]) -> list[Fit]:
