@@ -529,9 +529,11 @@ def _output_extremes(plan, ev, signal, u, du, ddu, scale, c):
 
     A stationary point is first placed from what the sweep already has (the root of the
     cubic through the rate and its slope at the two samples around it, accurate to the
-    fourth power of the grid's step), then one Newton step on the exact rate there
-    finishes it; where that step does not land inside the bracket, Newton's method
-    safeguarded by bisection takes over."""
+    fourth power of the grid's step). On a fine grid it is finished from the samples
+    too, where the estimated error is within rounding (:func:`_interpolated_extremes`);
+    else one Newton step on the exact rate there finishes it, and where that step does
+    not land inside the bracket, Newton's method safeguarded by bisection takes over
+    (:func:`_finished_extremes`)."""
     theta = ev.theta
     sign = np.sign(du)
     sign[~(np.abs(du) > 1e-9 * scale)] = 0.0        # (and where NaN)
