@@ -36,6 +36,7 @@ LONGEST_FIRST = (
     "tests/synthesis/test_path.py",
     "tests/naming/test_bounded_behaviour.py",
     "tests/synthesis/test_sliding_input.py",
+    "tests/synthesis/test_six_bar_need.py",
     "tests/test_readme.py",
 )
 

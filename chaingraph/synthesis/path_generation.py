@@ -58,7 +58,7 @@ from chaingraph.synthesis.task import PathTask, check_options, drawn_seed, path_
 
 __all__ = ["path", "path_search_task", "EXACT", "synthesise_path", "Budget", "BUDGET",
            "screened_fits", "first_certified", "least_transmission", "slide_span",
-           "spare_unknowns", "passing_fits", "within_bounds", "MARGIN"]
+           "spare_unknowns", "passing_fits", "within_bounds", "into_bounds", "MARGIN"]
 
 #: a fit passes its points exactly when every distance is within this of the task's size
 EXACT = 1e-9
@@ -281,14 +281,25 @@ def within_bounds(family: Family, targets: np.ndarray, params: np.ndarray,
                   inputs: np.ndarray, *, min_transmission: float,
                   timing: np.ndarray | None = None, turns: np.ndarray | None = None,
                   evaluations: int | None = None) -> Fit | None:
-    """An exact fit (:func:`least_squares_fit`) from ``params`` and ``inputs``, and where
-    it passes the targets but its transmission angle or link ratio is out of bounds,
-    least squares again from it, onto the same set of solutions where the bounds hold
-    (by :data:`MARGIN`; a family with unknowns to spare can move along its set): that
-    fit if it passes the targets still, else the first (the certification judges it)."""
+    """An exact fit (:func:`least_squares_fit`) from ``params`` and ``inputs``, moved
+    :func:`into_bounds` where it passes the targets."""
     fit = least_squares_fit(family, targets, params, inputs, timing=timing, turns=turns,
                             exact=True, evaluations=evaluations)
-    if fit is None or fit.residual > EXACT / 10 or _in_bounds(family, fit, min_transmission):
+    if fit is None or fit.residual > EXACT / 10:
+        return fit
+    return into_bounds(family, targets, fit, min_transmission=min_transmission,
+                       timing=timing, turns=turns, evaluations=evaluations)
+
+
+def into_bounds(family: Family, targets: np.ndarray, fit: Fit, *, min_transmission: float,
+                timing: np.ndarray | None = None, turns: np.ndarray | None = None,
+                evaluations: int | None = None) -> Fit:
+    """An exact ``fit`` whose transmission angle or link ratio is out of bounds moved
+    by least squares onto the same set of solutions where the bounds hold (by
+    :data:`MARGIN`; a family with unknowns to spare can move along its set): that fit
+    if it passes the targets still, else ``fit`` as it is (the certification judges it);
+    a fit within bounds as it is."""
+    if _in_bounds(family, fit, min_transmission):
         return fit
     moved = least_squares_fit(family, targets, fit.params, fit.inputs, timing=timing,
                               turns=turns, exact=True, bounded=True,

@@ -26,15 +26,16 @@ from chaingraph.synthesis.optimiser import (
     TaskFrame,
     coarse_search,
     fit_start,
+    least_squares_fit,
 )
 from chaingraph.synthesis.path_generation import (
     EXACT,
     Budget,
     first_certified,
+    into_bounds,
     least_transmission,
     screened_fits,
     slide_span,
-    within_bounds,
 )
 from chaingraph.synthesis.result import Curve, Searched, Solution, Synthesis, ranked
 from chaingraph.synthesis.task import MotionTask
@@ -62,14 +63,19 @@ def synthesise_motion(task: MotionTask, family: Family, *, solutions: int, budge
     for p, th in zip(posed, inputs):
         if not np.all(np.isfinite(p)):
             continue
-        fit = within_bounds(family, targets, p, th, turns=turns,
-                            min_transmission=task.min_transmission)
+        fit = least_squares_fit(family, targets, p, th, exact=True, turns=turns)
         if fit is not None and fit.residual <= EXACT / 10:
             fits.append(fit)
     kept, rejected = screened_fits(family, fits)
     kept.sort(key=lambda f: -least_transmission(family, f))
+    tried = _CERTIFIED * solutions
+    # those to be certified moved along their set of solutions into the bounds where
+    # they are out (a six-bar has unknowns to spare), the best first again
+    kept[:tried] = sorted((into_bounds(family, targets, f, turns=turns,
+                                       min_transmission=task.min_transmission)
+                           for f in kept[:tried]), key=lambda f: -least_transmission(family, f))
     found = first_certified(kept, solutions, lambda f: _certified(task, family, frame, f),
-                            rejected, tried=_CERTIFIED * solutions)
+                            rejected, tried=tried)
     return Synthesis(task, ranked(found, solutions, tolerance=EXACT * task.size),
                      dict(sorted(rejected.items())), Searched(1, 1, budget.samples))
 

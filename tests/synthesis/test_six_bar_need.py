@@ -69,7 +69,7 @@ def test_the_points_are_the_examples_and_the_count_of_unknowns_says_who_can():
     assert spare_unknowns(slider, 6, timed=True) is None           # sliding: not counted
 
 
-@pytest.mark.parametrize("seed, min_transmission", [(1, 30.0), (2, 30.0), (1, 0.0)])
+@pytest.mark.parametrize("seed, min_transmission", [(1, 30.0), (1, 0.0)])
 def test_no_four_bar_is_certified(seed, min_transmission):
     """The four-bar's fitted search (differential evolution, least squares) finds no
     four-bar that meets the six points within a degree of their timing on one circuit,
