@@ -30,7 +30,7 @@ from typing import Any, TypeAlias
 import numpy as np
 
 __all__ = [
-    "sub", "dot", "cross", "perp", "distance", "normalised", "rotate", "unit", "normal",
+    "sub", "dot", "cross", "perp", "distance", "angle_between", "normalised", "rotate", "unit", "normal",
     "unit_deg", "direction_deg",
     "apply", "compose", "inverse", "frame_from_two", "fit_frame", "line_in",
     "FIXED", "cos_sin", "make_pose", "turn_by", "world", "fit_two_points", "from_point",
@@ -74,6 +74,16 @@ def perp(v: Vec) -> Vec:
 
 def distance(p: Vec, q: Vec) -> Scalar:
     return math.hypot(p[0] - q[0], p[1] - q[1])
+
+
+def angle_between(u: Vec, v: Vec) -> Scalar:
+    """The angle between ``u`` and ``v`` in degrees, in [0, 180] (a transmission
+    angle's measure: from |u x v| and u . v, exact near 0 and 180 as an arccos is not).
+
+    >>> float(angle_between((1.0, 0.0), (-1.0, 1.0)))
+    135.0
+    """
+    return np.degrees(np.arctan2(np.abs(cross(u, v)), dot(u, v)))
 
 
 def normalised(v: Vec) -> np.ndarray | None:

@@ -15,6 +15,7 @@ from numpy.typing import ArrayLike
 
 from chaingraph._util.numbers import tidy
 from chaingraph.errors import UnboundedRangeError
+from chaingraph.geometry import angle_between
 from chaingraph.kinematics.columns import (
     LinkMotion,
     LinkStates,
@@ -779,8 +780,7 @@ def _transmission(plan, cols, out):
     def angle_near(k):
         near = slice(max(int(k) - 1, 0), int(k) + 2)
         a, b = (ax[near], ay[near]), (bx[near], by[near])
-        mu = np.degrees(np.arctan2(np.abs(a[0] * b[1] - a[1] * b[0]), a[0] * b[0] + a[1] * b[1]))
-        return _refined_extreme(mu, min(int(k), 1))
+        return _refined_extreme(angle_between(a, b), min(int(k), 1))
     return {"min": angle_near(np.argmax(dot)), "max": angle_near(np.argmin(dot))}
 
 

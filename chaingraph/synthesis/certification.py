@@ -28,6 +28,7 @@ from scipy.optimize import minimize_scalar  # type: ignore[import-untyped]
 
 from chaingraph.errors import AssemblyError, PoseAdjustedWarning
 from chaingraph.files import dumps, loads
+from chaingraph.geometry import angle_between
 from chaingraph.kinematics import Motion, build_plan, solve
 from chaingraph.kinematics.behaviour import behaviour, four_link_loop, turning_links
 from chaingraph.model.chain import Chain
@@ -401,9 +402,7 @@ def transmission_angles(chain: Chain,
         def xy(j):
             return motion[f"x:{j.id}"], motion[f"y:{j.id}"]
         if joint.kind == "R" and back.kind == "R" and ahead.kind == "R":
-            (cx, cy), (bx, by), (ax, ay) = xy(joint), xy(back), xy(ahead)
-            ux, uy, vx, vy = bx - cx, by - cy, ax - cx, ay - cy
-            mu = np.degrees(np.arctan2(np.abs(ux * vy - uy * vx), ux * vx + uy * vy))
+            mu = _angle_at(motion, joint.id, back.id, ahead.id)
         elif joint.kind == "R" and ahead.kind == "P" and m.fixed in ahead.links:
             mu = _to_normal(np.subtract(xy(back), xy(joint)), _guide(chain, motion, ahead))
         elif joint.kind == "P" and ahead.kind == "R" and m.fixed in ahead.links:
@@ -477,9 +476,8 @@ def _angle_at(motion: Motion, at: str, one: str, other: str) -> np.ndarray:
     """The angle (degrees) at joint ``at`` between the lines to joints ``one`` and
     ``other`` over a motion."""
     cx, cy = motion[f"x:{at}"], motion[f"y:{at}"]
-    ux, uy = motion[f"x:{one}"] - cx, motion[f"y:{one}"] - cy
-    vx, vy = motion[f"x:{other}"] - cx, motion[f"y:{other}"] - cy
-    return np.degrees(np.arctan2(np.abs(ux * vy - uy * vx), ux * vx + uy * vy))
+    return angle_between((motion[f"x:{one}"] - cx, motion[f"y:{one}"] - cy),
+                         (motion[f"x:{other}"] - cx, motion[f"y:{other}"] - cy))
 
 
 def _input_link(chain) -> str | None:

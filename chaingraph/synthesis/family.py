@@ -33,7 +33,7 @@ from dataclasses import dataclass
 import numpy as np
 import numpy.typing as npt
 
-from chaingraph.geometry import circle_circle, circle_line, line_by_two_distances
+from chaingraph.geometry import angle_between, circle_circle, circle_line, line_by_two_distances
 from chaingraph.kinematics.equations import newton_step
 from chaingraph.model.chain import Chain, Input, Joint, Mechanism, Point
 
@@ -201,8 +201,7 @@ class FourBar(Family):
 
     def transmission(self, params: np.ndarray, theta: np.ndarray) -> np.ndarray:
         (bx, by), (cx, cy), d, _, _, _ = self._joints(params, theta)
-        ux, uy, vx, vy = bx - cx, by - cy, d[0] - cx, d[1] - cy
-        return np.degrees(np.arctan2(np.abs(ux * vy - uy * vx), ux * vx + uy * vy))
+        return angle_between((bx - cx, by - cy), (d[0] - cx, d[1] - cy))
 
     def posed(self, params: np.ndarray, theta: np.ndarray) -> np.ndarray:
         p = np.asarray(params, dtype=float)
@@ -617,8 +616,7 @@ class AtlasFamily(Family):
         if s.pattern == "RRP":
             return _to_normal((ax - mx, ay - my), axis(s.second, s.second_joint))
         bx, by = at(s.second, s.second_joint)
-        ux, uy, vx, vy = ax - mx, ay - my, bx - mx, by - my
-        return np.degrees(np.arctan2(np.abs(ux * vy - uy * vx), ux * vx + uy * vy))
+        return angle_between((ax - mx, ay - my), (bx - mx, by - my))
 
     def first_input(self, params: np.ndarray) -> np.ndarray:
         drawn = self._drawn(params)
@@ -1299,8 +1297,8 @@ class LoopFamily(AtlasFamily):
     def _joint_angle(self, params, motions, k, others) -> np.ndarray:
         """The angle (degrees) at joint ``k`` between its two links' lines to
         ``others``."""
-        (ux, uy), (vx, vy) = self._lines(params, motions, k, others)
-        return np.degrees(np.arctan2(np.abs(ux * vy - uy * vx), ux * vx + uy * vy))
+        u, v = self._lines(params, motions, k, others)
+        return angle_between(u, v)
 
 
 class CylinderFamily(LoopFamily):

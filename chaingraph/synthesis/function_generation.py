@@ -38,7 +38,7 @@ import numpy.typing as npt
 from scipy.optimize import minimize  # type: ignore[import-untyped]
 
 from chaingraph.errors import DesignError
-from chaingraph.geometry import circle_circle, circle_line
+from chaingraph.geometry import angle_between, circle_circle, circle_line
 from chaingraph.model.chain import Chain, Joint, Mechanism
 from chaingraph.naming import identify
 from chaingraph.kinematics import solve
@@ -146,9 +146,7 @@ def _four_bar_output(a, b, c, d, theta, mode):
     root = mode * np.sqrt(np.where(raw >= 0, raw, np.nan))
     cx, cy = mx + root * nx, my + root * ny
     psi = np.arctan2(cy, cx - d)
-    ux, uy, vx, vy = bx - cx, by - cy, d - cx, -cy
-    mu = np.degrees(np.arctan2(np.abs(ux * vy - uy * vx), ux * vx + uy * vy))
-    return psi, mu
+    return psi, angle_between((bx - cx, by - cy), (d - cx, -cy))
 
 
 def _slider_output(r, l, e, theta, mode):

@@ -50,7 +50,7 @@ from dataclasses import replace
 import numpy as np
 
 from chaingraph.errors import DesignError
-from chaingraph.geometry import cross, dot
+from chaingraph.geometry import angle_between, cross, dot
 from chaingraph.model.snap import ROUNDING
 from chaingraph.naming import identify
 from chaingraph.synthesis.burmester import (
@@ -257,7 +257,7 @@ def _dots(u, v):
 
 def _angle(u, v):
     """The angle between u and v, degrees in [0, 180]."""
-    return np.degrees(np.arctan2(np.abs(_crosses(u, v)), _dots(u, v)))
+    return angle_between(np.moveaxis(u, -1, 0), np.moveaxis(v, -1, 0))
 
 
 def _to_normal(u, g):
